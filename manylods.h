@@ -1,0 +1,2558 @@
+/* manylods.h - v0.1.0 - many-view level of detail on the CPU, single header, C99 / C++
+
+   Pick, for hundreds to a million views at once (virtual point lights, light
+   probes, reflection maps, micro-views of point-based GI), the right level of
+   detail of a scene from a bounding sphere hierarchy.  After
+
+     M. Hollaender, T. Ritschel, E. Eisemann, T. Boubekeur: "ManyLoDs: Parallel
+     Many-View Level-of-Detail Selection for Real-Time Global Illumination",
+     EGSR 2011;  and  T. Kol et al.: "MegaViews", Computer Graphics Forum 2018.
+
+   USAGE
+     In exactly one C or C++ file:
+         #define MANYLODS_IMPLEMENTATION
+         #include "manylods.h"
+     Everywhere else just #include "manylods.h".
+     Define MANYLODS_STATIC as well to give the implementation internal linkage
+     (private copies in several files).  Define MANYLODS_PTHREADS with the
+     implementation to get the built-in thread pool (mlod_pool_*), then link
+     with -pthread; the default build needs no thread library.
+
+   CONFIGURATION (define before the implementation)
+     MANYLODS_MALLOC(size, user) / MANYLODS_FREE(ptr, user)
+                     default allocator; define both or neither.  The per-call
+                     mlod_allocator struct overrides them.
+     MANYLODS_ASSERT(x)   internal consistency checks (default: assert).
+                     Never used on user input: bad input returns an error.
+
+   PIPELINE
+     1. Build (once):   mlod_build_mesh() samples N points on a triangle mesh
+        (or mlod_build_points() takes a point cloud) and orders them into a
+        bounding sphere hierarchy (BSH): mlod_tree.
+     2. Refit (per frame, deforming mesh, same topology): mlod_refit_mesh().
+     3. Cut (per frame, all views at once): mlod_cut_update() selects for each
+        view the nodes that are just small enough on screen.
+
+   TREE LAYOUT
+     N >= 1 leaves, 2N-1 nodes, implicit heap order without pointers: the
+     children of node i are 2i+1 and 2i+2, its parent is (i-1)/2.  Nodes
+     0 .. N-2 are internal (always two children), nodes N-1 .. 2N-2 are leaves.
+     Any N works (no padding to a power of two).  Each node stores a bounding
+     sphere (centre, radius) and, only when asked for, a normal cone (unit
+     axis, half-angle), the surface area below it and the mean colour of the
+     leaves below it.  A leaf is one surface sample: its sphere is centred on
+     the sample and its radius is the sample's splat radius.
+
+     Containment: every node's sphere contains its children's spheres exactly
+     (in real arithmetic on the stored floats), and with slack: with d the
+     distance between the centres, r_parent >= (d + r_child) * (1 + 2^-20).
+     Normal cones contain their children's cones with 2^-20 rad to spare:
+     angle(axis_parent, axis_child) + alpha_child + 2^-20 <= alpha_parent.  A
+     half-angle >= pi means the full sphere of directions.  The slack makes
+     the criterion below monotone in floating point, not just on paper.
+
+   SAMPLING (meshes)
+     N area-uniform samples, stratified: sample i sits at the position
+     (i + xi_i) / N, xi_i in [0,1) hashed from (seed, i), of the cumulative
+     triangle area, so each triangle gets its share of samples within one;
+     inside a triangle its k samples form a jittered rank-1 lattice (the 1-D
+     stratum and the golden-ratio sequence) mapped to the triangle by the
+     area-preserving square-to-triangle map.  Zero-area triangles get none.
+     Each sample keeps (triangle, s, t): position = V0 + s (V1-V0) + t (V2-V0).
+     Splat radius of a leaf, A the total area at build time:
+         r = radius_scale * sqrt(A / N)
+     i.e. a disc of pi times the sample's share of the surface, enough to
+     cover the surface (tests/test_build.c measures it).  Refit scales each
+     leaf radius with sqrt(area_now / area_at_build) of its triangle.
+
+   BUILD
+     Top-down median splits.  Node i receives the samples of its subtree,
+     split so that the left child gets exactly as many samples as it has
+     leaves.  The split axis is the one whose two halves have the smaller sum
+     of bounding volumes, where the volume of a set is that of the sphere
+     around its axis-aligned box (proportional to the cube of the box
+     diagonal; robust for flat and degenerate sets); ties go to x, then y.
+     The three axis orders are sorted once (radix sort) and kept sorted by
+     stable partitions, as Wald and Havran build kd-trees: O(N log N) total.
+
+   VIEWS AND THE CRITERION
+     c(node, view) = diameter, in pixels of the view's tile, of the image of
+     the node's bounding sphere under the view's projection: the exact
+     diameter of that image, which bounds the node's projected size from
+     above.  c = 0 when the node is culled, c = +inf when the eye is inside
+     or on the sphere or the image is unbounded.  Notation: e eye, (u, v, w)
+     the view frame (right, up, forward), x = centre - e, d = |x|, r radius.
+
+     PERSPECTIVE (pinhole, vertical field of view fov_y, tile W x H, square
+       pixels, focal length f = (H/2) / tan(fov_y/2) pixels):
+         c = f * 2 r sqrt(d^2 - r^2) / ((x.w)^2 - r^2)      if x.w > r
+       (the major axis of the image ellipse: f (tan(t+b) - tan(t-b)) with t
+       the angle of the centre off the axis and b = asin(r/d)), +inf if
+       x.w <= r.  Culled when the sphere lies wholly outside one of the six
+       frustum planes (near, far, and the four sides through the eye).
+     PARABOLOID (hemispherical, a virtual point light at e with normal w;
+       direction y maps to (y.u, y.v) / (1 + y.w) in [-1,1]^2, which is a
+       stereographic projection, so spheres map to circles):
+         c = (max(W,H)/2) * 2 r / (x.w + sqrt(d^2 - r^2))    (+inf if <= 0)
+       Culled when the sphere lies wholly behind the plane (x.w + r < 0).
+     DUAL_PARABOLOID (omnidirectional: the front hemisphere (+w) in the left
+       half of the tile, the back one (-w, seen with u mirrored) in the right
+       half, each W/2 x H): c = the larger of the two paraboloid diameters
+       over the halves the sphere reaches, with max(W/2,H)/2 pixels per unit.
+       Never culled.
+     ORTHOGRAPHIC (a directional light: box of half-extents ortho_half_width
+       x ortho_half_height around e, depth range [near, far] along w):
+         c = 2 r * max(W / (2 half_width), H / (2 half_height))
+       Culled when the sphere lies wholly outside the box.
+     BACK-FACE CULLING (view flag MLOD_VIEW_CULL_BACKFACES, trees with cones):
+       a node is also culled when every point of its sphere with every normal
+       of its cone faces away from the eye: angle(axis, e - centre) >
+       pi/2 + alpha + asin(r/d) (for orthographic views the direction to the
+       eye is -w and the asin term is 0).
+     Monotone: a child inside its parent has c(child) <= c(parent) for every
+     view, culling included.  The plane tests are evaluated exactly (a
+     floating-point filter with an exact expansion-arithmetic fallback); the
+     diameters are computed in double precision, whose error the tree's
+     slack of 2^-20 dominates.
+
+   THE CUT
+     valid(n, v) <=> c(n, v) <= epsilon (epsilon in pixels, > 0).  The cut of a
+     view is every valid node whose parent is not valid (the root if valid),
+     plus every leaf whose parent is not valid although it is not valid
+     either (an oversize leaf: drawn and counted).  Culled nodes stay in the
+     cut, marked culled.  The subtrees of a view's cut partition the leaves.
+     Each view's cut is listed left to right (the order of the leaves), so
+     equal cuts are equal lists.
+     MLOD_CUT_BASIC        computes the cut from the root.
+     MLOD_CUT_INCREMENTAL  starts from the previous call's cut of the same
+                           views: invalid nodes split (down to the cut),
+                           valid sibling pairs whose parent is valid merge
+                           (through the left child), until nothing changes.
+                           The result equals the basic cut, node for node.
+     MLOD_CUT_LAZY         the same actions, but at most lazy_steps one-edge
+                           moves per node and view and call.  Always a
+                           partition; may still hold nodes finer than needed
+                           (drawn) or coarser (status MLOD_STATUS_COARSE);
+                           converges to the basic cut when views stop.
+
+   THREADS
+     mlod_cut_update and mlod_refit_mesh take an optional mlod_parallel hook
+     (a parallel-for); with none they run on the calling thread.  Work is
+     split into tasks of bounded size within and among views, so one view
+     with a cut 100x the others does not serialise the frame.  Results are
+     identical for any thread count.  Distinct objects may be used from
+     distinct threads; one object must not be used by two calls at once.
+
+   ERRORS
+     Functions return mlod_result; the optional mlod_error receives the code
+     and a readable message.  On error the caller's objects are unchanged (or,
+     for constructors, the output pointer is set to NULL).  The library never
+     prints, aborts or exits.
+
+   MEMORY
+     Every object reports its bytes (mlod_tree.bytes, mlod_cut_bytes).
+     Attributes a scene does not ask for take no memory.  All memory comes
+     from the allocator given at creation (or MANYLODS_MALLOC/FREE, or
+     malloc/free); the allocator is only called from the calling thread.
+
+   LICENSE: MIT or public domain, your choice; see the end of this file.
+*/
+#ifndef MANYLODS_H
+#define MANYLODS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define MANYLODS_VERSION_MAJOR 0
+#define MANYLODS_VERSION_MINOR 1
+#define MANYLODS_VERSION_PATCH 0
+/* major * 10000 + minor * 100 + patch */
+#define MANYLODS_VERSION 100
+
+#ifdef MANYLODS_STATIC
+#define MANYLODS_DEF static
+#else
+#ifdef __cplusplus
+#define MANYLODS_DEF extern "C"
+#else
+#define MANYLODS_DEF extern
+#endif
+#endif
+
+/* Largest supported N (samples, leaves): the tree then has 2^31 - 1 nodes. */
+#define MANYLODS_MAX_LEAVES 0x40000000u
+
+/* ---------------------------------------------------------------- results */
+
+typedef enum mlod_result {
+    MLOD_OK = 0,
+    MLOD_ERROR_INVALID_ARGUMENT = 1, /* NULL where an object is needed, bad enum, bad size */
+    MLOD_ERROR_NON_FINITE = 2,       /* NaN or infinite number in the input */
+    MLOD_ERROR_INDEX_OUT_OF_RANGE = 3, /* triangle index >= vertex count */
+    MLOD_ERROR_EMPTY = 4,            /* N = 0, no triangle with area, no point */
+    MLOD_ERROR_BAD_EPSILON = 5,      /* epsilon <= 0 or NaN */
+    MLOD_ERROR_BAD_VIEW = 6,         /* degenerate frame, tile, field of view, planes */
+    MLOD_ERROR_OVERFLOW = 7,         /* a size that does not fit (N, nodes, bytes) */
+    MLOD_ERROR_OUT_OF_MEMORY = 8,    /* the allocator returned NULL */
+    MLOD_ERROR_MISMATCH = 9,         /* objects that do not belong together */
+    MLOD_ERROR_RANGE = 10,           /* coordinates too large for float bounds */
+    MLOD_ERROR_CANCELLED = 11        /* the progress callback asked to stop */
+} mlod_result;
+
+typedef struct mlod_error {
+    mlod_result code;
+    char message[200]; /* NUL-terminated, English, no trailing newline */
+} mlod_error;
+
+/* A short constant name for a result code ("MLOD_ERROR_EMPTY").  Thread-safe. */
+MANYLODS_DEF const char *mlod_result_name(mlod_result result);
+
+/* ------------------------------------------------- allocation and threads */
+
+/* Per-object allocator.  alloc returns memory aligned for any type, or NULL;
+   free accepts NULL.  Called only from the thread that calls the library. */
+typedef struct mlod_allocator {
+    void *(*alloc)(void *user, size_t bytes);
+    void (*free)(void *user, void *pointer);
+    void *user;
+} mlod_allocator;
+
+/* A parallel-for: run(user, count, task, context) must call
+   task(context, i) once for every i in [0, count), from any threads in any
+   order, and return when all calls have returned.  Tasks never allocate and
+   never call back into the hook. */
+typedef void mlod_task_fn(void *context, uint32_t index);
+typedef struct mlod_parallel {
+    void (*run)(void *user, uint32_t count, mlod_task_fn *task, void *context);
+    void *user;
+} mlod_parallel;
+
+/* Progress: fraction in [0,1], non-decreasing.  Return non-zero to cancel
+   (the call then returns MLOD_ERROR_CANCELLED). Called on the calling thread. */
+typedef int mlod_progress_fn(void *user, float fraction);
+
+/* ------------------------------------------------------------------ input */
+
+/* A triangle mesh.  Positions: 3 floats per vertex, position_stride bytes
+   apart (0 = tightly packed).  Normals and colours are optional (NULL),
+   per vertex, 3 floats each (colours are linear RGB, any range).
+   index_count is a multiple of 3; every index < vertex_count. */
+typedef struct mlod_mesh {
+    const float *positions;
+    size_t position_stride;
+    uint32_t vertex_count;
+    const uint32_t *indices;
+    uint32_t index_count;
+    const float *normals;   /* optional; zero-length normals fall back to the face normal */
+    size_t normal_stride;
+    const float *colors;    /* optional */
+    size_t color_stride;
+} mlod_mesh;
+
+/* A point cloud: each point becomes one leaf.  Normals are required only
+   for cones (MLOD_ATTR_CONE); radii are optional (world units, >= 0); without
+   them a radius is estimated from the local density (see mlod_build_points). */
+typedef struct mlod_points {
+    const float *positions;
+    size_t position_stride;
+    uint32_t count;
+    const float *normals;
+    size_t normal_stride;
+    const float *radii;
+    size_t radius_stride;
+    const float *colors;
+    size_t color_stride;
+} mlod_points;
+
+/* Attributes a tree may carry beyond its spheres. */
+enum {
+    MLOD_ATTR_CONE = 1u << 0,  /* normal cones: 16 bytes per node */
+    MLOD_ATTR_AREA = 1u << 1,  /* surface area below the node: 4 bytes per node */
+    MLOD_ATTR_COLOR = 1u << 2, /* mean leaf colour: 12 bytes per node */
+    MLOD_ATTR_REFIT = 1u << 3  /* what refit needs: 12 bytes per leaf (+8 per triangle) */
+};
+
+typedef struct mlod_build_desc {
+    uint32_t sample_count;     /* N for meshes, 1 .. MANYLODS_MAX_LEAVES; ignored for points */
+    uint64_t seed;             /* same seed, same input -> same tree */
+    float radius_scale;        /* multiplies every leaf radius; 0 means 1 */
+    uint32_t attributes;       /* MLOD_ATTR_* bits */
+    const mlod_allocator *allocator; /* NULL: MANYLODS_MALLOC/FREE */
+    mlod_progress_fn *progress;      /* optional */
+    void *progress_user;
+} mlod_build_desc;
+
+/* --------------------------------------------------------------- the tree */
+
+/* Precision flags of a tree (mlod_tree.precision). */
+enum {
+    /* The scene's extent is below 2^-20 of its distance from the origin:
+       float positions are quantised more coarsely than the samples are apart,
+       so samples collapse onto each other.  Bounds, cuts and partitions are
+       still exact for the stored (quantised) positions. */
+    MLOD_PRECISION_COARSE_POSITIONS = 1u << 0
+};
+
+/* A bounding sphere hierarchy.  All arrays are owned by the tree and valid
+   until mlod_tree_destroy; read them freely, do not write them.  Node i:
+   spheres[4i .. 4i+3] = centre x, y, z, radius (world units);
+   cones[4i .. 4i+3]   = unit axis x, y, z, half-angle in radians (>= pi: all
+                         directions), or cones == NULL;
+   areas[i]            = surface area below the node, in units of
+                         area_unit (world units^2), or NULL;
+   colors[3i .. 3i+2]  = mean colour of the leaves below, or NULL.
+   Leaf j (0 <= j < N) is node N-1+j. */
+typedef struct mlod_tree {
+    uint32_t leaf_count;    /* N */
+    uint32_t node_count;    /* 2N - 1 */
+    uint32_t attributes;    /* MLOD_ATTR_* present */
+    uint32_t precision;     /* MLOD_PRECISION_* flags */
+    float *spheres;
+    float *cones;
+    float *areas;
+    float *colors;
+    double area_unit;       /* world units^2 per unit of areas[]: the mean
+                               sample area at build, A / N (areas[] stay in
+                               float range at any scene scale) */
+    /* refit data (MLOD_ATTR_REFIT): for meshes, the source triangle and
+       barycentrics (s, t) of every leaf and each triangle's area at build
+       time; for point clouds, the source point of every leaf. */
+    uint32_t *leaf_sources;      /* N */
+    float *leaf_barycentrics;    /* 2N, or NULL for point clouds */
+    double *triangle_areas;      /* triangle count, world units^2, or NULL for points */
+    uint32_t triangle_count;     /* of the mesh built from, 0 for points */
+    uint32_t vertex_count;       /* of the mesh built from, 0 for points */
+    float radius_scale;          /* as used at build */
+    size_t bytes;                /* everything the tree allocated */
+    size_t bytes_per_node;       /* bytes of the per-node arrays, per node */
+    mlod_allocator allocator;
+} mlod_tree;
+
+/* Sample desc->sample_count points on the mesh and build the tree.  O(N log N
+   + triangles).  On success *out_tree owns its memory (mlod_tree_destroy);
+   on failure *out_tree is NULL.  Reentrant: no shared state. */
+MANYLODS_DEF mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build_desc *desc,
+                                         mlod_tree **out_tree, mlod_error *error);
+
+/* Build a tree whose leaves are the points.  desc->sample_count is ignored.
+   Without radii, each point's radius is radius_scale * R * sqrt(pi / L),
+   where R is the radius and L >= 8 the leaf count of the lowest node above
+   the point with at least 8 leaves (the point's share of a disc of radius R,
+   as for mesh samples; the whole tree when N < 8).  The area of a point
+   leaf is (radius / radius_scale)^2; area_unit is their mean. */
+MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod_build_desc *desc,
+                                           mlod_tree **out_tree, mlod_error *error);
+
+/* Recompute every leaf from the deformed mesh (same triangles, same vertex
+   count, new positions, normals, colours) and merge bounds bottom-up, with
+   the build's containment guarantees.  Needs MLOD_ATTR_REFIT.  O(N), no
+   allocation.  On error the tree is unchanged. */
+MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
+                                         const mlod_parallel *parallel, mlod_error *error);
+
+/* The same for a tree built from points: same count, new positions (and
+   normals, radii, colours when the tree has them). */
+MANYLODS_DEF mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *points,
+                                           const mlod_parallel *parallel, mlod_error *error);
+
+/* Free the tree.  NULL is fine. */
+MANYLODS_DEF void mlod_tree_destroy(mlod_tree *tree);
+
+/* ------------------------------------------------------------------ views */
+
+typedef enum mlod_view_kind {
+    MLOD_VIEW_PERSPECTIVE = 0,
+    MLOD_VIEW_PARABOLOID = 1,
+    MLOD_VIEW_DUAL_PARABOLOID = 2,
+    MLOD_VIEW_ORTHOGRAPHIC = 3
+} mlod_view_kind;
+
+enum { MLOD_VIEW_CULL_BACKFACES = 1u << 0 };
+
+/* One view.  World units; angles in radians.  forward and up need not be
+   unit length but must not be parallel; right = forward x up. */
+typedef struct mlod_view {
+    mlod_view_kind kind;
+    float position[3];   /* eye; orthographic: a point on the box's axis, depth 0 */
+    float forward[3];    /* viewing direction; paraboloids: the hemisphere axis */
+    float up[3];
+    uint32_t width;      /* tile size in pixels, >= 1 each */
+    uint32_t height;
+    float fov_y;         /* perspective: vertical field of view, (0, pi) */
+    float near_plane;    /* perspective: > 0; orthographic: any */
+    float far_plane;     /* perspective, orthographic: > near, may be +inf */
+    float half_width;    /* orthographic: half-extents of the box, > 0 */
+    float half_height;
+    uint32_t flags;      /* MLOD_VIEW_* */
+} mlod_view;
+
+/* c(node, view) in pixels, as defined above: 0 when culled, +inf when
+   unbounded.  Returns NaN when node >= node_count or the view is invalid.
+   Pure, thread-safe.  Costs one view set-up: use the cut for bulk work. */
+MANYLODS_DEF double mlod_criterion(const mlod_tree *tree, uint32_t node, const mlod_view *view);
+
+/* Check a view: MLOD_OK or MLOD_ERROR_BAD_VIEW / NON_FINITE with a message. */
+MANYLODS_DEF mlod_result mlod_view_check(const mlod_view *view, mlod_error *error);
+
+/* -------------------------------------------------------------------- cut */
+
+typedef enum mlod_cut_mode {
+    MLOD_CUT_BASIC = 0,
+    MLOD_CUT_INCREMENTAL = 1,
+    MLOD_CUT_LAZY = 2
+} mlod_cut_mode;
+
+/* Status of a node in a cut. */
+enum {
+    MLOD_STATUS_DRAWN = 1,    /* valid and not culled */
+    MLOD_STATUS_CULLED = 2,   /* culled: never drawn */
+    MLOD_STATUS_OVERSIZE = 3, /* a leaf above epsilon: drawn */
+    MLOD_STATUS_COARSE = 4    /* lazy mode only: an internal node above epsilon
+                                 not yet split: drawn */
+};
+
+typedef struct mlod_cut_params {
+    mlod_cut_mode mode;
+    float epsilon;               /* pixels, > 0, may be +inf */
+    uint32_t lazy_steps;         /* lazy mode: moves per node-view and call, >= 1 */
+    const mlod_parallel *parallel; /* optional */
+} mlod_cut_params;
+
+/* One view's cut, valid until the next mlod_cut_update or mlod_cut_destroy. */
+typedef struct mlod_cut_view {
+    const uint32_t *nodes;  /* count node indices, left to right */
+    const uint8_t *status;  /* count MLOD_STATUS_* values */
+    uint32_t count;
+    uint32_t drawn, culled, oversize, coarse; /* counts by status */
+    uint32_t evaluated;     /* criterion evaluations in the last update */
+    uint32_t steps;         /* splits and merges in the last update */
+} mlod_cut_view;
+
+typedef struct mlod_cut mlod_cut;
+
+/* Create an empty cut for view_count >= 1 views (it keeps the lists that
+   incremental and lazy modes start from).  allocator may be NULL. */
+MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator,
+                                         mlod_cut **out_cut, mlod_error *error);
+
+/* Compute the cuts of all views (views[0 .. view_count-1]) in the tree.
+   Incremental and lazy modes start from the previous update's cuts when the
+   previous update used a tree of the same node count, else from the root.
+   All views are checked before any work; on error the previous cuts stay.
+   Memory grows with the cut sizes, not with views x N. */
+MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+                                         const mlod_cut_params *params, mlod_error *error);
+
+/* Forget the previous cuts: the next update starts from the root. */
+MANYLODS_DEF void mlod_cut_reset(mlod_cut *cut);
+
+MANYLODS_DEF uint32_t mlod_cut_view_count(const mlod_cut *cut);
+/* view < view_count; before any update every view has count 0. */
+MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view);
+/* Bytes the cut object holds now. */
+MANYLODS_DEF size_t mlod_cut_bytes(const mlod_cut *cut);
+MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut);
+
+/* --------------------------------------------------- built-in thread pool */
+#ifdef MANYLODS_PTHREADS
+typedef struct mlod_pool mlod_pool;
+/* threads >= 1 workers in all, counting the calling thread (threads - 1 are
+   started).  Returns NULL on failure.  Uses malloc. */
+MANYLODS_DEF mlod_pool *mlod_pool_create(uint32_t threads);
+MANYLODS_DEF void mlod_pool_destroy(mlod_pool *pool);
+/* A hook that runs tasks on the pool; valid while the pool lives. One call
+   at a time per pool. */
+MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
+#endif
+
+#endif /* MANYLODS_H */
+
+/* ======================================================================== */
+/*                             IMPLEMENTATION                               */
+/* ======================================================================== */
+#ifdef MANYLODS_IMPLEMENTATION
+#ifndef MANYLODS_IMPLEMENTATION_DONE
+#define MANYLODS_IMPLEMENTATION_DONE
+
+#if defined(__FAST_MATH__)
+#error "manylods: compile the implementation without -ffast-math: its exact plane tests need IEEE rounding"
+#endif
+
+#include <math.h>
+#include <string.h>
+#include <stdio.h>
+#include <stdarg.h>
+#include <float.h>
+
+#if defined(MANYLODS_MALLOC) != defined(MANYLODS_FREE)
+#error "manylods: define both MANYLODS_MALLOC and MANYLODS_FREE, or neither"
+#endif
+#ifndef MANYLODS_MALLOC
+#include <stdlib.h>
+#define MANYLODS_MALLOC(size, user) ((void)(user), malloc(size))
+#define MANYLODS_FREE(pointer, user) ((void)(user), free(pointer))
+#endif
+#ifndef MANYLODS_ASSERT
+#include <assert.h>
+#define MANYLODS_ASSERT(x) assert(x)
+#endif
+
+/* ------------------------------------------------------------ errors ---- */
+
+MANYLODS_DEF const char *mlod_result_name(mlod_result result)
+{
+    switch (result) {
+    case MLOD_OK: return "MLOD_OK";
+    case MLOD_ERROR_INVALID_ARGUMENT: return "MLOD_ERROR_INVALID_ARGUMENT";
+    case MLOD_ERROR_NON_FINITE: return "MLOD_ERROR_NON_FINITE";
+    case MLOD_ERROR_INDEX_OUT_OF_RANGE: return "MLOD_ERROR_INDEX_OUT_OF_RANGE";
+    case MLOD_ERROR_EMPTY: return "MLOD_ERROR_EMPTY";
+    case MLOD_ERROR_BAD_EPSILON: return "MLOD_ERROR_BAD_EPSILON";
+    case MLOD_ERROR_BAD_VIEW: return "MLOD_ERROR_BAD_VIEW";
+    case MLOD_ERROR_OVERFLOW: return "MLOD_ERROR_OVERFLOW";
+    case MLOD_ERROR_OUT_OF_MEMORY: return "MLOD_ERROR_OUT_OF_MEMORY";
+    case MLOD_ERROR_MISMATCH: return "MLOD_ERROR_MISMATCH";
+    case MLOD_ERROR_RANGE: return "MLOD_ERROR_RANGE";
+    case MLOD_ERROR_CANCELLED: return "MLOD_ERROR_CANCELLED";
+    }
+    return "MLOD_ERROR_UNKNOWN";
+}
+
+static mlod_result mlod__fail(mlod_error *error, mlod_result code, const char *format, ...)
+{
+    if (error) {
+        va_list args;
+        error->code = code;
+        va_start(args, format);
+        vsnprintf(error->message, sizeof error->message, format, args);
+        va_end(args);
+    }
+    return code;
+}
+
+static mlod_result mlod__succeed(mlod_error *error)
+{
+    if (error) {
+        error->code = MLOD_OK;
+        error->message[0] = '\0';
+    }
+    return MLOD_OK;
+}
+
+/* -------------------------------------------------------- allocation ---- */
+
+static void *mlod__default_alloc(void *user, size_t bytes) { return MANYLODS_MALLOC(bytes, user); }
+static void mlod__default_free(void *user, void *pointer) { MANYLODS_FREE(pointer, user); }
+
+static mlod_allocator mlod__allocator(const mlod_allocator *given)
+{
+    mlod_allocator a;
+    if (given && given->alloc && given->free) return *given;
+    a.alloc = mlod__default_alloc;
+    a.free = mlod__default_free;
+    a.user = NULL;
+    return a;
+}
+
+/* count * size bytes, or NULL when that overflows or the allocator fails;
+   *bytes_total grows by what was allocated. */
+static void *mlod__alloc_array(const mlod_allocator *a, size_t count, size_t size, size_t *bytes_total)
+{
+    void *p;
+    size_t bytes;
+    if (size != 0 && count > (size_t)-1 / size) return NULL;
+    bytes = count * size;
+    p = a->alloc(a->user, bytes ? bytes : 1);
+    if (p && bytes_total) *bytes_total += bytes;
+    return p;
+}
+
+static void mlod__free(const mlod_allocator *a, void *p)
+{
+    if (p) a->free(a->user, p);
+}
+
+/* -------------------------------------------------- float helpers ---- */
+
+#define MLOD__PI 3.14159265358979323846
+/* Relative slack of a parent sphere over its children: 2^-20. */
+#define MLOD__SPHERE_SLACK (1.0 + 1.0 / 1048576.0)
+/* Angular margin of a parent cone over its children: 2^-20 rad. */
+#define MLOD__CONE_MARGIN (1.0 / 1048576.0)
+
+/* The smallest float >= x (x finite and >= 0, or +inf). */
+static float mlod__float_up(double x)
+{
+    float f = (float)x;
+    if ((double)f < x) f = nextafterf(f, (float)INFINITY);
+    return f;
+}
+
+static int mlod__finite3(const float *p)
+{
+    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+}
+
+static const float *mlod__at(const float *base, size_t stride, size_t index)
+{
+    return (const float *)((const char *)base + index * (stride ? stride : 3 * sizeof(float)));
+}
+
+static double mlod__dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void mlod__cross3(const double *a, const double *b, double *out)
+{
+    double x = a[1] * b[2] - a[2] * b[1];
+    double y = a[2] * b[0] - a[0] * b[2];
+    double z = a[0] * b[1] - a[1] * b[0];
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+}
+
+static double mlod__length3(const double *a) { return sqrt(mlod__dot3(a, a)); }
+
+/* Distance between two float points, in double. */
+static double mlod__distance_f(const float *a, const float *b)
+{
+    double dx = (double)a[0] - b[0], dy = (double)a[1] - b[1], dz = (double)a[2] - b[2];
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/* Angle between two (not necessarily unit) directions, accurate everywhere. */
+static double mlod__angle(const double *a, const double *b)
+{
+    double c[3];
+    mlod__cross3(a, b, c);
+    return atan2(mlod__length3(c), mlod__dot3(a, b));
+}
+
+/* ------------------------------------------------ sphere and cone merge -- */
+
+/* The smallest sphere around spheres a and b (x, y, z, r), rounded to floats
+   so that it contains both exactly, with the relative slack of the tree.
+   out may alias a or b. */
+static void mlod__sphere_enclose(const float *a, const float *b, float *out)
+{
+    double d = mlod__distance_f(a, b), ra = a[3], rb = b[3], need_a, need_b;
+    float c[3];
+    int k;
+    if (d + rb <= ra) {
+        for (k = 0; k < 3; k++) c[k] = a[k];
+    } else if (d + ra <= rb) {
+        for (k = 0; k < 3; k++) c[k] = b[k];
+    } else {
+        double t = ((d + ra + rb) * 0.5 - ra) / d;
+        for (k = 0; k < 3; k++) c[k] = (float)((double)a[k] + ((double)b[k] - (double)a[k]) * t);
+    }
+    need_a = mlod__distance_f(c, a) + ra;
+    need_b = mlod__distance_f(c, b) + rb;
+    out[3] = mlod__float_up((need_a > need_b ? need_a : need_b) * MLOD__SPHERE_SLACK);
+    for (k = 0; k < 3; k++) out[k] = c[k];
+}
+
+static void mlod__cone_full(const float *axis, float *out)
+{
+    out[0] = axis[0];
+    out[1] = axis[1];
+    out[2] = axis[2];
+    out[3] = mlod__float_up(MLOD__PI);
+}
+
+/* The smallest cone of directions around cones a and b (axis x, y, z,
+   half-angle), rounded so that it contains both with the angular margin of
+   the tree.  out may alias a or b. */
+static void mlod__cone_enclose(const float *a, const float *b, float *out)
+{
+    double A[3], B[3], X[3], t[3], theta, alpha, need_a, need_b, len;
+    float axis[3];
+    int k;
+    if (a[3] >= MLOD__PI || b[3] >= MLOD__PI) {
+        mlod__cone_full(a, out);
+        return;
+    }
+    for (k = 0; k < 3; k++) {
+        A[k] = a[k];
+        B[k] = b[k];
+    }
+    theta = mlod__angle(A, B);
+    if (theta + b[3] <= a[3]) {
+        for (k = 0; k < 3; k++) X[k] = A[k];
+    } else if (theta + a[3] <= b[3]) {
+        for (k = 0; k < 3; k++) X[k] = B[k];
+    } else {
+        double phi, la = mlod__length3(A), ab;
+        alpha = (theta + a[3] + b[3]) * 0.5;
+        if (alpha >= MLOD__PI) {
+            mlod__cone_full(a, out);
+            return;
+        }
+        phi = alpha - a[3]; /* rotate A towards B by phi */
+        for (k = 0; k < 3; k++) A[k] /= la;
+        ab = mlod__dot3(A, B);
+        for (k = 0; k < 3; k++) t[k] = B[k] - A[k] * ab;
+        len = mlod__length3(t);
+        if (!(len > 0.0)) { /* antiparallel: any direction orthogonal to A */
+            double helper[3] = {0.0, 0.0, 0.0};
+            helper[fabs(A[0]) < 0.5 ? 0 : 1] = 1.0;
+            mlod__cross3(A, helper, t);
+            len = mlod__length3(t);
+        }
+        for (k = 0; k < 3; k++) X[k] = A[k] * cos(phi) + t[k] / len * sin(phi);
+    }
+    len = mlod__length3(X);
+    for (k = 0; k < 3; k++) {
+        axis[k] = (float)(X[k] / len);
+        X[k] = axis[k];
+    }
+    for (k = 0; k < 3; k++) {
+        A[k] = a[k];
+        B[k] = b[k];
+    }
+    need_a = mlod__angle(X, A) + a[3];
+    need_b = mlod__angle(X, B) + b[3];
+    alpha = (need_a > need_b ? need_a : need_b) + MLOD__CONE_MARGIN;
+    if (alpha >= MLOD__PI) {
+        mlod__cone_full(axis, out);
+        return;
+    }
+    for (k = 0; k < 3; k++) out[k] = axis[k];
+    out[3] = mlod__float_up(alpha);
+}
+
+/* A leaf's cone from a normal: half-angle 0, or the full sphere when the
+   normal has no direction. */
+static void mlod__cone_from_normal(const double *n, float *out)
+{
+    double len = mlod__length3(n);
+    int k;
+    if (!(len > 0.0) || !isfinite(len)) {
+        static const float up[3] = {0.0f, 0.0f, 1.0f};
+        mlod__cone_full(up, out);
+        return;
+    }
+    for (k = 0; k < 3; k++) out[k] = (float)(n[k] / len);
+    out[3] = 0.0f;
+}
+
+/* ------------------------------------------------------- tree shape ---- */
+
+static uint32_t mlod__depth_of(uint64_t node)
+{
+    uint32_t depth = 0;
+    uint64_t x = node + 1;
+    while (x > 1) {
+        x >>= 1;
+        depth++;
+    }
+    return depth;
+}
+
+/* Number of leaves below node i in the implicit tree of n leaves. */
+static uint32_t mlod__leaves_below(uint32_t i, uint32_t n)
+{
+    uint64_t last = 2 * (uint64_t)n - 2;
+    uint32_t k = mlod__depth_of(i), deepest = mlod__depth_of(last);
+    uint32_t span = deepest - k;
+    uint64_t lo = (((uint64_t)i + 1) << span) - 1, hi = (((uint64_t)i + 2) << span) - 2;
+    uint64_t at_deepest = lo > last ? 0 : (hi < last ? hi : last) - lo + 1;
+    uint64_t nodes = (((uint64_t)1 << span) - 1) + at_deepest;
+    return (uint32_t)((nodes + 1) / 2);
+}
+
+/* Merge node i's bounds from its two children. */
+static void mlod__merge_node(mlod_tree *tree, uint32_t i)
+{
+    uint32_t l = 2 * i + 1, r = 2 * i + 2;
+    mlod__sphere_enclose(tree->spheres + 4 * (size_t)l, tree->spheres + 4 * (size_t)r, tree->spheres + 4 * (size_t)i);
+    if (tree->cones)
+        mlod__cone_enclose(tree->cones + 4 * (size_t)l, tree->cones + 4 * (size_t)r, tree->cones + 4 * (size_t)i);
+    if (tree->areas) tree->areas[i] = tree->areas[l] + tree->areas[r];
+    if (tree->colors) {
+        double wl = mlod__leaves_below(l, tree->leaf_count), wr = mlod__leaves_below(r, tree->leaf_count);
+        int k;
+        for (k = 0; k < 3; k++)
+            tree->colors[3 * (size_t)i + k] =
+                (float)((wl * tree->colors[3 * (size_t)l + k] + wr * tree->colors[3 * (size_t)r + k]) / (wl + wr));
+    }
+}
+
+/* Internal nodes of one depth: [first, last]. Returns 0 when none. */
+static int mlod__level_range(uint32_t depth, uint32_t leaf_count, uint32_t *first, uint32_t *last)
+{
+    uint64_t lo = ((uint64_t)1 << depth) - 1, hi = ((uint64_t)1 << (depth + 1)) - 2;
+    if (leaf_count < 2 || lo > (uint64_t)leaf_count - 2) return 0;
+    if (hi > (uint64_t)leaf_count - 2) hi = (uint64_t)leaf_count - 2;
+    *first = (uint32_t)lo;
+    *last = (uint32_t)hi;
+    return 1;
+}
+
+
+/* ------------------------------------------------------- parallel run -- */
+
+static void mlod__run(const mlod_parallel *parallel, uint32_t count, mlod_task_fn *task, void *context)
+{
+    uint32_t i;
+    if (parallel && parallel->run && count > 1) {
+        parallel->run(parallel->user, count, task, context);
+        return;
+    }
+    for (i = 0; i < count; i++) task(context, i);
+}
+
+/* ------------------------------------------------------ input checks ---- */
+
+/* Coordinates beyond this magnitude could overflow float bounds. */
+#define MLOD__MAX_COORDINATE 1.0e36
+
+static mlod_result mlod__check_floats(const float *base, size_t stride, uint32_t count, int limit,
+                                      const char *what, mlod_error *error)
+{
+    uint32_t i;
+    for (i = 0; i < count; i++) {
+        const float *p = mlod__at(base, stride, i);
+        int k;
+        if (!mlod__finite3(p))
+            return mlod__fail(error, MLOD_ERROR_NON_FINITE, "%s %u is not finite (%g, %g, %g)", what, i, p[0], p[1], p[2]);
+        for (k = 0; limit && k < 3; k++)
+            if (fabs(p[k]) > MLOD__MAX_COORDINATE)
+                return mlod__fail(error, MLOD_ERROR_RANGE, "%s %u has a coordinate beyond 1e36 (%g)", what, i, p[k]);
+    }
+    return MLOD_OK;
+}
+
+static mlod_result mlod__check_mesh(const mlod_mesh *mesh, mlod_error *error)
+{
+    mlod_result res;
+    uint32_t i;
+    if (!mesh) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "mesh is NULL");
+    if (mesh->index_count % 3 != 0)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "index_count %u is not a multiple of 3", mesh->index_count);
+    if (mesh->index_count == 0 || mesh->vertex_count == 0)
+        return mlod__fail(error, MLOD_ERROR_EMPTY, "the mesh has no triangles");
+    if (!mesh->positions || !mesh->indices)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "mesh positions or indices are NULL");
+    for (i = 0; i < mesh->index_count; i++)
+        if (mesh->indices[i] >= mesh->vertex_count)
+            return mlod__fail(error, MLOD_ERROR_INDEX_OUT_OF_RANGE, "indices[%u] = %u is not below vertex_count %u", i,
+                              mesh->indices[i], mesh->vertex_count);
+    res = mlod__check_floats(mesh->positions, mesh->position_stride, mesh->vertex_count, 1, "position", error);
+    if (res == MLOD_OK && mesh->normals)
+        res = mlod__check_floats(mesh->normals, mesh->normal_stride, mesh->vertex_count, 0, "normal", error);
+    if (res == MLOD_OK && mesh->colors)
+        res = mlod__check_floats(mesh->colors, mesh->color_stride, mesh->vertex_count, 0, "colour", error);
+    return res;
+}
+
+static mlod_result mlod__check_points(const mlod_points *points, mlod_error *error)
+{
+    mlod_result res;
+    uint32_t i;
+    if (!points) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "points is NULL");
+    if (points->count == 0) return mlod__fail(error, MLOD_ERROR_EMPTY, "the point cloud has no points");
+    if (points->count > MANYLODS_MAX_LEAVES)
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "%u points exceed MANYLODS_MAX_LEAVES", points->count);
+    if (!points->positions) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "point positions are NULL");
+    res = mlod__check_floats(points->positions, points->position_stride, points->count, 1, "point", error);
+    if (res == MLOD_OK && points->normals)
+        res = mlod__check_floats(points->normals, points->normal_stride, points->count, 0, "normal", error);
+    if (res == MLOD_OK && points->colors)
+        res = mlod__check_floats(points->colors, points->color_stride, points->count, 0, "colour", error);
+    for (i = 0; res == MLOD_OK && points->radii && i < points->count; i++) {
+        float r = *(const float *)((const char *)points->radii + i * (points->radius_stride ? points->radius_stride : sizeof(float)));
+        if (!isfinite(r)) return mlod__fail(error, MLOD_ERROR_NON_FINITE, "radius %u is not finite", i);
+        if (r < 0.0f || r > MLOD__MAX_COORDINATE)
+            return mlod__fail(error, MLOD_ERROR_RANGE, "radius %u = %g is negative or beyond 1e36", i, r);
+    }
+    return res;
+}
+
+static mlod_result mlod__check_desc(const mlod_build_desc *desc, mlod_tree **out, mlod_error *error)
+{
+    if (!out) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out_tree is NULL");
+    *out = NULL;
+    if (!desc) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "desc is NULL");
+    if (!(desc->radius_scale >= 0.0f) || !isfinite(desc->radius_scale))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "radius_scale %g is not finite and >= 0", desc->radius_scale);
+    if (desc->attributes & ~(uint32_t)(MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown attribute bits 0x%x", desc->attributes);
+    return MLOD_OK;
+}
+
+/* ------------------------------------------------- tree allocation ---- */
+
+static void mlod__tree_free_arrays(mlod_tree *t)
+{
+    mlod__free(&t->allocator, t->spheres);
+    mlod__free(&t->allocator, t->cones);
+    mlod__free(&t->allocator, t->areas);
+    mlod__free(&t->allocator, t->colors);
+    mlod__free(&t->allocator, t->leaf_sources);
+    mlod__free(&t->allocator, t->leaf_barycentrics);
+    mlod__free(&t->allocator, t->triangle_areas);
+}
+
+MANYLODS_DEF void mlod_tree_destroy(mlod_tree *tree)
+{
+    mlod_allocator a;
+    if (!tree) return;
+    a = tree->allocator;
+    mlod__tree_free_arrays(tree);
+    a.free(a.user, tree);
+}
+
+/* A tree with every array its attributes need; NULL when out of memory. */
+static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, uint32_t attributes, int mesh,
+                                    uint32_t triangles)
+{
+    size_t nodes = 2 * (size_t)leaves - 1, per_node = 0;
+    mlod_tree *t = (mlod_tree *)a->alloc(a->user, sizeof(mlod_tree));
+    int ok;
+    if (!t) return NULL;
+    memset(t, 0, sizeof *t);
+    t->allocator = *a;
+    t->bytes = sizeof *t;
+    t->leaf_count = leaves;
+    t->node_count = (uint32_t)nodes;
+    t->attributes = attributes;
+    t->spheres = (float *)mlod__alloc_array(a, nodes, 4 * sizeof(float), &t->bytes);
+    ok = t->spheres != NULL;
+    per_node += 4 * sizeof(float);
+    if (attributes & MLOD_ATTR_CONE) {
+        ok = ok && (t->cones = (float *)mlod__alloc_array(a, nodes, 4 * sizeof(float), &t->bytes)) != NULL;
+        per_node += 4 * sizeof(float);
+    }
+    if (attributes & MLOD_ATTR_AREA) {
+        ok = ok && (t->areas = (float *)mlod__alloc_array(a, nodes, sizeof(float), &t->bytes)) != NULL;
+        per_node += sizeof(float);
+    }
+    if (attributes & MLOD_ATTR_COLOR) {
+        ok = ok && (t->colors = (float *)mlod__alloc_array(a, nodes, 3 * sizeof(float), &t->bytes)) != NULL;
+        per_node += 3 * sizeof(float);
+    }
+    if (attributes & MLOD_ATTR_REFIT) {
+        ok = ok && (t->leaf_sources = (uint32_t *)mlod__alloc_array(a, leaves, sizeof(uint32_t), &t->bytes)) != NULL;
+        if (mesh) {
+            ok = ok && (t->leaf_barycentrics = (float *)mlod__alloc_array(a, leaves, 2 * sizeof(float), &t->bytes)) != NULL;
+            ok = ok && (t->triangle_areas = (double *)mlod__alloc_array(a, triangles, sizeof(double), &t->bytes)) != NULL;
+        }
+    }
+    t->bytes_per_node = per_node;
+    if (!ok) {
+        mlod_tree_destroy(t);
+        return NULL;
+    }
+    return t;
+}
+
+/* Merge all internal bounds bottom-up, one depth at a time (in parallel
+   within a depth). */
+typedef struct mlod__merge_job {
+    mlod_tree *tree;
+    uint32_t first, last;
+} mlod__merge_job;
+
+#define MLOD__MERGE_CHUNK 2048u
+
+static void mlod__merge_task(void *context, uint32_t index)
+{
+    mlod__merge_job *job = (mlod__merge_job *)context;
+    uint32_t i = job->first + index * MLOD__MERGE_CHUNK, end = i + MLOD__MERGE_CHUNK - 1;
+    if (end > job->last || end < i) end = job->last;
+    for (;; i++) {
+        mlod__merge_node(job->tree, i);
+        if (i == end) break;
+    }
+}
+
+static void mlod__merge_all(mlod_tree *tree, const mlod_parallel *parallel)
+{
+    uint32_t depth, deepest = mlod__depth_of(2 * (uint64_t)tree->leaf_count - 2);
+    for (depth = deepest; depth-- > 0;) {
+        mlod__merge_job job;
+        if (!mlod__level_range(depth, tree->leaf_count, &job.first, &job.last)) continue;
+        job.tree = tree;
+        mlod__run(parallel, (job.last - job.first) / MLOD__MERGE_CHUNK + 1, mlod__merge_task, &job);
+    }
+}
+
+/* ------------------------------------------------------------ sampling -- */
+
+static uint64_t mlod__mix64(uint64_t x)
+{
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ull;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebull;
+    x ^= x >> 31;
+    return x;
+}
+
+/* A uniform number in [0, 1) from (seed, stream, index). */
+static double mlod__hash01(uint64_t seed, uint64_t stream, uint64_t index)
+{
+    uint64_t h = mlod__mix64(seed + 0x9e3779b97f4a7c15ull * (stream + 1));
+    h = mlod__mix64(h ^ (index * 0xd1b54a32d192ed03ull + 0x8cb92ba72f3d8dd7ull));
+    return (double)(h >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static void mlod__triangle(const mlod_mesh *mesh, uint32_t tri, double v[3][3])
+{
+    int c, k;
+    for (c = 0; c < 3; c++) {
+        const float *p = mlod__at(mesh->positions, mesh->position_stride, mesh->indices[3 * (size_t)tri + c]);
+        for (k = 0; k < 3; k++) v[c][k] = p[k];
+    }
+}
+
+static double mlod__triangle_area(const mlod_mesh *mesh, uint32_t tri)
+{
+    double v[3][3], e1[3], e2[3], n[3];
+    int k;
+    mlod__triangle(mesh, tri, v);
+    for (k = 0; k < 3; k++) {
+        e1[k] = v[1][k] - v[0][k];
+        e2[k] = v[2][k] - v[0][k];
+    }
+    mlod__cross3(e1, e2, n);
+    return 0.5 * mlod__length3(n);
+}
+
+/* Interpolate a per-vertex attribute of the mesh at (s, t). */
+static void mlod__interpolate(const float *base, size_t stride, const uint32_t *corner, double s, double t, double *out)
+{
+    const float *a = mlod__at(base, stride, corner[0]), *b = mlod__at(base, stride, corner[1]),
+                *c = mlod__at(base, stride, corner[2]);
+    int k;
+    for (k = 0; k < 3; k++) out[k] = (double)a[k] + s * ((double)b[k] - a[k]) + t * ((double)c[k] - a[k]);
+}
+
+/* Write leaf `node` of the tree from the mesh sample (tri, s, t): the one
+   function build and refit share.  area_ratio = triangle area now / at build. */
+static void mlod__mesh_leaf(mlod_tree *tree, uint32_t node, const mlod_mesh *mesh, uint32_t tri, float s, float t,
+                            double area_ratio)
+{
+    const uint32_t *corner = mesh->indices + 3 * (size_t)tri;
+    double p[3], leaf_area = area_ratio;
+    float *sphere = tree->spheres + 4 * (size_t)node;
+    int k;
+    mlod__interpolate(mesh->positions, mesh->position_stride, corner, s, t, p);
+    for (k = 0; k < 3; k++) sphere[k] = (float)p[k];
+    sphere[3] = mlod__float_up(tree->radius_scale * sqrt(tree->area_unit * leaf_area));
+    if (tree->cones) {
+        double n[3] = {0.0, 0.0, 0.0};
+        if (mesh->normals) mlod__interpolate(mesh->normals, mesh->normal_stride, corner, s, t, n);
+        if (!(mlod__dot3(n, n) > 0.0)) {
+            double v[3][3], e1[3], e2[3];
+            mlod__triangle(mesh, tri, v);
+            for (k = 0; k < 3; k++) {
+                e1[k] = v[1][k] - v[0][k];
+                e2[k] = v[2][k] - v[0][k];
+            }
+            mlod__cross3(e1, e2, n);
+        }
+        mlod__cone_from_normal(n, tree->cones + 4 * (size_t)node);
+    }
+    if (tree->areas) tree->areas[node] = (float)leaf_area;
+    if (tree->colors) {
+        double c[3];
+        mlod__interpolate(mesh->colors, mesh->color_stride, corner, s, t, c);
+        for (k = 0; k < 3; k++) tree->colors[3 * (size_t)node + k] = (float)c[k];
+    }
+}
+
+/* The stratified samples: triangle and (s, t) of each of the n samples. */
+static void mlod__sample_mesh(const mlod_mesh *mesh, const double *cumulative, uint32_t triangles, uint32_t n,
+                              uint64_t seed, uint32_t *tri_out, float *st_out)
+{
+    const double golden = 0.6180339887498948482;
+    double total = cumulative[triangles];
+    uint32_t i = 0, tri = 0, last_with_area = 0, k;
+    for (k = 0; k < triangles; k++)
+        if (cumulative[k + 1] > cumulative[k]) last_with_area = k;
+    (void)mesh;
+    while (i < n) {
+        double u = ((double)i + mlod__hash01(seed, 0, i)) / n * total, area, offset;
+        uint32_t run = 0;
+        while (tri < last_with_area && cumulative[tri + 1] <= u) tri++;
+        area = cumulative[tri + 1] - cumulative[tri];
+        offset = mlod__hash01(seed, 1, tri);
+        /* all consecutive samples in this triangle: a jittered rank-1 lattice */
+        for (;;) {
+            double x = (u - cumulative[tri]) / area, y, r;
+            if (x < 0.0) x = 0.0;
+            if (x > 1.0) x = 1.0;
+            y = offset + run * golden;
+            y -= floor(y);
+            r = sqrt(x);
+            tri_out[i] = tri;
+            st_out[2 * (size_t)i] = (float)(r * (1.0 - y));
+            st_out[2 * (size_t)i + 1] = (float)(r * y);
+            i++;
+            run++;
+            if (i >= n) break;
+            u = ((double)i + mlod__hash01(seed, 0, i)) / n * total;
+            if (tri < last_with_area && cumulative[tri + 1] <= u) break;
+        }
+    }
+}
+
+/* ---------------------------------------------------------- the build -- */
+
+static uint32_t mlod__sort_key(float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    if (f == 0.0f) u = 0; /* -0 and +0 sort together */
+    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+}
+
+/* Stable LSD radix sort of order[] by key[order[i]]; scratch holds n more. */
+static void mlod__radix_sort(uint32_t *order, uint32_t *scratch, const uint32_t *key, uint32_t n)
+{
+    static const int shift[3] = {0, 11, 22};
+    uint32_t count[2048];
+    int pass;
+    for (pass = 0; pass < 3; pass++) {
+        uint32_t i, sum = 0, *tmp;
+        memset(count, 0, sizeof count);
+        for (i = 0; i < n; i++) count[(key[order[i]] >> shift[pass]) & 2047u]++;
+        for (i = 0; i < 2048; i++) {
+            uint32_t c = count[i];
+            count[i] = sum;
+            sum += c;
+        }
+        for (i = 0; i < n; i++) scratch[count[(key[order[i]] >> shift[pass]) & 2047u]++] = order[i];
+        tmp = order;
+        order = scratch;
+        scratch = tmp;
+    }
+    /* three passes: the result sits in scratch's original buffer; copy back */
+    memcpy(scratch, order, n * sizeof(uint32_t));
+}
+
+static double mlod__box_volume_of(const float *pos, const uint32_t *items, uint32_t count)
+{
+    double lo[3], hi[3], d2 = 0.0;
+    uint32_t i;
+    int k;
+    for (k = 0; k < 3; k++) {
+        lo[k] = pos[3 * (size_t)items[0] + k];
+        hi[k] = lo[k];
+    }
+    for (i = 1; i < count; i++)
+        for (k = 0; k < 3; k++) {
+            double v = pos[3 * (size_t)items[i] + k];
+            if (v < lo[k]) lo[k] = v;
+            if (v > hi[k]) hi[k] = v;
+        }
+    for (k = 0; k < 3; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    return d2 * sqrt(d2); /* proportional to the volume of the box's sphere */
+}
+
+typedef struct mlod__order_ctx {
+    const mlod_build_desc *desc;
+    uint32_t n;
+    const float *pos;  /* 3 per item */
+    uint32_t *order[3];
+    uint32_t *scratch;
+    uint32_t *begin;   /* per node: first position of its items */
+    uint8_t *left;     /* per item */
+} mlod__order_ctx;
+
+/* Split node `node` (items order[*][b .. b+count)) between its children. */
+static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
+{
+    uint32_t b = c->begin[node], count = mlod__leaves_below(node, c->n);
+    uint32_t nl = mlod__leaves_below(2 * node + 1, c->n), i;
+    double best = 0.0;
+    int axis = 0, k;
+    for (k = 0; k < 3; k++) {
+        const uint32_t *o = c->order[k] + b;
+        double v = mlod__box_volume_of(c->pos, o, nl) + mlod__box_volume_of(c->pos, o + nl, count - nl);
+        if (k == 0 || v < best) {
+            best = v;
+            axis = k;
+        }
+    }
+    for (i = 0; i < count; i++) c->left[c->order[axis][b + i]] = (uint8_t)(i < nl);
+    for (k = 0; k < 3; k++) {
+        uint32_t *o = c->order[k] + b, l = 0, r = nl;
+        if (k == axis) continue;
+        for (i = 0; i < count; i++) {
+            uint32_t item = o[i];
+            if (c->left[item])
+                c->scratch[l++] = item;
+            else
+                c->scratch[r++] = item;
+        }
+        memcpy(o, c->scratch, count * sizeof(uint32_t));
+    }
+    c->begin[2 * node + 1] = b;
+    c->begin[2 * node + 2] = b + nl;
+}
+
+/* Order n items (positions pos) into the leaves: leaf_item[j] is the item
+   of leaf j.  Returns MLOD_ERROR_OUT_OF_MEMORY or MLOD_ERROR_CANCELLED. */
+static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_desc *desc, const float *pos, uint32_t n,
+                                     uint32_t *leaf_item, float progress_from, float progress_to)
+{
+    mlod__order_ctx c;
+    uint32_t *keys = NULL, i, node, last_depth = 0;
+    size_t nodes = 2 * (size_t)n - 1;
+    mlod_result res = MLOD_OK;
+    int k;
+    memset(&c, 0, sizeof c);
+    c.desc = desc;
+    c.n = n;
+    c.pos = pos;
+    for (k = 0; k < 3; k++) c.order[k] = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL);
+    c.scratch = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL);
+    c.begin = (uint32_t *)mlod__alloc_array(a, nodes, sizeof(uint32_t), NULL);
+    c.left = (uint8_t *)mlod__alloc_array(a, n, 1, NULL);
+    keys = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL);
+    if (!c.order[0] || !c.order[1] || !c.order[2] || !c.scratch || !c.begin || !c.left || !keys) {
+        res = MLOD_ERROR_OUT_OF_MEMORY;
+        goto done;
+    }
+    for (k = 0; k < 3; k++) {
+        for (i = 0; i < n; i++) {
+            c.order[k][i] = i;
+            keys[i] = mlod__sort_key(pos[3 * (size_t)i + k]);
+        }
+        mlod__radix_sort(c.order[k], c.scratch, keys, n);
+    }
+    c.begin[0] = 0;
+    for (node = 0; node + 1 < n; node++) {
+        uint32_t depth = mlod__depth_of(node);
+        if (depth != last_depth) {
+            last_depth = depth;
+            if (desc->progress &&
+                desc->progress(desc->progress_user,
+                               progress_from + (progress_to - progress_from) * (float)node / (float)n)) {
+                res = MLOD_ERROR_CANCELLED;
+                goto done;
+            }
+        }
+        mlod__split_node(&c, node);
+    }
+    for (i = 0; i < n; i++) leaf_item[i] = c.order[0][c.begin[(size_t)n - 1 + i]];
+done:
+    for (k = 0; k < 3; k++) mlod__free(a, c.order[k]);
+    mlod__free(a, c.scratch);
+    mlod__free(a, c.begin);
+    mlod__free(a, c.left);
+    mlod__free(a, keys);
+    return res;
+}
+
+static int mlod__report(const mlod_build_desc *desc, float fraction)
+{
+    return desc->progress && desc->progress(desc->progress_user, fraction);
+}
+
+/* Flag a tree whose float positions are quantised coarser than a quarter of
+   its typical leaf radius (see MLOD_PRECISION_COARSE_POSITIONS). */
+static void mlod__set_precision(mlod_tree *tree, double typical_radius)
+{
+    const float *root = tree->spheres;
+    double far = fabs(root[0]) + root[3];
+    int k;
+    for (k = 1; k < 3; k++)
+        if (fabs(root[k]) + root[3] > far) far = fabs(root[k]) + root[3];
+    tree->precision = (far * (1.0 / 8388608.0) > 0.25 * typical_radius) ? MLOD_PRECISION_COARSE_POSITIONS : 0u;
+}
+
+static mlod_result mlod__build_error(mlod_error *error, mlod_result res)
+{
+    if (res == MLOD_ERROR_CANCELLED) return mlod__fail(error, res, "the build was cancelled by the progress callback");
+    return mlod__fail(error, res, "out of memory while building the tree");
+}
+
+MANYLODS_DEF mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build_desc *desc, mlod_tree **out_tree,
+                                         mlod_error *error)
+{
+    mlod_allocator a;
+    mlod_result res = mlod__check_desc(desc, out_tree, error);
+    uint32_t triangles, n, i, *tri = NULL, *leaf_item = NULL;
+    double *cumulative = NULL;
+    float *st = NULL, *pos = NULL;
+    mlod_tree *tree = NULL;
+    if (res != MLOD_OK) return res;
+    if ((res = mlod__check_mesh(mesh, error)) != MLOD_OK) return res;
+    n = desc->sample_count;
+    if (n == 0) return mlod__fail(error, MLOD_ERROR_EMPTY, "sample_count is 0");
+    if (n > MANYLODS_MAX_LEAVES)
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "sample_count %u exceeds MANYLODS_MAX_LEAVES (%u)", n,
+                          MANYLODS_MAX_LEAVES);
+    if (desc->attributes & MLOD_ATTR_COLOR && !mesh->colors)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "MLOD_ATTR_COLOR asks for colours the mesh lacks");
+    a = mlod__allocator(desc->allocator);
+    triangles = mesh->index_count / 3;
+    cumulative = (double *)mlod__alloc_array(&a, (size_t)triangles + 1, sizeof(double), NULL);
+    tri = (uint32_t *)mlod__alloc_array(&a, n, sizeof(uint32_t), NULL);
+    st = (float *)mlod__alloc_array(&a, n, 2 * sizeof(float), NULL);
+    pos = (float *)mlod__alloc_array(&a, n, 3 * sizeof(float), NULL);
+    leaf_item = (uint32_t *)mlod__alloc_array(&a, n, sizeof(uint32_t), NULL);
+    if (!cumulative || !tri || !st || !pos || !leaf_item) {
+        res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
+        goto done;
+    }
+    cumulative[0] = 0.0;
+    for (i = 0; i < triangles; i++) cumulative[i + 1] = cumulative[i] + mlod__triangle_area(mesh, i);
+    if (!(cumulative[triangles] > 0.0)) {
+        res = mlod__fail(error, MLOD_ERROR_EMPTY, "every triangle of the mesh has zero area");
+        goto done;
+    }
+    mlod__sample_mesh(mesh, cumulative, triangles, n, desc->seed, tri, st);
+    for (i = 0; i < n; i++) {
+        double p[3];
+        int k;
+        mlod__interpolate(mesh->positions, mesh->position_stride, mesh->indices + 3 * (size_t)tri[i], st[2 * (size_t)i],
+                          st[2 * (size_t)i + 1], p);
+        for (k = 0; k < 3; k++) pos[3 * (size_t)i + k] = (float)p[k];
+    }
+    if (mlod__report(desc, 0.1f)) {
+        res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
+        goto done;
+    }
+    res = mlod__order_items(&a, desc, pos, n, leaf_item, 0.1f, 0.9f);
+    if (res != MLOD_OK) {
+        res = mlod__build_error(error, res);
+        goto done;
+    }
+    tree = mlod__tree_create(&a, n, desc->attributes, 1, triangles);
+    if (!tree) {
+        res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
+        goto done;
+    }
+    tree->radius_scale = desc->radius_scale > 0.0f ? desc->radius_scale : 1.0f;
+    tree->area_unit = cumulative[triangles] / n;
+    tree->triangle_count = triangles;
+    tree->vertex_count = mesh->vertex_count;
+    for (i = 0; i < n; i++) {
+        uint32_t item = leaf_item[i];
+        mlod__mesh_leaf(tree, n - 1 + i, mesh, tri[item], st[2 * (size_t)item], st[2 * (size_t)item + 1], 1.0);
+        if (tree->leaf_sources) {
+            tree->leaf_sources[i] = tri[item];
+            tree->leaf_barycentrics[2 * (size_t)i] = st[2 * (size_t)item];
+            tree->leaf_barycentrics[2 * (size_t)i + 1] = st[2 * (size_t)item + 1];
+        }
+    }
+    if (tree->triangle_areas)
+        for (i = 0; i < triangles; i++) tree->triangle_areas[i] = cumulative[i + 1] - cumulative[i];
+    mlod__merge_all(tree, NULL);
+    mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
+    if (mlod__report(desc, 1.0f)) {
+        res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
+        goto done;
+    }
+    *out_tree = tree;
+    tree = NULL;
+    res = mlod__succeed(error);
+done:
+    mlod_tree_destroy(tree);
+    mlod__free(&a, cumulative);
+    mlod__free(&a, tri);
+    mlod__free(&a, st);
+    mlod__free(&a, pos);
+    mlod__free(&a, leaf_item);
+    return res;
+}
+
+static float mlod__point_radius(const mlod_points *points, uint32_t i)
+{
+    return *(const float *)((const char *)points->radii + i * (points->radius_stride ? points->radius_stride : sizeof(float)));
+}
+
+/* Write leaf `node` from point `item`.  radius: before radius_scale. */
+static void mlod__point_leaf(mlod_tree *tree, uint32_t node, const mlod_points *points, uint32_t item, double radius)
+{
+    const float *p = mlod__at(points->positions, points->position_stride, item);
+    float *sphere = tree->spheres + 4 * (size_t)node;
+    int k;
+    for (k = 0; k < 3; k++) sphere[k] = p[k];
+    sphere[3] = mlod__float_up(tree->radius_scale * radius);
+    if (tree->cones) {
+        double n[3] = {0.0, 0.0, 0.0};
+        if (points->normals) {
+            const float *q = mlod__at(points->normals, points->normal_stride, item);
+            for (k = 0; k < 3; k++) n[k] = q[k];
+        }
+        mlod__cone_from_normal(n, tree->cones + 4 * (size_t)node);
+    }
+    if (tree->areas) tree->areas[node] = (float)(radius * radius / tree->area_unit);
+    if (tree->colors) {
+        const float *c = mlod__at(points->colors, points->color_stride, item);
+        for (k = 0; k < 3; k++) tree->colors[3 * (size_t)node + k] = c[k];
+    }
+}
+
+/* Density-based radius of leaf j (before radius_scale), from the lowest
+   node above it with at least 8 leaves (the root when N < 8). */
+static double mlod__density_radius(const mlod_tree *tree, uint32_t j)
+{
+    uint32_t n = tree->leaf_count, node = n - 1 + j, leaves = 1;
+    while (node > 0 && leaves < 8) {
+        node = (node - 1) / 2;
+        leaves = mlod__leaves_below(node, n);
+    }
+    return tree->spheres[4 * (size_t)node + 3] * sqrt(MLOD__PI / leaves);
+}
+
+MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod_build_desc *desc, mlod_tree **out_tree,
+                                           mlod_error *error)
+{
+    mlod_allocator a;
+    mlod_result res = mlod__check_desc(desc, out_tree, error);
+    uint32_t n, i, *leaf_item = NULL;
+    float *pos = NULL;
+    double *radius = NULL, mean_area = 0.0;
+    mlod_tree *tree = NULL;
+    if (res != MLOD_OK) return res;
+    if ((res = mlod__check_points(points, error)) != MLOD_OK) return res;
+    if (desc->attributes & MLOD_ATTR_COLOR && !points->colors)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "MLOD_ATTR_COLOR asks for colours the points lack");
+    n = points->count;
+    a = mlod__allocator(desc->allocator);
+    pos = (float *)mlod__alloc_array(&a, n, 3 * sizeof(float), NULL);
+    leaf_item = (uint32_t *)mlod__alloc_array(&a, n, sizeof(uint32_t), NULL);
+    radius = (double *)mlod__alloc_array(&a, n, sizeof(double), NULL);
+    if (!pos || !leaf_item || !radius) {
+        res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
+        goto done;
+    }
+    for (i = 0; i < n; i++) memcpy(pos + 3 * (size_t)i, mlod__at(points->positions, points->position_stride, i), 3 * sizeof(float));
+    res = mlod__order_items(&a, desc, pos, n, leaf_item, 0.0f, 0.9f);
+    if (res != MLOD_OK) {
+        res = mlod__build_error(error, res);
+        goto done;
+    }
+    tree = mlod__tree_create(&a, n, desc->attributes, 0, 0);
+    if (!tree) {
+        res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
+        goto done;
+    }
+    tree->radius_scale = desc->radius_scale > 0.0f ? desc->radius_scale : 1.0f;
+    tree->area_unit = 1.0;
+    if (points->radii) {
+        for (i = 0; i < n; i++) radius[i] = mlod__point_radius(points, leaf_item[i]);
+    } else {
+        float scale = tree->radius_scale;
+        tree->radius_scale = 0.0f; /* a first tree of bare points gives the density */
+        for (i = 0; i < n; i++) mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], 0.0);
+        mlod__merge_all(tree, NULL);
+        for (i = 0; i < n; i++) radius[i] = mlod__density_radius(tree, i);
+        tree->radius_scale = scale;
+    }
+    for (i = 0; i < n; i++) mean_area += radius[i] * radius[i] / n;
+    tree->area_unit = mean_area > 0.0 ? mean_area : 1.0;
+    for (i = 0; i < n; i++) {
+        mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], radius[i]);
+        if (tree->leaf_sources) tree->leaf_sources[i] = leaf_item[i];
+    }
+    mlod__merge_all(tree, NULL);
+    mlod__set_precision(tree, tree->radius_scale * sqrt(mean_area));
+    if (mlod__report(desc, 1.0f)) {
+        res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
+        goto done;
+    }
+    *out_tree = tree;
+    tree = NULL;
+    res = mlod__succeed(error);
+done:
+    mlod_tree_destroy(tree);
+    mlod__free(&a, pos);
+    mlod__free(&a, leaf_item);
+    mlod__free(&a, radius);
+    return res;
+}
+
+
+/* --------------------------------------------------------------- refit -- */
+
+typedef struct mlod__refit_job {
+    mlod_tree *tree;
+    const mlod_mesh *mesh;
+    const mlod_points *points;
+} mlod__refit_job;
+
+#define MLOD__LEAF_CHUNK 4096u
+
+static void mlod__refit_mesh_task(void *context, uint32_t index)
+{
+    mlod__refit_job *job = (mlod__refit_job *)context;
+    mlod_tree *tree = job->tree;
+    uint32_t j = index * MLOD__LEAF_CHUNK, end = j + MLOD__LEAF_CHUNK;
+    if (end > tree->leaf_count) end = tree->leaf_count;
+    for (; j < end; j++) {
+        uint32_t tri = tree->leaf_sources[j];
+        double ratio = mlod__triangle_area(job->mesh, tri) / tree->triangle_areas[tri];
+        mlod__mesh_leaf(tree, tree->leaf_count - 1 + j, job->mesh, tri, tree->leaf_barycentrics[2 * (size_t)j],
+                        tree->leaf_barycentrics[2 * (size_t)j + 1], ratio);
+    }
+}
+
+static mlod_result mlod__check_refit_tree(const mlod_tree *tree, int mesh, mlod_error *error)
+{
+    if (!tree) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "tree is NULL");
+    if (!tree->leaf_sources)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the tree was built without MLOD_ATTR_REFIT");
+    if (mesh != (tree->leaf_barycentrics != NULL))
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the tree was built from %s", mesh ? "points" : "a mesh");
+    return MLOD_OK;
+}
+
+MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh, const mlod_parallel *parallel,
+                                         mlod_error *error)
+{
+    mlod__refit_job job;
+    mlod_result res = mlod__check_refit_tree(tree, 1, error);
+    if (res != MLOD_OK) return res;
+    if ((res = mlod__check_mesh(mesh, error)) != MLOD_OK) return res;
+    if (mesh->index_count / 3 != tree->triangle_count || mesh->vertex_count != tree->vertex_count)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH,
+                          "the mesh has %u triangles and %u vertices, the tree was built from %u and %u",
+                          mesh->index_count / 3, mesh->vertex_count, tree->triangle_count, tree->vertex_count);
+    if (tree->colors && !mesh->colors)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the tree has colours and the mesh has none");
+    job.tree = tree;
+    job.mesh = mesh;
+    job.points = NULL;
+    mlod__run(parallel, (tree->leaf_count - 1) / MLOD__LEAF_CHUNK + 1, mlod__refit_mesh_task, &job);
+    mlod__merge_all(tree, parallel);
+    mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
+    return mlod__succeed(error);
+}
+
+static void mlod__refit_points_task(void *context, uint32_t index)
+{
+    mlod__refit_job *job = (mlod__refit_job *)context;
+    mlod_tree *tree = job->tree;
+    uint32_t j = index * MLOD__LEAF_CHUNK, end = j + MLOD__LEAF_CHUNK;
+    if (end > tree->leaf_count) end = tree->leaf_count;
+    for (; j < end; j++) {
+        uint32_t item = tree->leaf_sources[j];
+        double radius = job->points->radii ? mlod__point_radius(job->points, item) : 0.0;
+        mlod__point_leaf(tree, tree->leaf_count - 1 + j, job->points, item, radius);
+    }
+}
+
+MANYLODS_DEF mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *points, const mlod_parallel *parallel,
+                                           mlod_error *error)
+{
+    mlod__refit_job job;
+    mlod_result res = mlod__check_refit_tree(tree, 0, error);
+    uint32_t chunks;
+    if (res != MLOD_OK) return res;
+    if ((res = mlod__check_points(points, error)) != MLOD_OK) return res;
+    if (points->count != tree->leaf_count)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "%u points, the tree was built from %u", points->count,
+                          tree->leaf_count);
+    if (tree->colors && !points->colors)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the tree has colours and the points have none");
+    job.tree = tree;
+    job.mesh = NULL;
+    job.points = points;
+    chunks = (tree->leaf_count - 1) / MLOD__LEAF_CHUNK + 1;
+    if (!points->radii) {
+        /* radii from the density of the new positions, as at build: a tree
+           of bare points first; each leaf then reads only nodes above it */
+        uint32_t j, n = tree->leaf_count;
+        float scale = tree->radius_scale;
+        tree->radius_scale = 0.0f;
+        mlod__run(parallel, chunks, mlod__refit_points_task, &job);
+        mlod__merge_all(tree, parallel);
+        tree->radius_scale = scale;
+        for (j = 0; j < n; j++)
+            mlod__point_leaf(tree, n - 1 + j, points, tree->leaf_sources[j], mlod__density_radius(tree, j));
+    } else {
+        mlod__run(parallel, chunks, mlod__refit_points_task, &job);
+    }
+    mlod__merge_all(tree, parallel);
+    mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
+    return mlod__succeed(error);
+}
+
+/* ---------------------------------------------- exact plane predicate -- */
+
+static void mlod__two_sum(double a, double b, double *sum, double *err)
+{
+    double s = a + b, bv = s - a, av = s - bv;
+    *err = (a - av) + (b - bv);
+    *sum = s;
+}
+
+static void mlod__split(double a, double *hi, double *lo)
+{
+    double c = 134217729.0 * a, big = c - a;
+    *hi = c - big;
+    *lo = a - *hi;
+}
+
+static void mlod__two_product(double a, double b, double *product, double *err)
+{
+    double p = a * b, ah, al, bh, bl;
+    mlod__split(a, &ah, &al);
+    mlod__split(b, &bh, &bl);
+    *err = al * bl - (((p - ah * bh) - al * bh) - ah * bl);
+    *product = p;
+}
+
+/* Sign of the exact sum of count doubles (an expansion grown term by term,
+   as in Shewchuk's robust predicates). */
+static int mlod__exact_sign(const double *terms, int count)
+{
+    double e[24];
+    int len = 0, i, j;
+    for (i = 0; i < count; i++) {
+        double q = terms[i], h;
+        int out = 0;
+        for (j = 0; j < len; j++) {
+            mlod__two_sum(q, e[j], &q, &h);
+            if (h != 0.0) e[out++] = h;
+        }
+        e[out++] = q;
+        len = out;
+    }
+    for (i = len - 1; i >= 0; i--)
+        if (e[i] != 0.0) return e[i] > 0.0 ? 1 : -1;
+    return 0;
+}
+
+/* A half-space {x : n.x >= k}; l >= |n|. */
+typedef struct mlod__plane {
+    double n[3], k, l;
+} mlod__plane;
+
+static void mlod__plane_set(mlod__plane *p, const double *n, const double *point, double offset)
+{
+    int j;
+    for (j = 0; j < 3; j++) p->n[j] = n[j];
+    p->k = mlod__dot3(n, point) + offset;
+    p->l = mlod__length3(n) * (1.0 + 1.0 / 1125899906842624.0);
+}
+
+/* Is the sphere wholly outside the half-space: n.c + l r < k, exactly? */
+static int mlod__outside(const mlod__plane *p, const float *sphere)
+{
+    double t[9], s, bound;
+    int j;
+    for (j = 0; j < 3; j++) t[j] = p->n[j] * sphere[j];
+    t[3] = p->l * sphere[3];
+    s = t[0] + t[1] + t[2] + t[3] - p->k;
+    bound = (fabs(t[0]) + fabs(t[1]) + fabs(t[2]) + fabs(t[3]) + fabs(p->k)) * (1.0 / 281474976710656.0);
+    if (s < -bound) return 1;
+    if (s > bound) return 0;
+    for (j = 0; j < 3; j++) mlod__two_product(p->n[j], sphere[j], &t[2 * j], &t[2 * j + 1]);
+    mlod__two_product(p->l, sphere[3], &t[6], &t[7]);
+    t[8] = -p->k;
+    return mlod__exact_sign(t, 9) < 0;
+}
+
+/* --------------------------------------------------------------- views -- */
+
+typedef struct mlod__pview {
+    mlod_view_kind kind;
+    int backfaces;
+    double e[3], u[3], v[3], w[3];
+    double scale;           /* pixels per unit of the projection */
+    int plane_count;
+    mlod__plane planes[6];  /* culling half-spaces */
+    mlod__plane halves[2];  /* dual paraboloid: front and back half-spaces */
+} mlod__pview;
+
+static int mlod__finite_positive(float x) { return isfinite(x) && x > 0.0f; }
+
+/* Validate a view and derive its frame, planes and scale. */
+static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, mlod_error *error)
+{
+    double f[3], up[3], len_f, len_up, right_len;
+    int k;
+    if (!view) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view is NULL");
+    if ((unsigned)view->kind > (unsigned)MLOD_VIEW_ORTHOGRAPHIC)
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown view kind %d", (int)view->kind);
+    if (!mlod__finite3(view->position) || !mlod__finite3(view->forward) || !mlod__finite3(view->up))
+        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "the view's position, forward or up is not finite");
+    if (view->width == 0 || view->height == 0)
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "tile size %ux%u: both must be >= 1", view->width, view->height);
+    if (view->flags & ~(uint32_t)MLOD_VIEW_CULL_BACKFACES)
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown view flags 0x%x", view->flags);
+    memset(pv, 0, sizeof *pv);
+    for (k = 0; k < 3; k++) {
+        pv->e[k] = view->position[k];
+        f[k] = view->forward[k];
+        up[k] = view->up[k];
+    }
+    len_f = mlod__length3(f);
+    len_up = mlod__length3(up);
+    if (!(len_f > 0.0) || !(len_up > 0.0))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "the view's forward or up vector has zero length");
+    for (k = 0; k < 3; k++) {
+        pv->w[k] = f[k] / len_f;
+        up[k] /= len_up;
+    }
+    mlod__cross3(pv->w, up, pv->u);
+    right_len = mlod__length3(pv->u);
+    if (!(right_len > 1e-6))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "the view's forward and up vectors are parallel");
+    for (k = 0; k < 3; k++) pv->u[k] /= right_len;
+    mlod__cross3(pv->u, pv->w, pv->v);
+    pv->kind = view->kind;
+    pv->backfaces = (view->flags & MLOD_VIEW_CULL_BACKFACES) != 0;
+    switch (view->kind) {
+    case MLOD_VIEW_PERSPECTIVE: {
+        double ty, tx, n[3];
+        if (!(isfinite(view->fov_y) && view->fov_y > 0.0f && view->fov_y < MLOD__PI))
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "fov_y %g is not in (0, pi)", view->fov_y);
+        if (!mlod__finite_positive(view->near_plane))
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "perspective near_plane %g must be finite and > 0",
+                              view->near_plane);
+        if (!(view->far_plane > view->near_plane))
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "far_plane %g must be > near_plane %g", view->far_plane,
+                              view->near_plane);
+        ty = tan(0.5 * view->fov_y);
+        pv->scale = 0.5 * view->height / ty;
+        tx = 0.5 * view->width / pv->scale;
+        mlod__plane_set(&pv->planes[pv->plane_count++], pv->w, pv->e, view->near_plane);
+        if (isfinite(view->far_plane)) {
+            for (k = 0; k < 3; k++) n[k] = -pv->w[k];
+            mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, -(double)view->far_plane);
+        }
+        for (k = 0; k < 3; k++) n[k] = tx * pv->w[k] - pv->u[k];
+        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, 0.0);
+        for (k = 0; k < 3; k++) n[k] = tx * pv->w[k] + pv->u[k];
+        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, 0.0);
+        for (k = 0; k < 3; k++) n[k] = ty * pv->w[k] - pv->v[k];
+        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, 0.0);
+        for (k = 0; k < 3; k++) n[k] = ty * pv->w[k] + pv->v[k];
+        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, 0.0);
+        break;
+    }
+    case MLOD_VIEW_PARABOLOID:
+        pv->scale = 0.5 * (view->width > view->height ? view->width : view->height);
+        mlod__plane_set(&pv->planes[pv->plane_count++], pv->w, pv->e, 0.0);
+        break;
+    case MLOD_VIEW_DUAL_PARABOLOID: {
+        double half = 0.5 * view->width, n[3];
+        pv->scale = 0.5 * (half > view->height ? half : (double)view->height);
+        mlod__plane_set(&pv->halves[0], pv->w, pv->e, 0.0);
+        for (k = 0; k < 3; k++) n[k] = -pv->w[k];
+        mlod__plane_set(&pv->halves[1], n, pv->e, 0.0);
+        break;
+    }
+    case MLOD_VIEW_ORTHOGRAPHIC: {
+        double n[3], sx, sy;
+        if (!mlod__finite_positive(view->half_width) || !mlod__finite_positive(view->half_height))
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "orthographic half_width %g and half_height %g must be > 0",
+                              view->half_width, view->half_height);
+        if (!isfinite(view->near_plane) || !(view->far_plane > view->near_plane))
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "orthographic near_plane %g must be finite and < far_plane %g",
+                              view->near_plane, view->far_plane);
+        sx = view->width / (2.0 * view->half_width);
+        sy = view->height / (2.0 * view->half_height);
+        pv->scale = sx > sy ? sx : sy;
+        mlod__plane_set(&pv->planes[pv->plane_count++], pv->w, pv->e, view->near_plane);
+        if (isfinite(view->far_plane)) {
+            for (k = 0; k < 3; k++) n[k] = -pv->w[k];
+            mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, -(double)view->far_plane);
+        }
+        mlod__plane_set(&pv->planes[pv->plane_count++], pv->u, pv->e, -(double)view->half_width);
+        for (k = 0; k < 3; k++) n[k] = -pv->u[k];
+        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, -(double)view->half_width);
+        mlod__plane_set(&pv->planes[pv->plane_count++], pv->v, pv->e, -(double)view->half_height);
+        for (k = 0; k < 3; k++) n[k] = -pv->v[k];
+        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, -(double)view->half_height);
+        break;
+    }
+    }
+    return MLOD_OK;
+}
+
+MANYLODS_DEF mlod_result mlod_view_check(const mlod_view *view, mlod_error *error)
+{
+    mlod__pview pv;
+    mlod_result res = mlod__view_prepare(view, &pv, error);
+    return res == MLOD_OK ? mlod__succeed(error) : res;
+}
+
+/* Does every point of the sphere, with every normal of the cone, face away
+   from the eye?  x = centre - eye, d2 = |x|^2. */
+static int mlod__backfacing(const mlod__pview *pv, const double *x, double d2, double r, const float *cone)
+{
+    double axis[3], to_eye[3], beta = 0.0, limit;
+    int k;
+    if (cone[3] >= MLOD__PI) return 0;
+    for (k = 0; k < 3; k++) axis[k] = cone[k];
+    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        for (k = 0; k < 3; k++) to_eye[k] = -pv->w[k];
+    } else {
+        if (d2 <= r * r) return 0;
+        beta = asin(r / sqrt(d2));
+        for (k = 0; k < 3; k++) to_eye[k] = -x[k];
+    }
+    limit = 0.5 * MLOD__PI + cone[3] + beta;
+    return limit < MLOD__PI && mlod__angle(axis, to_eye) > limit;
+}
+
+/* Diameter of the paraboloid image of a sphere, in projection units, for
+   the hemisphere whose axis has component xw along x (+inf if unbounded). */
+static double mlod__paraboloid_diameter(double r, double xw, double tangent)
+{
+    double den = xw + tangent;
+    return den > 0.0 ? 2.0 * r / den : (double)INFINITY;
+}
+
+/* c(node, view) of the documentation; *culled = 1 when culled. */
+static double mlod__evaluate(const mlod__pview *pv, const float *sphere, const float *cone, int *culled)
+{
+    double x[3], d2, r = sphere[3], r2, xw;
+    int k;
+    *culled = 0;
+    for (k = 0; k < pv->plane_count; k++)
+        if (mlod__outside(&pv->planes[k], sphere)) {
+            *culled = 1;
+            return 0.0;
+        }
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->e[k];
+    d2 = mlod__dot3(x, x);
+    r2 = r * r;
+    if (pv->backfaces && cone && mlod__backfacing(pv, x, d2, r, cone)) {
+        *culled = 1;
+        return 0.0;
+    }
+    xw = mlod__dot3(x, pv->w);
+    switch (pv->kind) {
+    case MLOD_VIEW_PERSPECTIVE: {
+        double t2 = d2 - r2;
+        if (xw <= r) return INFINITY;
+        return pv->scale * 2.0 * r * sqrt(t2 > 0.0 ? t2 : 0.0) / ((xw - r) * (xw + r));
+    }
+    case MLOD_VIEW_PARABOLOID:
+        if (d2 <= r2) return INFINITY;
+        return pv->scale * mlod__paraboloid_diameter(r, xw, sqrt(d2 - r2));
+    case MLOD_VIEW_DUAL_PARABOLOID: {
+        double c = 0.0, tangent;
+        if (d2 <= r2) return INFINITY;
+        tangent = sqrt(d2 - r2);
+        if (!mlod__outside(&pv->halves[0], sphere)) c = mlod__paraboloid_diameter(r, xw, tangent);
+        if (!mlod__outside(&pv->halves[1], sphere)) {
+            double back = mlod__paraboloid_diameter(r, -xw, tangent);
+            if (back > c) c = back;
+        }
+        return pv->scale * c;
+    }
+    case MLOD_VIEW_ORTHOGRAPHIC:
+        return pv->scale * 2.0 * r;
+    }
+    return INFINITY;
+}
+
+static const float *mlod__cone_of(const mlod_tree *tree, uint32_t node)
+{
+    return tree->cones ? tree->cones + 4 * (size_t)node : NULL;
+}
+
+MANYLODS_DEF double mlod_criterion(const mlod_tree *tree, uint32_t node, const mlod_view *view)
+{
+    mlod__pview pv;
+    int culled;
+    if (!tree || node >= tree->node_count || mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return NAN;
+    return mlod__evaluate(&pv, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node), &culled);
+}
+
+
+/* ----------------------------------------------------------------- cut -- */
+
+/* Working status of a list entry: 0 = not evaluated yet, else MLOD_STATUS_*.
+   Outside lazy mode, COARSE marks an entry still to be split. */
+#define MLOD__PENDING 0u
+/* A segment (a run of one view's list handled by one task) holds at most
+   this many input entries. */
+#define MLOD__SEGMENT_INPUT 1024u
+/* Scratch entries a round may spend on splits, shared among segments. */
+#define MLOD__ROUND_BUDGET ((size_t)1 << 21)
+#define MLOD__MIN_SHARE 16u
+
+typedef struct mlod__list {
+    uint32_t *nodes;
+    uint8_t *status;
+    size_t capacity; /* entries */
+    size_t *offset;  /* per view: first entry */
+    uint32_t *count; /* per view: entries */
+} mlod__list;
+
+typedef struct mlod__view_stats {
+    uint64_t evaluated, steps;
+    uint32_t drawn, culled, oversize, coarse;
+} mlod__view_stats;
+
+typedef struct mlod__segment {
+    uint32_t view;
+    uint32_t in_count;
+    size_t in_begin;
+    size_t out_begin;
+    uint32_t out_capacity;
+    uint32_t out_count;
+    uint64_t evaluated, steps;
+} mlod__segment;
+
+struct mlod_cut {
+    mlod_allocator allocator;
+    uint32_t view_count;
+    uint32_t tree_nodes; /* node count the committed lists belong to; 0: none */
+    int committed;       /* which of lists[] holds the result */
+    mlod__list lists[3];
+    mlod__view_stats *stats[2]; /* [0] committed, [1] work */
+    uint32_t *scratch_nodes;
+    uint8_t *scratch_status;
+    size_t scratch_capacity;
+    mlod__segment *segments;
+    size_t segment_capacity;
+    uint32_t *tasks; /* first segment of each task, then the end */
+    size_t task_capacity;
+    uint32_t *view_segment; /* per view: first segment, then the end */
+    size_t bytes;
+};
+
+static int mlod__is_valid(uint8_t status) { return status == MLOD_STATUS_DRAWN || status == MLOD_STATUS_CULLED; }
+
+static uint8_t mlod__classify(const mlod__pview *pv, const mlod_tree *tree, uint32_t node, double epsilon)
+{
+    int culled;
+    double c = mlod__evaluate(pv, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node), &culled);
+    if (culled) return MLOD_STATUS_CULLED;
+    if (c <= epsilon) return MLOD_STATUS_DRAWN;
+    return node >= tree->leaf_count - 1 ? MLOD_STATUS_OVERSIZE : MLOD_STATUS_COARSE;
+}
+
+typedef struct mlod__cut_job {
+    const mlod_tree *tree;
+    const mlod_view *views;
+    double epsilon;
+    int trust;  /* statuses of the input are current */
+    int merge;  /* look for sibling pairs to merge */
+    int lazy;   /* one step per entry */
+    const mlod__list *in;
+    mlod__list *out;
+    mlod_cut *cut;
+} mlod__cut_job;
+
+/* Output of one segment while it is produced. */
+typedef struct mlod__emitter {
+    uint32_t *nodes;
+    uint8_t *status;
+    uint32_t count;
+} mlod__emitter;
+
+static void mlod__emit(mlod__emitter *out, uint32_t node, uint8_t status)
+{
+    out->nodes[out->count] = node;
+    out->status[out->count] = status;
+    out->count++;
+}
+
+/* Merge x with its left sibling on top of the output while their parent
+   is valid (the merge goes through the left child).  Returns x's
+   replacement and its status. */
+static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, uint32_t *nodes, uint8_t *status,
+                             uint32_t *count, uint32_t x, uint8_t *xs, uint64_t *evaluated, uint64_t *steps)
+{
+    while (mlod__is_valid(*xs) && x > 0 && (x & 1u) == 0 && *count > 0 && nodes[*count - 1] == x - 1 &&
+           mlod__is_valid(status[*count - 1])) {
+        uint32_t parent = (x - 1) / 2;
+        uint8_t ps = mlod__classify(pv, job->tree, parent, job->epsilon);
+        ++*evaluated;
+        if (!mlod__is_valid(ps)) break;
+        --*count;
+        x = parent;
+        *xs = ps;
+        ++*steps;
+    }
+    return x;
+}
+
+/* Basic and incremental rounds: split invalid nodes down to the cut within
+   the segment's capacity, merge valid sibling pairs. */
+static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, const mlod__pview *pv)
+{
+    const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
+    const uint8_t *in_status = job->in->status + seg->in_begin;
+    const mlod_tree *tree = job->tree;
+    mlod__emitter out;
+    uint32_t k, stack[80];
+    out.nodes = job->cut->scratch_nodes + seg->out_begin;
+    out.status = job->cut->scratch_status + seg->out_begin;
+    out.count = 0;
+    for (k = 0; k < seg->in_count; k++) {
+        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top;
+        uint8_t st = in_status[k];
+        if (st == MLOD__PENDING || !job->trust) {
+            st = mlod__classify(pv, tree, node, job->epsilon);
+            seg->evaluated++;
+        }
+        if (st != MLOD_STATUS_COARSE) {
+            if (job->merge)
+                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, &seg->evaluated, &seg->steps);
+            mlod__emit(&out, node, st);
+            continue;
+        }
+        if (out.count + 2 + remaining > seg->out_capacity) {
+            mlod__emit(&out, node, st); /* no room: split in the next round */
+            continue;
+        }
+        seg->steps++;
+        top = 0;
+        stack[top++] = 2 * node + 2;
+        stack[top++] = 2 * node + 1;
+        while (top > 0) {
+            uint32_t m = stack[--top];
+            uint8_t ms = mlod__classify(pv, tree, m, job->epsilon);
+            seg->evaluated++;
+            if (ms == MLOD_STATUS_COARSE && out.count + top + 2 + remaining <= seg->out_capacity) {
+                seg->steps++;
+                stack[top++] = 2 * m + 2;
+                stack[top++] = 2 * m + 1;
+            } else {
+                mlod__emit(&out, m, ms);
+            }
+        }
+    }
+    seg->out_count = out.count;
+}
+
+/* Lazy rounds: at most one split or merge per entry. */
+static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, const mlod__pview *pv)
+{
+    const mlod_tree *tree = job->tree;
+    size_t view_begin = job->in->offset[seg->view], view_end = view_begin + job->in->count[seg->view];
+    mlod__emitter out;
+    uint32_t k;
+    out.nodes = job->cut->scratch_nodes + seg->out_begin;
+    out.status = job->cut->scratch_status + seg->out_begin;
+    out.count = 0;
+    for (k = 0; k < seg->in_count; k++) {
+        size_t at = seg->in_begin + k;
+        uint32_t node = job->in->nodes[at];
+        uint8_t st = job->in->status[at];
+        if (st == MLOD__PENDING || !job->trust) {
+            st = mlod__classify(pv, tree, node, job->epsilon);
+            seg->evaluated++;
+        }
+        if (st == MLOD_STATUS_COARSE) {
+            mlod__emit(&out, 2 * node + 1, mlod__classify(pv, tree, 2 * node + 1, job->epsilon));
+            mlod__emit(&out, 2 * node + 2, mlod__classify(pv, tree, 2 * node + 2, job->epsilon));
+            seg->evaluated += 2;
+            seg->steps++;
+            continue;
+        }
+        if (mlod__is_valid(st) && node > 0) {
+            uint32_t parent = (node - 1) / 2;
+            int left = (node & 1u) != 0;
+            /* a left child merges with its right sibling; a right child at
+               the start of a segment defers to its left sibling before it */
+            if (left ? (at + 1 < view_end && job->in->nodes[at + 1] == node + 1)
+                     : (k == 0 && at > view_begin && job->in->nodes[at - 1] == node - 1)) {
+                uint8_t ps = mlod__classify(pv, tree, parent, job->epsilon);
+                seg->evaluated++;
+                if (mlod__is_valid(ps)) {
+                    if (left) {
+                        mlod__emit(&out, parent, ps);
+                        seg->steps++;
+                        k++;
+                    }
+                    continue;
+                }
+            }
+        }
+        mlod__emit(&out, node, st);
+    }
+    seg->out_count = out.count;
+}
+
+static void mlod__segment_task(void *context, uint32_t index)
+{
+    const mlod__cut_job *job = (const mlod__cut_job *)context;
+    mlod_cut *cut = job->cut;
+    uint32_t s, prepared = (uint32_t)-1;
+    mlod__pview pv;
+    for (s = cut->tasks[index]; s < cut->tasks[index + 1]; s++) {
+        mlod__segment *seg = &cut->segments[s];
+        if (seg->view != prepared) {
+            mlod__view_prepare(&job->views[seg->view], &pv, NULL);
+            prepared = seg->view;
+        }
+        if (job->lazy)
+            mlod__lazy_segment(job, seg, &pv);
+        else
+            mlod__refine_segment(job, seg, &pv);
+    }
+}
+
+/* Concatenate one view's segment outputs into the output list, merging
+   sibling pairs that meet at segment boundaries, and count. */
+static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod__pview *pv)
+{
+    mlod_cut *cut = job->cut;
+    mlod__view_stats *stats = &cut->stats[1][view];
+    uint32_t *nodes = job->out->nodes + job->out->offset[view], count = 0, s, i;
+    uint8_t *status = job->out->status + job->out->offset[view];
+    if (job->trust) {
+        /* later rounds add to the first round's counts */
+    } else {
+        stats->evaluated = 0;
+        stats->steps = 0;
+    }
+    for (s = cut->view_segment[view]; s < cut->view_segment[view + 1]; s++) {
+        const mlod__segment *seg = &cut->segments[s];
+        const uint32_t *src = cut->scratch_nodes + seg->out_begin;
+        const uint8_t *src_status = cut->scratch_status + seg->out_begin;
+        i = 0;
+        if (job->merge && count > 0) {
+            for (; i < seg->out_count; i++) {
+                uint8_t xs = src_status[i];
+                uint32_t x = mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, &stats->evaluated, &stats->steps);
+                nodes[count] = x;
+                status[count] = xs;
+                count++;
+                if (x == src[i]) { /* unchanged: the rest was reduced already */
+                    i++;
+                    break;
+                }
+            }
+        }
+        memcpy(nodes + count, src + i, (seg->out_count - i) * sizeof(uint32_t));
+        memcpy(status + count, src_status + i, seg->out_count - i);
+        count += seg->out_count - i;
+        stats->evaluated += seg->evaluated;
+        stats->steps += seg->steps;
+    }
+    job->out->count[view] = count;
+    stats->drawn = stats->culled = stats->oversize = stats->coarse = 0;
+    for (i = 0; i < count; i++) {
+        switch (status[i]) {
+        case MLOD_STATUS_DRAWN: stats->drawn++; break;
+        case MLOD_STATUS_CULLED: stats->culled++; break;
+        case MLOD_STATUS_OVERSIZE: stats->oversize++; break;
+        default: stats->coarse++; break;
+        }
+    }
+}
+
+#define MLOD__JOIN_VIEWS 16u
+
+static void mlod__join_task(void *context, uint32_t index)
+{
+    const mlod__cut_job *job = (const mlod__cut_job *)context;
+    uint32_t v = index * MLOD__JOIN_VIEWS, end = v + MLOD__JOIN_VIEWS;
+    mlod__pview pv;
+    if (end > job->cut->view_count) end = job->cut->view_count;
+    for (; v < end; v++) {
+        if (job->merge) mlod__view_prepare(&job->views[v], &pv, NULL);
+        mlod__join_view(job, v, &pv);
+    }
+}
+
+/* Grow a buffer to hold `need` elements (contents are not kept). */
+static int mlod__reserve(mlod_cut *cut, void **buffer, size_t *capacity, size_t need, size_t element)
+{
+    size_t grown;
+    void *p;
+    if (need <= *capacity) return 1;
+    grown = need + need / 2;
+    if (grown < need) grown = need;
+    p = mlod__alloc_array(&cut->allocator, grown, element, NULL);
+    if (!p) {
+        grown = need;
+        p = mlod__alloc_array(&cut->allocator, grown, element, NULL);
+        if (!p) return 0;
+    }
+    mlod__free(&cut->allocator, *buffer);
+    cut->bytes = cut->bytes - *capacity * element + grown * element;
+    *buffer = p;
+    *capacity = grown;
+    return 1;
+}
+
+static int mlod__reserve_list(mlod_cut *cut, mlod__list *list, size_t need)
+{
+    size_t capacity = list->capacity;
+    void *nodes = list->nodes, *status = list->status;
+    int ok = mlod__reserve(cut, &nodes, &capacity, need, sizeof(uint32_t));
+    list->nodes = (uint32_t *)nodes;
+    if (ok) {
+        capacity = list->capacity;
+        ok = mlod__reserve(cut, &status, &capacity, need, sizeof(uint8_t));
+        list->status = (uint8_t *)status;
+    }
+    if (ok) list->capacity = capacity;
+    return ok;
+}
+
+MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut)
+{
+    int i;
+    if (!cut) return;
+    for (i = 0; i < 3; i++) {
+        mlod__free(&cut->allocator, cut->lists[i].nodes);
+        mlod__free(&cut->allocator, cut->lists[i].status);
+        mlod__free(&cut->allocator, cut->lists[i].offset);
+        mlod__free(&cut->allocator, cut->lists[i].count);
+    }
+    mlod__free(&cut->allocator, cut->stats[0]);
+    mlod__free(&cut->allocator, cut->stats[1]);
+    mlod__free(&cut->allocator, cut->scratch_nodes);
+    mlod__free(&cut->allocator, cut->scratch_status);
+    mlod__free(&cut->allocator, cut->segments);
+    mlod__free(&cut->allocator, cut->tasks);
+    mlod__free(&cut->allocator, cut->view_segment);
+    cut->allocator.free(cut->allocator.user, cut);
+}
+
+MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator, mlod_cut **out_cut,
+                                         mlod_error *error)
+{
+    mlod_allocator a = mlod__allocator(allocator);
+    mlod_cut *cut;
+    int i, ok = 1;
+    if (!out_cut) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out_cut is NULL");
+    *out_cut = NULL;
+    if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
+    if (view_count == (uint32_t)-1) return mlod__fail(error, MLOD_ERROR_OVERFLOW, "view_count is too large");
+    cut = (mlod_cut *)a.alloc(a.user, sizeof(mlod_cut));
+    if (!cut) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating a cut");
+    memset(cut, 0, sizeof *cut);
+    cut->allocator = a;
+    cut->view_count = view_count;
+    cut->bytes = sizeof *cut;
+    for (i = 0; i < 3; i++) {
+        ok = ok && (cut->lists[i].offset = (size_t *)mlod__alloc_array(&a, view_count, sizeof(size_t), &cut->bytes));
+        ok = ok && (cut->lists[i].count = (uint32_t *)mlod__alloc_array(&a, view_count, sizeof(uint32_t), &cut->bytes));
+    }
+    for (i = 0; i < 2; i++)
+        ok = ok && (cut->stats[i] = (mlod__view_stats *)mlod__alloc_array(&a, view_count, sizeof(mlod__view_stats), &cut->bytes));
+    ok = ok && (cut->view_segment = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &cut->bytes));
+    if (!ok) {
+        mlod_cut_destroy(cut);
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating a cut for %u views", view_count);
+    }
+    for (i = 0; i < 3; i++) {
+        memset(cut->lists[i].offset, 0, view_count * sizeof(size_t));
+        memset(cut->lists[i].count, 0, view_count * sizeof(uint32_t));
+    }
+    memset(cut->stats[0], 0, view_count * sizeof(mlod__view_stats));
+    *out_cut = cut;
+    return mlod__succeed(error);
+}
+
+MANYLODS_DEF void mlod_cut_reset(mlod_cut *cut)
+{
+    if (!cut) return;
+    cut->tree_nodes = 0;
+    memset(cut->lists[cut->committed].count, 0, cut->view_count * sizeof(uint32_t));
+    memset(cut->stats[0], 0, cut->view_count * sizeof(mlod__view_stats));
+}
+
+MANYLODS_DEF uint32_t mlod_cut_view_count(const mlod_cut *cut) { return cut ? cut->view_count : 0; }
+
+MANYLODS_DEF size_t mlod_cut_bytes(const mlod_cut *cut) { return cut ? cut->bytes : 0; }
+
+MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
+{
+    mlod_cut_view r;
+    memset(&r, 0, sizeof r);
+    if (cut && view < cut->view_count) {
+        const mlod__list *list = &cut->lists[cut->committed];
+        const mlod__view_stats *s = &cut->stats[0][view];
+        r.nodes = list->nodes ? list->nodes + list->offset[view] : NULL;
+        r.status = list->status ? list->status + list->offset[view] : NULL;
+        r.count = list->count[view];
+        r.drawn = s->drawn;
+        r.culled = s->culled;
+        r.oversize = s->oversize;
+        r.coarse = s->coarse;
+        r.evaluated = s->evaluated;
+        r.steps = s->steps;
+    }
+    return r;
+}
+
+/* Cut the input lists into segments and the segments into tasks, place
+   every segment's output in scratch.  Returns 0 when out of memory. */
+static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int trust, uint32_t *task_count)
+{
+    size_t total = 0, segments = 0, s = 0, capacity = 0, share, work = 0;
+    uint32_t v, tasks = 0;
+    for (v = 0; v < cut->view_count; v++) {
+        total += in->count[v];
+        segments += (in->count[v] + MLOD__SEGMENT_INPUT - 1) / MLOD__SEGMENT_INPUT;
+        if (!lazy && trust) segments += cut->stats[1][v].coarse; /* each entry to split closes one */
+    }
+    if (segments >= (uint32_t)-1) return 0;
+    share = (MLOD__ROUND_BUDGET > total ? MLOD__ROUND_BUDGET : total) / (segments ? segments : 1);
+    if (share < MLOD__MIN_SHARE) share = MLOD__MIN_SHARE;
+    if (share > ((uint32_t)-1 >> 1) - MLOD__SEGMENT_INPUT) share = ((uint32_t)-1 >> 1) - MLOD__SEGMENT_INPUT;
+    {
+        void *p = cut->segments;
+        if (!mlod__reserve(cut, &p, &cut->segment_capacity, segments, sizeof(mlod__segment))) return 0;
+        cut->segments = (mlod__segment *)p;
+        p = cut->tasks;
+        if (!mlod__reserve(cut, &p, &cut->task_capacity, segments + 1, sizeof(uint32_t))) return 0;
+        cut->tasks = (uint32_t *)p;
+    }
+    for (v = 0; v < cut->view_count; v++) {
+        size_t at = in->offset[v], end = at + in->count[v];
+        cut->view_segment[v] = (uint32_t)s;
+        while (at < end) {
+            mlod__segment *seg = &cut->segments[s];
+            uint32_t n = 0;
+            int closes = 0;
+            while (at + n < end && n < MLOD__SEGMENT_INPUT && !closes) {
+                uint8_t st = in->status[at + n];
+                closes = !lazy && (st == MLOD__PENDING || (trust && st == MLOD_STATUS_COARSE));
+                n++;
+            }
+            MANYLODS_ASSERT(s < segments);
+            seg->view = v;
+            seg->in_begin = at;
+            seg->in_count = n;
+            seg->out_begin = capacity;
+            seg->out_capacity = lazy ? 2 * n : n + (uint32_t)share;
+            seg->out_count = 0;
+            seg->evaluated = seg->steps = 0;
+            capacity += seg->out_capacity;
+            /* tasks: consecutive segments worth about one segment of work */
+            if (work == 0) cut->tasks[tasks++] = (uint32_t)s;
+            work += n + (closes ? MLOD__SEGMENT_INPUT / 4 : 0);
+            if (work >= MLOD__SEGMENT_INPUT) work = 0;
+            at += n;
+            s++;
+        }
+    }
+    cut->view_segment[cut->view_count] = (uint32_t)s;
+    cut->tasks[tasks] = (uint32_t)s;
+    *task_count = tasks;
+    {
+        void *p = cut->scratch_nodes;
+        size_t cap = cut->scratch_capacity;
+        if (!mlod__reserve(cut, &p, &cap, capacity, sizeof(uint32_t))) return 0;
+        cut->scratch_nodes = (uint32_t *)p;
+        p = cut->scratch_status;
+        cap = cut->scratch_capacity;
+        if (!mlod__reserve(cut, &p, &cap, capacity, sizeof(uint8_t))) return 0;
+        cut->scratch_status = (uint8_t *)p;
+        cut->scratch_capacity = cap;
+    }
+    return 1;
+}
+
+/* Lay out the output list: each view gets room for all its segments'
+   output.  Returns 0 when out of memory. */
+static int mlod__place_output(mlod_cut *cut, mlod__list *out)
+{
+    size_t at = 0;
+    uint32_t v, s;
+    for (v = 0; v < cut->view_count; v++) {
+        out->offset[v] = at;
+        for (s = cut->view_segment[v]; s < cut->view_segment[v + 1]; s++) at += cut->segments[s].out_count;
+    }
+    return mlod__reserve_list(cut, out, at);
+}
+
+static mlod_result mlod__check_cut_params(const mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+                                          const mlod_cut_params *params, mlod_error *error)
+{
+    uint32_t v;
+    if (!cut || !tree || !views || !params)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "cut, tree, views and params must not be NULL");
+    if ((unsigned)params->mode > (unsigned)MLOD_CUT_LAZY)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown cut mode %d", (int)params->mode);
+    if (!(params->epsilon > 0.0f))
+        return mlod__fail(error, MLOD_ERROR_BAD_EPSILON, "epsilon %g must be > 0 (pixels)", params->epsilon);
+    if (params->mode == MLOD_CUT_LAZY && params->lazy_steps == 0)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "lazy mode needs lazy_steps >= 1");
+    if (tree->node_count == 0 || !tree->spheres)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the tree is empty");
+    for (v = 0; v < cut->view_count; v++) {
+        mlod__pview pv;
+        mlod_error detail;
+        mlod_result res = mlod__view_prepare(&views[v], &pv, &detail);
+        if (res != MLOD_OK) return mlod__fail(error, res, "view %u: %.160s", v, detail.message);
+    }
+    return MLOD_OK;
+}
+
+MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+                                         const mlod_cut_params *params, mlod_error *error)
+{
+    mlod__cut_job job;
+    mlod__list *in, *out;
+    uint32_t v, round, tasks;
+    int from_root;
+    mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
+    if (res != MLOD_OK) return res;
+    from_root = params->mode == MLOD_CUT_BASIC || cut->tree_nodes != tree->node_count;
+    memset(&job, 0, sizeof job);
+    job.tree = tree;
+    job.views = views;
+    job.epsilon = params->epsilon;
+    job.lazy = params->mode == MLOD_CUT_LAZY;
+    job.cut = cut;
+    in = &cut->lists[cut->committed];
+    if (from_root) {
+        in = &cut->lists[(cut->committed + 1) % 3];
+        if (!mlod__reserve_list(cut, in, cut->view_count)) goto out_of_memory;
+        for (v = 0; v < cut->view_count; v++) {
+            in->nodes[v] = 0;
+            in->status[v] = MLOD__PENDING;
+            in->offset[v] = v;
+            in->count[v] = 1;
+        }
+    }
+    for (v = 0; v < cut->view_count; v++) cut->stats[1][v].coarse = 0;
+    for (round = 0;; round++) {
+        uint32_t coarse = 0;
+        out = &cut->lists[(cut->committed + 1) % 3];
+        if (out == in) out = &cut->lists[(cut->committed + 2) % 3];
+        job.trust = round > 0;
+        job.merge = params->mode == MLOD_CUT_INCREMENTAL && round == 0 && !from_root;
+        job.in = in;
+        job.out = out;
+        if (!mlod__plan_round(cut, in, job.lazy, job.trust, &tasks)) goto out_of_memory;
+        mlod__run(params->parallel, tasks, mlod__segment_task, &job);
+        if (!mlod__place_output(cut, out)) goto out_of_memory;
+        mlod__run(params->parallel, (cut->view_count - 1) / MLOD__JOIN_VIEWS + 1, mlod__join_task, &job);
+        in = out;
+        for (v = 0; v < cut->view_count; v++) coarse += cut->stats[1][v].coarse;
+        if (job.lazy ? round + 1 >= params->lazy_steps : coarse == 0) break;
+    }
+    {
+        mlod__view_stats *t = cut->stats[0];
+        cut->stats[0] = cut->stats[1];
+        cut->stats[1] = t;
+    }
+    cut->committed = (int)(in - cut->lists);
+    cut->tree_nodes = tree->node_count;
+    return mlod__succeed(error);
+out_of_memory:
+    return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory updating the cut of %u views", cut->view_count);
+}
+
+
+/* ------------------------------------------------- pthreads thread pool -- */
+#ifdef MANYLODS_PTHREADS
+#include <pthread.h>
+
+struct mlod_pool {
+    pthread_t *threads;
+    uint32_t thread_count; /* started threads: workers - 1 */
+    pthread_mutex_t lock;
+    pthread_cond_t wake, done;
+    uint64_t generation;
+    mlod_task_fn *task;
+    void *context;
+    uint32_t count, next, busy;
+    int quit;
+};
+
+/* Run tasks of the current job until none is left; called with the lock. */
+static void mlod__pool_drain(mlod_pool *pool)
+{
+    while (pool->next < pool->count) {
+        uint32_t i = pool->next++;
+        mlod_task_fn *task = pool->task;
+        void *context = pool->context;
+        pool->busy++;
+        pthread_mutex_unlock(&pool->lock);
+        task(context, i);
+        pthread_mutex_lock(&pool->lock);
+        pool->busy--;
+    }
+    if (pool->busy == 0) pthread_cond_broadcast(&pool->done);
+}
+
+static void *mlod__pool_worker(void *argument)
+{
+    mlod_pool *pool = (mlod_pool *)argument;
+    uint64_t seen = 0;
+    pthread_mutex_lock(&pool->lock);
+    for (;;) {
+        while (!pool->quit && pool->generation == seen) pthread_cond_wait(&pool->wake, &pool->lock);
+        if (pool->quit) break;
+        seen = pool->generation;
+        mlod__pool_drain(pool);
+    }
+    pthread_mutex_unlock(&pool->lock);
+    return NULL;
+}
+
+static void mlod__pool_run(void *user, uint32_t count, mlod_task_fn *task, void *context)
+{
+    mlod_pool *pool = (mlod_pool *)user;
+    pthread_mutex_lock(&pool->lock);
+    pool->task = task;
+    pool->context = context;
+    pool->count = count;
+    pool->next = 0;
+    pool->generation++;
+    pthread_cond_broadcast(&pool->wake);
+    mlod__pool_drain(pool);
+    while (pool->next < pool->count || pool->busy > 0) pthread_cond_wait(&pool->done, &pool->lock);
+    pthread_mutex_unlock(&pool->lock);
+}
+
+MANYLODS_DEF mlod_pool *mlod_pool_create(uint32_t threads)
+{
+    mlod_pool *pool;
+    uint32_t i;
+    if (threads == 0 || threads > 1024) return NULL;
+    pool = (mlod_pool *)malloc(sizeof *pool);
+    if (!pool) return NULL;
+    memset(pool, 0, sizeof *pool);
+    pool->threads = (pthread_t *)malloc(sizeof(pthread_t) * (threads > 1 ? threads - 1 : 1));
+    if (!pool->threads) {
+        free(pool);
+        return NULL;
+    }
+    pthread_mutex_init(&pool->lock, NULL);
+    pthread_cond_init(&pool->wake, NULL);
+    pthread_cond_init(&pool->done, NULL);
+    for (i = 0; i + 1 < threads; i++) {
+        if (pthread_create(&pool->threads[i], NULL, mlod__pool_worker, pool) != 0) break;
+        pool->thread_count++;
+    }
+    if (pool->thread_count + 1 != threads) {
+        mlod_pool_destroy(pool);
+        return NULL;
+    }
+    return pool;
+}
+
+MANYLODS_DEF void mlod_pool_destroy(mlod_pool *pool)
+{
+    uint32_t i;
+    if (!pool) return;
+    pthread_mutex_lock(&pool->lock);
+    pool->quit = 1;
+    pthread_cond_broadcast(&pool->wake);
+    pthread_mutex_unlock(&pool->lock);
+    for (i = 0; i < pool->thread_count; i++) pthread_join(pool->threads[i], NULL);
+    pthread_mutex_destroy(&pool->lock);
+    pthread_cond_destroy(&pool->wake);
+    pthread_cond_destroy(&pool->done);
+    free(pool->threads);
+    free(pool);
+}
+
+MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool)
+{
+    mlod_parallel p;
+    p.run = mlod__pool_run;
+    p.user = pool;
+    return p;
+}
+#endif /* MANYLODS_PTHREADS */
+
+#endif /* MANYLODS_IMPLEMENTATION_DONE */
+#endif /* MANYLODS_IMPLEMENTATION */
