@@ -286,10 +286,13 @@ typedef struct mlod_build_desc {
 
 /* Precision flags of a tree (mlod_tree.precision). */
 enum {
-    /* The scene's extent is below 2^-20 of its distance from the origin:
-       float positions are quantised more coarsely than the samples are apart,
-       so samples collapse onto each other.  Bounds, cuts and partitions are
-       still exact for the stored (quantised) positions. */
+    /* Float positions are quantised coarser than a quarter of the typical
+       leaf radius: the spacing of floats at the scene's largest coordinate
+       (|x| * 2^-23) exceeds radius_scale * sqrt(A/N) / 4.  A scene far from
+       the origin, or sampled finer than floats can place.  Samples then
+       collapse onto each other; bounds, cuts and partitions stay exact for
+       the stored (quantised) positions.  Translate the scene towards the
+       origin (and the views with it) to clear it. */
     MLOD_PRECISION_COARSE_POSITIONS = 1u << 0
 };
 
@@ -424,8 +427,8 @@ typedef struct mlod_cut_view {
     const uint8_t *status;  /* count MLOD_STATUS_* values */
     uint32_t count;
     uint32_t drawn, culled, oversize, coarse; /* counts by status */
-    uint32_t evaluated;     /* criterion evaluations in the last update */
-    uint32_t steps;         /* splits and merges in the last update */
+    uint64_t evaluated;     /* criterion evaluations in the last update */
+    uint64_t steps;         /* splits and merges in the last update */
 } mlod_cut_view;
 
 typedef struct mlod_cut mlod_cut;
@@ -1261,7 +1264,7 @@ static void mlod__set_precision(mlod_tree *tree, double typical_radius)
     int k;
     for (k = 1; k < 3; k++)
         if (fabs(root[k]) + root[3] > far) far = fabs(root[k]) + root[3];
-    tree->precision = (far * (1.0 / 8388608.0) > 0.25 * typical_radius) ? MLOD_PRECISION_COARSE_POSITIONS : 0u;
+    tree->precision = (far * (1.0 / 8388608.0) > 0.25 * typical_radius) ? (uint32_t)MLOD_PRECISION_COARSE_POSITIONS : 0u;
 }
 
 static mlod_result mlod__build_error(mlod_error *error, mlod_result res)
