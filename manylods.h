@@ -249,9 +249,10 @@ typedef struct mlod_mesh {
     size_t color_stride;
 } mlod_mesh;
 
-/* A point cloud: each point becomes one leaf.  Normals are required only
-   for cones (MLOD_ATTR_CONE); radii are optional (world units, >= 0); without
-   them a radius is estimated from the local density (see mlod_build_points). */
+/* A point cloud: each point becomes one leaf.  Normals, radii and colours
+   are optional (NULL); normals only matter for cones (without them a leaf's
+   cone is the full sphere); radii are world units >= 0, and without them a
+   radius is estimated from the local density (see mlod_build_points). */
 typedef struct mlod_points {
     const float *positions;
     size_t position_stride;
@@ -583,11 +584,16 @@ static void mlod__free(const mlod_allocator *a, void *p)
 /* Angular margin of a parent cone over its children: 2^-20 rad. */
 #define MLOD__CONE_MARGIN (1.0 / 1048576.0)
 
-/* The smallest float >= x (x finite and >= 0, or +inf). */
+/* The smallest float >= x, for x >= 0 (finite or +inf). */
 static float mlod__float_up(double x)
 {
     float f = (float)x;
-    if ((double)f < x) f = nextafterf(f, (float)INFINITY);
+    if ((double)f < x) { /* rounded down: step to the next float up */
+        uint32_t bits;
+        memcpy(&bits, &f, sizeof bits);
+        bits++;
+        memcpy(&f, &bits, sizeof f);
+    }
     return f;
 }
 
@@ -742,6 +748,9 @@ static void mlod__cone_from_normal(const double *n, float *out)
 
 static uint32_t mlod__depth_of(uint64_t node)
 {
+#if defined(__GNUC__) || defined(__clang__)
+    return 63u - (uint32_t)__builtin_clzll(node + 1);
+#else
     uint32_t depth = 0;
     uint64_t x = node + 1;
     while (x > 1) {
@@ -749,6 +758,7 @@ static uint32_t mlod__depth_of(uint64_t node)
         depth++;
     }
     return depth;
+#endif
 }
 
 /* Number of leaves below node i in the implicit tree of n leaves. */
@@ -2559,3 +2569,33 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 
 #endif /* MANYLODS_IMPLEMENTATION_DONE */
 #endif /* MANYLODS_IMPLEMENTATION */
+
+/*
+------------------------------------------------------------------------------
+This software is available under two licenses; choose whichever you prefer.
+------------------------------------------------------------------------------
+ALTERNATIVE A - MIT License
+Copyright (c) 2026 manylods contributors
+Permission is hereby granted, free of charge, to any person obtaining a copy of
+this software and associated documentation files (the "Software"), to deal in
+the Software without restriction, including without limitation the rights to
+use, copy, modify, merge, publish, distribute, sublicense, and/or sell copies
+of the Software, and to permit persons to whom the Software is furnished to do
+so, subject to the following conditions:
+The above copyright notice and this permission notice shall be included in all
+copies or substantial portions of the Software.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER
+LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM,
+OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE
+SOFTWARE.
+------------------------------------------------------------------------------
+ALTERNATIVE B - Public Domain
+The manylods contributors dedicate this file to the public domain. Anyone may
+copy, modify, publish, use, compile, sell or distribute it, in source or
+binary form, for any purpose, commercial or not, by any means, without
+asking and without condition.
+------------------------------------------------------------------------------
+*/
