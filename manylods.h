@@ -170,7 +170,11 @@
 #define MANYLODS_VERSION 100
 
 #ifdef MANYLODS_STATIC
+#if defined(__GNUC__) || defined(__clang__)
+#define MANYLODS_DEF static __attribute__((unused))
+#else
 #define MANYLODS_DEF static
+#endif
 #else
 #ifdef __cplusplus
 #define MANYLODS_DEF extern "C"
