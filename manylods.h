@@ -54,7 +54,8 @@
    SAMPLING (meshes)
      N area-uniform samples, stratified: sample i sits at the position
      (i + xi_i) / N, xi_i in [0,1) hashed from (seed, i), of the cumulative
-     triangle area, so each triangle gets its share of samples within one;
+     triangle area, so a triangle whose share is s = N a / A gets between
+     floor(s) - 1 and ceil(s) + 1 samples;
      inside a triangle its k samples form a jittered rank-1 lattice (the 1-D
      stratum and the golden-ratio sequence) mapped to the triangle by the
      area-preserving square-to-triangle map.  Zero-area triangles get none.
@@ -79,7 +80,8 @@
      c(node, view) = diameter, in pixels of the view's tile, of the image of
      the node's bounding sphere under the view's projection: the exact
      diameter of that image, which bounds the node's projected size from
-     above.  c = 0 when the node is culled, c = +inf when the eye is inside
+     above.  c = 0 when the node is culled (a sphere of radius 0 also has
+     c = 0; the cut's status tells the two apart), c = +inf when the eye is inside
      or on the sphere or the image is unbounded.  Notation: e eye, (u, v, w)
      the view frame (right, up, forward), x = centre - e, d = |x|, r radius.
 
@@ -99,9 +101,9 @@
        half of the tile, the back one (-w, seen with u mirrored) in the right
        half, each W/2 x H): c = the larger of the two paraboloid diameters
        over the halves the sphere reaches, with max(W/2,H)/2 pixels per unit.
-       Never culled.
-     ORTHOGRAPHIC (a directional light: box of half-extents ortho_half_width
-       x ortho_half_height around e, depth range [near, far] along w):
+       No frustum culling (back-face culling still applies).
+     ORTHOGRAPHIC (a directional light: box of half-extents half_width
+       x half_height around e, depth range [near_plane, far_plane] along w):
          c = 2 r * max(W / (2 half_width), H / (2 half_height))
        Culled when the sphere lies wholly outside the box.
      BACK-FACE CULLING (view flag MLOD_VIEW_CULL_BACKFACES, trees with cones):
@@ -363,7 +365,7 @@ MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
 MANYLODS_DEF mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *points,
                                            const mlod_parallel *parallel, mlod_error *error);
 
-/* Free the tree.  NULL is fine. */
+/* Free the tree and everything it owns.  NULL is fine. */
 MANYLODS_DEF void mlod_tree_destroy(mlod_tree *tree);
 
 /* ------------------------------------------------------------------ views */
@@ -459,6 +461,7 @@ MANYLODS_DEF uint32_t mlod_cut_view_count(const mlod_cut *cut);
 MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view);
 /* Bytes the cut object holds now. */
 MANYLODS_DEF size_t mlod_cut_bytes(const mlod_cut *cut);
+/* Free the cut and its lists.  NULL is fine. */
 MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut);
 
 /* --------------------------------------------------- built-in thread pool */
@@ -678,7 +681,11 @@ static void mlod__cone_full(const float *axis, float *out)
 static void mlod__cone_enclose(const float *a, const float *b, float *out)
 {
     double A[3], B[3], X[3], t[3], theta, alpha, need_a, need_b, len;
-    float axis[3];
+    /* volatile: the margin must be measured from the axis as rounded to
+       float; gcc 12 -O2 (SLP vectorisation) otherwise reuses the unrounded
+       doubles and the stored cone misses its margin by an ulp */
+    volatile float axis[3];
+    float stored[3];
     int k;
     if (a[3] >= MLOD__PI || b[3] >= MLOD__PI) {
         mlod__cone_full(a, out);
@@ -725,11 +732,12 @@ static void mlod__cone_enclose(const float *a, const float *b, float *out)
     need_a = mlod__angle(X, A) + a[3];
     need_b = mlod__angle(X, B) + b[3];
     alpha = (need_a > need_b ? need_a : need_b) + MLOD__CONE_MARGIN;
+    for (k = 0; k < 3; k++) stored[k] = axis[k];
     if (alpha >= MLOD__PI) {
-        mlod__cone_full(axis, out);
+        mlod__cone_full(stored, out);
         return;
     }
-    for (k = 0; k < 3; k++) out[k] = axis[k];
+    for (k = 0; k < 3; k++) out[k] = stored[k];
     out[3] = mlod__float_up(alpha);
 }
 
@@ -1274,11 +1282,11 @@ static int mlod__report(const mlod_build_desc *desc, float fraction)
 static void mlod__set_precision(mlod_tree *tree, double typical_radius)
 {
     const float *root = tree->spheres;
-    double far = fabs(root[0]) + root[3];
+    double reach = fabs(root[0]) + root[3];
     int k;
     for (k = 1; k < 3; k++)
-        if (fabs(root[k]) + root[3] > far) far = fabs(root[k]) + root[3];
-    tree->precision = (far * (1.0 / 8388608.0) > 0.25 * typical_radius) ? (uint32_t)MLOD_PRECISION_COARSE_POSITIONS : 0u;
+        if (fabs(root[k]) + root[3] > reach) reach = fabs(root[k]) + root[3];
+    tree->precision = (reach * (1.0 / 8388608.0) > 0.25 * typical_radius) ? (uint32_t)MLOD_PRECISION_COARSE_POSITIONS : 0u;
 }
 
 static mlod_result mlod__build_error(mlod_error *error, mlod_result res)
@@ -1694,6 +1702,14 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
         return mlod__fail(error, MLOD_ERROR_NON_FINITE, "the view's position, forward or up is not finite");
     if (view->width == 0 || view->height == 0)
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "tile size %ux%u: both must be >= 1", view->width, view->height);
+    if (isnan(view->fov_y) || isnan(view->near_plane) || isnan(view->far_plane) || isnan(view->half_width) ||
+        isnan(view->half_height))
+        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "a field of the view is NaN");
+    if (view->kind == MLOD_VIEW_PERSPECTIVE && (isinf(view->fov_y) || isinf(view->near_plane)))
+        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "fov_y and near_plane must be finite");
+    if (view->kind == MLOD_VIEW_ORTHOGRAPHIC &&
+        (isinf(view->near_plane) || isinf(view->half_width) || isinf(view->half_height)))
+        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "near_plane, half_width and half_height must be finite");
     if (view->flags & ~(uint32_t)MLOD_VIEW_CULL_BACKFACES)
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown view flags 0x%x", view->flags);
     memset(pv, 0, sizeof *pv);

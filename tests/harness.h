@@ -34,6 +34,7 @@ static void test_report(int ok, const char *file, int line, const char *fmt, ...
 static int test_finish(void)
 {
     printf("%lu passed, %lu failed\n", test_passed_count, test_failed_count);
+    fflush(stdout); /* LeakSanitizer's exit report would drop a buffered line */
     return test_failed_count ? 1 : 0;
 }
 
