@@ -1,0 +1,633 @@
+/* tests/test_build.c - sampling and build: tree shape, exact containment of
+   spheres and cones, samples on the surface, stratified area-uniform
+   sampling, coverage by the splats, attributes and their bytes, areas,
+   colours, determinism, point clouds. */
+#define MANYLODS_IMPLEMENTATION
+#include "../manylods.h"
+#include "testutil.h"
+
+/* ---------------------------------------------------------- tree sizes */
+
+static void test_sizes(void)
+{
+    static const uint32_t sizes[] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 13, 31, 32, 33, 97, 127, 128, 129, 257, 1000, 1009, 4099};
+    const uint32_t all = MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT;
+    scene_mesh s;
+    uint32_t si, T;
+    double A;
+    scene_uv_sphere(&s, 1.5f, 10, 20);
+    T = s.index_count / 3;
+    A = scene_area(&s);
+    for (si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
+        uint32_t N = sizes[si], j, n, bad_pos = 0, bad_bary = 0, bad_radius = 0, bad_sum = 0, bad_color = 0,
+                 bad_mean = 0, bad_axis = 0, bad_tri = 0, first_pos = 0;
+        double worst_pos = 0;
+        char what[64];
+        tu_layout L;
+        mlod_tree *t = tu_build(&s, N, 1000 + N, all);
+        snprintf(what, sizeof what, "sphere N=%u", N);
+        CHECK(t != NULL, "%s: build", what);
+        if (!t) continue;
+        CHECK(t->leaf_count == N && t->node_count == 2 * N - 1, "%s: %u leaves, %u nodes", what, t->leaf_count,
+              t->node_count);
+        CHECK(t->attributes == all, "%s: attributes 0x%x, asked 0x%x", what, t->attributes, all);
+        CHECK(t->bytes_per_node == 48, "%s: bytes_per_node %u, expected 16 + 16 + 4 + 12", what,
+              (unsigned)t->bytes_per_node);
+        CHECK(t->triangle_count == T && t->vertex_count == s.vertex_count, "%s: triangle_count %u vertex_count %u", what,
+              t->triangle_count, t->vertex_count);
+        tu_check_containment(t, what);
+        tu_layout_init(&L, N);
+        for (j = 0; j < N; j++) {
+            uint32_t tri = t->leaf_sources[j], node = N - 1 + j;
+            double st = t->leaf_barycentrics[2 * j], tt = t->leaf_barycentrics[2 * j + 1], p[3], nrm[3], col[3], d;
+            const float *c = t->spheres + 4 * node;
+            if (tri >= T) {
+                bad_tri++;
+                continue;
+            }
+            if (!(st >= 0 && tt >= 0 && st + tt <= 1 + 1e-6)) bad_bary++;
+            tu_eval_on_triangle(s.positions, s.indices + 3 * tri, st, tt, p);
+            d = fmax(fabs(p[0] - c[0]), fmax(fabs(p[1] - c[1]), fabs(p[2] - c[2])));
+            if (d > 8 * FLT_EPSILON * tu_max_abs_coordinate(&s, s.indices + 3 * tri)) {
+                if (!bad_pos++) first_pos = j;
+                if (d > worst_pos) worst_pos = d;
+            }
+            if (fabs(c[3] - sqrt(A / N)) > 1e-4 * sqrt(A / N)) bad_radius++;
+            tu_eval_on_triangle(s.colors, s.indices + 3 * tri, st, tt, col);
+            for (n = 0; n < 3; n++)
+                if (fabs(col[n] - t->colors[3 * node + n]) > 1e-5) bad_color++;
+            tu_normalize3(p);
+            nrm[0] = t->cones[4 * node];
+            nrm[1] = t->cones[4 * node + 1];
+            nrm[2] = t->cones[4 * node + 2];
+            if (tu_dot3(p, nrm) < 0.95) bad_axis++;
+        }
+        for (n = 0; n + 1 < N; n++) {
+            uint32_t l = 2 * n + 1, r = 2 * n + 2, k;
+            double sum = (double)t->areas[l] + t->areas[r];
+            if (fabs(t->areas[n] - sum) > 1e-5 * sum) bad_sum++;
+            for (k = 0; k < 3; k++) {
+                double m = (L.count[l] * (double)t->colors[3 * l + k] + L.count[r] * (double)t->colors[3 * r + k]) /
+                           L.count[n];
+                if (fabs(m - t->colors[3 * n + k]) > 1e-5) bad_mean++;
+            }
+        }
+        CHECK(bad_tri == 0, "%s: %u leaf_sources out of range", what, bad_tri);
+        CHECK(bad_bary == 0, "%s: %u barycentrics outside the triangle", what, bad_bary);
+        CHECK(bad_pos == 0, "%s: %u leaf centres off V0 + s(V1-V0) + t(V2-V0), first leaf %u, worst %.3g", what,
+              bad_pos, first_pos, worst_pos);
+        CHECK(bad_radius == 0, "%s: %u leaf radii differ from sqrt(A/N) = %.9g", what, bad_radius, sqrt(A / N));
+        CHECK(fabs(t->area_unit - A / N) <= 1e-6 * A / N, "%s: area_unit %.9g, A/N %.9g", what, t->area_unit, A / N);
+        CHECK(fabs(t->areas[0] * t->area_unit - A) <= 1e-4 * A, "%s: root area %.9g x area_unit %.9g, mesh area %.9g",
+              what, t->areas[0], t->area_unit, A);
+        CHECK(bad_sum == 0, "%s: %u internal areas differ from the sum of their children", what, bad_sum);
+        CHECK(bad_color == 0, "%s: %u leaf colour components differ from the interpolated vertex colour", what, bad_color);
+        CHECK(bad_mean == 0, "%s: %u internal colour components differ from the mean of their leaves", what, bad_mean);
+        CHECK(bad_axis == 0, "%s: %u leaf normals more than 18 degrees off the sphere's normal", what, bad_axis);
+        for (j = 0, bad_tri = 0; j < T; j++)
+            if (fabs(t->triangle_areas[j] - tu_triangle_area(&s, j)) > 1e-4 * tu_triangle_area(&s, j) + 1e-12) bad_tri++;
+        CHECK(bad_tri == 0, "%s: %u triangle_areas differ from the triangles' areas", what, bad_tri);
+        tu_layout_free(&L);
+        mlod_tree_destroy(t);
+    }
+    scene_free(&s);
+}
+
+/* ------------------------------------------------------------ sampling */
+
+static void test_square_strata(void)
+{
+    scene_mesh s;
+    mlod_tree *t;
+    const uint32_t N = 4096;
+    uint32_t cells[64], j, outside = 0;
+    double mean = N / 64.0, var = 0;
+    scene_unit_square(&s);
+    t = tu_build(&s, N, 7, 0);
+    CHECK(t != NULL, "square: build");
+    if (!t) return;
+    memset(cells, 0, sizeof cells);
+    for (j = 0; j < N; j++) {
+        const float *c = t->spheres + 4 * (N - 1 + j);
+        int x = (int)(c[0] * 8), y = (int)(c[1] * 8);
+        if (c[0] < 0 || c[0] > 1 || c[1] < 0 || c[1] > 1 || c[2] != 0) {
+            outside++;
+            continue;
+        }
+        if (x > 7) x = 7;
+        if (y > 7) y = 7;
+        cells[8 * y + x]++;
+    }
+    for (j = 0; j < 64; j++) var += (cells[j] - mean) * (cells[j] - mean) / 64;
+    CHECK(outside == 0, "square: %u samples off the unit square", outside);
+    CHECK(var < mean / 4, "square: variance of the 8x8 cell counts %.3g, expected < mean/4 = %.3g (random: %.3g)", var,
+          mean / 4, mean);
+    mlod_tree_destroy(t);
+    scene_free(&s);
+}
+
+/* Per-triangle counts against the area share N a_k / A: the documented
+   sampling ((i + xi_i)/N of the cumulative area) puts floor(share) - 1 ..
+   ceil(share) + 1 samples on a triangle; zero-area triangles get none. */
+static void check_triangle_shares(const scene_mesh *s, uint32_t N, const char *what)
+{
+    uint32_t T = s->index_count / 3, j, *count = (uint32_t *)calloc(T, sizeof(uint32_t)), bad = 0, strict = 0,
+             zero_hit = 0, first = 0;
+    double A = scene_area(s), chi2 = 0, worst = 0;
+    mlod_tree *t = tu_build(s, N, 99, MLOD_ATTR_REFIT);
+    CHECK(t != NULL, "%s: build", what);
+    if (!t || !count) return;
+    for (j = 0; j < N; j++) count[t->leaf_sources[j] < T ? t->leaf_sources[j] : 0]++;
+    for (j = 0; j < T; j++) {
+        double a = tu_triangle_area(s, j), share = a * N / A;
+        if (a == 0.0) {
+            zero_hit += count[j];
+            continue;
+        }
+        if (count[j] + 1 < floor(share - 1e-3) || count[j] > ceil(share + 1e-3) + 1) {
+            if (!bad++) first = j;
+        }
+        if (fabs(count[j] - share) > 1.0) strict++;
+        if (fabs(count[j] - share) > worst) worst = fabs(count[j] - share);
+        chi2 += (count[j] - share) * (count[j] - share) / share;
+    }
+    CHECK(zero_hit == 0, "%s: %u samples on zero-area triangles", what, zero_hit);
+    CHECK(bad == 0, "%s: %u triangles outside floor(share)-1 .. ceil(share)+1, first %u: %u samples, share %.4f", what,
+          bad, first, count[first], tu_triangle_area(s, first) * N / A);
+    if (N >= 4 * T)
+        CHECK(chi2 < 0.5 * T, "%s: chi-square %.1f over %u triangles, expected far below the random %u", what, chi2, T, T);
+    printf("  %s: %u triangles, %u of them more than 1 off their share (worst %.3f), chi-square %.1f\n", what, T, strict,
+           worst, chi2);
+    free(count);
+    mlod_tree_destroy(t);
+}
+
+static void test_shares(void)
+{
+    scene_mesh s;
+    scene_uv_sphere(&s, 1.0f, 12, 24);
+    check_triangle_shares(&s, 3000, "sphere shares");
+    check_triangle_shares(&s, 200, "sphere shares, N < triangles");
+    scene_free(&s);
+    scene_soup(&s, 400, 5);
+    check_triangle_shares(&s, 5000, "soup shares");
+    scene_free(&s);
+    scene_room(&s);
+    check_triangle_shares(&s, 777, "room shares");
+    scene_free(&s);
+}
+
+/* ------------------------------------------------------------- coverage */
+
+static int covered(const mlod_tree *t, const double *p)
+{
+    uint32_t stack[128], top = 0;
+    stack[top++] = 0;
+    while (top) {
+        uint32_t n = stack[--top];
+        const float *s = t->spheres + 4 * n;
+        double d[3] = {p[0] - s[0], p[1] - s[1], p[2] - s[2]};
+        if (tu_dot3(d, d) > (double)s[3] * s[3] * (1 + 1e-9)) continue;
+        if (n >= t->leaf_count - 1) return 1;
+        stack[top++] = 2 * n + 2;
+        stack[top++] = 2 * n + 1;
+    }
+    return 0;
+}
+
+static void check_coverage(const scene_mesh *s, uint32_t N, const char *what)
+{
+    uint32_t T = s->index_count / 3, i, k, hits = 0, M = 20000;
+    double *cum = (double *)malloc(sizeof(double) * T), total = 0;
+    uint64_t rng = 12345;
+    mlod_tree *t = tu_build(s, N, 3, 0);
+    CHECK(t != NULL, "%s: build", what);
+    if (!t || !cum) return;
+    for (i = 0; i < T; i++) cum[i] = (total += tu_triangle_area(s, i));
+    for (i = 0; i < M; i++) {
+        double u = scene_rng_double(&rng) * total, r1 = sqrt(scene_rng_double(&rng)), r2 = scene_rng_double(&rng), p[3];
+        uint32_t lo = 0, hi = T - 1;
+        const uint32_t *tri;
+        while (lo < hi) {
+            uint32_t mid = (lo + hi) / 2;
+            if (cum[mid] <= u) lo = mid + 1;
+            else hi = mid;
+        }
+        tri = s->indices + 3 * lo;
+        for (k = 0; k < 3; k++)
+            p[k] = (1 - r1) * s->positions[3 * tri[0] + k] + r1 * (1 - r2) * s->positions[3 * tri[1] + k] +
+                   r1 * r2 * s->positions[3 * tri[2] + k];
+        hits += covered(t, p);
+    }
+    CHECK(hits >= 0.995 * M, "%s: %.3f%% of surface points inside a leaf sphere, expected >= 99.5%%", what,
+          100.0 * hits / M);
+    printf("  %s: %.3f%% covered\n", what, 100.0 * hits / M);
+    mlod_tree_destroy(t);
+    free(cum);
+}
+
+static void test_coverage(void)
+{
+    scene_mesh s;
+    scene_unit_square(&s);
+    check_coverage(&s, 2000, "square coverage");
+    check_coverage(&s, 37, "square coverage, N=37");
+    scene_free(&s);
+    scene_uv_sphere(&s, 1.0f, 16, 32);
+    check_coverage(&s, 3000, "sphere coverage");
+    scene_free(&s);
+    scene_torus(&s, 1.0f, 0.3f, 32, 16);
+    check_coverage(&s, 4000, "torus coverage");
+    scene_free(&s);
+}
+
+/* ------------------------------------------------ determinism, attributes */
+
+static int same_array(const void *a, const void *b, size_t bytes)
+{
+    if (!a || !b) return a == b;
+    return memcmp(a, b, bytes) == 0;
+}
+
+static int same_tree(const mlod_tree *a, const mlod_tree *b)
+{
+    size_t nodes = a->node_count;
+    if (a->node_count != b->node_count || a->attributes != b->attributes) return 0;
+    return same_array(a->spheres, b->spheres, 16 * nodes) && same_array(a->cones, b->cones, 16 * nodes) &&
+           same_array(a->areas, b->areas, 4 * nodes) && same_array(a->colors, b->colors, 12 * nodes) &&
+           same_array(a->leaf_sources, b->leaf_sources, 4 * (size_t)a->leaf_count) &&
+           same_array(a->leaf_barycentrics, b->leaf_barycentrics, 8 * (size_t)a->leaf_count) &&
+           same_array(a->triangle_areas, b->triangle_areas, 8 * (size_t)a->triangle_count);
+}
+
+static void test_determinism(void)
+{
+    const uint32_t all = MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT;
+    scene_mesh s;
+    mlod_tree *a, *b, *c;
+    scene_torus(&s, 1.0f, 0.4f, 24, 12);
+    a = tu_build(&s, 3001, 42, all);
+    b = tu_build(&s, 3001, 42, all);
+    c = tu_build(&s, 3001, 43, all);
+    CHECK(a && b && c, "determinism: builds");
+    if (a && b && c) {
+        CHECK(same_tree(a, b), "determinism: same seed gave different arrays");
+        CHECK(memcmp(a->spheres, c->spheres, 16 * (size_t)a->node_count) != 0, "determinism: seeds 42 and 43 gave the same spheres");
+        CHECK(memcmp(a->leaf_barycentrics, c->leaf_barycentrics, 8 * (size_t)a->leaf_count) != 0,
+              "determinism: seeds 42 and 43 gave the same samples");
+    }
+    mlod_tree_destroy(a);
+    mlod_tree_destroy(b);
+    mlod_tree_destroy(c);
+    scene_free(&s);
+}
+
+static void test_attributes(void)
+{
+    static const struct {
+        uint32_t attributes, bytes_per_node;
+    } cases[] = {{0, 16},
+                 {MLOD_ATTR_CONE, 32},
+                 {MLOD_ATTR_AREA, 20},
+                 {MLOD_ATTR_COLOR, 28},
+                 {MLOD_ATTR_REFIT, 16},
+                 {MLOD_ATTR_CONE | MLOD_ATTR_COLOR, 44},
+                 {MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT, 48}};
+    const uint32_t N = 1000;
+    scene_mesh s;
+    mlod_tree *base, *t;
+    size_t i;
+    scene_uv_sphere(&s, 1.0f, 8, 16);
+    base = tu_build(&s, N, 1, 0);
+    CHECK(base != NULL, "attributes: build");
+    if (!base) return;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        uint32_t a = cases[i].attributes;
+        size_t extra = (size_t)(cases[i].bytes_per_node - 16) * base->node_count, lo, hi;
+        t = tu_build(&s, N, 1, a);
+        CHECK(t != NULL, "attributes 0x%x: build", a);
+        if (!t) continue;
+        CHECK(t->attributes == a, "attributes 0x%x: tree says 0x%x", a, t->attributes);
+        CHECK(t->bytes_per_node == cases[i].bytes_per_node, "attributes 0x%x: bytes_per_node %u, expected %u", a,
+              (unsigned)t->bytes_per_node, cases[i].bytes_per_node);
+        CHECK(!(a & MLOD_ATTR_CONE) == !t->cones && !(a & MLOD_ATTR_AREA) == !t->areas &&
+                  !(a & MLOD_ATTR_COLOR) == !t->colors,
+              "attributes 0x%x: arrays cones %p areas %p colors %p", a, (void *)t->cones, (void *)t->areas,
+              (void *)t->colors);
+        CHECK(!(a & MLOD_ATTR_REFIT) == !t->leaf_sources && !(a & MLOD_ATTR_REFIT) == !t->leaf_barycentrics &&
+                  !(a & MLOD_ATTR_REFIT) == !t->triangle_areas,
+              "attributes 0x%x: refit arrays present iff asked", a);
+        CHECK(same_array(t->spheres, base->spheres, 16 * (size_t)N * 2 - 16),
+              "attributes 0x%x: the spheres depend on the attributes", a);
+        lo = extra + ((a & MLOD_ATTR_REFIT) ? 12 * (size_t)N + 8 * (s.index_count / 3) : 0);
+        hi = lo + 256;
+        CHECK(t->bytes >= base->bytes + lo && t->bytes <= base->bytes + hi,
+              "attributes 0x%x: bytes %zu, without attributes %zu, expected %zu more (+256)", a, t->bytes, base->bytes, lo);
+        CHECK(t->bytes >= t->bytes_per_node * t->node_count, "attributes 0x%x: bytes %zu below bytes_per_node x nodes", a,
+              t->bytes);
+        mlod_tree_destroy(t);
+    }
+    mlod_tree_destroy(base);
+    scene_free(&s);
+}
+
+static void test_constant_color_and_scale(void)
+{
+    scene_mesh s;
+    mlod_tree *t, *t2, *t0;
+    mlod_mesh m;
+    mlod_build_desc d;
+    uint32_t i, bad = 0, badr = 0;
+    const uint32_t N = 1500;
+    scene_torus(&s, 1.0f, 0.25f, 20, 10);
+    for (i = 0; i < s.vertex_count; i++) scene_set3(s.colors, i, 0.25, 0.5, 0.75);
+    t = tu_build(&s, N, 5, MLOD_ATTR_COLOR);
+    CHECK(t != NULL, "constant colour: build");
+    if (!t) return;
+    for (i = 0; i < t->node_count; i++)
+        if (fabs(t->colors[3 * i] - 0.25) > 1e-6 || fabs(t->colors[3 * i + 1] - 0.5) > 1e-6 ||
+            fabs(t->colors[3 * i + 2] - 0.75) > 1e-6)
+            bad++;
+    CHECK(bad == 0, "constant colour: %u nodes whose mean colour is not (0.25, 0.5, 0.75)", bad);
+    /* radius_scale multiplies the leaf radii; 0 means 1 */
+    m = tu_mesh(&s);
+    d = tu_desc(N, 5, MLOD_ATTR_COLOR);
+    d.radius_scale = 2.5f;
+    t2 = NULL;
+    CHECK(mlod_build_mesh(&m, &d, &t2, NULL) == MLOD_OK && t2, "radius_scale 2.5: build");
+    d.radius_scale = 1.0f;
+    t0 = NULL;
+    CHECK(mlod_build_mesh(&m, &d, &t0, NULL) == MLOD_OK && t0, "radius_scale 1: build");
+    if (t2 && t0) {
+        for (i = N - 1; i < t->node_count; i++) {
+            if (fabs(t2->spheres[4 * i + 3] - 2.5 * t->spheres[4 * i + 3]) > 1e-6 * t2->spheres[4 * i + 3]) badr++;
+            if (memcmp(t->spheres + 4 * i, t2->spheres + 4 * i, 12) != 0) badr++;
+        }
+        CHECK(badr == 0, "radius_scale 2.5: %u leaves not at the same centres with 2.5x the radius", badr);
+        CHECK(t2->radius_scale == 2.5f, "radius_scale 2.5: tree says %g", t2->radius_scale);
+        CHECK(memcmp(t0->spheres, t->spheres, 16 * (size_t)t->node_count) == 0, "radius_scale 0 and 1 differ");
+        tu_check_containment(t2, "radius_scale 2.5");
+    }
+    mlod_tree_destroy(t0);
+    mlod_tree_destroy(t2);
+    mlod_tree_destroy(t);
+    scene_free(&s);
+}
+
+/* Interleaved vertices (stride 36: position, normal, colour) give the same
+   tree as packed arrays. */
+static void test_strides(void)
+{
+    scene_mesh s;
+    float *inter;
+    mlod_mesh m;
+    mlod_build_desc d = tu_desc(2000, 9, MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_AREA);
+    mlod_tree *a = NULL, *b = NULL;
+    uint32_t i;
+    scene_torus(&s, 1.0f, 0.3f, 16, 8);
+    inter = (float *)malloc(sizeof(float) * 9 * s.vertex_count);
+    for (i = 0; i < s.vertex_count; i++) {
+        memcpy(inter + 9 * i, s.positions + 3 * i, 12);
+        memcpy(inter + 9 * i + 3, s.normals + 3 * i, 12);
+        memcpy(inter + 9 * i + 6, s.colors + 3 * i, 12);
+    }
+    m = tu_mesh(&s);
+    CHECK(mlod_build_mesh(&m, &d, &a, NULL) == MLOD_OK, "strides: packed build");
+    m.positions = inter;
+    m.normals = inter + 3;
+    m.colors = inter + 6;
+    m.position_stride = m.normal_stride = m.color_stride = 36;
+    CHECK(mlod_build_mesh(&m, &d, &b, NULL) == MLOD_OK, "strides: interleaved build");
+    if (a && b) CHECK(same_tree(a, b), "strides: interleaved vertices gave another tree than packed ones");
+    m.position_stride = m.normal_stride = m.color_stride = 12;
+    m.positions = s.positions;
+    m.normals = s.normals;
+    m.colors = s.colors;
+    mlod_tree_destroy(b);
+    b = NULL;
+    CHECK(mlod_build_mesh(&m, &d, &b, NULL) == MLOD_OK && b && a && same_tree(a, b), "strides: stride 12 equals stride 0");
+    mlod_tree_destroy(a);
+    mlod_tree_destroy(b);
+    free(inter);
+    scene_free(&s);
+}
+
+/* Flat square without normals: every leaf normal is the face normal (+z,
+   the counter-clockwise one) and the root cone stays narrow. */
+static void test_flat_cones(void)
+{
+    scene_mesh s;
+    mlod_mesh m;
+    mlod_build_desc d = tu_desc(500, 2, MLOD_ATTR_CONE);
+    mlod_tree *t = NULL;
+    uint32_t j, bad = 0;
+    scene_unit_square(&s);
+    m = tu_mesh(&s);
+    m.normals = NULL;
+    CHECK(mlod_build_mesh(&m, &d, &t, NULL) == MLOD_OK && t, "flat cones: build");
+    if (t) {
+        for (j = 0; j < 500; j++)
+            if (t->cones[4 * (499 + j) + 2] < 0.99999f) bad++;
+        CHECK(bad == 0, "flat cones: %u leaf normals are not the counter-clockwise face normal +z", bad);
+        CHECK(t->cones[3] < 1e-3f, "flat cones: root half-angle %g on a flat mesh", t->cones[3]);
+        tu_check_containment(t, "flat cones");
+    }
+    mlod_tree_destroy(t);
+    scene_free(&s);
+}
+
+/* MLOD_PRECISION_COARSE_POSITIONS: set iff |x|max 2^-23 > radius_scale
+   sqrt(A/N) / 4; bounds stay exact either way.  Cases sit a factor >= 1.6
+   away from the threshold. */
+static void check_precision(const scene_mesh *rest, double offset, float scale, uint32_t N, const char *what)
+{
+    scene_mesh s;
+    mlod_tree *t;
+    uint32_t i;
+    double xmax = 0, A, spacing, limit;
+    scene_uv_sphere(&s, 1.0f, 8, 16);
+    for (i = 0; i < 3 * s.vertex_count; i++) {
+        s.positions[i] = (float)(rest->positions[i] * scale + (i % 3 == 0 ? offset : 0.0));
+        if (fabs(s.positions[i]) > xmax) xmax = fabs(s.positions[i]);
+    }
+    A = scene_area(&s);
+    spacing = xmax * pow(2.0, -23);
+    limit = sqrt(A / N) / 4;
+    t = tu_build(&s, N, 1, MLOD_ATTR_CONE);
+    CHECK(t != NULL, "%s: build", what);
+    if (t) {
+        int expect = spacing > limit;
+        CHECK(!(t->precision & MLOD_PRECISION_COARSE_POSITIONS) == !expect,
+              "%s: precision 0x%x, float spacing %.3g vs sqrt(A/N)/4 %.3g", what, t->precision, spacing, limit);
+        tu_check_containment(t, what);
+    }
+    mlod_tree_destroy(t);
+    scene_free(&s);
+}
+
+static void test_coarse_positions(void)
+{
+    scene_mesh s;
+    scene_uv_sphere(&s, 1.0f, 8, 16);
+    check_precision(&s, 0.0, 1.0f, 2000, "precision: unit sphere at the origin");
+    check_precision(&s, 1e8, 1.0f, 2000, "precision: unit sphere at 1e8");
+    check_precision(&s, 1e5, 1.0f, 2000, "precision: unit sphere at 1e5, N=2000");
+    check_precision(&s, 1e5, 1.0f, 20000, "precision: unit sphere at 1e5, N=20000");
+    check_precision(&s, 0.0, 1e-15f, 2000, "precision: sphere of radius 1e-15");
+    check_precision(&s, 0.0, 1e15f, 2000, "precision: sphere of radius 1e15");
+    scene_free(&s);
+}
+
+/* ------------------------------------------------------------- progress */
+
+typedef struct progress_log {
+    unsigned calls, bad;
+    float last;
+} progress_log;
+
+static int log_progress(void *user, float f)
+{
+    progress_log *p = (progress_log *)user;
+    if (!(f >= 0 && f <= 1) || f < p->last) p->bad++;
+    p->last = f;
+    p->calls++;
+    return 0;
+}
+
+static void test_progress(void)
+{
+    scene_mesh s;
+    mlod_mesh m;
+    mlod_build_desc d = tu_desc(30000, 1, 0);
+    mlod_tree *t = NULL;
+    progress_log log = {0, 0, 0.0f};
+    scene_torus(&s, 1.0f, 0.3f, 16, 8);
+    m = tu_mesh(&s);
+    d.progress = log_progress;
+    d.progress_user = &log;
+    CHECK(mlod_build_mesh(&m, &d, &t, NULL) == MLOD_OK && t, "progress: build");
+    CHECK(log.bad == 0, "progress: %u fractions outside [0,1] or decreasing", log.bad);
+    printf("  progress: %u calls, last %.3f\n", log.calls, log.last);
+    mlod_tree_destroy(t);
+    scene_free(&s);
+}
+
+/* --------------------------------------------------------------- points */
+
+static void test_points(void)
+{
+    const uint32_t N = 1000;
+    float *pos = (float *)malloc(sizeof(float) * 3 * N), *nrm = (float *)malloc(sizeof(float) * 3 * N),
+          *rad = (float *)malloc(sizeof(float) * N), *col = (float *)malloc(sizeof(float) * 3 * N);
+    uint64_t rng = 77;
+    uint32_t i, bad = 0, badc = 0, badn = 0, badr = 0;
+    mlod_points pts;
+    mlod_build_desc d = tu_desc(0, 1, MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT);
+    mlod_tree *t = NULL, *u = NULL;
+    tu_layout L;
+    for (i = 0; i < N; i++) {
+        double n[3];
+        tu_random_unit(&rng, n);
+        scene_set3(pos, i, 3 * n[0], 3 * n[1] + 0.01 * scene_rng_double(&rng), 3 * n[2]);
+        scene_set3(nrm, i, n[0], n[1], n[2]);
+        rad[i] = scene_rng_range(&rng, 0.01f, 0.2f);
+        scene_set3(col, i, scene_rng_double(&rng), scene_rng_double(&rng), scene_rng_double(&rng));
+    }
+    memset(&pts, 0, sizeof pts);
+    pts.positions = pos;
+    pts.normals = nrm;
+    pts.radii = rad;
+    pts.colors = col;
+    pts.count = N;
+    d.radius_scale = 1.5f;
+    CHECK(mlod_build_points(&pts, &d, &t, NULL) == MLOD_OK && t, "points with radii: build");
+    if (t) {
+        CHECK(t->leaf_count == N && t->node_count == 2 * N - 1, "points: %u leaves", t->leaf_count);
+        CHECK(t->leaf_barycentrics == NULL && t->triangle_areas == NULL && t->triangle_count == 0,
+              "points: mesh refit arrays present");
+        CHECK(t->leaf_sources != NULL, "points: leaf_sources missing with MLOD_ATTR_REFIT");
+        for (i = 0; t->leaf_sources && i < N; i++) {
+            uint32_t p = t->leaf_sources[i], node = N - 1 + i, k;
+            if (p >= N) {
+                bad++;
+                continue;
+            }
+            if (memcmp(t->spheres + 4 * node, pos + 3 * p, 12) != 0) bad++;
+            if (!(t->spheres[4 * node + 3] >= 1.5f * rad[p] && t->spheres[4 * node + 3] <= 1.5f * rad[p] * (1 + 1e-6)))
+                badr++;
+            for (k = 0; k < 3; k++) {
+                if (t->colors[3 * node + k] != col[3 * p + k]) badc++;
+                if (fabs(t->cones[4 * node + k] - nrm[3 * p + k]) > 1e-6) badn++;
+            }
+        }
+        CHECK(bad == 0, "points: %u leaves not centred on their source point", bad);
+        CHECK(badr == 0, "points: %u leaf radii not radius_scale x radius", badr);
+        CHECK(badc == 0, "points: %u leaf colour components not the point's colour", badc);
+        CHECK(badn == 0, "points: %u leaf cone axes not the point's normal", badn);
+        tu_check_containment(t, "points with radii");
+    }
+    /* without radii: radius = radius_scale * R * sqrt(pi / L), R and L >= 8
+       the radius and leaf count of the lowest node above the point with at
+       least 8 leaves (R taken before the leaf radii were added, so at most
+       that node's final radius); a point leaf's area is (radius /
+       radius_scale)^2, area_unit their mean; no normals: full-sphere cones */
+    pts.radii = NULL;
+    pts.normals = NULL;
+    d.attributes = MLOD_ATTR_CONE | MLOD_ATTR_AREA;
+    CHECK(mlod_build_points(&pts, &d, &u, NULL) == MLOD_OK && u, "points without radii: build");
+    if (u) {
+        double mean = 0;
+        uint32_t bad_area = 0, bad_cone = 0;
+        tu_layout_init(&L, N);
+        CHECK(u->leaf_sources == NULL, "points without MLOD_ATTR_REFIT have leaf_sources");
+        for (i = 0, bad = 0; i < N; i++) {
+            uint32_t n = N - 1 + i;
+            double r = u->spheres[4 * n + 3], own = (r / 1.5) * (r / 1.5);
+            while (L.count[n] < 8 && n > 0) n = (n - 1) / 2;
+            if (!(r > 0 && r <= 1.5 * u->spheres[4 * n + 3] * sqrt(TU_PI / L.count[n]) * (1 + 1e-6))) bad++;
+            mean += own / N;
+            if (fabs(u->areas[N - 1 + i] * u->area_unit - own) > 1e-5 * own) bad_area++;
+            if (!(u->cones[4 * (N - 1 + i) + 3] >= TU_PI)) bad_cone++;
+        }
+        CHECK(bad == 0, "points without radii: %u leaf radii not in (0, 1.5 R sqrt(pi/L)]", bad);
+        CHECK(bad_area == 0, "points without radii: %u leaf areas not (radius / radius_scale)^2", bad_area);
+        CHECK(fabs(u->area_unit - mean) <= 1e-5 * mean, "points: area_unit %.9g, mean leaf area %.9g", u->area_unit, mean);
+        CHECK(bad_cone == 0, "points without normals: %u leaf cones not the full sphere", bad_cone);
+        tu_check_containment(u, "points without radii");
+        tu_layout_free(&L);
+    }
+    mlod_tree_destroy(u);
+    mlod_tree_destroy(t);
+    /* a single point */
+    pts.count = 1;
+    pts.radii = rad;
+    t = NULL;
+    pts.normals = nrm;
+    CHECK(mlod_build_points(&pts, &d, &t, NULL) == MLOD_OK && t && t->node_count == 1, "one point: build");
+    if (t) CHECK(memcmp(t->spheres, pos, 12) == 0, "one point: root not on the point");
+    mlod_tree_destroy(t);
+    free(pos);
+    free(nrm);
+    free(rad);
+    free(col);
+}
+
+int main(void)
+{
+    int rc;
+    test_sizes();
+    test_square_strata();
+    test_shares();
+    test_coverage();
+    test_determinism();
+    test_attributes();
+    test_constant_color_and_scale();
+    test_strides();
+    test_flat_cones();
+    test_coarse_positions();
+    test_progress();
+    test_points();
+    rc = test_finish();
+    fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
+    return rc;
+}

@@ -1,0 +1,1325 @@
+/* tests/test_cut.c - the criterion and the cut.
+
+   - the cut against a brute-force reference straight from the definition
+     (every node's mlod_criterion), as sets, statuses and left-to-right
+     order, for every view kind, with and without back-face culling, on
+     random trees and hand-made cases; the partition of the leaves;
+   - monotonicity c(child) <= c(parent) on random and adversarial views;
+   - the criterion against an independent projection of points sampled on
+     the sphere (upper bound, exact image diameter, culling) and against the
+     documented formulas in long double;
+   - incremental == basic frame after frame on a deforming mesh; lazy is a
+     partition, moves at most lazy_steps edges, and converges;
+   - identical results for any parallel hook and thread count. */
+#define MANYLODS_IMPLEMENTATION
+#define MANYLODS_PTHREADS
+#include "../manylods.h"
+#include "testutil.h"
+#include <pthread.h>
+
+/* ------------------------------------------------------------ workspace */
+
+typedef struct workspace {
+    double *crit;
+    uint64_t *keys, *scratch;
+    uint32_t *nodes, *hits;
+    uint8_t *status;
+} workspace;
+
+static void ws_init(workspace *w, uint32_t nodes)
+{
+    w->crit = (double *)malloc(sizeof(double) * nodes);
+    w->keys = (uint64_t *)malloc(sizeof(uint64_t) * nodes);
+    w->scratch = (uint64_t *)malloc(sizeof(uint64_t) * 2 * nodes);
+    w->nodes = (uint32_t *)malloc(sizeof(uint32_t) * nodes);
+    w->hits = (uint32_t *)malloc(sizeof(uint32_t) * nodes);
+    w->status = (uint8_t *)malloc(nodes);
+}
+
+static void ws_free(workspace *w)
+{
+    free(w->crit);
+    free(w->keys);
+    free(w->scratch);
+    free(w->nodes);
+    free(w->hits);
+    free(w->status);
+}
+
+/* Failures of one scenario, counted per property. */
+typedef struct tally {
+    uint32_t views, reference, partition, counts;
+    char first_reference[300], first_partition[200], first_counts[200];
+} tally;
+
+static void tally_report(const tally *t, const char *what)
+{
+    CHECK(t->reference == 0, "%s: %u of %u views differ from the reference cut; first: %s", what, t->reference, t->views,
+          t->first_reference);
+    CHECK(t->partition == 0, "%s: %u of %u views do not partition the leaves; first: %s", what, t->partition, t->views,
+          t->first_partition);
+    CHECK(t->counts == 0, "%s: %u of %u views with counts that disagree with the statuses; first: %s", what, t->counts,
+          t->views, t->first_counts);
+}
+
+/* Check every view of a basic-mode cut against the reference. */
+static void check_against_reference(const mlod_tree *tree, const tu_layout *L, const mlod_view *views, uint32_t first,
+                                    uint32_t count, float eps, const mlod_cut *cut, workspace *w, tally *t)
+{
+    uint32_t v;
+    for (v = first; v < first + count; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        uint32_t n = tu_reference_cut(tree, L, views + v, eps, w->crit, w->keys, w->nodes, w->status), bad;
+        char why[200];
+        t->views++;
+        if (tu_cut_differs(&cv, w->nodes, w->status, n, L, w->scratch, why, sizeof why)) {
+            if (!t->reference++)
+                snprintf(t->first_reference, sizeof t->first_reference, "view %u (kind %d, flags %u), eps %g: %s", v,
+                         (int)views[v].kind, views[v].flags, eps, why);
+        }
+        bad = tu_partition_errors(L, cv.nodes, cv.count, w->hits);
+        if (bad && !t->partition++)
+            snprintf(t->first_partition, sizeof t->first_partition, "view %u: %u leaves covered != 1 times", v, bad);
+        if (!tu_counts_ok(&cv) && !t->counts++)
+            snprintf(t->first_counts, sizeof t->first_counts, "view %u: count %u drawn %u culled %u oversize %u coarse %u", v,
+                     cv.count, cv.drawn, cv.culled, cv.oversize, cv.coarse);
+    }
+}
+
+static mlod_cut_params params(mlod_cut_mode mode, float eps, uint32_t lazy_steps, const mlod_parallel *par)
+{
+    mlod_cut_params p;
+    memset(&p, 0, sizeof p);
+    p.mode = mode;
+    p.epsilon = eps;
+    p.lazy_steps = lazy_steps;
+    p.parallel = par;
+    return p;
+}
+
+static mlod_tree *random_points_tree(uint32_t N, uint64_t seed, double radius_lo, double radius_hi)
+{
+    float *pos = (float *)malloc(sizeof(float) * 3 * N), *nrm = (float *)malloc(sizeof(float) * 3 * N),
+          *rad = (float *)malloc(sizeof(float) * N);
+    uint32_t i;
+    mlod_points pts;
+    mlod_build_desc d = tu_desc(0, seed, MLOD_ATTR_CONE);
+    mlod_tree *t = NULL;
+    for (i = 0; i < N; i++) {
+        double n[3];
+        scene_set3(pos, i, scene_rng_range(&seed, -1, 1), scene_rng_range(&seed, -1, 1), scene_rng_range(&seed, -1, 1));
+        tu_random_unit(&seed, n);
+        scene_set3(nrm, i, n[0], n[1], n[2]);
+        rad[i] = (float)(radius_lo * pow(radius_hi / radius_lo, scene_rng_double(&seed)));
+    }
+    memset(&pts, 0, sizeof pts);
+    pts.positions = pos;
+    pts.normals = nrm;
+    pts.radii = rad;
+    pts.count = N;
+    if (mlod_build_points(&pts, &d, &t, NULL) != MLOD_OK) t = NULL;
+    free(pos);
+    free(nrm);
+    free(rad);
+    return t;
+}
+
+/* -------------------------------------------------- cuts vs reference */
+
+static void test_random_trees(void)
+{
+    static const float epsilons[] = {0.5f, 3.0f, 40.0f};
+    uint64_t rng = 2024;
+    int scene_kind, rep;
+    for (scene_kind = 0; scene_kind < 5; scene_kind++) {
+        for (rep = 0; rep < 2; rep++) {
+            scene_mesh s;
+            mlod_tree *tree;
+            uint32_t N = rep == 0 ? 1 + (uint32_t)(scene_rng_double(&rng) * 3000) : (scene_kind == 0 ? 1u : 2u + (uint32_t)scene_kind),
+                     nv = 16, v, e;
+            double c[3] = {0, 0, 0}, R = 1.5;
+            mlod_view views[16];
+            mlod_cut *cut_b = NULL, *cut_i = NULL;
+            tu_layout L;
+            workspace w;
+            tally t;
+            char what[96];
+            memset(&s, 0, sizeof s);
+            switch (scene_kind) {
+            case 0: scene_uv_sphere(&s, 1.0f, 10, 20); break;
+            case 1: scene_torus(&s, 1.0f, 0.3f, 24, 12); break;
+            case 2: scene_room(&s); break;
+            case 3: scene_soup(&s, 300, rng); break;
+            default: break;
+            }
+            if (scene_kind < 4) {
+                tu_bounds(&s, c, &R);
+                tree = tu_build(&s, N, N * 7 + scene_kind, scene_kind == 3 ? 0 : MLOD_ATTR_CONE);
+            } else {
+                tree = random_points_tree(N, N, 0.005, 0.2);
+            }
+            snprintf(what, sizeof what, "scene %d N=%u", scene_kind, N);
+            CHECK(tree != NULL, "%s: build", what);
+            if (!tree) {
+                scene_free(&s);
+                continue;
+            }
+            for (v = 0; v < nv; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 4), c, R);
+            tu_layout_init(&L, N);
+            ws_init(&w, tree->node_count);
+            mlod_cut_create(nv, NULL, &cut_b, NULL);
+            mlod_cut_create(nv, NULL, &cut_i, NULL);
+            for (e = 0; e < sizeof epsilons / sizeof epsilons[0]; e++) {
+                mlod_cut_params pb = params(MLOD_CUT_BASIC, epsilons[e], 1, NULL);
+                mlod_cut_params pi = params(MLOD_CUT_INCREMENTAL, epsilons[e], 1, NULL);
+                uint32_t same = 0;
+                char label[128];
+                memset(&t, 0, sizeof t);
+                CHECK(mlod_cut_update(cut_b, tree, views, &pb, NULL) == MLOD_OK, "%s eps %g: basic update", what,
+                      epsilons[e]);
+                check_against_reference(tree, &L, views, 0, nv, epsilons[e], cut_b, &w, &t);
+                snprintf(label, sizeof label, "%s eps %g basic", what, epsilons[e]);
+                tally_report(&t, label);
+                /* incremental from the previous eps's cut equals basic */
+                CHECK(mlod_cut_update(cut_i, tree, views, &pi, NULL) == MLOD_OK, "%s: incremental update", what);
+                for (v = 0; v < nv; v++) {
+                    mlod_cut_view a = mlod_cut_get(cut_b, v), b = mlod_cut_get(cut_i, v);
+                    same += tu_same_cut(&a, &b);
+                }
+                CHECK(same == nv, "%s eps %g: incremental (from the previous epsilon) equals basic in %u of %u views", what,
+                      epsilons[e], same, nv);
+            }
+            mlod_cut_destroy(cut_b);
+            mlod_cut_destroy(cut_i);
+            ws_free(&w);
+            tu_layout_free(&L);
+            mlod_tree_destroy(tree);
+            scene_free(&s);
+        }
+    }
+}
+
+/* Far views see the root alone; eps = +inf gives the root alone; a tiny
+   eps gives leaves and culled nodes only. */
+static void test_hand_made(void)
+{
+    scene_mesh s;
+    mlod_tree *tree;
+    mlod_cut *cut = NULL;
+    mlod_view views[8];
+    tu_layout L;
+    workspace w;
+    tally t;
+    uint32_t v, bad_root = 0, bad_inf = 0, bad_tiny = 0, k;
+    uint64_t rng = 5;
+    double c[3] = {0, 0, 0};
+    mlod_cut_params p;
+    scene_uv_sphere(&s, 1.0f, 12, 24);
+    tree = tu_build(&s, 5000, 1, MLOD_ATTR_CONE);
+    CHECK(tree != NULL, "hand-made: build");
+    if (!tree) return;
+    tu_layout_init(&L, tree->leaf_count);
+    ws_init(&w, tree->node_count);
+    mlod_cut_create(8, NULL, &cut, NULL);
+    for (k = 0; k < 4; k++) {
+        double eye[3] = {0, 0, 1e5}, target[3] = {0, 0, 0};
+        views[k] = tu_view((mlod_view_kind)k);
+        views[k + 4] = tu_view((mlod_view_kind)k);
+        views[k].far_plane = INFINITY;
+        if (k == MLOD_VIEW_ORTHOGRAPHIC) {
+            eye[2] = 10;
+            views[k].half_width = views[k].half_height = 1e5f;
+        }
+        tu_look(&rng, views + k, eye, target);
+        /* an eye inside the root sphere, looking at the surface */
+        eye[2] = 0.5;
+        target[0] = 1;
+        tu_look(&rng, views + k + 4, eye, target);
+        views[k + 4].flags = MLOD_VIEW_CULL_BACKFACES;
+    }
+    p = params(MLOD_CUT_BASIC, 1.0f, 1, NULL);
+    CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "far views: update");
+    for (v = 0; v < 4; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        if (!(cv.count == 1 && cv.nodes[0] == 0 && cv.status[0] == MLOD_STATUS_DRAWN && cv.drawn == 1)) bad_root++;
+    }
+    CHECK(bad_root == 0, "far views: %u of 4 views do not see the root alone, drawn", bad_root);
+    p.epsilon = INFINITY;
+    CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "eps=inf: update");
+    for (v = 0; v < 8; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        double cr = mlod_criterion(tree, 0, views + v);
+        if (!(cv.count == 1 && cv.nodes[0] == 0 && cv.status[0] == (cr == 0 ? MLOD_STATUS_CULLED : MLOD_STATUS_DRAWN)))
+            bad_inf++;
+    }
+    CHECK(bad_inf == 0, "eps=inf: %u of 8 views do not have the root alone", bad_inf);
+    memset(&t, 0, sizeof t);
+    check_against_reference(tree, &L, views, 0, 8, INFINITY, cut, &w, &t);
+    tally_report(&t, "eps=inf");
+    p.epsilon = 1e-30f;
+    for (k = 0; k < 4; k++) views[k] = tu_random_view(&rng, (mlod_view_kind)k, c, 1.0);
+    CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "eps=1e-30: update");
+    for (v = 0; v < 8; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        for (k = 0; k < cv.count; k++)
+            if (!(tu_is_leaf(&L, cv.nodes[k]) || cv.status[k] == MLOD_STATUS_CULLED)) bad_tiny++;
+    }
+    CHECK(bad_tiny == 0, "eps=1e-30: %u cut nodes are neither leaves nor culled", bad_tiny);
+    memset(&t, 0, sizeof t);
+    check_against_reference(tree, &L, views, 0, 8, 1e-30f, cut, &w, &t);
+    tally_report(&t, "eps=1e-30");
+    /* the inside views, moderate eps */
+    p.epsilon = 2.0f;
+    CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "inside views: update");
+    memset(&t, 0, sizeof t);
+    check_against_reference(tree, &L, views, 0, 8, 2.0f, cut, &w, &t);
+    tally_report(&t, "eyes inside the root, eps 2");
+    mlod_cut_destroy(cut);
+    ws_free(&w);
+    tu_layout_free(&L);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
+/* ------------------------------------------------ independent criterion */
+
+typedef struct frame {
+    long double e[3], u[3], v[3], w[3];
+} frame;
+
+static void ld_normalize(long double *a)
+{
+    long double n = sqrtl(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    a[0] /= n;
+    a[1] /= n;
+    a[2] /= n;
+}
+
+static long double ld_dot(const long double *a, const long double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static void ld_cross(long double *r, const long double *a, const long double *b)
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* w = forward / |forward|, u = forward x up normalised, v = u x w. */
+static void view_frame(const mlod_view *view, frame *F)
+{
+    long double f[3], up[3];
+    int k;
+    for (k = 0; k < 3; k++) {
+        F->e[k] = view->position[k];
+        f[k] = view->forward[k];
+        up[k] = view->up[k];
+    }
+    for (k = 0; k < 3; k++) F->w[k] = f[k];
+    ld_normalize(F->w);
+    ld_cross(F->u, f, up);
+    ld_normalize(F->u);
+    ld_cross(F->v, F->u, F->w);
+}
+
+/* Pixel coordinates of point p in view (dual: half 0 front, 1 back).
+   Returns 0 when p has no image there. */
+static int project(const mlod_view *view, const frame *F, const long double *p, int half, long double *px)
+{
+    long double y[3] = {p[0] - F->e[0], p[1] - F->e[1], p[2] - F->e[2]};
+    long double yu = ld_dot(y, F->u), yv = ld_dot(y, F->v), yw = ld_dot(y, F->w), len, s, den;
+    switch (view->kind) {
+    case MLOD_VIEW_PERSPECTIVE:
+        if (yw <= 0) return 0;
+        s = (view->height / 2.0L) / tanl(view->fov_y / 2.0L);
+        px[0] = s * yu / yw;
+        px[1] = s * yv / yw;
+        return 1;
+    case MLOD_VIEW_PARABOLOID:
+        len = sqrtl(yu * yu + yv * yv + yw * yw);
+        den = 1 + yw / len;
+        if (den <= 1e-12L) return 0;
+        s = (view->width > view->height ? view->width : view->height) / 2.0L;
+        px[0] = s * yu / len / den;
+        px[1] = s * yv / len / den;
+        return 1;
+    case MLOD_VIEW_DUAL_PARABOLOID:
+        len = sqrtl(yu * yu + yv * yv + yw * yw);
+        s = (view->width / 2.0L > view->height ? view->width / 2.0L : view->height) / 2.0L;
+        if (half == 0) {
+            if (yw < 0) return 0;
+            den = 1 + yw / len;
+            px[0] = s * yu / len / den;
+        } else {
+            if (yw > 0) return 0;
+            den = 1 - yw / len;
+            px[0] = -s * yu / len / den;
+        }
+        px[1] = s * yv / len / den;
+        return 1;
+    default:
+        px[0] = yu * view->width / (2.0L * view->half_width);
+        px[1] = yv * view->height / (2.0L * view->half_height);
+        return 1;
+    }
+}
+
+/* Is p inside the view volume, by a margin m (world units)? */
+static int inside_volume(const mlod_view *view, const frame *F, const long double *p, long double m)
+{
+    long double y[3] = {p[0] - F->e[0], p[1] - F->e[1], p[2] - F->e[2]};
+    long double yu = ld_dot(y, F->u), yv = ld_dot(y, F->v), yw = ld_dot(y, F->w), ty, tx;
+    switch (view->kind) {
+    case MLOD_VIEW_PERSPECTIVE:
+        ty = tanl(view->fov_y / 2.0L);
+        tx = ty * view->width / view->height;
+        return yw > view->near_plane + m && yw < (long double)view->far_plane - m &&
+               (fabsl(yu) - tx * yw) / sqrtl(1 + tx * tx) < -m && (fabsl(yv) - ty * yw) / sqrtl(1 + ty * ty) < -m;
+    case MLOD_VIEW_PARABOLOID: return yw > m;
+    case MLOD_VIEW_DUAL_PARABOLOID: return 1;
+    default:
+        return fabsl(yu) < view->half_width - m && fabsl(yv) < view->half_height - m && yw > view->near_plane + m &&
+               yw < (long double)view->far_plane - m;
+    }
+}
+
+/* What the documentation says about a sphere (and cone) in a view:
+   cull = +1 surely culled, -1 surely not, 0 too close to tell;
+   value = the documented diameter (may be +inf), value_ok = well
+   conditioned enough to compare at 1e-5 relative. */
+typedef struct expectation {
+    int cull, value_ok;
+    long double value;
+} expectation;
+
+static expectation expect(const mlod_view *view, const frame *F, const float *sphere, const float *cone)
+{
+    expectation ex;
+    long double x[3], r = sphere[3], d, xu, xv, xw, g = -INFINITY, m, gb = -INFINITY, W = view->width, H = view->height;
+    long double ty = tanl(view->fov_y / 2.0L), tx = ty * W / H;
+    int k, backface = cone && (view->flags & MLOD_VIEW_CULL_BACKFACES) && cone[3] < EXACT_PI;
+    for (k = 0; k < 3; k++) x[k] = (long double)sphere[k] - F->e[k];
+    d = sqrtl(ld_dot(x, x));
+    xu = ld_dot(x, F->u);
+    xv = ld_dot(x, F->v);
+    xw = ld_dot(x, F->w);
+    m = 1e-7L * (d + r);
+    switch (view->kind) {
+    case MLOD_VIEW_PERSPECTIVE:
+        m += 1e-7L * (view->near_plane + (isfinite(view->far_plane) ? view->far_plane : 0));
+        g = fmaxl(view->near_plane - (xw + r), (xw - r) - (long double)view->far_plane);
+        g = fmaxl(g, (fabsl(xu) - tx * xw) / sqrtl(1 + tx * tx) - r);
+        g = fmaxl(g, (fabsl(xv) - ty * xw) / sqrtl(1 + ty * ty) - r);
+        break;
+    case MLOD_VIEW_PARABOLOID: g = -(xw + r); break;
+    case MLOD_VIEW_DUAL_PARABOLOID: break;
+    default:
+        m += 1e-7L * (fabsl(view->near_plane) + (isfinite(view->far_plane) ? fabsl(view->far_plane) : 0) +
+                      view->half_width + view->half_height);
+        g = fmaxl(fabsl(xu) - r - view->half_width, fabsl(xv) - r - view->half_height);
+        g = fmaxl(g, fmaxl(view->near_plane - (xw + r), (xw - r) - (long double)view->far_plane));
+        break;
+    }
+    if (backface) {
+        long double axis_to_eye;
+        float to_eye[3];
+        if (view->kind == MLOD_VIEW_ORTHOGRAPHIC) {
+            for (k = 0; k < 3; k++) to_eye[k] = (float)-F->w[k];
+            axis_to_eye = exact_angle(cone, to_eye);
+            gb = axis_to_eye - (EXACT_PI / 2 + cone[3]);
+        } else if (d > r * (1 + 1e-6L)) {
+            long double a0 = -x[0], a1 = -x[1], a2 = -x[2];
+            long double c0 = cone[1] * a2 - cone[2] * a1, c1 = cone[2] * a0 - cone[0] * a2, c2 = cone[0] * a1 - cone[1] * a0;
+            axis_to_eye = atan2l(sqrtl(c0 * c0 + c1 * c1 + c2 * c2), cone[0] * a0 + cone[1] * a1 + cone[2] * a2);
+            gb = axis_to_eye - (EXACT_PI / 2 + cone[3] + asinl(r / d));
+        }
+        (void)to_eye;
+    }
+    ex.cull = (g > m || gb > 1e-7L) ? 1 : (g < -m && (gb < -1e-7L || !backface || gb == -INFINITY)) ? -1 : 0;
+    if (backface && gb == -INFINITY && view->kind != MLOD_VIEW_ORTHOGRAPHIC && fabsl(d - r) <= 1e-6L * r && ex.cull == -1)
+        ex.cull = 0;
+    ex.value_ok = 1;
+    ex.value = 0;
+    if (d <= r * (1 - 1e-7L) && view->kind != MLOD_VIEW_ORTHOGRAPHIC) {
+        ex.value = INFINITY;
+        return ex;
+    }
+    if (fabsl(d - r) <= 1e-7L * r && view->kind != MLOD_VIEW_ORTHOGRAPHIC) {
+        ex.value_ok = 0;
+        return ex;
+    }
+    switch (view->kind) {
+    case MLOD_VIEW_PERSPECTIVE: {
+        long double f = (H / 2) / ty, den = xw * xw - r * r;
+        if (xw <= r * (1 - 1e-9L)) ex.value = INFINITY;
+        else if (xw > r && den > 1e-3L * xw * xw) ex.value = f * 2 * r * sqrtl(d * d - r * r) / den;
+        else ex.value_ok = 0;
+        break;
+    }
+    case MLOD_VIEW_PARABOLOID: {
+        long double s = (W > H ? W : H) / 2, den = xw + sqrtl(d * d - r * r);
+        if (den < -1e-9L * d) ex.value = INFINITY;
+        else if (den > 1e-3L * d) ex.value = s * 2 * r / den;
+        else ex.value_ok = 0;
+        break;
+    }
+    case MLOD_VIEW_DUAL_PARABOLOID: {
+        long double s = (W / 2 > H ? W / 2 : H) / 2, q = sqrtl(d * d - r * r), best = 0;
+        int half;
+        if (fabsl(fabsl(xw) - r) <= 1e-7L * d) {
+            ex.value_ok = 0;
+            break;
+        }
+        for (half = 0; half < 2; half++) {
+            long double sw = half ? -xw : xw, den = sw + q;
+            if (!(sw + r > 0)) continue; /* the sphere does not reach this half */
+            if (den < -1e-9L * d) best = INFINITY;
+            else if (den > 1e-3L * d) best = fmaxl(best, s * 2 * r / den);
+            else ex.value_ok = 0;
+        }
+        ex.value = best;
+        break;
+    }
+    default: ex.value = 2 * r * fmaxl(W / (2.0L * view->half_width), H / (2.0L * view->half_height)); break;
+    }
+    return ex;
+}
+
+/* A random view of random kind near a sphere, a third of them culled-ish. */
+static mlod_view view_near_sphere(uint64_t *rng, const float *sphere, int kind)
+{
+    mlod_view v = tu_view((mlod_view_kind)kind);
+    double dir[3], eye[3], target[3], r = sphere[3], dist = r * (scene_rng_double(rng) < 0.05 ? 0.5 : 1.05 * pow(60.0, scene_rng_double(rng))), perp[3], a;
+    int k;
+    tu_random_unit(rng, dir);
+    for (k = 0; k < 3; k++) eye[k] = sphere[k] + dist * dir[k];
+    tu_random_perp(rng, dir, perp);
+    a = scene_rng_double(rng) * (scene_rng_double(rng) < 0.6 ? 0.8 : 3.0);
+    for (k = 0; k < 3; k++) target[k] = eye[k] - cos(a) * dir[k] + sin(a) * perp[k];
+    tu_look(rng, &v, eye, target);
+    v.width = 1 + (uint32_t)(scene_rng_double(rng) * 256);
+    v.height = 1 + (uint32_t)(scene_rng_double(rng) * 256);
+    v.fov_y = (float)(0.2 + 2.7 * scene_rng_double(rng));
+    v.near_plane = (float)(dist * (0.01 + 0.8 * scene_rng_double(rng)));
+    v.far_plane = scene_rng_double(rng) < 0.5 ? INFINITY : (float)(dist * (0.5 + 2 * scene_rng_double(rng)));
+    if (v.far_plane <= v.near_plane) v.far_plane = v.near_plane * 2;
+    if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        double w[3] = {v.forward[0], v.forward[1], v.forward[2]}, z = (scene_rng_double(rng) - 0.3) * 3 * r;
+        v.half_width = (float)(r * (0.3 + 3 * scene_rng_double(rng)));
+        v.half_height = (float)(r * (0.3 + 3 * scene_rng_double(rng)));
+        tu_normalize3(w);
+        for (k = 0; k < 3; k++)
+            v.position[k] = (float)(sphere[k] - z * w[k] + (scene_rng_double(rng) - 0.5) * 3 * (v.half_width + r) * perp[k]);
+        v.near_plane = (float)(-r * 2 * scene_rng_double(rng));
+        v.far_plane = scene_rng_double(rng) < 0.3 ? INFINITY : (float)(v.near_plane + r * 4 * scene_rng_double(rng) + 1e-3 * r);
+    }
+    if (scene_rng_double(rng) < 0.5) v.flags = MLOD_VIEW_CULL_BACKFACES;
+    return v;
+}
+
+#define NSIL 256
+#define NSURF 128
+
+/* Sampled points of a sphere: NSIL on the silhouette the view sees, NSURF
+   uniform on the surface. */
+static void sample_sphere(uint64_t *rng, const mlod_view *view, const frame *F, const float *sphere, long double (*pts)[3])
+{
+    long double C[3] = {sphere[0], sphere[1], sphere[2]}, r = sphere[3], x[3], d, a[3], b[3], centre[3], rho;
+    int i, k;
+    for (k = 0; k < 3; k++) x[k] = C[k] - F->e[k];
+    d = sqrtl(ld_dot(x, x));
+    if (view->kind == MLOD_VIEW_ORTHOGRAPHIC || d <= r) {
+        for (k = 0; k < 3; k++) {
+            a[k] = F->u[k];
+            b[k] = F->v[k];
+            centre[k] = C[k];
+        }
+        rho = r;
+    } else {
+        double xd[3] = {(double)(x[0] / d), (double)(x[1] / d), (double)(x[2] / d)}, p[3], q[3];
+        tu_random_perp(rng, xd, p);
+        tu_cross3(q, xd, p);
+        for (k = 0; k < 3; k++) {
+            a[k] = p[k];
+            b[k] = q[k];
+            centre[k] = C[k] - (r * r / d) * (x[k] / d);
+        }
+        rho = r * sqrtl(1 - (r / d) * (r / d));
+    }
+    for (i = 0; i < NSIL; i++) {
+        long double phi = 2 * EXACT_PI * i / NSIL;
+        for (k = 0; k < 3; k++) pts[i][k] = centre[k] + rho * (cosl(phi) * a[k] + sinl(phi) * b[k]);
+    }
+    for (i = 0; i < NSURF; i++) {
+        double u[3];
+        tu_random_unit(rng, u);
+        for (k = 0; k < 3; k++) pts[NSIL + i][k] = C[k] + r * u[k];
+    }
+}
+
+/* Largest distance between two of the n points (double is plenty here). */
+static long double max_pairwise(long double (*px)[2], int n)
+{
+    static double x[1024], y[1024];
+    double best = 0;
+    int i, j;
+    for (i = 0; i < n; i++) {
+        x[i] = (double)px[i][0];
+        y[i] = (double)px[i][1];
+    }
+    for (i = 0; i < n; i++)
+        for (j = i + 1; j < n; j++) {
+            double dx = x[i] - x[j], dy = y[i] - y[j], q = dx * dx + dy * dy;
+            if (q > best) best = q;
+        }
+    return sqrtl(best);
+}
+
+static void test_criterion_reference(void)
+{
+    mlod_tree *trees[2];
+    scene_mesh s;
+    uint64_t rng = 99;
+    uint32_t cases = 0, bad_lower = 0, bad_upper = 0, bad_cull_sample = 0, tight = 0, culled = 0, ti, i;
+    uint32_t formula_cases = 0, bad_value = 0, bad_cull = 0, bad_nocull = 0, bad_nan = 0, compared = 0;
+    char first_lower[256] = "", first_upper[256] = "", first_cull[256] = "", first_value[300] = "", first_cull2[256] = "",
+         first_nocull[256] = "";
+    static long double pts[NSIL + NSURF][3], px[2][NSIL + NSURF][2];
+    scene_uv_sphere(&s, 1.0f, 10, 20);
+    trees[0] = random_points_tree(600, 3, 1e-3, 0.4);
+    trees[1] = tu_build(&s, 2000, 4, MLOD_ATTR_CONE);
+    CHECK(trees[0] && trees[1], "criterion reference: builds");
+    if (!trees[0] || !trees[1]) return;
+    for (ti = 0; ti < 2; ti++) {
+        const mlod_tree *t = trees[ti];
+        for (i = 0; i < 600; i++) {
+            uint32_t node = (uint32_t)(scene_rng_double(&rng) * t->node_count);
+            const float *sp = t->spheres + 4 * node, *cone = t->cones + 4 * node;
+            int kind = (int)(i % 4), half, n[2] = {0, 0}, j;
+            mlod_view v = view_near_sphere(&rng, sp, kind);
+            frame F;
+            double c = mlod_criterion(t, node, &v);
+            long double maxd = 0, xw, d, x[3];
+            char desc[160];
+            if (mlod_view_check(&v, NULL) != MLOD_OK) continue;
+            view_frame(&v, &F);
+            for (j = 0; j < 3; j++) x[j] = sp[j] - F.e[j];
+            d = sqrtl(ld_dot(x, x));
+            xw = ld_dot(x, F.w);
+            snprintf(desc, sizeof desc, "tree %u node %u kind %d flags %u: r %.6g d %.6g x.w %.6g, c %.9g", ti, node, kind,
+                     v.flags, sp[3], (double)d, (double)xw, c);
+            cases++;
+            sample_sphere(&rng, &v, &F, sp, pts);
+            for (half = 0; half < (kind == MLOD_VIEW_DUAL_PARABOLOID ? 2 : 1); half++) {
+                n[half] = 0;
+                for (j = 0; j < NSIL + NSURF; j++)
+                    if (project(&v, &F, pts[j], half, px[half][n[half]])) n[half]++;
+                maxd = fmaxl(maxd, max_pairwise(px[half], n[half]));
+            }
+            if (c == 0) {
+                /* culled: no sampled point is inside the volume, unless every
+                   normal of the cone at it faces away */
+                culled++;
+                for (j = 0; j < NSIL + NSURF; j++) {
+                    long double m = 1e-6L * (d + sp[3]);
+                    int inside = inside_volume(&v, &F, pts[j], m), faces = 0, q;
+                    if (!inside) continue;
+                    if (!(v.flags & MLOD_VIEW_CULL_BACKFACES) || cone[3] >= EXACT_PI) faces = 1;
+                    for (q = 0; q < 16 && !faces; q++) {
+                        double nn[3], to_eye[3], perp[3], ax[3] = {cone[0], cone[1], cone[2]}, ang = cone[3] * (q ? scene_rng_double(&rng) : 0);
+                        int k;
+                        tu_normalize3(ax);
+                        tu_random_perp(&rng, ax, perp);
+                        for (k = 0; k < 3; k++) {
+                            nn[k] = cos(ang) * ax[k] + sin(ang) * perp[k];
+                            to_eye[k] = v.kind == MLOD_VIEW_ORTHOGRAPHIC ? -(double)F.w[k] : (double)(F.e[k] - pts[j][k]);
+                        }
+                        if (tu_dot3(nn, to_eye) > 1e-6 * (double)(d + sp[3])) faces = 1;
+                    }
+                    if (faces) {
+                        if (!bad_cull_sample++) snprintf(first_cull, sizeof first_cull, "%s: point %d inside", desc, j);
+                        break;
+                    }
+                }
+            } else if (isfinite(c)) {
+                if (!(c >= maxd * (1 - 1e-4L))) {
+                    if (!bad_lower++)
+                        snprintf(first_lower, sizeof first_lower, "%s < sampled diameter %.9Lg", desc, maxd);
+                }
+                if (sp[3] < 0.5 * d && ((kind == MLOD_VIEW_PERSPECTIVE && xw > 1.5L * sp[3]) ||
+                                        (kind == MLOD_VIEW_PARABOLOID && xw > sp[3] * 1.01L) ||
+                                        (kind == MLOD_VIEW_DUAL_PARABOLOID && fabsl(xw) > sp[3] * 1.01L) ||
+                                        kind == MLOD_VIEW_ORTHOGRAPHIC)) {
+                    tight++;
+                    if (!(c <= 1.02L * maxd) && !bad_upper++)
+                        snprintf(first_upper, sizeof first_upper, "%s > 1.02 x sampled diameter %.9Lg", desc, maxd);
+                }
+            }
+        }
+        /* the documented formulas and culling rules, many more cases */
+        for (i = 0; i < 30000; i++) {
+            uint32_t node = (uint32_t)(scene_rng_double(&rng) * t->node_count);
+            const float *sp = t->spheres + 4 * node, *cone = t->cones + 4 * node;
+            mlod_view v = view_near_sphere(&rng, sp, (int)(i % 4));
+            frame F;
+            expectation ex;
+            double c;
+            if (mlod_view_check(&v, NULL) != MLOD_OK) continue;
+            view_frame(&v, &F);
+            ex = expect(&v, &F, sp, cone);
+            c = mlod_criterion(t, node, &v);
+            formula_cases++;
+            if (isnan(c)) {
+                bad_nan++;
+                continue;
+            }
+            if (ex.cull == 1 && c != 0) {
+                if (!bad_cull++)
+                    snprintf(first_cull2, sizeof first_cull2, "tree %u node %u kind %d flags %u: wholly outside, c %.9g", ti,
+                             node, (int)v.kind, v.flags, c);
+            } else if (ex.cull == -1) {
+                if (c == 0) {
+                    if (!bad_nocull++)
+                        snprintf(first_nocull, sizeof first_nocull, "tree %u node %u kind %d flags %u: visible, c = 0", ti,
+                                 node, (int)v.kind, v.flags);
+                } else if (ex.value_ok) {
+                    int ok = isinf(ex.value) ? isinf(c) : fabsl(c - ex.value) <= 1e-5L * ex.value;
+                    compared++;
+                    if (!ok && !bad_value++)
+                        snprintf(first_value, sizeof first_value,
+                                 "tree %u node %u kind %d (W %u H %u fov %.6g hw %.6g hh %.6g): c %.12g, documented %.12Lg", ti,
+                                 node, (int)v.kind, v.width, v.height, v.fov_y, v.half_width, v.half_height, c, ex.value);
+                }
+            }
+        }
+    }
+    CHECK(bad_lower == 0, "criterion: %u of %u cases below the diameter of the sampled image; first: %s", bad_lower, cases,
+          first_lower);
+    CHECK(bad_upper == 0, "criterion: %u of %u small spheres in front above 1.02 x the sampled image; first: %s", bad_upper,
+          tight, first_upper);
+    CHECK(bad_cull_sample == 0, "criterion: %u of %u culled spheres have a sampled point inside the view; first: %s",
+          bad_cull_sample, culled, first_cull);
+    CHECK(tight > 300 && culled > 100, "criterion: only %u tight and %u culled cases", tight, culled);
+    CHECK(bad_nan == 0, "criterion: %u NaN for valid views", bad_nan);
+    CHECK(bad_cull == 0, "criterion: %u of %u spheres wholly outside (or back-facing) not culled; first: %s", bad_cull,
+          formula_cases, first_cull2);
+    CHECK(bad_nocull == 0, "criterion: %u of %u visible spheres culled; first: %s", bad_nocull, formula_cases, first_nocull);
+    CHECK(bad_value == 0, "criterion: %u of %u values differ from the documented formula by > 1e-5; first: %s", bad_value,
+          compared, first_value);
+    printf("  criterion: %u sampled cases (%u tight, %u culled), %u formula cases (%u values compared)\n", cases, tight, culled,
+           formula_cases, compared);
+    mlod_tree_destroy(trees[0]);
+    mlod_tree_destroy(trees[1]);
+    scene_free(&s);
+}
+
+/* ------------------------------------------------------- monotonicity */
+
+static const double deltas[] = {-1e-3, -1e-6, -1e-7, 0.0, 1e-7, 1e-6, 1e-3};
+
+static double pick_delta(uint64_t *rng) { return deltas[(int)(scene_rng_double(rng) * 7)]; }
+
+/* A view adversarial to sphere s (and cone): type 1 eye near the sphere,
+   2 perspective side plane tangent, 3 near/far plane tangent, 4 paraboloid
+   plane tangent, 5 orthographic box side tangent, 6 back-face boundary. */
+static mlod_view adversarial_view(uint64_t *rng, int type, const float *s, const float *cone)
+{
+    double C[3] = {s[0], s[1], s[2]}, r = s[3], xh[3], p[3], q[3], e[3], w[3], up[3], d, b, a, delta = pick_delta(rng);
+    int kind = (int)(scene_rng_double(rng) * 4), k, side = scene_rng_double(rng) < 0.5;
+    mlod_view v = tu_view(MLOD_VIEW_PERSPECTIVE);
+    tu_random_unit(rng, xh);
+    tu_random_perp(rng, xh, p);
+    tu_cross3(q, xh, p);
+    d = r * (1.2 + 30 * scene_rng_double(rng));
+    v.width = 1 + (uint32_t)(scene_rng_double(rng) * 200);
+    v.height = 1 + (uint32_t)(scene_rng_double(rng) * 200);
+    v.fov_y = (float)(0.2 + 2.7 * scene_rng_double(rng));
+    v.near_plane = (float)(1e-3 * r);
+    v.far_plane = INFINITY;
+    for (k = 0; k < 3; k++) e[k] = C[k] - d * xh[k];
+    switch (type) {
+    case 1:
+        v.kind = (mlod_view_kind)kind;
+        for (k = 0; k < 3; k++) e[k] = C[k] - r * (1 + delta) * xh[k];
+        tu_random_unit(rng, w);
+        tu_random_perp(rng, w, up);
+        if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
+            v.half_width = v.half_height = (float)(r * 2);
+            v.near_plane = (float)(-3 * r);
+            v.far_plane = (float)(3 * r);
+        }
+        break;
+    case 2:
+        b = asin(r / d);
+        if (side) { /* top or bottom */
+            a = v.fov_y / 2.0 + b * (1 + delta);
+            for (k = 0; k < 3; k++) {
+                w[k] = cos(a) * xh[k] + sin(a) * p[k];
+                up[k] = -sin(a) * xh[k] + cos(a) * p[k];
+            }
+        } else { /* left or right */
+            a = atan(tan(v.fov_y / 2.0) * v.width / v.height) + b * (1 + delta);
+            for (k = 0; k < 3; k++) {
+                w[k] = cos(a) * xh[k] + sin(a) * p[k];
+                up[k] = q[k];
+            }
+        }
+        break;
+    case 3:
+        for (k = 0; k < 3; k++) {
+            w[k] = xh[k];
+            up[k] = p[k];
+        }
+        v.kind = scene_rng_double(rng) < 0.5 ? MLOD_VIEW_PERSPECTIVE : MLOD_VIEW_ORTHOGRAPHIC;
+        if (v.kind == MLOD_VIEW_ORTHOGRAPHIC) {
+            v.half_width = v.half_height = (float)(r * 2);
+            v.near_plane = (float)(-10 * d);
+        }
+        if (side) v.near_plane = (float)(d + r * (1 + delta));
+        else v.far_plane = (float)(d - r * (1 + delta));
+        if (!(v.far_plane > v.near_plane)) v.near_plane = v.far_plane * 0.5f;
+        break;
+    case 4:
+        v.kind = scene_rng_double(rng) < 0.5 ? MLOD_VIEW_PARABOLOID : MLOD_VIEW_DUAL_PARABOLOID;
+        a = acos(fmax(-1.0, fmin(1.0, (side ? -1 : 1) * r * (1 + delta) / d)));
+        for (k = 0; k < 3; k++) {
+            w[k] = cos(a) * xh[k] + sin(a) * p[k];
+            up[k] = -sin(a) * xh[k] + cos(a) * p[k];
+        }
+        break;
+    case 5: {
+        double hw = r * (0.5 + 2 * scene_rng_double(rng)), z = r * 3;
+        v.kind = MLOD_VIEW_ORTHOGRAPHIC;
+        v.half_width = (float)hw;
+        v.half_height = (float)(r * (0.5 + 2 * scene_rng_double(rng)));
+        v.near_plane = 0;
+        v.far_plane = (float)(6 * r);
+        for (k = 0; k < 3; k++) {
+            w[k] = xh[k];
+            up[k] = q[k];
+        }
+        /* right = w x up = xh x (xh x p) = -p: put the sphere just past +-hw along p */
+        for (k = 0; k < 3; k++) e[k] = C[k] - z * w[k] + (side ? 1 : -1) * (hw + r * (1 + delta)) * p[k];
+        break;
+    }
+    default: { /* back-face boundary */
+        double ax[3] = {cone[0], cone[1], cone[2]}, beta, perp[3];
+        v.kind = (mlod_view_kind)kind;
+        v.flags = MLOD_VIEW_CULL_BACKFACES;
+        tu_normalize3(ax);
+        tu_random_perp(rng, ax, perp);
+        if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
+            beta = TU_PI / 2 + cone[3] + delta;
+            for (k = 0; k < 3; k++) w[k] = -(cos(beta) * ax[k] + sin(beta) * perp[k]);
+            tu_random_perp(rng, w, up);
+            for (k = 0; k < 3; k++) e[k] = C[k] - 2 * r * w[k];
+            v.half_width = v.half_height = (float)(r * 2);
+            v.near_plane = 0;
+            v.far_plane = (float)(4 * r);
+        } else {
+            beta = TU_PI / 2 + cone[3] + asin(r / d) + delta;
+            for (k = 0; k < 3; k++) {
+                double dir = cos(beta) * ax[k] + sin(beta) * perp[k];
+                e[k] = C[k] + d * dir;
+                w[k] = -dir;
+            }
+            tu_random_perp(rng, w, up);
+        }
+        if (cone[3] >= TU_PI / 2) v.flags = 0;
+        break;
+    }
+    }
+    tu_set3f(v.position, e);
+    tu_set3f(v.forward, w);
+    tu_set3f(v.up, up);
+    if (scene_rng_double(rng) < 0.5) v.flags |= MLOD_VIEW_CULL_BACKFACES;
+    return v;
+}
+
+static uint32_t monotone_pairs; /* (child, parent, view) triples checked, all trees */
+
+static void check_monotone(const mlod_tree *t, const char *what, uint64_t seed, uint32_t pairs, const double *centre, double R)
+{
+    uint32_t bad[8] = {0}, count[8] = {0}, nan_count = 0, skipped = 0, i, type;
+    char first[8][640];
+    uint64_t rng = seed;
+    if (t->node_count < 2) return;
+    memset(first, 0, sizeof first);
+    for (i = 0; i < pairs; i++) {
+        uint32_t child = 1 + (uint32_t)(scene_rng_double(&rng) * (t->node_count - 1)), parent = (child - 1) / 2;
+        int on_parent = scene_rng_double(&rng) < 0.3;
+        const uint32_t target = on_parent ? parent : child;
+        mlod_view v;
+        double cc, cp;
+        type = i % 7;
+        if (type == 0) v = tu_random_view(&rng, (mlod_view_kind)(scene_rng_double(&rng) * 4), centre, R);
+        else v = adversarial_view(&rng, (int)type, t->spheres + 4 * target, t->cones ? t->cones + 4 * target : NULL);
+        if (type == 6 && !t->cones) v = tu_random_view(&rng, (mlod_view_kind)(scene_rng_double(&rng) * 4), centre, R);
+        if (mlod_view_check(&v, NULL) != MLOD_OK) {
+            skipped++;
+            continue;
+        }
+        cc = mlod_criterion(t, child, &v);
+        cp = mlod_criterion(t, parent, &v);
+        count[type]++;
+        monotone_pairs++;
+        if (isnan(cc) || isnan(cp)) {
+            nan_count++;
+            continue;
+        }
+        if (!(cc <= cp) && !bad[type]++)
+            snprintf(first[type], sizeof first[type],
+                     "node %u c %.17g > parent %u c %.17g; view kind %d flags %u pos %.9g %.9g %.9g fwd %.9g %.9g %.9g up %.9g %.9g %.9g W %u H %u fov %.9g near %.9g far %.9g hw %.9g hh %.9g",
+                     child, cc, parent, cp, (int)v.kind, v.flags, v.position[0], v.position[1], v.position[2], v.forward[0],
+                     v.forward[1], v.forward[2], v.up[0], v.up[1], v.up[2], v.width, v.height, v.fov_y, v.near_plane,
+                     v.far_plane, v.half_width, v.half_height);
+    }
+    for (type = 0; type < 7; type++)
+        CHECK(bad[type] == 0, "monotonicity %s, view type %u: %u of %u pairs with c(child) > c(parent); first: %s", what, type,
+              bad[type], count[type], first[type]);
+    CHECK(nan_count == 0, "monotonicity %s: %u NaN criteria for valid views", what, nan_count);
+    CHECK(skipped < pairs / 20, "monotonicity %s: %u of %u generated views invalid", what, skipped, pairs);
+}
+
+static void test_monotonicity(void)
+{
+    scene_mesh s;
+    mlod_tree *t;
+    double c[3] = {0, 0, 0}, R;
+    uint32_t i;
+    scene_uv_sphere(&s, 1.0f, 10, 20);
+    t = tu_build(&s, 3000, 1, MLOD_ATTR_CONE);
+    if (t) check_monotone(t, "sphere", 1, 40000, c, 1.0);
+    mlod_tree_destroy(t);
+    for (i = 0; i < 3 * s.vertex_count; i++) s.positions[i] *= 1e-15f;
+    t = tu_build(&s, 1000, 2, MLOD_ATTR_CONE);
+    if (t) check_monotone(t, "sphere of radius 1e-15", 2, 30000, c, 1e-15);
+    mlod_tree_destroy(t);
+    for (i = 0; i < 3 * s.vertex_count; i++) s.positions[i] *= 1e30f;
+    t = tu_build(&s, 1000, 3, MLOD_ATTR_CONE);
+    if (t) check_monotone(t, "sphere of radius 1e15", 3, 30000, c, 1e15);
+    mlod_tree_destroy(t);
+    scene_free(&s);
+    scene_soup(&s, 500, 8);
+    tu_bounds(&s, c, &R);
+    t = tu_build(&s, 2000, 4, MLOD_ATTR_CONE);
+    if (t) check_monotone(t, "soup", 4, 35000, c, R);
+    mlod_tree_destroy(t);
+    scene_free(&s);
+    scene_room(&s);
+    tu_bounds(&s, c, &R);
+    t = tu_build(&s, 2000, 5, MLOD_ATTR_CONE);
+    if (t) check_monotone(t, "room", 5, 35000, c, R);
+    mlod_tree_destroy(t);
+    scene_free(&s);
+    t = random_points_tree(1500, 6, 1e-4, 0.3);
+    c[0] = c[1] = c[2] = 0;
+    if (t) check_monotone(t, "points", 6, 40000, c, 1.7);
+    mlod_tree_destroy(t);
+    CHECK(monotone_pairs >= 200000, "monotonicity: only %u (node, view) pairs checked", monotone_pairs);
+    printf("  monotonicity: %u (node, view) pairs\n", monotone_pairs);
+}
+
+/* --------------------------------------------- incremental, lazy, motion */
+
+static void rotate(double *v, const double *axis, double angle)
+{
+    double c = cos(angle), s = sin(angle), k[3], kxv[3], kv = tu_dot3(axis, v);
+    int i;
+    memcpy(k, axis, sizeof k);
+    tu_cross3(kxv, k, v);
+    for (i = 0; i < 3; i++) v[i] = v[i] * c + kxv[i] * s + k[i] * kv * (1 - c);
+}
+
+typedef struct moving_views {
+    uint32_t count;
+    mlod_view base[16];
+    double axis[16][3], orbit[16][3];
+} moving_views;
+
+static void moving_init(moving_views *m, uint64_t *rng, uint32_t count)
+{
+    double c[3] = {0, 0, 0};
+    uint32_t i;
+    m->count = count;
+    for (i = 0; i < count; i++) {
+        m->base[i] = tu_random_view(rng, (mlod_view_kind)(i % 4), c, 1.4);
+        tu_random_unit(rng, m->axis[i]);
+        tu_random_unit(rng, m->orbit[i]);
+    }
+}
+
+/* Frame f: forward and up turned by 10 degrees per frame, eye orbiting the
+   origin by 4 degrees per frame. */
+static void moving_at(const moving_views *m, int f, mlod_view *out)
+{
+    uint32_t i;
+    for (i = 0; i < m->count; i++) {
+        double fw[3] = {m->base[i].forward[0], m->base[i].forward[1], m->base[i].forward[2]},
+               up[3] = {m->base[i].up[0], m->base[i].up[1], m->base[i].up[2]},
+               e[3] = {m->base[i].position[0], m->base[i].position[1], m->base[i].position[2]};
+        out[i] = m->base[i];
+        rotate(fw, m->axis[i], f * 10.0 * TU_PI / 180);
+        rotate(up, m->axis[i], f * 10.0 * TU_PI / 180);
+        rotate(e, m->orbit[i], f * 4.0 * TU_PI / 180);
+        tu_set3f(out[i].forward, fw);
+        tu_set3f(out[i].up, up);
+        tu_set3f(out[i].position, e);
+    }
+}
+
+typedef struct saved_cut {
+    uint32_t count[16];
+    uint32_t *nodes[16];
+} saved_cut;
+
+static void save_cut(saved_cut *s, const mlod_cut *cut, uint32_t views)
+{
+    uint32_t v;
+    for (v = 0; v < views; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        s->count[v] = cv.count;
+        s->nodes[v] = (uint32_t *)realloc(s->nodes[v], sizeof(uint32_t) * (cv.count + 1));
+        if (cv.count) memcpy(s->nodes[v], cv.nodes, sizeof(uint32_t) * cv.count);
+    }
+}
+
+/* Every node of the new cut lies within q edges of the previous cut's
+   nodes it overlaps (q splits down, or q merges up). */
+static uint32_t lazy_move_errors(const tu_layout *L, const uint32_t *prev, uint32_t prev_count, const mlod_cut_view *cv,
+                                 uint32_t q, uint32_t *owner)
+{
+    uint32_t i, j, bad = 0;
+    for (i = 0; i < prev_count; i++)
+        for (j = 0; j < L->count[prev[i]]; j++) owner[L->first[prev[i]] + j] = prev[i];
+    for (i = 0; i < cv->count; i++) {
+        uint32_t n = cv->nodes[i], pos = L->first[n], end = L->first[n] + L->count[n];
+        while (pos < end) {
+            uint32_t o = owner[pos], dn = tu_depth(n), dof = tu_depth(o);
+            if (tu_is_ancestor(o, n)) {
+                if (dn - dof > q) bad++;
+                break;
+            }
+            if (!tu_is_ancestor(n, o) || dof - dn > q) bad++;
+            pos = L->first[o] + L->count[o];
+        }
+    }
+    return bad;
+}
+
+static void run_motion(float eps, uint64_t seed)
+{
+    scene_mesh rest;
+    float *pos, *nrm;
+    mlod_mesh mesh;
+    mlod_tree *tree;
+    mlod_cut *cb = NULL, *ci = NULL, *cl[2] = {NULL, NULL};
+    moving_views mv;
+    mlod_view views[16];
+    tu_layout L;
+    workspace w;
+    tally t;
+    saved_cut prev[2];
+    const uint32_t nv = 12, frames = 24;
+    uint32_t f, v, q, inc_bad = 0, lazy_partition[2] = {0, 0}, lazy_status[2] = {0, 0}, lazy_moves[2] = {0, 0},
+                      lazy_counts[2] = {0, 0}, converged[2] = {0, 0}, bound, k;
+    uint64_t rng = seed;
+    char what[64], first_inc[160] = "";
+    snprintf(what, sizeof what, "motion eps %g", eps);
+    memset(prev, 0, sizeof prev);
+    memset(&t, 0, sizeof t);
+    scene_torus(&rest, 1.0f, 0.35f, 32, 16);
+    pos = (float *)malloc(sizeof(float) * 3 * rest.vertex_count);
+    nrm = (float *)malloc(sizeof(float) * 3 * rest.vertex_count);
+    tree = tu_build(&rest, 4000, seed, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
+    CHECK(tree != NULL, "%s: build", what);
+    if (!tree) return;
+    mesh = tu_mesh(&rest);
+    mesh.positions = pos;
+    mesh.normals = nrm;
+    tu_layout_init(&L, tree->leaf_count);
+    ws_init(&w, tree->node_count);
+    mlod_cut_create(nv, NULL, &cb, NULL);
+    mlod_cut_create(nv, NULL, &ci, NULL);
+    mlod_cut_create(nv, NULL, &cl[0], NULL);
+    mlod_cut_create(nv, NULL, &cl[1], NULL);
+    moving_init(&mv, &rng, nv);
+    for (f = 0; f < frames; f++) {
+        mlod_cut_params pb = params(MLOD_CUT_BASIC, eps, 1, NULL), pi = params(MLOD_CUT_INCREMENTAL, eps, 1, NULL);
+        scene_deform(&rest, 0.15f * f, pos, nrm);
+        CHECK(mlod_refit_mesh(tree, &mesh, NULL, NULL) == MLOD_OK, "%s frame %u: refit", what, f);
+        moving_at(&mv, (int)f, views);
+        CHECK(mlod_cut_update(cb, tree, views, &pb, NULL) == MLOD_OK && mlod_cut_update(ci, tree, views, &pi, NULL) == MLOD_OK,
+              "%s frame %u: updates", what, f);
+        for (v = 0; v < nv; v++) {
+            mlod_cut_view a = mlod_cut_get(cb, v), b = mlod_cut_get(ci, v);
+            if (!tu_same_cut(&a, &b) && !inc_bad++)
+                snprintf(first_inc, sizeof first_inc, "frame %u view %u: basic %u nodes, incremental %u", f, v, a.count, b.count);
+        }
+        if (f % 4 == 0) check_against_reference(tree, &L, views, 0, nv, eps, cb, &w, &t);
+        for (q = 0; q < 2; q++) {
+            mlod_cut_params pl = params(MLOD_CUT_LAZY, eps, q + 1, NULL);
+            CHECK(mlod_cut_update(cl[q], tree, views, &pl, NULL) == MLOD_OK, "%s frame %u: lazy update", what, f);
+            for (v = 0; v < nv; v++) {
+                mlod_cut_view cv = mlod_cut_get(cl[q], v);
+                lazy_partition[q] += tu_partition_errors(&L, cv.nodes, cv.count, w.hits) != 0;
+                lazy_counts[q] += !tu_counts_ok(&cv);
+                for (k = 0; k < cv.count; k++) {
+                    double c = mlod_criterion(tree, cv.nodes[k], views + v);
+                    if (cv.status[k] != tu_status(c, eps, tu_is_leaf(&L, cv.nodes[k]))) lazy_status[q]++;
+                }
+                if (f > 0 && prev[q].nodes[v] && tu_partition_errors(&L, prev[q].nodes[v], prev[q].count[v], w.hits) == 0)
+                    lazy_moves[q] += lazy_move_errors(&L, prev[q].nodes[v], prev[q].count[v], &cv, q + 1, w.hits) != 0;
+            }
+            save_cut(&prev[q], cl[q], nv);
+        }
+    }
+    CHECK(inc_bad == 0, "%s: incremental differs from basic in %u view-frames; first: %s", what, inc_bad, first_inc);
+    tally_report(&t, what);
+    for (q = 0; q < 2; q++) {
+        CHECK(lazy_partition[q] == 0, "%s lazy q=%u: %u view-frames not a partition", what, q + 1, lazy_partition[q]);
+        CHECK(lazy_counts[q] == 0, "%s lazy q=%u: %u view-frames with wrong counts", what, q + 1, lazy_counts[q]);
+        CHECK(lazy_status[q] == 0, "%s lazy q=%u: %u cut nodes whose status disagrees with their criterion", what, q + 1,
+              lazy_status[q]);
+        CHECK(lazy_moves[q] == 0, "%s lazy q=%u: %u view-frames with a node more than q edges from the previous cut", what,
+              q + 1, lazy_moves[q]);
+    }
+    /* views and mesh stop: lazy converges to basic within 2 depth + 2 calls */
+    bound = 2 * L.max_depth + 2;
+    for (q = 0; q < 2; q++) {
+        mlod_cut_params pl = params(MLOD_CUT_LAZY, eps, q + 1, NULL);
+        for (k = 1; k <= bound && !converged[q]; k++) {
+            uint32_t same = 0;
+            mlod_cut_update(cl[q], tree, views, &pl, NULL);
+            for (v = 0; v < nv; v++) {
+                mlod_cut_view a = mlod_cut_get(cb, v), b = mlod_cut_get(cl[q], v);
+                same += tu_same_cut(&a, &b);
+            }
+            if (same == nv) converged[q] = k;
+        }
+        CHECK(converged[q] != 0, "%s lazy q=%u: not equal to basic after %u calls with still views", what, q + 1, bound);
+        printf("  %s lazy q=%u: converged after %u calls (bound %u)\n", what, q + 1, converged[q], bound);
+    }
+    for (q = 0; q < 2; q++)
+        for (v = 0; v < nv; v++) free(prev[q].nodes[v]);
+    mlod_cut_destroy(cb);
+    mlod_cut_destroy(ci);
+    mlod_cut_destroy(cl[0]);
+    mlod_cut_destroy(cl[1]);
+    ws_free(&w);
+    tu_layout_free(&L);
+    mlod_tree_destroy(tree);
+    free(pos);
+    free(nrm);
+    scene_free(&rest);
+}
+
+static void test_motion(void)
+{
+    run_motion(2.0f, 31);
+    run_motion(0.6f, 32);
+}
+
+/* Incremental starts from the root after a tree of another node count, or
+   after mlod_cut_reset. */
+static void test_restart(void)
+{
+    scene_mesh s;
+    mlod_tree *a, *b;
+    mlod_cut *ci = NULL, *cb = NULL;
+    mlod_view views[4];
+    uint64_t rng = 3;
+    double c[3] = {0, 0, 0};
+    uint32_t v, same = 0, k;
+    mlod_cut_params pi = params(MLOD_CUT_INCREMENTAL, 2.0f, 1, NULL), pb = params(MLOD_CUT_BASIC, 2.0f, 1, NULL);
+    scene_torus(&s, 1.0f, 0.3f, 16, 8);
+    a = tu_build(&s, 1000, 1, 0);
+    b = tu_build(&s, 1500, 1, 0);
+    mlod_cut_create(4, NULL, &ci, NULL);
+    mlod_cut_create(4, NULL, &cb, NULL);
+    CHECK(mlod_cut_view_count(ci) == 4, "cut: view count %u", mlod_cut_view_count(ci));
+    for (v = 0; v < 4; v++) CHECK(mlod_cut_get(ci, v).count == 0, "cut: view %u not empty before any update", v);
+    for (v = 0; v < 4; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)v, c, 1.3);
+    for (k = 0; k < 3; k++) {
+        mlod_tree *t = k == 1 ? b : a;
+        if (k == 2) mlod_cut_reset(ci);
+        CHECK(mlod_cut_update(ci, t, views, &pi, NULL) == MLOD_OK && mlod_cut_update(cb, t, views, &pb, NULL) == MLOD_OK,
+              "restart %u: updates", k);
+        for (v = 0, same = 0; v < 4; v++) {
+            mlod_cut_view x = mlod_cut_get(ci, v), y = mlod_cut_get(cb, v);
+            same += tu_same_cut(&x, &y);
+        }
+        CHECK(same == 4, "restart %u (%s): incremental equals basic in %u of 4 views", k,
+              k == 1 ? "another node count" : k == 2 ? "after reset" : "first update", same);
+    }
+    CHECK(mlod_cut_bytes(ci) > 0, "cut: mlod_cut_bytes is 0 after an update");
+    mlod_cut_destroy(ci);
+    mlod_cut_destroy(cb);
+    mlod_tree_destroy(a);
+    mlod_tree_destroy(b);
+    scene_free(&s);
+}
+
+/* --------------------------------------------------------------- threads */
+
+static pthread_t main_thread;
+static unsigned long foreign_allocations;
+
+static void *thread_checked_alloc(void *user, size_t bytes)
+{
+    if (!pthread_equal(pthread_self(), main_thread)) foreign_allocations++;
+    return tu_counter_alloc(user, bytes);
+}
+
+static void thread_checked_free(void *user, void *p)
+{
+    if (!pthread_equal(pthread_self(), main_thread)) foreign_allocations++;
+    tu_counter_free(user, p);
+}
+
+static void test_threads(void)
+{
+    enum { NV = 40, CONFIGS = 6, FRAMES = 4 };
+    scene_mesh s;
+    mlod_tree *tree;
+    mlod_pool *pool1 = mlod_pool_create(1), *pool2 = mlod_pool_create(2), *pool4 = mlod_pool_create(4);
+    mlod_parallel hooks[CONFIGS];
+    mlod_view base[NV], views[NV];
+    mlod_cut *cuts[CONFIGS];
+    tu_counter counter;
+    mlod_allocator alloc;
+    uint64_t rng = 11;
+    double c[3] = {0, 0, 0};
+    uint32_t v, k, cfg, mode, f, median_count, big, sizes[NV];
+    static const char *names[CONFIGS] = {"no hook", "pool of 1", "pool of 2", "pool of 4", "reverse order", "odd then even"};
+    static const char *modes[3] = {"basic", "incremental", "lazy"};
+    tu_layout L;
+    workspace w;
+    tally t;
+    memset(&counter, 0, sizeof counter);
+    main_thread = pthread_self();
+    alloc.alloc = thread_checked_alloc;
+    alloc.free = thread_checked_free;
+    alloc.user = &counter;
+    CHECK(pool1 && pool2 && pool4, "threads: pools");
+    if (!pool1 || !pool2 || !pool4) return;
+    memset(hooks, 0, sizeof hooks);
+    hooks[1] = mlod_pool_parallel(pool1);
+    hooks[2] = mlod_pool_parallel(pool2);
+    hooks[3] = mlod_pool_parallel(pool4);
+    hooks[4].run = tu_run_reverse;
+    hooks[5].run = tu_run_odd_even;
+    scene_uv_sphere(&s, 1.0f, 24, 48);
+    tree = tu_build(&s, 20000, 1, MLOD_ATTR_CONE);
+    CHECK(tree != NULL, "threads: build");
+    if (!tree) return;
+    for (v = 0; v + 1 < NV; v++) {
+        double dir[3], eye[3];
+        tu_random_unit(&rng, dir);
+        for (k = 0; k < 3; k++) eye[k] = dir[k] * (3 + 5 * scene_rng_double(&rng));
+        base[v] = tu_view((mlod_view_kind)(v % 4));
+        tu_look(&rng, base + v, eye, c);
+        base[v].half_width = base[v].half_height = 1.2f;
+        base[v].near_plane = base[v].kind == MLOD_VIEW_ORTHOGRAPHIC ? -20.0f : 0.01f;
+        base[v].width = base[v].height = 8;
+        base[v].flags = v % 3 == 0 ? MLOD_VIEW_CULL_BACKFACES : 0;
+    }
+    {
+        /* one eye 0.02 above the surface, a wide 512 x 512 tile */
+        double eye[3] = {0, 0, 1.02}, target[3] = {0.3, 0, 0.9};
+        base[NV - 1] = tu_view(MLOD_VIEW_PERSPECTIVE);
+        tu_look(&rng, base + NV - 1, eye, target);
+        base[NV - 1].width = base[NV - 1].height = 512;
+        base[NV - 1].fov_y = 2.0f;
+        base[NV - 1].near_plane = 1e-3f;
+    }
+    for (cfg = 0; cfg < CONFIGS; cfg++) mlod_cut_create(NV, &alloc, &cuts[cfg], NULL);
+    for (mode = 0; mode < 3; mode++) {
+        uint32_t mismatches[CONFIGS] = {0};
+        for (cfg = 0; cfg < CONFIGS; cfg++) mlod_cut_reset(cuts[cfg]);
+        for (f = 0; f < (mode == 0 ? 1u : (uint32_t)FRAMES); f++) {
+            for (v = 0; v < NV; v++) {
+                double fw[3] = {base[v].forward[0], base[v].forward[1], base[v].forward[2]}, ax[3] = {0.3, 0.8, 0.5};
+                tu_normalize3(ax);
+                views[v] = base[v];
+                rotate(fw, ax, f * 3.0 * TU_PI / 180);
+                if (v != NV - 1) tu_set3f(views[v].forward, fw);
+                if (v != NV - 1) {
+                    double up[3] = {base[v].up[0], base[v].up[1], base[v].up[2]};
+                    rotate(up, ax, f * 3.0 * TU_PI / 180);
+                    tu_set3f(views[v].up, up);
+                }
+            }
+            for (cfg = 0; cfg < CONFIGS; cfg++) {
+                mlod_cut_params p = params((mlod_cut_mode)mode, 1.0f, 1, cfg ? &hooks[cfg] : NULL);
+                CHECK(mlod_cut_update(cuts[cfg], tree, views, &p, NULL) == MLOD_OK, "threads %s %s frame %u: update",
+                      modes[mode], names[cfg], f);
+                if (cfg == 0) continue;
+                for (v = 0; v < NV; v++) {
+                    mlod_cut_view a = mlod_cut_get(cuts[0], v), b = mlod_cut_get(cuts[cfg], v);
+                    mismatches[cfg] += !tu_same_cut(&a, &b);
+                }
+            }
+        }
+        for (cfg = 1; cfg < CONFIGS; cfg++)
+            CHECK(mismatches[cfg] == 0, "threads %s: %s differs from no hook in %u view-frames", modes[mode], names[cfg],
+                  mismatches[cfg]);
+    }
+    /* the big view is >= 100x the median, and basic agrees with the reference */
+    {
+        mlod_cut_params p = params(MLOD_CUT_BASIC, 1.0f, 1, &hooks[2]);
+        uint32_t sorted[NV - 1];
+        mlod_cut_update(cuts[2], tree, base, &p, NULL);
+        for (v = 0; v < NV; v++) sizes[v] = mlod_cut_get(cuts[2], v).count;
+        memcpy(sorted, sizes, sizeof sorted);
+        for (v = 0; v < NV - 1; v++)
+            for (k = v + 1; k < NV - 1; k++)
+                if (sorted[k] < sorted[v]) {
+                    uint32_t tmp = sorted[k];
+                    sorted[k] = sorted[v];
+                    sorted[v] = tmp;
+                }
+        median_count = sorted[(NV - 1) / 2];
+        big = sizes[NV - 1];
+        CHECK(big >= 100 * median_count, "threads: the close view's cut has %u nodes, median of the others %u (< 100x)", big,
+              median_count);
+        printf("  threads: close view %u nodes, median view %u nodes\n", big, median_count);
+        tu_layout_init(&L, tree->leaf_count);
+        ws_init(&w, tree->node_count);
+        memset(&t, 0, sizeof t);
+        check_against_reference(tree, &L, base, NV - 4, 4, 1.0f, cuts[2], &w, &t);
+        tally_report(&t, "threads: the last 4 views, basic with a pool of 2");
+        ws_free(&w);
+        tu_layout_free(&L);
+    }
+    CHECK(foreign_allocations == 0, "threads: the allocator was called %lu times from another thread", foreign_allocations);
+    for (cfg = 0; cfg < CONFIGS; cfg++) mlod_cut_destroy(cuts[cfg]);
+    CHECK(counter.live_blocks == 0, "threads: %lu blocks leaked by the cuts", counter.live_blocks);
+    mlod_pool_destroy(pool1);
+    mlod_pool_destroy(pool2);
+    mlod_pool_destroy(pool4);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
+#include <time.h>
+#define TIMED(call)                                                                                                    \
+    do {                                                                                                               \
+        clock_t start_ = clock();                                                                                      \
+        call;                                                                                                          \
+        if (getenv("TEST_TIMES")) printf("  %-28s %.2f s\n", #call, (double)(clock() - start_) / CLOCKS_PER_SEC);     \
+    } while (0)
+
+int main(void)
+{
+    int rc;
+    TIMED(test_random_trees());
+    TIMED(test_hand_made());
+    TIMED(test_restart());
+    TIMED(test_criterion_reference());
+    TIMED(test_monotonicity());
+    TIMED(test_motion());
+    TIMED(test_threads());
+    rc = test_finish();
+    fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
+    return rc;
+}
