@@ -1,0 +1,196 @@
+#!/usr/bin/env bash
+# tests/compile/matrix.sh - the compile matrix: manylods.h built the ways its
+# users build it, every entry with -Wall -Wextra -pedantic -Werror, linked and
+# run.  Each entry that builds and runs is one passed check; the script ends
+# with the plain line "N passed, M failed" (tests/run.sh adds it to the rest)
+# and exits 1 when an entry failed.
+#
+#   tests/compile/matrix.sh [NAME-GLOB...]    run every entry, or those named
+#
+# Environment: CC, CXX (default gcc, g++), CLANG, CLANGXX (default clang,
+# clang++), MATRIX_OUT (default build/matrix), VERBOSE=1 to log every step.
+set -u
+cd "$(dirname "$0")/../.." || exit 1
+
+CC=${CC:-gcc}
+CXX=${CXX:-g++}
+CLANG=${CLANG:-clang}
+CLANGXX=${CLANGXX:-clang++}
+OUT=${MATRIX_OUT:-build/matrix}
+STRICT="-Wall -Wextra -pedantic -Werror -O2"
+LIBS="-lm -pthread"
+SRC=tests/compile
+mkdir -p "$OUT" || exit 1
+
+passed=0
+failed=0
+
+# steps CMD...: run each command string in turn, echoing it; stop at the
+# first that fails.
+steps() {
+    local command
+    for command in "$@"; do
+        echo "+ $command"
+        eval "$command" || return 1
+    done
+}
+
+# entry NAME TITLE CMD...: one check of the matrix.
+entry() {
+    local name=$1 title=$2 pattern selected=1
+    shift 2
+    if [ ${#patterns[@]} -gt 0 ]; then
+        selected=0
+        for pattern in "${patterns[@]}"; do
+            # shellcheck disable=SC2053
+            [[ $name == $pattern ]] && selected=1
+        done
+    fi
+    [ "$selected" = 1 ] || return 0
+    if steps "$@" >"$OUT/$name.log" 2>&1; then
+        passed=$((passed + 1))
+        printf '  ok    %-24s %s\n' "$name" "$title"
+        [ "${VERBOSE:-0}" = 1 ] && sed 's/^/      | /' "$OUT/$name.log"
+    else
+        failed=$((failed + 1))
+        printf '  FAIL  %-24s %s\n' "$name" "$title"
+        tail -n 40 "$OUT/$name.log" | sed 's/^/      | /'
+    fi
+    return 0
+}
+
+# Macros that a translation unit defines beyond those of the system headers
+# that manylods.h includes, other than MANYLODS_*, MLOD_* and reserved names.
+# Prints them and fails when there are any.
+new_macros() { # compiler, file with the translation unit
+    local cc=$1 tu=$2 base="$2.base.c"
+    $cc -std=c99 -H -fsyntax-only "$tu" 2>&1 >/dev/null | sed -n 's/^\.\. //p' | awk '!seen[$0]++' |
+        sed 's/.*/#include "&"/' >"$base" || return 1
+    $cc -std=c99 -E -dM "$base" | sort >"$base.macros" || return 1
+    $cc -std=c99 -E -dM "$tu" | sort >"$tu.macros" || return 1
+    comm -13 "$base.macros" "$tu.macros" | awk '{ sub(/\(.*/, "", $2); print $2 }' |
+        grep -Ev '^(MANYLODS_|MLOD_|_)' >"$tu.leaked"
+    if [ -s "$tu.leaked" ]; then
+        echo "macros defined by manylods.h without the MANYLODS_ or MLOD_ prefix:"
+        cat "$tu.leaked"
+        return 1
+    fi
+    echo "no unprefixed macro"
+}
+
+# Global symbols an object defines that are not public mlod_ names.
+foreign_symbols() { # object, allowed extra names (regex)
+    local extra=${2:-^$}
+    nm -g --defined-only "$1" | awk '{ print $3 }' | grep -Ev '^mlod_[a-z]' | grep -Ev "$extra" >"$1.foreign"
+    if [ -s "$1.foreign" ]; then
+        echo "global symbols outside the mlod_ namespace (or private mlod__ ones):"
+        cat "$1.foreign"
+        return 1
+    fi
+    if nm -g --defined-only "$1" | awk '{ print $3 }' | grep -q '^mlod__'; then
+        echo "private mlod__ symbols with external linkage:"
+        nm -g --defined-only "$1" | awk '{ print $3 }' | grep '^mlod__'
+        return 1
+    fi
+    echo "exports only public mlod_ names"
+}
+
+patterns=("$@")
+
+echo "compile matrix (build/matrix; each entry: -Wall -Wextra -pedantic -Werror, link, run)"
+
+# One translation unit with the implementation, as C and as C++.
+entry c99-gcc "C99, $CC" \
+    "$CC -std=c99 $STRICT $SRC/impl.c -o $OUT/c99-gcc $LIBS" "$OUT/c99-gcc"
+entry c99-clang "C99, $CLANG" \
+    "$CLANG -std=c99 $STRICT $SRC/impl.c -o $OUT/c99-clang $LIBS" "$OUT/c99-clang"
+for std in c++11 c++17; do
+    entry "$std-gxx" "C++ ($std), $CXX, after <algorithm> <cmath> <limits> <vector>" \
+        "$CXX -std=$std $STRICT $SRC/impl.cpp -o $OUT/$std-gxx $LIBS" "$OUT/$std-gxx"
+    entry "$std-clangxx" "C++ ($std), $CLANGXX, after <algorithm> <cmath> <limits> <vector>" \
+        "$CLANGXX -std=$std $STRICT $SRC/impl.cpp -o $OUT/$std-clangxx $LIBS" "$OUT/$std-clangxx"
+done
+
+# Two translation units: the implementation in one, a user in the other,
+# across the C / C++ boundary both ways.
+entry two-tu-gcc "two TUs (implementation + user), C99, $CC" \
+    "$CC -std=c99 $STRICT -c $SRC/tu_impl.c -o $OUT/tu_impl.o" \
+    "$CC -std=c99 $STRICT -c $SRC/tu_user.c -o $OUT/tu_user.o" \
+    "$CC $OUT/tu_impl.o $OUT/tu_user.o -o $OUT/two-tu-gcc $LIBS" "$OUT/two-tu-gcc"
+entry two-tu-clang "two TUs (implementation + user), C99, $CLANG" \
+    "$CLANG -std=c99 $STRICT -c $SRC/tu_impl.c -o $OUT/tu_impl-clang.o" \
+    "$CLANG -std=c99 $STRICT -c $SRC/tu_user.c -o $OUT/tu_user-clang.o" \
+    "$CLANG $OUT/tu_impl-clang.o $OUT/tu_user-clang.o -o $OUT/two-tu-clang $LIBS" "$OUT/two-tu-clang"
+entry two-tu-c-impl-cxx-user "two TUs: implementation in C ($CC), user in C++11 ($CXX)" \
+    "$CC -std=c99 $STRICT -c $SRC/tu_impl.c -o $OUT/tu_impl-c.o" \
+    "$CXX -std=c++11 $STRICT -x c++ -c $SRC/tu_user.c -o $OUT/tu_user-cxx.o" \
+    "$CXX $OUT/tu_impl-c.o $OUT/tu_user-cxx.o -o $OUT/two-tu-c-impl-cxx-user $LIBS" \
+    "$OUT/two-tu-c-impl-cxx-user"
+entry two-tu-cxx-impl-c-user "two TUs: implementation in C++11 ($CXX), user in C ($CC)" \
+    "$CXX -std=c++11 $STRICT -x c++ -c $SRC/tu_impl.c -o $OUT/tu_impl-cxx.o" \
+    "$CC -std=c99 $STRICT -c $SRC/tu_user.c -o $OUT/tu_user-c.o" \
+    "$CXX $OUT/tu_impl-cxx.o $OUT/tu_user-c.o -o $OUT/two-tu-cxx-impl-c-user $LIBS" \
+    "$OUT/two-tu-cxx-impl-c-user"
+entry exported-symbols "the implementation exports only mlod_ names ($CC, with MANYLODS_PTHREADS)" \
+    "$CC -std=c99 $STRICT -DMANYLODS_PTHREADS -c $SRC/tu_impl.c -o $OUT/tu_impl-pthreads.o" \
+    "foreign_symbols $OUT/tu_impl-pthreads.o"
+
+# MANYLODS_STATIC: two private copies in one program.
+entry static-gcc "MANYLODS_STATIC, two private copies in one program, $CC" \
+    "$CC -std=c99 $STRICT -c $SRC/static_a.c -o $OUT/static_a.o" \
+    "$CC -std=c99 $STRICT -c $SRC/static_b.c -o $OUT/static_b.o" \
+    "foreign_symbols $OUT/static_a.o '^static_a_run$'" \
+    "$CC $OUT/static_a.o $OUT/static_b.o -o $OUT/static-gcc $LIBS" "$OUT/static-gcc"
+entry static-clang "MANYLODS_STATIC, two private copies in one program, $CLANG" \
+    "$CLANG -std=c99 $STRICT -c $SRC/static_a.c -o $OUT/static_a-clang.o" \
+    "$CLANG -std=c99 $STRICT -c $SRC/static_b.c -o $OUT/static_b-clang.o" \
+    "$CLANG $OUT/static_a-clang.o $OUT/static_b-clang.o -o $OUT/static-clang $LIBS" "$OUT/static-clang"
+entry static-gxx "MANYLODS_STATIC, two private copies in one program, C++11, $CXX" \
+    "$CXX -std=c++11 $STRICT -x c++ -c $SRC/static_a.c -o $OUT/static_a-cxx.o" \
+    "$CXX -std=c++11 $STRICT -x c++ -c $SRC/static_b.c -o $OUT/static_b-cxx.o" \
+    "$CXX $OUT/static_a-cxx.o $OUT/static_b-cxx.o -o $OUT/static-gxx $LIBS" "$OUT/static-gxx"
+
+# MANYLODS_PTHREADS: the built-in pool, same cuts for 1, 2 and 4 threads.
+entry pthreads-gcc "MANYLODS_PTHREADS, C99, $CC" \
+    "$CC -std=c99 $STRICT $SRC/threads.c -o $OUT/pthreads-gcc $LIBS" "$OUT/pthreads-gcc"
+entry pthreads-clang "MANYLODS_PTHREADS, C99, $CLANG" \
+    "$CLANG -std=c99 $STRICT $SRC/threads.c -o $OUT/pthreads-clang $LIBS" "$OUT/pthreads-clang"
+entry pthreads-gxx "MANYLODS_PTHREADS, C++11, $CXX" \
+    "$CXX -std=c++11 $STRICT -x c++ $SRC/threads.c -o $OUT/pthreads-gxx $LIBS" "$OUT/pthreads-gxx"
+
+# Unity builds: the program's short macros and names, another library, then
+# manylods.h with its implementation.
+for cc in "$CC" "$CLANG"; do
+    tag=$(basename "$cc")
+    entry "unity-macros-$tag" "unity build after min/max/PI/clamp/ABS/SWAP/lerp macros, C99, $cc" \
+        "$cc -std=c99 $STRICT $SRC/unity_macros.c -o $OUT/unity-macros-$tag $LIBS" "$OUT/unity-macros-$tag"
+    entry "unity-names-$tag" "unity build after functions/types min, max, clamp, lerp, vec3, C99, $cc" \
+        "$cc -std=c99 $STRICT $SRC/unity_names.c -o $OUT/unity-names-$tag $LIBS" "$OUT/unity-names-$tag"
+done
+entry unity-near-far "unity build after the empty near/far macros of <windows.h>, C99, $CC" \
+    "$CC -std=c99 $STRICT -DUNITY_NEAR_FAR $SRC/unity_macros.c -o $OUT/unity-near-far $LIBS" "$OUT/unity-near-far"
+
+# No leaked macros: a list of short names, then every macro the header adds.
+entry no-short-macros "no MIN/MAX/PI/SWAP/... defined after the implementation, $CC" \
+    "$CC -std=c99 $STRICT $SRC/leaks.c -o $OUT/no-short-macros $LIBS" "$OUT/no-short-macros"
+printf '#include "manylods.h"\n' >"$OUT/decl_tu.c"
+printf '#define MANYLODS_PTHREADS\n#define MANYLODS_IMPLEMENTATION\n#include "manylods.h"\n' >"$OUT/impl_tu.c"
+entry prefixed-macros "every macro the header defines is MANYLODS_ or MLOD_ prefixed, $CC" \
+    "new_macros '$CC -I.' $OUT/decl_tu.c" "new_macros '$CC -I.' $OUT/impl_tu.c"
+
+# The configuration macros.
+entry config-macros "MANYLODS_MALLOC/FREE and MANYLODS_ASSERT replace the defaults, $CC" \
+    "$CC -std=c99 $STRICT $SRC/alloc.c -o $OUT/config-macros $LIBS" "$OUT/config-macros"
+
+# The README's example, as strict as the rest, and quoted verbatim.
+readme_quotes() { # file: the README's first C code block is exactly this file
+    awk '/^```c$/ { inside = 1; next } /^```$/ { if (inside) exit } inside' README.md | diff -u "$1" - &&
+        echo "README.md quotes $1 verbatim"
+}
+entry minimal-werror "examples/minimal.c, C99, $CC and $CLANG; README.md quotes it" \
+    "$CC -std=c99 $STRICT examples/minimal.c -o $OUT/minimal-gcc $LIBS" "$OUT/minimal-gcc" \
+    "$CLANG -std=c99 $STRICT examples/minimal.c -o $OUT/minimal-clang $LIBS" "$OUT/minimal-clang" \
+    "readme_quotes examples/minimal.c"
+
+echo "$passed passed, $failed failed"
+[ "$failed" = 0 ]
