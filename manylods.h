@@ -137,9 +137,28 @@
                            (drawn) or coarser (status MLOD_STATUS_COARSE);
                            converges to the basic cut when views stop.
 
+   SPLATTING
+     mlod_splat() draws every drawn node of every view's cut into the view's
+     tile of one atlas (mlod_atlas: a grid of tiles, depth plus optional
+     normal and colour channels).  A node becomes a disc: the disc around the
+     exact image of its bounding sphere, centred on the image's centre, of
+     diameter c(node, view) (paraboloids: at the larger of their two pixel
+     scales), so it covers the node's whole image.  The disc holds one depth,
+     that of the sphere's centre; nearest depth wins.  Depth means
+       perspective, orthographic:  z = (p - eye) . forward (along the axis);
+       paraboloid, dual paraboloid: |p - eye| (Euclidean distance).
+     Pixel (i, j) of a tile covers [i, i+1) x [j, j+1), x to the right
+     (forward x up), y downwards; mlod_view_project and mlod_view_pixel_ray
+     are the projection and its inverse.  mlod_splat_ism() is the Imperfect
+     Shadow Maps baseline (a fixed random subset of leaves per view) and
+     mlod_atlas_fill_holes() the pull-push hole filling for either.
+     mlod_suggest_sample_count() gives the smallest N whose leaves are at
+     most epsilon pixels in the closest view: sample only what views resolve.
+
    THREADS
-     mlod_cut_update and mlod_refit_mesh take an optional mlod_parallel hook
-     (a parallel-for); with none they run on the calling thread.  Work is
+     mlod_cut_update, mlod_refit_*, mlod_splat* and mlod_atlas_fill_holes take
+     an optional mlod_parallel hook (a parallel-for); with none they run on
+     the calling thread.  Work is
      split into tasks of bounded size within and among views, so one view
      with a cut 100x the others does not serialise the frame.  Results are
      identical for any thread count.  Distinct objects may be used from
@@ -463,6 +482,108 @@ MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view);
 MANYLODS_DEF size_t mlod_cut_bytes(const mlod_cut *cut);
 /* Free the cut and its lists.  NULL is fine. */
 MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut);
+
+/* ------------------------------------------------------------ projection */
+
+/* Where a world point lands in a view's tile.  pixel[0] grows to the right
+   (along forward x up), pixel[1] downwards; pixel (i, j) covers [i, i+1) x
+   [j, j+1).  depth: perspective and orthographic, the distance along the
+   view axis (z = (p - eye).forward); paraboloids, the Euclidean distance
+   |p - eye|.  Returns 1 when the point is inside the view (frustum, box,
+   front hemisphere; for dual paraboloids always), else 0 with the outputs
+   still written where the projection is defined.  Pure, thread-safe; views
+   are checked (0 for an invalid view). */
+MANYLODS_DEF int mlod_view_project(const mlod_view *view, const float point[3], float pixel[2], float *depth);
+
+/* The ray through pixel position (x, y) of the tile (continuous, pixel
+   centres at i + 0.5): origin and unit direction in world units.  Returns 0
+   when the position has no ray (outside a paraboloid's disc, or outside the
+   tile).  The depth (as in mlod_view_project) of origin + t direction is
+   t * (direction . forward) + (origin - eye) . forward for perspective and
+   orthographic views, and t for paraboloids. Pure, thread-safe. */
+MANYLODS_DEF int mlod_view_pixel_ray(const mlod_view *view, float x, float y, float origin[3], float direction[3]);
+
+/* ----------------------------------------------------------------- atlas */
+
+/* Channels of an atlas beyond depth. */
+enum {
+    MLOD_ATLAS_NORMAL = 1u << 0, /* the drawn node's cone axis (trees with cones) */
+    MLOD_ATLAS_COLOR = 1u << 1   /* the drawn node's mean colour (trees with colours) */
+};
+
+typedef struct mlod_atlas_desc {
+    uint32_t columns;  /* tiles per row; 0: ceil(sqrt(views)) */
+    uint32_t channels; /* MLOD_ATLAS_* */
+} mlod_atlas_desc;
+
+/* One image holding a tile per view, laid out as a grid of equal cells (the
+   largest tile's size), row by row; each view's tile sits at the top-left of
+   its cell.  depth[y * width + x] is +inf where nothing was drawn; normal
+   and colour have 3 floats per pixel (0 where nothing was drawn) or are
+   NULL.  All arrays are owned by the atlas. */
+typedef struct mlod_atlas {
+    uint32_t width, height;   /* pixels */
+    uint32_t view_count;
+    uint32_t channels;
+    uint32_t cell_width, cell_height, columns;
+    float *depth;
+    float *normal;
+    float *color;
+    uint32_t *tiles;          /* per view: x, y, width, height of its tile */
+    uint32_t *bands;          /* private: per view, first row band (splat tasks) */
+    size_t bytes;
+    mlod_allocator allocator;
+} mlod_atlas;
+
+/* Create an atlas for view_count >= 1 views (their tile sizes fix the
+   layout).  Sizes that overflow return MLOD_ERROR_OVERFLOW. */
+MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+                                           const mlod_allocator *allocator, mlod_atlas **out_atlas,
+                                           mlod_error *error);
+MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
+
+/* Clear every tile, then draw every drawn node (status DRAWN, OVERSIZE or
+   COARSE) of every view's cut into its tile as a disc: the disc around the
+   exact image of the node's sphere (the image's diameter c(node, view),
+   centred on the image's centre; paraboloid halves use the larger of their
+   two pixel scales), holding the depth of the sphere's centre (as in
+   mlod_view_project).  Nearest depth wins; equal depths keep the node drawn
+   first.  A disc covering no pixel centre still sets the pixel holding its
+   centre.  Nodes whose image is unbounded are not drawn.  The views must be
+   those of the cut's last update.  Parallel over tiles and row bands;
+   results are identical for any thread count. */
+MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
+                                    const mlod_view *views, const mlod_parallel *parallel, mlod_error *error);
+
+/* The Imperfect Shadow Maps baseline (Ritschel et al. 2008): clear the
+   atlas, then draw into each view points_per_view leaves of the tree chosen
+   at random for that view (with replacement, from (seed, view, k): the same
+   subset every call), each as the disc of its own sphere, as mlod_splat
+   draws nodes.  Parallel as mlod_splat. */
+MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views,
+                                        uint32_t points_per_view, uint64_t seed, const mlod_parallel *parallel,
+                                        mlod_error *error);
+
+/* Pull-push hole filling, tile by tile: empty pixels (depth +inf) inside a
+   tile take the average of the non-empty pixels at the finest coarser level
+   of a 2x2 pyramid that has any, for depth and every channel.  Pixels that
+   were drawn keep their values; a tile with nothing drawn stays empty.
+   Allocates its scratch once per call. */
+MANYLODS_DEF mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error);
+
+/* ------------------------------------------------------- choosing N */
+
+/* Surface area of a mesh in world units^2 (0 for invalid input). Pure. */
+MANYLODS_DEF double mlod_mesh_area(const mlod_mesh *mesh);
+
+/* The smallest N (samples) whose leaves, of radius radius_scale * sqrt(A/N),
+   are at most epsilon pixels across in every view wherever they appear in
+   its tile, for surface at least `closest` world units from the eye
+   (orthographic views: at any depth).  Sample only what the views can
+   resolve.  Returns 0 for invalid input (A <= 0, epsilon <= 0, closest <= 0,
+   an invalid view), MANYLODS_MAX_LEAVES when more would be needed.  Pure. */
+MANYLODS_DEF uint32_t mlod_suggest_sample_count(double surface_area, const mlod_view *views, uint32_t view_count,
+                                                float epsilon, float radius_scale, double closest);
 
 /* --------------------------------------------------- built-in thread pool */
 #ifdef MANYLODS_PTHREADS
@@ -1683,6 +1804,8 @@ typedef struct mlod__pview {
     int backfaces;
     double e[3], u[3], v[3], w[3];
     double scale;           /* pixels per unit of the projection */
+    double width, height;   /* tile */
+    double sx, sy;          /* orthographic: pixels per world unit along u, v */
     int plane_count;
     mlod__plane planes[6];  /* culling half-spaces */
     mlod__plane halves[2];  /* dual paraboloid: front and back half-spaces */
@@ -1733,6 +1856,8 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
     for (k = 0; k < 3; k++) pv->u[k] /= right_len;
     mlod__cross3(pv->u, pv->w, pv->v);
     pv->kind = view->kind;
+    pv->width = view->width;
+    pv->height = view->height;
     pv->backfaces = (view->flags & MLOD_VIEW_CULL_BACKFACES) != 0;
     switch (view->kind) {
     case MLOD_VIEW_PERSPECTIVE: {
@@ -1786,6 +1911,8 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
         sx = view->width / (2.0 * view->half_width);
         sy = view->height / (2.0 * view->half_height);
         pv->scale = sx > sy ? sx : sy;
+        pv->sx = sx;
+        pv->sy = sy;
         mlod__plane_set(&pv->planes[pv->plane_count++], pv->w, pv->e, view->near_plane);
         if (isfinite(view->far_plane)) {
             for (k = 0; k < 3; k++) n[k] = -pv->w[k];
@@ -2472,6 +2599,617 @@ out_of_memory:
     return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory updating the cut of %u views", cut->view_count);
 }
 
+
+/* ---------------------------------------------------------- projection -- */
+
+/* The image of a sphere (centre, radius r) in one projection of a view: the
+   disc around it (centre and radius in tile pixels) and the depth of its
+   centre.  half: the dual paraboloid hemisphere (0 front, 1 back), else 0.
+   A point is a sphere of radius 0.  Returns 0 when the image is unbounded. */
+typedef struct mlod__disc {
+    double x, y, radius, depth;
+} mlod__disc;
+
+static int mlod__image_disc(const mlod__pview *pv, const double *centre, double r, int half, mlod__disc *out)
+{
+    double x[3], d, a, b, cos_t, sin_t, sin_b, cos_b, dir_x = 0.0, dir_y = 0.0;
+    double s_hi, c_hi, s_lo, c_lo, hi, lo;
+    int k;
+    for (k = 0; k < 3; k++) x[k] = centre[k] - pv->e[k];
+    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        out->x = 0.5 * pv->width + pv->sx * mlod__dot3(x, pv->u);
+        out->y = 0.5 * pv->height - pv->sy * mlod__dot3(x, pv->v);
+        out->radius = r * pv->scale;
+        out->depth = mlod__dot3(x, pv->w);
+        return 1;
+    }
+    d = mlod__length3(x);
+    if (!(d > r)) return 0;
+    a = mlod__dot3(x, pv->u) / d;
+    b = mlod__dot3(x, pv->v) / d;
+    cos_t = mlod__dot3(x, pv->w) / d;
+    if (half) { /* the back hemisphere, seen along -w with u mirrored */
+        a = -a;
+        cos_t = -cos_t;
+    }
+    sin_t = sqrt(a * a + b * b);
+    sin_b = r / d;
+    cos_b = sqrt(1.0 - sin_b * sin_b);
+    if (sin_t > 0.0) {
+        dir_x = a / sin_t;
+        dir_y = b / sin_t;
+    }
+    /* the image spans radially from angle t - b to t + b off the axis */
+    s_hi = sin_t * cos_b + cos_t * sin_b;
+    c_hi = cos_t * cos_b - sin_t * sin_b;
+    s_lo = sin_t * cos_b - cos_t * sin_b;
+    c_lo = cos_t * cos_b + sin_t * sin_b;
+    if (pv->kind == MLOD_VIEW_PERSPECTIVE) {
+        if (!(c_hi > 0.0)) return 0;
+        hi = s_hi / c_hi; /* tan(t + b) */
+        lo = s_lo / c_lo; /* tan(t - b) */
+        out->x = 0.5 * pv->width + pv->scale * 0.5 * (hi + lo) * dir_x;
+        out->y = 0.5 * pv->height - pv->scale * 0.5 * (hi + lo) * dir_y;
+        out->depth = mlod__dot3(x, pv->w);
+    } else {
+        double tile_width = pv->kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv->width : pv->width;
+        if (!(1.0 + c_hi > 0.0)) return 0;
+        hi = s_hi / (1.0 + c_hi); /* tan((t + b) / 2) */
+        lo = s_lo / (1.0 + c_lo);
+        out->x = half * tile_width + 0.5 * tile_width * (1.0 + 0.5 * (hi + lo) * dir_x);
+        out->y = 0.5 * pv->height * (1.0 - 0.5 * (hi + lo) * dir_y);
+        out->depth = d;
+    }
+    out->radius = pv->scale * 0.5 * (hi - lo);
+    return 1;
+}
+
+/* Inside the view: in every culling half-space. */
+static int mlod__point_inside(const mlod__pview *pv, const float *point)
+{
+    float sphere[4];
+    int k;
+    for (k = 0; k < 3; k++) sphere[k] = point[k];
+    sphere[3] = 0.0f;
+    for (k = 0; k < pv->plane_count; k++)
+        if (mlod__outside(&pv->planes[k], sphere)) return 0;
+    return 1;
+}
+
+MANYLODS_DEF int mlod_view_project(const mlod_view *view, const float point[3], float pixel[2], float *depth)
+{
+    mlod__pview pv;
+    mlod__disc disc;
+    double p[3];
+    int k, half = 0;
+    if (!point || mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
+    for (k = 0; k < 3; k++) p[k] = point[k];
+    if (pv.kind == MLOD_VIEW_DUAL_PARABOLOID) {
+        double x[3];
+        for (k = 0; k < 3; k++) x[k] = p[k] - pv.e[k];
+        half = mlod__dot3(x, pv.w) < 0.0;
+    }
+    if (!mlod__image_disc(&pv, p, 0.0, half, &disc)) return 0;
+    if (pixel) {
+        pixel[0] = (float)disc.x;
+        pixel[1] = (float)disc.y;
+    }
+    if (depth) *depth = (float)disc.depth;
+    return mlod__point_inside(&pv, point);
+}
+
+MANYLODS_DEF int mlod_view_pixel_ray(const mlod_view *view, float x, float y, float origin[3], float direction[3])
+{
+    mlod__pview pv;
+    double o[3], dir[3], len;
+    int k;
+    if (mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
+    if (!(x >= 0.0f && x < (float)view->width && y >= 0.0f && y < (float)view->height)) return 0;
+    for (k = 0; k < 3; k++) o[k] = pv.e[k];
+    if (pv.kind == MLOD_VIEW_PERSPECTIVE) {
+        double px = (x - 0.5 * pv.width) / pv.scale, py = (0.5 * pv.height - y) / pv.scale;
+        for (k = 0; k < 3; k++) dir[k] = pv.w[k] + px * pv.u[k] + py * pv.v[k];
+    } else if (pv.kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        double px = (x - 0.5 * pv.width) / pv.sx, py = (0.5 * pv.height - y) / pv.sy;
+        for (k = 0; k < 3; k++) {
+            o[k] += px * pv.u[k] + py * pv.v[k];
+            dir[k] = pv.w[k];
+        }
+    } else {
+        double tile_width = pv.kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv.width : pv.width, px, py, q, side = 1.0;
+        double local = x;
+        if (pv.kind == MLOD_VIEW_DUAL_PARABOLOID && x >= tile_width) {
+            local = x - tile_width;
+            side = -1.0;
+        }
+        px = 2.0 * local / tile_width - 1.0;
+        py = 1.0 - 2.0 * y / pv.height;
+        q = px * px + py * py;
+        if (q > 1.0) return 0;
+        /* inverse stereographic projection; the back half mirrors u and w */
+        for (k = 0; k < 3; k++) dir[k] = side * 2.0 * px * pv.u[k] + 2.0 * py * pv.v[k] + side * (1.0 - q) * pv.w[k];
+    }
+    len = mlod__length3(dir);
+    for (k = 0; k < 3; k++) {
+        origin[k] = (float)o[k];
+        direction[k] = (float)(dir[k] / len);
+    }
+    return 1;
+}
+
+/* --------------------------------------------------------------- atlas -- */
+
+MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas)
+{
+    mlod_allocator a;
+    if (!atlas) return;
+    a = atlas->allocator;
+    mlod__free(&a, atlas->depth);
+    mlod__free(&a, atlas->normal);
+    mlod__free(&a, atlas->color);
+    mlod__free(&a, atlas->tiles);
+    mlod__free(&a, atlas->bands);
+    a.free(a.user, atlas);
+}
+
+#define MLOD__BAND_ROWS 64u
+
+MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+                                           const mlod_allocator *allocator, mlod_atlas **out_atlas, mlod_error *error)
+{
+    mlod_allocator a = mlod__allocator(allocator);
+    mlod_atlas *atlas;
+    uint32_t v, columns, rows, cell_w = 1, cell_h = 1, bands = 0;
+    uint64_t width, height, pixels;
+    int ok;
+    if (!out_atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out_atlas is NULL");
+    *out_atlas = NULL;
+    if (!views || !desc) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "views and desc must not be NULL");
+    if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
+    if (desc->channels & ~(uint32_t)(MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown atlas channel bits 0x%x", desc->channels);
+    for (v = 0; v < view_count; v++) {
+        if (views[v].width == 0 || views[v].height == 0)
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "view %u has an empty tile", v);
+        if (views[v].width > cell_w) cell_w = views[v].width;
+        if (views[v].height > cell_h) cell_h = views[v].height;
+        bands += (views[v].height + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
+        if (bands >= 0x7fffffffu) return mlod__fail(error, MLOD_ERROR_OVERFLOW, "too many tile rows");
+    }
+    columns = desc->columns;
+    if (columns == 0) {
+        columns = (uint32_t)ceil(sqrt((double)view_count));
+        if (columns == 0) columns = 1;
+    }
+    if (columns > view_count) columns = view_count;
+    rows = (view_count + columns - 1) / columns;
+    width = (uint64_t)columns * cell_w;
+    height = (uint64_t)rows * cell_h;
+    pixels = width * height;
+    if (width > 0xffffffffu || height > 0xffffffffu || pixels / 3 > ((size_t)-1 / sizeof(float)) / 4)
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
+                          (unsigned long long)width, (unsigned long long)height);
+    atlas = (mlod_atlas *)a.alloc(a.user, sizeof(mlod_atlas));
+    if (!atlas) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating an atlas");
+    memset(atlas, 0, sizeof *atlas);
+    atlas->allocator = a;
+    atlas->bytes = sizeof *atlas;
+    atlas->width = (uint32_t)width;
+    atlas->height = (uint32_t)height;
+    atlas->view_count = view_count;
+    atlas->channels = desc->channels;
+    atlas->cell_width = cell_w;
+    atlas->cell_height = cell_h;
+    atlas->columns = columns;
+    atlas->depth = (float *)mlod__alloc_array(&a, (size_t)pixels, sizeof(float), &atlas->bytes);
+    ok = atlas->depth != NULL;
+    if (desc->channels & MLOD_ATLAS_NORMAL)
+        ok = ok && (atlas->normal = (float *)mlod__alloc_array(&a, (size_t)pixels, 3 * sizeof(float), &atlas->bytes));
+    if (desc->channels & MLOD_ATLAS_COLOR)
+        ok = ok && (atlas->color = (float *)mlod__alloc_array(&a, (size_t)pixels, 3 * sizeof(float), &atlas->bytes));
+    ok = ok && (atlas->tiles = (uint32_t *)mlod__alloc_array(&a, view_count, 4 * sizeof(uint32_t), &atlas->bytes));
+    ok = ok && (atlas->bands = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &atlas->bytes));
+    if (!ok) {
+        mlod_atlas_destroy(atlas);
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for an atlas of %llu x %llu pixels",
+                          (unsigned long long)width, (unsigned long long)height);
+    }
+    atlas->bands[0] = 0;
+    for (v = 0; v < view_count; v++) {
+        uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        t[0] = (v % columns) * cell_w;
+        t[1] = (v / columns) * cell_h;
+        t[2] = views[v].width;
+        t[3] = views[v].height;
+        atlas->bands[v + 1] = atlas->bands[v] + (t[3] + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
+    }
+    for (v = 0; v < (uint32_t)pixels; v++) atlas->depth[v] = INFINITY;
+    if (atlas->normal) memset(atlas->normal, 0, (size_t)pixels * 3 * sizeof(float));
+    if (atlas->color) memset(atlas->color, 0, (size_t)pixels * 3 * sizeof(float));
+    *out_atlas = atlas;
+    return mlod__succeed(error);
+}
+
+/* ------------------------------------------------------------- splat -- */
+
+typedef struct mlod__splat_job {
+    mlod_atlas *atlas;
+    const mlod_tree *tree;
+    const mlod_cut *cut;
+    const mlod_view *views;
+    uint32_t points_per_view; /* ISM */
+    uint64_t seed;
+} mlod__splat_job;
+
+/* One band of rows of one tile while it is drawn. */
+typedef struct mlod__band {
+    mlod_atlas *atlas;
+    const mlod_tree *tree;
+    const uint32_t *tile;
+    uint32_t row_begin, row_end; /* tile rows */
+} mlod__band;
+
+/* Draw the disc into the band, clipped to tile columns [col_begin, col_end). */
+static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, uint32_t node, uint32_t col_begin,
+                              uint32_t col_end)
+{
+    mlod_atlas *atlas = band->atlas;
+    double r2 = disc->radius * disc->radius;
+    double y0 = floor(disc->y - disc->radius), y1 = ceil(disc->y + disc->radius);
+    double x0 = floor(disc->x - disc->radius), x1 = ceil(disc->x + disc->radius);
+    uint32_t row, col, rb, re, cb, ce;
+    float depth = (float)disc->depth;
+    int hit = 0;
+    if (!(disc->radius < 1e9) || !isfinite(disc->x) || !isfinite(disc->y)) return;
+    rb = y0 < band->row_begin ? band->row_begin : (y0 >= band->row_end ? band->row_end : (uint32_t)y0);
+    re = y1 > band->row_end ? band->row_end : (y1 <= band->row_begin ? band->row_begin : (uint32_t)y1);
+    cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);
+    ce = x1 > col_end ? col_end : (x1 <= col_begin ? col_begin : (uint32_t)x1);
+    for (row = rb; row < re; row++) {
+        double dy = row + 0.5 - disc->y;
+        for (col = cb; col < ce; col++) {
+            double dx = col + 0.5 - disc->x;
+            if (dx * dx + dy * dy <= r2) {
+                size_t at = (size_t)(band->tile[1] + row) * atlas->width + band->tile[0] + col;
+                hit = 1;
+                if (depth < atlas->depth[at]) {
+                    int k;
+                    atlas->depth[at] = depth;
+                    for (k = 0; k < 3 && atlas->normal; k++) atlas->normal[3 * at + k] = band->tree->cones[4 * (size_t)node + k];
+                    for (k = 0; k < 3 && atlas->color; k++) atlas->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
+                }
+            }
+        }
+    }
+    if (!hit && disc->x >= col_begin && disc->x < col_end && disc->y >= band->row_begin && disc->y < band->row_end) {
+        mlod__disc dot = *disc;
+        dot.x = floor(disc->x) + 0.5;
+        dot.y = floor(disc->y) + 0.5;
+        dot.radius = 0.0;
+        mlod__raster_disc(band, &dot, node, col_begin, col_end);
+    }
+}
+
+/* Draw a node into the band: each hemisphere its sphere reaches for dual
+   paraboloids, else the one projection. */
+static void mlod__draw_node(const mlod__band *band, const mlod__pview *pv, uint32_t node)
+{
+    const float *s = band->tree->spheres + 4 * (size_t)node;
+    double c[3];
+    mlod__disc disc;
+    int k, half;
+    for (k = 0; k < 3; k++) c[k] = s[k];
+    if (pv->kind != MLOD_VIEW_DUAL_PARABOLOID) {
+        if (mlod__image_disc(pv, c, s[3], 0, &disc)) mlod__raster_disc(band, &disc, node, 0, band->tile[2]);
+        return;
+    }
+    for (half = 0; half < 2; half++) {
+        uint32_t w = band->tile[2] / 2;
+        if (mlod__outside(&pv->halves[half], s)) continue;
+        if (mlod__image_disc(pv, c, s[3], half, &disc))
+            mlod__raster_disc(band, &disc, node, half ? w : 0, half ? band->tile[2] : w);
+    }
+}
+
+/* Which view and rows a band task covers; clears those rows. */
+static uint32_t mlod__band_begin(const mlod__splat_job *job, uint32_t index, mlod__band *band)
+{
+    mlod_atlas *atlas = job->atlas;
+    uint32_t lo = 0, hi = atlas->view_count, view, row;
+    while (hi - lo > 1) { /* the view whose bands hold index */
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (atlas->bands[mid] <= index)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    view = lo;
+    band->atlas = atlas;
+    band->tree = job->tree;
+    band->tile = atlas->tiles + 4 * (size_t)view;
+    band->row_begin = (index - atlas->bands[view]) * MLOD__BAND_ROWS;
+    band->row_end = band->row_begin + MLOD__BAND_ROWS;
+    if (band->row_end > band->tile[3]) band->row_end = band->tile[3];
+    for (row = band->row_begin; row < band->row_end; row++) {
+        size_t at = (size_t)(band->tile[1] + row) * atlas->width + band->tile[0];
+        uint32_t col;
+        for (col = 0; col < band->tile[2]; col++) atlas->depth[at + col] = INFINITY;
+        if (atlas->normal) memset(atlas->normal + 3 * at, 0, 3 * sizeof(float) * band->tile[2]);
+        if (atlas->color) memset(atlas->color + 3 * at, 0, 3 * sizeof(float) * band->tile[2]);
+    }
+    return view;
+}
+
+static void mlod__splat_task(void *context, uint32_t index)
+{
+    const mlod__splat_job *job = (const mlod__splat_job *)context;
+    mlod__band band;
+    mlod__pview pv;
+    uint32_t view = mlod__band_begin(job, index, &band), i;
+    mlod_cut_view cv = mlod_cut_get(job->cut, view);
+    mlod__view_prepare(&job->views[view], &pv, NULL);
+    for (i = 0; i < cv.count; i++)
+        if (cv.status[i] != MLOD_STATUS_CULLED) mlod__draw_node(&band, &pv, cv.nodes[i]);
+}
+
+static void mlod__ism_task(void *context, uint32_t index)
+{
+    const mlod__splat_job *job = (const mlod__splat_job *)context;
+    const mlod_tree *tree = job->tree;
+    mlod__band band;
+    mlod__pview pv;
+    uint32_t view = mlod__band_begin(job, index, &band), k;
+    mlod__view_prepare(&job->views[view], &pv, NULL);
+    for (k = 0; k < job->points_per_view; k++) {
+        uint32_t leaf = (uint32_t)(mlod__hash01(job->seed, 2 + (uint64_t)view, k) * tree->leaf_count);
+        uint32_t node = tree->leaf_count - 1 + (leaf < tree->leaf_count ? leaf : tree->leaf_count - 1);
+        int culled;
+        mlod__evaluate(&pv, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node), &culled);
+        if (!culled) mlod__draw_node(&band, &pv, node);
+    }
+}
+
+static mlod_result mlod__check_splat(const mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views,
+                                     mlod_error *error)
+{
+    uint32_t v;
+    if (!atlas || !tree || !views)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas, tree and views must not be NULL");
+    if (atlas->normal && !tree->cones)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has normals and the tree no cones");
+    if (atlas->color && !tree->colors)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the tree none");
+    for (v = 0; v < atlas->view_count; v++) {
+        mlod__pview pv;
+        mlod_error detail;
+        mlod_result res = mlod__view_prepare(&views[v], &pv, &detail);
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        if (res != MLOD_OK) return mlod__fail(error, res, "view %u: %.160s", v, detail.message);
+        if (views[v].width != t[2] || views[v].height != t[3])
+            return mlod__fail(error, MLOD_ERROR_MISMATCH, "view %u has a %ux%u tile, the atlas was made for %ux%u", v,
+                              views[v].width, views[v].height, t[2], t[3]);
+    }
+    return MLOD_OK;
+}
+
+MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
+                                    const mlod_view *views, const mlod_parallel *parallel, mlod_error *error)
+{
+    mlod__splat_job job;
+    mlod_result res = mlod__check_splat(atlas, tree, views, error);
+    if (res != MLOD_OK) return res;
+    if (!cut) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "cut is NULL");
+    if (cut->view_count != atlas->view_count)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the cut has %u views, the atlas %u", cut->view_count,
+                          atlas->view_count);
+    if (cut->tree_nodes != 0 && cut->tree_nodes != tree->node_count)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the cut was computed for another tree");
+    memset(&job, 0, sizeof job);
+    job.atlas = atlas;
+    job.tree = tree;
+    job.cut = cut;
+    job.views = views;
+    mlod__run(parallel, atlas->bands[atlas->view_count], mlod__splat_task, &job);
+    return mlod__succeed(error);
+}
+
+MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views,
+                                        uint32_t points_per_view, uint64_t seed, const mlod_parallel *parallel,
+                                        mlod_error *error)
+{
+    mlod__splat_job job;
+    mlod_result res = mlod__check_splat(atlas, tree, views, error);
+    if (res != MLOD_OK) return res;
+    memset(&job, 0, sizeof job);
+    job.atlas = atlas;
+    job.tree = tree;
+    job.views = views;
+    job.points_per_view = points_per_view;
+    job.seed = seed;
+    mlod__run(parallel, atlas->bands[atlas->view_count], mlod__ism_task, &job);
+    return mlod__succeed(error);
+}
+
+/* ---------------------------------------------------------- pull-push -- */
+
+typedef struct mlod__fill_job {
+    mlod_atlas *atlas;
+    float *scratch;
+    size_t *tile_scratch; /* per view: first float of its pyramid */
+    uint32_t values;      /* floats per pixel: depth + channels */
+} mlod__fill_job;
+
+/* Floats of a w x h tile's coarser pyramid levels, values per pixel. */
+static size_t mlod__pyramid_floats(uint32_t w, uint32_t h, uint32_t values)
+{
+    size_t total = 0;
+    while (w > 1 || h > 1) {
+        w = (w + 1) / 2;
+        h = (h + 1) / 2;
+        total += (size_t)w * h * (values + 1);
+    }
+    return total;
+}
+
+/* Pointer to value v of pixel (x, y) of the tile itself. */
+static float *mlod__tile_value(mlod_atlas *atlas, const uint32_t *tile, uint32_t x, uint32_t y, uint32_t v)
+{
+    size_t at = (size_t)(tile[1] + y) * atlas->width + tile[0] + x;
+    if (v == 0) return atlas->depth + at;
+    if (v <= 3 && atlas->normal) return atlas->normal + 3 * at + (v - 1);
+    return atlas->color + 3 * at + (v - (atlas->normal ? 4 : 1));
+}
+
+static void mlod__fill_task(void *context, uint32_t view)
+{
+    const mlod__fill_job *job = (const mlod__fill_job *)context;
+    mlod_atlas *atlas = job->atlas;
+    const uint32_t *tile = atlas->tiles + 4 * (size_t)view;
+    uint32_t values = job->values, stride = values + 1, w = tile[2], h = tile[3], levels = 0, level;
+    float *pyramid = job->scratch + job->tile_scratch[view], *level_at[40];
+    uint32_t lw[40], lh[40];
+    /* pull: each coarser pixel is the mean of its non-empty children;
+       a pixel is (weight, values...), weight 0 when empty */
+    lw[0] = w;
+    lh[0] = h;
+    level_at[0] = NULL;
+    while (lw[levels] > 1 || lh[levels] > 1) {
+        uint32_t x, y, cw = (lw[levels] + 1) / 2, ch = (lh[levels] + 1) / 2;
+        float *dst = levels == 0 ? pyramid : level_at[levels] + (size_t)lw[levels] * lh[levels] * stride;
+        for (y = 0; y < ch; y++)
+            for (x = 0; x < cw; x++) {
+                float *p = dst + ((size_t)y * cw + x) * stride;
+                uint32_t dx, dy, v;
+                memset(p, 0, stride * sizeof(float));
+                for (dy = 0; dy < 2; dy++)
+                    for (dx = 0; dx < 2; dx++) {
+                        uint32_t sx = 2 * x + dx, sy = 2 * y + dy;
+                        if (sx >= lw[levels] || sy >= lh[levels]) continue;
+                        if (levels == 0) {
+                            if (!isfinite(*mlod__tile_value(atlas, tile, sx, sy, 0))) continue;
+                            p[0] += 1.0f;
+                            for (v = 0; v < values; v++) p[1 + v] += *mlod__tile_value(atlas, tile, sx, sy, v);
+                        } else {
+                            const float *q = level_at[levels] + ((size_t)sy * lw[levels] + sx) * stride;
+                            if (q[0] == 0.0f) continue;
+                            p[0] += 1.0f;
+                            for (v = 0; v < values; v++) p[1 + v] += q[1 + v];
+                        }
+                    }
+                if (p[0] > 0.0f) {
+                    for (v = 0; v < values; v++) p[1 + v] /= p[0];
+                    p[0] = 1.0f;
+                }
+            }
+        levels++;
+        level_at[levels] = dst;
+        lw[levels] = cw;
+        lh[levels] = ch;
+    }
+    /* push: empty pixels take their parent's value, coarse to fine */
+    for (level = levels; level-- > 0;) {
+        uint32_t x, y, v;
+        for (y = 0; y < lh[level]; y++)
+            for (x = 0; x < lw[level]; x++) {
+                const float *parent = level_at[level + 1] + ((size_t)(y / 2) * lw[level + 1] + x / 2) * stride;
+                if (parent[0] == 0.0f) continue;
+                if (level == 0) {
+                    if (isfinite(*mlod__tile_value(atlas, tile, x, y, 0))) continue;
+                    for (v = 0; v < values; v++) *mlod__tile_value(atlas, tile, x, y, v) = parent[1 + v];
+                } else {
+                    float *p = level_at[level] + ((size_t)y * lw[level] + x) * stride;
+                    if (p[0] != 0.0f) continue;
+                    memcpy(p, parent, stride * sizeof(float));
+                }
+            }
+    }
+}
+
+MANYLODS_DEF mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error)
+{
+    mlod__fill_job job;
+    size_t total = 0;
+    uint32_t v;
+    if (!atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas is NULL");
+    job.atlas = atlas;
+    job.values = 1 + (atlas->normal ? 3u : 0u) + (atlas->color ? 3u : 0u);
+    job.tile_scratch = (size_t *)mlod__alloc_array(&atlas->allocator, atlas->view_count, sizeof(size_t), NULL);
+    if (!job.tile_scratch) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory filling holes");
+    for (v = 0; v < atlas->view_count; v++) {
+        job.tile_scratch[v] = total;
+        total += mlod__pyramid_floats(atlas->tiles[4 * (size_t)v + 2], atlas->tiles[4 * (size_t)v + 3], job.values);
+    }
+    job.scratch = (float *)mlod__alloc_array(&atlas->allocator, total, sizeof(float), NULL);
+    if (!job.scratch) {
+        mlod__free(&atlas->allocator, job.tile_scratch);
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory filling holes (%zu floats)", total);
+    }
+    mlod__run(parallel, atlas->view_count, mlod__fill_task, &job);
+    mlod__free(&atlas->allocator, job.scratch);
+    mlod__free(&atlas->allocator, job.tile_scratch);
+    return mlod__succeed(error);
+}
+
+/* ----------------------------------------------------------- choosing N -- */
+
+MANYLODS_DEF double mlod_mesh_area(const mlod_mesh *mesh)
+{
+    double total = 0.0;
+    uint32_t i;
+    if (mlod__check_mesh(mesh, NULL) != MLOD_OK) return 0.0;
+    for (i = 0; i < mesh->index_count / 3; i++) total += mlod__triangle_area(mesh, i);
+    return total;
+}
+
+/* The largest leaf radius whose image in the view is at most epsilon pixels
+   across at distance `closest`, in the tile's most magnified direction (the
+   corner of a perspective tile, the rim of a paraboloid). */
+static double mlod__largest_leaf_radius(const mlod__pview *pv, double epsilon, double closest)
+{
+    double dir[3], lo = 0.0, hi = closest, len;
+    int k, step;
+    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) return epsilon / (2.0 * pv->scale);
+    for (k = 0; k < 3; k++)
+        dir[k] = pv->kind == MLOD_VIEW_PERSPECTIVE
+                     ? pv->w[k] + 0.5 * pv->width / pv->scale * pv->u[k] + 0.5 * pv->height / pv->scale * pv->v[k]
+                     : pv->u[k];
+    len = mlod__length3(dir);
+    for (step = 0; step < 60; step++) { /* bisection on the radius */
+        double r = 0.5 * (lo + hi), c;
+        float sphere[4];
+        int culled;
+        for (k = 0; k < 3; k++) sphere[k] = (float)(pv->e[k] + dir[k] / len * closest);
+        sphere[3] = (float)r;
+        c = mlod__evaluate(pv, sphere, NULL, &culled);
+        if (c <= epsilon)
+            lo = r;
+        else
+            hi = r;
+    }
+    return lo;
+}
+
+MANYLODS_DEF uint32_t mlod_suggest_sample_count(double surface_area, const mlod_view *views, uint32_t view_count,
+                                                float epsilon, float radius_scale, double closest)
+{
+    double radius = INFINITY, n;
+    uint32_t v;
+    if (!(surface_area > 0.0) || !isfinite(surface_area) || !(epsilon > 0.0f) || !(closest > 0.0) || !views ||
+        view_count == 0)
+        return 0;
+    if (!(radius_scale > 0.0f)) radius_scale = 1.0f;
+    for (v = 0; v < view_count; v++) {
+        mlod__pview pv;
+        double r;
+        if (mlod__view_prepare(&views[v], &pv, NULL) != MLOD_OK) return 0;
+        pv.plane_count = 0; /* the probe sits on the tile's border */
+        r = mlod__largest_leaf_radius(&pv, epsilon, closest);
+        if (r < radius) radius = r;
+    }
+    if (!(radius > 0.0)) return MANYLODS_MAX_LEAVES;
+    n = ceil(surface_area * (radius_scale / radius) * (radius_scale / radius));
+    return n >= MANYLODS_MAX_LEAVES ? MANYLODS_MAX_LEAVES : (n < 1.0 ? 1u : (uint32_t)n);
+}
 
 /* ------------------------------------------------- pthreads thread pool -- */
 #ifdef MANYLODS_PTHREADS
