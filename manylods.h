@@ -1448,7 +1448,15 @@ MANYLODS_DEF mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
     cumulative[0] = 0.0;
     for (i = 0; i < triangles; i++) cumulative[i + 1] = cumulative[i] + mlod__triangle_area(mesh, i);
     if (!(cumulative[triangles] > 0.0)) {
-        res = mlod__fail(error, MLOD_ERROR_EMPTY, "every triangle of the mesh has zero area");
+        double reach = 0.0;
+        for (i = 0; i < 3 * mesh->vertex_count; i++) {
+            double c = fabs(mlod__at(mesh->positions, mesh->position_stride, i / 3)[i % 3]);
+            if (c > reach) reach = c;
+        }
+        res = mlod__fail(error, MLOD_ERROR_EMPTY,
+                         "every triangle of the mesh has zero area (vertices reach %g from the origin, where float "
+                         "precision is %g: a scene far from the origin may have collapsed)",
+                         reach, reach * (1.0 / 8388608.0));
         goto done;
     }
     mlod__sample_mesh(mesh, cumulative, triangles, n, desc->seed, tri, st);
@@ -2031,9 +2039,11 @@ MANYLODS_DEF double mlod_criterion(const mlod_tree *tree, uint32_t node, const m
 /* A segment (a run of one view's list handled by one task) holds at most
    this many input entries. */
 #define MLOD__SEGMENT_INPUT 1024u
-/* Scratch entries a round may spend on splits, shared among segments. */
+/* Scratch entries a round may spend on splits, shared among the entries to
+   split (at least MLOD__MIN_SHARE each, at most MLOD__SEGMENT_GROWTH). */
 #define MLOD__ROUND_BUDGET ((size_t)1 << 21)
 #define MLOD__MIN_SHARE 16u
+#define MLOD__SEGMENT_GROWTH 8192u
 
 typedef struct mlod__list {
     uint32_t *nodes;
@@ -2320,7 +2330,7 @@ static int mlod__reserve(mlod_cut *cut, void **buffer, size_t *capacity, size_t 
     size_t grown;
     void *p;
     if (need <= *capacity) return 1;
-    grown = need + need / 2;
+    grown = need + need / 8;
     if (grown < need) grown = need;
     p = mlod__alloc_array(&cut->allocator, grown, element, NULL);
     if (!p) {
@@ -2438,21 +2448,63 @@ MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
     return r;
 }
 
+/* Does this entry still have to be split (or evaluated first)? */
+static int mlod__to_split(uint8_t status, int lazy, int trust)
+{
+    return !lazy && (status == MLOD__PENDING || (trust && status == MLOD_STATUS_COARSE));
+}
+
+/* The next segment of a view's list from `at`: its length and how many of
+   its entries are to be split.  A segment closes at MLOD__SEGMENT_INPUT
+   entries, or once its splits may produce MLOD__SEGMENT_GROWTH entries,
+   so that big expansions spread over many tasks. */
+static uint32_t mlod__segment_length(const mlod__list *in, size_t at, size_t end, int lazy, int trust, size_t unit,
+                                     uint32_t *splits)
+{
+    uint32_t n = 0, c = 0;
+    while (at + n < end && n < MLOD__SEGMENT_INPUT && (size_t)c * unit < MLOD__SEGMENT_GROWTH) {
+        c += (uint32_t)mlod__to_split(in->status[at + n], lazy, trust);
+        n++;
+    }
+    *splits = c;
+    return n;
+}
+
+/* Output room of a segment: lazy steps at most double it; splits may add
+   `unit` entries each; entries of unknown status (the first round from a
+   previous cut) get a quarter more. */
+static size_t mlod__segment_room(uint32_t n, uint32_t splits, int lazy, int trust, size_t unit)
+{
+    if (lazy) return 2 * (size_t)n;
+    if (splits) return n + splits * unit;
+    return trust ? n : n + n / 4 + MLOD__MIN_SHARE;
+}
+
 /* Cut the input lists into segments and the segments into tasks, place
    every segment's output in scratch.  Returns 0 when out of memory. */
 static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int trust, uint32_t *task_count)
 {
-    size_t total = 0, segments = 0, s = 0, capacity = 0, share, work = 0;
-    uint32_t v, tasks = 0;
+    size_t total = 0, to_split = 0, segments = 0, s = 0, capacity = 0, unit = 0, work = 0;
+    uint32_t v, tasks = 0, splits;
     for (v = 0; v < cut->view_count; v++) {
+        size_t at = in->offset[v], end = at + in->count[v];
         total += in->count[v];
-        segments += (in->count[v] + MLOD__SEGMENT_INPUT - 1) / MLOD__SEGMENT_INPUT;
-        if (!lazy && trust) segments += cut->stats[1][v].coarse; /* each entry to split closes one */
+        for (; at < end; at++) to_split += (size_t)mlod__to_split(in->status[at], lazy, trust);
+    }
+    /* the entries to split share a budget of scratch: at least the input */
+    if (to_split) {
+        unit = (MLOD__ROUND_BUDGET > total ? MLOD__ROUND_BUDGET : total) / to_split;
+        if (unit < MLOD__MIN_SHARE) unit = MLOD__MIN_SHARE;
+        if (unit > MLOD__SEGMENT_GROWTH) unit = MLOD__SEGMENT_GROWTH;
+    }
+    for (v = 0; v < cut->view_count; v++) {
+        size_t at = in->offset[v], end = at + in->count[v];
+        while (at < end) {
+            at += mlod__segment_length(in, at, end, lazy, trust, unit, &splits);
+            segments++;
+        }
     }
     if (segments >= (uint32_t)-1) return 0;
-    share = (MLOD__ROUND_BUDGET > total ? MLOD__ROUND_BUDGET : total) / (segments ? segments : 1);
-    if (share < MLOD__MIN_SHARE) share = MLOD__MIN_SHARE;
-    if (share > ((uint32_t)-1 >> 1) - MLOD__SEGMENT_INPUT) share = ((uint32_t)-1 >> 1) - MLOD__SEGMENT_INPUT;
     {
         void *p = cut->segments;
         if (!mlod__reserve(cut, &p, &cut->segment_capacity, segments, sizeof(mlod__segment))) return 0;
@@ -2466,25 +2518,19 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         cut->view_segment[v] = (uint32_t)s;
         while (at < end) {
             mlod__segment *seg = &cut->segments[s];
-            uint32_t n = 0;
-            int closes = 0;
-            while (at + n < end && n < MLOD__SEGMENT_INPUT && !closes) {
-                uint8_t st = in->status[at + n];
-                closes = !lazy && (st == MLOD__PENDING || (trust && st == MLOD_STATUS_COARSE));
-                n++;
-            }
-            MANYLODS_ASSERT(s < segments);
+            uint32_t n = mlod__segment_length(in, at, end, lazy, trust, unit, &splits);
+            size_t room = mlod__segment_room(n, splits, lazy, trust, unit);
             seg->view = v;
             seg->in_begin = at;
             seg->in_count = n;
             seg->out_begin = capacity;
-            seg->out_capacity = lazy ? 2 * n : n + (uint32_t)share;
+            seg->out_capacity = (uint32_t)room;
             seg->out_count = 0;
             seg->evaluated = seg->steps = 0;
-            capacity += seg->out_capacity;
+            capacity += room;
             /* tasks: consecutive segments worth about one segment of work */
             if (work == 0) cut->tasks[tasks++] = (uint32_t)s;
-            work += n + (closes ? MLOD__SEGMENT_INPUT / 4 : 0);
+            work += room;
             if (work >= MLOD__SEGMENT_INPUT) work = 0;
             at += n;
             s++;
@@ -2759,8 +2805,8 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
 {
     mlod_allocator a = mlod__allocator(allocator);
     mlod_atlas *atlas;
-    uint32_t v, columns, rows, cell_w = 1, cell_h = 1, bands = 0;
-    uint64_t width, height, pixels;
+    uint32_t v, columns, rows, cell_w = 1, cell_h = 1;
+    uint64_t width, height, pixels, bands = 0;
     int ok;
     if (!out_atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out_atlas is NULL");
     *out_atlas = NULL;
@@ -2773,7 +2819,7 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
             return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "view %u has an empty tile", v);
         if (views[v].width > cell_w) cell_w = views[v].width;
         if (views[v].height > cell_h) cell_h = views[v].height;
-        bands += (views[v].height + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
+        bands += ((uint64_t)views[v].height + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
         if (bands >= 0x7fffffffu) return mlod__fail(error, MLOD_ERROR_OVERFLOW, "too many tile rows");
     }
     columns = desc->columns;
@@ -2821,7 +2867,7 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         t[1] = (v / columns) * cell_h;
         t[2] = views[v].width;
         t[3] = views[v].height;
-        atlas->bands[v + 1] = atlas->bands[v] + (t[3] + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
+        atlas->bands[v + 1] = atlas->bands[v] + (uint32_t)(((uint64_t)t[3] + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS);
     }
     for (v = 0; v < (uint32_t)pixels; v++) atlas->depth[v] = INFINITY;
     if (atlas->normal) memset(atlas->normal, 0, (size_t)pixels * 3 * sizeof(float));
@@ -3162,23 +3208,30 @@ MANYLODS_DEF double mlod_mesh_area(const mlod_mesh *mesh)
 }
 
 /* The largest leaf radius whose image in the view is at most epsilon pixels
-   across at distance `closest`, in the tile's most magnified direction (the
-   corner of a perspective tile, the rim of a paraboloid). */
+   across at distance `closest` (from the eye to the leaf's centre), where
+   the view magnifies most: a leaf just touching the tile's border from
+   outside, beyond the corner of a perspective tile or behind the rim of a
+   paraboloid (its centre at angle theta0 + asin(r / closest) off the axis). */
 static double mlod__largest_leaf_radius(const mlod__pview *pv, double epsilon, double closest)
 {
-    double dir[3], lo = 0.0, hi = closest, len;
+    double side[3], lo = 0.0, hi = closest, theta0, len;
     int k, step;
     if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) return epsilon / (2.0 * pv->scale);
-    for (k = 0; k < 3; k++)
-        dir[k] = pv->kind == MLOD_VIEW_PERSPECTIVE
-                     ? pv->w[k] + 0.5 * pv->width / pv->scale * pv->u[k] + 0.5 * pv->height / pv->scale * pv->v[k]
-                     : pv->u[k];
-    len = mlod__length3(dir);
+    if (pv->kind == MLOD_VIEW_PERSPECTIVE) {
+        double tx = 0.5 * pv->width / pv->scale, ty = 0.5 * pv->height / pv->scale;
+        for (k = 0; k < 3; k++) side[k] = tx * pv->u[k] + ty * pv->v[k];
+        theta0 = atan(sqrt(tx * tx + ty * ty));
+    } else {
+        for (k = 0; k < 3; k++) side[k] = pv->u[k];
+        theta0 = 0.5 * MLOD__PI;
+    }
+    len = mlod__length3(side);
     for (step = 0; step < 60; step++) { /* bisection on the radius */
-        double r = 0.5 * (lo + hi), c;
+        double r = 0.5 * (lo + hi), theta = theta0 + asin(r / closest), c;
         float sphere[4];
         int culled;
-        for (k = 0; k < 3; k++) sphere[k] = (float)(pv->e[k] + dir[k] / len * closest);
+        for (k = 0; k < 3; k++)
+            sphere[k] = (float)(pv->e[k] + closest * (cos(theta) * pv->w[k] + sin(theta) * side[k] / len));
         sphere[3] = (float)r;
         c = mlod__evaluate(pv, sphere, NULL, &culled);
         if (c <= epsilon)
