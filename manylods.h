@@ -498,7 +498,9 @@ MANYLODS_DEF int mlod_view_project(const mlod_view *view, const float point[3], 
 /* The ray through pixel position (x, y) of the tile (continuous, pixel
    centres at i + 0.5): origin and unit direction in world units.  Returns 0
    when the position has no ray (outside a paraboloid's disc, or outside the
-   tile).  The depth (as in mlod_view_project) of origin + t direction is
+   tile).  The origin is the eye (perspective, paraboloids) or the point of
+   depth 0 on the pixel's line (orthographic; not the near plane).  The
+   depth (as in mlod_view_project) of origin + t direction is
    t * (direction . forward) + (origin - eye) . forward for perspective and
    orthographic views, and t for paraboloids. Pure, thread-safe. */
 MANYLODS_DEF int mlod_view_pixel_ray(const mlod_view *view, float x, float y, float origin[3], float direction[3]);
@@ -548,8 +550,10 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
    centred on the image's centre; paraboloid halves use the larger of their
    two pixel scales), holding the depth of the sphere's centre (as in
    mlod_view_project).  Nearest depth wins; equal depths keep the node drawn
-   first.  A disc covering no pixel centre still sets the pixel holding its
-   centre.  Nodes whose image is unbounded are not drawn.  The views must be
+   first.  A pixel is drawn when its centre lies in the disc; a disc
+   covering no pixel centre still sets the pixel holding its centre.  Nodes
+   whose image is unbounded are not drawn (for a dual paraboloid: not in the
+   half where it is unbounded).  The views must be
    those of the cut's last update.  Parallel over tiles and row bands;
    results are identical for any thread count. */
 MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
@@ -564,9 +568,11 @@ MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree
                                         uint32_t points_per_view, uint64_t seed, const mlod_parallel *parallel,
                                         mlod_error *error);
 
-/* Pull-push hole filling, tile by tile: empty pixels (depth +inf) inside a
-   tile take the average of the non-empty pixels at the finest coarser level
-   of a 2x2 pyramid that has any, for depth and every channel.  Pixels that
+/* Pull-push hole filling, tile by tile, on depth and every channel.  Pull:
+   a pyramid of 2x2 reductions, each coarser pixel the plain mean of its
+   non-empty children (empty if all are).  Push: from coarse to fine, every
+   empty pixel takes its parent's value; so an empty tile pixel gets the
+   value of its nearest non-empty ancestor in the pyramid.  Pixels that
    were drawn keep their values; a tile with nothing drawn stays empty.
    Allocates its scratch once per call. */
 MANYLODS_DEF mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error);
@@ -580,7 +586,8 @@ MANYLODS_DEF double mlod_mesh_area(const mlod_mesh *mesh);
    are at most epsilon pixels across in every view wherever they appear in
    its tile, for surface at least `closest` world units from the eye
    (orthographic views: at any depth).  Sample only what the views can
-   resolve.  Returns 0 for invalid input (A <= 0, epsilon <= 0, closest <= 0,
+   resolve.  radius_scale <= 0 means 1, as in mlod_build_desc.  Returns 0
+   for invalid input (A <= 0, epsilon <= 0, closest <= 0,
    an invalid view), MANYLODS_MAX_LEAVES when more would be needed.  Pure. */
 MANYLODS_DEF uint32_t mlod_suggest_sample_count(double surface_area, const mlod_view *views, uint32_t view_count,
                                                 float epsilon, float radius_scale, double closest);
@@ -2113,11 +2120,12 @@ typedef struct mlod__cut_job {
 typedef struct mlod__emitter {
     uint32_t *nodes;
     uint8_t *status;
-    uint32_t count;
+    uint32_t count, capacity;
 } mlod__emitter;
 
 static void mlod__emit(mlod__emitter *out, uint32_t node, uint8_t status)
 {
+    MANYLODS_ASSERT(out->count < out->capacity); /* the segment's room was planned for this */
     out->nodes[out->count] = node;
     out->status[out->count] = status;
     out->count++;
@@ -2155,6 +2163,7 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
+    out.capacity = seg->out_capacity;
     for (k = 0; k < seg->in_count; k++) {
         uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top;
         uint8_t st = in_status[k];
@@ -2202,6 +2211,7 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
+    out.capacity = seg->out_capacity;
     for (k = 0; k < seg->in_count; k++) {
         size_t at = seg->in_begin + k;
         uint32_t node = job->in->nodes[at];
@@ -3255,7 +3265,11 @@ MANYLODS_DEF uint32_t mlod_suggest_sample_count(double surface_area, const mlod_
         mlod__pview pv;
         double r;
         if (mlod__view_prepare(&views[v], &pv, NULL) != MLOD_OK) return 0;
-        pv.plane_count = 0; /* the probe sits on the tile's border */
+        /* the probe touches the tile's border from outside: no culling
+           there, and a dual paraboloid's probe is measured in the half it
+           just reaches (at the tangency that half's image is the larger) */
+        pv.plane_count = 0;
+        if (pv.kind == MLOD_VIEW_DUAL_PARABOLOID) pv.kind = MLOD_VIEW_PARABOLOID;
         r = mlod__largest_leaf_radius(&pv, epsilon, closest);
         if (r < radius) radius = r;
     }
