@@ -1,0 +1,236 @@
+/* bench/metrics.h - accuracy of a splatted atlas against a ray-cast reference,
+   shared by the tests and the benchmark of manylods.  Header-only, C99.
+
+   Include after manylods.h (or let this header include its declarations);
+   the implementation (MANYLODS_IMPLEMENTATION) lives wherever the includer
+   puts it.  Every function here is static inline (an unused one costs no
+   warning) and named metrics_...
+
+   THE REFERENCE (metrics_reference_atlas)
+     For every view v and every pixel (i, j) of its tile (layout->tiles[4v ..
+     4v+3] = x, y, w, h in the atlas), the ray of the pixel centre
+     mlod_view_pixel_ray(view, i + 0.5, j + 0.5) is cast into the scene by a
+     caller-supplied function (the nearest hit at distance t >= 0 along the
+     unit direction).  The atlas pixel (x + i, y + j) receives
+       NaN        when the pixel centre has no ray (outside a paraboloid's
+                  disc);
+       +INFINITY  on a miss;
+       the depth of the hit p, with the meaning of mlod_view_project:
+                  perspective, orthographic: (p - eye) . forward / |forward|;
+                  paraboloid, dual paraboloid: |p - eye|.
+     Perspective and orthographic views see only depths in [near_plane,
+     far_plane]: the ray starts where its depth is near_plane (the library's
+     orthographic rays start at depth 0, so a negative near_plane moves the
+     start backwards) and a hit deeper than far_plane counts as a miss.
+     Pixels outside every tile are NaN.  Depths are computed in double from
+     the hit point origin + t direction and stored as float.
+
+   THE METRICS (metrics_compare), with S the splatted depth (atlas->depth),
+   R the reference, D the scene diameter (world units):
+     reference_hits   pixels inside a tile with R finite;
+     holes            of those, pixels with S = +inf (nothing drawn);
+     hole_rate        = holes / reference_hits;
+     depth_pixels     pixels with both R and S finite;
+     error e          = |S - R| / D at each of those pixels;
+     depth_rms        = sqrt(sum e^2 / depth_pixels);
+     depth_p95        = the nearest-rank 95th percentile of e: sorted
+                        ascending e_1 <= ... <= e_n, e_k with k = ceil(0.95 n)
+                        (exact, no interpolation);
+     shadow test      for every view and every receiver point q (3 floats)
+                      that mlod_view_project puts inside the view, at pixel
+                      (floor(px), floor(py)) inside the tile, where R is not
+                      NaN: with z the receiver's depth from mlod_view_project
+                      and b = bias * D,
+                          lit_X = !(z > X + b)       for X = S and X = R
+                      (an empty pixel, +inf, is lit);
+     shadow_tests     the number of such (view, receiver) pairs;
+     shadow_differences  pairs with lit_S != lit_R;
+     shadow_disagreement = shadow_differences / shadow_tests.
+     A rate whose denominator is 0 is 0.  Pixels where R is finite but S is
+     not are holes; pixels where S is finite but R is +inf (a splat spilling
+     past a silhouette) enter none of the sums.  bias is a fraction of the
+     scene diameter: the benchmark uses 0.01.  A bias smaller than the depth
+     change across one pixel (about footprint / tan(grazing angle)) lets
+     both maps shadow their own receivers at random (acne), and the
+     disagreement then measures that noise (with 32x32 tiles and bias 0.01,
+     tests/test_splat.c sees 10-30% for any splat).  overall sums every view;
+     per_view (NULL, or atlas->view_count entries) gives each view's own.
+     If the scratch for the percentile cannot be allocated, depth_p95 is NaN.
+     Cost: one pass over the tiles, a sort of the errors, and one
+     mlod_view_project per view and receiver.
+*/
+#ifndef MANYLODS_BENCH_METRICS_H
+#define MANYLODS_BENCH_METRICS_H
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../manylods.h"
+
+/* Nearest hit of the ray origin + t direction (unit direction), t >= 0:
+   returns 1 and writes t, or 0 on a miss. */
+typedef int metrics_cast_fn(void *user, const float origin[3], const float direction[3], float *t);
+
+typedef struct metrics {
+    double hole_rate, depth_rms, depth_p95, shadow_disagreement;
+    uint64_t reference_hits, holes, depth_pixels, shadow_tests, shadow_differences;
+} metrics;
+
+/* The view's unit forward in double (zero vector for a zero forward). */
+static inline void metrics_unit_forward(const mlod_view *view, double w[3])
+{
+    double len = sqrt((double)view->forward[0] * view->forward[0] + (double)view->forward[1] * view->forward[1] +
+                      (double)view->forward[2] * view->forward[2]);
+    int k;
+    for (k = 0; k < 3; k++) w[k] = len > 0.0 ? view->forward[k] / len : 0.0;
+}
+
+/* The reference depth of one pixel centre (see the header comment). */
+static inline float metrics_reference_pixel(const mlod_view *view, float x, float y, metrics_cast_fn *cast, void *user)
+{
+    float origin[3], direction[3], t;
+    double o[3], d[3], w[3], rel[3], depth, along, start = 0.0;
+    int k, planar = view->kind == MLOD_VIEW_PERSPECTIVE || view->kind == MLOD_VIEW_ORTHOGRAPHIC;
+    if (!mlod_view_pixel_ray(view, x, y, origin, direction)) return (float)NAN;
+    metrics_unit_forward(view, w);
+    for (k = 0; k < 3; k++) {
+        o[k] = origin[k];
+        d[k] = direction[k];
+        rel[k] = o[k] - view->position[k];
+    }
+    along = d[0] * w[0] + d[1] * w[1] + d[2] * w[2];
+    if (planar && along > 0.0) {
+        /* move the start to the near plane */
+        start = (view->near_plane - (rel[0] * w[0] + rel[1] * w[1] + rel[2] * w[2])) / along;
+        for (k = 0; k < 3; k++) origin[k] = (float)(o[k] + start * d[k]);
+        for (k = 0; k < 3; k++) o[k] = origin[k];
+        start = 0.0;
+    }
+    if (!cast(user, origin, direction, &t)) return (float)INFINITY;
+    for (k = 0; k < 3; k++) rel[k] = o[k] + (start + (double)t) * d[k] - view->position[k];
+    if (planar) {
+        depth = rel[0] * w[0] + rel[1] * w[1] + rel[2] * w[2];
+        if (depth > (double)view->far_plane) return (float)INFINITY;
+    } else {
+        depth = sqrt(rel[0] * rel[0] + rel[1] * rel[1] + rel[2] * rel[2]);
+    }
+    return (float)depth;
+}
+
+/* Fill out[y * layout->width + x] (layout->width * layout->height floats)
+   with the reference depth of every pixel of every view's tile; views are
+   layout->view_count views, those the atlas was created for.  Cost: one cast
+   per pixel. */
+static inline void metrics_reference_atlas(const mlod_atlas *layout, const mlod_view *views, metrics_cast_fn *cast, void *user,
+                                    float *out)
+{
+    size_t n = (size_t)layout->width * layout->height, p;
+    uint32_t v, i, j;
+    for (p = 0; p < n; p++) out[p] = (float)NAN;
+    for (v = 0; v < layout->view_count; v++) {
+        const uint32_t *tile = layout->tiles + 4 * (size_t)v;
+        for (j = 0; j < tile[3]; j++)
+            for (i = 0; i < tile[2]; i++)
+                out[(size_t)(tile[1] + j) * layout->width + tile[0] + i] =
+                    metrics_reference_pixel(views + v, (float)i + 0.5f, (float)j + 0.5f, cast, user);
+    }
+}
+
+static inline int metrics_compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Nearest-rank 95th percentile of e[0 .. n), sorting it in place. */
+static inline double metrics_percentile95(double *e, uint64_t n)
+{
+    uint64_t k;
+    if (n == 0) return 0.0;
+    qsort(e, (size_t)n, sizeof(double), metrics_compare_double);
+    k = (95 * n + 99) / 100; /* ceil(0.95 n) >= 1 */
+    return e[k - 1];
+}
+
+/* Rates of m from its counts and the sum of squared errors. */
+static inline void metrics_finish(metrics *m, double squared_sum)
+{
+    m->hole_rate = m->reference_hits ? (double)m->holes / (double)m->reference_hits : 0.0;
+    m->depth_rms = m->depth_pixels ? sqrt(squared_sum / (double)m->depth_pixels) : 0.0;
+    m->shadow_disagreement = m->shadow_tests ? (double)m->shadow_differences / (double)m->shadow_tests : 0.0;
+}
+
+/* Compare a splatted atlas with a reference (same layout; see the header
+   comment for every formula).  receivers: receiver_count points, 3 floats
+   each (may be NULL when receiver_count is 0).  per_view: NULL or
+   splat->view_count entries. */
+static inline void metrics_compare(const mlod_atlas *splat, const float *reference, const mlod_view *views,
+                            double scene_diameter, const float *receivers, uint32_t receiver_count, double bias,
+                            metrics *overall, metrics *per_view)
+{
+    size_t capacity = 0, used = 0;
+    double *errors, total_squared = 0.0, bias_world = bias * scene_diameter;
+    uint32_t v, i, j, r;
+    for (v = 0; v < splat->view_count; v++) capacity += (size_t)splat->tiles[4 * v + 2] * splat->tiles[4 * v + 3];
+    errors = (double *)malloc(sizeof(double) * (capacity ? capacity : 1));
+    memset(overall, 0, sizeof *overall);
+    for (v = 0; v < splat->view_count; v++) {
+        const uint32_t *tile = splat->tiles + 4 * (size_t)v;
+        metrics m;
+        size_t first = used;
+        double squared = 0.0;
+        memset(&m, 0, sizeof m);
+        for (j = 0; j < tile[3]; j++)
+            for (i = 0; i < tile[2]; i++) {
+                size_t p = (size_t)(tile[1] + j) * splat->width + tile[0] + i;
+                float R = reference[p], S = splat->depth[p];
+                if (!isfinite(R)) continue;
+                m.reference_hits++;
+                if (S == (float)INFINITY) {
+                    m.holes++;
+                } else if (isfinite(S)) {
+                    double e = fabs((double)S - (double)R) / scene_diameter;
+                    m.depth_pixels++;
+                    squared += e * e;
+                    if (errors) errors[used++] = e;
+                }
+            }
+        for (r = 0; r < receiver_count; r++) {
+            float pixel[2], z;
+            double px, py;
+            size_t p;
+            float R, S;
+            int lit_s, lit_r;
+            if (!mlod_view_project(views + v, receivers + 3 * (size_t)r, pixel, &z)) continue;
+            px = floor((double)pixel[0]);
+            py = floor((double)pixel[1]);
+            if (!(px >= 0.0 && px < (double)tile[2] && py >= 0.0 && py < (double)tile[3])) continue;
+            p = (size_t)(tile[1] + (uint32_t)py) * splat->width + tile[0] + (uint32_t)px;
+            R = reference[p];
+            S = splat->depth[p];
+            if (isnan(R)) continue;
+            lit_s = !((double)z > (double)S + bias_world);
+            lit_r = !((double)z > (double)R + bias_world);
+            m.shadow_tests++;
+            m.shadow_differences += lit_s != lit_r;
+        }
+        metrics_finish(&m, squared);
+        if (per_view) {
+            per_view[v] = m;
+            per_view[v].depth_p95 = errors ? metrics_percentile95(errors + first, used - first) : (double)NAN;
+        }
+        overall->reference_hits += m.reference_hits;
+        overall->holes += m.holes;
+        overall->depth_pixels += m.depth_pixels;
+        overall->shadow_tests += m.shadow_tests;
+        overall->shadow_differences += m.shadow_differences;
+        total_squared += squared;
+    }
+    metrics_finish(overall, total_squared);
+    overall->depth_p95 = errors ? metrics_percentile95(errors, used) : (double)NAN;
+    free(errors);
+}
+
+#endif /* MANYLODS_BENCH_METRICS_H */

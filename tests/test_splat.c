@@ -1,0 +1,2427 @@
+/* tests/test_splat.c - projection, splatting, ISM, pull-push, the accuracy
+   metrics and the suggested sample count, against independent references.
+
+   - mlod_view_project / mlod_view_pixel_ray against this file's own
+     projections, written from the header's documentation (pinhole,
+     stereographic paraboloid, dual paraboloid with the back half mirrored,
+     orthographic box), and against each other (the ray of a projected point
+     passes through it, at the documented depth);
+   - a node splatted alone covers its exact image (ray-sphere tests at the
+     pixel centres, ~2000 projected sphere points), stays within its
+     documented disc, holds its centre's depth; whole atlases against a
+     reference rasteriser of the documented discs (pixel-centre rule, the
+     one-pixel rule, nearest depth, first drawn wins ties), culling, clearing;
+   - identical atlases for any parallel hook and thread count; ISM draws the
+     same subset every call and another subset for another seed;
+   - pull-push keeps drawn pixels, fills every tile that has anything, stays
+     within the drawn values, leaves empty tiles empty;
+   - bench/metrics.h on constructed atlases with known answers;
+   - end to end on small scenes against the brute-force ray caster
+     (tests/raycast.h): hole rate and depth error bounds at epsilon = 1, and
+     the cut against ISM with as many points per view;
+   - mlod_suggest_sample_count against the criterion of leaf-sized spheres;
+   - errors: NULLs, mismatches, overflow, failing allocators. */
+#define MANYLODS_IMPLEMENTATION
+#define MANYLODS_PTHREADS
+#include "../manylods.h"
+#include "testutil.h"
+#include "raycast.h"
+#include "../bench/metrics.h"
+
+/* ================================================== independent views */
+
+/* A view's frame and scales from the header's documentation: w = forward /
+   |forward|, u = right = forward x up (unit), v = u x w. */
+typedef struct frame {
+    mlod_view_kind kind;
+    double e[3], u[3], v[3], w[3];
+    double W, H;
+    double f;            /* perspective: (H/2) / tan(fov_y / 2) */
+    double half_w;       /* paraboloid: the width of one disc (W, or W/2 for dual) */
+    double disc_scale;   /* pixels per unit of the disc radius (the larger scale) */
+    double sx, sy;       /* orthographic: pixels per world unit */
+    double near_plane, far_plane, hw, hh;
+} frame;
+
+static void frame_of(const mlod_view *view, frame *F)
+{
+    double f[3], up[3];
+    int k;
+    memset(F, 0, sizeof *F);
+    F->kind = view->kind;
+    for (k = 0; k < 3; k++) {
+        F->e[k] = view->position[k];
+        f[k] = view->forward[k];
+        up[k] = view->up[k];
+    }
+    tu_normalize3(f);
+    memcpy(F->w, f, sizeof f);
+    tu_cross3(F->u, f, up);
+    tu_normalize3(F->u);
+    tu_cross3(F->v, F->u, F->w);
+    tu_normalize3(F->v);
+    F->W = view->width;
+    F->H = view->height;
+    F->near_plane = view->near_plane;
+    F->far_plane = view->far_plane;
+    F->hw = view->half_width;
+    F->hh = view->half_height;
+    switch (view->kind) {
+    case MLOD_VIEW_PERSPECTIVE:
+        F->f = 0.5 * F->H / tan(0.5 * view->fov_y);
+        F->disc_scale = F->f;
+        break;
+    case MLOD_VIEW_PARABOLOID:
+        F->half_w = F->W;
+        F->disc_scale = 0.5 * (F->W > F->H ? F->W : F->H);
+        break;
+    case MLOD_VIEW_DUAL_PARABOLOID:
+        F->half_w = 0.5 * F->W;
+        F->disc_scale = 0.5 * (F->half_w > F->H ? F->half_w : F->H);
+        break;
+    case MLOD_VIEW_ORTHOGRAPHIC:
+        F->sx = F->W / (2.0 * F->hw);
+        F->sy = F->H / (2.0 * F->hh);
+        F->disc_scale = F->sx > F->sy ? F->sx : F->sy;
+        break;
+    }
+}
+
+static void sub3d(double *r, const double *a, const double *b)
+{
+    r[0] = a[0] - b[0];
+    r[1] = a[1] - b[1];
+    r[2] = a[2] - b[2];
+}
+
+/* Project a point.  Returns 0 where the projection is undefined, 1 where it
+   is defined but the point is outside the view, 2 inside.  *margin: the
+   distance (world units, or pixels for the tile sides) to the nearest
+   inside/outside boundary, so callers can skip points on a boundary. */
+static int my_project(const frame *F, const double *p, double *px, double *py, double *depth, double *margin)
+{
+    double x[3], a, b, c, d, m = HUGE_VAL;
+    int inside = 1;
+    sub3d(x, p, F->e);
+    a = tu_dot3(x, F->u);
+    b = tu_dot3(x, F->v);
+    c = tu_dot3(x, F->w);
+    d = tu_norm3(x);
+    switch (F->kind) {
+    case MLOD_VIEW_PERSPECTIVE:
+        if (!(c > 0.0)) return 0;
+        *px = 0.5 * F->W + F->f * a / c;
+        *py = 0.5 * F->H - F->f * b / c;
+        *depth = c;
+        inside = c >= F->near_plane && c <= F->far_plane && fabs(*px - 0.5 * F->W) <= 0.5 * F->W &&
+                 fabs(*py - 0.5 * F->H) <= 0.5 * F->H;
+        m = fmin(fabs(c - F->near_plane), fabs(c - F->far_plane));
+        m = fmin(m, fabs(fabs(*px - 0.5 * F->W) - 0.5 * F->W) * c / F->f);
+        m = fmin(m, fabs(fabs(*py - 0.5 * F->H) - 0.5 * F->H) * c / F->f);
+        break;
+    case MLOD_VIEW_PARABOLOID:
+        if (!(d + c > 0.0)) return 0;
+        *px = 0.5 * F->W * (1.0 + a / (d + c));
+        *py = 0.5 * F->H * (1.0 - b / (d + c));
+        *depth = d;
+        inside = c >= 0.0;
+        m = fabs(c);
+        break;
+    case MLOD_VIEW_DUAL_PARABOLOID:
+        if (c >= 0.0) {
+            if (!(d + c > 0.0)) return 0;
+            *px = 0.5 * F->half_w * (1.0 + a / (d + c));
+            *py = 0.5 * F->H * (1.0 - b / (d + c));
+        } else {
+            if (!(d - c > 0.0)) return 0;
+            *px = F->half_w + 0.5 * F->half_w * (1.0 - a / (d - c));
+            *py = 0.5 * F->H * (1.0 - b / (d - c));
+        }
+        *depth = d;
+        m = fabs(c); /* the half changes there */
+        break;
+    case MLOD_VIEW_ORTHOGRAPHIC:
+        *px = 0.5 * F->W + F->sx * a;
+        *py = 0.5 * F->H - F->sy * b;
+        *depth = c;
+        inside = c >= F->near_plane && c <= F->far_plane && fabs(a) <= F->hw && fabs(b) <= F->hh;
+        m = fmin(fmin(fabs(c - F->near_plane), fabs(c - F->far_plane)), fmin(fabs(fabs(a) - F->hw), fabs(fabs(b) - F->hh)));
+        break;
+    }
+    if (margin) *margin = m;
+    return inside ? 2 : 1;
+}
+
+/* The ray through tile position (x, y): origin and unit direction.
+   Perspective and paraboloids start at the eye; orthographic rays start on
+   the plane of depth 0.  Returns 0 outside the tile or a paraboloid's disc. */
+static int my_ray(const frame *F, double x, double y, double *o, double *dir)
+{
+    double a, b, q, s = 1.0, local = x;
+    int k;
+    if (!(x >= 0.0 && x < F->W && y >= 0.0 && y < F->H)) return 0;
+    memcpy(o, F->e, 3 * sizeof(double));
+    switch (F->kind) {
+    case MLOD_VIEW_PERSPECTIVE:
+        a = (x - 0.5 * F->W) / F->f;
+        b = (0.5 * F->H - y) / F->f;
+        for (k = 0; k < 3; k++) dir[k] = F->w[k] + a * F->u[k] + b * F->v[k];
+        break;
+    case MLOD_VIEW_ORTHOGRAPHIC:
+        a = (x - 0.5 * F->W) / F->sx;
+        b = (0.5 * F->H - y) / F->sy;
+        for (k = 0; k < 3; k++) {
+            o[k] += a * F->u[k] + b * F->v[k];
+            dir[k] = F->w[k];
+        }
+        break;
+    default:
+        if (F->kind == MLOD_VIEW_DUAL_PARABOLOID && x >= F->half_w) {
+            local = x - F->half_w;
+            s = -1.0; /* the back half: u and w mirrored */
+        }
+        a = 2.0 * local / F->half_w - 1.0;
+        b = 1.0 - 2.0 * y / F->H;
+        q = a * a + b * b;
+        if (q > 1.0) return 0;
+        /* inverse stereographic: (a, b) -> (2a, 2b, 1 - q) / (1 + q) */
+        for (k = 0; k < 3; k++) dir[k] = s * 2.0 * a * F->u[k] + 2.0 * b * F->v[k] + s * (1.0 - q) * F->w[k];
+        break;
+    }
+    tu_normalize3(dir);
+    return 1;
+}
+
+/* Does the ray (or, orthographic, the whole line) pass within r of c? */
+static int ray_hits_sphere(const frame *F, const double *o, const double *dir, const double *c, double r)
+{
+    double oc[3], t, d2;
+    sub3d(oc, c, o);
+    t = tu_dot3(oc, dir);
+    if (F->kind != MLOD_VIEW_ORTHOGRAPHIC && t < 0.0) return tu_dot3(oc, oc) < r * r;
+    d2 = tu_dot3(oc, oc) - t * t;
+    return d2 < r * r;
+}
+
+/* The documented disc of a sphere in one projection (half: dual paraboloid
+   0 front, 1 back): centre, radius (pixels), depth of the sphere centre.
+   Built from the angles: the image spans radially from t - b to t + b off
+   the axis (b = asin(r/d)); its centre is the middle of that span, its
+   diameter the documented c.  Returns 0 when the image is unbounded. */
+typedef struct disc {
+    double x, y, radius, depth, span; /* span: the diameter from the angles, for the doc's own consistency */
+} disc;
+
+static int my_disc(const frame *F, const double *c, double r, int half, disc *out)
+{
+    double x[3], d, a, b, z, t, beta, rho_c, dx = 0.0, dy = 0.0, lat;
+    sub3d(x, c, F->e);
+    a = tu_dot3(x, F->u);
+    b = tu_dot3(x, F->v);
+    z = tu_dot3(x, F->w);
+    if (F->kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        out->x = 0.5 * F->W + F->sx * a;
+        out->y = 0.5 * F->H - F->sy * b;
+        out->radius = r * F->disc_scale;
+        out->span = 2.0 * out->radius;
+        out->depth = z;
+        return 1;
+    }
+    d = tu_norm3(x);
+    if (!(d > r)) return 0;
+    if (half) {
+        a = -a;
+        z = -z;
+    }
+    lat = sqrt(a * a + b * b);
+    if (lat > 0.0) {
+        dx = a / lat;
+        dy = b / lat;
+    }
+    t = atan2(lat, z);
+    beta = asin(r / d);
+    if (F->kind == MLOD_VIEW_PERSPECTIVE) {
+        if (!(z > r)) return 0;
+        rho_c = 0.5 * (tan(t + beta) + tan(t - beta));
+        out->x = 0.5 * F->W + F->f * rho_c * dx;
+        out->y = 0.5 * F->H - F->f * rho_c * dy;
+        out->radius = 0.5 * F->f * 2.0 * r * sqrt(d * d - r * r) / (z * z - r * r);
+        out->span = F->f * (tan(t + beta) - tan(t - beta));
+        out->depth = z;
+    } else {
+        double den = z + sqrt(d * d - r * r);
+        if (!(t + beta < TU_PI) || !(den > 0.0)) return 0;
+        rho_c = 0.5 * (tan(0.5 * (t + beta)) + tan(0.5 * (t - beta)));
+        out->x = half * F->half_w + 0.5 * F->half_w * (1.0 + rho_c * dx);
+        out->y = 0.5 * F->H * (1.0 - rho_c * dy);
+        out->radius = 0.5 * F->disc_scale * 2.0 * r / den;
+        out->span = F->disc_scale * (tan(0.5 * (t + beta)) - tan(0.5 * (t - beta)));
+        out->depth = d;
+    }
+    return 1;
+}
+
+/* Does a dual paraboloid's half (0 front: x.w >= 0, 1 back) reach the sphere? */
+static int reaches_half(const frame *F, const double *c, double r, int half)
+{
+    double x[3], z;
+    sub3d(x, c, F->e);
+    z = tu_dot3(x, F->w);
+    return half ? -z + r >= 0.0 : z + r >= 0.0;
+}
+
+/* ============================================== reference rasteriser */
+
+/* One view's expected tile: depth (+inf empty), the node that set it (-1
+   none), and pixels whose outcome rounding may decide (skipped). */
+typedef struct expect {
+    uint32_t W, H;
+    double *depth;
+    int64_t *node;
+    uint8_t *unsure;
+} expect;
+
+static void expect_init(expect *x, uint32_t W, uint32_t H)
+{
+    size_t n = (size_t)W * H, i;
+    x->W = W;
+    x->H = H;
+    x->depth = (double *)malloc(sizeof(double) * n);
+    x->node = (int64_t *)malloc(sizeof(int64_t) * n);
+    x->unsure = (uint8_t *)calloc(n, 1);
+    for (i = 0; i < n; i++) {
+        x->depth[i] = HUGE_VAL;
+        x->node[i] = -1;
+    }
+}
+
+static void expect_free(expect *x)
+{
+    free(x->depth);
+    free(x->node);
+    free(x->unsure);
+}
+
+static void expect_put(expect *x, uint32_t col, uint32_t row, double depth, int64_t node)
+{
+    size_t at = (size_t)row * x->W + col;
+    double fd = (float)depth;
+    if (x->node[at] >= 0 && fabs(fd - x->depth[at]) <= 4e-7 * fabs(x->depth[at])) x->unsure[at] |= 2; /* a near tie */
+    if (x->node[at] < 0 || fd < x->depth[at]) { /* nearest wins; equal depths keep the first */
+        x->depth[at] = fd;
+        x->node[at] = node;
+    }
+}
+
+/* Draw a disc by the documented rule: every pixel whose centre lies in the
+   disc, clipped to columns [c0, c1); a disc covering no pixel centre sets
+   the pixel holding its centre. */
+static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, uint32_t c1)
+{
+    double tol = 1e-7 * (1.0 + dc->radius), lo_x, hi_x, lo_y, hi_y;
+    int64_t i, j, i0, i1, j0, j1;
+    int any = 0, maybe = 0;
+    if (!(dc->radius < 1e6)) return;
+    lo_x = floor(dc->x - dc->radius - 1.0);
+    hi_x = ceil(dc->x + dc->radius + 1.0);
+    lo_y = floor(dc->y - dc->radius - 1.0);
+    hi_y = ceil(dc->y + dc->radius + 1.0);
+    i0 = lo_x < (double)c0 ? c0 : (int64_t)lo_x;
+    i1 = hi_x > (double)c1 ? c1 : (int64_t)hi_x;
+    j0 = lo_y < 0.0 ? 0 : (int64_t)lo_y;
+    j1 = hi_y > (double)x->H ? x->H : (int64_t)hi_y;
+    for (j = j0; j < j1; j++)
+        for (i = i0; i < i1; i++) {
+            double ex = i + 0.5 - dc->x, ey = j + 0.5 - dc->y, dist = sqrt(ex * ex + ey * ey);
+            if (dist < dc->radius - tol) {
+                any = 1;
+                expect_put(x, (uint32_t)i, (uint32_t)j, dc->depth, node);
+            } else if (dist <= dc->radius + tol) {
+                maybe = 1;
+                x->unsure[(size_t)j * x->W + i] |= 1;
+            }
+        }
+    if (!any && dc->x >= c0 && dc->x < c1 && dc->y >= 0.0 && dc->y < x->H) {
+        uint32_t ci = (uint32_t)floor(dc->x), cj = (uint32_t)floor(dc->y);
+        double fx = dc->x - floor(dc->x), fy = dc->y - floor(dc->y);
+        if (maybe || fx < 1e-9 || fx > 1 - 1e-9 || fy < 1e-9 || fy > 1 - 1e-9)
+            x->unsure[(size_t)cj * x->W + ci] |= 1;
+        else
+            expect_put(x, ci, cj, dc->depth, node);
+    }
+}
+
+/* Draw one node (sphere) the documented way: its disc in the view, or in
+   each dual paraboloid half its sphere reaches; unbounded images not drawn. */
+static void expect_node(expect *x, const frame *F, const float *sphere, int64_t node)
+{
+    double c[3] = {sphere[0], sphere[1], sphere[2]}, r = sphere[3];
+    disc dc;
+    int half;
+    if (F->kind != MLOD_VIEW_DUAL_PARABOLOID) {
+        if (my_disc(F, c, r, 0, &dc)) expect_disc(x, &dc, node, 0, x->W);
+        return;
+    }
+    for (half = 0; half < 2; half++) {
+        uint32_t hw = x->W / 2;
+        if (!reaches_half(F, c, r, half)) continue;
+        if (my_disc(F, c, r, half, &dc)) expect_disc(x, &dc, node, half ? hw : 0, half ? x->W : hw);
+    }
+}
+
+/* The expected tile of one view of a cut (the cut's own statuses decide
+   what is drawn: the cut is tested elsewhere). */
+static void expect_cut_view(expect *x, const mlod_tree *tree, const mlod_view *view, const mlod_cut_view *cv)
+{
+    frame F;
+    uint32_t i;
+    frame_of(view, &F);
+    for (i = 0; i < cv->count; i++)
+        if (cv->status[i] != MLOD_STATUS_CULLED) expect_node(x, &F, tree->spheres + 4 * (size_t)cv->nodes[i], cv->nodes[i]);
+}
+
+/* Differences between an atlas tile and the expectation. */
+typedef struct raster_diff {
+    uint64_t compared, depth_bad, channel_bad, unsure, outside;
+    char first[240];
+} raster_diff;
+
+static void compare_tile(const mlod_atlas *atlas, uint32_t view, const expect *x, const mlod_tree *tree,
+                         raster_diff *rd)
+{
+    const uint32_t *tile = atlas->tiles + 4 * (size_t)view;
+    uint32_t i, j;
+    for (j = 0; j < x->H; j++)
+        for (i = 0; i < x->W; i++) {
+            size_t e = (size_t)j * x->W + i, at = (size_t)(tile[1] + j) * atlas->width + tile[0] + i;
+            float got = atlas->depth[at];
+            int ok, k;
+            if (x->unsure[e] & 1) {
+                rd->unsure++;
+                continue;
+            }
+            rd->compared++;
+            if (x->node[e] < 0)
+                ok = got == (float)INFINITY;
+            else
+                ok = fabs((double)got - x->depth[e]) <= 1e-6 * fabs(x->depth[e]) + 1e-30;
+            if (!ok) {
+                if (!rd->depth_bad++)
+                    snprintf(rd->first, sizeof rd->first, "view %u pixel (%u, %u): depth %.9g, expected %.9g (node %lld)",
+                             view, i, j, got, x->depth[e], (long long)x->node[e]);
+                continue;
+            }
+            if (x->unsure[e] & 2) continue;
+            for (k = 0; k < 3; k++) {
+                float want_n = x->node[e] < 0 ? 0.0f : tree->cones ? tree->cones[4 * (size_t)x->node[e] + k] : 0.0f;
+                float want_c = x->node[e] < 0 ? 0.0f : tree->colors ? tree->colors[3 * (size_t)x->node[e] + k] : 0.0f;
+                if ((atlas->normal && atlas->normal[3 * at + k] != want_n) ||
+                    (atlas->color && atlas->color[3 * at + k] != want_c)) {
+                    if (!rd->channel_bad++ && !rd->depth_bad)
+                        snprintf(rd->first, sizeof rd->first, "view %u pixel (%u, %u): normal/colour not node %lld's",
+                                 view, i, j, (long long)x->node[e]);
+                    break;
+                }
+            }
+        }
+}
+
+/* Pixels of the atlas outside every tile that are not +inf. */
+static uint64_t outside_tiles_written(const mlod_atlas *atlas)
+{
+    uint64_t bad = 0;
+    uint32_t x, y, v;
+    uint8_t *in = (uint8_t *)calloc((size_t)atlas->width * atlas->height, 1);
+    for (v = 0; v < atlas->view_count; v++) {
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        for (y = 0; y < t[3]; y++)
+            for (x = 0; x < t[2]; x++) in[(size_t)(t[1] + y) * atlas->width + t[0] + x] = 1;
+    }
+    for (y = 0; y < atlas->height; y++)
+        for (x = 0; x < atlas->width; x++) {
+            size_t at = (size_t)y * atlas->width + x;
+            if (!in[at] && atlas->depth[at] != (float)INFINITY) bad++;
+        }
+    free(in);
+    return bad;
+}
+
+/* Add a whole atlas (every view of the cut) to a comparison with the reference. */
+static void add_atlas_comparison(raster_diff *rd, const mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
+                                 const mlod_view *views)
+{
+    uint32_t v;
+    for (v = 0; v < atlas->view_count; v++) {
+        expect x;
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        expect_init(&x, views[v].width, views[v].height);
+        expect_cut_view(&x, tree, views + v, &cv);
+        compare_tile(atlas, v, &x, tree, rd);
+        expect_free(&x);
+    }
+    rd->outside += outside_tiles_written(atlas);
+}
+
+static void report_raster(const raster_diff *rd, const char *what)
+{
+    CHECK(rd->depth_bad == 0, "%s: %llu of %llu pixels differ in depth from the reference raster of the documented discs; first: %s",
+          what, (unsigned long long)rd->depth_bad, (unsigned long long)rd->compared, rd->first);
+    CHECK(rd->channel_bad == 0, "%s: %llu pixels with a normal or colour not of the nearest node; first: %s", what,
+          (unsigned long long)rd->channel_bad, rd->first);
+    CHECK(rd->unsure * 50 <= rd->compared + 50, "%s: %llu pixels too close to call, %llu compared", what,
+          (unsigned long long)rd->unsure, (unsigned long long)rd->compared);
+    CHECK(rd->outside == 0, "%s: %llu pixels outside every tile were written", what, (unsigned long long)rd->outside);
+}
+
+/* ========================================================== utilities */
+
+static const char *kind_name(mlod_view_kind k)
+{
+    static const char *names[4] = {"perspective", "paraboloid", "dual paraboloid", "orthographic"};
+    return names[k];
+}
+
+/* A tree of n points with radii, normals (cones) and colours. */
+static mlod_tree *points_tree(uint32_t n, const float *pos, const float *radii, const float *normals, const float *colors)
+{
+    mlod_points pts;
+    mlod_build_desc d = tu_desc(0, 1, (normals ? MLOD_ATTR_CONE : 0u) | (colors ? MLOD_ATTR_COLOR : 0u));
+    mlod_tree *t = NULL;
+    mlod_error e;
+    memset(&pts, 0, sizeof pts);
+    pts.positions = pos;
+    pts.count = n;
+    pts.radii = radii;
+    pts.normals = normals;
+    pts.colors = colors;
+    if (mlod_build_points(&pts, &d, &t, &e) != MLOD_OK) {
+        fprintf(stderr, "points build failed: %s\n", e.message);
+        return NULL;
+    }
+    return t;
+}
+
+static mlod_cut_params cut_params(float eps)
+{
+    mlod_cut_params p;
+    memset(&p, 0, sizeof p);
+    p.mode = MLOD_CUT_BASIC;
+    p.epsilon = eps;
+    return p;
+}
+
+static mlod_atlas *make_atlas(const mlod_view *views, uint32_t count, uint32_t channels)
+{
+    mlod_atlas_desc d;
+    mlod_atlas *a = NULL;
+    d.columns = 0;
+    d.channels = channels;
+    if (mlod_atlas_create(views, count, &d, NULL, &a, NULL) != MLOD_OK) return NULL;
+    return a;
+}
+
+/* Points spread evenly on a sphere (Fibonacci lattice). */
+static void sphere_point(const double *c, double r, uint32_t i, uint32_t n, double *p)
+{
+    double z = 1.0 - (2.0 * i + 1.0) / n, s = sqrt(1.0 - z * z), phi = i * 2.39996322972865332;
+    p[0] = c[0] + r * s * cos(phi);
+    p[1] = c[1] + r * s * sin(phi);
+    p[2] = c[2] + r * z;
+}
+
+/* A view of kind looking from eye towards target with a random up. */
+static mlod_view look_view(uint64_t *rng, mlod_view_kind kind, const double *eye, const double *target, uint32_t W,
+                           uint32_t H)
+{
+    mlod_view v = tu_view(kind);
+    tu_look(rng, &v, eye, target);
+    v.width = W;
+    v.height = H;
+    v.fov_y = 1.1f;
+    v.near_plane = kind == MLOD_VIEW_ORTHOGRAPHIC ? -10.0f : 0.05f;
+    v.far_plane = 100.0f;
+    v.half_width = 2.5f;
+    v.half_height = 2.5f * (float)H / (float)W;
+    return v;
+}
+
+/* ========================================================= projection */
+
+typedef struct proj_tally {
+    uint64_t points, inside_bad, pixel_bad, unwritten, undefined_bad;
+    uint64_t rays, ray_ret_bad, ray_dir_bad, ray_origin_bad, roundtrip_bad, depth_bad, through_bad;
+    double worst_pixel, worst_roundtrip;
+} proj_tally;
+
+static void check_projection_view(const mlod_view *view, uint64_t *rng, double R, proj_tally *pt)
+{
+    frame F;
+    int i, k;
+    frame_of(view, &F);
+    /* points: everywhere around the eye, inside and outside */
+    for (i = 0; i < 400; i++) {
+        double dir[3], p[3], px, py, depth, margin;
+        float pf[3], pix[2] = {NAN, NAN}, dep = NAN;
+        int mine, got;
+        double dist = R * 0.01 * pow(1000.0, scene_rng_double(rng));
+        tu_random_unit(rng, dir);
+        if (i % 2 == 0) /* half of them towards the front */
+            for (k = 0; k < 3; k++) dir[k] += 1.5 * F.w[k];
+        tu_normalize3(dir);
+        for (k = 0; k < 3; k++) pf[k] = (float)(F.e[k] + dist * dir[k]);
+        for (k = 0; k < 3; k++) p[k] = pf[k];
+        mine = my_project(&F, p, &px, &py, &depth, &margin);
+        got = mlod_view_project(view, pf, pix, &dep);
+        if (margin < 1e-4 * (1.0 + dist)) continue; /* on a boundary: rounding decides */
+        pt->points++;
+        if ((got == 1) != (mine == 2)) pt->inside_bad++;
+        if (mine == 0) {
+            pt->undefined_bad += got != 0;
+            continue;
+        }
+        if (isnan(pix[0]) || isnan(pix[1]) || isnan(dep)) {
+            pt->unwritten++;
+            continue;
+        }
+        {
+            double ex = fabs(pix[0] - px), ey = fabs(pix[1] - py), tol = 1e-4 + 2e-6 * (fabs(px) + fabs(py));
+            double ed = fabs(dep - depth), told = 2e-6 * fabs(depth) + 1e-6 * dist;
+            if (ex > tol || ey > tol || ed > told) pt->pixel_bad++;
+            if ((ex + ey) / tol > pt->worst_pixel) pt->worst_pixel = (ex + ey) / tol;
+        }
+    }
+    /* rays: pixel positions inside and around the tile */
+    for (i = 0; i < 300; i++) {
+        float x = (float)((scene_rng_double(rng) * 1.2 - 0.1) * F.W), y = (float)((scene_rng_double(rng) * 1.2 - 0.1) * F.H);
+        float o[3], d[3];
+        double mo[3], md[3], len;
+        int mine = my_ray(&F, x, y, mo, md), got;
+        if (i % 3 == 0) { /* exactly on pixel centres too */
+            x = (float)(floor(scene_rng_double(rng) * F.W) + 0.5);
+            y = (float)(floor(scene_rng_double(rng) * F.H) + 0.5);
+            mine = my_ray(&F, x, y, mo, md);
+        }
+        if (F.kind == MLOD_VIEW_PARABOLOID || F.kind == MLOD_VIEW_DUAL_PARABOLOID) {
+            double local = F.kind == MLOD_VIEW_DUAL_PARABOLOID && x >= F.half_w ? x - F.half_w : x;
+            double a = 2.0 * local / F.half_w - 1.0, b = 1.0 - 2.0 * y / F.H;
+            if (fabs(a * a + b * b - 1.0) < 1e-5) continue; /* on the disc's rim */
+        }
+        got = mlod_view_pixel_ray(view, x, y, o, d);
+        pt->rays++;
+        if (got != mine) {
+            pt->ray_ret_bad++;
+            continue;
+        }
+        if (!mine) continue;
+        len = sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
+        if (fabs(len - 1.0) > 1e-6 || fabs(d[0] - md[0]) + fabs(d[1] - md[1]) + fabs(d[2] - md[2]) > 1e-5)
+            pt->ray_dir_bad++;
+        {
+            /* the origin: on the ray's line through my origin */
+            double oo[3], along, off2;
+            for (k = 0; k < 3; k++) oo[k] = o[k] - mo[k];
+            along = tu_dot3(oo, md);
+            off2 = tu_dot3(oo, oo) - along * along;
+            if (off2 > 1e-10 * (1.0 + R * R)) pt->ray_origin_bad++;
+        }
+        /* points along the ray project back to (x, y) at the documented depth */
+        for (k = 0; k < 3; k++) {
+            double t = R * (0.1 + 2.0 * k), q[3], want;
+            float qf[3], pix[2], dep;
+            int j;
+            for (j = 0; j < 3; j++) q[j] = (double)o[j] + t * (double)d[j];
+            for (j = 0; j < 3; j++) qf[j] = (float)q[j];
+            mlod_view_project(view, qf, pix, &dep); /* inside or not: the outputs are written */
+            if (F.kind == MLOD_VIEW_PERSPECTIVE || F.kind == MLOD_VIEW_ORTHOGRAPHIC) {
+                double oe[3], dd[3] = {d[0], d[1], d[2]}, of[3] = {o[0], o[1], o[2]};
+                sub3d(oe, of, F.e);
+                want = t * tu_dot3(dd, F.w) + tu_dot3(oe, F.w);
+            } else {
+                want = t;
+            }
+            {
+                double e = fabs(pix[0] - x) + fabs(pix[1] - y), tol = 2e-3 * (1.0 + F.disc_scale / 32.0);
+                if (e > tol) pt->roundtrip_bad++;
+                if (e / tol > pt->worst_roundtrip) pt->worst_roundtrip = e / tol;
+                if (fabs(dep - want) > 2e-6 * fabs(want) + 2e-6 * R) pt->depth_bad++;
+            }
+        }
+    }
+    /* the ray of a projected point passes through it */
+    for (i = 0; i < 200; i++) {
+        double p[3], px, py, depth, margin, dir[3], dist = R * (0.05 + 3.0 * scene_rng_double(rng));
+        float pf[3], pix[2], dep, o[3], d[3];
+        tu_random_unit(rng, dir);
+        for (k = 0; k < 3; k++) dir[k] += 1.2 * F.w[k];
+        tu_normalize3(dir);
+        for (k = 0; k < 3; k++) pf[k] = (float)(F.e[k] + dist * dir[k]);
+        for (k = 0; k < 3; k++) p[k] = pf[k];
+        if (my_project(&F, p, &px, &py, &depth, &margin) != 2 || margin < 1e-4 * (1.0 + dist)) continue;
+        if (!(px > 1e-3 && px < F.W - 1e-3 && py > 1e-3 && py < F.H - 1e-3)) continue;
+        if (mlod_view_project(view, pf, pix, &dep) != 1) continue; /* counted above */
+        if (!mlod_view_pixel_ray(view, pix[0], pix[1], o, d)) {
+            pt->through_bad++;
+            continue;
+        }
+        {
+            double oq[3], of[3] = {o[0], o[1], o[2]}, dd[3] = {d[0], d[1], d[2]}, t, off2, want;
+            tu_normalize3(dd); /* in double: a float unit vector's length error would dominate */
+            sub3d(oq, p, of);
+            t = tu_dot3(oq, dd);
+            off2 = tu_dot3(oq, oq) - t * t;
+            if (F.kind == MLOD_VIEW_PERSPECTIVE || F.kind == MLOD_VIEW_ORTHOGRAPHIC) {
+                double oe[3];
+                sub3d(oe, of, F.e);
+                want = t * tu_dot3(dd, F.w) + tu_dot3(oe, F.w);
+            } else {
+                want = t;
+            }
+            if (off2 > 1e-9 * (dist * dist + 1e-6) || t < 0.0 || fabs(want - dep) > 2e-6 * (fabs(dep) + dist)) {
+                pt->through_bad++;
+            }
+        }
+    }
+}
+
+static void test_projection(void)
+{
+    uint64_t rng = 12345;
+    double c[3] = {0, 0, 0};
+    int kind, n;
+    for (kind = 0; kind < 4; kind++) {
+        proj_tally pt;
+        char what[64];
+        memset(&pt, 0, sizeof pt);
+        for (n = 0; n < 24; n++) {
+            mlod_view v = tu_random_view(&rng, (mlod_view_kind)kind, c, 2.0);
+            if (kind == MLOD_VIEW_DUAL_PARABOLOID) v.width += v.width & 1; /* halves of whole pixels */
+            check_projection_view(&v, &rng, 2.0, &pt);
+        }
+        snprintf(what, sizeof what, "projection, %s", kind_name((mlod_view_kind)kind));
+        CHECK(pt.points > 5000 && pt.rays > 5000, "%s: too few cases (%llu points, %llu rays)", what,
+              (unsigned long long)pt.points, (unsigned long long)pt.rays);
+        CHECK(pt.inside_bad == 0, "%s: %llu of %llu points with an inside flag other than the documented one", what,
+              (unsigned long long)pt.inside_bad, (unsigned long long)pt.points);
+        CHECK(pt.undefined_bad == 0, "%s: %llu points without a projection reported inside", what,
+              (unsigned long long)pt.undefined_bad);
+        CHECK(pt.unwritten == 0, "%s: %llu points with a defined projection whose outputs were not written", what,
+              (unsigned long long)pt.unwritten);
+        CHECK(pt.pixel_bad == 0, "%s: %llu points land elsewhere than the documented projection (worst %.3g x tolerance)",
+              what, (unsigned long long)pt.pixel_bad, pt.worst_pixel);
+        CHECK(pt.ray_ret_bad == 0, "%s: %llu of %llu pixel positions with a ray where the docs say none, or none where they say one",
+              what, (unsigned long long)pt.ray_ret_bad, (unsigned long long)pt.rays);
+        CHECK(pt.ray_dir_bad == 0, "%s: %llu rays not unit or not in the documented direction", what,
+              (unsigned long long)pt.ray_dir_bad);
+        CHECK(pt.ray_origin_bad == 0, "%s: %llu ray origins off the documented ray", what,
+              (unsigned long long)pt.ray_origin_bad);
+        CHECK(pt.roundtrip_bad == 0, "%s: %llu points along a pixel's ray project elsewhere (worst %.3g x tolerance)", what,
+              (unsigned long long)pt.roundtrip_bad, pt.worst_roundtrip);
+        CHECK(pt.depth_bad == 0, "%s: %llu points along a ray whose projected depth is not the documented depth along the ray",
+              what, (unsigned long long)pt.depth_bad);
+        CHECK(pt.through_bad == 0, "%s: %llu projected points whose pixel's ray misses them or gives another depth", what,
+              (unsigned long long)pt.through_bad);
+    }
+}
+
+/* ====================================================== a node alone */
+
+typedef struct alone_tally {
+    uint64_t cases, drawn_cases, culled_cases, unbounded_cases;
+    uint64_t ray_pixels, ray_missed, sample_pixels, sample_pixels_all, sample_missed, sample_pixel_strict_missed;
+    uint64_t drawn_pixels, far_pixels, depth_bad, culled_drawn, crit_bad, span_bad, samples_outside_disc, loose_disc;
+    double worst_far, worst_crit;
+    raster_diff rd, rd_ism;
+} alone_tally;
+
+/* Splat one sphere alone and check its image. */
+static void check_alone(const mlod_view *view, const double *centre, double radius, alone_tally *at)
+{
+    float pos[3] = {(float)centre[0], (float)centre[1], (float)centre[2]}, rad = (float)radius, nrm[3] = {0, 0, 1},
+          col[3] = {0.25f, 0.5f, 0.75f};
+    mlod_tree *tree = points_tree(1, pos, &rad, nrm, col);
+    mlod_cut *cut = NULL;
+    mlod_atlas *atlas = make_atlas(view, 1, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR);
+    mlod_cut_params cp = cut_params(1.0f);
+    mlod_cut_view cv;
+    frame F;
+    double c[3], r, crit;
+    disc dc[2];
+    int has_disc[2] = {0, 0}, half, drawn;
+    uint32_t i, j, W = view->width, H = view->height, hw = W / 2;
+    uint8_t *mask;
+    if (!tree || !atlas || mlod_cut_create(1, NULL, &cut, NULL) != MLOD_OK || mlod_cut_update(cut, tree, view, &cp, NULL) != MLOD_OK ||
+        mlod_splat(atlas, tree, cut, view, NULL, NULL) != MLOD_OK) {
+        CHECK(0, "single node: set-up failed");
+        goto done;
+    }
+    frame_of(view, &F);
+    for (i = 0; i < 3; i++) c[i] = tree->spheres[i];
+    r = tree->spheres[3];
+    cv = mlod_cut_get(cut, 0);
+    at->cases++;
+    add_atlas_comparison(&at->rd, atlas, tree, cut, view);
+    /* ISM on a one-leaf tree draws that leaf, culled or not as the cut says */
+    if (mlod_splat_ism(atlas, tree, view, 3, 99, NULL, NULL) == MLOD_OK)
+        add_atlas_comparison(&at->rd_ism, atlas, tree, cut, view);
+    else
+        at->rd_ism.depth_bad++;
+    drawn = cv.count == 1 && cv.status[0] != MLOD_STATUS_CULLED;
+    if (F.kind == MLOD_VIEW_DUAL_PARABOLOID) {
+        for (half = 0; half < 2; half++) has_disc[half] = reaches_half(&F, c, r, half) && my_disc(&F, c, r, half, &dc[half]);
+    } else {
+        has_disc[0] = my_disc(&F, c, r, 0, &dc[0]);
+    }
+    mask = (uint8_t *)calloc((size_t)W * H, 1);
+    for (j = 0; j < H; j++)
+        for (i = 0; i < W; i++) mask[(size_t)j * W + i] = atlas->depth[(size_t)j * atlas->width + i] != (float)INFINITY;
+    if (!drawn) {
+        uint64_t any = 0;
+        at->culled_cases++;
+        for (i = 0; i < W * H; i++) any += mask[i];
+        at->culled_drawn += any != 0;
+        free(mask);
+        goto done;
+    }
+    if (!has_disc[0] && !has_disc[1]) { /* unbounded: not drawn */
+        uint64_t any = 0;
+        at->unbounded_cases++;
+        for (i = 0; i < W * H; i++) any += mask[i];
+        at->culled_drawn += any != 0;
+        free(mask);
+        goto done;
+    }
+    at->drawn_cases++;
+    /* the criterion is the documented disc's diameter, which the angles confirm */
+    crit = mlod_criterion(tree, 0, view);
+    {
+        double mine = 0.0;
+        for (half = 0; half < 2; half++)
+            if (has_disc[half] && 2.0 * dc[half].radius > mine) mine = 2.0 * dc[half].radius;
+        if (!(fabs(crit - mine) <= 1e-7 * mine + 1e-12)) at->crit_bad++;
+        if (fabs(crit - mine) / (mine + 1e-300) > at->worst_crit) at->worst_crit = fabs(crit - mine) / (mine + 1e-300);
+        for (half = 0; half < 2; half++)
+            if (has_disc[half] && fabs(dc[half].span - 2.0 * dc[half].radius) > 1e-9 * dc[half].span + 1e-12) at->span_bad++;
+    }
+    /* every pixel whose centre's ray meets the sphere is drawn */
+    for (j = 0; j < H; j++)
+        for (i = 0; i < W; i++) {
+            double o[3], d[3];
+            if (!my_ray(&F, i + 0.5, j + 0.5, o, d)) continue;
+            if (!ray_hits_sphere(&F, o, d, c, r * (1.0 - 1e-6))) continue;
+            at->ray_pixels++;
+            at->ray_missed += !mask[(size_t)j * W + i];
+        }
+    /* sample points of the sphere: the pixel holding each is drawn (or,
+       where the disc's edge passes between the point and its pixel centre,
+       a neighbour is); each lies inside the documented disc */
+    {
+        double maxr[2] = {0, 0};
+        int isotropic = F.kind == MLOD_VIEW_PERSPECTIVE || (F.kind == MLOD_VIEW_PARABOLOID && F.W == F.H) ||
+                        (F.kind == MLOD_VIEW_ORTHOGRAPHIC && F.sx == F.sy);
+        for (i = 0; i < 2000; i++) {
+            double p[3], px, py, depth, margin, ex, ey;
+            int defined;
+            sphere_point(c, r, i, 2000, p);
+            defined = my_project(&F, p, &px, &py, &depth, &margin);
+            if (!defined) continue;
+            half = F.kind == MLOD_VIEW_DUAL_PARABOLOID && px >= F.half_w;
+            if (has_disc[half]) {
+                ex = px - dc[half].x;
+                ey = py - dc[half].y;
+                if (sqrt(ex * ex + ey * ey) > dc[half].radius * (1.0 + 1e-7) + 1e-7) at->samples_outside_disc++;
+                if (sqrt(ex * ex + ey * ey) > maxr[half]) maxr[half] = sqrt(ex * ex + ey * ey);
+            }
+            if (px >= 0.0 && px < W && py >= 0.0 && py < H) {
+                int64_t pi = (int64_t)floor(px), pj = (int64_t)floor(py), a, b, found = 0;
+                int64_t lo = half ? (int64_t)hw : 0, hi = F.kind == MLOD_VIEW_DUAL_PARABOLOID && !half ? (int64_t)hw : (int64_t)W;
+                at->sample_pixels_all++;
+                at->sample_pixel_strict_missed += !mask[(size_t)pj * W + pi];
+                /* a sample pixel on the tile's (or half's) border may hold a
+                   sliver of the disc that covers no pixel centre */
+                if (pi - 1 < lo || pi + 1 >= hi || pj - 1 < 0 || pj + 1 >= (int64_t)H) continue;
+                at->sample_pixels++;
+                for (b = pj - 1; b <= pj + 1; b++)
+                    for (a = pi - 1; a <= pi + 1; a++)
+                        if (mask[(size_t)b * W + a]) found = 1;
+                at->sample_missed += !found;
+            }
+        }
+        /* the disc is tight for isotropic projections: samples reach its rim */
+        for (half = 0; half < 2; half++)
+            if (has_disc[half] && isotropic && maxr[half] < 0.98 * dc[half].radius)
+                at->loose_disc++;
+    }
+    /* every drawn pixel lies within 1.5 px of the documented disc and holds
+       the depth of the sphere's centre */
+    for (j = 0; j < H; j++)
+        for (i = 0; i < W; i++) {
+            double ex, ey, dist, want;
+            float got = atlas->depth[(size_t)j * atlas->width + i];
+            if (!mask[(size_t)j * W + i]) continue;
+            at->drawn_pixels++;
+            half = F.kind == MLOD_VIEW_DUAL_PARABOLOID && i >= hw;
+            if (!has_disc[half]) {
+                at->far_pixels++;
+                continue;
+            }
+            ex = i + 0.5 - dc[half].x;
+            ey = j + 0.5 - dc[half].y;
+            dist = sqrt(ex * ex + ey * ey) - dc[half].radius;
+            if (dist > 1.5) at->far_pixels++;
+            if (dist > at->worst_far) at->worst_far = dist;
+            want = (float)dc[half].depth;
+            if (fabs(got - want) > 1e-6 * fabs(want)) at->depth_bad++;
+        }
+    free(mask);
+done:
+    mlod_atlas_destroy(atlas);
+    mlod_cut_destroy(cut);
+    mlod_tree_destroy(tree);
+}
+
+static void test_single_node(void)
+{
+    static const uint32_t sizes[3][2] = {{32, 32}, {40, 24}, {24, 40}};
+    uint64_t rng = 777;
+    int kind, s, n, k;
+    for (kind = 0; kind < 4; kind++) {
+        alone_tally at;
+        char what[80];
+        memset(&at, 0, sizeof at);
+        for (s = 0; s < 3; s++) {
+            double eye[3] = {0.1, 0.2, 0.3}, target[3];
+            mlod_view view;
+            frame F;
+            uint32_t W = sizes[s][0] * (kind == MLOD_VIEW_DUAL_PARABOLOID ? 2u : 1u), H = sizes[s][1];
+            tu_random_unit(&rng, target);
+            view = look_view(&rng, (mlod_view_kind)kind, eye, target, W, H);
+            frame_of(&view, &F);
+            for (n = 0; n < 40; n++) {
+                double dir[3], centre[3], dist = 1.0 + 5.0 * scene_rng_double(&rng), px_size = 0.15 * pow(100.0, scene_rng_double(&rng)), r;
+                if (kind == MLOD_VIEW_PERSPECTIVE) { /* through a point in and around the tile */
+                    double x = (scene_rng_double(&rng) * 1.5 - 0.25) * W, y = (scene_rng_double(&rng) * 1.5 - 0.25) * H;
+                    for (k = 0; k < 3; k++)
+                        dir[k] = F.w[k] + (x - 0.5 * W) / F.f * F.u[k] + (0.5 * H - y) / F.f * F.v[k];
+                    tu_normalize3(dir);
+                } else {
+                    tu_random_unit(&rng, dir);
+                    if (kind == MLOD_VIEW_PARABOLOID && n % 2 == 0)
+                        for (k = 0; k < 3; k++) dir[k] += F.w[k];
+                    tu_normalize3(dir);
+                }
+                if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
+                    double a = (scene_rng_double(&rng) * 2.6 - 1.3) * F.hw, b = (scene_rng_double(&rng) * 2.6 - 1.3) * F.hh;
+                    for (k = 0; k < 3; k++) centre[k] = F.e[k] + a * F.u[k] + b * F.v[k] + (dist - 3.0) * F.w[k];
+                    r = px_size / (2.0 * F.disc_scale);
+                } else {
+                    for (k = 0; k < 3; k++) centre[k] = F.e[k] + dist * dir[k];
+                    r = px_size * dist / (2.0 * F.disc_scale);
+                    if (r > 0.6 * dist) r = 0.6 * dist;
+                }
+                check_alone(&view, centre, r, &at);
+            }
+        }
+        { /* images that are unbounded: nothing drawn */
+            double eye[3] = {0, 0, 0}, target[3] = {0.3, -0.2, -1.0}, centre[3];
+            mlod_view view = look_view(&rng, (mlod_view_kind)kind, eye, target, 32, 32);
+            frame F;
+            frame_of(&view, &F);
+            for (k = 0; k < 3; k++) centre[k] = 0.02 * F.u[k] - 0.01 * F.w[k]; /* the eye inside */
+            if (kind != MLOD_VIEW_ORTHOGRAPHIC) check_alone(&view, centre, 0.1, &at);
+            if (kind == MLOD_VIEW_PERSPECTIVE) { /* across the eye's plane, reaching into the frustum */
+                for (k = 0; k < 3; k++) centre[k] = 0.3 * F.w[k] + 0.5 * F.u[k];
+                check_alone(&view, centre, 0.45, &at);
+            }
+            if (kind == MLOD_VIEW_PARABOLOID) { /* reaching the point behind the eye, not wholly behind */
+                for (k = 0; k < 3; k++) centre[k] = 1.2 * (-0.7 * F.w[k] + 0.71414284 * F.u[k]);
+                check_alone(&view, centre, 1.0, &at);
+            }
+        }
+        snprintf(what, sizeof what, "a node alone, %s", kind_name((mlod_view_kind)kind));
+        if (getenv("MANYLODS_TEST_VERBOSE"))
+            printf("  %s: %llu cases (%llu drawn, %llu culled, %llu unbounded), %llu drawn pixels; a pixel holding a sample not drawn %llu of %llu\n",
+               what, (unsigned long long)at.cases, (unsigned long long)at.drawn_cases, (unsigned long long)at.culled_cases,
+               (unsigned long long)at.unbounded_cases, (unsigned long long)at.drawn_pixels,
+               (unsigned long long)at.sample_pixel_strict_missed, (unsigned long long)at.sample_pixels_all);
+        CHECK(at.drawn_cases >= 60 && at.ray_pixels > 500, "%s: too few drawn cases (%llu) or covered pixels (%llu)", what,
+              (unsigned long long)at.drawn_cases, (unsigned long long)at.ray_pixels);
+        CHECK(at.ray_missed == 0, "%s: %llu of %llu pixels whose centre's ray meets the sphere were not drawn", what,
+              (unsigned long long)at.ray_missed, (unsigned long long)at.ray_pixels);
+        CHECK(at.sample_missed == 0, "%s: %llu of %llu pixels holding a projected sphere point have no drawn pixel in their 3x3 neighbourhood",
+              what, (unsigned long long)at.sample_missed, (unsigned long long)at.sample_pixels);
+        CHECK(at.far_pixels == 0, "%s: %llu drawn pixel centres farther than 1.5 px from the documented disc (worst %.3g px)",
+              what, (unsigned long long)at.far_pixels, at.worst_far);
+        CHECK(at.depth_bad == 0, "%s: %llu drawn pixels without the depth of the sphere's centre", what,
+              (unsigned long long)at.depth_bad);
+        CHECK(at.culled_drawn == 0, "%s: %llu culled or unbounded nodes drew something", what,
+              (unsigned long long)at.culled_drawn);
+        CHECK(at.crit_bad == 0, "%s: %llu criteria differ from the documented disc's diameter (worst relative %.3g)", what,
+              (unsigned long long)at.crit_bad, at.worst_crit);
+        CHECK(at.span_bad == 0, "%s: %llu discs whose documented diameter formula disagrees with tan(t+b) - tan(t-b)", what,
+              (unsigned long long)at.span_bad);
+        CHECK(at.samples_outside_disc == 0, "%s: %llu projected sphere points outside the documented disc", what,
+              (unsigned long long)at.samples_outside_disc);
+        CHECK(at.loose_disc == 0, "%s: %llu discs larger than the image they should circumscribe", what,
+              (unsigned long long)at.loose_disc);
+        report_raster(&at.rd, what);
+        snprintf(what, sizeof what, "ISM of a one-leaf tree, %s", kind_name((mlod_view_kind)kind));
+        report_raster(&at.rd_ism, what);
+    }
+}
+
+
+/* ============================================ overlap, culling, clearing */
+
+/* Pixels whose centre lies inside disc a (by more than 1e-3 px), and inside
+   or outside disc b as asked. */
+static int strictly_in(const disc *d, uint32_t i, uint32_t j)
+{
+    double ex = i + 0.5 - d->x, ey = j + 0.5 - d->y;
+    return sqrt(ex * ex + ey * ey) < d->radius - 1e-3;
+}
+
+static int strictly_out(const disc *d, uint32_t i, uint32_t j)
+{
+    double ex = i + 0.5 - d->x, ey = j + 0.5 - d->y;
+    return sqrt(ex * ex + ey * ey) > d->radius + 1e-3;
+}
+
+static void test_overlap(void)
+{
+    static const float colors[6] = {1, 0, 0, 0, 0, 1};
+    static const float normals[6] = {0, 0, 1, 0, 0, 1};
+    uint64_t overlap = 0, overlap_bad = 0, single = 0, single_bad = 0, tie = 0, tie_bad = 0;
+    int config;
+    /* nearest depth wins, whichever node comes first */
+    for (config = 0; config < 2; config++) {
+        float pos[6] = {0, 0, -3, 0.15f, 0.05f, -4}, rad[2] = {0.4f, 0.5f};
+        mlod_view view = tu_view(MLOD_VIEW_PERSPECTIVE);
+        mlod_tree *tree;
+        mlod_cut *cut = NULL;
+        mlod_atlas *atlas;
+        mlod_cut_params cp = cut_params(1e-3f);
+        frame F;
+        disc d[2];
+        uint32_t i, j, n, near_leaf;
+        if (config == 1) pos[2] = -5; /* the first sphere now behind the second */
+        view.width = view.height = 32;
+        tree = points_tree(2, pos, rad, normals, colors);
+        atlas = make_atlas(&view, 1, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR);
+        if (!tree || !atlas || mlod_cut_create(1, NULL, &cut, NULL) != MLOD_OK ||
+            mlod_cut_update(cut, tree, &view, &cp, NULL) != MLOD_OK || mlod_splat(atlas, tree, cut, &view, NULL, NULL) != MLOD_OK) {
+            CHECK(0, "overlap: set-up failed");
+            return;
+        }
+        CHECK(mlod_cut_get(cut, 0).count == 2 && mlod_cut_get(cut, 0).culled == 0, "overlap: the cut should be both leaves, drawn");
+        frame_of(&view, &F);
+        for (n = 0; n < 2; n++) {
+            const float *s = tree->spheres + 4 * (size_t)(1 + n);
+            double c[3] = {s[0], s[1], s[2]};
+            my_disc(&F, c, s[3], 0, &d[n]);
+        }
+        near_leaf = d[0].depth < d[1].depth ? 0 : 1;
+        for (j = 0; j < 32; j++)
+            for (i = 0; i < 32; i++) {
+                size_t at = (size_t)j * atlas->width + i;
+                if (strictly_in(&d[0], i, j) && strictly_in(&d[1], i, j)) {
+                    const float *col = tree->colors + 3 * (size_t)(1 + near_leaf);
+                    overlap++;
+                    overlap_bad += atlas->depth[at] != (float)d[near_leaf].depth || atlas->color[3 * at] != col[0] ||
+                                   atlas->color[3 * at + 2] != col[2];
+                }
+                for (n = 0; n < 2; n++)
+                    if (strictly_in(&d[n], i, j) && strictly_out(&d[1 - n], i, j)) {
+                        single++;
+                        single_bad += atlas->depth[at] != (float)d[n].depth ||
+                                      atlas->color[3 * at + 2] != tree->colors[3 * (size_t)(1 + n) + 2];
+                    }
+            }
+        mlod_atlas_destroy(atlas);
+        mlod_cut_destroy(cut);
+        mlod_tree_destroy(tree);
+    }
+    CHECK(overlap > 20 && overlap_bad == 0, "overlapping discs: %llu of %llu shared pixels do not hold the nearer node",
+          (unsigned long long)overlap_bad, (unsigned long long)overlap);
+    CHECK(single > 20 && single_bad == 0, "overlapping discs: %llu of %llu pixels of one disc do not hold it",
+          (unsigned long long)single_bad, (unsigned long long)single);
+    /* equal depths: the node drawn first (first in the cut's list) stays */
+    {
+        float pos[6] = {-0.1f, 0, -2, 0.1f, 0.02f, -2}, rad[2] = {0.3f, 0.3f};
+        mlod_view view = tu_view(MLOD_VIEW_ORTHOGRAPHIC);
+        mlod_tree *tree = points_tree(2, pos, rad, normals, colors);
+        mlod_cut *cut = NULL;
+        mlod_atlas *atlas;
+        mlod_cut_params cp = cut_params(1e-3f);
+        mlod_cut_view cv;
+        frame F;
+        disc d[2];
+        uint32_t i, j, n;
+        view.width = view.height = 32;
+        view.half_width = view.half_height = 1.0f;
+        atlas = make_atlas(&view, 1, MLOD_ATLAS_COLOR);
+        if (!tree || !atlas || mlod_cut_create(1, NULL, &cut, NULL) != MLOD_OK ||
+            mlod_cut_update(cut, tree, &view, &cp, NULL) != MLOD_OK || mlod_splat(atlas, tree, cut, &view, NULL, NULL) != MLOD_OK) {
+            CHECK(0, "ties: set-up failed");
+            return;
+        }
+        cv = mlod_cut_get(cut, 0);
+        frame_of(&view, &F);
+        for (n = 0; n < 2; n++) {
+            const float *s = tree->spheres + 4 * (size_t)(1 + n);
+            double c[3] = {s[0], s[1], s[2]};
+            my_disc(&F, c, s[3], 0, &d[n]);
+        }
+        CHECK(cv.count == 2 && d[0].depth == d[1].depth, "ties: the set-up should give two leaves at one depth");
+        for (j = 0; j < 32; j++)
+            for (i = 0; i < 32; i++) {
+                size_t at = (size_t)j * atlas->width + i;
+                if (cv.count == 2 && strictly_in(&d[0], i, j) && strictly_in(&d[1], i, j)) {
+                    tie++;
+                    tie_bad += atlas->color[3 * at + 2] != tree->colors[3 * (size_t)cv.nodes[0] + 2];
+                }
+            }
+        CHECK(tie > 20 && tie_bad == 0, "equal depths: %llu of %llu shared pixels not of the node first in the cut",
+              (unsigned long long)tie_bad, (unsigned long long)tie);
+        mlod_atlas_destroy(atlas);
+        mlod_cut_destroy(cut);
+        mlod_tree_destroy(tree);
+    }
+}
+
+static void test_culling_and_clearing(void)
+{
+    /* a nearer sphere facing away hides the farther one unless back-face
+       culling removes it */
+    static const float pos[6] = {0, 0, -5, 0.05f, 0, -3}, rad[2] = {0.4f, 0.3f}, normals[6] = {0, 0, 1, 0, 0, -1},
+                       colors[6] = {1, 1, 0, 0, 1, 1};
+    mlod_tree *tree = points_tree(2, pos, rad, normals, colors);
+    mlod_view views[3];
+    mlod_cut *cut = NULL;
+    mlod_atlas *atlas;
+    mlod_cut_params cp = cut_params(1e-3f);
+    raster_diff rd;
+    uint32_t pass, i, j;
+    uint64_t centre_far = 0, centre_near = 0, still = 0, culled_seen = 0;
+    views[0] = tu_view(MLOD_VIEW_PERSPECTIVE);
+    views[0].width = views[0].height = 32;
+    views[1] = tu_view(MLOD_VIEW_PARABOLOID);
+    views[1].width = 20;
+    views[1].height = 12;
+    views[2] = tu_view(MLOD_VIEW_DUAL_PARABOLOID);
+    views[2].width = 16;
+    views[2].height = 40;
+    atlas = make_atlas(views, 3, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR);
+    if (!tree || !atlas || mlod_cut_create(3, NULL, &cut, NULL) != MLOD_OK) {
+        CHECK(0, "culling: set-up failed");
+        return;
+    }
+    memset(&rd, 0, sizeof rd);
+    for (pass = 0; pass < 6; pass++) {
+        uint32_t v, front;
+        int cull = pass % 2 == 1;
+        for (v = 0; v < 3; v++) views[v].flags = cull ? MLOD_VIEW_CULL_BACKFACES : 0u;
+        /* passes 2 and 3 turn the first view away from both spheres */
+        views[0].forward[2] = pass == 2 || pass == 3 ? 1.0f : -1.0f;
+        if (mlod_cut_update(cut, tree, views, &cp, NULL) != MLOD_OK || mlod_splat(atlas, tree, cut, views, NULL, NULL) != MLOD_OK) {
+            CHECK(0, "culling: splat failed");
+            break;
+        }
+        add_atlas_comparison(&rd, atlas, tree, cut, views);
+        for (v = 0; v < 3; v++) {
+            mlod_cut_view cv = mlod_cut_get(cut, v);
+            for (i = 0; i < cv.count; i++) culled_seen += cv.status[i] == MLOD_STATUS_CULLED;
+        }
+        front = views[0].forward[2] < 0.0f;
+        if (front) { /* the pixel at the centre of the first view */
+            float d = atlas->depth[(size_t)16 * atlas->width + 16];
+            centre_far += cull && d == 5.0f;
+            centre_near += !cull && d == 3.0f;
+        } else { /* turned away: the tile drawn before is empty again */
+            for (j = 0; j < 32; j++)
+                for (i = 0; i < 32; i++) {
+                    size_t at = (size_t)j * atlas->width + i;
+                    still += atlas->depth[at] != (float)INFINITY || atlas->normal[3 * at + 2] != 0.0f || atlas->color[3 * at] != 0.0f;
+                }
+        }
+        if (pass == 4) { /* filled holes, ISM with no points: everything cleared */
+            uint64_t left = 0;
+            size_t p;
+            mlod_atlas_fill_holes(atlas, NULL, NULL);
+            mlod_splat_ism(atlas, tree, views, 0, 1, NULL, NULL);
+            for (p = 0; p < (size_t)atlas->width * atlas->height; p++)
+                left += atlas->depth[p] != (float)INFINITY || atlas->color[3 * p + 1] != 0.0f;
+            CHECK(left == 0, "ISM with no points left %llu pixels drawn", (unsigned long long)left);
+        }
+    }
+    report_raster(&rd, "two spheres, culling on and off, a view turned away");
+    CHECK(culled_seen >= 2, "back-face culling should have culled the sphere facing away (%llu culled entries)",
+          (unsigned long long)culled_seen);
+    CHECK(centre_far == 2 && centre_near == 2,
+          "the centre pixel should show the far sphere with culling (%llu of 2) and the near one without (%llu of 2)",
+          (unsigned long long)centre_far, (unsigned long long)centre_near);
+    CHECK(still == 0, "%llu pixels of a tile that no longer sees anything kept their values", (unsigned long long)still);
+    mlod_atlas_destroy(atlas);
+    mlod_cut_destroy(cut);
+    mlod_tree_destroy(tree);
+}
+
+/* ======================================================== determinism */
+
+/* A copy of an atlas's arrays, to compare bit for bit. */
+typedef struct snapshot {
+    size_t pixels;
+    float *depth, *normal, *color;
+} snapshot;
+
+static void snap_take(snapshot *s, const mlod_atlas *a)
+{
+    s->pixels = (size_t)a->width * a->height;
+    s->depth = (float *)malloc(sizeof(float) * s->pixels);
+    s->normal = a->normal ? (float *)malloc(sizeof(float) * 3 * s->pixels) : NULL;
+    s->color = a->color ? (float *)malloc(sizeof(float) * 3 * s->pixels) : NULL;
+    memcpy(s->depth, a->depth, sizeof(float) * s->pixels);
+    if (s->normal) memcpy(s->normal, a->normal, sizeof(float) * 3 * s->pixels);
+    if (s->color) memcpy(s->color, a->color, sizeof(float) * 3 * s->pixels);
+}
+
+static int snap_same(const snapshot *s, const mlod_atlas *a)
+{
+    return memcmp(s->depth, a->depth, sizeof(float) * s->pixels) == 0 &&
+           (!s->normal || memcmp(s->normal, a->normal, sizeof(float) * 3 * s->pixels) == 0) &&
+           (!s->color || memcmp(s->color, a->color, sizeof(float) * 3 * s->pixels) == 0);
+}
+
+static void snap_free(snapshot *s)
+{
+    free(s->depth);
+    free(s->normal);
+    free(s->color);
+}
+
+/* Views of mixed kinds and tile sizes (tall ones take several row bands)
+   around a scene of centre c and radius R. */
+static uint32_t mixed_views(uint64_t *rng, const double *c, double R, mlod_view *views)
+{
+    static const uint32_t sizes[12][2] = {{32, 32}, {24, 150}, {150, 20}, {17, 9},  {40, 40}, {1, 1},
+                                          {64, 32}, {33, 70},  {48, 48},  {32, 32}, {7, 130}, {64, 64}};
+    uint32_t v;
+    for (v = 0; v < 12; v++) {
+        mlod_view_kind kind = (mlod_view_kind)(v % 4);
+        double dir[3], eye[3];
+        int k;
+        tu_random_unit(rng, dir);
+        for (k = 0; k < 3; k++) eye[k] = c[k] + R * (1.6 + v * 0.1) * dir[k];
+        views[v] = look_view(rng, kind, eye, c, sizes[v][0], sizes[v][1]);
+        if (kind == MLOD_VIEW_DUAL_PARABOLOID) views[v].width += views[v].width & 1;
+        if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
+            views[v].half_width = views[v].half_height = (float)(1.1 * R);
+            views[v].near_plane = (float)(-3 * R);
+        }
+        if (v % 3 == 2) views[v].flags = MLOD_VIEW_CULL_BACKFACES;
+    }
+    return 12;
+}
+
+static void test_determinism(void)
+{
+    scene_mesh s;
+    mlod_tree *tree;
+    mlod_view views[12];
+    mlod_cut *cut = NULL;
+    mlod_atlas *atlas;
+    mlod_cut_params cp = cut_params(1.0f);
+    mlod_pool *pools[3];
+    mlod_parallel hooks[5];
+    snapshot base, ism, filled;
+    raster_diff rd;
+    double c[3], R;
+    uint64_t rng = 4242;
+    uint32_t h, count, splat_bad = 0, ism_bad = 0, fill_bad = 0;
+    int again, other_seed;
+    if (!scene_torus(&s, 1.0f, 0.35f, 32, 16)) return;
+    tu_bounds(&s, c, &R);
+    tree = tu_build(&s, 20000, 3, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    count = mixed_views(&rng, c, R, views);
+    atlas = make_atlas(views, count, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR);
+    for (h = 0; h < 3; h++) pools[h] = mlod_pool_create(h + 1);
+    for (h = 0; h < 3; h++) hooks[h] = mlod_pool_parallel(pools[h]);
+    hooks[3].run = tu_run_reverse;
+    hooks[3].user = NULL;
+    hooks[4].run = tu_run_odd_even;
+    hooks[4].user = NULL;
+    if (!tree || !atlas || !pools[0] || !pools[1] || !pools[2] || mlod_cut_create(count, NULL, &cut, NULL) != MLOD_OK ||
+        mlod_cut_update(cut, tree, views, &cp, NULL) != MLOD_OK) {
+        CHECK(0, "determinism: set-up failed");
+        goto done;
+    }
+    /* without a hook, against the reference raster (a real cut this time) */
+    mlod_splat(atlas, tree, cut, views, NULL, NULL);
+    memset(&rd, 0, sizeof rd);
+    add_atlas_comparison(&rd, atlas, tree, cut, views);
+    report_raster(&rd, "torus, N = 20000, mixed views, the cut at epsilon 1");
+    snap_take(&base, atlas);
+    mlod_atlas_fill_holes(atlas, NULL, NULL);
+    snap_take(&filled, atlas);
+    mlod_splat_ism(atlas, tree, views, 1500, 7, NULL, NULL);
+    snap_take(&ism, atlas);
+    for (h = 0; h < 5; h++) {
+        mlod_splat(atlas, tree, cut, views, &hooks[h], NULL);
+        splat_bad += !snap_same(&base, atlas);
+        mlod_atlas_fill_holes(atlas, &hooks[h], NULL);
+        fill_bad += !snap_same(&filled, atlas);
+        mlod_splat_ism(atlas, tree, views, 1500, 7, &hooks[h], NULL);
+        ism_bad += !snap_same(&ism, atlas);
+    }
+    CHECK(splat_bad == 0, "mlod_splat: %u of 5 hooks (pools of 1, 2, 3 threads, reversed, odd-even) differ from no hook",
+          splat_bad);
+    CHECK(fill_bad == 0, "mlod_atlas_fill_holes: %u of 5 hooks differ from no hook", fill_bad);
+    CHECK(ism_bad == 0, "mlod_splat_ism: %u of 5 hooks differ from no hook", ism_bad);
+    mlod_splat_ism(atlas, tree, views, 1500, 7, NULL, NULL);
+    again = snap_same(&ism, atlas);
+    mlod_splat_ism(atlas, tree, views, 1500, 8, NULL, NULL);
+    other_seed = snap_same(&ism, atlas);
+    CHECK(again, "mlod_splat_ism: a second call with the same seed draws another subset");
+    CHECK(!other_seed, "mlod_splat_ism: another seed draws the same atlas");
+    snap_free(&base);
+    snap_free(&ism);
+    snap_free(&filled);
+done:
+    for (h = 0; h < 3; h++) mlod_pool_destroy(pools[h]);
+    mlod_atlas_destroy(atlas);
+    mlod_cut_destroy(cut);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
+/* ========================================================== pull-push */
+
+static void test_fill_holes(void)
+{
+    static const uint32_t sizes[7][2] = {{32, 32}, {17, 9}, {1, 1}, {5, 40}, {13, 13}, {8, 8}, {33, 31}};
+    static const double density[7] = {0.05, 0.3, 1.0, 0.02, 0.0, -1.0, 0.001};
+    mlod_view views[7];
+    mlod_atlas *atlas;
+    snapshot before, after;
+    uint64_t rng = 99, kept_bad = 0, unfilled = 0, outside_range = 0, empty_bad = 0, single_bad = 0, outside_bad = 0;
+    uint32_t v, i, j, k, h;
+    mlod_pool *pool = mlod_pool_create(3);
+    mlod_parallel hooks[2];
+    int hooks_same = 1;
+    for (v = 0; v < 7; v++) {
+        views[v] = tu_view(MLOD_VIEW_PERSPECTIVE);
+        views[v].width = sizes[v][0];
+        views[v].height = sizes[v][1];
+    }
+    atlas = make_atlas(views, 7, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR);
+    if (!atlas || !pool) {
+        CHECK(0, "fill holes: set-up failed");
+        mlod_pool_destroy(pool);
+        return;
+    }
+    for (v = 0; v < 7; v++) {
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        uint32_t placed = 0;
+        for (j = 0; j < t[3]; j++)
+            for (i = 0; i < t[2]; i++) {
+                size_t at = (size_t)(t[1] + j) * atlas->width + t[0] + i;
+                int draw = density[v] < 0 ? (i == 3 && j == 5) : scene_rng_double(&rng) < density[v];
+                if (v == 6 && i == 30 && j == 2) draw = 1; /* one pixel far from the others */
+                if (!draw) continue;
+                placed++;
+                atlas->depth[at] = (float)(1.0 + 9.0 * scene_rng_double(&rng));
+                for (k = 0; k < 3; k++) {
+                    atlas->normal[3 * at + k] = (float)(2.0 * scene_rng_double(&rng) - 1.0);
+                    atlas->color[3 * at + k] = (float)scene_rng_double(&rng);
+                }
+            }
+        if (density[v] > 0 && placed == 0) { /* make sure something is drawn */
+            size_t at = (size_t)t[1] * atlas->width + t[0];
+            atlas->depth[at] = 2.5f;
+        }
+    }
+    snap_take(&before, atlas);
+    if (mlod_atlas_fill_holes(atlas, NULL, NULL) != MLOD_OK) CHECK(0, "fill holes failed");
+    snap_take(&after, atlas);
+    for (v = 0; v < 7; v++) {
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        double lo[7], hi[7];
+        uint32_t drawn = 0, first = 0;
+        for (k = 0; k < 7; k++) {
+            lo[k] = HUGE_VAL;
+            hi[k] = -HUGE_VAL;
+        }
+        for (j = 0; j < t[3]; j++)
+            for (i = 0; i < t[2]; i++) {
+                size_t at = (size_t)(t[1] + j) * atlas->width + t[0] + i;
+                if (before.depth[at] == (float)INFINITY) continue;
+                if (!drawn++) first = (uint32_t)at;
+                for (k = 0; k < 7; k++) {
+                    double x = k == 0 ? before.depth[at] : k < 4 ? before.normal[3 * at + k - 1] : before.color[3 * at + k - 4];
+                    if (x < lo[k]) lo[k] = x;
+                    if (x > hi[k]) hi[k] = x;
+                }
+            }
+        for (j = 0; j < t[3]; j++)
+            for (i = 0; i < t[2]; i++) {
+                size_t at = (size_t)(t[1] + j) * atlas->width + t[0] + i;
+                if (before.depth[at] != (float)INFINITY) {
+                    kept_bad += memcmp(&before.depth[at], &after.depth[at], sizeof(float)) != 0 ||
+                                memcmp(&before.normal[3 * at], &after.normal[3 * at], 3 * sizeof(float)) != 0 ||
+                                memcmp(&before.color[3 * at], &after.color[3 * at], 3 * sizeof(float)) != 0;
+                    continue;
+                }
+                if (drawn == 0) {
+                    empty_bad += after.depth[at] != (float)INFINITY || after.normal[3 * at] != 0.0f || after.color[3 * at + 2] != 0.0f;
+                    continue;
+                }
+                if (!isfinite(after.depth[at])) {
+                    unfilled++;
+                    continue;
+                }
+                for (k = 0; k < 7; k++) {
+                    double x = k == 0 ? after.depth[at] : k < 4 ? after.normal[3 * at + k - 1] : after.color[3 * at + k - 4];
+                    double slack = 1e-6 * (fabs(lo[k]) + fabs(hi[k]));
+                    if (x < lo[k] - slack || x > hi[k] + slack) {
+                        outside_range++;
+                        break;
+                    }
+                }
+                if (drawn == 1)
+                    single_bad += after.depth[at] != before.depth[first] ||
+                                  memcmp(&after.normal[3 * at], &before.normal[3 * (size_t)first], 3 * sizeof(float)) != 0 ||
+                                  memcmp(&after.color[3 * at], &before.color[3 * (size_t)first], 3 * sizeof(float)) != 0;
+            }
+    }
+    {
+        mlod_atlas tmp = *atlas; /* pixels outside every tile: untouched */
+        tmp.depth = after.depth;
+        outside_bad = outside_tiles_written(&tmp);
+    }
+    CHECK(kept_bad == 0, "fill holes: %llu drawn pixels changed", (unsigned long long)kept_bad);
+    CHECK(unfilled == 0, "fill holes: %llu empty pixels of tiles with something drawn stayed empty", (unsigned long long)unfilled);
+    CHECK(outside_range == 0, "fill holes: %llu filled pixels outside the range of their tile's drawn values",
+          (unsigned long long)outside_range);
+    CHECK(empty_bad == 0, "fill holes: %llu pixels of a tile with nothing drawn changed", (unsigned long long)empty_bad);
+    CHECK(single_bad == 0, "fill holes: %llu pixels of a tile with one drawn pixel did not get its values",
+          (unsigned long long)single_bad);
+    CHECK(outside_bad == 0, "fill holes: %llu pixels outside every tile written", (unsigned long long)outside_bad);
+    hooks[0] = mlod_pool_parallel(pool);
+    hooks[1].run = tu_run_reverse;
+    hooks[1].user = NULL;
+    for (h = 0; h < 2; h++) {
+        memcpy(atlas->depth, before.depth, sizeof(float) * before.pixels);
+        memcpy(atlas->normal, before.normal, 3 * sizeof(float) * before.pixels);
+        memcpy(atlas->color, before.color, 3 * sizeof(float) * before.pixels);
+        mlod_atlas_fill_holes(atlas, &hooks[h], NULL);
+        hooks_same &= snap_same(&after, atlas);
+    }
+    CHECK(hooks_same, "fill holes: a pool of 3 threads or reversed tasks give another atlas");
+    snap_free(&before);
+    snap_free(&after);
+    mlod_atlas_destroy(atlas);
+    mlod_pool_destroy(pool);
+}
+
+/* The value pull-push gives a hole whose 2x2 block is empty and whose 4x4
+   block holds three pixels of value 1 in one quadrant and one of value 7 in
+   another: printed, since the documentation can be read two ways (the mean
+   of the pixels, 2.5, or the mean of the quadrants' means, 4). */
+static void show_fill_weighting(void)
+{
+    mlod_view view = tu_view(MLOD_VIEW_PERSPECTIVE);
+    mlod_atlas *atlas;
+    view.width = view.height = 4;
+    atlas = make_atlas(&view, 1, 0);
+    if (!atlas) return;
+    atlas->depth[0] = atlas->depth[1] = atlas->depth[4] = 1.0f;
+    atlas->depth[2] = 7.0f;
+    mlod_atlas_fill_holes(atlas, NULL, NULL);
+    printf("  pull-push weighting: a hole at (3,3) gets %g (pixel mean 2.5, mean of quadrant means 4)\n", atlas->depth[15]);
+    CHECK(atlas->depth[15] >= 1.0f && atlas->depth[15] <= 7.0f, "pull-push: %g outside the drawn range [1, 7]", atlas->depth[15]);
+    mlod_atlas_destroy(atlas);
+}
+
+/* ============================================================ metrics */
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Two orthographic views (8x8 and 6x4, so the second cell has pixels
+   outside its tile) and a reference: every tile pixel 2.0, NaN elsewhere. */
+static mlod_atlas *metrics_setup(mlod_view *views, float **reference)
+{
+    mlod_atlas *atlas;
+    size_t p, n;
+    uint32_t v, i, j;
+    for (v = 0; v < 2; v++) {
+        views[v] = tu_view(MLOD_VIEW_ORTHOGRAPHIC);
+        views[v].half_width = views[v].half_height = 1.0f;
+        views[v].near_plane = -10.0f;
+        views[v].far_plane = 10.0f;
+    }
+    views[0].width = views[0].height = 8;
+    views[1].width = 6;
+    views[1].height = 4;
+    views[1].half_height = 4.0f / 6.0f;
+    atlas = make_atlas(views, 2, 0);
+    if (!atlas) return NULL;
+    n = (size_t)atlas->width * atlas->height;
+    *reference = (float *)malloc(sizeof(float) * n);
+    for (p = 0; p < n; p++) (*reference)[p] = NAN;
+    for (v = 0; v < 2; v++) {
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        for (j = 0; j < t[3]; j++)
+            for (i = 0; i < t[2]; i++) (*reference)[(size_t)(t[1] + j) * atlas->width + t[0] + i] = 2.0f;
+    }
+    for (p = 0; p < n; p++) /* outside the tiles: garbage the metrics must ignore */
+        if (isnan((*reference)[p])) atlas->depth[p] = 123.0f;
+    return atlas;
+}
+
+static void test_metrics_known(void)
+{
+    mlod_view views[2];
+    float *ref = NULL;
+    mlod_atlas *atlas = metrics_setup(views, &ref);
+    metrics m, pv[2];
+    const double D = 4.0;
+    uint32_t v, i, j, k;
+    if (!atlas) {
+        CHECK(0, "metrics: set-up failed");
+        return;
+    }
+    /* an empty atlas: every reference hit is a hole */
+    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, pv);
+    CHECK(m.reference_hits == 88 && m.holes == 88 && m.hole_rate == 1.0 && m.depth_pixels == 0 && m.depth_rms == 0.0 &&
+              m.depth_p95 == 0.0 && m.shadow_tests == 0 && m.shadow_disagreement == 0.0,
+          "metrics, empty atlas: hits %llu holes %llu rate %g depth pixels %llu rms %g p95 %g (expected 88 88 1 0 0 0)",
+          (unsigned long long)m.reference_hits, (unsigned long long)m.holes, m.hole_rate, (unsigned long long)m.depth_pixels,
+          m.depth_rms, m.depth_p95);
+    CHECK(pv[0].reference_hits == 64 && pv[1].reference_hits == 24 && pv[0].hole_rate == 1.0 && pv[1].hole_rate == 1.0,
+          "metrics, empty atlas per view: hits %llu and %llu (expected 64 and 24)", (unsigned long long)pv[0].reference_hits,
+          (unsigned long long)pv[1].reference_hits);
+    /* equal to the reference */
+    for (v = 0; v < 2; v++) {
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        for (j = 0; j < t[3]; j++)
+            for (i = 0; i < t[2]; i++) atlas->depth[(size_t)(t[1] + j) * atlas->width + t[0] + i] = 2.0f;
+    }
+    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, NULL);
+    CHECK(m.hole_rate == 0.0 && m.holes == 0 && m.depth_pixels == 88 && m.depth_rms == 0.0 && m.depth_p95 == 0.0,
+          "metrics, equal atlas: holes %llu, depth pixels %llu, rms %g, p95 %g (expected 0 88 0 0)", (unsigned long long)m.holes,
+          (unsigned long long)m.depth_pixels, m.depth_rms, m.depth_p95);
+    /* half covered: a checkerboard (both tiles have even sizes) */
+    for (v = 0; v < 2; v++) {
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        for (j = 0; j < t[3]; j++)
+            for (i = 0; i < t[2]; i++)
+                atlas->depth[(size_t)(t[1] + j) * atlas->width + t[0] + i] = (i + j) % 2 ? INFINITY : 2.0f;
+    }
+    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, pv);
+    CHECK(m.hole_rate == 0.5 && m.holes == 44 && m.depth_pixels == 44 && pv[0].hole_rate == 0.5 && pv[1].hole_rate == 0.5,
+          "metrics, half covered: rate %g holes %llu depth pixels %llu, per view %g %g (expected 0.5 44 44 0.5 0.5)",
+          m.hole_rate, (unsigned long long)m.holes, (unsigned long long)m.depth_pixels, pv[0].hole_rate, pv[1].hole_rate);
+    /* offsets: pixel number k (in a shuffled order) is off by (-1)^k k 2^-10,
+       an error of k 2^-12 of the diameter 4: exact in float and double */
+    {
+        double sum = 0.0, e[88], want_rms, want_p95, view_p95[2], view_rms[2], vs[2] = {0, 0};
+        uint32_t ordinal = 0, count[2] = {0, 0};
+        double ev[2][88];
+        for (v = 0; v < 2; v++) {
+            const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+            for (j = 0; j < t[3]; j++)
+                for (i = 0; i < t[2]; i++, ordinal++) {
+                    uint32_t kk = (ordinal * 37u) % 88u;
+                    double off = (kk % 2 ? -1.0 : 1.0) * kk / 1024.0;
+                    atlas->depth[(size_t)(t[1] + j) * atlas->width + t[0] + i] = (float)(2.0 + off);
+                    e[kk] = kk / 4096.0;
+                    ev[v][count[v]++] = kk / 4096.0;
+                    vs[v] += (kk / 4096.0) * (kk / 4096.0);
+                }
+        }
+        for (k = 0; k < 88; k++) sum += e[k] * e[k];
+        want_rms = sqrt(sum / 88.0);
+        qsort(e, 88, sizeof(double), cmp_double);
+        want_p95 = e[84 - 1]; /* nearest rank: ceil(0.95 * 88) = 84 */
+        for (v = 0; v < 2; v++) {
+            qsort(ev[v], count[v], sizeof(double), cmp_double);
+            view_p95[v] = ev[v][(uint32_t)ceil(0.95 * count[v] - 1e-9) - 1];
+            view_rms[v] = sqrt(vs[v] / count[v]);
+        }
+        metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, pv);
+        CHECK(m.holes == 0 && m.depth_pixels == 88 && fabs(m.depth_rms - want_rms) <= 1e-15 && m.depth_p95 == want_p95,
+              "metrics, offsets: rms %.17g p95 %.17g (expected %.17g and %.17g = 83/4096)", m.depth_rms, m.depth_p95, want_rms,
+              want_p95);
+        CHECK(fabs(pv[0].depth_rms - view_rms[0]) <= 1e-15 && fabs(pv[1].depth_rms - view_rms[1]) <= 1e-15 &&
+                  pv[0].depth_p95 == view_p95[0] && pv[1].depth_p95 == view_p95[1],
+              "metrics, offsets per view: rms %.17g %.17g p95 %.17g %.17g (expected %.17g %.17g %.17g %.17g)", pv[0].depth_rms,
+              pv[1].depth_rms, pv[0].depth_p95, pv[1].depth_p95, view_rms[0], view_rms[1], view_p95[0], view_p95[1]);
+    }
+    /* a splat spilling where the reference misses counts nowhere */
+    ref[0] = INFINITY;
+    atlas->depth[0] = 1.0f;
+    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, NULL);
+    CHECK(m.reference_hits == 87 && m.depth_pixels == 87 && m.holes == 0, "metrics, spill: hits %llu depth pixels %llu (expected 87 87)",
+          (unsigned long long)m.reference_hits, (unsigned long long)m.depth_pixels);
+    ref[0] = 2.0f;
+    /* shadows: receivers at the pixel centres of the 8x8 view at depth 5;
+       the reference holds an occluder at depth 4 in the left half */
+    {
+        float receivers[3 * 68];
+        uint32_t n = 0, expect_tests, expect_diff = 0;
+        const double bias = 0.01; /* b = 0.04 world units */
+        for (j = 0; j < 8; j++)
+            for (i = 0; i < 8; i++) {
+                size_t at = (size_t)j * atlas->width + i;
+                receivers[3 * n] = (float)(-1.0 + (i + 0.5) / 4.0);
+                receivers[3 * n + 1] = (float)(1.0 - (j + 0.5) / 4.0);
+                receivers[3 * n + 2] = -5.0f;
+                n++;
+                ref[at] = i < 4 ? 4.0f : INFINITY;
+                atlas->depth[at] = ref[at];
+            }
+        /* outside the box, beyond the far plane: not tests */
+        receivers[3 * n] = 1.5f, receivers[3 * n + 1] = 0.0f, receivers[3 * n + 2] = -5.0f, n++;
+        receivers[3 * n] = 0.1f, receivers[3 * n + 1] = 0.1f, receivers[3 * n + 2] = -20.0f, n++;
+        receivers[3 * n] = 0.1f, receivers[3 * n + 1] = 0.1f, receivers[3 * n + 2] = 20.0f, n++;
+        receivers[3 * n] = 0.0f, receivers[3 * n + 1] = -3.0f, receivers[3 * n + 2] = -5.0f, n++;
+        /* the second view's tile is all +inf in both: its receivers (those
+           of the 8x8 grid inside its narrower box) are lit in both */
+        for (j = 0; j < 4; j++)
+            for (i = 0; i < 6; i++) ref[(size_t)j * atlas->width + 8 + i] = atlas->depth[(size_t)j * atlas->width + 8 + i] = INFINITY;
+        metrics_compare(atlas, ref, views, D, receivers, n, bias, &m, pv);
+        {
+            /* receivers in the second view: |x| <= 1, |y| <= 2/3 */
+            uint32_t in_second = 0;
+            for (k = 0; k < n; k++)
+                in_second += fabs(receivers[3 * k]) <= 1.0f && fabs(receivers[3 * k + 1]) <= 4.0f / 6.0f &&
+                             receivers[3 * k + 2] >= -10.0f && receivers[3 * k + 2] <= 10.0f;
+            expect_tests = 64 + in_second;
+        }
+        CHECK(m.shadow_tests == expect_tests && m.shadow_differences == 0 && m.shadow_disagreement == 0.0,
+              "metrics, shadows of equal maps: %llu tests, %llu differences (expected %u and 0)", (unsigned long long)m.shadow_tests,
+              (unsigned long long)m.shadow_differences, expect_tests);
+        /* row 0 left: the splat misses the occluder (lit vs shadowed): 4;
+           row 1 right: the splat adds one at depth 3: 4; row 2 left: the
+           splat's occluder at 4.99 is within the bias of 5: 4; row 3 left: at
+           4.95 it is beyond the bias: no difference; pixel (7,7): no ray
+           (NaN in the reference), not a test */
+        for (i = 0; i < 8; i++) {
+            size_t r0 = i, r1 = (size_t)atlas->width + i, r2 = 2 * (size_t)atlas->width + i, r3 = 3 * (size_t)atlas->width + i;
+            if (i < 4) {
+                atlas->depth[r0] = INFINITY;
+                atlas->depth[r2] = 4.99f;
+                atlas->depth[r3] = 4.95f;
+                expect_diff += 2;
+            } else {
+                atlas->depth[r1] = 3.0f;
+                expect_diff += 1;
+            }
+        }
+        ref[(size_t)7 * atlas->width + 7] = NAN;
+        metrics_compare(atlas, ref, views, D, receivers, n, bias, &m, pv);
+        CHECK(m.shadow_tests == expect_tests - 1 && m.shadow_differences == expect_diff &&
+                  m.shadow_disagreement == (double)expect_diff / (double)(expect_tests - 1),
+              "metrics, constructed shadows: %llu tests, %llu differences, %g (expected %u, %u, %g)",
+              (unsigned long long)m.shadow_tests, (unsigned long long)m.shadow_differences, m.shadow_disagreement,
+              expect_tests - 1, expect_diff, (double)expect_diff / (expect_tests - 1));
+        CHECK(pv[0].shadow_tests == 63 && pv[0].shadow_differences == 12 && pv[0].shadow_disagreement == 12.0 / 63.0 &&
+                  pv[1].shadow_differences == 0 && pv[1].shadow_tests == expect_tests - 64,
+              "metrics, constructed shadows per view: %llu/%llu and %llu/%llu (expected 12/63 and 0/%u)",
+              (unsigned long long)pv[0].shadow_differences, (unsigned long long)pv[0].shadow_tests,
+              (unsigned long long)pv[1].shadow_differences, (unsigned long long)pv[1].shadow_tests, expect_tests - 64);
+    }
+    free(ref);
+    mlod_atlas_destroy(atlas);
+}
+
+/* metrics_reference_atlas on a square facing the views: depths known in
+   closed form; NaN outside paraboloid discs and outside tiles; near and far
+   planes respected. */
+static void test_metrics_reference(void)
+{
+    /* the square [-1.5,1.5]^2 at z = -3, two triangles */
+    static const float square[12] = {-1.5f, -1.5f, -3, 1.5f, -1.5f, -3, 1.5f, 1.5f, -3, -1.5f, 1.5f, -3};
+    static const uint32_t tri[6] = {0, 1, 2, 0, 2, 3};
+    scene_mesh m;
+    rc_scene rc;
+    mlod_view views[6];
+    mlod_atlas *atlas;
+    float *out;
+    uint32_t v, i, j;
+    uint64_t bad = 0, compared = 0, nan_ok = 0, nan_bad = 0, outside_bad = 0, hits = 0, misses = 0;
+    memset(&m, 0, sizeof m);
+    m.positions = (float *)square;
+    m.indices = (uint32_t *)tri;
+    m.vertex_count = 4;
+    m.index_count = 6;
+    rc_scene_init(&rc, &m);
+    for (v = 0; v < 6; v++) {
+        views[v] = tu_view((mlod_view_kind)(v % 4));
+        views[v].width = 16 + 4 * v;
+        views[v].height = 16;
+        views[v].near_plane = v == 3 ? -1.0f : 0.5f;
+        views[v].half_width = views[v].half_height = 1.5f;
+        views[v].half_width = 1.5f * views[v].width / 16.0f;
+    }
+    views[4].kind = MLOD_VIEW_PERSPECTIVE;
+    views[4].near_plane = 3.5f; /* the square lies before the near plane: all misses */
+    views[5].kind = MLOD_VIEW_ORTHOGRAPHIC;
+    views[5].far_plane = 2.5f; /* and beyond the far plane: all misses */
+    atlas = make_atlas(views, 6, 0);
+    out = atlas ? (float *)malloc(sizeof(float) * atlas->width * atlas->height) : NULL;
+    if (!out) {
+        CHECK(0, "reference atlas: set-up failed");
+        mlod_atlas_destroy(atlas);
+        return;
+    }
+    metrics_reference_atlas(atlas, views, rc_cast, &rc, out);
+    for (v = 0; v < 6; v++) {
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        frame F;
+        frame_of(&views[v], &F);
+        for (j = 0; j < t[3]; j++)
+            for (i = 0; i < t[2]; i++) {
+                float got = out[(size_t)(t[1] + j) * atlas->width + t[0] + i];
+                double o[3], d[3], want;
+                if (!my_ray(&F, i + 0.5, j + 0.5, o, d)) {
+                    nan_ok += isnan(got);
+                    nan_bad += !isnan(got);
+                    continue;
+                }
+                /* the plane z = -3 along the ray; inside the square? */
+                if (d[2] < 0.0) {
+                    double s = (-3.0 - o[2]) / d[2], x = o[0] + s * d[0], y = o[1] + s * d[1];
+                    want = fabs(x) < 1.5 && fabs(y) < 1.5 && s > 0.0 ? (F.kind == MLOD_VIEW_PERSPECTIVE || F.kind == MLOD_VIEW_ORTHOGRAPHIC ? 3.0 : s) : HUGE_VAL;
+                    if (fabs(fabs(x) - 1.5) < 1e-4 || fabs(fabs(y) - 1.5) < 1e-4) continue; /* an edge */
+                } else {
+                    want = HUGE_VAL;
+                }
+                if (v >= 4) want = HUGE_VAL; /* before the near plane, beyond the far plane */
+                compared++;
+                hits += want != HUGE_VAL;
+                misses += want == HUGE_VAL;
+                bad += want == HUGE_VAL ? got != (float)INFINITY : !(fabs(got - want) <= 2e-6 * want);
+            }
+    }
+    {
+        size_t p;
+        for (p = 0; p < (size_t)atlas->width * atlas->height; p++) {
+            int in = 0;
+            for (v = 0; v < 6; v++) {
+                const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+                uint32_t x = (uint32_t)(p % atlas->width), y = (uint32_t)(p / atlas->width);
+                in |= x >= t[0] && x < t[0] + t[2] && y >= t[1] && y < t[1] + t[3];
+            }
+            outside_bad += !in && !isnan(out[p]);
+        }
+    }
+    CHECK(compared > 1000 && hits > 300 && misses > 300 && bad == 0,
+          "metrics_reference_atlas on a square: %llu of %llu pixels with a depth other than the closed form (%llu hits, %llu misses)",
+          (unsigned long long)bad, (unsigned long long)compared, (unsigned long long)hits, (unsigned long long)misses);
+    CHECK(nan_ok > 100 && nan_bad == 0, "metrics_reference_atlas: %llu pixels without a ray not NaN (%llu NaN)",
+          (unsigned long long)nan_bad, (unsigned long long)nan_ok);
+    CHECK(outside_bad == 0, "metrics_reference_atlas: %llu pixels outside every tile not NaN", (unsigned long long)outside_bad);
+    free(out);
+    mlod_atlas_destroy(atlas);
+}
+
+/* ========================================================= end to end */
+
+/* Inside the room's free space (away from walls and boxes by margin)? */
+static int room_free(const double *p, double margin)
+{
+    static const double boxes[3][2][3] = {{{-1.5, 0, -1.5}, {-0.5, 1, -0.5}},
+                                          {{0.5, 0, 0.25}, {1.25, 1.75, 1.0}},
+                                          {{-0.25, 1.5, -1.0}, {0.25, 2.0, -0.5}}};
+    int b, k;
+    if (fabs(p[0]) > 2 - margin || fabs(p[2]) > 2 - margin || p[1] < margin || p[1] > 3 - margin) return 0;
+    for (b = 0; b < 3; b++) {
+        int inside = 1;
+        for (k = 0; k < 3; k++) inside &= p[k] > boxes[b][0][k] - margin && p[k] < boxes[b][1][k] + margin;
+        if (inside) return 0;
+    }
+    return 1;
+}
+
+/* 4 views of each kind, 32x32: around an object, or inside the room. */
+static void scene_views(uint64_t *rng, int inside, const double *c, double R, mlod_view *views)
+{
+    uint32_t v;
+    for (v = 0; v < 16; v++) {
+        mlod_view_kind kind = (mlod_view_kind)(v % 4);
+        double dir[3], eye[3], target[3];
+        int k;
+        if (inside) {
+            do {
+                for (k = 0; k < 3; k++) eye[k] = (k == 1 ? 1.5 : 0.0) + (k == 1 ? 1.5 : 2.0) * (2.0 * scene_rng_double(rng) - 1.0);
+            } while (!room_free(eye, 0.3));
+            tu_random_unit(rng, dir);
+            for (k = 0; k < 3; k++) target[k] = eye[k] + dir[k];
+        } else {
+            tu_random_unit(rng, dir);
+            for (k = 0; k < 3; k++) {
+                eye[k] = c[k] + R * (kind == MLOD_VIEW_PERSPECTIVE ? 2.5 : 1.6) * dir[k];
+                target[k] = c[k];
+            }
+        }
+        views[v] = look_view(rng, kind, eye, target, 32, 32);
+        if (kind == MLOD_VIEW_DUAL_PARABOLOID) views[v].width = 64; /* two 32x32 halves */
+        if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
+            views[v].half_width = views[v].half_height = (float)(inside ? 1.5 : 1.05 * R);
+            views[v].near_plane = inside ? 0.0f : (float)(-2.0 * R);
+            views[v].far_plane = (float)(4.0 * R);
+        }
+    }
+}
+
+/* One point on every triangle (random barycentrics): shadow receivers. */
+static float *mesh_receivers(const scene_mesh *s, uint64_t *rng, uint32_t *count)
+{
+    uint32_t t, n = s->index_count / 3, k;
+    float *r = (float *)malloc(sizeof(float) * 3 * (n ? n : 1));
+    for (t = 0; t < n; t++) {
+        double a = scene_rng_double(rng), b = scene_rng_double(rng), p[3];
+        if (a + b > 1.0) {
+            a = 1.0 - a;
+            b = 1.0 - b;
+        }
+        tu_eval_on_triangle(s->positions, s->indices + 3 * t, a, b, p);
+        for (k = 0; k < 3; k++) r[3 * t + k] = (float)p[k];
+    }
+    *count = n;
+    return r;
+}
+
+/* The largest radius a node may have and still be valid at epsilon = 1 at
+   distance d from the eye (a lower bound of the criterion, from the
+   documented formulas): perspective c >= 2 r f / d; paraboloids
+   c = scale 2r / (x.w + sqrt(d^2 - r^2)) >= scale r / d; orthographic
+   c = 2 r scale. */
+static double valid_radius(const frame *F, double d)
+{
+    switch (F->kind) {
+    case MLOD_VIEW_PERSPECTIVE: return d / (2.0 * F->f);
+    case MLOD_VIEW_ORTHOGRAPHIC: return 1.0 / (2.0 * F->disc_scale);
+    default: return d / F->disc_scale;
+    }
+}
+
+typedef struct kind_sum {
+    uint64_t reference_hits, holes, ism_holes, ism_hits, depth_pixels, within, deeper, points;
+    double *errors, bound; /* |S - R| / D of every depth pixel; the largest 2 r / D allowed */
+    uint64_t error_count;
+    double sq, ism_sq;
+    uint64_t ism_depth_pixels;
+} kind_sum;
+
+/* One scene: for each view kind an atlas of 4 views; the reference by ray
+   casting; the cut's splat at epsilon = 1 and ISM with the cut's mean
+   number of drawn nodes per view. */
+static void run_scene(const char *name, const scene_mesh *s, int inside, uint64_t seed, kind_sum *sum, raster_diff *rd)
+{
+    mlod_tree *tree = tu_build(s, 20000, seed, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    mlod_view all[16];
+    rc_scene rc;
+    double c[3], R;
+    uint64_t rng = seed * 7919u + 1u;
+    uint32_t receiver_count, k, n;
+    float *receivers;
+    double leaf_radius = 0.0;
+    tu_bounds(s, c, &R);
+    for (n = tree ? tree->leaf_count - 1 : 0; tree && n < tree->node_count; n++)
+        if (tree->spheres[4 * (size_t)n + 3] > leaf_radius) leaf_radius = tree->spheres[4 * (size_t)n + 3];
+    scene_views(&rng, inside, c, R, all);
+    receivers = mesh_receivers(s, &rng, &receiver_count);
+    rc_scene_init(&rc, s);
+    for (k = 0; k < 4 && tree; k++) {
+        mlod_view views[4];
+        mlod_cut *cut = NULL;
+        mlod_atlas *atlas;
+        mlod_cut_params cp = cut_params(1.0f);
+        metrics m, mi;
+        float *ref;
+        uint64_t drawn = 0, within = 0;
+        uint32_t v, ppv, i, j;
+        double bound = 0.0;
+        for (v = 0; v < 4; v++) views[v] = all[4 * v + k];
+        atlas = make_atlas(views, 4, 0);
+        ref = atlas ? (float *)malloc(sizeof(float) * atlas->width * atlas->height) : NULL;
+        if (!ref || mlod_cut_create(4, NULL, &cut, NULL) != MLOD_OK || mlod_cut_update(cut, tree, views, &cp, NULL) != MLOD_OK ||
+            mlod_splat(atlas, tree, cut, views, NULL, NULL) != MLOD_OK) {
+            CHECK(0, "%s: set-up failed", name);
+            free(ref);
+            mlod_atlas_destroy(atlas);
+            mlod_cut_destroy(cut);
+            break;
+        }
+        add_atlas_comparison(rd, atlas, tree, cut, views);
+        metrics_reference_atlas(atlas, views, rc_cast, &rc, ref);
+        metrics_compare(atlas, ref, views, 2.0 * R, receivers, receiver_count, 0.01, &m, NULL);
+        /* pixels whose error is within two valid radii at the surface's
+           distance (the disc's depth is its sphere's centre; the sphere
+           holds surface within r of the ray's hit) */
+        for (v = 0; v < 4; v++) {
+            const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+            frame F;
+            frame_of(&views[v], &F);
+            for (j = 0; j < t[3]; j++)
+                for (i = 0; i < t[2]; i++) {
+                    size_t at = (size_t)(t[1] + j) * atlas->width + t[0] + i;
+                    double o[3], d[3], dist, allowed;
+                    if (!isfinite(ref[at]) || !isfinite(atlas->depth[at]) || !my_ray(&F, i + 0.5, j + 0.5, o, d)) continue;
+                    dist = F.kind == MLOD_VIEW_PERSPECTIVE ? ref[at] / tu_dot3(d, F.w) : ref[at];
+                    allowed = 2.0 * fmax(valid_radius(&F, dist), leaf_radius);
+                    within += fabs((double)atlas->depth[at] - ref[at]) <= allowed;
+                    sum[k].deeper += (double)atlas->depth[at] - ref[at] > allowed;
+                    if (allowed / (2.0 * R) > bound) bound = allowed / (2.0 * R);
+                    sum[k].errors[sum[k].error_count++] = fabs((double)atlas->depth[at] - ref[at]) / (2.0 * R);
+                }
+            drawn += mlod_cut_get(cut, v).drawn + mlod_cut_get(cut, v).oversize;
+        }
+        ppv = (uint32_t)((drawn + 3) / 4);
+        mlod_splat_ism(atlas, tree, views, ppv, seed, NULL, NULL);
+        metrics_compare(atlas, ref, views, 2.0 * R, receivers, receiver_count, 0.01, &mi, NULL);
+        if (getenv("MANYLODS_TEST_VERBOSE"))
+            printf("  %s, %s: cut holes %.4f rms %.4f p95 %.4f (two radii at most %.4f, within them %.3f) shadows %.4f | ISM (%u points/view) holes %.4f rms %.4f shadows %.4f\n",
+                   name, kind_name((mlod_view_kind)k), m.hole_rate, m.depth_rms, m.depth_p95, bound,
+                   m.depth_pixels ? (double)within / m.depth_pixels : 1.0, m.shadow_disagreement, ppv, mi.hole_rate,
+                   mi.depth_rms, mi.shadow_disagreement);
+        sum[k].reference_hits += m.reference_hits;
+        sum[k].holes += m.holes;
+        sum[k].depth_pixels += m.depth_pixels;
+        sum[k].within += within;
+        sum[k].sq += m.depth_rms * m.depth_rms * (double)m.depth_pixels;
+        sum[k].ism_hits += mi.reference_hits;
+        sum[k].ism_holes += mi.holes;
+        sum[k].ism_sq += mi.depth_rms * mi.depth_rms * (double)mi.depth_pixels;
+        sum[k].ism_depth_pixels += mi.depth_pixels;
+        sum[k].points += drawn;
+        if (bound > sum[k].bound) sum[k].bound = bound;
+        free(ref);
+        mlod_atlas_destroy(atlas);
+        mlod_cut_destroy(cut);
+    }
+    free(receivers);
+    mlod_tree_destroy(tree);
+}
+
+static void test_end_to_end(void)
+{
+    scene_mesh s;
+    kind_sum sum[4];
+    raster_diff rd;
+    int k;
+    memset(sum, 0, sizeof sum);
+    memset(&rd, 0, sizeof rd);
+    for (k = 0; k < 4; k++) sum[k].errors = (double *)malloc(sizeof(double) * 3 * 4 * 64 * 32);
+    if (scene_uv_sphere(&s, 1.0f, 16, 32)) {
+        run_scene("sphere", &s, 0, 11, sum, &rd);
+        scene_free(&s);
+    }
+    if (scene_torus(&s, 1.0f, 0.35f, 32, 16)) {
+        run_scene("torus", &s, 0, 12, sum, &rd);
+        scene_free(&s);
+    }
+    if (scene_room(&s)) {
+        run_scene("room", &s, 1, 13, sum, &rd);
+        scene_free(&s);
+    }
+    report_raster(&rd, "end to end, the splat against the reference raster");
+    /* The bounds, from what the splat guarantees at epsilon = 1:
+       - a drawn node's disc covers the whole image of its sphere, which
+         holds the spheres of every leaf below; so a pixel whose ray hits the
+         surface inside any leaf's sphere is drawn.  Holes come only from
+         gaps between the leaf spheres (radius sqrt(A/N): tests/test_build.c
+         measures > 99.7% of these surfaces covered): hole rate < 0.5%.
+       - the same disc holds the depth of its sphere's centre, at most one
+         radius behind the surface the ray hits; a valid node's radius is at
+         most valid_radius() at its distance (or the leaf radius, for
+         oversize leaves): the splat is never deeper than the reference by
+         more than two such radii (allowing 0.5% for the gaps above).
+       - nearer than the surface it may be by much more, where a disc spills
+         over a silhouette or a grazing surface onto something farther; those
+         are a minority of the pixels: at least 75% of the depth pixels lie
+         within two allowed radii, and the 95th percentile below three times
+         the largest two-radii bound of the views (as a fraction of D).
+       - ISM with as many points per view (the cut's mean drawn count) draws
+         random leaves at their own size: where leaves are small on screen it
+         leaves gaps the cut never leaves.  The cut beats it on the hole
+         rate: at most a quarter of ISM's, which must show holes. */
+    {
+        uint64_t hits = 0, holes = 0, ism_hits = 0, ism_holes = 0;
+        for (k = 0; k < 4; k++) {
+            kind_sum *m = &sum[k];
+            double hole = m->reference_hits ? (double)m->holes / m->reference_hits : 1.0;
+            double rms = m->depth_pixels ? sqrt(m->sq / m->depth_pixels) : 0.0;
+            double ism_rms = m->ism_depth_pixels ? sqrt(m->ism_sq / m->ism_depth_pixels) : 0.0;
+            double within = m->depth_pixels ? (double)m->within / m->depth_pixels : 0.0;
+            double deeper = m->depth_pixels ? (double)m->deeper / m->depth_pixels : 1.0;
+            double p95 = 0.0, ism_hole = m->ism_hits ? (double)m->ism_holes / m->ism_hits : 0.0;
+            const char *what = kind_name((mlod_view_kind)k);
+            if (m->error_count) {
+                qsort(m->errors, m->error_count, sizeof(double), cmp_double);
+                p95 = m->errors[(95 * m->error_count + 99) / 100 - 1];
+            }
+            printf("  end to end, %s (12 views): cut holes %.5f rms %.4f p95 %.4f (bound %.4f), within two radii %.3f, deeper %.5f | ISM holes %.4f rms %.4f\n",
+                   what, hole, rms, p95, 3.0 * m->bound, within, deeper, ism_hole, ism_rms);
+            CHECK(m->reference_hits > 3000, "end to end, %s: only %llu pixels see the scenes", what, (unsigned long long)m->reference_hits);
+            CHECK(hole < 0.005, "end to end, %s: hole rate %.5f at epsilon 1 (bound 0.005)", what, hole);
+            CHECK(deeper <= 0.005, "end to end, %s: %.5f of the depth pixels deeper than the surface by more than two allowed radii", what, deeper);
+            CHECK(within >= 0.75, "end to end, %s: only %.3f of the depth pixels within two allowed radii of the surface", what, within);
+            CHECK(p95 <= 3.0 * m->bound, "end to end, %s: depth p95 %.4f of the diameter above 3 x %.4f", what, p95, m->bound);
+            CHECK(ism_hole > 0.01 && hole <= 0.25 * ism_hole, "end to end, %s: the cut's hole rate %.5f is not a quarter of ISM's %.5f",
+                  what, hole, ism_hole);
+            hits += m->reference_hits;
+            holes += m->holes;
+            ism_hits += m->ism_hits;
+            ism_holes += m->ism_holes;
+            free(m->errors);
+        }
+        CHECK(hits && ism_hits && (double)holes / hits < (double)ism_holes / ism_hits,
+              "end to end, all views: the cut's hole rate %.5f is not below ISM's %.5f", hits ? (double)holes / hits : 1.0,
+              ism_hits ? (double)ism_holes / ism_hits : 0.0);
+    }
+}
+
+/* ========================================================= choosing N */
+
+/* mlod_criterion of a sphere (a one-point tree). */
+static double sphere_criterion(const mlod_view *view, const double *centre, double r)
+{
+    float pos[3] = {(float)centre[0], (float)centre[1], (float)centre[2]}, rad = (float)r;
+    mlod_tree *t = points_tree(1, pos, &rad, NULL, NULL);
+    double c = t ? mlod_criterion(t, 0, view) : NAN;
+    mlod_tree_destroy(t);
+    return c;
+}
+
+/* The largest criterion of a sphere of radius r whose centre lies at
+   distance `closest` from the eye anywhere in the view's tile (perspective:
+   on a grid of the tile's directions, corners included; paraboloid: the
+   front hemisphere, rim included; dual paraboloid: every direction, with
+   extra samples within r of the seam; orthographic: anywhere, the criterion
+   does not depend on the position), and the centre that gives it. */
+static double largest_criterion(const mlod_view *view, double r, double closest, double *where)
+{
+    frame F;
+    double best = -1.0, dir[3], c[3];
+    int a, b, k;
+    frame_of(view, &F);
+    memcpy(where, F.e, sizeof c);
+    for (a = 0; a <= 16; a++)
+        for (b = 0; b <= 32; b++) {
+            if (F.kind == MLOD_VIEW_PERSPECTIVE || F.kind == MLOD_VIEW_ORTHOGRAPHIC) {
+                double x = F.W * a / 16.0, y = F.H * b / 32.0;
+                for (k = 0; k < 3; k++)
+                    dir[k] = F.kind == MLOD_VIEW_PERSPECTIVE ? F.w[k] + (x - 0.5 * F.W) / F.f * F.u[k] + (0.5 * F.H - y) / F.f * F.v[k]
+                                                             : F.w[k];
+                tu_normalize3(dir);
+                for (k = 0; k < 3; k++)
+                    c[k] = F.e[k] + closest * dir[k] +
+                           (F.kind == MLOD_VIEW_ORTHOGRAPHIC ? (x - 0.5 * F.W) / F.sx * F.u[k] + (0.5 * F.H - y) / F.sy * F.v[k] : 0.0);
+            } else {
+                /* polar angle from w: the hemisphere up to the rim, or for
+                   dual paraboloids both sides of the seam, finely near it */
+                double phi = 2.0 * TU_PI * b / 32.0, theta, s = r / closest;
+                if (F.kind == MLOD_VIEW_PARABOLOID)
+                    theta = 0.5 * TU_PI * a / 16.0;
+                else
+                    theta = 0.5 * TU_PI + asin(s * (a - 8) / 8.0 * (1.0 - 1e-9)); /* x.w from -r to r */
+                for (k = 0; k < 3; k++) dir[k] = cos(theta) * F.w[k] + sin(theta) * (cos(phi) * F.u[k] + sin(phi) * F.v[k]);
+                for (k = 0; k < 3; k++) c[k] = F.e[k] + closest * dir[k];
+            }
+            {
+                double crit = sphere_criterion(view, c, r);
+                if (crit > best) {
+                    best = crit;
+                    memcpy(where, c, sizeof c);
+                }
+            }
+        }
+    return best;
+}
+
+/* Where a sphere of radius r whose centre is d from the eye is magnified
+   most while it still appears in the tile: the criterion grows with the
+   centre's angle off the axis, so the sphere touches the tile's border from
+   outside.  Perspective: beyond the tile's corner ray by asin(r/d) along the
+   diagonal; paraboloid: behind the rim, x.w = -r (culled beyond); dual
+   paraboloid: likewise, where the sphere just reaches the front half from
+   the back one; orthographic: anywhere in the box.  The centre is placed a
+   millionth of r inside, so that rounding cannot cull it. */
+static void most_magnified(const frame *F, double d, double r, double *c)
+{
+    double side[3], theta;
+    int k;
+    if (F->kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        memcpy(c, F->e, 3 * sizeof(double));
+        return;
+    }
+    if (F->kind == MLOD_VIEW_PERSPECTIVE) {
+        double tx = 0.5 * F->W / F->f, ty = 0.5 * F->H / F->f;
+        for (k = 0; k < 3; k++) side[k] = tx * F->u[k] + ty * F->v[k];
+        theta = atan(sqrt(tx * tx + ty * ty)) + asin(r / d) * (1.0 - 1e-6);
+    } else {
+        memcpy(side, F->u, sizeof side);
+        theta = acos(-r * (1.0 - 1e-6) / d);
+    }
+    tu_normalize3(side);
+    for (k = 0; k < 3; k++) c[k] = F->e[k] + d * (cos(theta) * F->w[k] + sin(theta) * side[k]);
+}
+
+/* The documented criterion of that sphere, in closed form. */
+static double most_magnified_criterion(const frame *F, double d, double r)
+{
+    double t, z;
+    switch (F->kind) {
+    case MLOD_VIEW_ORTHOGRAPHIC: return 2.0 * r * F->disc_scale;
+    case MLOD_VIEW_PERSPECTIVE:
+        t = atan(sqrt(0.25 * (F->W * F->W + F->H * F->H)) / F->f) + asin(r / d);
+        z = d * cos(t);
+        return z > r ? F->f * 2.0 * r * sqrt(d * d - r * r) / (z * z - r * r) : HUGE_VAL;
+    default: return F->disc_scale * 2.0 * r / (sqrt(d * d - r * r) - r);
+    }
+}
+
+/* The N that the documentation asks for: the smallest whose leaf radius
+   radius_scale sqrt(A/N) keeps the most magnified criterion <= epsilon. */
+static double expected_sample_count(const frame *F, double A, double eps, double rs, double d)
+{
+    double lo = 0.0, hi = d / 1.5;
+    int i;
+    for (i = 0; i < 200; i++) {
+        double mid = 0.5 * (lo + hi);
+        if (most_magnified_criterion(F, d, mid) <= eps)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return ceil(A * (rs / lo) * (rs / lo));
+}
+
+static void test_suggest(void)
+{
+    scene_mesh s;
+    mlod_mesh m;
+    mlod_view views[7];
+    double A, exact_area;
+    uint32_t v, n_all, n_max = 0;
+    int kk;
+    static const float epsilons[2] = {1.0f, 2.5f}, scales[2] = {1.0f, 1.5f};
+    static const double closests[2] = {0.5, 3.0};
+    uint64_t cases = 0, above = 0, not_smallest = 0, not_exceeded = 0, above_anywhere = 0, count_bad = 0;
+    double worst_ratio = 0.0;
+    mlod_view_kind worst_kind = MLOD_VIEW_PERSPECTIVE;
+    char first_above[200] = "", first_count[200] = "";
+    if (!scene_torus(&s, 1.0f, 0.35f, 32, 16)) return;
+    m = tu_mesh(&s);
+    A = mlod_mesh_area(&m);
+    exact_area = scene_area(&s);
+    CHECK(fabs(A - exact_area) <= 1e-9 * exact_area, "mlod_mesh_area %.12g, the sum of triangle areas %.12g", A, exact_area);
+    for (v = 0; v < 7; v++) views[v] = tu_view(MLOD_VIEW_PERSPECTIVE);
+    views[0].width = views[0].height = 32;
+    views[1].width = 48, views[1].height = 24, views[1].fov_y = 0.8f;
+    views[2].kind = MLOD_VIEW_PARABOLOID, views[2].width = views[2].height = 32;
+    views[3].kind = MLOD_VIEW_PARABOLOID, views[3].width = 40, views[3].height = 20;
+    views[4].kind = MLOD_VIEW_DUAL_PARABOLOID, views[4].width = 64, views[4].height = 32;
+    views[5].kind = MLOD_VIEW_ORTHOGRAPHIC, views[5].width = views[5].height = 32, views[5].near_plane = -5;
+    views[6].kind = MLOD_VIEW_ORTHOGRAPHIC, views[6].width = 40, views[6].height = 20, views[6].half_width = 2.0f,
+    views[6].half_height = 0.5f, views[6].near_plane = -5;
+    for (v = 0; v < 7; v++) {
+        frame F;
+        uint64_t rng = 5 + v;
+        double eye[3] = {0.3, -0.2, 0.5}, target[3] = {1, 2, -3};
+        tu_look(&rng, &views[v], eye, target);
+        frame_of(&views[v], &F);
+        for (kk = 0; kk < 8; kk++) {
+            float eps = epsilons[kk & 1], rs = scales[(kk >> 1) & 1];
+            double closest = closests[(kk >> 2) & 1], r, c[3], crit, anywhere, where[3], want;
+            uint32_t N = mlod_suggest_sample_count(A, &views[v], 1, eps, rs, closest);
+            cases++;
+            if (N == 0 || N >= MANYLODS_MAX_LEAVES) {
+                above++;
+                continue;
+            }
+            if (N > n_max) n_max = N;
+            want = expected_sample_count(&F, A, eps, rs, closest);
+            if (fabs(N - want) > 1.0 + 1e-6 * want && !count_bad++)
+                snprintf(first_count, sizeof first_count, "%s view %u, eps %g, radius_scale %g, closest %g: N %u, expected %.0f",
+                         kind_name(F.kind), v, eps, rs, closest, N, want);
+            /* N: within epsilon where most magnified; 0.8 N and N - 1 not */
+            r = rs * sqrt(A / N);
+            most_magnified(&F, closest, r, c);
+            crit = sphere_criterion(&views[v], c, r);
+            if (!(crit <= eps * (1.0 + 1e-5)) && !above++)
+                snprintf(first_above, sizeof first_above, "%s view %u, eps %g, closest %g: N %u, c %.9g", kind_name(F.kind), v, eps,
+                         closest, N, crit);
+            r = rs * sqrt(A / floor(0.8 * N));
+            most_magnified(&F, closest, r, c);
+            not_exceeded += !(sphere_criterion(&views[v], c, r) > eps);
+            if (N > 1) {
+                r = rs * sqrt(A / (N - 1));
+                most_magnified(&F, closest, r, c);
+                not_smallest += !(sphere_criterion(&views[v], c, r) > eps * (1.0 - 1e-5));
+            }
+            /* and nowhere else with the centre in the tile is it larger */
+            r = rs * sqrt(A / N);
+            anywhere = largest_criterion(&views[v], r, closest, where);
+            if (!(anywhere <= eps * (1.0 + 1e-5))) {
+                above_anywhere++;
+                if (anywhere / eps > worst_ratio) {
+                    double x[3];
+                    sub3d(x, where, F.e);
+                    worst_ratio = anywhere / eps;
+                    worst_kind = F.kind;
+                    if (getenv("MANYLODS_TEST_VERBOSE"))
+                        printf("  suggest: %s, N %u, r %.6g: c %.6g > eps %g at x.w %.6g (r %.6g)\n", kind_name(F.kind), N, r,
+                               anywhere, eps, tu_dot3(x, F.w), r);
+                }
+            }
+        }
+    }
+    CHECK(count_bad == 0, "mlod_suggest_sample_count: %llu of %llu cases differ by more than 1 from the N the documented criterion gives; first: %s",
+          (unsigned long long)count_bad, (unsigned long long)cases, first_count);
+    CHECK(above == 0, "mlod_suggest_sample_count: %llu of %llu cases whose leaf, where the view magnifies it most, is above epsilon; first: %s",
+          (unsigned long long)above, (unsigned long long)cases, first_above);
+    CHECK(not_exceeded == 0, "mlod_suggest_sample_count: %llu cases where 0.8 N leaves are not above epsilon there",
+          (unsigned long long)not_exceeded);
+    CHECK(not_smallest == 0, "mlod_suggest_sample_count: %llu cases where N - 1 leaves would still be within epsilon",
+          (unsigned long long)not_smallest);
+    CHECK(above_anywhere == 0,
+          "mlod_suggest_sample_count: %llu of %llu cases where a leaf centred in the tile at `closest` is above epsilon (worst %.4f x epsilon, %s)",
+          (unsigned long long)above_anywhere, (unsigned long long)cases, worst_ratio, kind_name(worst_kind));
+    /* several views: the most demanding one decides */
+    n_all = mlod_suggest_sample_count(A, views, 7, 1.0f, 1.0f, 0.5);
+    {
+        uint32_t most = 0;
+        for (v = 0; v < 7; v++) {
+            uint32_t n = mlod_suggest_sample_count(A, &views[v], 1, 1.0f, 1.0f, 0.5);
+            if (n > most) most = n;
+        }
+        CHECK(n_all == most, "mlod_suggest_sample_count over 7 views: %u, the largest of the single views %u", n_all, most);
+    }
+    CHECK(mlod_suggest_sample_count(A, &views[5], 1, 1.0f, 1.0f, 0.5) == mlod_suggest_sample_count(A, &views[5], 1, 1.0f, 1.0f, 30.0),
+          "mlod_suggest_sample_count: orthographic views should not depend on `closest`");
+    CHECK(mlod_suggest_sample_count(1e12, &views[0], 1, 1.0f, 1.0f, 1e-4) == MANYLODS_MAX_LEAVES,
+          "mlod_suggest_sample_count: a need beyond MANYLODS_MAX_LEAVES should return it");
+    {
+        mlod_view bad = views[0];
+        uint32_t zeros = 0;
+        bad.width = 0;
+        zeros += mlod_suggest_sample_count(0.0, views, 1, 1.0f, 1.0f, 1.0) == 0;
+        zeros += mlod_suggest_sample_count(-1.0, views, 1, 1.0f, 1.0f, 1.0) == 0;
+        zeros += mlod_suggest_sample_count(NAN, views, 1, 1.0f, 1.0f, 1.0) == 0;
+        zeros += mlod_suggest_sample_count(A, views, 1, 0.0f, 1.0f, 1.0) == 0;
+        zeros += mlod_suggest_sample_count(A, views, 1, -1.0f, 1.0f, 1.0) == 0;
+        zeros += mlod_suggest_sample_count(A, views, 1, NAN, 1.0f, 1.0) == 0;
+        zeros += mlod_suggest_sample_count(A, views, 1, 1.0f, 1.0f, 0.0) == 0;
+        zeros += mlod_suggest_sample_count(A, views, 1, 1.0f, 1.0f, -2.0) == 0;
+        zeros += mlod_suggest_sample_count(A, views, 1, 1.0f, 1.0f, NAN) == 0;
+        zeros += mlod_suggest_sample_count(A, &bad, 1, 1.0f, 1.0f, 1.0) == 0;
+        zeros += mlod_suggest_sample_count(A, NULL, 1, 1.0f, 1.0f, 1.0) == 0;
+        zeros += mlod_suggest_sample_count(A, views, 0, 1.0f, 1.0f, 1.0) == 0;
+        CHECK(zeros == 12, "mlod_suggest_sample_count: %u of 12 invalid inputs returned 0", zeros);
+        CHECK(mlod_mesh_area(NULL) == 0.0, "mlod_mesh_area(NULL) should be 0");
+    }
+    printf("  suggested N: up to %u for the 7 views\n", n_max);
+    scene_free(&s);
+}
+
+/* ============================================================= errors */
+
+static void expect_code(mlod_result got, const mlod_error *e, mlod_result want, const char *what)
+{
+    CHECK(got == want && e->code == want && e->message[0] != '\0', "%s: returned %s (error.code %s, \"%s\"), expected %s", what,
+          mlod_result_name(got), mlod_result_name(e->code), e->message, mlod_result_name(want));
+}
+
+static void test_errors(void)
+{
+    scene_mesh s;
+    mlod_tree *tree = NULL, *bare = NULL, *other = NULL;
+    mlod_view views[3], wrong[3];
+    mlod_cut *cut = NULL, *cut2 = NULL, *cut_other = NULL;
+    mlod_atlas *atlas = NULL, *with_normals = NULL, *out = NULL;
+    mlod_atlas_desc desc;
+    mlod_cut_params cp = cut_params(1.0f);
+    mlod_error e;
+    snapshot snap;
+    uint32_t v;
+    uint64_t rng = 31;
+    double c[3], R;
+    if (!scene_uv_sphere(&s, 1.0f, 8, 16)) return;
+    tu_bounds(&s, c, &R);
+    tree = tu_build(&s, 2000, 1, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    bare = tu_build(&s, 2000, 1, 0);
+    other = tu_build(&s, 1500, 1, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    for (v = 0; v < 3; v++) {
+        double eye[3] = {0, 0, 3.0 + v};
+        views[v] = look_view(&rng, (mlod_view_kind)v, eye, c, 16 + 8 * v, 16);
+    }
+    memset(&desc, 0, sizeof desc);
+    desc.channels = MLOD_ATLAS_COLOR;
+    if (!tree || !bare || !other || mlod_atlas_create(views, 3, &desc, NULL, &atlas, &e) != MLOD_OK ||
+        mlod_cut_create(3, NULL, &cut, NULL) != MLOD_OK || mlod_cut_create(2, NULL, &cut2, NULL) != MLOD_OK ||
+        mlod_cut_create(3, NULL, &cut_other, NULL) != MLOD_OK || mlod_cut_update(cut, tree, views, &cp, NULL) != MLOD_OK ||
+        mlod_cut_update(cut2, tree, views, &cp, NULL) != MLOD_OK || mlod_cut_update(cut_other, other, views, &cp, NULL) != MLOD_OK ||
+        mlod_splat(atlas, tree, cut, views, NULL, NULL) != MLOD_OK) {
+        CHECK(0, "errors: set-up failed");
+        goto done;
+    }
+    snap_take(&snap, atlas);
+    /* NULLs */
+    expect_code(mlod_splat(NULL, tree, cut, views, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_splat, atlas NULL");
+    expect_code(mlod_splat(atlas, NULL, cut, views, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_splat, tree NULL");
+    expect_code(mlod_splat(atlas, tree, NULL, views, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_splat, cut NULL");
+    expect_code(mlod_splat(atlas, tree, cut, NULL, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_splat, views NULL");
+    expect_code(mlod_splat_ism(NULL, tree, views, 10, 1, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_splat_ism, atlas NULL");
+    expect_code(mlod_splat_ism(atlas, NULL, views, 10, 1, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_splat_ism, tree NULL");
+    expect_code(mlod_splat_ism(atlas, tree, NULL, 10, 1, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_splat_ism, views NULL");
+    expect_code(mlod_atlas_fill_holes(NULL, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_atlas_fill_holes, atlas NULL");
+    expect_code(mlod_atlas_create(views, 3, &desc, NULL, NULL, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_atlas_create, out NULL");
+    out = atlas;
+    expect_code(mlod_atlas_create(NULL, 3, &desc, NULL, &out, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_atlas_create, views NULL");
+    CHECK(out == NULL, "mlod_atlas_create: *out_atlas should be NULL after an error");
+    expect_code(mlod_atlas_create(views, 3, NULL, NULL, &out, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_atlas_create, desc NULL");
+    expect_code(mlod_atlas_create(views, 0, &desc, NULL, &out, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_atlas_create, no views");
+    desc.channels = 4;
+    expect_code(mlod_atlas_create(views, 3, &desc, NULL, &out, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_atlas_create, unknown channel");
+    desc.channels = MLOD_ATLAS_COLOR;
+    /* mismatches */
+    memcpy(wrong, views, sizeof views);
+    wrong[1].width += 1;
+    expect_code(mlod_splat(atlas, tree, cut, wrong, NULL, &e), &e, MLOD_ERROR_MISMATCH, "mlod_splat, a view's tile of another size");
+    expect_code(mlod_splat_ism(atlas, tree, wrong, 10, 1, NULL, &e), &e, MLOD_ERROR_MISMATCH, "mlod_splat_ism, a view's tile of another size");
+    expect_code(mlod_splat(atlas, tree, cut2, views, NULL, &e), &e, MLOD_ERROR_MISMATCH, "mlod_splat, a cut of 2 views for 3");
+    expect_code(mlod_splat(atlas, tree, cut_other, views, NULL, &e), &e, MLOD_ERROR_MISMATCH, "mlod_splat, a cut of another tree");
+    expect_code(mlod_splat(atlas, bare, cut, views, NULL, &e), &e, MLOD_ERROR_MISMATCH, "mlod_splat, colour channel, tree without colours");
+    memcpy(wrong, views, sizeof views);
+    wrong[2].fov_y = 0.0f;
+    wrong[2].kind = MLOD_VIEW_PERSPECTIVE;
+    expect_code(mlod_splat(atlas, tree, cut, wrong, NULL, &e), &e, MLOD_ERROR_BAD_VIEW, "mlod_splat, an invalid view");
+    CHECK(snap_same(&snap, atlas), "the atlas changed under calls that failed");
+    desc.channels = MLOD_ATLAS_NORMAL;
+    if (mlod_atlas_create(views, 3, &desc, NULL, &with_normals, &e) == MLOD_OK) {
+        expect_code(mlod_splat(with_normals, bare, cut, views, NULL, &e), &e, MLOD_ERROR_MISMATCH,
+                    "mlod_splat, normal channel, tree without cones");
+        expect_code(mlod_splat_ism(with_normals, bare, views, 5, 1, NULL, &e), &e, MLOD_ERROR_MISMATCH,
+                    "mlod_splat_ism, normal channel, tree without cones");
+    }
+    desc.channels = 0;
+    /* sizes that overflow: OVERFLOW before any allocation (the counting
+       allocator refuses blocks over 1 GiB, so a wrong answer costs no memory) */
+    {
+        static const struct {
+            uint32_t count, columns, width, height;
+            const char *what;
+        } cases[4] = {{1, 0, 0xffffffffu, 0xffffffffu, "a tile of 2^32-1 x 2^32-1 pixels"},
+                      {3, 3, 0x80000000u, 1, "a row of 3 tiles 2^31 wide"},
+                      {40, 40, 1, 0xffffff00u, "40 tiles of 2^32-256 rows (2^31 row bands of 64)"},
+                      {40, 40, 1, 0xffffffffu, "40 tiles of 2^32-1 rows (2^31 row bands of 64)"}};
+        mlod_view big[40];
+        uint32_t i;
+        for (i = 0; i < 4; i++) {
+            tu_counter counter;
+            mlod_allocator a;
+            char what[160];
+            memset(&counter, 0, sizeof counter);
+            counter.max_bytes = (size_t)1 << 30;
+            a = tu_allocator(&counter);
+            for (v = 0; v < cases[i].count; v++) {
+                big[v] = views[0];
+                big[v].width = cases[i].width;
+                big[v].height = cases[i].height;
+            }
+            desc.columns = cases[i].columns;
+            out = atlas;
+            snprintf(what, sizeof what, "mlod_atlas_create, %s", cases[i].what);
+            expect_code(mlod_atlas_create(big, cases[i].count, &desc, &a, &out, &e), &e, MLOD_ERROR_OVERFLOW, what);
+            CHECK(counter.calls == 0 && out == NULL && counter.live_blocks == 0,
+                  "%s: the allocator was called %lu times (out %s NULL)", what, counter.calls, out ? "not" : "is");
+        }
+        desc.columns = 0;
+    }
+    /* a failing allocator: each allocation of mlod_atlas_create in turn */
+    {
+        tu_counter counter;
+        mlod_allocator a;
+        unsigned long total, k, ok = 0;
+        memset(&counter, 0, sizeof counter);
+        a = tu_allocator(&counter);
+        desc.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
+        if (mlod_atlas_create(views, 3, &desc, &a, &out, &e) == MLOD_OK) mlod_atlas_destroy(out);
+        total = counter.calls;
+        for (k = 1; k <= total; k++) {
+            mlod_result r;
+            memset(&counter, 0, sizeof counter);
+            counter.fail_at = k;
+            out = atlas;
+            r = mlod_atlas_create(views, 3, &desc, &a, &out, &e);
+            ok += r == MLOD_ERROR_OUT_OF_MEMORY && e.code == r && out == NULL && counter.live_blocks == 0;
+        }
+        CHECK(total >= 2 && ok == total, "mlod_atlas_create: %lu of %lu failing allocations gave OUT_OF_MEMORY, NULL and no leak",
+              ok, total);
+        /* mlod_atlas_fill_holes: each of its scratch allocations in turn */
+        memset(&counter, 0, sizeof counter);
+        if (mlod_atlas_create(views, 3, &desc, &a, &out, &e) == MLOD_OK) {
+            unsigned long live = counter.live_blocks, calls_before, fill_calls;
+            snapshot before;
+            mlod_splat(out, tree, cut, views, NULL, NULL);
+            snap_take(&before, out);
+            calls_before = counter.calls;
+            mlod_atlas_fill_holes(out, NULL, NULL);
+            fill_calls = counter.calls - calls_before;
+            mlod_splat(out, tree, cut, views, NULL, NULL);
+            ok = 0;
+            for (k = 1; k <= fill_calls; k++) {
+                mlod_result r;
+                counter.fail_at = counter.calls + k;
+                counter.fail_after = 0;
+                r = mlod_atlas_fill_holes(out, NULL, &e);
+                ok += r == MLOD_ERROR_OUT_OF_MEMORY && e.code == r && counter.live_blocks == live && snap_same(&before, out);
+            }
+            counter.fail_at = 0;
+            CHECK(fill_calls >= 1 && ok == fill_calls,
+                  "mlod_atlas_fill_holes: %lu of %lu failing allocations gave OUT_OF_MEMORY, no leak, the atlas unchanged", ok, fill_calls);
+            CHECK(mlod_atlas_fill_holes(out, NULL, NULL) == MLOD_OK && counter.live_blocks == live,
+                  "mlod_atlas_fill_holes: after the failures it should work and give its scratch back");
+            snap_free(&before);
+            mlod_atlas_destroy(out);
+            CHECK(counter.live_blocks == 0 && counter.frees_of_unknown == 0, "atlas: %lu blocks left after destroy, %lu unknown frees",
+                  counter.live_blocks, counter.frees_of_unknown);
+        }
+        out = NULL;
+    }
+    snap_free(&snap);
+done:
+    mlod_atlas_destroy(atlas);
+    mlod_atlas_destroy(with_normals);
+    mlod_cut_destroy(cut);
+    mlod_cut_destroy(cut2);
+    mlod_cut_destroy(cut_other);
+    mlod_tree_destroy(tree);
+    mlod_tree_destroy(bare);
+    mlod_tree_destroy(other);
+    scene_free(&s);
+}
+
+int main(void)
+{
+    test_projection();
+    test_single_node();
+    test_overlap();
+    test_culling_and_clearing();
+    test_determinism();
+    test_fill_holes();
+    show_fill_weighting();
+    test_metrics_known();
+    test_metrics_reference();
+    test_end_to_end();
+    test_suggest();
+    test_errors();
+    return test_finish();
+}
