@@ -791,7 +791,9 @@ static void mlod__sphere_enclose(const float *a, const float *b, float *out)
     }
     need_a = mlod__distance_f(c, a) + ra;
     need_b = mlod__distance_f(c, b) + rb;
-    out[3] = mlod__float_up((need_a > need_b ? need_a : need_b) * MLOD__SPHERE_SLACK);
+    /* (1 + 2^-50) covers the rounding of the double sums, which may even
+       drop a child radius far below the distance */
+    out[3] = mlod__float_up((need_a > need_b ? need_a : need_b) * MLOD__SPHERE_SLACK * (1.0 + 1.0 / 1125899906842624.0));
     for (k = 0; k < 3; k++) out[k] = c[k];
 }
 
@@ -958,6 +960,8 @@ static void mlod__run(const mlod_parallel *parallel, uint32_t count, mlod_task_f
 
 /* Coordinates beyond this magnitude could overflow float bounds. */
 #define MLOD__MAX_COORDINATE 1.0e36
+/* Leaf radii and summed areas beyond this could overflow float bounds. */
+#define MLOD__MAX_MEASURE 1.0e37
 
 static mlod_result mlod__check_floats(const float *base, size_t stride, uint32_t count, int limit,
                                       const char *what, mlod_error *error)
@@ -1466,6 +1470,14 @@ MANYLODS_DEF mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
                          reach, reach * (1.0 / 8388608.0));
         goto done;
     }
+    {
+        double scale = desc->radius_scale > 0.0f ? desc->radius_scale : 1.0;
+        if (!(scale * sqrt(cumulative[triangles] / n) <= MLOD__MAX_MEASURE)) {
+            res = mlod__fail(error, MLOD_ERROR_RANGE, "leaf radius radius_scale * sqrt(A/N) = %g overflows float bounds",
+                             scale * sqrt(cumulative[triangles] / n));
+            goto done;
+        }
+    }
     mlod__sample_mesh(mesh, cumulative, triangles, n, desc->seed, tri, st);
     for (i = 0; i < n; i++) {
         double p[3];
@@ -1607,7 +1619,14 @@ MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod
         for (i = 0; i < n; i++) radius[i] = mlod__density_radius(tree, i);
         tree->radius_scale = scale;
     }
-    for (i = 0; i < n; i++) mean_area += radius[i] * radius[i] / n;
+    for (i = 0; i < n; i++) {
+        mean_area += radius[i] * radius[i] / n;
+        if (!(tree->radius_scale * radius[i] <= MLOD__MAX_MEASURE)) {
+            res = mlod__fail(error, MLOD_ERROR_RANGE, "point radius %g times radius_scale %g overflows float bounds",
+                             radius[i], tree->radius_scale);
+            goto done;
+        }
+    }
     tree->area_unit = mean_area > 0.0 ? mean_area : 1.0;
     for (i = 0; i < n; i++) {
         mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], radius[i]);
@@ -1678,6 +1697,21 @@ MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
                           mesh->index_count / 3, mesh->vertex_count, tree->triangle_count, tree->vertex_count);
     if (tree->colors && !mesh->colors)
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the tree has colours and the mesh has none");
+    {
+        /* the largest growth of a sampled triangle must keep radii and
+           summed areas (in build units) within float range */
+        double growth = 0.0;
+        uint32_t t;
+        for (t = 0; t < tree->triangle_count; t++)
+            if (tree->triangle_areas[t] > 0.0) {
+                double g = mlod__triangle_area(mesh, t) / tree->triangle_areas[t];
+                if (g > growth) growth = g;
+            }
+        if (!(tree->radius_scale * sqrt(tree->area_unit * growth) <= MLOD__MAX_MEASURE) ||
+            !(growth * tree->leaf_count <= MLOD__MAX_MEASURE))
+            return mlod__fail(error, MLOD_ERROR_RANGE, "a triangle grew %g times its build area: radii or areas would overflow",
+                              growth);
+    }
     job.tree = tree;
     job.mesh = mesh;
     job.points = NULL;
@@ -1713,6 +1747,27 @@ MANYLODS_DEF mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *p
                           tree->leaf_count);
     if (tree->colors && !points->colors)
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the tree has colours and the points have none");
+    {
+        /* the largest radius (given, or at most the points' extent when
+           estimated) must keep radii and areas within float range */
+        double largest = 0.0, lo[3], hi[3];
+        uint32_t i;
+        int k;
+        for (k = 0; k < 3; k++) lo[k] = hi[k] = points->positions[k];
+        for (i = 0; i < points->count; i++) {
+            const float *p = mlod__at(points->positions, points->position_stride, i);
+            if (points->radii && mlod__point_radius(points, i) > largest) largest = mlod__point_radius(points, i);
+            for (k = 0; k < 3; k++) {
+                if (p[k] < lo[k]) lo[k] = p[k];
+                if (p[k] > hi[k]) hi[k] = p[k];
+            }
+        }
+        if (!points->radii)
+            for (k = 0; k < 3; k++) largest += hi[k] - lo[k];
+        if (!(tree->radius_scale * largest <= MLOD__MAX_MEASURE) ||
+            (tree->areas && !(largest * largest / tree->area_unit * points->count <= MLOD__MAX_MEASURE)))
+            return mlod__fail(error, MLOD_ERROR_RANGE, "point radii up to %g would overflow float bounds", largest);
+    }
     job.tree = tree;
     job.mesh = NULL;
     job.points = points;
@@ -2325,9 +2380,9 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
 static void mlod__join_task(void *context, uint32_t index)
 {
     const mlod__cut_job *job = (const mlod__cut_job *)context;
-    uint32_t v = index * MLOD__JOIN_VIEWS, end = v + MLOD__JOIN_VIEWS;
+    uint32_t v = index * MLOD__JOIN_VIEWS, end;
     mlod__pview pv;
-    if (end > job->cut->view_count) end = job->cut->view_count;
+    end = (uint64_t)v + MLOD__JOIN_VIEWS > job->cut->view_count ? job->cut->view_count : v + MLOD__JOIN_VIEWS;
     for (; v < end; v++) {
         if (job->merge) mlod__view_prepare(&job->views[v], &pv, NULL);
         mlod__join_view(job, v, &pv);
@@ -2355,19 +2410,36 @@ static int mlod__reserve(mlod_cut *cut, void **buffer, size_t *capacity, size_t 
     return 1;
 }
 
+/* Grow a pair of entry arrays (nodes and statuses) to hold `need` entries,
+   both to the same capacity (contents are not kept).  Returns 0 when out
+   of memory, with the arrays as they were. */
+static int mlod__reserve_entries(mlod_cut *cut, uint32_t **nodes, uint8_t **status, size_t *capacity, size_t need)
+{
+    size_t sizes[2];
+    int attempt;
+    if (need <= *capacity) return 1;
+    sizes[0] = need + need / 8 > need ? need + need / 8 : need;
+    sizes[1] = need;
+    for (attempt = 0; attempt < 2; attempt++) {
+        uint32_t *n = (uint32_t *)mlod__alloc_array(&cut->allocator, sizes[attempt], sizeof(uint32_t), NULL);
+        uint8_t *s = n ? (uint8_t *)mlod__alloc_array(&cut->allocator, sizes[attempt], sizeof(uint8_t), NULL) : NULL;
+        if (n && s) {
+            mlod__free(&cut->allocator, *nodes);
+            mlod__free(&cut->allocator, *status);
+            cut->bytes = cut->bytes - *capacity * 5 + sizes[attempt] * 5;
+            *nodes = n;
+            *status = s;
+            *capacity = sizes[attempt];
+            return 1;
+        }
+        mlod__free(&cut->allocator, n);
+    }
+    return 0;
+}
+
 static int mlod__reserve_list(mlod_cut *cut, mlod__list *list, size_t need)
 {
-    size_t capacity = list->capacity;
-    void *nodes = list->nodes, *status = list->status;
-    int ok = mlod__reserve(cut, &nodes, &capacity, need, sizeof(uint32_t));
-    list->nodes = (uint32_t *)nodes;
-    if (ok) {
-        capacity = list->capacity;
-        ok = mlod__reserve(cut, &status, &capacity, need, sizeof(uint8_t));
-        list->status = (uint8_t *)status;
-    }
-    if (ok) list->capacity = capacity;
-    return ok;
+    return mlod__reserve_entries(cut, &list->nodes, &list->status, &list->capacity, need);
 }
 
 MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut)
@@ -2549,18 +2621,7 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
     cut->view_segment[cut->view_count] = (uint32_t)s;
     cut->tasks[tasks] = (uint32_t)s;
     *task_count = tasks;
-    {
-        void *p = cut->scratch_nodes;
-        size_t cap = cut->scratch_capacity;
-        if (!mlod__reserve(cut, &p, &cap, capacity, sizeof(uint32_t))) return 0;
-        cut->scratch_nodes = (uint32_t *)p;
-        p = cut->scratch_status;
-        cap = cut->scratch_capacity;
-        if (!mlod__reserve(cut, &p, &cap, capacity, sizeof(uint8_t))) return 0;
-        cut->scratch_status = (uint8_t *)p;
-        cut->scratch_capacity = cap;
-    }
-    return 1;
+    return mlod__reserve_entries(cut, &cut->scratch_nodes, &cut->scratch_status, &cut->scratch_capacity, capacity);
 }
 
 /* Lay out the output list: each view gets room for all its segments'
@@ -2838,11 +2899,11 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         if (columns == 0) columns = 1;
     }
     if (columns > view_count) columns = view_count;
-    rows = (view_count + columns - 1) / columns;
+    rows = (uint32_t)(((uint64_t)view_count + columns - 1) / columns);
     width = (uint64_t)columns * cell_w;
     height = (uint64_t)rows * cell_h;
     pixels = width * height;
-    if (width > 0xffffffffu || height > 0xffffffffu || pixels / 3 > ((size_t)-1 / sizeof(float)) / 4)
+    if (width > 0xffffffffu || height > 0xffffffffu || pixels > (size_t)-1 / (3 * sizeof(float)))
         return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
                           (unsigned long long)width, (unsigned long long)height);
     atlas = (mlod_atlas *)a.alloc(a.user, sizeof(mlod_atlas));
@@ -2879,7 +2940,10 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         t[3] = views[v].height;
         atlas->bands[v + 1] = atlas->bands[v] + (uint32_t)(((uint64_t)t[3] + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS);
     }
-    for (v = 0; v < (uint32_t)pixels; v++) atlas->depth[v] = INFINITY;
+    {
+        size_t i;
+        for (i = 0; i < (size_t)pixels; i++) atlas->depth[i] = INFINITY;
+    }
     if (atlas->normal) memset(atlas->normal, 0, (size_t)pixels * 3 * sizeof(float));
     if (atlas->color) memset(atlas->color, 0, (size_t)pixels * 3 * sizeof(float));
     *out_atlas = atlas;
@@ -2984,8 +3048,8 @@ static uint32_t mlod__band_begin(const mlod__splat_job *job, uint32_t index, mlo
     band->tree = job->tree;
     band->tile = atlas->tiles + 4 * (size_t)view;
     band->row_begin = (index - atlas->bands[view]) * MLOD__BAND_ROWS;
-    band->row_end = band->row_begin + MLOD__BAND_ROWS;
-    if (band->row_end > band->tile[3]) band->row_end = band->tile[3];
+    band->row_end = (uint64_t)band->row_begin + MLOD__BAND_ROWS > band->tile[3] ? band->tile[3]
+                                                                                 : band->row_begin + MLOD__BAND_ROWS;
     for (row = band->row_begin; row < band->row_end; row++) {
         size_t at = (size_t)(band->tile[1] + row) * atlas->width + band->tile[0];
         uint32_t col;
@@ -3100,8 +3164,8 @@ static size_t mlod__pyramid_floats(uint32_t w, uint32_t h, uint32_t values)
 {
     size_t total = 0;
     while (w > 1 || h > 1) {
-        w = (w + 1) / 2;
-        h = (h + 1) / 2;
+        w = (uint32_t)(((uint64_t)w + 1) / 2);
+        h = (uint32_t)(((uint64_t)h + 1) / 2);
         total += (size_t)w * h * (values + 1);
     }
     return total;
@@ -3130,7 +3194,8 @@ static void mlod__fill_task(void *context, uint32_t view)
     lh[0] = h;
     level_at[0] = NULL;
     while (lw[levels] > 1 || lh[levels] > 1) {
-        uint32_t x, y, cw = (lw[levels] + 1) / 2, ch = (lh[levels] + 1) / 2;
+        uint32_t x, y, cw = (uint32_t)(((uint64_t)lw[levels] + 1) / 2),
+                 ch = (uint32_t)(((uint64_t)lh[levels] + 1) / 2);
         float *dst = levels == 0 ? pyramid : level_at[levels] + (size_t)lw[levels] * lh[levels] * stride;
         for (y = 0; y < ch; y++)
             for (x = 0; x < cw; x++) {
