@@ -1,0 +1,1216 @@
+/* fuzz/fuzz_pipeline.c - libFuzzer harness: arbitrary bytes become a mesh or
+   a point cloud, build options, views, epsilon and modes; the whole pipeline
+   runs (build, refit, cut in basic, incremental and lazy modes, splat, ISM,
+   hole filling) and every result is checked against the definitions of
+   manylods.h.  A violation prints what broke and aborts, so libFuzzer keeps
+   the input as a crash.
+
+     make fuzz                      (FUZZ_SECONDS=60; see fuzz/run.sh), or
+     clang -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
+           -fno-sanitize-recover=all -I. fuzz/fuzz_pipeline.c -lm -o fuzz_pipeline
+     ./fuzz_pipeline -max_len=4096 CORPUS_DIR
+     MANYLODS_FUZZ_VERBOSE=1 ./fuzz_pipeline FILE...   how far each input got
+
+   Checked:
+   - a call that fails returns an error code equal to error.code, with a
+     non-empty NUL-terminated message, sets its output pointer to NULL and
+     leaves the caller's objects as they were (tree after refit, cut after
+     update; a failed allocation is retried once and must then succeed);
+     input the documentation calls invalid (non-finite or >1e36 coordinates,
+     indices out of range, N = 0 or > MANYLODS_MAX_LEAVES, bad radius_scale
+     or attributes, epsilon <= 0 or NaN, bad views, lazy_steps 0, refit of
+     another mesh) never succeeds, and input this harness made sane never
+     fails except as documented (MLOD_ERROR_EMPTY for a mesh without area,
+     OUT_OF_MEMORY when a failing allocation was injected);
+   - after a build or refit: the tree's shape, every float finite, every
+     child sphere inside its parent with the documented slack (exact
+     arithmetic, tests/exact.h), cones likewise, unit cone axes;
+   - after every cut update: each view's cut lists nodes left to right whose
+     subtrees partition the leaves exactly once, status counts agree, and on
+     sampled nodes c(child) <= c(parent); a basic cut agrees with the
+     definition on sampled entries; incremental equals basic node for node
+     (from the previous frame's cut, or from the root after mlod_cut_reset);
+     lazy is a partition and reaches the basic cut when views stop; the cut
+     is the same with and without a parallel-for hook;
+   - the atlas is empty when made and holds no NaN after splat, ISM and
+     hole filling; projections and pixel rays give no NaN;
+   - every block the library allocated is given back.
+   Each input stays in the milliseconds: at most 256 vertices, 512
+   triangles, 512 points, N = 4096, 8 views, and tiles shrunk until leaves x
+   tile pixels stays under 2^22.
+
+   Input format: bytes are read in order (little endian) by rd_*; once the
+   input is used up they come from a generator seeded by the whole input,
+   so short inputs still make whole scenes.  First a flags byte:
+     bit 0  point cloud (else a mesh)
+     bit 1  sane geometry (finite, |x| <= 1e30, indices in range)
+     bit 2  sane views, epsilon and options
+     bit 3  run tasks through a serial parallel-for hook (reverse order)
+     bit 4  fail one allocation (the next byte says which: 1 .. 256)
+     bit 5  normals
+     bit 6  colours
+     bit 7  radii (point clouds)
+   then the chaos bytes of geometry and of views: the chance, in 256, that
+   a float of a part that is not sane is replaced by a hostile one (NaN,
+   infinities, 1e38, denormals, raw bits); then the scene (parse_scene),
+   the build options (parse_build), the views (parse_views) and the rest in
+   the order run_views reads them.  fuzz/make_corpus.c writes the seeds. */
+#define MANYLODS_IMPLEMENTATION
+#include "../manylods.h"
+#include "../tests/exact.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FZ_MAX_VERTICES 256u
+#define FZ_MAX_TRIANGLES 512u
+#define FZ_MAX_POINTS 512u
+#define FZ_MAX_SAMPLES 4096u
+#define FZ_MAX_VIEWS 8u
+#define FZ_MAX_TILE 256u
+/* Bounds on the splat work: leaves x tile pixels, and atlas pixels. */
+#define FZ_SPLAT_BUDGET ((uint64_t)1 << 22)
+#define FZ_ATLAS_PIXELS ((uint64_t)1 << 18)
+#define FZ_SAMPLED 24u   /* nodes per view checked against the criterion */
+#define FZ_LAZY_CALLS 64 /* lazy updates allowed to reach the basic cut */
+
+static int fz_verbose = -1;
+
+#define FZ_NOTE(...)                                                                                                   \
+    do {                                                                                                               \
+        if (fz_verbose) fprintf(stderr, __VA_ARGS__);                                                                  \
+    } while (0)
+
+/* Report a broken invariant and abort (libFuzzer saves the input). */
+static void fz_fail(const char *file, int line, const char *fmt, ...)
+{
+    va_list args;
+    fprintf(stderr, "\nmanylods fuzz: invariant broken at %s:%d: ", file, line);
+    va_start(args, fmt);
+    vfprintf(stderr, fmt, args);
+    va_end(args);
+    fputc('\n', stderr);
+    abort();
+}
+#define FZ_REQUIRE(cond, ...)                                                                                          \
+    do {                                                                                                               \
+        if (!(cond)) fz_fail(__FILE__, __LINE__, __VA_ARGS__);                                                         \
+    } while (0)
+
+/* ------------------------------------------------------------- reader */
+
+typedef struct fz_reader {
+    const uint8_t *data;
+    size_t size, at;
+    uint64_t state; /* generator for bytes past the end */
+    unsigned chaos; /* 0..255: chance (of 256) that a float is raw bits */
+} fz_reader;
+
+static uint8_t rd_u8(fz_reader *r)
+{
+    if (r->at < r->size) return r->data[r->at++];
+    r->state = r->state * 6364136223846793005ull + 1442695040888963407ull;
+    return (uint8_t)(r->state >> 56);
+}
+
+static uint32_t rd_u16(fz_reader *r)
+{
+    uint32_t lo = rd_u8(r);
+    return lo | (uint32_t)rd_u8(r) << 8;
+}
+
+static uint32_t rd_u32(fz_reader *r)
+{
+    uint32_t lo = rd_u16(r);
+    return lo | rd_u16(r) << 16;
+}
+
+static double rd_unit(fz_reader *r) { return rd_u16(r) / 65535.0; }            /* [0, 1] */
+static uint32_t rng_below_reader(fz_reader *r, uint32_t n) { return (uint32_t)(((uint64_t)rd_u32(r) * n) >> 32); }
+static double rd_signed(fz_reader *r) { return (int16_t)rd_u16(r) / 32768.0; } /* [-1, 1) */
+
+static float bits_float(uint32_t bits)
+{
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+/* A hostile float: one of the interesting values, or raw bits. */
+static float rd_raw_float(fz_reader *r)
+{
+    static const uint32_t special[] = {
+        0x00000000u, 0x80000000u, 0x7fc00000u, 0xffc00000u, 0x7f800000u, 0xff800000u, 0x7f7fffffu, 0xff7fffffu,
+        0x00800000u, 0x00000001u, 0x80000001u, 0x7b40a2f6u /* ~1e36 */, 0x7b40a2f7u /* just above 1e36 */,
+        0x3f800000u, 0xbf800000u, 0x33d6bf95u /* 1e-7 */, 0x7149f2cau /* 1e30 */, 0x4b000000u /* 2^23 */,
+        0x7e967699u /* 1e38 */, 0x0da24260u /* 1e-30 */, 0x40490fdbu /* pi */, 0x3fc90fdbu /* pi/2 */};
+    uint8_t pick = rd_u8(r);
+    if (pick < 2 * sizeof special / sizeof special[0]) return bits_float(special[pick / 2]);
+    return bits_float(rd_u32(r));
+}
+
+/* value, or (with the reader's chaos) a hostile float instead. */
+static float rd_maybe_raw(fz_reader *r, double value)
+{
+    if (r->chaos && rd_u8(r) < r->chaos) return rd_raw_float(r);
+    return (float)value;
+}
+
+/* -------------------------------------------------------- allocator */
+
+typedef struct fz_counter {
+    unsigned long calls, live, fail_at;
+    int failed;
+} fz_counter;
+
+static void *fz_alloc(void *user, size_t bytes)
+{
+    fz_counter *c = (fz_counter *)user;
+    void *p;
+    c->calls++;
+    if (c->fail_at && c->calls == c->fail_at) {
+        c->failed = 1;
+        return NULL;
+    }
+    if (bytes > ((size_t)1 << 30)) return NULL; /* no input here needs that much */
+    p = malloc(bytes);
+    if (p) c->live++;
+    return p;
+}
+
+static void fz_free(void *user, void *p)
+{
+    fz_counter *c = (fz_counter *)user;
+    if (!p) return;
+    c->live--;
+    free(p);
+}
+
+static void fz_run_reverse(void *user, uint32_t count, mlod_task_fn *task, void *context)
+{
+    uint32_t i;
+    (void)user;
+    for (i = count; i-- > 0;) task(context, i);
+}
+
+/* ------------------------------------------------------ error checks */
+
+static const char *fz_where; /* the call being checked, for messages */
+
+/* A failed call: a real error code, matching error.code, with a message. */
+static void check_error(mlod_result res, const mlod_error *e)
+{
+    size_t len = 0;
+    FZ_REQUIRE(res != MLOD_OK && res >= MLOD_ERROR_INVALID_ARGUMENT && res <= MLOD_ERROR_CANCELLED,
+               "%s: not an error code: %d", fz_where, (int)res);
+    FZ_REQUIRE(e->code == res, "%s: returned %s, error.code %s", fz_where, mlod_result_name(res),
+               mlod_result_name(e->code));
+    while (len < sizeof e->message && e->message[len]) len++;
+    FZ_REQUIRE(len > 0 && len < sizeof e->message, "%s: %s with an empty or unterminated message", fz_where,
+               mlod_result_name(res));
+}
+
+/* An injected allocation failure may turn any call into OUT_OF_MEMORY. */
+static int injected_oom(const fz_counter *c, mlod_result res)
+{
+    return res == MLOD_ERROR_OUT_OF_MEMORY && c->failed;
+}
+
+/* ------------------------------------------------------------ scenes */
+
+typedef struct fz_scene {
+    int points;
+    uint32_t vertex_count, index_count;
+    float positions[3 * FZ_MAX_POINTS];
+    float normals[3 * FZ_MAX_POINTS];
+    float colors[3 * FZ_MAX_POINTS];
+    float radii[FZ_MAX_POINTS];
+    uint32_t indices[3 * FZ_MAX_TRIANGLES];
+    int has_normals, has_colors, has_radii;
+    double centre[3], radius; /* of the finite positions, for sane views */
+    int must_fail;            /* input the documentation calls invalid */
+} fz_scene;
+
+typedef struct fz_frame {
+    double offset[3], scale[3];
+} fz_frame;
+
+/* Where sane coordinates live: an offset (up to 1e30 from the origin), a
+   scale (1e-18 .. 1e18) and an aspect per axis (up to 1e6 : 1). */
+static void parse_frame(fz_reader *r, fz_frame *f)
+{
+    double scale = ldexp(1.0, (int)(rd_u8(r) % 121) - 60);
+    int k;
+    uint8_t far = rd_u8(r);
+    for (k = 0; k < 3; k++) {
+        double aspect = (rd_u8(r) & 7) == 0 ? ldexp(1.0, -(int)(rd_u8(r) % 21)) : 1.0;
+        f->scale[k] = scale * aspect;
+        f->offset[k] = far < 32 ? rd_signed(r) * ldexp(1.0, (int)(far % 100)) : rd_signed(r) * 4.0 * scale;
+    }
+}
+
+static int finite_within(float x, double limit) { return isfinite(x) && fabs(x) <= limit; }
+
+static void parse_vectors(fz_reader *r, float *out, uint32_t count, const fz_frame *f, int unit, int zero_ok)
+{
+    uint32_t i, k;
+    uint8_t dup = rd_u8(r) & 63; /* chance of repeating the previous vector */
+    for (i = 0; i < count; i++) {
+        if (i > 0 && rd_u8(r) < dup) {
+            memcpy(out + 3 * i, out + 3 * (i - 1), 3 * sizeof(float));
+            continue;
+        }
+        for (k = 0; k < 3; k++) {
+            double v = unit ? rd_signed(r) : f->offset[k] + f->scale[k] * rd_signed(r);
+            if (!zero_ok && unit && k == 2 && v == 0.0) v = 1.0;
+            out[3 * i + k] = rd_maybe_raw(r, v);
+        }
+    }
+}
+
+/* Centre and radius of the box around the finite, in-range positions. */
+static void scene_bounds(fz_scene *s)
+{
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, d2 = 0.0;
+    uint32_t i, k, n = s->vertex_count;
+    for (i = 0; i < n; i++) {
+        const float *p = s->positions + 3 * i;
+        if (!finite_within(p[0], 1e36) || !finite_within(p[1], 1e36) || !finite_within(p[2], 1e36)) continue;
+        for (k = 0; k < 3; k++) {
+            if (p[k] < lo[k]) lo[k] = p[k];
+            if (p[k] > hi[k]) hi[k] = p[k];
+        }
+    }
+    for (k = 0; k < 3; k++) {
+        if (lo[k] > hi[k]) lo[k] = hi[k] = 0.0;
+        s->centre[k] = 0.5 * (lo[k] + hi[k]);
+        d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    s->radius = 0.5 * sqrt(d2);
+    if (!(s->radius > 0.0)) s->radius = 1e-3 * (fabs(s->centre[0]) + fabs(s->centre[1]) + fabs(s->centre[2])) + 1e-6;
+}
+
+/* What the documentation calls invalid in positions, normals, colours and
+   radii. */
+static int vectors_invalid(const float *v, uint32_t count, double limit)
+{
+    uint32_t i;
+    for (i = 0; i < 3 * count; i++)
+        if (!finite_within(v[i], limit)) return 1;
+    return 0;
+}
+
+static void parse_scene(fz_reader *r, fz_scene *s, uint8_t flags, int sane)
+{
+    fz_frame frame;
+    uint32_t i, triangles;
+    memset(s, 0, sizeof *s);
+    s->points = flags & 1;
+    s->has_normals = (flags >> 5) & 1;
+    s->has_colors = (flags >> 6) & 1;
+    s->has_radii = s->points && (flags >> 7);
+    parse_frame(r, &frame);
+    if (s->points) {
+        s->vertex_count = sane ? 1 + rd_u16(r) % FZ_MAX_POINTS : rd_u16(r) % (FZ_MAX_POINTS + 1);
+    } else {
+        s->vertex_count = sane ? 1 + rd_u16(r) % FZ_MAX_VERTICES : rd_u16(r) % (FZ_MAX_VERTICES + 1);
+        triangles = 1 + rd_u16(r) % FZ_MAX_TRIANGLES;
+        s->index_count = 3 * triangles;
+        for (i = 0; i < s->index_count; i++) {
+            uint32_t v = rd_u16(r);
+            if (sane || !s->vertex_count)
+                s->indices[i] = s->vertex_count ? v % s->vertex_count : v;
+            else if (r->chaos && rd_u8(r) < r->chaos / 8)
+                s->indices[i] = rd_u8(r) & 1 ? 0xffffffffu : s->vertex_count + (v & 3);
+            else
+                s->indices[i] = v % s->vertex_count;
+            if (s->indices[i] >= s->vertex_count) s->must_fail = 1;
+        }
+        if (!sane && r->chaos && rd_u8(r) == 0) { /* not a multiple of 3 */
+            s->index_count -= 1 + (rd_u8(r) & 1);
+            s->must_fail = 1;
+        }
+    }
+    if (s->vertex_count == 0) s->must_fail = 1;
+    parse_vectors(r, s->positions, s->vertex_count, &frame, 0, 1);
+    if (vectors_invalid(s->positions, s->vertex_count, 1e36)) s->must_fail = 1;
+    if (s->has_normals) {
+        parse_vectors(r, s->normals, s->vertex_count, &frame, 1, rd_u8(r) < 32);
+        if (vectors_invalid(s->normals, s->vertex_count, FLT_MAX)) s->must_fail = 1;
+    }
+    if (s->has_colors) {
+        double range = ldexp(1.0, (int)(rd_u8(r) % 16) - 4);
+        for (i = 0; i < 3 * s->vertex_count; i++) s->colors[i] = rd_maybe_raw(r, range * rd_unit(r));
+        if (vectors_invalid(s->colors, s->vertex_count, FLT_MAX)) s->must_fail = 1;
+    }
+    if (s->has_radii) {
+        double unit = frame.scale[0] * ldexp(1.0, -(int)(rd_u8(r) % 12));
+        for (i = 0; i < s->vertex_count; i++) {
+            s->radii[i] = rd_maybe_raw(r, rd_u8(r) < 16 ? 0.0 : unit * rd_unit(r));
+            if (!(s->radii[i] >= 0.0f && s->radii[i] <= 1e36f)) s->must_fail = 1;
+        }
+    }
+    scene_bounds(s);
+}
+
+static mlod_mesh scene_mesh(const fz_scene *s, const float *positions)
+{
+    mlod_mesh m;
+    memset(&m, 0, sizeof m);
+    m.positions = positions;
+    m.vertex_count = s->vertex_count;
+    m.indices = s->indices;
+    m.index_count = s->index_count;
+    m.normals = s->has_normals ? s->normals : NULL;
+    m.colors = s->has_colors ? s->colors : NULL;
+    return m;
+}
+
+static mlod_points scene_points(const fz_scene *s, const float *positions)
+{
+    mlod_points p;
+    memset(&p, 0, sizeof p);
+    p.positions = positions;
+    p.count = s->vertex_count;
+    p.normals = s->has_normals ? s->normals : NULL;
+    p.colors = s->has_colors ? s->colors : NULL;
+    p.radii = s->has_radii ? s->radii : NULL;
+    return p;
+}
+
+/* ---------------------------------------------------- build options */
+
+typedef struct fz_build {
+    mlod_build_desc desc;
+    int must_fail;
+} fz_build;
+
+static void parse_build(fz_reader *r, fz_build *b, const fz_scene *s, int sane, const mlod_allocator *a)
+{
+    uint32_t n = rd_u16(r);
+    uint8_t scale = rd_u8(r), attributes = rd_u8(r);
+    memset(b, 0, sizeof *b);
+    b->desc.allocator = a;
+    b->desc.seed = rd_u32(r);
+    if (sane) {
+        b->desc.sample_count = 1 + n % FZ_MAX_SAMPLES;
+    } else if (n >= 0xfffd && r->chaos) {
+        static const uint32_t huge[3] = {MANYLODS_MAX_LEAVES + 1u, 0xffffffffu, 0u};
+        b->desc.sample_count = huge[n - 0xfffd];
+    } else {
+        b->desc.sample_count = n % (FZ_MAX_SAMPLES + 1);
+    }
+    if (!s->points && (b->desc.sample_count == 0 || b->desc.sample_count > MANYLODS_MAX_LEAVES)) b->must_fail = 1;
+    b->desc.radius_scale = scale < 64 ? 0.0f : rd_maybe_raw(r, ldexp(1.0 + (scale & 15) / 16.0, (int)(scale >> 4) - 8));
+    if (!(b->desc.radius_scale >= 0.0f) || !isfinite(b->desc.radius_scale)) b->must_fail = 1;
+    b->desc.attributes = attributes & 15u;
+    if (!sane && r->chaos && attributes >= 0xf0) {
+        b->desc.attributes = attributes;
+        b->must_fail = 1;
+    }
+    if (sane && !s->has_colors) b->desc.attributes &= ~(uint32_t)MLOD_ATTR_COLOR;
+    if ((b->desc.attributes & MLOD_ATTR_COLOR) && !s->has_colors) b->must_fail = 1;
+}
+
+/* ------------------------------------------------------------- views */
+
+typedef struct fz_views {
+    uint32_t count;
+    mlod_view views[FZ_MAX_VIEWS];
+    int must_fail; /* some view is invalid by the documentation */
+} fz_views;
+
+static void unit3(double *v, const double *fallback)
+{
+    double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    int k;
+    if (!(len > 1e-9) || !isfinite(len)) {
+        for (k = 0; k < 3; k++) v[k] = fallback[k];
+        return;
+    }
+    for (k = 0; k < 3; k++) v[k] /= len;
+}
+
+static float finite_float(double x)
+{
+    float f = (float)x;
+    return isfinite(f) ? f : (x < 0 ? -FLT_MAX : FLT_MAX);
+}
+
+/* One sane view around the scene, then (with chaos) hostile fields. */
+static void parse_view(fz_reader *r, mlod_view *v, const fz_scene *s, int sane)
+{
+    static const double z[3] = {0.0, 0.0, 1.0}, x[3] = {1.0, 0.0, 0.0};
+    double dir[3], eye[3], target[3], f[3], up[3], R = s->radius, dist, dot;
+    uint8_t kind = rd_u8(r), place = rd_u8(r), tile_w = rd_u8(r), tile_h = rd_u8(r), flags = rd_u8(r);
+    int k;
+    memset(v, 0, sizeof *v);
+    v->kind = (mlod_view_kind)(kind % 4);
+    for (k = 0; k < 3; k++) dir[k] = rd_signed(r);
+    unit3(dir, z);
+    /* eye from inside the scene (place < 16) to 256 scene radii away */
+    dist = place < 16 ? R * 0.01 * (place + 1) : R * ldexp(1.0, (int)(place % 12) - 3);
+    for (k = 0; k < 3; k++) {
+        eye[k] = s->centre[k] + dist * dir[k];
+        target[k] = s->centre[k] + 0.5 * R * rd_signed(r);
+    }
+    for (k = 0; k < 3; k++) f[k] = target[k] - eye[k];
+    if (place >= 240)
+        for (k = 0; k < 3; k++) f[k] = rd_signed(r); /* looking anywhere */
+    unit3(f, z);
+    for (k = 0; k < 3; k++) up[k] = rd_signed(r);
+    dot = f[0] * up[0] + f[1] * up[1] + f[2] * up[2];
+    for (k = 0; k < 3; k++) up[k] -= dot * f[k];
+    unit3(up, fabs(f[0]) < 0.5 ? x : z);
+    if (fabs(f[0] * up[0] + f[1] * up[1] + f[2] * up[2]) > 0.5) { /* the fallback was parallel */
+        double c[3] = {f[1] * x[2] - f[2] * x[1], f[2] * x[0] - f[0] * x[2], f[0] * x[1] - f[1] * x[0]};
+        unit3(c, z);
+        for (k = 0; k < 3; k++) up[k] = c[k];
+    }
+    for (k = 0; k < 3; k++) {
+        v->position[k] = rd_maybe_raw(r, finite_float(eye[k]));
+        v->forward[k] = rd_maybe_raw(r, f[k]);
+        v->up[k] = rd_maybe_raw(r, up[k]);
+    }
+    v->width = sane || tile_w ? 1u + tile_w % FZ_MAX_TILE : 0u;
+    v->height = sane || tile_h ? 1u + tile_h % FZ_MAX_TILE : 0u;
+    v->fov_y = rd_maybe_raw(r, 0.01 + 3.1 * rd_unit(r));
+    if (v->kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        double near = -R * rd_unit(r) * 4.0;
+        v->near_plane = rd_maybe_raw(r, finite_float(near));
+        v->far_plane = rd_maybe_raw(r, finite_float(near + R * (0.5 + 16.0 * rd_unit(r))));
+        v->half_width = rd_maybe_raw(r, finite_float(R * (0.05 + 4.0 * rd_unit(r))));
+        v->half_height = rd_maybe_raw(r, finite_float(R * (0.05 + 4.0 * rd_unit(r))));
+        if (sane && !(v->far_plane > v->near_plane)) v->far_plane = INFINITY;
+        if (sane && !(v->half_width > 0.0f)) v->half_width = FLT_MIN;
+        if (sane && !(v->half_height > 0.0f)) v->half_height = FLT_MIN;
+    } else {
+        uint8_t planes = rd_u8(r);
+        double near = R * ldexp(1.0, -(int)(planes % 24));
+        v->near_plane = rd_maybe_raw(r, finite_float(near));
+        v->far_plane = rd_maybe_raw(r, planes & 0x80 ? INFINITY : finite_float(near + R * (1.0 + (planes & 0x70))));
+        if (sane && !(v->near_plane > 0.0f)) v->near_plane = FLT_MIN;
+        if (sane && !(v->far_plane > v->near_plane)) v->far_plane = INFINITY;
+        v->half_width = rd_maybe_raw(r, 1.0);
+        v->half_height = rd_maybe_raw(r, 1.0);
+    }
+    v->flags = flags & 1u;
+    if (!sane && r->chaos) {
+        if (kind >= 0xfc) v->kind = (mlod_view_kind)(kind & 7);
+        if (flags >= 0xf0) v->flags = flags;
+    }
+}
+
+static int vec_finite(const float *v) { return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]); }
+
+/* The conditions the documentation makes errors (a subset of them). */
+static int view_invalid(const mlod_view *v)
+{
+    double f2, u2;
+    if ((unsigned)v->kind > 3u || !v->width || !v->height || (v->flags & ~1u)) return 1;
+    if (!vec_finite(v->position) || !vec_finite(v->forward) || !vec_finite(v->up)) return 1;
+    if (isnan(v->fov_y) || isnan(v->near_plane) || isnan(v->far_plane) || isnan(v->half_width) ||
+        isnan(v->half_height))
+        return 1;
+    f2 = (double)v->forward[0] * v->forward[0] + (double)v->forward[1] * v->forward[1] +
+         (double)v->forward[2] * v->forward[2];
+    u2 = (double)v->up[0] * v->up[0] + (double)v->up[1] * v->up[1] + (double)v->up[2] * v->up[2];
+    if (f2 == 0.0 || u2 == 0.0) return 1;
+    if (v->kind == MLOD_VIEW_PERSPECTIVE)
+        return !(v->fov_y > 0.0f && v->fov_y < 3.14159265f) || !(v->near_plane > 0.0f) || isinf(v->near_plane) ||
+               !(v->far_plane > v->near_plane);
+    if (v->kind == MLOD_VIEW_ORTHOGRAPHIC)
+        return !(v->half_width > 0.0f) || !(v->half_height > 0.0f) || isinf(v->half_width) ||
+               isinf(v->half_height) || !isfinite(v->near_plane) || !(v->far_plane > v->near_plane);
+    return 0;
+}
+
+/* Tiles shrink (halving) until the splat work stays bounded. */
+static void bound_tiles(fz_views *vs, uint32_t leaves)
+{
+    for (;;) {
+        uint64_t sum = 0, cell_w = 1, cell_h = 1, columns;
+        uint32_t v;
+        for (v = 0; v < vs->count; v++) {
+            sum += (uint64_t)vs->views[v].width * vs->views[v].height;
+            if (vs->views[v].width > cell_w) cell_w = vs->views[v].width;
+            if (vs->views[v].height > cell_h) cell_h = vs->views[v].height;
+        }
+        columns = (uint64_t)ceil(sqrt((double)vs->count));
+        if (sum * leaves <= FZ_SPLAT_BUDGET && cell_w * cell_h * columns * columns <= FZ_ATLAS_PIXELS) return;
+        for (v = 0; v < vs->count; v++) {
+            if (vs->views[v].width > 1) vs->views[v].width /= 2;
+            if (vs->views[v].height > 1) vs->views[v].height /= 2;
+        }
+        if (cell_w == 1 && cell_h == 1) return;
+    }
+}
+
+static void parse_views(fz_reader *r, fz_views *vs, const fz_scene *s, int sane)
+{
+    uint32_t v;
+    vs->count = 1 + rd_u8(r) % FZ_MAX_VIEWS;
+    vs->must_fail = 0;
+    for (v = 0; v < vs->count; v++) {
+        parse_view(r, &vs->views[v], s, sane);
+        if (view_invalid(&vs->views[v])) vs->must_fail = 1;
+    }
+}
+
+/* The views a moment later: eyes and directions nudged. */
+static void move_views(fz_reader *r, const fz_views *from, fz_views *to, double R)
+{
+    uint32_t v;
+    int k;
+    *to = *from;
+    for (v = 0; v < to->count; v++) {
+        mlod_view *view = &to->views[v];
+        double step = R * ldexp(1.0, -(int)(rd_u8(r) % 16));
+        for (k = 0; k < 3; k++) {
+            float p = (float)(view->position[k] + step * rd_signed(r));
+            float f = (float)(view->forward[k] + 0.05 * rd_signed(r));
+            if (isfinite(p) && isfinite(view->position[k])) view->position[k] = p;
+            if (isfinite(f) && isfinite(view->forward[k])) view->forward[k] = f;
+        }
+        if (!from->must_fail && view_invalid(view)) *view = from->views[v]; /* nudged into parallel vectors */
+    }
+}
+
+/* ------------------------------------------------------ tree checks */
+
+/* Left-to-right layout: node n covers leaf positions first[n] ..
+   first[n] + count[n] - 1. */
+typedef struct fz_layout {
+    uint32_t leaves, nodes;
+    uint32_t first[2 * FZ_MAX_SAMPLES], count[2 * FZ_MAX_SAMPLES];
+} fz_layout;
+
+static void layout_assign(fz_layout *L, uint32_t n, uint32_t *next)
+{
+    if (n >= L->leaves - 1) {
+        L->first[n] = (*next)++;
+        L->count[n] = 1;
+        return;
+    }
+    layout_assign(L, 2 * n + 1, next);
+    layout_assign(L, 2 * n + 2, next);
+    L->first[n] = L->first[2 * n + 1];
+    L->count[n] = L->count[2 * n + 1] + L->count[2 * n + 2];
+}
+
+static void layout_init(fz_layout *L, uint32_t leaves)
+{
+    uint32_t next = 0;
+    L->leaves = leaves;
+    L->nodes = 2 * leaves - 1;
+    layout_assign(L, 0, &next);
+}
+
+/* Sphere containment with the documented slack: a double filter decides
+   clear cases, exact arithmetic the rest. */
+static int sphere_contains(const float *outer, const float *inner)
+{
+    if (exact_finite4(outer) && exact_finite4(inner)) {
+        double dx = (double)outer[0] - inner[0], dy = (double)outer[1] - inner[1], dz = (double)outer[2] - inner[2];
+        double d = sqrt(dx * dx + dy * dy + dz * dz), need = (d + inner[3]) * (1.0 + 1.0 / 1048576.0);
+        double margin = outer[3] - need, size = outer[3] + d + inner[3];
+        if (isfinite(size) && margin > 1e-12 * size) return 1;
+    }
+    return exact_sphere_contains_slack(outer, inner);
+}
+
+#define FZ_CONE_SLACK (9.5367431640625e-7L - 1e-15L)
+#define FZ_PI 3.14159265358979323846
+
+static void check_tree(const mlod_tree *t, uint32_t leaves, uint32_t attributes, const char *when)
+{
+    uint32_t n, i;
+    FZ_REQUIRE(t->leaf_count == leaves && t->node_count == 2 * leaves - 1, "%s: %u leaves, %u nodes, expected %u", when,
+               t->leaf_count, t->node_count, leaves);
+    FZ_REQUIRE(t->attributes == attributes, "%s: attributes 0x%x, asked 0x%x", when, t->attributes, attributes);
+    FZ_REQUIRE(t->spheres && !t->cones == !(attributes & MLOD_ATTR_CONE) && !t->areas == !(attributes & MLOD_ATTR_AREA) &&
+                   !t->colors == !(attributes & MLOD_ATTR_COLOR) && !t->leaf_sources == !(attributes & MLOD_ATTR_REFIT),
+               "%s: arrays do not match the attributes", when);
+    FZ_REQUIRE(t->bytes >= (size_t)t->node_count * t->bytes_per_node && t->bytes_per_node >= 16, "%s: bytes %zu", when,
+               t->bytes);
+    FZ_REQUIRE(isfinite(t->area_unit) && t->area_unit > 0.0, "%s: area_unit %g", when, t->area_unit);
+    for (n = 0; n < t->node_count; n++) {
+        const float *s = t->spheres + 4 * (size_t)n;
+        FZ_REQUIRE(exact_finite4(s) && s[3] >= 0.0f, "%s: node %u sphere (%g %g %g r %g)", when, n, s[0], s[1], s[2],
+                   s[3]);
+        if (t->cones) {
+            const float *c = t->cones + 4 * (size_t)n;
+            double len = sqrt((double)c[0] * c[0] + (double)c[1] * c[1] + (double)c[2] * c[2]);
+            FZ_REQUIRE(exact_finite4(c) && c[3] >= 0.0f && (c[3] >= FZ_PI || fabs(len - 1.0) <= 1e-5),
+                       "%s: node %u cone (%g %g %g a %g)", when, n, c[0], c[1], c[2], c[3]);
+        }
+        if (t->areas) FZ_REQUIRE(isfinite(t->areas[n]) && t->areas[n] >= 0.0f, "%s: node %u area %g", when, n, t->areas[n]);
+        if (t->colors)
+            for (i = 0; i < 3; i++)
+                FZ_REQUIRE(isfinite(t->colors[3 * (size_t)n + i]), "%s: node %u colour %g", when, n,
+                           t->colors[3 * (size_t)n + i]);
+    }
+    for (n = 1; n < t->node_count; n++) {
+        uint32_t p = (n - 1) / 2;
+        const float *ps = t->spheres + 4 * (size_t)p, *cs = t->spheres + 4 * (size_t)n;
+        FZ_REQUIRE(sphere_contains(ps, cs),
+                   "%s: sphere of node %u (%.9g %.9g %.9g r %.9g) not inside its parent %u (%.9g %.9g %.9g r %.9g) "
+                   "with slack 2^-20",
+                   when, n, cs[0], cs[1], cs[2], cs[3], p, ps[0], ps[1], ps[2], ps[3]);
+        if (t->cones)
+            FZ_REQUIRE(exact_cone_contains(t->cones + 4 * (size_t)p, t->cones + 4 * (size_t)n, FZ_CONE_SLACK),
+                       "%s: cone of node %u (a %.9g) not inside its parent's (a %.9g) with 2^-20 rad", when, n,
+                       t->cones[4 * (size_t)n + 3], t->cones[4 * (size_t)p + 3]);
+    }
+    if (t->leaf_sources && t->leaf_barycentrics)
+        for (i = 0; i < leaves; i++) {
+            float s = t->leaf_barycentrics[2 * (size_t)i], u = t->leaf_barycentrics[2 * (size_t)i + 1];
+            FZ_REQUIRE(s >= 0.0f && u >= 0.0f && s + u <= 1.0f + 1e-6f && t->leaf_sources[i] < t->triangle_count,
+                       "%s: leaf %u source %u (%g, %g)", when, i, t->leaf_sources[i], s, u);
+        }
+}
+
+/* ------------------------------------------------------- cut checks */
+
+typedef struct fz_rng {
+    uint64_t s;
+} fz_rng;
+
+static uint32_t rng_below(fz_rng *g, uint32_t n)
+{
+    g->s = g->s * 6364136223846793005ull + 1442695040888963407ull;
+    return (uint32_t)(((g->s >> 32) * (uint64_t)n) >> 32);
+}
+
+/* The status the definition gives a cut node of criterion c (c = 0 may
+   also be a sphere of radius 0, drawn). */
+static uint8_t status_of(double c, float eps, int leaf)
+{
+    if (c == 0.0) return MLOD_STATUS_CULLED;
+    if (c <= eps) return MLOD_STATUS_DRAWN;
+    return leaf ? MLOD_STATUS_OVERSIZE : MLOD_STATUS_COARSE;
+}
+
+/* Every view's cut: a left-to-right partition of the leaves with
+   consistent counts; c(child) <= c(parent) on sampled nodes; a basic cut
+   follows the definition on sampled entries. */
+static void check_cut(const mlod_cut *cut, const mlod_tree *t, const fz_layout *L, const fz_views *vs, float eps,
+                      int basic, int sampled, fz_rng *g, const char *when)
+{
+    uint32_t v, i;
+    FZ_REQUIRE(mlod_cut_view_count(cut) == vs->count && mlod_cut_bytes(cut) > 0, "%s: cut view count or bytes", when);
+    for (v = 0; v < vs->count; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        uint32_t next = 0, by[5] = {0, 0, 0, 0, 0};
+        FZ_REQUIRE(cv.count > 0 && cv.nodes && cv.status, "%s: view %u has an empty cut", when, v);
+        for (i = 0; i < cv.count; i++) {
+            uint32_t n = cv.nodes[i];
+            uint8_t st = cv.status[i];
+            FZ_REQUIRE(n < t->node_count, "%s: view %u entry %u is node %u of %u", when, v, i, n, t->node_count);
+            FZ_REQUIRE(L->first[n] == next, "%s: view %u entry %u (node %u) covers leaves from %u, expected %u: not a "
+                                            "left-to-right partition",
+                       when, v, i, n, L->first[n], next);
+            next += L->count[n];
+            FZ_REQUIRE(st >= MLOD_STATUS_DRAWN && st <= MLOD_STATUS_COARSE, "%s: view %u node %u status %u", when, v, n,
+                       st);
+            FZ_REQUIRE(st != MLOD_STATUS_OVERSIZE || n >= t->leaf_count - 1, "%s: view %u: internal node %u OVERSIZE",
+                       when, v, n);
+            FZ_REQUIRE(st != MLOD_STATUS_COARSE || (!basic && n < t->leaf_count - 1), "%s: view %u node %u COARSE", when,
+                       v, n);
+            by[st]++;
+        }
+        FZ_REQUIRE(next == t->leaf_count, "%s: view %u covers %u of %u leaves", when, v, next, t->leaf_count);
+        FZ_REQUIRE(by[1] == cv.drawn && by[2] == cv.culled && by[3] == cv.oversize && by[4] == cv.coarse,
+                   "%s: view %u counts %u/%u/%u/%u, list %u/%u/%u/%u", when, v, cv.drawn, cv.culled, cv.oversize,
+                   cv.coarse, by[1], by[2], by[3], by[4]);
+        for (i = 0; sampled && i < FZ_SAMPLED && t->node_count > 1; i++) {
+            uint32_t n = 1 + rng_below(g, t->node_count - 1), p = (n - 1) / 2;
+            double cn = mlod_criterion(t, n, &vs->views[v]), cp = mlod_criterion(t, p, &vs->views[v]);
+            FZ_REQUIRE(!isnan(cn) && !isnan(cp) && cn >= 0.0 && cp >= 0.0, "%s: view %u: c(%u) = %g, c(%u) = %g", when, v,
+                       n, cn, p, cp);
+            FZ_REQUIRE(cn <= cp, "%s: view %u: c(child %u) = %.17g > c(parent %u) = %.17g", when, v, n, cn, p, cp);
+        }
+        for (i = 0; sampled && basic && i < FZ_SAMPLED && i < cv.count; i++) {
+            uint32_t k = cv.count <= FZ_SAMPLED ? i : rng_below(g, cv.count), n = cv.nodes[k];
+            double c = mlod_criterion(t, n, &vs->views[v]);
+            uint8_t want = status_of(c, eps, n >= t->leaf_count - 1);
+            if (c == 0.0 && cv.status[k] == MLOD_STATUS_DRAWN) want = MLOD_STATUS_DRAWN; /* radius 0, not culled */
+            FZ_REQUIRE(want != MLOD_STATUS_COARSE && cv.status[k] == want,
+                       "%s: view %u node %u: c = %.17g, epsilon %g, status %u, the definition gives %u", when, v, n, c,
+                       (double)eps, cv.status[k], want);
+            if (n > 0) {
+                double cp = mlod_criterion(t, (n - 1) / 2, &vs->views[v]);
+                FZ_REQUIRE(cp > eps, "%s: view %u node %u in the cut but its parent is valid (c = %.17g <= %g)", when,
+                           v, n, cp, (double)eps);
+            }
+        }
+    }
+}
+
+static int same_cut(const mlod_cut *a, const mlod_cut *b, uint32_t views, uint32_t *differs)
+{
+    uint32_t v;
+    for (v = 0; v < views; v++) {
+        mlod_cut_view x = mlod_cut_get(a, v), y = mlod_cut_get(b, v);
+        if (x.count != y.count || x.drawn != y.drawn || x.culled != y.culled || x.oversize != y.oversize ||
+            x.coarse != y.coarse || (x.count && (memcmp(x.nodes, y.nodes, x.count * sizeof(uint32_t)) ||
+                                                 memcmp(x.status, y.status, x.count)))) {
+            *differs = v;
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* A copy of a cut's lists, to see that a failed update changed nothing. */
+typedef struct fz_snapshot {
+    uint32_t count[FZ_MAX_VIEWS];
+    uint32_t *nodes;
+    uint8_t *status;
+    size_t total;
+} fz_snapshot;
+
+static void snapshot_take(fz_snapshot *s, const mlod_cut *cut, uint32_t views)
+{
+    uint32_t v;
+    size_t at = 0;
+    s->total = 0;
+    for (v = 0; v < views; v++) s->total += mlod_cut_get(cut, v).count;
+    s->nodes = (uint32_t *)malloc((s->total + 1) * sizeof(uint32_t));
+    s->status = (uint8_t *)malloc(s->total + 1);
+    FZ_REQUIRE(s->nodes && s->status, "snapshot: out of memory");
+    for (v = 0; v < views; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        s->count[v] = cv.count;
+        if (cv.count) {
+            memcpy(s->nodes + at, cv.nodes, cv.count * sizeof(uint32_t));
+            memcpy(s->status + at, cv.status, cv.count);
+        }
+        at += cv.count;
+    }
+}
+
+static int snapshot_same(const fz_snapshot *s, const mlod_cut *cut, uint32_t views)
+{
+    uint32_t v;
+    size_t at = 0;
+    for (v = 0; v < views; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        if (cv.count != s->count[v]) return 0;
+        if (cv.count && (memcmp(s->nodes + at, cv.nodes, cv.count * sizeof(uint32_t)) ||
+                         memcmp(s->status + at, cv.status, cv.count)))
+            return 0;
+        at += cv.count;
+    }
+    return 1;
+}
+
+static void snapshot_free(fz_snapshot *s)
+{
+    free(s->nodes);
+    free(s->status);
+}
+
+/* ------------------------------------------------------------ context */
+
+typedef struct fz_ctx {
+    fz_counter counter;
+    mlod_allocator alloc;
+    mlod_parallel hook;
+    const mlod_parallel *parallel;
+    fz_rng rng;
+    int sane_geometry, sane_views;
+} fz_ctx;
+
+/* One cut update, checked: on failure an error with a message and the cut
+   unchanged; an injected allocation failure is retried once.  Returns the
+   result. */
+static mlod_result cut_update(fz_ctx *c, mlod_cut *cut, const mlod_tree *t, const fz_views *vs,
+                              const mlod_cut_params *p, int must_fail, int may_fail, const char *what)
+{
+    fz_snapshot snap;
+    mlod_error e;
+    mlod_result res;
+    memset(&e, 0, sizeof e);
+    snapshot_take(&snap, cut, vs->count);
+    res = mlod_cut_update(cut, t, vs->views, p, &e);
+    if (res != MLOD_OK) {
+        if (injected_oom(&c->counter, res)) FZ_NOTE("fuzz: %s: injected allocation failure, retrying\n", what);
+        FZ_NOTE("fuzz: %s: %s: %s\n", what, mlod_result_name(res), e.message);
+        fz_where = what;
+        check_error(res, &e);
+        FZ_REQUIRE(snapshot_same(&snap, cut, vs->count), "%s: failed with %s but changed the cut", what,
+                   mlod_result_name(res));
+        if (injected_oom(&c->counter, res)) {
+            snapshot_free(&snap);
+            return cut_update(c, cut, t, vs, p, must_fail, may_fail, what);
+        }
+        FZ_REQUIRE(res != MLOD_ERROR_OUT_OF_MEMORY, "%s: out of memory without an injected failure", what);
+        FZ_REQUIRE(must_fail || may_fail, "%s: valid input failed with %s: %s", what, mlod_result_name(res), e.message);
+    } else {
+        FZ_REQUIRE(!must_fail, "%s: invalid input (views or epsilon) succeeded", what);
+        FZ_REQUIRE(e.code == MLOD_OK, "%s: success with error.code %d", what, (int)e.code);
+    }
+    snapshot_free(&snap);
+    return res;
+}
+
+static void check_atlas(const mlod_atlas *a, const char *when)
+{
+    size_t i, pixels = (size_t)a->width * a->height;
+    for (i = 0; i < pixels; i++) {
+        FZ_REQUIRE(!isnan(a->depth[i]), "%s: atlas depth NaN at pixel %zu (%zu, %zu)", when, i, i % a->width,
+                   i / a->width);
+        if (a->normal)
+            FZ_REQUIRE(!isnan(a->normal[3 * i]) && !isnan(a->normal[3 * i + 1]) && !isnan(a->normal[3 * i + 2]),
+                       "%s: atlas normal NaN at pixel %zu", when, i);
+        if (a->color)
+            FZ_REQUIRE(!isnan(a->color[3 * i]) && !isnan(a->color[3 * i + 1]) && !isnan(a->color[3 * i + 2]),
+                       "%s: atlas colour NaN at pixel %zu", when, i);
+    }
+}
+
+/* Atlas, splat, ISM, hole filling. */
+static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cut *cut, const fz_views *vs)
+{
+    mlod_atlas_desc desc;
+    mlod_atlas *atlas = (mlod_atlas *)&desc;
+    mlod_error e;
+    mlod_result res;
+    uint8_t channels = rd_u8(r);
+    int mismatch;
+    memset(&desc, 0, sizeof desc);
+    desc.columns = rd_u8(r) % 10;
+    desc.channels = channels & 3u;
+    if (!c->sane_views && r->chaos && channels >= 0xf8) desc.channels = channels;
+    res = mlod_atlas_create(vs->views, vs->count, &desc, &c->alloc, &atlas, &e);
+    if (res != MLOD_OK) {
+        fz_where = "mlod_atlas_create";
+        check_error(res, &e);
+        FZ_REQUIRE(atlas == NULL, "mlod_atlas_create failed but left *out_atlas set");
+        FZ_REQUIRE(injected_oom(&c->counter, res) || (desc.channels & ~3u),
+                   "mlod_atlas_create failed with %s for tiles of at most 256 pixels: %s", mlod_result_name(res),
+                   e.message);
+        return;
+    }
+    FZ_REQUIRE(!(desc.channels & ~3u), "mlod_atlas_create accepted unknown channel bits 0x%x", desc.channels);
+    {
+        size_t i, pixels = (size_t)atlas->width * atlas->height;
+        for (i = 0; i < pixels; i++)
+            FZ_REQUIRE(atlas->depth[i] == INFINITY && (!atlas->normal || atlas->normal[3 * i] == 0.0f) &&
+                           (!atlas->color || atlas->color[3 * i] == 0.0f),
+                       "a new atlas is not empty at pixel %zu", i);
+    }
+    mismatch = (atlas->normal && !t->cones) || (atlas->color && !t->colors);
+    res = mlod_splat(atlas, t, cut, vs->views, c->parallel, &e);
+    if (res != MLOD_OK) {
+        fz_where = "mlod_splat";
+        check_error(res, &e);
+        FZ_REQUIRE(mismatch, "mlod_splat failed with %s: %s", mlod_result_name(res), e.message);
+    } else {
+        FZ_REQUIRE(!mismatch, "mlod_splat accepted atlas channels the tree lacks");
+        check_atlas(atlas, "after mlod_splat");
+        res = mlod_atlas_fill_holes(atlas, c->parallel, &e);
+        if (res != MLOD_OK) {
+            fz_where = "mlod_atlas_fill_holes";
+            check_error(res, &e);
+            FZ_REQUIRE(injected_oom(&c->counter, res), "mlod_atlas_fill_holes failed with %s", mlod_result_name(res));
+        } else {
+            check_atlas(atlas, "after mlod_atlas_fill_holes (splat)");
+        }
+    }
+    res = mlod_splat_ism(atlas, t, vs->views, rd_u8(r) % 64, rd_u32(r), c->parallel, &e);
+    if (res != MLOD_OK) {
+        fz_where = "mlod_splat_ism";
+        check_error(res, &e);
+        FZ_REQUIRE(mismatch, "mlod_splat_ism failed with %s: %s", mlod_result_name(res), e.message);
+    } else {
+        check_atlas(atlas, "after mlod_splat_ism");
+        res = mlod_atlas_fill_holes(atlas, c->parallel, &e);
+        if (res != MLOD_OK) {
+            fz_where = "mlod_atlas_fill_holes";
+            check_error(res, &e);
+            FZ_REQUIRE(injected_oom(&c->counter, res), "mlod_atlas_fill_holes failed with %s", mlod_result_name(res));
+        } else {
+            check_atlas(atlas, "after mlod_atlas_fill_holes (ISM)");
+        }
+    }
+    FZ_NOTE("fuzz: %u views, every cut mode, splat, ISM and hole filling checked\n", vs->count);
+    mlod_atlas_destroy(atlas);
+}
+
+/* The deformed scene of a frame later, for refit. */
+static void perturb(fz_reader *r, const fz_scene *s, float *out, int sane)
+{
+    uint8_t how = rd_u8(r);
+    double scale = (how & 3) == 0 ? ldexp(1.0, (int)(rd_u8(r) % 41) - 20) : 1.0;
+    double jitter = s->radius * ldexp(1.0, -(int)(rd_u8(r) % 24));
+    uint32_t i;
+    int k;
+    for (i = 0; i < s->vertex_count; i++)
+        for (k = 0; k < 3; k++) {
+            double p = s->positions[3 * i + k];
+            double moved = s->centre[k] + (p - s->centre[k]) * scale + jitter * rd_signed(r);
+            out[3 * i + k] = isfinite(p) ? (float)moved : s->positions[3 * i + k];
+            if (!sane && r->chaos && rd_u8(r) < r->chaos / 16) out[3 * i + k] = rd_raw_float(r);
+        }
+}
+
+/* Projection, pixel rays and the suggested N on valid views: no NaN where
+   they answer, N within range. */
+static void check_projection(fz_reader *r, const mlod_tree *t, const fz_scene *s, const fz_views *vs, float eps)
+{
+    uint32_t v, n;
+    for (v = 0; v < vs->count; v++) {
+        const mlod_view *view = &vs->views[v];
+        const float *p = t->spheres + 4 * (size_t)rng_below_reader(r, t->node_count);
+        float pixel[2], depth, origin[3], dir[3], x = (float)(view->width * rd_unit(r)), y = (float)(view->height * rd_unit(r));
+        if (mlod_view_project(view, p, pixel, &depth))
+            FZ_REQUIRE(!isnan(pixel[0]) && !isnan(pixel[1]) && !isnan(depth), "view %u: mlod_view_project gave NaN", v);
+        if (mlod_view_pixel_ray(view, x, y, origin, dir)) {
+            double len = sqrt((double)dir[0] * dir[0] + (double)dir[1] * dir[1] + (double)dir[2] * dir[2]);
+            FZ_REQUIRE(!isnan(origin[0]) && !isnan(origin[1]) && !isnan(origin[2]) && fabs(len - 1.0) < 1e-5,
+                       "view %u: mlod_view_pixel_ray(%g, %g): origin (%g %g %g), |direction| %g", v, x, y, origin[0],
+                       origin[1], origin[2], len);
+        }
+    }
+    n = mlod_suggest_sample_count(ldexp(s->radius * s->radius, (int)(rd_u8(r) % 9) - 4), vs->views, vs->count, eps,
+                                  t->radius_scale, s->radius * ldexp(1.0, -(int)(rd_u8(r) % 20)));
+    FZ_REQUIRE(n <= MANYLODS_MAX_LEAVES, "mlod_suggest_sample_count gave %u", n);
+    if (!s->points) {
+        mlod_mesh mesh = scene_mesh(s, s->positions);
+        double area = mlod_mesh_area(&mesh);
+        FZ_REQUIRE(area >= 0.0 && !isnan(area), "mlod_mesh_area gave %g", area);
+    }
+}
+
+/* Cut, refit, cut again in every mode, splat. */
+static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, uint32_t leaves)
+{
+    static fz_layout layout;
+    static float moved[3 * (FZ_MAX_POINTS + 1)];
+    fz_views v1, v2;
+    mlod_cut *basic = NULL, *incremental = NULL, *lazy = NULL;
+    mlod_cut_params p;
+    mlod_error e;
+    mlod_result res;
+    float eps;
+    uint8_t eps_byte;
+    int bad_eps, lazy_bad, call, refit_must_fail = 0;
+    uint32_t differs = 0;
+
+    parse_views(r, &v1, s, c->sane_views);
+    bound_tiles(&v1, leaves);
+    move_views(r, &v1, &v2, s->radius);
+    eps_byte = rd_u8(r);
+    if (eps_byte >= 200 && !c->sane_views)
+        eps = rd_raw_float(r);
+    else if (eps_byte % 8 < 2)
+        eps = eps_byte % 8 ? 1e-6f : INFINITY;
+    else
+        eps = (float)ldexp(1.0 + (eps_byte & 15) / 16.0, (int)(eps_byte % 24) - 8); /* 1/256 .. 2^16 */
+    bad_eps = !(eps > 0.0f);
+    memset(&p, 0, sizeof p);
+    p.epsilon = eps;
+    p.parallel = c->parallel;
+    p.lazy_steps = 1 + rd_u8(r) % 4;
+    lazy_bad = !c->sane_views && r->chaos && rd_u8(r) < 8;
+    layout_init(&layout, leaves);
+
+    for (call = 0; call < 3; call++) {
+        mlod_cut **cut = call == 0 ? &basic : call == 1 ? &incremental : &lazy;
+        *cut = (mlod_cut *)&p;
+        res = mlod_cut_create(v1.count, &c->alloc, cut, &e);
+        if (res != MLOD_OK) {
+            fz_where = "mlod_cut_create";
+            check_error(res, &e);
+            FZ_REQUIRE(*cut == NULL && injected_oom(&c->counter, res), "mlod_cut_create(%u) failed: %s", v1.count,
+                       e.message);
+            goto done;
+        }
+        FZ_REQUIRE(mlod_cut_get(*cut, 0).count == 0, "a new cut is not empty");
+    }
+
+    /* frame 1: basic from the root; incremental and lazy from nothing */
+    p.mode = MLOD_CUT_BASIC;
+    if (cut_update(c, basic, t, &v1, &p, v1.must_fail || bad_eps, !c->sane_views, "basic update, frame 1") != MLOD_OK)
+        goto done;
+    check_cut(basic, t, &layout, &v1, eps, 1, 1, &c->rng, "basic cut, frame 1");
+    check_projection(r, t, s, &v1, eps);
+    p.mode = MLOD_CUT_INCREMENTAL;
+    cut_update(c, incremental, t, &v1, &p, 0, 0, "incremental update, frame 1");
+    FZ_REQUIRE(same_cut(basic, incremental, v1.count, &differs), "frame 1: incremental cut differs from basic in view %u",
+               differs);
+    p.mode = MLOD_CUT_LAZY;
+    cut_update(c, lazy, t, &v1, &p, 0, 0, "lazy update, frame 1");
+    check_cut(lazy, t, &layout, &v1, eps, 0, 1, &c->rng, "lazy cut, frame 1");
+    if (lazy_bad) {
+        p.lazy_steps = 0;
+        cut_update(c, lazy, t, &v1, &p, 1, 0, "lazy update with lazy_steps 0");
+        p.lazy_steps = 1;
+    }
+
+    /* refit: the scene deforms */
+    {
+        mlod_mesh mesh;
+        mlod_points points;
+        size_t floats = 4 * (size_t)t->node_count;
+        float *before = (float *)malloc(floats * sizeof(float));
+        uint8_t other = rd_u8(r);
+        int sane_refit;
+        FZ_REQUIRE(before != NULL, "out of memory");
+        memcpy(before, t->spheres, floats * sizeof(float));
+        perturb(r, s, moved, c->sane_geometry);
+        memcpy(moved + 3 * s->vertex_count, s->positions, 3 * sizeof(float)); /* a vertex past the end, below */
+        sane_refit = !vectors_invalid(moved, s->vertex_count, 1e36);
+        if (!sane_refit || !(t->attributes & MLOD_ATTR_REFIT)) refit_must_fail = 1;
+        memset(&e, 0, sizeof e);
+        if (s->points) {
+            points = scene_points(s, moved);
+            if (r->chaos && other < 4 && points.count > 1) { /* another point cloud */
+                points.count -= 1;
+                refit_must_fail = 1;
+            }
+            res = mlod_refit_points(t, &points, c->parallel, &e);
+        } else {
+            mesh = scene_mesh(s, moved);
+            if (r->chaos && other < 4) { /* another mesh */
+                if (other & 1)
+                    mesh.vertex_count += 1;
+                else
+                    mesh.index_count = mesh.index_count > 3 ? mesh.index_count - 3 : mesh.index_count;
+                refit_must_fail = mesh.index_count != s->index_count || mesh.vertex_count != s->vertex_count;
+            }
+            res = mlod_refit_mesh(t, &mesh, c->parallel, &e);
+        }
+        if (res != MLOD_OK) {
+            fz_where = "refit";
+            check_error(res, &e);
+            /* MLOD_ERROR_RANGE: the deformation grew radii or areas past
+               float range, which the library refuses before touching the tree */
+            FZ_REQUIRE(refit_must_fail || res == MLOD_ERROR_RANGE, "refit of a valid deformation failed with %s: %s",
+                       mlod_result_name(res), e.message);
+            FZ_REQUIRE(memcmp(before, t->spheres, floats * sizeof(float)) == 0, "refit failed with %s but changed the tree",
+                       mlod_result_name(res));
+        } else {
+            FZ_REQUIRE(!refit_must_fail, "refit accepted invalid input (positions, another mesh, or no MLOD_ATTR_REFIT)");
+            check_tree(t, leaves, t->attributes, "after refit");
+        }
+        free(before);
+    }
+
+    /* frame 2: moved views on the refitted tree (sometimes the incremental
+       cut forgets frame 1 and starts from the root) */
+    if (rd_u8(r) < 32) mlod_cut_reset(incremental);
+    p.mode = MLOD_CUT_BASIC;
+    if (cut_update(c, basic, t, &v2, &p, v2.must_fail || bad_eps, !c->sane_views, "basic update, frame 2") != MLOD_OK)
+        goto done;
+    check_cut(basic, t, &layout, &v2, eps, 1, 1, &c->rng, "basic cut, frame 2");
+    p.mode = MLOD_CUT_INCREMENTAL;
+    cut_update(c, incremental, t, &v2, &p, 0, 0, "incremental update, frame 2");
+    check_cut(incremental, t, &layout, &v2, eps, 1, 1, &c->rng, "incremental cut, frame 2");
+    FZ_REQUIRE(same_cut(basic, incremental, v2.count, &differs),
+               "frame 2: incremental cut (from frame 1's) differs from basic in view %u", differs);
+    p.mode = MLOD_CUT_LAZY;
+    for (call = 0; call < FZ_LAZY_CALLS; call++) {
+        cut_update(c, lazy, t, &v2, &p, 0, 0, "lazy update, frame 2");
+        check_cut(lazy, t, &layout, &v2, eps, 0, call == 0, &c->rng, "lazy cut, frame 2");
+        if (same_cut(basic, lazy, v2.count, &differs)) break;
+    }
+    FZ_REQUIRE(call < FZ_LAZY_CALLS, "lazy cut (q = %u) still differs from basic after %d updates, view %u",
+               p.lazy_steps, FZ_LAZY_CALLS, differs);
+    /* basic through the hook and without: identical */
+    if (c->parallel) {
+        p.mode = MLOD_CUT_BASIC;
+        p.parallel = NULL;
+        cut_update(c, lazy, t, &v2, &p, 0, 0, "basic update without the hook");
+        FZ_REQUIRE(same_cut(basic, lazy, v2.count, &differs), "basic cut differs with and without the hook, view %u",
+                   differs);
+        p.parallel = c->parallel;
+    }
+    run_splat(c, r, t, basic, &v2);
+done:
+    mlod_cut_destroy(basic);
+    mlod_cut_destroy(incremental);
+    mlod_cut_destroy(lazy);
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static fz_scene scene;
+    fz_reader r;
+    fz_ctx c;
+    fz_build b;
+    mlod_tree *t = NULL;
+    mlod_error e;
+    mlod_result res;
+    uint64_t h = 1469598103934665603ull;
+    uint8_t flags, chaos, view_chaos;
+    size_t i;
+    int sane;
+    if (fz_verbose < 0) fz_verbose = getenv("MANYLODS_FUZZ_VERBOSE") != NULL;
+    for (i = 0; i < size; i++) h = (h ^ data[i]) * 1099511628211ull;
+    memset(&r, 0, sizeof r);
+    r.data = data;
+    r.size = size;
+    r.state = h;
+    memset(&c, 0, sizeof c);
+    c.alloc.alloc = fz_alloc;
+    c.alloc.free = fz_free;
+    c.alloc.user = &c.counter;
+    c.hook.run = fz_run_reverse;
+    c.rng.s = h;
+
+    flags = rd_u8(&r);
+    c.sane_geometry = (flags >> 1) & 1;
+    c.sane_views = (flags >> 2) & 1;
+    c.parallel = (flags & 8) ? &c.hook : NULL;
+    if (flags & 16) c.counter.fail_at = 1 + rd_u8(&r);
+    chaos = rd_u8(&r);
+    view_chaos = rd_u8(&r);
+    r.chaos = c.sane_geometry ? 0 : chaos;
+    sane = c.sane_geometry;
+    parse_scene(&r, &scene, flags, sane);
+    parse_build(&r, &b, &scene, sane, &c.alloc);
+    if (scene.points && b.desc.sample_count == 0) b.desc.sample_count = 1; /* ignored for points */
+    memset(&e, 0, sizeof e);
+    t = (mlod_tree *)&c;
+    if (scene.points) {
+        mlod_points points = scene_points(&scene, scene.positions);
+        res = mlod_build_points(&points, &b.desc, &t, &e);
+    } else {
+        mlod_mesh mesh = scene_mesh(&scene, scene.positions);
+        res = mlod_build_mesh(&mesh, &b.desc, &t, &e);
+    }
+    FZ_NOTE("fuzz: %s, %u %s, N %u, attributes 0x%x, radius_scale %g, scene centre (%g %g %g) radius %g: %s\n",
+            scene.points ? "points" : "mesh", scene.vertex_count, scene.points ? "points" : "vertices",
+            b.desc.sample_count, b.desc.attributes, (double)b.desc.radius_scale, scene.centre[0], scene.centre[1],
+            scene.centre[2], scene.radius, mlod_result_name(res));
+    if (res != MLOD_OK) {
+        fz_where = "build";
+        check_error(res, &e);
+        FZ_REQUIRE(t == NULL, "build failed with %s but left *out_tree set", mlod_result_name(res));
+        /* MLOD_ERROR_RANGE: radius_scale times the leaf spacing overflows */
+        FZ_REQUIRE(scene.must_fail || b.must_fail || injected_oom(&c.counter, res) ||
+                       (!scene.points && res == MLOD_ERROR_EMPTY) || res == MLOD_ERROR_RANGE,
+                   "build of valid input failed with %s: %s", mlod_result_name(res), e.message);
+    } else {
+        uint32_t leaves = scene.points ? scene.vertex_count : b.desc.sample_count;
+        FZ_REQUIRE(!scene.must_fail && !b.must_fail, "build accepted invalid input (scene %d, options %d)",
+                   scene.must_fail, b.must_fail);
+        FZ_REQUIRE(e.code == MLOD_OK && t != NULL && t != (mlod_tree *)&c, "build succeeded without a tree or with error.code %d",
+                   (int)e.code);
+        check_tree(t, leaves, b.desc.attributes, "after build");
+        r.chaos = c.sane_views ? 0 : view_chaos;
+        run_views(&c, &r, t, &scene, leaves);
+        FZ_NOTE("fuzz: pipeline done (%u leaves, %lu allocations%s)\n", leaves, c.counter.calls,
+                c.counter.failed ? ", one failed on purpose" : "");
+        mlod_tree_destroy(t);
+    }
+    FZ_REQUIRE(c.counter.live == 0, "%lu blocks not given back", c.counter.live);
+    return 0;
+}
