@@ -1,10 +1,21 @@
 # manylods - build, test and demo.
 #
 #   make demo        build and run examples/demo (a built-in procedural scene)
-#   make test        every test, gcc -O2 and clang with sanitizers, the compile
-#                    matrix and examples/minimal; ends with "N passed, M failed"
+#   make test        every test, gcc -O2, clang with ASan+UBSan and the threaded
+#                    ones with TSan, the compile matrix and examples/minimal;
+#                    ends with "N passed, M failed"
 #   make test-fast   only the tests built with gcc -O2
+#   make tsan        only the threaded tests under ThreadSanitizer (TSAN_TESTS)
 #   make matrix      only the compile matrix (tests/compile/matrix.sh)
+#   make fuzz        the libFuzzer harness (fuzz/fuzz_pipeline.c, needs clang's
+#                    libFuzzer: libclang-rt-14-dev) on a copy of fuzz/corpus/
+#                    for FUZZ_SECONDS (60) after replaying fuzz/crashes/; ends
+#                    with "1 passed, 0 failed" or "0 passed, 1 failed"
+#   make fuzz-corpus regenerate fuzz/corpus/ with fuzz/make_corpus.c
+#   make bench       the benchmark (bench/bench.c, needs Embree 3: Debian's
+#                    libembree-dev); prints its tables and writes
+#                    docs/BENCHMARKS.md, docs/bench.csv, docs/bench.svg
+#   make bench-quick a smaller sweep, written under build/bench/
 #   make clean       remove build/
 #
 # CC, CXX, CLANG and CLANGXX may be overridden (make test CC=gcc-13).  V=1
@@ -27,8 +38,24 @@ LDLIBS   := -lm -pthread
 TEST_CFLAGS := -std=c99 -O2 $(WARNINGS) -I. $(CFLAGS)
 SAN_CFLAGS  := -std=c99 -fsanitize=address,undefined -fno-sanitize-recover=all -g -O1 \
                -fno-omit-frame-pointer $(WARNINGS) -I. $(CFLAGS)
+# ThreadSanitizer: the tests that run the built-in thread pool.  (Add
+# test_extremes to TSAN_TESTS for the extremes table: clean, but 2.5
+# minutes under TSan on two cores, so `make test` leaves it out.)
+TSAN_TESTS  ?= test_cut test_refit test_splat
+TSAN_CFLAGS := -std=c99 -fsanitize=thread -g -O1 $(WARNINGS) -I. $(CFLAGS)
+# libFuzzer with ASan and UBSan.  No comparison tracing (trace-cmp): it
+# tripled the time per input, and the harness reads its fields through
+# modular arithmetic that comparison hints do not help with.
+FUZZ_SECONDS ?= 60
+FUZZ_CFLAGS  := -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+                -fno-sanitize-coverage=trace-cmp $(WARNINGS) -I. $(CFLAGS)
 EXAMPLE_CFLAGS := -std=c99 -O2 $(WARNINGS) $(CFLAGS)
 DEMO_DEFINES ?= -DMANYLODS_PTHREADS
+# The benchmark: portable -O2 (no -march=native), Embree for the reference.
+BENCH_OPT    := -std=c99 -O2
+BENCH_CFLAGS := $(BENCH_OPT) $(WARNINGS) $(CFLAGS) -DBENCH_FLAGS='"$(BENCH_OPT)"'
+BENCH_LDLIBS := -lembree3 -lm -pthread
+BENCH_DEPS   := bench/bench.c $(wildcard bench/*.h) manylods.h examples/scenes.h
 # Test programs build in parallel: with the caller's -jN if given, else on
 # every core.
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -38,11 +65,14 @@ TEST_SOURCES := $(sort $(wildcard tests/test_*.c))
 TEST_NAMES   := $(TEST_SOURCES:tests/%.c=%)
 GCC_TESTS    := $(TEST_NAMES:%=$(BUILD)/gcc/%)
 SAN_TESTS    := $(TEST_NAMES:%=$(BUILD)/san/%)
+TSAN_PROGRAMS := $(TSAN_TESTS:%=$(BUILD)/tsan/%)
 HEADERS      := manylods.h $(wildcard tests/*.h) $(wildcard examples/*.h)
 
 # LeakSanitizer on, and a readable report from UBSan.
 export ASAN_OPTIONS ?= detect_leaks=1:abort_on_error=0
 export UBSAN_OPTIONS ?= print_stacktrace=1
+# A data race ends the program at once (exit status 66), which counts as a failure.
+export TSAN_OPTIONS ?= halt_on_error=1
 
 ifeq ($(V),1)
 Q :=
@@ -52,7 +82,7 @@ Q := @
 say = @printf '  %-6s %s\n'
 endif
 
-.PHONY: all demo test test-fast matrix clean test-programs fast-programs
+.PHONY: all demo test test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs
 .DELETE_ON_ERROR:
 
 all: $(BUILD)/examples/demo $(BUILD)/examples/minimal
@@ -67,17 +97,33 @@ test:
 	$(Q)tests/run.sh \
 	    --section "tests, $(CC) -O2" $(GCC_TESTS) \
 	    --section "tests, $(CLANG) -fsanitize=address,undefined -O1" $(SAN_TESTS) \
+	    --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_PROGRAMS) \
 	    --section "compile matrix" tests/compile/matrix.sh \
-	    --section "examples" --check $(BUILD)/examples/minimal
+	    --section "examples" --check $(BUILD)/examples/minimal \
+	    --section "benchmark (bench --selftest: compiles, checks cuts and metrics against Embree)" \
+	    --check $(BUILD)/bench/selftest
 
 test-fast:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) fast-programs
 	$(Q)tests/run.sh --section "tests, $(CC) -O2" $(GCC_TESTS)
 
+tsan:
+	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) $(TSAN_PROGRAMS)
+	$(Q)tests/run.sh --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_PROGRAMS)
+
 matrix:
 	$(Q)tests/compile/matrix.sh
 
-test-programs: $(GCC_TESTS) $(SAN_TESTS) $(BUILD)/examples/minimal
+# Not part of `make test` (it takes FUZZ_SECONDS); .ci/run calls it.
+fuzz:
+	-$(Q)$(MAKE) --no-print-directory -s $(BUILD)/fuzz/fuzz_pipeline
+	$(Q)fuzz/run.sh $(BUILD)/fuzz/fuzz_pipeline $(FUZZ_SECONDS) $(BUILD)/fuzz
+
+fuzz-corpus: $(BUILD)/fuzz/make_corpus
+	$(Q)rm -f fuzz/corpus/seed-*
+	$(Q)mkdir -p fuzz/corpus && $(BUILD)/fuzz/make_corpus fuzz/corpus
+
+test-programs: $(GCC_TESTS) $(SAN_TESTS) $(TSAN_PROGRAMS) $(BUILD)/examples/minimal $(BUILD)/bench/selftest
 fast-programs: $(GCC_TESTS)
 
 $(BUILD)/gcc/%: tests/%.c $(HEADERS)
@@ -90,6 +136,21 @@ $(BUILD)/san/%: tests/%.c $(HEADERS)
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CLANG) $(SAN_CFLAGS) $< -o $@ $(LDLIBS)
 
+$(BUILD)/tsan/%: tests/%.c $(HEADERS)
+	$(say) CLANG $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CLANG) $(TSAN_CFLAGS) $< -o $@ $(LDLIBS)
+
+$(BUILD)/fuzz/fuzz_pipeline: fuzz/fuzz_pipeline.c manylods.h tests/exact.h
+	$(say) CLANG $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CLANG) $(FUZZ_CFLAGS) $< -o $@ -lm
+
+$(BUILD)/fuzz/make_corpus: fuzz/make_corpus.c
+	$(say) CC $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CC) -std=c99 -O2 $(WARNINGS) $(CFLAGS) $< -o $@
+
 $(BUILD)/examples/minimal: examples/minimal.c manylods.h
 	$(say) CC $@
 	$(Q)mkdir -p $(@D) && rm -f $@
@@ -99,6 +160,23 @@ $(BUILD)/examples/demo: examples/demo.c $(HEADERS)
 	$(say) CC $@
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CC) $(EXAMPLE_CFLAGS) $(DEMO_DEFINES) $< -o $@ $(LDLIBS)
+
+bench: $(BUILD)/bench/bench
+	$(Q)$(BUILD)/bench/bench --out docs
+
+bench-quick: $(BUILD)/bench/bench
+	$(Q)$(BUILD)/bench/bench --quick --out $(BUILD)/bench
+
+$(BUILD)/bench/bench: $(BENCH_DEPS)
+	$(say) CC $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CC) $(BENCH_CFLAGS) $< -o $@ $(BENCH_LDLIBS)
+
+# The same program, --selftest by default: what `make test` runs.
+$(BUILD)/bench/selftest: $(BENCH_DEPS)
+	$(say) CC $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CC) $(BENCH_CFLAGS) -DBENCH_SELFTEST $< -o $@ $(BENCH_LDLIBS)
 
 clean:
 	rm -rf $(BUILD)

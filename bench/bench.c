@@ -1,0 +1,1671 @@
+/* bench/bench.c - what `make bench` runs: the speed / accuracy trade of
+   manylods, measured against an exact reference and against the peers a
+   user would otherwise pick.
+
+     bench [--quick | --selftest] [--threads T] [--out DIR] [--scene object|room]
+           [--sizes N,N,...] [--eps E,E,...] [MESH.obj|MESH.ply]
+
+   Scenes (deterministic):
+     object  a closed, bumpy (2,3) torus knot that deforms every frame (the
+             tree is refitted), seen by 1024 paraboloid virtual point lights
+             on a sphere around it, facing its centre, 32 x 32 px tiles (a
+             1024 x 1024 atlas), the light rig turning 10 degrees per frame:
+             the protocol of Tables 1 and 2 of the ManyLoDs paper;
+     room    the closed room of examples/scenes.h, subdivided and twisting,
+             with 1024 paraboloid lights on its surfaces facing along the
+             surface normal: near walls reach the rim of every tile, so cuts
+             are large.
+   MESH replaces both scenes' meshes (centred, bounding radius 1).
+
+   For each scene, sample count N, epsilon and mode (basic, incremental,
+   lazy q=1, lazy q=2) it runs a warm-up frame (every mode cuts from the
+   root, as a program's first frame would), then measured frames, and
+   reports medians of build, refit, cut and splat times, node-views
+   evaluated, cut size per view, bytes, and the accuracy of the last frame's
+   atlas against an Embree ray-cast reference of the same frame (bench/
+   metrics.h).  Every cut of every frame is checked first (each view's cut
+   partitions the leaves, left to right; incremental equals basic node for
+   node, so its splat is basic's; lazy converges to basic once the views
+   stop, checked at the smallest N), and every atlas must be non-empty; a
+   failed check prints FAIL and exits 1.  Peers in the same run: a per-view
+   recursive traversal (bench/recursive.h), Imperfect Shadow Maps at equal
+   time, Embree casting every pixel of the atlas ("Polys"), Embree's BVH
+   build and refit; and the N that mlod_suggest_sample_count suggests (for
+   the closest surface any light sees), run when at most twice the largest N.
+
+   --quick     a smaller sweep (256 views, N 2^16 and 2^18, epsilon 1 and 4)
+   --selftest  a small scene in a second or two: checks the checks, the
+               reference and the metrics; exit status 0 when all hold
+   --out DIR   also write DIR/BENCHMARKS.md, DIR/bench.csv, DIR/bench.svg
+   --sizes, --eps  replace the sweep's lists (comma-separated)
+   --threads T the built-in pool's threads (default 2; Embree gets as many) */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define MANYLODS_IMPLEMENTATION
+#define MANYLODS_PTHREADS
+#include "../manylods.h"
+#include "meshio.h"
+#include "metrics.h"
+#include "plot.h"
+#include "recursive.h"
+#include "rt.h"
+#include "shapes.h"
+
+#ifndef BENCH_FLAGS
+#define BENCH_FLAGS "(flags not recorded)"
+#endif
+
+#define BENCH_MAX_LIST 8
+#define BENCH_MODES 4
+#define BENCH_MAX_FRAMES 16
+#define BENCH_BIAS 0.01 /* shadow test bias, fraction of the scene diameter */
+#define BENCH_PI 3.14159265358979323846
+
+enum { MODE_BASIC, MODE_INCREMENTAL, MODE_LAZY1, MODE_LAZY2 };
+static const char *const mode_names[BENCH_MODES] = {"basic", "incremental", "lazy q=1", "lazy q=2"};
+static const mlod_cut_mode mode_kinds[BENCH_MODES] = {MLOD_CUT_BASIC, MLOD_CUT_INCREMENTAL, MLOD_CUT_LAZY,
+                                                      MLOD_CUT_LAZY};
+static const uint32_t mode_steps[BENCH_MODES] = {1, 1, 1, 2};
+
+/* ------------------------------------------------------------- settings */
+
+typedef struct config {
+    int quick, selftest;
+    uint32_t threads;
+    const char *out_dir, *mesh_path, *scene;
+    uint32_t view_count, tile;
+    float eps[BENCH_MAX_LIST];
+    int eps_count;
+    uint32_t sizes[BENCH_MAX_LIST];
+    int size_count;
+    int warmup, measured;     /* frames */
+    uint32_t receivers;       /* shadow-test points */
+    uint32_t knot_segments, knot_sides, room_subdivision;
+    int cast_repeats;         /* timed reference casts */
+} config;
+
+static void config_defaults(config *c)
+{
+    static const float eps[] = {0.5f, 1, 2, 4, 8};
+    static const uint32_t sizes[] = {1u << 16, 1u << 18, 1u << 20, 1300000u};
+    memset(c, 0, sizeof *c);
+    c->threads = 2;
+    c->view_count = 1024;
+    c->tile = 32;
+    memcpy(c->eps, eps, sizeof eps);
+    c->eps_count = 5;
+    memcpy(c->sizes, sizes, sizeof sizes);
+    c->size_count = 4;
+    c->warmup = 1;
+    c->measured = 2;
+    c->receivers = 2048;
+    c->knot_segments = 1536;
+    c->knot_sides = 96;
+    c->room_subdivision = 24;
+    c->cast_repeats = 3;
+}
+
+static void config_quick(config *c)
+{
+    static const float eps[] = {1, 4};
+    static const uint32_t sizes[] = {1u << 16, 1u << 18};
+    c->view_count = 256;
+    memcpy(c->eps, eps, sizeof eps);
+    c->eps_count = 2;
+    memcpy(c->sizes, sizes, sizeof sizes);
+    c->size_count = 2;
+    c->warmup = 1;
+    c->measured = 3;
+    c->receivers = 1024;
+    c->cast_repeats = 2;
+}
+
+static void config_selftest(config *c)
+{
+    static const float eps[] = {1, 4};
+    c->view_count = 64;
+    c->tile = 16;
+    memcpy(c->eps, eps, sizeof eps);
+    c->eps_count = 2;
+    c->sizes[0] = 4096;
+    c->size_count = 1;
+    c->warmup = 1;
+    c->measured = 2;
+    c->receivers = 256;
+    c->knot_segments = 192;
+    c->knot_sides = 24;
+    c->room_subdivision = 4;
+    c->cast_repeats = 1;
+}
+
+/* ---------------------------------------------------------- utilities */
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double median(const double *values, int count)
+{
+    double sorted[256];
+    int n = count < 256 ? count : 256;
+    if (n == 0) return NAN;
+    memcpy(sorted, values, sizeof(double) * (size_t)n);
+    qsort(sorted, (size_t)n, sizeof(double), compare_doubles);
+    return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+}
+
+/* A failed check: say what failed and stop, before any time is printed. */
+static void fail(const char *format, ...)
+{
+    va_list args;
+    fflush(stdout);
+    printf("FAIL: ");
+    va_start(args, format);
+    vprintf(format, args);
+    va_end(args);
+    printf("\n");
+    fflush(stdout);
+    exit(1);
+}
+
+static void *checked_malloc(size_t bytes)
+{
+    void *p = malloc(bytes ? bytes : 1);
+    if (!p) fail("out of memory (%zu bytes)", bytes);
+    return p;
+}
+
+static void set3(float out[3], double x, double y, double z)
+{
+    out[0] = (float)x;
+    out[1] = (float)y;
+    out[2] = (float)z;
+}
+
+/* ------------------------------------------------------------ results */
+
+enum { ROW_OURS, ROW_RECURSIVE, ROW_ISM, ROW_POLYS, ROW_EMBREE, ROW_TREE, ROW_SUGGESTED };
+
+typedef struct row {
+    int kind;
+    const char *scene;
+    char method[40];
+    char note[96];
+    float eps;       /* 0: not applicable */
+    uint32_t n;      /* 0: not applicable */
+    double build_ms, refit_ms, cut_ms, splat_ms, total_ms; /* NAN: not applicable */
+    double evaluated, per_view;                             /* per frame; NAN: n/a */
+    double tree_bytes, cut_bytes, atlas_bytes;              /* NAN: n/a */
+    int has_metrics;
+    metrics m;
+} row;
+
+typedef struct bench {
+    config cfg;
+    mlod_pool *pool;
+    mlod_parallel parallel;
+    RTCDevice device;
+    row *rows;
+    int row_count, row_capacity;
+    char machine[160], compiler[160], date[64], threads[96], load_start[64], load_end[64];
+    double started_ms;
+    double spent_checks, spent_metrics, spent_converge, spent_ism, spent_recursive; /* ms, outside the timings */
+    int converge_rounds;  /* most lazy updates any setting needed to converge */
+} bench;
+
+static row *add_row(bench *b, int kind, const char *scene, const char *method)
+{
+    row *r;
+    if (b->row_count == b->row_capacity) {
+        int cap = b->row_capacity ? 2 * b->row_capacity : 64;
+        row *p = (row *)realloc(b->rows, sizeof(row) * (size_t)cap);
+        if (!p) fail("out of memory for result rows");
+        b->rows = p;
+        b->row_capacity = cap;
+    }
+    r = &b->rows[b->row_count++];
+    memset(r, 0, sizeof *r);
+    r->kind = kind;
+    r->scene = scene;
+    snprintf(r->method, sizeof r->method, "%s", method);
+    r->build_ms = r->refit_ms = r->cut_ms = r->splat_ms = r->total_ms = NAN;
+    r->evaluated = r->per_view = r->tree_bytes = r->cut_bytes = r->atlas_bytes = NAN;
+    return r;
+}
+
+static const row *find_row(const bench *b, int kind, const char *scene, const char *method, float eps, uint32_t n)
+{
+    int i;
+    for (i = 0; i < b->row_count; i++) {
+        const row *r = &b->rows[i];
+        if (r->kind == kind && strcmp(r->scene, scene) == 0 && (!method || strcmp(r->method, method) == 0) &&
+            (eps == 0 || r->eps == eps) && (n == 0 || r->n == n))
+            return r;
+    }
+    return NULL;
+}
+
+/* ------------------------------------------------------------- scenes */
+
+/* One scene and its frames: the deformed positions and the views of each
+   frame, the last frame's reference atlas and shadow receivers. */
+typedef struct protocol {
+    const char *name;
+    char description[320];
+    scene_mesh rest;
+    int frame_count;
+    float *positions; /* frame_count x 3 x vertex_count */
+    mlod_view *views; /* frame_count x view_count */
+    uint32_t view_count;
+    double diameter, area;
+    mlod_atlas *atlas;
+    float *reference; /* the last frame's */
+    uint64_t reference_hits;
+    float *receivers;
+    uint32_t receiver_count;
+    double closest;   /* nearest reference depth: the closest surface any light sees */
+    double polys_ms;
+    double embree_build_ms, embree_refit_ms;
+} protocol;
+
+static const float *frame_positions(const protocol *p, int frame)
+{
+    return p->positions + (size_t)frame * 3 * p->rest.vertex_count;
+}
+
+static const mlod_view *frame_views(const protocol *p, int frame)
+{
+    return p->views + (size_t)frame * p->view_count;
+}
+
+static mlod_mesh frame_mesh(const protocol *p, int frame)
+{
+    mlod_mesh m;
+    memset(&m, 0, sizeof m);
+    m.positions = frame_positions(p, frame);
+    m.vertex_count = p->rest.vertex_count;
+    m.indices = p->rest.indices;
+    m.index_count = p->rest.index_count;
+    return m;
+}
+
+static void paraboloid_light(mlod_view *v, const float position[3], const float normal[3], uint32_t tile)
+{
+    memset(v, 0, sizeof *v);
+    v->kind = MLOD_VIEW_PARABOLOID;
+    memcpy(v->position, position, sizeof v->position);
+    memcpy(v->forward, normal, sizeof v->forward);
+    if (fabsf(normal[1]) > 0.7f)
+        set3(v->up, 1, 0, 0);
+    else
+        set3(v->up, 0, 1, 0);
+    v->width = v->height = tile;
+    v->flags = MLOD_VIEW_CULL_BACKFACES;
+}
+
+/* Deformed copies of the rest mesh, frame f at time f * step. */
+static void deform_frames(protocol *p, double step)
+{
+    int f;
+    p->positions = (float *)checked_malloc(sizeof(float) * 3 * (size_t)p->rest.vertex_count * (size_t)p->frame_count);
+    for (f = 0; f < p->frame_count; f++)
+        scene_deform(&p->rest, (float)(step * f), p->positions + (size_t)f * 3 * p->rest.vertex_count, NULL);
+}
+
+static void load_mesh(const bench *b, scene_mesh *out)
+{
+    char error[300];
+    if (!meshio_load(b->cfg.mesh_path, out, error, sizeof error)) {
+        fprintf(stderr, "bench: %s\n", error);
+        exit(2);
+    }
+    shape_normalize(out);
+}
+
+/* The object: a bumpy torus knot (or the given mesh), lights on a sphere
+   of radius 1.2 around it (Fibonacci points), facing its centre; the rig
+   turns 10 degrees per frame about y while the object twists. */
+static void protocol_object(const bench *b, protocol *p)
+{
+    const config *c = &b->cfg;
+    uint32_t i;
+    int f;
+    p->name = "object";
+    if (c->mesh_path)
+        load_mesh(b, &p->rest);
+    else if (!shape_torus_knot(&p->rest, c->knot_segments, c->knot_sides))
+        fail("out of memory for the torus knot");
+    p->view_count = c->view_count;
+    p->frame_count = c->warmup + c->measured;
+    deform_frames(p, 0.1);
+    p->views = (mlod_view *)checked_malloc(sizeof(mlod_view) * p->view_count * (size_t)p->frame_count);
+    for (f = 0; f < p->frame_count; f++) {
+        double turn = 10.0 * BENCH_PI / 180.0 * f, ct = cos(turn), st = sin(turn);
+        for (i = 0; i < p->view_count; i++) {
+            double y = 1.0 - 2.0 * (i + 0.5) / p->view_count, ring = sqrt(1.0 - y * y);
+            double phi = i * 2.399963229728653, x = ring * cos(phi), z = ring * sin(phi);
+            double dx = ct * x + st * z, dz = -st * x + ct * z;
+            float pos[3], fwd[3];
+            set3(pos, 1.2 * dx, 1.2 * y, 1.2 * dz);
+            set3(fwd, -dx, -y, -dz);
+            paraboloid_light(&p->views[(size_t)f * p->view_count + i], pos, fwd, c->tile);
+        }
+    }
+    snprintf(p->description, sizeof p->description,
+             "%s, %u triangles, twisting (scene_deform, t = 0.1 per frame); %u paraboloid lights %ux%u px on a sphere "
+             "of radius 1.2 around it (bounding radius 1), facing its centre, the rig turning 10 deg per frame",
+             c->mesh_path ? c->mesh_path : "bumpy (2,3) torus knot", p->rest.index_count / 3, p->view_count, c->tile,
+             c->tile);
+}
+
+/* The room: examples/scenes.h's room subdivided (or the given mesh),
+   twisting slowly; lights at 1% of the diameter above random surface
+   points, facing along the surface normal, riding the surface.  A light is
+   kept when, at rest, the ray back to its surface point hits that surface
+   first and the ray along its normal hits nothing or a front face (so no
+   light sits inside a box). */
+static void protocol_room(const bench *b, protocol *p)
+{
+    const config *c = &b->cfg;
+    shape_anchor *candidates, *lights;
+    uint32_t i, kept = 0, tries = 8 * c->view_count;
+    rt_scene rest;
+    double offset;
+    int f;
+    p->name = "room";
+    if (c->mesh_path) {
+        load_mesh(b, &p->rest);
+    } else {
+        scene_mesh room;
+        if (!scene_room(&room) || !shape_subdivide(&room, c->room_subdivision, &p->rest))
+            fail("out of memory for the room");
+        scene_free(&room);
+    }
+    p->view_count = c->view_count;
+    p->frame_count = c->warmup + c->measured;
+    deform_frames(p, 0.01);
+    offset = 0.01 * shape_diameter(p->rest.positions, p->rest.vertex_count);
+    candidates = (shape_anchor *)checked_malloc(sizeof(shape_anchor) * tries);
+    lights = (shape_anchor *)checked_malloc(sizeof(shape_anchor) * p->view_count);
+    if (!shape_anchors(&p->rest, tries, 12345, candidates)) fail("out of memory for the lights");
+    if (!rt_create(b->device, p->rest.indices, p->rest.index_count, p->rest.positions, p->rest.vertex_count,
+                   RTC_BUILD_QUALITY_MEDIUM, &rest))
+        fail("Embree could not create the room's scene");
+    rt_commit(&rest);
+    for (i = 0; i < tries && kept < p->view_count; i++) {
+        float x[3], n[3], light[3], back[3], t;
+        uint32_t tri;
+        int k, ok;
+        shape_point(p->rest.positions, p->rest.indices, &candidates[i], x, n);
+        for (k = 0; k < 3; k++) {
+            light[k] = x[k] + (float)offset * n[k];
+            back[k] = -n[k];
+        }
+        ok = rt_cast_triangle(&rest, light, back, &t, &tri) && fabs(t - offset) < 0.01 * offset;
+        if (ok && rt_cast_triangle(&rest, light, n, &t, &tri)) {
+            const uint32_t *v = p->rest.indices + 3 * (size_t)tri;
+            double e1[3], e2[3], g[3];
+            for (k = 0; k < 3; k++) {
+                e1[k] = (double)p->rest.positions[3 * v[1] + k] - p->rest.positions[3 * v[0] + k];
+                e2[k] = (double)p->rest.positions[3 * v[2] + k] - p->rest.positions[3 * v[0] + k];
+            }
+            g[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            g[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            g[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            ok = g[0] * n[0] + g[1] * n[1] + g[2] * n[2] < 0.0;
+        }
+        if (ok) lights[kept++] = candidates[i];
+    }
+    rt_destroy(&rest);
+    if (kept < p->view_count)
+        fail("only %u of %u light positions passed the visibility test on this mesh", kept, p->view_count);
+    p->views = (mlod_view *)checked_malloc(sizeof(mlod_view) * p->view_count * (size_t)p->frame_count);
+    for (f = 0; f < p->frame_count; f++)
+        for (i = 0; i < p->view_count; i++) {
+            float x[3], n[3], light[3];
+            int k;
+            shape_point(frame_positions(p, f), p->rest.indices, &lights[i], x, n);
+            for (k = 0; k < 3; k++) light[k] = x[k] + (float)offset * n[k];
+            paraboloid_light(&p->views[(size_t)f * p->view_count + i], light, n, c->tile);
+        }
+    free(candidates);
+    free(lights);
+    snprintf(p->description, sizeof p->description,
+             "%s, %u triangles, twisting (scene_deform, t = 0.01 per frame); %u paraboloid lights %ux%u px at %.3g "
+             "above random surface points, facing along the surface normal, riding the surface",
+             c->mesh_path ? c->mesh_path : "closed room with three boxes (examples/scenes.h), subdivided",
+             p->rest.index_count / 3, p->view_count, c->tile, c->tile, offset);
+}
+
+/* The last frame's reference atlas, receivers and nearest depth; the
+   "Polys" timing (Embree casting every pixel); Embree's build and refit. */
+static void protocol_reference(bench *b, protocol *p)
+{
+    const config *c = &b->cfg;
+    int last = p->frame_count - 1, f, i;
+    mlod_atlas_desc desc;
+    mlod_error error;
+    rt_scene scene, dynamic;
+    shape_anchor *anchors;
+    double times[BENCH_MAX_FRAMES + 8];
+    size_t pixels, q;
+    p->diameter = shape_diameter(p->rest.positions, p->rest.vertex_count);
+    p->area = scene_area(&p->rest);
+    memset(&desc, 0, sizeof desc);
+    if (mlod_atlas_create(frame_views(p, 0), p->view_count, &desc, NULL, &p->atlas, &error) != MLOD_OK)
+        fail("mlod_atlas_create: %s", error.message);
+    pixels = (size_t)p->atlas->width * p->atlas->height;
+    p->reference = (float *)checked_malloc(sizeof(float) * pixels);
+
+    /* Embree's build: median of a few */
+    for (i = 0; i < c->cast_repeats; i++) {
+        double t0;
+        if (!rt_create(b->device, p->rest.indices, p->rest.index_count, frame_positions(p, last),
+                       p->rest.vertex_count, RTC_BUILD_QUALITY_MEDIUM, &scene))
+            fail("Embree could not create a scene");
+        t0 = now_ms();
+        rt_commit(&scene);
+        times[i] = now_ms() - t0;
+        if (i + 1 < c->cast_repeats) rt_destroy(&scene);
+    }
+    p->embree_build_ms = median(times, c->cast_repeats);
+
+    /* the reference, and the time of casting it ("Polys") */
+    for (i = 0; i < c->cast_repeats; i++) {
+        double t0 = now_ms();
+        rt_reference(p->atlas, frame_views(p, last), &scene, &b->parallel, p->reference);
+        times[i] = now_ms() - t0;
+    }
+    p->polys_ms = median(times, c->cast_repeats);
+    p->reference_hits = 0;
+    p->closest = INFINITY;
+    for (q = 0; q < pixels; q++)
+        if (isfinite(p->reference[q])) {
+            p->reference_hits++;
+            if (p->reference[q] < p->closest) p->closest = p->reference[q];
+        }
+    if (p->reference_hits == 0) fail("%s: the reference atlas is empty: no light sees the mesh", p->name);
+    rt_destroy(&scene);
+
+    /* Embree's refit through the frames */
+    if (!rt_create(b->device, p->rest.indices, p->rest.index_count, frame_positions(p, 0), p->rest.vertex_count,
+                   RTC_BUILD_QUALITY_REFIT, &dynamic))
+        fail("Embree could not create a dynamic scene");
+    rt_commit(&dynamic);
+    for (f = 1; f < p->frame_count; f++) {
+        double t0;
+        rt_set_positions(&dynamic, frame_positions(p, f));
+        t0 = now_ms();
+        rt_commit(&dynamic);
+        times[f - 1] = now_ms() - t0;
+    }
+    p->embree_refit_ms = median(times + c->warmup - 1, c->measured);
+    rt_destroy(&dynamic);
+
+    /* receivers: area-uniform points on the last frame's surface */
+    p->receiver_count = c->receivers;
+    p->receivers = (float *)checked_malloc(sizeof(float) * 3 * p->receiver_count);
+    anchors = (shape_anchor *)checked_malloc(sizeof(shape_anchor) * p->receiver_count);
+    if (!shape_anchors(&p->rest, p->receiver_count, 777, anchors)) fail("out of memory for the receivers");
+    for (q = 0; q < p->receiver_count; q++)
+        shape_point(frame_positions(p, last), p->rest.indices, &anchors[q], p->receivers + 3 * q, NULL);
+    free(anchors);
+}
+
+static void protocol_free(protocol *p)
+{
+    scene_free(&p->rest);
+    free(p->positions);
+    free(p->views);
+    free(p->reference);
+    free(p->receivers);
+    mlod_atlas_destroy(p->atlas);
+    memset(p, 0, sizeof *p);
+}
+
+/* ------------------------------------------------------------- checks */
+
+/* Leaf ranks: the subtree of node i holds the leaves at positions
+   first[i] .. first[i] + leaves[i] - 1 of the left-to-right leaf order. */
+typedef struct ranks {
+    uint32_t *first, *leaves;
+    uint32_t node_count, leaf_count;
+} ranks;
+
+static void ranks_init(ranks *r, const mlod_tree *tree)
+{
+    uint32_t i, n = tree->node_count;
+    r->node_count = n;
+    r->leaf_count = tree->leaf_count;
+    r->first = (uint32_t *)checked_malloc(sizeof(uint32_t) * n);
+    r->leaves = (uint32_t *)checked_malloc(sizeof(uint32_t) * n);
+    for (i = n; i-- > 0;) r->leaves[i] = i >= tree->leaf_count - 1 ? 1u : r->leaves[2 * i + 1] + r->leaves[2 * i + 2];
+    r->first[0] = 0;
+    for (i = 0; i + 1 < tree->leaf_count; i++) {
+        r->first[2 * i + 1] = r->first[i];
+        r->first[2 * i + 2] = r->first[i] + r->leaves[2 * i + 1];
+    }
+}
+
+static void ranks_free(ranks *r)
+{
+    free(r->first);
+    free(r->leaves);
+}
+
+/* NULL when the view's cut is a partition of the leaves, listed left to
+   right, with statuses and counts that agree; else what is wrong. */
+static const char *check_cut_view(const ranks *r, const mlod_cut_view *c, int lazy)
+{
+    uint32_t k, pos = 0, counts[5] = {0, 0, 0, 0, 0};
+    if (c->count == 0) return "the cut is empty";
+    for (k = 0; k < c->count; k++) {
+        uint32_t node = c->nodes[k];
+        uint8_t s = c->status[k];
+        if (node >= r->node_count) return "a node index out of range";
+        if (r->first[node] != pos) return "the subtrees overlap, leave a gap, or are out of order";
+        if (s < MLOD_STATUS_DRAWN || s > MLOD_STATUS_COARSE) return "an unknown status";
+        if (s == MLOD_STATUS_OVERSIZE && node < r->leaf_count - 1) return "an internal node marked oversize";
+        if (s == MLOD_STATUS_COARSE && (!lazy || node >= r->leaf_count - 1)) return "a misplaced coarse node";
+        counts[s]++;
+        pos += r->leaves[node];
+    }
+    if (pos != r->leaf_count) return "the subtrees do not cover every leaf";
+    if (counts[MLOD_STATUS_DRAWN] != c->drawn || counts[MLOD_STATUS_CULLED] != c->culled ||
+        counts[MLOD_STATUS_OVERSIZE] != c->oversize || counts[MLOD_STATUS_COARSE] != c->coarse)
+        return "the status counts disagree with the list";
+    return NULL;
+}
+
+static void check_cut(const ranks *r, const mlod_cut *cut, const char *what, int lazy)
+{
+    uint32_t v, views = mlod_cut_view_count(cut);
+    for (v = 0; v < views; v++) {
+        mlod_cut_view c = mlod_cut_get(cut, v);
+        const char *problem = check_cut_view(r, &c, lazy);
+        if (problem) fail("%s: view %u: %s", what, v, problem);
+    }
+}
+
+/* The literal check, for --selftest: walk every cut node's subtree and
+   count each leaf; every leaf must be reached exactly once. */
+static int cut_partitions_by_walk(const mlod_tree *tree, const mlod_cut_view *c, uint32_t *leaf_hits, uint32_t *stack)
+{
+    uint32_t k, first_leaf = tree->leaf_count - 1, j;
+    memset(leaf_hits, 0, sizeof(uint32_t) * tree->leaf_count);
+    for (k = 0; k < c->count; k++) {
+        uint32_t top = 0;
+        stack[top++] = c->nodes[k];
+        while (top) {
+            uint32_t node = stack[--top];
+            if (node >= first_leaf) {
+                leaf_hits[node - first_leaf]++;
+            } else {
+                stack[top++] = 2 * node + 1;
+                stack[top++] = 2 * node + 2;
+            }
+        }
+    }
+    for (j = 0; j < tree->leaf_count; j++)
+        if (leaf_hits[j] != 1) return 0;
+    return 1;
+}
+
+static int cuts_equal(const mlod_cut *a, const mlod_cut *b, uint32_t *first_difference)
+{
+    uint32_t v, views = mlod_cut_view_count(a);
+    for (v = 0; v < views; v++) {
+        mlod_cut_view x = mlod_cut_get(a, v), y = mlod_cut_get(b, v);
+        if (x.count != y.count || memcmp(x.nodes, y.nodes, sizeof(uint32_t) * x.count) != 0 ||
+            memcmp(x.status, y.status, x.count) != 0) {
+            *first_difference = v;
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static uint64_t atlas_drawn_pixels(const mlod_atlas *atlas)
+{
+    size_t n = (size_t)atlas->width * atlas->height, i;
+    uint64_t drawn = 0;
+    for (i = 0; i < n; i++) drawn += atlas->depth[i] < INFINITY;
+    return drawn;
+}
+
+static void check_atlas(const mlod_atlas *atlas, const char *what)
+{
+    if (atlas_drawn_pixels(atlas) == 0) fail("%s: the atlas is empty", what);
+}
+
+/* ----------------------------------------------------------- the sweep */
+
+typedef struct mode_stats {
+    mlod_cut *cut;
+    double cut_ms[BENCH_MAX_FRAMES], splat_ms[BENCH_MAX_FRAMES];
+    double evaluated, nodes; /* sums over measured frames */
+    size_t cut_bytes;
+    float *last_depth; /* the last frame's atlas depth, compared after the frames */
+    metrics m;
+} mode_stats;
+
+/* The metrics of several saved atlases at once, one task each (outside
+   every timing: metrics_compare is sequential and costs receivers x views
+   projections). */
+typedef struct metrics_job {
+    const protocol *p;
+    mode_stats *stats;
+} metrics_job;
+
+static void metrics_task(void *context, uint32_t index)
+{
+    const metrics_job *job = (const metrics_job *)context;
+    mode_stats *s = &job->stats[index];
+    mlod_atlas view_of_saved;
+    if (!s->last_depth) return;
+    view_of_saved = *job->p->atlas;
+    view_of_saved.depth = s->last_depth;
+    metrics_compare(&view_of_saved, job->p->reference, frame_views(job->p, job->p->frame_count - 1),
+                    job->p->diameter, job->p->receivers, job->p->receiver_count, BENCH_BIAS, &s->m, NULL);
+}
+
+static void compare_last(const protocol *p, metrics *m)
+{
+    metrics_compare(p->atlas, p->reference, frame_views(p, p->frame_count - 1), p->diameter, p->receivers,
+                    p->receiver_count, BENCH_BIAS, m, NULL);
+}
+
+static void fill_ours(row *r, const protocol *p, float eps, uint32_t n, const mode_stats *s, int measured,
+                      double build_ms, double refit_ms, const mlod_tree *tree)
+{
+    r->eps = eps;
+    r->n = n;
+    r->build_ms = build_ms;
+    r->refit_ms = refit_ms;
+    r->cut_ms = median(s->cut_ms, measured);
+    r->splat_ms = median(s->splat_ms, measured);
+    r->total_ms = r->cut_ms + r->splat_ms;
+    r->evaluated = s->evaluated / measured;
+    r->per_view = s->nodes / measured / p->view_count;
+    r->tree_bytes = (double)tree->bytes;
+    r->cut_bytes = (double)s->cut_bytes;
+    r->atlas_bytes = (double)p->atlas->bytes;
+    r->has_metrics = 1;
+    r->m = s->m;
+}
+
+/* ISM (splat_ism + pull-push) with k points per view on the last frame:
+   median time of `repeats`; metrics when m is not NULL. */
+static double time_ism(bench *b, const protocol *p, const mlod_tree *tree, uint32_t k, int repeats, metrics *m)
+{
+    const mlod_view *views = frame_views(p, p->frame_count - 1);
+    double times[8];
+    mlod_error error;
+    int i;
+    for (i = 0; i < repeats; i++) {
+        double t0 = now_ms();
+        if (mlod_splat_ism(p->atlas, tree, views, k, 99, &b->parallel, &error) != MLOD_OK ||
+            mlod_atlas_fill_holes(p->atlas, &b->parallel, &error) != MLOD_OK)
+            fail("ISM: %s", error.message);
+        times[i] = now_ms() - t0;
+        check_atlas(p->atlas, "ISM");
+    }
+    if (m) compare_last(p, m);
+    return median(times, repeats);
+}
+
+/* ISM at the time of our cut + splat (target_ms): a line through two
+   small point counts gives the first guess, secant steps through the last
+   two measurements refine it (single runs) until within 10%; the count
+   reached is reported with its metrics, timed again (median of 3) when a
+   run is short. */
+static void run_ism(bench *b, const protocol *p, const mlod_tree *tree, float eps, double target_ms,
+                    const char *matched)
+{
+    const double k_max = 1u << 17;
+    double k_prev = 16, t_prev = time_ism(b, p, tree, 16, 1, NULL), k = 256, t = time_ism(b, p, tree, 256, 1, NULL);
+    int step;
+    row *r;
+    for (step = 0; step < 4 && fabs(t - target_ms) > 0.1 * target_ms; step++) {
+        double slope = (t - t_prev) / (k - k_prev), next;
+        if (!(slope > 0)) slope = t / k;
+        next = k + (target_ms - t) / slope;
+        next = floor(next < 1 ? 1 : next > k_max ? k_max : next);
+        if (next == k) break;
+        k_prev = k;
+        t_prev = t;
+        k = next;
+        t = time_ism(b, p, tree, (uint32_t)k, 1, NULL);
+    }
+    r = add_row(b, ROW_ISM, p->name, "ISM + pull-push");
+    r->eps = eps;
+    r->n = tree->leaf_count;
+    if (t < 1000.0)
+        t = time_ism(b, p, tree, (uint32_t)k, 3, NULL);
+    r->total_ms = t;
+    compare_last(p, &r->m); /* the atlas of the last run, at k points per view */
+    r->has_metrics = 1;
+    r->atlas_bytes = (double)p->atlas->bytes;
+    snprintf(r->note, sizeof r->note, "%u points/view, matched to %s at eps %g (%.2f ms)", (uint32_t)k, matched,
+             (double)eps, target_ms);
+}
+
+/* The per-view recursive peer on one frame: time, and its cut sizes
+   against the library's basic cut (same frame, same epsilon). */
+static double run_recursive(const protocol *p, const mlod_tree *tree, const mlod_view *views, float eps,
+                            const mlod_cut *basic, uint64_t *evaluated, uint64_t *nodes)
+{
+    recursive_cut rc;
+    uint32_t v;
+    uint64_t lib_total = 0, mismatch = 0;
+    double t0, ms;
+    memset(&rc, 0, sizeof rc);
+    *evaluated = *nodes = 0;
+    t0 = now_ms();
+    for (v = 0; v < p->view_count; v++) {
+        recursive_cut_view(&rc, tree, &views[v], eps);
+        *nodes += rc.count;
+        if (basic) {
+            uint32_t lib = mlod_cut_get(basic, v).count;
+            lib_total += lib;
+            mismatch += rc.count > lib ? rc.count - lib : lib - rc.count;
+        }
+    }
+    ms = now_ms() - t0;
+    *evaluated = rc.evaluated;
+    if (rc.out_of_memory) fail("the recursive peer ran out of memory");
+    free(rc.nodes);
+    if (basic && (double)mismatch > 1e-3 * (double)lib_total + 2.0)
+        fail("%s: the recursive peer's cuts differ from the library's basic cuts by %llu of %llu nodes (eps %g)",
+             p->name, (unsigned long long)mismatch, (unsigned long long)lib_total, (double)eps);
+    return ms;
+}
+
+static mlod_tree *build_tree(bench *b, const protocol *p, uint32_t n, double *build_ms)
+{
+    mlod_mesh mesh = frame_mesh(p, 0);
+    mlod_build_desc desc;
+    mlod_error error;
+    mlod_tree *tree = NULL;
+    double times[3], spent = 0;
+    int i, repeats = 0;
+    (void)b;
+    memset(&desc, 0, sizeof desc);
+    desc.sample_count = n;
+    desc.seed = 1;
+    desc.radius_scale = 1.0f;
+    desc.attributes = MLOD_ATTR_CONE | MLOD_ATTR_REFIT;
+    for (i = 0; i < 3 && (i == 0 || spent < 1500.0); i++) { /* a median of up to 3, within ~1.5 s */
+        double t0;
+        mlod_tree_destroy(tree);
+        tree = NULL;
+        t0 = now_ms();
+        if (mlod_build_mesh(&mesh, &desc, &tree, &error) != MLOD_OK) fail("mlod_build_mesh: %s", error.message);
+        times[repeats++] = now_ms() - t0;
+        spent += times[repeats - 1];
+    }
+    *build_ms = median(times, repeats);
+    return tree;
+}
+
+/* One sample count: build, then for each epsilon run every frame with
+   every mode in `modes` (bit mask; basic always runs first), checking
+   every result; the recursive peer and ISM when `peers`. */
+static void run_size(bench *b, protocol *p, uint32_t n, const float *eps_list, int eps_count, unsigned modes,
+                     int peers, int ism, int check_convergence, int kind)
+{
+    const config *c = &b->cfg;
+    mlod_error error;
+    double build_ms, refit_times[BENCH_MAX_LIST * BENCH_MAX_FRAMES], refit_ms;
+    int refit_count = 0, e, f, m, last = p->frame_count - 1;
+    mlod_tree *tree = build_tree(b, p, n, &build_ms);
+    ranks rk;
+    row *tree_row;
+    int first_row = b->row_count;
+    ranks_init(&rk, tree);
+    modes |= 1u << MODE_BASIC;
+    for (e = 0; e < eps_count; e++) {
+        float eps = eps_list[e];
+        mode_stats stats[BENCH_MODES];
+        double recursive_ms = NAN;
+        uint64_t recursive_evaluated = 0, recursive_nodes = 0;
+        memset(stats, 0, sizeof stats);
+        for (m = 0; m < BENCH_MODES; m++)
+            if ((modes >> m & 1) && mlod_cut_create(p->view_count, NULL, &stats[m].cut, &error) != MLOD_OK)
+                fail("mlod_cut_create: %s", error.message);
+        for (f = 0; f < p->frame_count; f++) {
+            mlod_mesh mesh = frame_mesh(p, f);
+            const mlod_view *views = frame_views(p, f);
+            int measured = f >= c->warmup;
+            double t0 = now_ms();
+            if (mlod_refit_mesh(tree, &mesh, &b->parallel, &error) != MLOD_OK) fail("mlod_refit_mesh: %s", error.message);
+            if (measured) refit_times[refit_count++] = now_ms() - t0;
+            for (m = 0; m < BENCH_MODES; m++) {
+                mode_stats *s = &stats[m];
+                mlod_cut_params params;
+                char what[96];
+                uint32_t v, diff;
+                uint64_t evaluated = 0, nodes = 0;
+                double cut_ms, splat_ms;
+                if (!s->cut) continue;
+                memset(&params, 0, sizeof params);
+                params.mode = f == 0 ? MLOD_CUT_BASIC : mode_kinds[m]; /* frame 0 starts every mode */
+                params.epsilon = eps;
+                params.lazy_steps = mode_steps[m];
+                params.parallel = &b->parallel;
+                t0 = now_ms();
+                if (mlod_cut_update(s->cut, tree, views, &params, &error) != MLOD_OK)
+                    fail("mlod_cut_update: %s", error.message);
+                cut_ms = now_ms() - t0;
+                t0 = now_ms();
+                snprintf(what, sizeof what, "%s, N %u, eps %g, %s, frame %d", p->name, n, (double)eps, mode_names[m], f);
+                check_cut(&rk, s->cut, what, mode_kinds[m] == MLOD_CUT_LAZY);
+                if (m == MODE_INCREMENTAL && !cuts_equal(s->cut, stats[MODE_BASIC].cut, &diff))
+                    fail("%s: the incremental cut of view %u differs from the basic cut", what, diff);
+                b->spent_checks += now_ms() - t0;
+                if (m == MODE_INCREMENTAL || (f == 0 && m != MODE_BASIC)) {
+                    /* the basic cut node for node (incremental always, every
+                       mode on frame 0, checked): its splat is basic's */
+                    if (f == 0 && !cuts_equal(s->cut, stats[MODE_BASIC].cut, &diff))
+                        fail("%s: the first cut of view %u differs from the basic cut", what, diff);
+                    splat_ms = measured ? stats[MODE_BASIC].splat_ms[f - c->warmup] : 0.0;
+                } else {
+                    t0 = now_ms();
+                    if (mlod_splat(p->atlas, tree, s->cut, views, &b->parallel, &error) != MLOD_OK)
+                        fail("mlod_splat: %s", error.message);
+                    splat_ms = now_ms() - t0;
+                    t0 = now_ms();
+                    check_atlas(p->atlas, what);
+                    b->spent_checks += now_ms() - t0;
+                }
+                if (!measured) continue;
+                s->cut_ms[f - c->warmup] = cut_ms;
+                s->splat_ms[f - c->warmup] = splat_ms;
+                for (v = 0; v < p->view_count; v++) {
+                    mlod_cut_view cv = mlod_cut_get(s->cut, v);
+                    evaluated += cv.evaluated;
+                    nodes += cv.count;
+                }
+                s->evaluated += (double)evaluated;
+                s->nodes += (double)nodes;
+                if (mlod_cut_bytes(s->cut) > s->cut_bytes) s->cut_bytes = mlod_cut_bytes(s->cut);
+                if (f == last && m != MODE_INCREMENTAL) {
+                    size_t bytes = sizeof(float) * (size_t)p->atlas->width * p->atlas->height;
+                    s->last_depth = (float *)checked_malloc(bytes);
+                    memcpy(s->last_depth, p->atlas->depth, bytes);
+                }
+            }
+            if (peers && f == last) { /* one frame: it is sequential, and slow */
+                t0 = now_ms();
+                recursive_ms = run_recursive(p, tree, views, eps, stats[MODE_BASIC].cut,
+                                                            &recursive_evaluated, &recursive_nodes);
+                b->spent_recursive += now_ms() - t0;
+            }
+        }
+        {
+            metrics_job job;
+            double t0 = now_ms();
+            job.p = p;
+            job.stats = stats;
+            b->parallel.run(b->parallel.user, BENCH_MODES, metrics_task, &job);
+            if (stats[MODE_INCREMENTAL].cut) stats[MODE_INCREMENTAL].m = stats[MODE_BASIC].m;
+            for (m = 0; m < BENCH_MODES; m++) {
+                free(stats[m].last_depth);
+                stats[m].last_depth = NULL;
+            }
+            b->spent_metrics += now_ms() - t0;
+        }
+        /* lazy cuts converge to the basic cut once the views stop (checked
+           at the smallest N only: each round costs a frame's cut) */
+        for (m = MODE_LAZY1; m <= MODE_LAZY2 && check_convergence; m++) {
+            mlod_cut_params params;
+            uint32_t diff;
+            int round;
+            if (!stats[m].cut) continue;
+            memset(&params, 0, sizeof params);
+            params.mode = MLOD_CUT_LAZY;
+            params.epsilon = eps;
+            params.lazy_steps = mode_steps[m];
+            params.parallel = &b->parallel;
+            double t0 = now_ms();
+            for (round = 0; round < 256 && !cuts_equal(stats[m].cut, stats[MODE_BASIC].cut, &diff); round++)
+                if (mlod_cut_update(stats[m].cut, tree, frame_views(p, last), &params, &error) != MLOD_OK)
+                    fail("mlod_cut_update: %s", error.message);
+            if (round > b->converge_rounds) b->converge_rounds = round;
+            b->spent_converge += now_ms() - t0;
+            if (!cuts_equal(stats[m].cut, stats[MODE_BASIC].cut, &diff))
+                fail("%s, N %u, eps %g: %s did not converge to the basic cut in 256 updates (view %u)", p->name, n,
+                     (double)eps, mode_names[m], diff);
+        }
+        for (m = 0; m < BENCH_MODES; m++) {
+            row *r;
+            if (!stats[m].cut) continue;
+            r = add_row(b, kind, p->name, mode_names[m]);
+            fill_ours(r, p, eps, n, &stats[m], c->measured, build_ms, NAN, tree);
+        }
+        if (peers) {
+            const row *basic = &b->rows[b->row_count - 1];
+            int i;
+            for (i = b->row_count - 1; i >= first_row; i--)
+                if (b->rows[i].eps == eps && strcmp(b->rows[i].method, "basic") == 0) basic = &b->rows[i];
+            {
+                row *r = add_row(b, ROW_RECURSIVE, p->name, "recursive per view");
+                r->eps = eps;
+                r->n = n;
+                r->cut_ms = recursive_ms;
+                r->splat_ms = basic->splat_ms;
+                r->total_ms = r->cut_ms + r->splat_ms;
+                r->evaluated = (double)recursive_evaluated;
+                r->per_view = (double)recursive_nodes / p->view_count;
+                r->has_metrics = 1;
+                r->m = basic->m;
+                snprintf(r->note, sizeof r->note, "1 thread, float; + our splat; accuracy of the basic cut");
+            }
+        }
+        if (ism) {
+            const row *target = NULL;
+            int i;
+            for (i = b->row_count - 1; i >= first_row && !target; i--)
+                if (b->rows[i].kind == kind && b->rows[i].eps == eps && strcmp(b->rows[i].method, "incremental") == 0)
+                    target = &b->rows[i];
+            if (target) {
+                double t0 = now_ms();
+                run_ism(b, p, tree, eps, target->total_ms, "incremental cut + splat");
+                b->spent_ism += now_ms() - t0;
+            }
+        }
+        for (m = 0; m < BENCH_MODES; m++) mlod_cut_destroy(stats[m].cut);
+        if (getenv("BENCH_TRACE")) printf("    eps %g done at %.1f s\n", (double)eps, (now_ms() - b->started_ms) / 1e3);
+    }
+    refit_ms = median(refit_times, refit_count);
+    for (e = first_row; e < b->row_count; e++)
+        if (b->rows[e].kind == kind) b->rows[e].refit_ms = refit_ms;
+    tree_row = add_row(b, ROW_TREE, p->name, kind == ROW_SUGGESTED ? "tree (suggested N)" : "tree");
+    tree_row->n = n;
+    tree_row->build_ms = build_ms;
+    tree_row->refit_ms = refit_ms;
+    tree_row->tree_bytes = (double)tree->bytes;
+    printf("  %-7s N %8u  build %8.1f ms  refit %6.2f ms  tree %6.1f MB  (%.0f s so far; checks %.0f s, metrics %.0f s, "
+           "lazy convergence %.0f s (<= %d updates), ISM %.0f s, recursive peer %.0f s)\n",
+           p->name, n, build_ms, refit_ms, tree->bytes / 1e6, (now_ms() - b->started_ms) / 1e3, b->spent_checks / 1e3,
+           b->spent_metrics / 1e3, b->spent_converge / 1e3, b->converge_rounds, b->spent_ism / 1e3,
+           b->spent_recursive / 1e3);
+    fflush(stdout);
+    ranks_free(&rk);
+    mlod_tree_destroy(tree);
+}
+
+/* Everything for one scene. */
+static void run_protocol(bench *b, protocol *p)
+{
+    const config *c = &b->cfg;
+    unsigned all = (1u << BENCH_MODES) - 1;
+    uint32_t max_n = 0, min_n = MANYLODS_MAX_LEAVES;
+    int s, e;
+    row *r;
+    for (s = 0; s < c->size_count; s++) {
+        if (c->sizes[s] > max_n) max_n = c->sizes[s];
+        if (c->sizes[s] < min_n) min_n = c->sizes[s];
+    }
+    for (s = 0; s < c->size_count; s++)
+        run_size(b, p, c->sizes[s], c->eps, c->eps_count, all, 1, c->sizes[s] == max_n, c->sizes[s] == min_n,
+                 ROW_OURS);
+
+    r = add_row(b, ROW_POLYS, p->name, "Polys (Embree, every pixel)");
+    r->total_ms = p->polys_ms;
+    r->has_metrics = 1; /* it is the reference: no error */
+    r->m.reference_hits = p->reference_hits;
+    snprintf(r->note, sizeof r->note, "%u triangles into %u views: one ray per pixel, %.0f%% of them hit",
+             p->rest.index_count / 3, p->view_count,
+             100.0 * p->reference_hits / ((double)p->view_count * c->tile * c->tile));
+    r = add_row(b, ROW_EMBREE, p->name, "Embree BVH (triangles)");
+    r->build_ms = p->embree_build_ms;
+    r->refit_ms = p->embree_refit_ms;
+    snprintf(r->note, sizeof r->note, "%u triangles; build quality medium; refit: RTC_BUILD_QUALITY_REFIT",
+             p->rest.index_count / 3);
+
+    /* the suggested N for every epsilon, run when it is not far beyond the sweep */
+    for (e = 0; e < c->eps_count; e++) {
+        uint32_t n = mlod_suggest_sample_count(p->area, frame_views(p, p->frame_count - 1), p->view_count, c->eps[e],
+                                               1.0f, p->closest);
+        if (n == 0) fail("mlod_suggest_sample_count returned 0 for valid input");
+        if (n <= 2 * max_n) {
+            run_size(b, p, n, &c->eps[e], 1, 1u << MODE_INCREMENTAL, 0, 0, 0, ROW_SUGGESTED);
+        } else {
+            r = add_row(b, ROW_SUGGESTED, p->name, "incremental");
+            r->eps = c->eps[e];
+            r->n = n;
+            snprintf(r->note, sizeof r->note, "not run: more than twice the largest N of the sweep");
+        }
+    }
+}
+
+/* ------------------------------------------------------------- output */
+
+static void fmt(char *out, size_t size, const char *format, double value)
+{
+    if (isnan(value))
+        snprintf(out, size, "-");
+    else
+        snprintf(out, size, format, value);
+}
+
+static const char *paper_cut(const row *r)
+{
+    if (strcmp(r->scene, "object") != 0 || r->eps != 1.0f || r->n != 1300000u) return "";
+    if (strcmp(r->method, "basic") == 0) return "55 ms";
+    if (strcmp(r->method, "incremental") == 0) return "5.3 ms";
+    if (strcmp(r->method, "lazy q=1") == 0) return "2.9 ms";
+    return "";
+}
+
+static void metric_cells(char cells[4][32], const row *r)
+{
+    if (!r->has_metrics) {
+        int k;
+        for (k = 0; k < 4; k++) snprintf(cells[k], 32, "-");
+        return;
+    }
+    snprintf(cells[0], 32, "%.2f", 100.0 * r->m.hole_rate);
+    snprintf(cells[1], 32, "%.3f", 100.0 * r->m.depth_rms);
+    snprintf(cells[2], 32, "%.3f", 100.0 * r->m.depth_p95);
+    snprintf(cells[3], 32, "%.2f", 100.0 * r->m.shadow_disagreement);
+}
+
+static void write_markdown(const bench *b, FILE *f, protocol *const *protocols, int protocol_count)
+{
+    const config *c = &b->cfg;
+    int i, k;
+    fprintf(f, "# manylods benchmark\n\n");
+    fprintf(f, "Generated by `%s` (bench/bench.c); every number below comes from that one run.\n\n",
+            c->quick ? "make bench-quick" : "make bench");
+    fprintf(f, "- machine: %s; load average (1, 5, 15 min) %s at the start, %s at the end\n- compiler: %s, `%s`\n"
+               "- date: %s\n- threads: %s\n- Embree %s (reference and peers)\n",
+            b->machine, b->load_start, b->load_end, b->compiler, BENCH_FLAGS, b->date, b->threads, RTC_VERSION_STRING);
+    fprintf(f, "- frames: %d warm-up, then %d measured; times are medians over the measured frames; accuracy is "
+               "the last frame's atlas against an Embree ray cast of the same frame (bench/metrics.h): holes = "
+               "reference hits left empty, depth RMS / p95 = |splat - reference| / scene diameter, shadow = "
+               "receivers (%u points on the surface) whose lit/shadowed answer differs, bias 1%% of the diameter\n",
+            c->warmup, c->measured, c->receivers);
+    for (i = 0; i < protocol_count; i++) {
+        const protocol *p = protocols[i];
+        fprintf(f, "- **%s**: %s; diameter %.3g, area %.3g; atlas %ux%u px (%.1f MB)\n", p->name, p->description,
+                p->diameter, p->area, p->atlas->width, p->atlas->height, p->atlas->bytes / 1e6);
+    }
+    fprintf(f, "\nEvery cut of every frame was checked before any time was printed: each view's cut partitions "
+               "the leaves (left to right), incremental cuts equal basic cuts node for node (so the incremental "
+               "rows show the basic splat, measured once), lazy cuts converge to the basic cuts once the views "
+               "stop (checked at the smallest N), the recursive peer finds the same cut sizes (within 0.1%%), no "
+               "atlas is empty. Frame 0 computes every mode's cuts from the root, as a program's first frame "
+               "would; the recursive peer is timed on the last frame.\n\n");
+
+    /* the headline */
+    {
+        uint32_t n = 0;
+        const row *t, *basic, *inc, *lazy, *lazy2;
+        for (k = 0; k < c->size_count; k++)
+            if (c->sizes[k] > n) n = c->sizes[k];
+        t = find_row(b, ROW_TREE, "object", "tree", 0, n);
+        basic = find_row(b, ROW_OURS, "object", "basic", 1.0f, n);
+        inc = find_row(b, ROW_OURS, "object", "incremental", 1.0f, n);
+        lazy = find_row(b, ROW_OURS, "object", "lazy q=1", 1.0f, n);
+        lazy2 = find_row(b, ROW_OURS, "object", "lazy q=2", 1.0f, n);
+        if (t && basic && inc && lazy && lazy2) {
+            const row *rb = find_row(b, ROW_OURS, "room", "basic", 1.0f, n);
+            fprintf(f, "## Headline: object protocol, N = %u, epsilon = 1 px, %u views\n\n", n, c->view_count);
+            fprintf(f, "| | paper (GTX 480) | ours (CPU, %u threads) |\n|---|---:|---:|\n", c->threads);
+            fprintf(f, "| build | 9 s | %.2f s |\n", t->build_ms / 1e3);
+            fprintf(f, "| refit | 26 ms | %.1f ms |\n", t->refit_ms);
+            fprintf(f, "| cut, basic (non-incremental) | 55 ms | %.1f ms |\n", basic->cut_ms);
+            fprintf(f, "| cut, incremental | 5.3 ms | %.1f ms |\n", inc->cut_ms);
+            fprintf(f, "| cut, lazy q=1 | 2.9 ms | %.1f ms |\n", lazy->cut_ms);
+            fprintf(f, "| cut, lazy q=2 | | %.1f ms |\n", lazy2->cut_ms);
+            fprintf(f, "| splat (basic cut) | | %.1f ms |\n", basic->splat_ms);
+            for (k = 0; k < c->eps_count; k++) {
+                static const float table2_eps[3] = {1, 2, 4};
+                static const char *const table2_ms[3] = {"2.7 ms", "1.7 ms", "0.8 ms"};
+                int j;
+                for (j = 0; j < 3; j++)
+                    if (c->eps[k] == table2_eps[j]) {
+                        const row *r = find_row(b, ROW_OURS, "object", "incremental", c->eps[k], n);
+                        if (r)
+                            fprintf(f, "| Table 2: epsilon %g px (ours: incremental cut) | %s | %.1f ms |\n",
+                                    (double)c->eps[k], table2_ms[j], r->cut_ms);
+                    }
+            }
+            if (rb) fprintf(f, "| room: cut, basic, epsilon 1 px | | %.1f ms (%.0f nodes per view) |\n", rb->cut_ms, rb->per_view);
+            fprintf(f, "\n");
+        }
+    }
+
+    for (i = 0; i < protocol_count; i++) {
+        const char *scene = protocols[i]->name;
+        fprintf(f, "## %s\n\n### Trees\n\n", scene);
+        fprintf(f, "| what | N | build ms | refit ms | bytes (MB) |\n|---|---:|---:|---:|---:|\n");
+        for (k = 0; k < b->row_count; k++) {
+            const row *r = &b->rows[k];
+            char build[32], refit[32], bytes[32];
+            if (strcmp(r->scene, scene) != 0 || (r->kind != ROW_TREE && r->kind != ROW_EMBREE)) continue;
+            fmt(build, sizeof build, "%.1f", r->build_ms);
+            fmt(refit, sizeof refit, "%.2f", r->refit_ms);
+            fmt(bytes, sizeof bytes, "%.1f", r->tree_bytes / 1e6);
+            if (r->kind == ROW_EMBREE)
+                fprintf(f, "| %s (%s) | - | %s | %s | - |\n", r->method, r->note, build, refit);
+            else
+                fprintf(f, "| %s | %u | %s | %s | %s |\n", r->method, r->n, build, refit, bytes);
+        }
+        fprintf(f, "\n### Sweep\n\n");
+        fprintf(f, "| mode | eps px | N | cut ms | splat ms | cut+splat ms | node-views / frame | cut / view | "
+                   "holes %% | depth RMS %% | depth p95 %% | shadow %% | cut MB | paper |\n"
+                   "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        for (k = 0; k < b->row_count; k++) {
+            const row *r = &b->rows[k];
+            char cells[4][32];
+            if (strcmp(r->scene, scene) != 0 || r->kind != ROW_OURS) continue;
+            metric_cells(cells, r);
+            fprintf(f, "| %s | %g | %u | %.2f | %.2f | %.2f | %.3g | %.0f | %s | %s | %s | %s | %.1f | %s |\n",
+                    r->method, (double)r->eps, r->n, r->cut_ms, r->splat_ms, r->total_ms, r->evaluated, r->per_view,
+                    cells[0], cells[1], cells[2], cells[3], r->cut_bytes / 1e6, paper_cut(r));
+        }
+        fprintf(f, "\n### Peers (same scene, views and frames)\n\n");
+        fprintf(f, "| peer | eps px | N | cut ms | time ms | holes %% | depth RMS %% | depth p95 %% | shadow %% | "
+                   "note |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+        for (k = 0; k < b->row_count; k++) {
+            const row *r = &b->rows[k];
+            char cells[4][32], eps[16], n[16], cut[32];
+            if (strcmp(r->scene, scene) != 0 || (r->kind != ROW_RECURSIVE && r->kind != ROW_ISM && r->kind != ROW_POLYS))
+                continue;
+            metric_cells(cells, r);
+            fmt(eps, sizeof eps, "%g", r->eps ? r->eps : NAN);
+            fmt(n, sizeof n, "%.0f", r->n ? (double)r->n : NAN);
+            fmt(cut, sizeof cut, "%.2f", r->cut_ms);
+            fprintf(f, "| %s | %s | %s | %s | %.2f | %s | %s | %s | %s | %s |\n", r->method, eps, n, cut, r->total_ms,
+                    cells[0], cells[1], cells[2], cells[3], r->note);
+        }
+        fprintf(f, "\n### Suggested N (mlod_suggest_sample_count, closest surface %.3g from a light)\n\n",
+                protocols[i]->closest);
+        fprintf(f, "| eps px | suggested N | build ms | cut ms (incremental) | splat ms | holes %% | depth RMS %% | "
+                   "depth p95 %% | shadow %% | note |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+        for (k = 0; k < b->row_count; k++) {
+            const row *r = &b->rows[k];
+            char cells[4][32], build[32], cut[32], splat[32];
+            if (strcmp(r->scene, scene) != 0 || r->kind != ROW_SUGGESTED || strcmp(r->method, "incremental") != 0)
+                continue;
+            metric_cells(cells, r);
+            fmt(build, sizeof build, "%.1f", r->build_ms);
+            fmt(cut, sizeof cut, "%.2f", r->cut_ms);
+            fmt(splat, sizeof splat, "%.2f", r->splat_ms);
+            fprintf(f, "| %g | %u | %s | %s | %s | %s | %s | %s | %s | %s |\n", (double)r->eps, r->n, build, cut, splat,
+                    cells[0], cells[1], cells[2], cells[3], r->note);
+        }
+        fprintf(f, "\n");
+    }
+    fprintf(f, "Columns: times in ms per frame (all views); node-views = criterion evaluations per frame; cut / view "
+               "= nodes per view's cut, culled ones included; holes, depth RMS, depth p95 and shadow in %% (depth "
+               "relative to the scene diameter); cut MB = what the cut object holds. The paper's figures are "
+               "from its Tables 1 and 2 (GTX 480).\n");
+}
+
+static void csv_number(FILE *f, double v)
+{
+    if (isnan(v))
+        fprintf(f, ",");
+    else
+        fprintf(f, ",%.6g", v);
+}
+
+static void write_csv(const bench *b, FILE *f)
+{
+    static const char *const kinds[] = {"ours", "peer", "peer", "peer", "peer", "tree", "suggested"};
+    int k;
+    fprintf(f, "scene,kind,method,epsilon_px,N,build_ms,refit_ms,cut_ms,splat_ms,cut_splat_ms,node_views_per_frame,"
+               "cut_per_view,tree_bytes,cut_bytes,atlas_bytes,hole_rate,depth_rms_rel,depth_p95_rel,"
+               "shadow_disagreement,note\n");
+    for (k = 0; k < b->row_count; k++) {
+        const row *r = &b->rows[k];
+        fprintf(f, "%s,%s,%s", r->scene, kinds[r->kind], r->method);
+        csv_number(f, r->eps ? r->eps : NAN);
+        csv_number(f, r->n ? (double)r->n : NAN);
+        csv_number(f, r->build_ms);
+        csv_number(f, r->refit_ms);
+        csv_number(f, r->cut_ms);
+        csv_number(f, r->splat_ms);
+        csv_number(f, r->total_ms);
+        csv_number(f, r->evaluated);
+        csv_number(f, r->per_view);
+        csv_number(f, r->tree_bytes);
+        csv_number(f, r->cut_bytes);
+        csv_number(f, r->atlas_bytes);
+        csv_number(f, r->has_metrics ? r->m.hole_rate : NAN);
+        csv_number(f, r->has_metrics ? r->m.depth_rms : NAN);
+        csv_number(f, r->has_metrics ? r->m.depth_p95 : NAN);
+        csv_number(f, r->has_metrics ? r->m.shadow_disagreement : NAN);
+        fprintf(f, ",\"%s\"\n", r->note);
+    }
+}
+
+/* The plot: one row of panels per scene (depth RMS, hole rate, shadow
+   disagreement, each against cut + splat time), the legend below. */
+static void write_svg(const bench *b, FILE *f, protocol *const *protocols, int protocol_count)
+{
+    static const char *const mode_colors[BENCH_MODES] = {"#1f77b4", "#2ca02c", "#ff7f0e", "#d62728"};
+    static const char *const axis_titles[3] = {"depth RMS", "hole rate", "shadow-test disagreement"};
+    static const char *const axis_labels[3] = {"depth RMS, % of scene diameter", "holes, % of reference hits",
+                                               "receivers lit/shadowed wrongly, %"};
+    const int panel_w = 330, panel_h = 260, row_h = 350, width = 3 * (panel_w + 95) + 40;
+    int i, axis, height = 60 + row_h * protocol_count + 100;
+    double *xs = (double *)checked_malloc(sizeof(double) * (size_t)b->row_count * 2);
+    double *ys = xs + b->row_count;
+    int *keep = (int *)checked_malloc(sizeof(int) * (size_t)b->row_count);
+    plot_series series[8];
+    plot_begin(f, width, height, "manylods: time per frame against error (cut + splat of all views; medians)");
+    for (i = 0; i < protocol_count; i++) {
+        const char *scene = protocols[i]->name;
+        for (axis = 0; axis < 3; axis++) {
+            /* series: 4 modes, the front, recursive, ISM, Polys */
+            double sx[8][128], sy[8][128], fx[128], fy[128], x_min = INFINITY, x_max = 0, y_max = 0;
+            int count[8] = {0}, s, k, n = 0, front = 0;
+            plot_panel_desc panel;
+            char title[160];
+            for (k = 0; k < b->row_count; k++) {
+                const row *r = &b->rows[k];
+                double y;
+                int slot = -1;
+                if (strcmp(r->scene, scene) != 0 || !r->has_metrics || !(r->total_ms > 0)) continue;
+                y = 100.0 * (axis == 0 ? r->m.depth_rms : axis == 1 ? r->m.hole_rate : r->m.shadow_disagreement);
+                if (r->kind == ROW_OURS) {
+                    for (s = 0; s < BENCH_MODES; s++)
+                        if (strcmp(r->method, mode_names[s]) == 0) slot = s;
+                    xs[n] = r->total_ms;
+                    ys[n] = y;
+                    n++;
+                } else if (r->kind == ROW_RECURSIVE) {
+                    slot = 5;
+                } else if (r->kind == ROW_ISM) {
+                    slot = 6;
+                } else if (r->kind == ROW_POLYS) {
+                    slot = 7;
+                }
+                if (slot < 0 || count[slot] == 128) continue;
+                sx[slot][count[slot]] = r->total_ms;
+                sy[slot][count[slot]++] = y;
+                if (r->total_ms < x_min) x_min = r->total_ms;
+                if (r->total_ms > x_max) x_max = r->total_ms;
+                if (y > y_max) y_max = y;
+            }
+            plot_pareto(xs, ys, n, keep);
+            for (k = 0; k < n; k++)
+                if (keep[k] && front < 128) {
+                    int j = front++;
+                    while (j > 0 && fx[j - 1] > xs[k]) { /* insertion by x */
+                        fx[j] = fx[j - 1];
+                        fy[j] = fy[j - 1];
+                        j--;
+                    }
+                    fx[j] = xs[k];
+                    fy[j] = ys[k];
+                }
+            for (s = 0; s < BENCH_MODES; s++) {
+                series[s].name = mode_names[s];
+                series[s].color = mode_colors[s];
+                series[s].marker = PLOT_CIRCLE;
+            }
+            series[4].name = "Pareto front of our settings (all N, epsilon, modes)";
+            series[4].color = "#555";
+            series[4].marker = PLOT_FRONT;
+            series[5].name = "recursive per view (1 thread, float) + our splat";
+            series[5].color = "#9467bd";
+            series[5].marker = PLOT_SQUARE;
+            series[6].name = "ISM + pull-push at the time of our incremental cut + splat (largest N)";
+            series[6].color = "#e377c2";
+            series[6].marker = PLOT_TRIANGLE;
+            series[7].name = "Polys: Embree casts every pixel (the reference, error 0)";
+            series[7].color = "#222";
+            series[7].marker = PLOT_STAR;
+            for (s = 0; s < 8; s++) {
+                series[s].x = s == 4 ? fx : sx[s];
+                series[s].y = s == 4 ? fy : sy[s];
+                series[s].count = s == 4 ? front : count[s];
+            }
+            if (!(x_max > 0)) continue;
+            panel.left = 75 + axis * (panel_w + 95);
+            panel.top = 70 + i * row_h;
+            panel.width = panel_w;
+            panel.height = panel_h;
+            snprintf(title, sizeof title, "%s: %s", scene, axis_titles[axis]);
+            panel.title = title;
+            panel.x_label = "cut + splat ms per frame (log)";
+            panel.y_label = axis_labels[axis];
+            panel.x_min = plot_nice(x_min, 0);
+            panel.x_max = plot_nice(x_max, 1);
+            panel.y_max = y_max > 0 ? y_max * 1.08 : 1.0;
+            plot_panel(f, &panel, series, 8);
+        }
+    }
+    plot_legend(f, 90, 60 + row_h * protocol_count + 10, series, 4);
+    plot_legend(f, 90 + 2 * (panel_w + 95) - 250, 60 + row_h * protocol_count + 10, series + 4, 4);
+    plot_end(f);
+    free(xs);
+    free(keep);
+}
+
+static void write_outputs(const bench *b, protocol *const *protocols, int protocol_count)
+{
+    char path[1024];
+    FILE *f;
+    write_markdown(b, stdout, protocols, protocol_count);
+    if (!b->cfg.out_dir) return;
+    mkdir(b->cfg.out_dir, 0777); /* may exist already; fopen reports real trouble */
+    snprintf(path, sizeof path, "%s/BENCHMARKS.md", b->cfg.out_dir);
+    if (!(f = fopen(path, "w"))) fail("cannot write %s", path);
+    write_markdown(b, f, protocols, protocol_count);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/bench.csv", b->cfg.out_dir);
+    if (!(f = fopen(path, "w"))) fail("cannot write %s", path);
+    write_csv(b, f);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/bench.svg", b->cfg.out_dir);
+    if (!(f = fopen(path, "w"))) fail("cannot write %s", path);
+    write_svg(b, f, protocols, protocol_count);
+    fclose(f);
+    printf("\nwrote %s/BENCHMARKS.md, %s/bench.csv, %s/bench.svg\n", b->cfg.out_dir, b->cfg.out_dir, b->cfg.out_dir);
+}
+
+/* ------------------------------------------------------------ machine */
+
+/* The first three fields of /proc/loadavg ("?" where there is none). */
+static void read_load(char *out, size_t size)
+{
+    FILE *f = fopen("/proc/loadavg", "r");
+    double a, b5, c;
+    if (f && fscanf(f, "%lf %lf %lf", &a, &b5, &c) == 3)
+        snprintf(out, size, "%.2f %.2f %.2f", a, b5, c);
+    else
+        snprintf(out, size, "?");
+    if (f) fclose(f);
+}
+
+static void describe_machine(bench *b)
+{
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    char line[512], model[128] = "unknown CPU";
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    time_t t = time(NULL);
+    if (f) {
+        while (fgets(line, sizeof line, f))
+            if (strncmp(line, "model name", 10) == 0) {
+                char *colon = strchr(line, ':'), *end;
+                if (colon) {
+                    snprintf(model, sizeof model, "%s", colon + 2);
+                    if ((end = strchr(model, '\n'))) *end = '\0';
+                }
+                break;
+            }
+        fclose(f);
+    }
+    snprintf(b->machine, sizeof b->machine, "%s, %ld cores online", model, cores);
+    read_load(b->load_start, sizeof b->load_start);
+#if defined(__clang__)
+    snprintf(b->compiler, sizeof b->compiler, "clang %s", __clang_version__);
+#elif defined(__GNUC__)
+    snprintf(b->compiler, sizeof b->compiler, "gcc %s", __VERSION__);
+#else
+    snprintf(b->compiler, sizeof b->compiler, "unknown compiler");
+#endif
+    strftime(b->date, sizeof b->date, "%Y-%m-%d %H:%M UTC", gmtime(&t));
+    snprintf(b->threads, sizeof b->threads, "%u threads (built-in pool, MANYLODS_PTHREADS)", b->cfg.threads);
+}
+
+/* ----------------------------------------------------------- selftest */
+
+/* A small scene: the checks must hold, the parallel reference must equal
+   metrics_reference_atlas, and the metrics must be sane. */
+static int selftest(bench *b, protocol *p)
+{
+    const float *positions;
+    mlod_mesh mesh;
+    mlod_tree *tree;
+    mlod_cut *cut;
+    mlod_cut_params params;
+    mlod_error error;
+    ranks rk;
+    metrics same, ours, empty;
+    size_t pixels = (size_t)p->atlas->width * p->atlas->height, q;
+    float *sequential = (float *)checked_malloc(sizeof(float) * pixels), *saved;
+    uint32_t *hits, *stack, v;
+    rt_scene scene;
+    double build_ms;
+    int last = p->frame_count - 1;
+
+    /* the parallel reference is the sequential one, bit for bit */
+    positions = frame_positions(p, last);
+    if (!rt_create(b->device, p->rest.indices, p->rest.index_count, positions, p->rest.vertex_count,
+                   RTC_BUILD_QUALITY_MEDIUM, &scene))
+        fail("selftest: Embree could not create a scene");
+    rt_commit(&scene);
+    metrics_reference_atlas(p->atlas, frame_views(p, last), rt_cast, &scene, sequential);
+    for (q = 0; q < pixels; q++)
+        if (memcmp(&sequential[q], &p->reference[q], sizeof(float)) != 0)
+            fail("selftest: parallel reference pixel %zu differs from metrics_reference_atlas", q);
+    rt_destroy(&scene);
+    free(sequential);
+
+    /* the reference compared with itself: no holes, no error, no disagreement */
+    saved = p->atlas->depth;
+    p->atlas->depth = p->reference;
+    compare_last(p, &same);
+    p->atlas->depth = saved;
+    if (same.holes != 0 || same.depth_rms != 0 || same.shadow_differences != 0 || same.reference_hits == 0 ||
+        same.shadow_tests == 0)
+        fail("selftest: the reference against itself gives holes %llu, rms %g, shadow differences %llu",
+             (unsigned long long)same.holes, same.depth_rms, (unsigned long long)same.shadow_differences);
+
+    /* the interval check agrees with the literal subtree walk, on a splat
+       that is close to the reference */
+    tree = build_tree(b, p, b->cfg.sizes[0], &build_ms);
+    mesh = frame_mesh(p, last);
+    if (mlod_refit_mesh(tree, &mesh, &b->parallel, &error) != MLOD_OK) fail("selftest: refit: %s", error.message);
+    ranks_init(&rk, tree);
+    hits = (uint32_t *)checked_malloc(sizeof(uint32_t) * tree->leaf_count);
+    stack = (uint32_t *)checked_malloc(sizeof(uint32_t) * 64);
+    if (mlod_cut_create(p->view_count, NULL, &cut, &error) != MLOD_OK) fail("selftest: %s", error.message);
+    memset(&params, 0, sizeof params);
+    params.mode = MLOD_CUT_BASIC;
+    params.epsilon = 1.0f;
+    params.parallel = &b->parallel;
+    if (mlod_cut_update(cut, tree, frame_views(p, last), &params, &error) != MLOD_OK)
+        fail("selftest: %s", error.message);
+    for (v = 0; v < p->view_count; v++) {
+        mlod_cut_view c = mlod_cut_get(cut, v), broken;
+        uint32_t nodes[2];
+        uint8_t status[2] = {MLOD_STATUS_DRAWN, MLOD_STATUS_DRAWN};
+        if ((check_cut_view(&rk, &c, 0) == NULL) != cut_partitions_by_walk(tree, &c, hits, stack))
+            fail("selftest: view %u: the interval check and the subtree walk disagree", v);
+        if (check_cut_view(&rk, &c, 0)) fail("selftest: view %u: %s", v, check_cut_view(&rk, &c, 0));
+        /* and both reject a cut that repeats a subtree */
+        nodes[0] = 1;
+        nodes[1] = 1;
+        broken = c;
+        broken.nodes = nodes;
+        broken.status = status;
+        broken.count = 2;
+        broken.drawn = 2;
+        broken.culled = broken.oversize = broken.coarse = 0;
+        if (check_cut_view(&rk, &broken, 0) == NULL || cut_partitions_by_walk(tree, &broken, hits, stack))
+            fail("selftest: a cut listing node 1 twice passed a check");
+    }
+    if (mlod_splat(p->atlas, tree, cut, frame_views(p, last), &b->parallel, &error) != MLOD_OK)
+        fail("selftest: %s", error.message);
+    compare_last(p, &ours);
+    if (!(ours.hole_rate < 0.5 && ours.depth_rms < 0.5 && ours.shadow_disagreement < 0.5 && ours.depth_pixels > 0))
+        fail("selftest: the splat of a basic cut at 1 px is far from the reference: holes %.3f, rms %.4f, shadow %.3f",
+             ours.hole_rate, ours.depth_rms, ours.shadow_disagreement);
+    for (q = 0; q < pixels; q++) p->atlas->depth[q] = INFINITY;
+    compare_last(p, &empty);
+    if (empty.holes != empty.reference_hits || empty.hole_rate != 1.0)
+        fail("selftest: an empty atlas does not have every reference hit as a hole");
+    printf("selftest: reference %llu hits; splat at 1 px: holes %.2f%%, depth RMS %.3f%%, shadow %.2f%%\n",
+           (unsigned long long)ours.reference_hits, 100 * ours.hole_rate, 100 * ours.depth_rms,
+           100 * ours.shadow_disagreement);
+    mlod_cut_destroy(cut);
+    free(hits);
+    free(stack);
+    ranks_free(&rk);
+    mlod_tree_destroy(tree);
+    return 0;
+}
+
+/* --------------------------------------------------------------- main */
+
+static void usage(void)
+{
+    fprintf(stderr, "usage: bench [--quick | --selftest] [--threads T] [--out DIR] [--scene object|room]\n"
+                    "             [--sizes N,N,...] [--eps E,E,...] [MESH.obj|MESH.ply]\n");
+    exit(2);
+}
+
+/* A comma-separated list of up to BENCH_MAX_LIST positive numbers into
+   floats or counts (1 .. MANYLODS_MAX_LEAVES); returns how many, 0 if malformed. */
+static int parse_list(const char *text, float *floats, uint32_t *counts)
+{
+    int n = 0;
+    while (*text) {
+        char *end;
+        double x = strtod(text, &end);
+        if (end == text || n == BENCH_MAX_LIST || !(x > 0) || !isfinite(x)) return 0;
+        if (counts && (x != floor(x) || x > MANYLODS_MAX_LEAVES)) return 0;
+        if (floats) floats[n] = (float)x;
+        if (counts) counts[n] = (uint32_t)x;
+        n++;
+        if (*end == ',') end++;
+        else if (*end) return 0;
+        text = end;
+    }
+    return n;
+}
+
+int main(int argc, char **argv)
+{
+    bench b;
+    protocol object, room, *protocols[2];
+    int protocol_count = 0, i;
+    char device_config[64];
+    const char *sizes = NULL, *eps = NULL;
+    memset(&b, 0, sizeof b);
+    memset(&object, 0, sizeof object);
+    memset(&room, 0, sizeof room);
+    config_defaults(&b.cfg);
+#ifdef BENCH_SELFTEST
+    b.cfg.selftest = 1; /* the build `make test` runs */
+#endif
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--quick") == 0)
+            b.cfg.quick = 1;
+        else if (strcmp(argv[i], "--selftest") == 0)
+            b.cfg.selftest = 1;
+        else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc)
+            b.cfg.threads = (uint32_t)atoi(argv[++i]);
+        else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+            b.cfg.out_dir = argv[++i];
+        else if (strcmp(argv[i], "--scene") == 0 && i + 1 < argc)
+            b.cfg.scene = argv[++i];
+        else if (strcmp(argv[i], "--sizes") == 0 && i + 1 < argc)
+            sizes = argv[++i];
+        else if (strcmp(argv[i], "--eps") == 0 && i + 1 < argc)
+            eps = argv[++i];
+        else if (argv[i][0] == '-')
+            usage();
+        else
+            b.cfg.mesh_path = argv[i];
+    }
+    if (b.cfg.threads < 1 || b.cfg.threads > 256) usage();
+    if (b.cfg.scene && strcmp(b.cfg.scene, "object") != 0 && strcmp(b.cfg.scene, "room") != 0) usage();
+    if (b.cfg.quick) config_quick(&b.cfg);
+    if (b.cfg.selftest) config_selftest(&b.cfg);
+    if (sizes) {
+        b.cfg.size_count = parse_list(sizes, NULL, b.cfg.sizes);
+        if (b.cfg.size_count == 0) usage();
+    }
+    if (eps) {
+        b.cfg.eps_count = parse_list(eps, b.cfg.eps, NULL);
+        if (b.cfg.eps_count == 0) usage();
+    }
+    b.started_ms = now_ms();
+    describe_machine(&b);
+    b.pool = mlod_pool_create(b.cfg.threads);
+    if (!b.pool) fail("mlod_pool_create(%u) failed", b.cfg.threads);
+    b.parallel = mlod_pool_parallel(b.pool);
+    snprintf(device_config, sizeof device_config, "threads=%u", b.cfg.threads);
+    b.device = rtcNewDevice(device_config);
+    if (!b.device) fail("rtcNewDevice failed (Embree error %d)", (int)rtcGetDeviceError(NULL));
+
+    printf("manylods %d.%d.%d benchmark%s\n", MANYLODS_VERSION_MAJOR, MANYLODS_VERSION_MINOR, MANYLODS_VERSION_PATCH,
+           b.cfg.quick ? " (--quick)" : b.cfg.selftest ? " (--selftest)" : "");
+    printf("machine   %s\ncompiler  %s, %s\nthreads   %s\nembree    %s\ndate      %s\n", b.machine, b.compiler,
+           BENCH_FLAGS, b.threads, RTC_VERSION_STRING, b.date);
+    fflush(stdout);
+
+    if (!b.cfg.scene || strcmp(b.cfg.scene, "object") == 0) {
+        protocol_object(&b, &object);
+        protocols[protocol_count++] = &object;
+    }
+    if (!b.cfg.selftest && (!b.cfg.scene || strcmp(b.cfg.scene, "room") == 0)) {
+        protocol_room(&b, &room);
+        protocols[protocol_count++] = &room;
+    }
+    for (i = 0; i < protocol_count; i++) {
+        protocol *p = protocols[i];
+        protocol_reference(&b, p);
+        printf("scene     %s: %s\n          %u vertices, diameter %.3g, area %.3g, atlas %ux%u, reference %.1f%% of "
+               "pixels hit, closest surface %.3g; Embree cast %.1f ms\n",
+               p->name, p->description, p->rest.vertex_count, p->diameter, p->area, p->atlas->width, p->atlas->height,
+               100.0 * p->reference_hits / ((double)p->atlas->width * p->atlas->height), p->closest, p->polys_ms);
+        fflush(stdout);
+    }
+    if (b.cfg.selftest) {
+        int status = selftest(&b, &object);
+        if (status == 0) {
+            run_size(&b, &object, b.cfg.sizes[0], b.cfg.eps, b.cfg.eps_count, (1u << BENCH_MODES) - 1, 1, 1, 1,
+                     ROW_OURS);
+            printf("selftest: all checks passed (%.1f s)\n", (now_ms() - b.started_ms) / 1e3);
+        }
+        protocol_free(&object);
+        rtcReleaseDevice(b.device);
+        mlod_pool_destroy(b.pool);
+        free(b.rows);
+        return status;
+    }
+    printf("sweep     N in {");
+    for (i = 0; i < b.cfg.size_count; i++) printf("%s%u", i ? ", " : "", b.cfg.sizes[i]);
+    printf("}, epsilon in {");
+    for (i = 0; i < b.cfg.eps_count; i++) printf("%s%g", i ? ", " : "", (double)b.cfg.eps[i]);
+    printf("} px, modes basic / incremental / lazy q=1 / lazy q=2; %d warm-up + %d measured frames\n\n",
+           b.cfg.warmup, b.cfg.measured);
+    fflush(stdout);
+    for (i = 0; i < protocol_count; i++) run_protocol(&b, protocols[i]);
+    read_load(b.load_end, sizeof b.load_end);
+    printf("\nall checks passed; %.0f s in all\n\n", (now_ms() - b.started_ms) / 1e3);
+    write_outputs(&b, protocols, protocol_count);
+    for (i = 0; i < protocol_count; i++) protocol_free(protocols[i]);
+    rtcReleaseDevice(b.device);
+    mlod_pool_destroy(b.pool);
+    free(b.rows);
+    return 0;
+}
