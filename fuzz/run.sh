@@ -55,7 +55,7 @@ fi
 
 echo "fuzzing $fuzzer for ${seconds}s from $seeds seeds"
 # shellcheck disable=SC2086
-"$fuzzer" -max_len=4096 -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1 \
+"$fuzzer" -seed=1 -max_len=4096 -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$work/artifacts/" ${FUZZ_FLAGS:-} "$work/corpus" >"$log" 2>&1
 status=$?
 
