@@ -221,7 +221,9 @@ typedef enum mlod_result {
     MLOD_ERROR_OUT_OF_MEMORY = 8,    /* the allocator returned NULL */
     MLOD_ERROR_MISMATCH = 9,         /* objects that do not belong together */
     MLOD_ERROR_RANGE = 10,           /* coordinates too large for float bounds */
-    MLOD_ERROR_CANCELLED = 11        /* the progress callback asked to stop */
+    MLOD_ERROR_CANCELLED = 11,       /* the progress callback asked to stop */
+    MLOD_ERROR_DEVICE = 12           /* manylods_vk.h: a Vulkan call failed (device lost, ...)
+                                        or the device lacks a needed feature */
 } mlod_result;
 
 typedef struct mlod_error {
@@ -422,6 +424,27 @@ MANYLODS_DEF double mlod_criterion(const mlod_tree *tree, uint32_t node, const m
 
 /* Check a view: MLOD_OK or MLOD_ERROR_BAD_VIEW / NON_FINITE with a message. */
 MANYLODS_DEF mlod_result mlod_view_check(const mlod_view *view, mlod_error *error);
+
+/* What the criterion and the splat derive from a view, in double: for
+   other backends of the same formulas (manylods_vk.h uploads it) and for
+   tools.  right, up, forward: the unit frame (u, v, w); scale: pixels per
+   unit of the projection (perspective: the focal length f; paraboloids:
+   half the larger tile side, or of a half-tile; orthographic: the larger
+   of scale_x, scale_y, pixels per world unit along u and v).  A sphere
+   (c, r) is culled when, for one of the plane_count planes (n, k, l),
+   n.c + l r < k exactly; halves: a dual paraboloid's front (0) and back (1)
+   half-spaces in the same form. */
+typedef struct mlod_view_frame {
+    double eye[3], right[3], up[3], forward[3];
+    double scale, width, height, scale_x, scale_y;
+    double planes[6][5];
+    double halves[2][5];
+    uint32_t kind, plane_count, cull_backfaces;
+} mlod_view_frame;
+
+/* Fill *frame from a view; MLOD_OK, or the error of mlod_view_check.
+   Pure, thread-safe. */
+MANYLODS_DEF mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_frame *frame, mlod_error *error);
 
 /* -------------------------------------------------------------------- cut */
 
@@ -653,6 +676,7 @@ MANYLODS_DEF const char *mlod_result_name(mlod_result result)
     case MLOD_ERROR_MISMATCH: return "MLOD_ERROR_MISMATCH";
     case MLOD_ERROR_RANGE: return "MLOD_ERROR_RANGE";
     case MLOD_ERROR_CANCELLED: return "MLOD_ERROR_CANCELLED";
+    case MLOD_ERROR_DEVICE: return "MLOD_ERROR_DEVICE";
     }
     return "MLOD_ERROR_UNKNOWN";
 }
@@ -763,12 +787,52 @@ static double mlod__distance_f(const float *a, const float *b)
     return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+/* sin and cos of a in [0, pi], to a few ulps, with + and * only: the
+   Taylor series of cos and sin around pi/2 (|a - pi/2| <= pi/2, terms up
+   to degree 22 and 21: truncation below 1e-17).  Written out the same way
+   in shaders/common.glsl, so that the CPU and the Vulkan path compute the
+   same bits wherever the device's double arithmetic is IEEE (lavapipe). */
+static void mlod__sin_cos(double a, double *sin_a, double *cos_a)
+{
+    double x = a - 1.57079632679489661923, x2 = x * x, c = 1.0, s = 1.0;
+    int k;
+    for (k = 22; k >= 2; k -= 2) c = 1.0 - x2 / (double)(k * (k - 1)) * c;
+    for (k = 21; k >= 3; k -= 2) s = 1.0 - x2 / (double)(k * (k - 1)) * s;
+    *sin_a = c;      /* sin(pi/2 + x) = cos x */
+    *cos_a = -x * s; /* cos(pi/2 + x) = -sin x */
+}
+
+/* atan2(y, x) for y >= 0, in [0, pi], to a few ulps, with + - * / only:
+   reduced to t = min/max in [0, 1], then to |u| <= tan(pi/8) by atan t =
+   pi/4 + atan((t - 1) / (t + 1)), then the Taylor series of atan u to
+   degree 45 (truncation below 1e-18).  Written out the same way in
+   shaders/common.glsl (atan2_d), so that the CPU and the Vulkan refit
+   compute the same bits. */
+static double mlod__atan2(double y, double x)
+{
+    double ax = fabs(x), t, u, u2, s, base = 0.0, a;
+    int swap = y > ax, k;
+    if (!(y > 0.0) && !(ax > 0.0)) return x < 0.0 ? 3.14159265358979323846 : 0.0;
+    t = swap ? ax / y : y / ax;
+    u = t;
+    if (t > 0.41421356237309504880) {
+        u = (t - 1.0) / (t + 1.0);
+        base = 0.78539816339744830962;
+    }
+    u2 = u * u;
+    s = 1.0 / 45.0;
+    for (k = 21; k >= 0; k--) s = 1.0 / (double)(2 * k + 1) - u2 * s;
+    a = base + u * s;
+    if (swap) a = 1.57079632679489661923 - a;
+    return x < 0.0 ? 3.14159265358979323846 - a : a;
+}
+
 /* Angle between two (not necessarily unit) directions, accurate everywhere. */
 static double mlod__angle(const double *a, const double *b)
 {
     double c[3];
     mlod__cross3(a, b, c);
-    return atan2(mlod__length3(c), mlod__dot3(a, b));
+    return mlod__atan2(mlod__length3(c), mlod__dot3(a, b));
 }
 
 /* ------------------------------------------------ sphere and cone merge -- */
@@ -831,7 +895,7 @@ static void mlod__cone_enclose(const float *a, const float *b, float *out)
     } else if (theta + a[3] <= b[3]) {
         for (k = 0; k < 3; k++) X[k] = B[k];
     } else {
-        double phi, la = mlod__length3(A), ab;
+        double phi, la = mlod__length3(A), ab, sin_phi, cos_phi;
         alpha = (theta + a[3] + b[3]) * 0.5;
         if (alpha >= MLOD__PI) {
             mlod__cone_full(a, out);
@@ -848,7 +912,8 @@ static void mlod__cone_enclose(const float *a, const float *b, float *out)
             mlod__cross3(A, helper, t);
             len = mlod__length3(t);
         }
-        for (k = 0; k < 3; k++) X[k] = A[k] * cos(phi) + t[k] / len * sin(phi);
+        mlod__sin_cos(phi, &sin_phi, &cos_phi);
+        for (k = 0; k < 3; k++) X[k] = A[k] * cos_phi + t[k] / len * sin_phi;
     }
     len = mlod__length3(X);
     for (k = 0; k < 3; k++) {
@@ -2007,23 +2072,66 @@ MANYLODS_DEF mlod_result mlod_view_check(const mlod_view *view, mlod_error *erro
     return res == MLOD_OK ? mlod__succeed(error) : res;
 }
 
+MANYLODS_DEF mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_frame *frame, mlod_error *error)
+{
+    mlod__pview pv;
+    mlod_result res;
+    int k, j;
+    if (!frame) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "frame is NULL");
+    res = mlod__view_prepare(view, &pv, error);
+    if (res != MLOD_OK) return res;
+    memset(frame, 0, sizeof *frame);
+    for (k = 0; k < 3; k++) {
+        frame->eye[k] = pv.e[k];
+        frame->right[k] = pv.u[k];
+        frame->up[k] = pv.v[k];
+        frame->forward[k] = pv.w[k];
+    }
+    frame->scale = pv.scale;
+    frame->width = pv.width;
+    frame->height = pv.height;
+    frame->scale_x = pv.sx;
+    frame->scale_y = pv.sy;
+    for (j = 0; j < 6; j++) {
+        const mlod__plane *pl = j < pv.plane_count ? &pv.planes[j] : NULL;
+        for (k = 0; k < 3 && pl; k++) frame->planes[j][k] = pl->n[k];
+        if (pl) {
+            frame->planes[j][3] = pl->k;
+            frame->planes[j][4] = pl->l;
+        }
+    }
+    for (j = 0; j < 2; j++) {
+        for (k = 0; k < 3; k++) frame->halves[j][k] = pv.halves[j].n[k];
+        frame->halves[j][3] = pv.halves[j].k;
+        frame->halves[j][4] = pv.halves[j].l;
+    }
+    frame->kind = (uint32_t)pv.kind;
+    frame->plane_count = (uint32_t)pv.plane_count;
+    frame->cull_backfaces = (uint32_t)pv.backfaces;
+    return mlod__succeed(error);
+}
+
 /* Does every point of the sphere, with every normal of the cone, face away
-   from the eye?  x = centre - eye, d2 = |x|^2. */
+   from the eye?  x = centre - eye, d2 = |x|^2.  With g the angle between
+   the axis and the direction to the eye, a the cone's half-angle and b =
+   asin(r/d) the sphere's angular radius, culled when g > pi/2 + a + b
+   (< pi), i.e. cos g < -sin(a + b): axis.(e - c) / |axis| < -(sin a sqrt(d^2
+   - r^2) + cos a r), and cos(a + b) > 0; no inverse trigonometry. */
 static int mlod__backfacing(const mlod__pview *pv, const double *x, double d2, double r, const float *cone)
 {
-    double axis[3], to_eye[3], beta = 0.0, limit;
-    int k;
-    if (cone[3] >= MLOD__PI) return 0;
-    for (k = 0; k < 3; k++) axis[k] = cone[k];
-    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) {
-        for (k = 0; k < 3; k++) to_eye[k] = -pv->w[k];
+    double sa, ca, along, len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
+    if (cone[3] >= MLOD__PI || !(len > 0.0)) return 0;
+    mlod__sin_cos(cone[3], &sa, &ca);
+    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) { /* the eye is at -w, b = 0 */
+        along = -(cone[0] * pv->w[0] + cone[1] * pv->w[1] + cone[2] * pv->w[2]) / len;
+        return ca > 0.0 && along < -sa;
     } else {
+        double tangent;
         if (d2 <= r * r) return 0;
-        beta = asin(r / sqrt(d2));
-        for (k = 0; k < 3; k++) to_eye[k] = -x[k];
+        tangent = sqrt(d2 - r * r);
+        along = -(cone[0] * x[0] + cone[1] * x[1] + cone[2] * x[2]) / len;
+        return ca * tangent - sa * r > 0.0 && along < -(sa * tangent + ca * r);
     }
-    limit = 0.5 * MLOD__PI + cone[3] + beta;
-    return limit < MLOD__PI && mlod__angle(axis, to_eye) > limit;
 }
 
 /* Diameter of the paraboloid image of a sphere, in projection units, for

@@ -625,10 +625,11 @@ static void test_result_names(void)
                                   "MLOD_ERROR_OUT_OF_MEMORY",
                                   "MLOD_ERROR_MISMATCH",
                                   "MLOD_ERROR_RANGE",
-                                  "MLOD_ERROR_CANCELLED"};
+                                  "MLOD_ERROR_CANCELLED",
+                                  "MLOD_ERROR_DEVICE"};
     int i;
     const char *unknown = mlod_result_name((mlod_result)99);
-    for (i = 0; i < 12; i++) {
+    for (i = 0; i < 13; i++) {
         const char *n = mlod_result_name((mlod_result)i);
         CHECK(n && strcmp(n, names[i]) == 0, "mlod_result_name(%d) = \"%s\", expected %s", i, n ? n : "(null)", names[i]);
     }
