@@ -61,7 +61,8 @@ BENCH_DEPS   := bench/bench.c $(wildcard bench/*.h) manylods.h examples/scenes.h
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PARALLEL = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(JOBS))
 
-TEST_SOURCES := $(sort $(wildcard tests/test_*.c))
+# tests/test_vulkan.c links the Vulkan loader: built by its own rule below.
+TEST_SOURCES := $(filter-out tests/test_vulkan.c,$(sort $(wildcard tests/test_*.c)))
 TEST_NAMES   := $(TEST_SOURCES:tests/%.c=%)
 GCC_TESTS    := $(TEST_NAMES:%=$(BUILD)/gcc/%)
 SAN_TESTS    := $(TEST_NAMES:%=$(BUILD)/san/%)
@@ -82,7 +83,22 @@ Q := @
 say = @printf '  %-6s %s\n'
 endif
 
-.PHONY: all demo test test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs
+# The Vulkan companion: its test needs the Vulkan headers and loader
+# (Debian: libvulkan-dev) at build time, a device (mesa-vulkan-drivers) and
+# the validation layer (vulkan-validationlayers) at run time; without them
+# `make test` says it skipped it and counts nothing, unless
+# MANYLODS_REQUIRE_VULKAN=1 (CI), which makes a skip a failure.
+VULKAN_LIBS ?= -lvulkan
+HAVE_VULKAN := $(shell printf '\043include <vulkan/vulkan.h>\nint main(void) { return 0; }\n' | \
+                 $(CC) -x c - $(VULKAN_LIBS) -o /dev/null 2>/dev/null && echo 1)
+ifeq ($(HAVE_VULKAN),1)
+VULKAN_TEST := $(BUILD)/vulkan/test_vulkan
+else
+VULKAN_TEST := tests/vulkan_missing.sh
+endif
+
+.PHONY: all demo test test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs \
+        shaders vulkan
 .DELETE_ON_ERROR:
 
 all: $(BUILD)/examples/demo $(BUILD)/examples/minimal
@@ -101,7 +117,22 @@ test:
 	    --section "compile matrix" tests/compile/matrix.sh \
 	    --section "examples" --check $(BUILD)/examples/minimal \
 	    --section "benchmark (bench --selftest: compiles, checks cuts and metrics against Embree)" \
-	    --check $(BUILD)/bench/selftest
+	    --check $(BUILD)/bench/selftest \
+	    --section "Vulkan (manylods_vk.h against the CPU, validation layer on; shaders/ against the embedded SPIR-V)" \
+	    $(VULKAN_TEST) tests/check_shaders.sh
+
+# The Vulkan tests alone.
+vulkan: $(if $(filter 1,$(HAVE_VULKAN)),$(VULKAN_TEST))
+	$(Q)tests/run.sh --section "Vulkan" $(VULKAN_TEST) tests/check_shaders.sh
+
+# Compile shaders/*.comp and embed the SPIR-V in manylods_vk.h (glslang-tools, spirv-tools).
+shaders:
+	$(Q)shaders/embed.sh
+
+$(BUILD)/vulkan/test_vulkan: tests/test_vulkan.c manylods_vk.h $(HEADERS)
+	$(say) CC $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CC) $(TEST_CFLAGS) $< -o $@ $(VULKAN_LIBS) $(LDLIBS)
 
 test-fast:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) fast-programs
@@ -123,7 +154,8 @@ fuzz-corpus: $(BUILD)/fuzz/make_corpus
 	$(Q)rm -f fuzz/corpus/seed-*
 	$(Q)mkdir -p fuzz/corpus && $(BUILD)/fuzz/make_corpus fuzz/corpus
 
-test-programs: $(GCC_TESTS) $(SAN_TESTS) $(TSAN_PROGRAMS) $(BUILD)/examples/minimal $(BUILD)/bench/selftest
+test-programs: $(GCC_TESTS) $(SAN_TESTS) $(TSAN_PROGRAMS) $(BUILD)/examples/minimal $(BUILD)/bench/selftest \
+               $(if $(filter 1,$(HAVE_VULKAN)),$(VULKAN_TEST))
 fast-programs: $(GCC_TESTS)
 
 $(BUILD)/gcc/%: tests/%.c $(HEADERS)

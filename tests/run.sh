@@ -10,6 +10,8 @@
 # report at exit, for instance).  "--check PROGRAM" runs a program that
 # prints no counts: exit status 0 is one pass, anything else one failure.
 # "--section TITLE" prints a heading before the programs that follow it.
+# A program that prints a line "SKIPPED: reason" (and counts nothing) is
+# shown as SKIP with its reason.
 #
 # Prints one line per program and ends with the summed plain line
 # "N passed, M failed"; exits 1 when anything failed, 0 otherwise.
@@ -104,6 +106,9 @@ run_one() {
         printf '  FAIL  %-40s %s\n' "$program" "$line"
         show_tail stdout "$out" 60
         show_tail stderr "$err" 40
+    elif grep -q '^SKIPPED: ' "$out"; then
+        # a skip counts nothing, and says why
+        printf '  SKIP  %-40s %s\n' "$program" "$(grep '^SKIPPED: ' "$out" | head -n 1 | cut -c10-)"
     else
         printf '  ok    %-40s %s\n' "$program" "$line"
         [ "$verbose" = 1 ] && { show_tail stdout "$out" 1000; show_tail stderr "$err" 1000; }

@@ -1,0 +1,461 @@
+// shaders/common.glsl - the criterion, culling and image disc of manylods.h,
+// for the compute shaders of manylods_vk.h.
+//
+// Each function here is the twin of the C function named beside it in
+// manylods.h, operation for operation, in double precision, every temporary
+// `precise` (no fused multiply-add): on a device whose double arithmetic is
+// IEEE (lavapipe; most desktop GPUs) the two compute the same bits, and the
+// CPU and Vulkan cuts are equal node for node.  Change one, change both.
+//
+// The includer declares, before including this file:
+//   vec4 spheres[]  (x, y, z, r per node)   in a buffer named tree_spheres
+//   vec4 cones[]    (axis, half-angle)      in a buffer named tree_cones
+//   double views[]  (MLOD_VIEW_STRIDE doubles per view, laid out below)
+// and a macro MLOD_HAS_CONES (a bool expression) - or defines MLOD_NO_VIEWS
+// (the refit shaders) and gets only the functions that need no view.
+
+#define MLOD_PI 3.14159265358979323846LF
+
+// One view in views[]: the fields of mlod_view_frame (manylods.h).
+#define MLOD_VIEW_STRIDE 64
+#define V_EYE 0
+#define V_RIGHT 3
+#define V_UP 6
+#define V_FORWARD 9
+#define V_SCALE 12
+#define V_WIDTH 13
+#define V_HEIGHT 14
+#define V_SCALE_X 15
+#define V_SCALE_Y 16
+#define V_KIND 17
+#define V_PLANE_COUNT 18
+#define V_BACKFACES 19
+#define V_PLANES 20 // 6 planes of 5: n, k, l
+#define V_HALVES 50 // 2 of 5
+
+#define KIND_PERSPECTIVE 0
+#define KIND_PARABOLOID 1
+#define KIND_DUAL_PARABOLOID 2
+#define KIND_ORTHOGRAPHIC 3
+
+#define STATUS_PENDING 0u
+#define STATUS_DRAWN 1u
+#define STATUS_CULLED 2u
+#define STATUS_OVERSIZE 3u
+#define STATUS_COARSE 4u
+
+#ifndef MLOD_NO_VIEWS
+double vd(uint view, uint field) { return views[view * MLOD_VIEW_STRIDE + field]; }
+dvec3 vd3(uint view, uint field) { return dvec3(vd(view, field), vd(view, field + 1), vd(view, field + 2)); }
+int view_kind(uint view) { return int(vd(view, V_KIND)); }
+
+#endif // MLOD_NO_VIEWS
+
+// ------------------------------------------------ exact plane predicate --
+
+// mlod__two_sum
+void two_sum(double a, double b, out double s, out double err)
+{
+    precise double sum = a + b;
+    precise double bv = sum - a;
+    precise double av = sum - bv;
+    precise double e = (a - av) + (b - bv);
+    s = sum;
+    err = e;
+}
+
+// mlod__split
+void split_double(double a, out double hi, out double lo)
+{
+    precise double c = 134217729.0LF * a;
+    precise double big = c - a;
+    precise double h = c - big;
+    precise double l = a - h;
+    hi = h;
+    lo = l;
+}
+
+// mlod__two_product
+void two_product(double a, double b, out double p, out double err)
+{
+    precise double prod = a * b;
+    double ah, al, bh, bl;
+    split_double(a, ah, al);
+    split_double(b, bh, bl);
+    precise double e = al * bl - (((prod - ah * bh) - al * bh) - ah * bl);
+    p = prod;
+    err = e;
+}
+
+// mlod__exact_sign, for the 9 terms of plane_outside
+int exact_sign9(double terms[9])
+{
+    double e[24];
+    int len = 0;
+    for (int i = 0; i < 9; i++) {
+        double q = terms[i], h;
+        int n = 0;
+        for (int j = 0; j < len; j++) {
+            two_sum(q, e[j], q, h);
+            if (h != 0.0LF) e[n++] = h;
+        }
+        e[n++] = q;
+        len = n;
+    }
+    for (int i = len - 1; i >= 0; i--)
+        if (e[i] != 0.0LF) return e[i] > 0.0LF ? 1 : -1;
+    return 0;
+}
+
+#ifndef MLOD_NO_VIEWS
+// mlod__outside: is the sphere wholly outside the half-space at views[base]
+// (n.c + l r < k, exactly)?
+bool plane_outside(uint base, vec4 sphere)
+{
+    double n0 = views[base], n1 = views[base + 1], n2 = views[base + 2], k = views[base + 3], l = views[base + 4];
+    precise double t0 = n0 * double(sphere.x);
+    precise double t1 = n1 * double(sphere.y);
+    precise double t2 = n2 * double(sphere.z);
+    precise double t3 = l * double(sphere.w);
+    precise double s = t0 + t1 + t2 + t3 - k;
+    precise double bound = (abs(t0) + abs(t1) + abs(t2) + abs(t3) + abs(k)) * (1.0LF / 281474976710656.0LF);
+    if (s < -bound) return true;
+    if (s > bound) return false;
+    double t[9];
+    two_product(n0, double(sphere.x), t[0], t[1]);
+    two_product(n1, double(sphere.y), t[2], t[3]);
+    two_product(n2, double(sphere.z), t[4], t[5]);
+    two_product(l, double(sphere.w), t[6], t[7]);
+    t[8] = -k;
+    return exact_sign9(t) < 0;
+}
+
+#endif // MLOD_NO_VIEWS
+
+// ------------------------------------------------------------ criterion --
+
+// mlod__dot3
+double dot3(dvec3 a, dvec3 b)
+{
+    precise double s = a.x * b.x + a.y * b.y + a.z * b.z;
+    return s;
+}
+
+// mlod__sin_cos
+void sin_cos(double a, out double sin_a, out double cos_a)
+{
+    precise double x = a - 1.57079632679489661923LF;
+    precise double x2 = x * x;
+    precise double c = 1.0LF;
+    precise double s = 1.0LF;
+    for (int k = 22; k >= 2; k -= 2) c = 1.0LF - x2 / double(k * (k - 1)) * c;
+    for (int k = 21; k >= 3; k -= 2) s = 1.0LF - x2 / double(k * (k - 1)) * s;
+    sin_a = c;
+    cos_a = -x * s;
+}
+
+#ifndef MLOD_NO_VIEWS
+// mlod__backfacing
+bool backfacing(uint view, dvec3 x, double d2, double r, vec4 cone)
+{
+    double c0 = double(cone.x), c1 = double(cone.y), c2 = double(cone.z);
+    precise double len = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
+    if (double(cone.w) >= MLOD_PI || !(len > 0.0LF)) return false;
+    double sa, ca;
+    sin_cos(double(cone.w), sa, ca);
+    if (view_kind(view) == KIND_ORTHOGRAPHIC) {
+        dvec3 w = vd3(view, V_FORWARD);
+        precise double along = -(c0 * w.x + c1 * w.y + c2 * w.z) / len;
+        return ca > 0.0LF && along < -sa;
+    }
+    if (d2 <= r * r) return false;
+    precise double tangent = sqrt(d2 - r * r);
+    precise double along = -(c0 * x.x + c1 * x.y + c2 * x.z) / len;
+    precise double lhs = ca * tangent - sa * r;
+    precise double rhs = -(sa * tangent + ca * r);
+    return lhs > 0.0LF && along < rhs;
+}
+
+#endif // MLOD_NO_VIEWS
+
+// mlod__paraboloid_diameter
+double paraboloid_diameter(double r, double xw, double tangent)
+{
+    precise double den = xw + tangent;
+    precise double c = 2.0LF * r / den;
+    return den > 0.0LF ? c : 1.0LF / 0.0LF;
+}
+
+
+#ifndef MLOD_NO_VIEWS
+// mlod__evaluate: c(node, view) in pixels; culled set when culled.
+double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
+{
+    culled = false;
+    uint planes = uint(vd(view, V_PLANE_COUNT));
+    for (uint k = 0u; k < planes; k++)
+        if (plane_outside(view * MLOD_VIEW_STRIDE + V_PLANES + 5u * k, sphere)) {
+            culled = true;
+            return 0.0LF;
+        }
+    dvec3 e = vd3(view, V_EYE);
+    precise dvec3 x = dvec3(double(sphere.x) - e.x, double(sphere.y) - e.y, double(sphere.z) - e.z);
+    precise double d2 = dot3(x, x);
+    precise double r = double(sphere.w);
+    precise double r2 = r * r;
+    if (use_cone && vd(view, V_BACKFACES) != 0.0LF && backfacing(view, x, d2, r, cone)) {
+        culled = true;
+        return 0.0LF;
+    }
+    precise double xw = dot3(x, vd3(view, V_FORWARD));
+    double scale = vd(view, V_SCALE);
+    int kind = view_kind(view);
+    if (kind == KIND_PERSPECTIVE) {
+        precise double t2 = d2 - r2;
+        if (xw <= r) return 1.0LF / 0.0LF;
+        precise double c = scale * 2.0LF * r * sqrt(t2 > 0.0LF ? t2 : 0.0LF) / ((xw - r) * (xw + r));
+        return c;
+    }
+    if (kind == KIND_PARABOLOID) {
+        if (d2 <= r2) return 1.0LF / 0.0LF;
+        precise double c = scale * paraboloid_diameter(r, xw, sqrt(d2 - r2));
+        return c;
+    }
+    if (kind == KIND_DUAL_PARABOLOID) {
+        if (d2 <= r2) return 1.0LF / 0.0LF;
+        precise double tangent = sqrt(d2 - r2);
+        precise double c = 0.0LF;
+        uint halves = view * MLOD_VIEW_STRIDE + V_HALVES;
+        if (!plane_outside(halves, sphere)) c = paraboloid_diameter(r, xw, tangent);
+        if (!plane_outside(halves + 5u, sphere)) {
+            precise double back = paraboloid_diameter(r, -xw, tangent);
+            if (back > c) c = back;
+        }
+        precise double cs = scale * c;
+        return cs;
+    }
+    precise double c = scale * 2.0LF * r;
+    return c;
+}
+
+// mlod__classify
+uint classify(uint view, uint node, double epsilon, uint leaf_count)
+{
+    bool culled;
+    vec4 cone = MLOD_HAS_CONES ? cones[node] : vec4(0.0);
+    double c = evaluate(view, spheres[node], MLOD_HAS_CONES, cone, culled);
+    if (culled) return STATUS_CULLED;
+    if (c <= epsilon) return STATUS_DRAWN;
+    return node >= leaf_count - 1u ? STATUS_OVERSIZE : STATUS_COARSE;
+}
+
+bool status_valid(uint s) { return s == STATUS_DRAWN || s == STATUS_CULLED; }
+
+// ---------------------------------------------------------- image disc --
+
+// mlod__image_disc: the disc around the image of sphere (centre, r) in the
+// view's tile (pixels), and the depth of its centre; half: the back
+// hemisphere of a dual paraboloid.  Returns false when unbounded.
+bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 disc)
+{
+    disc = dvec4(0.0LF);
+    dvec3 e = vd3(view, V_EYE), u = vd3(view, V_RIGHT), v = vd3(view, V_UP), w = vd3(view, V_FORWARD);
+    precise dvec3 x = dvec3(centre.x - e.x, centre.y - e.y, centre.z - e.z);
+    double scale = vd(view, V_SCALE), width = vd(view, V_WIDTH), height = vd(view, V_HEIGHT);
+    int kind = view_kind(view);
+    if (kind == KIND_ORTHOGRAPHIC) {
+        precise double px = 0.5LF * width + vd(view, V_SCALE_X) * dot3(x, u);
+        precise double py = 0.5LF * height - vd(view, V_SCALE_Y) * dot3(x, v);
+        precise double radius = r * scale;
+        disc = dvec4(px, py, radius, dot3(x, w));
+        return true;
+    }
+    precise double d = sqrt(dot3(x, x));
+    if (!(d > r)) return false;
+    precise double a = dot3(x, u) / d;
+    precise double b = dot3(x, v) / d;
+    precise double cos_t = dot3(x, w) / d;
+    if (half_index != 0u) {
+        a = -a;
+        cos_t = -cos_t;
+    }
+    precise double sin_t = sqrt(a * a + b * b);
+    precise double sin_b = r / d;
+    precise double cos_b = sqrt(1.0LF - sin_b * sin_b);
+    precise double dir_x = 0.0LF, dir_y = 0.0LF;
+    if (sin_t > 0.0LF) {
+        dir_x = a / sin_t;
+        dir_y = b / sin_t;
+    }
+    precise double s_hi = sin_t * cos_b + cos_t * sin_b;
+    precise double c_hi = cos_t * cos_b - sin_t * sin_b;
+    precise double s_lo = sin_t * cos_b - cos_t * sin_b;
+    precise double c_lo = cos_t * cos_b + sin_t * sin_b;
+    precise double hi, lo, px, py, depth;
+    if (kind == KIND_PERSPECTIVE) {
+        if (!(c_hi > 0.0LF)) return false;
+        hi = s_hi / c_hi;
+        lo = s_lo / c_lo;
+        px = 0.5LF * width + scale * 0.5LF * (hi + lo) * dir_x;
+        py = 0.5LF * height - scale * 0.5LF * (hi + lo) * dir_y;
+        depth = dot3(x, w);
+    } else {
+        double tile_width = kind == KIND_DUAL_PARABOLOID ? 0.5LF * width : width;
+        if (!(1.0LF + c_hi > 0.0LF)) return false;
+        hi = s_hi / (1.0LF + c_hi);
+        lo = s_lo / (1.0LF + c_lo);
+        px = double(half_index) * tile_width + 0.5LF * tile_width * (1.0LF + 0.5LF * (hi + lo) * dir_x);
+        py = 0.5LF * height * (1.0LF - 0.5LF * (hi + lo) * dir_y);
+        depth = d;
+    }
+    precise double radius = scale * 0.5LF * (hi - lo);
+    disc = dvec4(px, py, radius, depth);
+    return true;
+}
+
+#endif // MLOD_NO_VIEWS
+
+// ------------------------------------------------- refit: merge helpers --
+
+// mlod__cross3
+dvec3 cross_d(dvec3 a, dvec3 b)
+{
+    precise double x = a.y * b.z - a.z * b.y;
+    precise double y = a.z * b.x - a.x * b.z;
+    precise double z = a.x * b.y - a.y * b.x;
+    return dvec3(x, y, z);
+}
+
+// mlod__length3
+double length_d(dvec3 a) { return sqrt(dot3(a, a)); }
+
+// mlod__float_up: the smallest float >= x (x >= 0)
+float float_up(double x)
+{
+    float f = float(x);
+    if (double(f) < x) f = uintBitsToFloat(floatBitsToUint(f) + 1u);
+    return f;
+}
+
+// mlod__atan2 (y >= 0)
+double atan2_d(double y, double x)
+{
+    precise double ax = abs(x);
+    bool swap = y > ax;
+    if (!(y > 0.0LF) && !(ax > 0.0LF)) return x < 0.0LF ? MLOD_PI : 0.0LF;
+    precise double t = swap ? ax / y : y / ax;
+    precise double u = t;
+    precise double base = 0.0LF;
+    if (t > 0.41421356237309504880LF) {
+        u = (t - 1.0LF) / (t + 1.0LF);
+        base = 0.78539816339744830962LF;
+    }
+    precise double u2 = u * u;
+    precise double s = 1.0LF / 45.0LF;
+    for (int k = 21; k >= 0; k--) s = 1.0LF / double(2 * k + 1) - u2 * s;
+    precise double a = base + u * s;
+    if (swap) a = 1.57079632679489661923LF - a;
+    precise double result = x < 0.0LF ? MLOD_PI - a : a;
+    return result;
+}
+
+// mlod__angle
+double angle_d(dvec3 a, dvec3 b) { return atan2_d(length_d(cross_d(a, b)), dot3(a, b)); }
+
+// mlod__distance_f
+double distance_f(vec3 a, vec3 b)
+{
+    precise double dx = double(a.x) - double(b.x);
+    precise double dy = double(a.y) - double(b.y);
+    precise double dz = double(a.z) - double(b.z);
+    precise double d = sqrt(dx * dx + dy * dy + dz * dz);
+    return d;
+}
+
+// mlod__sphere_enclose
+vec4 sphere_enclose(vec4 a, vec4 b)
+{
+    precise double d = distance_f(a.xyz, b.xyz);
+    double ra = double(a.w), rb = double(b.w);
+    vec3 c;
+    if (d + rb <= ra) {
+        c = a.xyz;
+    } else if (d + ra <= rb) {
+        c = b.xyz;
+    } else {
+        precise double t = ((d + ra + rb) * 0.5LF - ra) / d;
+        precise double cx = double(a.x) + (double(b.x) - double(a.x)) * t;
+        precise double cy = double(a.y) + (double(b.y) - double(a.y)) * t;
+        precise double cz = double(a.z) + (double(b.z) - double(a.z)) * t;
+        c = vec3(float(cx), float(cy), float(cz));
+    }
+    precise double need_a = distance_f(c, a.xyz) + ra;
+    precise double need_b = distance_f(c, b.xyz) + rb;
+    precise double need = (need_a > need_b ? need_a : need_b) * (1.0LF + 1.0LF / 1048576.0LF) *
+                          (1.0LF + 1.0LF / 1125899906842624.0LF);
+    return vec4(c, float_up(need));
+}
+
+// mlod__cone_full
+vec4 cone_full(vec3 axis) { return vec4(axis, float_up(MLOD_PI)); }
+
+// mlod__cone_enclose
+vec4 cone_enclose(vec4 a, vec4 b)
+{
+    if (double(a.w) >= MLOD_PI || double(b.w) >= MLOD_PI) return cone_full(a.xyz);
+    dvec3 A = dvec3(a.xyz), B = dvec3(b.xyz), X;
+    precise double theta = angle_d(A, B);
+    if (theta + double(b.w) <= double(a.w)) {
+        X = A;
+    } else if (theta + double(a.w) <= double(b.w)) {
+        X = B;
+    } else {
+        precise double la = length_d(A);
+        precise double alpha = (theta + double(a.w) + double(b.w)) * 0.5LF;
+        if (alpha >= MLOD_PI) return cone_full(a.xyz);
+        precise double phi = alpha - double(a.w);
+        precise dvec3 An = dvec3(A.x / la, A.y / la, A.z / la);
+        precise double ab = dot3(An, B);
+        precise dvec3 t = dvec3(B.x - An.x * ab, B.y - An.y * ab, B.z - An.z * ab);
+        precise double len = length_d(t);
+        if (!(len > 0.0LF)) {
+            dvec3 helper = dvec3(0.0LF);
+            if (abs(An.x) < 0.5LF) helper.x = 1.0LF; else helper.y = 1.0LF;
+            t = cross_d(An, helper);
+            len = length_d(t);
+        }
+        double sin_phi, cos_phi;
+        sin_cos(phi, sin_phi, cos_phi);
+        precise dvec3 Xr = dvec3(An.x * cos_phi + t.x / len * sin_phi, An.y * cos_phi + t.y / len * sin_phi,
+                                 An.z * cos_phi + t.z / len * sin_phi);
+        X = Xr;
+    }
+    precise double lx = length_d(X);
+    vec3 axis = vec3(float(X.x / lx), float(X.y / lx), float(X.z / lx));
+    dvec3 Xs = dvec3(axis);
+    precise double need_a = angle_d(Xs, A) + double(a.w);
+    precise double need_b = angle_d(Xs, B) + double(b.w);
+    precise double alpha = (need_a > need_b ? need_a : need_b) + 1.0LF / 1048576.0LF;
+    if (alpha >= MLOD_PI) return cone_full(axis);
+    return vec4(axis, float_up(alpha));
+}
+
+// mlod__depth_of
+uint depth_of(uint64_t node)
+{
+    uint64_t x = node + 1UL;
+    uint hi = uint(x >> 32);
+    return hi != 0u ? 32u + uint(findMSB(hi)) : uint(findMSB(uint(x)));
+}
+
+// mlod__leaves_below: leaves under node i of the tree of n leaves
+uint leaves_below(uint i, uint n)
+{
+    uint64_t last = 2UL * uint64_t(n) - 2UL;
+    uint k = depth_of(uint64_t(i)), deepest = depth_of(last);
+    uint span = deepest - k;
+    uint64_t lo = ((uint64_t(i) + 1UL) << span) - 1UL, hi = ((uint64_t(i) + 2UL) << span) - 2UL;
+    uint64_t at_deepest = lo > last ? 0UL : (hi < last ? hi : last) - lo + 1UL;
+    uint64_t nodes = ((1UL << span) - 1UL) + at_deepest;
+    return uint((nodes + 1UL) / 2UL);
+}

@@ -1,0 +1,42 @@
+#version 450
+// shaders/cut_finish.comp - after the last round of a submission: move the
+// current list to buffers A if it lives in B, classify entries still
+// pending (the children of a lazy call's last splits), clear the working
+// bits, and record where each view's list begins (every view has at least
+// one entry; the list is grouped by view, in view order): view_offsets[v]
+// .. view_offsets[v + 1].  Dispatched with args[2].
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 256) in;
+#include "cut_layout.glsl"
+#define MLOD_HAS_CONES (pc.has_cones != 0u)
+#include "common.glsl"
+
+shared uint sum_evaluated[GROUP];
+
+void main()
+{
+    uint n = ctl.current;
+    bool in_b = ctl.input_is_b != 0u;
+    uint i = group_index() * GROUP + gl_LocalInvocationID.x;
+    uint evaluated = 0u;
+    if (i < n) {
+        uvec2 e = in_b ? list_out[i] : list_in[i];
+        uint s = (in_b ? status_out[i] : status_in[i]) & 7u;
+        uint previous_view = i == 0u ? 0xffffffffu : (in_b ? list_out[i - 1u].y : list_in[i - 1u].y);
+        if (s == STATUS_PENDING) {
+            s = classify(e.y, e.x, double(pc.epsilon), pc.leaf_count);
+            evaluated = 1u;
+        }
+        if (in_b) list_in[i] = e;
+        status_in[i] = s;
+        if (previous_view != e.y) view_offsets[e.y] = i;
+        if (i + 1u == n) view_offsets[pc.view_count] = n;
+    }
+    sum_evaluated[gl_LocalInvocationID.x] = evaluated;
+    barrier();
+    for (uint stride = GROUP / 2u; stride > 0u; stride >>= 1) {
+        if (gl_LocalInvocationID.x < stride) sum_evaluated[gl_LocalInvocationID.x] += sum_evaluated[gl_LocalInvocationID.x + stride];
+        barrier();
+    }
+    if (gl_LocalInvocationID.x == 0u && sum_evaluated[0] != 0u) atomicAdd(ctl.evaluated, uint64_t(sum_evaluated[0]));
+}

@@ -1,0 +1,43 @@
+#version 450
+// shaders/cut_write.comp - one round of the cut, third pass: every entry
+// writes its outputs (cut_step's action) at its block's offset (cut_scan)
+// plus its rank among the block's outputs, so each view's list stays in
+// left-to-right order, as on the CPU.
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 256) in;
+#include "cut_layout.glsl"
+
+shared uint prefix[GROUP];
+
+void main()
+{
+    uint n = ctl.count[pc.slot];
+    uint group = group_index();
+    uint t = gl_LocalInvocationID.x;
+    uint i = group * GROUP + t;
+    uint act = i < n ? acts[i] : 0u;
+    prefix[t] = act & 3u;
+    barrier();
+    for (uint stride = 1u; stride < GROUP; stride <<= 1) {
+        uint add = t >= stride ? prefix[t - stride] : 0u;
+        barrier();
+        prefix[t] += add;
+        barrier();
+    }
+    if (i >= n) return;
+    uint at = block_sums[group] + prefix[t] - (act & 3u);
+    uvec2 e = list_in[i];
+    uint kind = (act >> 2) & 3u;
+    if (kind == ACT_KEEP) {
+        list_out[at] = e;
+        status_out[at] = act >> 4;
+    } else if (kind == ACT_SPLIT) {
+        list_out[at] = uvec2(2u * e.x + 1u, e.y);
+        status_out[at] = 0u;
+        list_out[at + 1u] = uvec2(2u * e.x + 2u, e.y);
+        status_out[at + 1u] = 0u;
+    } else if (kind == ACT_PARENT) {
+        list_out[at] = uvec2((e.x - 1u) / 2u, e.y);
+        status_out[at] = act >> 4;
+    }
+}

@@ -1,0 +1,34 @@
+#!/bin/sh
+# shaders/embed.sh - compile every compute shader of shaders/ to SPIR-V and
+# embed the words in manylods_vk.h between its GENERATED markers (what
+# `make shaders` runs).  Usage: shaders/embed.sh [header] (default
+# manylods_vk.h, rewritten in place).  GLSLANG overrides the compiler;
+# the pinned one is Debian 12's glslang-tools (the version is recorded in
+# the block, and tests/test_vulkan.c compares it).
+set -eu
+GLSLANG=${GLSLANG:-glslangValidator}
+header=${1:-manylods_vk.h}
+cd "$(dirname "$0")/.."
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+{
+    echo "/* BEGIN GENERATED SPIR-V (make shaders) */"
+    echo "/* compiler: $($GLSLANG --version | head -n 1) */"
+    for name in cut_init cut_step cut_scan cut_write cut_finish splat_clear splat_draw splat_resolve refit_check refit_leaves refit_merge; do
+        src=shaders/$name.comp
+        $GLSLANG -V --target-env vulkan1.1 -Ishaders "$src" -o "$tmp/$name.spv" >"$tmp/log" || { cat "$tmp/log" >&2; exit 1; }
+        spirv-val --target-env vulkan1.1 "$tmp/$name.spv"
+        echo "/* $src: glslangValidator -V --target-env vulkan1.1 -Ishaders $src -o $name.spv */"
+        echo "static const uint32_t mlodvk__spv_$name[] = {"
+        od -An -v -tx4 -w32 "$tmp/$name.spv" | sed -e 's/^ *//' -e 's/ *$//' -e 's/\([0-9a-f]\{8\}\)/0x\1,/g' -e 's/^/    /'
+        echo "};"
+    done
+    echo "/* END GENERATED SPIR-V */"
+} >"$tmp/block"
+awk -v block="$tmp/block" '
+    /^\/\* BEGIN GENERATED SPIR-V/ { while ((getline line < block) > 0) print line; skip = 1; next }
+    /^\/\* END GENERATED SPIR-V/ { skip = 0; next }
+    !skip { print }
+' "$header" >"$tmp/header"
+if ! grep -q "BEGIN GENERATED SPIR-V" "$tmp/header"; then echo "embed.sh: no GENERATED markers in $header" >&2; exit 1; fi
+cat "$tmp/header" >"$header"

@@ -1,0 +1,26 @@
+#version 450
+// shaders/refit_merge.comp - the internal nodes pc.first .. pc.first +
+// pc.count - 1 (one depth) from their children: mlod__merge_node of
+// manylods.h (sphere, cone, colour weighted by the leaves below).
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 256) in;
+#define MLOD_NO_VIEWS
+#include "refit_layout.glsl"
+#include "common.glsl"
+#include "refit_mesh.glsl"
+
+void main()
+{
+    uint k = group_index() * GROUP + gl_LocalInvocationID.x;
+    if (k >= pc.count) return;
+    uint i = pc.first + k, l = 2u * i + 1u, r = 2u * i + 2u;
+    spheres[i] = sphere_enclose(spheres[l], spheres[r]);
+    if (pc.has_cones != 0u) cones[i] = cone_enclose(cones[l], cones[r]);
+    if (pc.has_colors != 0u) {
+        double wl = double(leaves_below(l, pc.leaf_count)), wr = double(leaves_below(r, pc.leaf_count));
+        for (uint c = 0u; c < 3u; c++) {
+            precise double v = (wl * double(colors[3u * l + c]) + wr * double(colors[3u * r + c])) / (wl + wr);
+            colors[3u * i + c] = float(v);
+        }
+    }
+}

@@ -1,0 +1,34 @@
+#version 450
+// shaders/splat_resolve.comp - every atlas pixel's key to its depth (+inf
+// where nothing was drawn) and, when the atlas has them, the winning node's
+// normal (its cone's axis) and colour (0 where nothing was drawn).
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 256) in;
+#include "splat_layout.glsl"
+
+void main()
+{
+    uint p = group_index() * GROUP + gl_LocalInvocationID.x;
+    if (p >= pc.pixel_count) return;
+    uint64_t key = keys[p];
+    if (key == EMPTY_KEY) {
+        depth_out[p] = uintBitsToFloat(0x7f800000u);
+        if (pc.want_normal != 0u) normal_out[3u * p] = normal_out[3u * p + 1u] = normal_out[3u * p + 2u] = 0.0;
+        if (pc.want_color != 0u) color_out[3u * p] = color_out[3u * p + 1u] = color_out[3u * p + 2u] = 0.0;
+        return;
+    }
+    uint ordered = uint(key >> 32), bits = (ordered & 0x80000000u) != 0u ? ordered & 0x7fffffffu : ~ordered;
+    uint node = list[uint(key & 0xffffffffUL)].x;
+    depth_out[p] = uintBitsToFloat(bits);
+    if (pc.want_normal != 0u) {
+        vec4 cone = cones[node];
+        normal_out[3u * p] = cone.x;
+        normal_out[3u * p + 1u] = cone.y;
+        normal_out[3u * p + 2u] = cone.z;
+    }
+    if (pc.want_color != 0u) {
+        color_out[3u * p] = colors[3u * node];
+        color_out[3u * p + 1u] = colors[3u * node + 1u];
+        color_out[3u * p + 2u] = colors[3u * node + 2u];
+    }
+}

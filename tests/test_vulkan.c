@@ -1,0 +1,640 @@
+/* tests/test_vulkan.c - manylods_vk.h against the CPU path of manylods.h.
+
+   On a headless device (lavapipe in CI) with the Khronos validation layer:
+   cuts of every view kind and mode equal the CPU's node for node and
+   status for status, over frames whose views move (incremental and lazy
+   continue from the previous frame's cut); lists that outgrow their
+   buffers grow and resume with the same result; the splatted atlas equals
+   mlod_splat's bit for bit (depth, normal, colour); errors from the
+   Vulkan functions (out of memory, device loss) come back as results and
+   leave every object destroyable.  Any validation message fails the test.
+
+   Without a Vulkan loader or device it prints why and reports no test
+   (0 passed, 0 failed) - unless MANYLODS_REQUIRE_VULKAN=1 (CI), which
+   turns the skip into a failure. */
+#define MANYLODS_IMPLEMENTATION
+#include "../manylods.h"
+#define MANYLODS_VK_IMPLEMENTATION
+#include "../manylods_vk.h"
+
+#include "testutil.h"
+
+#include <time.h>
+
+static double seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
+VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instance, const char *name);
+
+static mlodvk_device device;
+static mlodvk_context *context;
+
+/* A validation message since the last call fails the named step. */
+static uint32_t validation_seen = 0;
+
+static void check_validation(const char *what)
+{
+    CHECK(device.validation_messages == validation_seen, "%s: %u validation message(s), the last: %s", what,
+          device.validation_messages - validation_seen, device.last_message);
+    validation_seen = device.validation_messages;
+}
+
+/* Views of one kind (or of all kinds in turn when kind < 0) around the
+   scene, as the CPU tests draw them. */
+static void make_views(uint64_t seed, int kind, const double *c, double R, mlod_view *views, uint32_t count)
+{
+    uint64_t rng = seed;
+    uint32_t v;
+    for (v = 0; v < count; v++) {
+        mlod_view_kind k = kind < 0 ? (mlod_view_kind)(v % 4) : (mlod_view_kind)kind;
+        views[v] = tu_random_view(&rng, k, c, R);
+        views[v].width = 8 + views[v].width / 4; /* small tiles: deep cuts stay cheap */
+        views[v].height = 8 + views[v].height / 4;
+    }
+}
+
+/* Move every view a little (the next frame). */
+static void move_views(mlod_view *views, uint32_t count, double step)
+{
+    uint32_t v;
+    for (v = 0; v < count; v++) {
+        views[v].position[0] += (float)(step * ((v % 3) - 1.0));
+        views[v].position[1] += (float)(step * 0.5);
+        views[v].forward[0] += (float)(0.05 * ((v % 5) - 2.0));
+    }
+}
+
+/* Download the device cut and compare every view with the CPU cut;
+   returns the number of views that differ (the first one is reported). */
+static uint32_t compare_cuts(mlodvk_cut *gpu, const mlod_cut *cpu, uint32_t view_count, const char *what)
+{
+    mlod_error e;
+    uint32_t v, differ = 0;
+    if (mlodvk_cut_download(context, gpu, &e) != MLOD_OK) {
+        CHECK(0, "%s: mlodvk_cut_download: %s", what, e.message);
+        return view_count;
+    }
+    for (v = 0; v < view_count; v++) {
+        mlod_cut_view a = mlodvk_cut_get(gpu, v), b = mlod_cut_get(cpu, v);
+        if (!tu_same_cut(&a, &b)) {
+            if (!differ) {
+                uint32_t i = 0;
+                while (i < a.count && i < b.count && a.nodes[i] == b.nodes[i] && a.status[i] == b.status[i]) i++;
+                fprintf(stderr, "  %s: view %u: device %u entries, CPU %u; first difference at %u: device %u/%u, CPU %u/%u\n",
+                        what, v, a.count, b.count, i, i < a.count ? a.nodes[i] : 0, i < a.count ? a.status[i] : 0,
+                        i < b.count ? b.nodes[i] : 0, i < b.count ? b.status[i] : 0);
+            }
+            differ++;
+        }
+    }
+    return differ;
+}
+
+/* Frames of one mode on the device and on the CPU; every frame's cuts
+   must be equal.  Returns the total number of entries compared. */
+static uint64_t run_mode(const mlod_tree *tree, mlodvk_tree *vtree, mlod_view *views, uint32_t view_count,
+                         mlod_cut_mode mode, uint32_t lazy_steps, float epsilon, uint32_t initial_capacity,
+                         const char *name, uint32_t *grows)
+{
+    mlod_cut *cpu = NULL;
+    mlodvk_cut *gpu = NULL;
+    mlod_cut_params p;
+    mlod_error e;
+    uint64_t compared = 0;
+    int frame;
+    memset(&p, 0, sizeof p);
+    p.epsilon = epsilon;
+    p.lazy_steps = lazy_steps;
+    if (mlod_cut_create(view_count, NULL, &cpu, &e) != MLOD_OK ||
+        mlodvk_cut_create(context, view_count, initial_capacity, &gpu, &e) != MLOD_OK) {
+        CHECK(0, "%s: cut_create: %s", name, e.message);
+        mlod_cut_destroy(cpu);
+        return 0;
+    }
+    for (frame = 0; frame < 4; frame++) {
+        char what[160];
+        uint32_t differ, v;
+        p.mode = frame == 0 ? MLOD_CUT_BASIC : mode;
+        snprintf(what, sizeof what, "%s, frame %d", name, frame);
+        if (mlod_cut_update(cpu, tree, views, &p, &e) != MLOD_OK) {
+            CHECK(0, "%s: mlod_cut_update: %s", what, e.message);
+            break;
+        }
+        if (mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK) {
+            CHECK(0, "%s: mlodvk_cut_update: %s", what, e.message);
+            break;
+        }
+        differ = compare_cuts(gpu, cpu, view_count, what);
+        CHECK(differ == 0, "%s: %u of %u views differ from the CPU cut", what, differ, view_count);
+        for (v = 0; v < view_count; v++) compared += mlod_cut_get(cpu, v).count;
+        move_views(views, view_count, 0.02);
+    }
+    if (grows) *grows = mlodvk_cut_get_info(gpu).grows;
+    mlodvk_cut_destroy(context, gpu);
+    mlod_cut_destroy(cpu);
+    return compared;
+}
+
+static void test_cut_parity(void)
+{
+    static const char *kinds[5] = {"perspective", "paraboloid", "dual paraboloid", "orthographic", "mixed"};
+    static const char *modes[4] = {"basic", "incremental", "lazy q=1", "lazy q=3"};
+    static const float epsilons[2] = {1.0f, 4.0f};
+    scene_mesh s;
+    mlod_tree *tree;
+    mlodvk_tree *vtree = NULL;
+    mlod_error e;
+    double c[3], R;
+    int kind, m, ei;
+    uint64_t compared = 0;
+    if (!scene_torus(&s, 1.0f, 0.35f, 48, 24)) {
+        CHECK(0, "scene_torus failed");
+        return;
+    }
+    tree = tu_build(&s, 30000, 5, MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT);
+    tu_bounds(&s, c, &R);
+    if (!tree || mlodvk_tree_upload(context, tree, &vtree, &e) != MLOD_OK) {
+        CHECK(0, "tree upload: %s", tree ? e.message : "build failed");
+        mlod_tree_destroy(tree);
+        scene_free(&s);
+        return;
+    }
+    for (kind = 0; kind < 5; kind++)
+        for (m = 0; m < 4; m++)
+            for (ei = 0; ei < 2; ei++) {
+                mlod_view views[24];
+                char name[120];
+                static const mlod_cut_mode mode_of[4] = {MLOD_CUT_BASIC, MLOD_CUT_INCREMENTAL, MLOD_CUT_LAZY, MLOD_CUT_LAZY};
+                make_views(1000u * (uint64_t)kind + 17u * (uint64_t)m + (uint64_t)ei, kind == 4 ? -1 : kind, c, R, views, 24);
+                snprintf(name, sizeof name, "%s, %s, eps %g", kinds[kind], modes[m], (double)epsilons[ei]);
+                compared += run_mode(tree, vtree, views, 24, mode_of[m], m == 3 ? 3u : 1u, epsilons[ei], 0, name, NULL);
+                check_validation(name);
+            }
+    printf("  cut parity: %llu cut entries compared over 5 view sets x 4 modes x 2 epsilons x 4 frames\n",
+           (unsigned long long)compared);
+    /* a list that outgrows its buffers: start with room for one entry per
+       view; the loop stops, grows and resumes, with the same cuts */
+    {
+        mlod_view views[24];
+        uint32_t grows = 0;
+        make_views(99, -1, c, R, views, 24);
+        run_mode(tree, vtree, views, 24, MLOD_CUT_INCREMENTAL, 1, 1.0f, 24, "growing lists, incremental", &grows);
+        CHECK(grows >= 3, "growing lists: %u grows (expected several from a capacity of 24 entries)", grows);
+        make_views(98, -1, c, R, views, 24);
+        grows = 0;
+        run_mode(tree, vtree, views, 24, MLOD_CUT_LAZY, 2, 1.0f, 30, "growing lists, lazy q=2", &grows);
+        CHECK(grows >= 1, "growing lists, lazy: %u grows (expected at least one)", grows);
+        check_validation("growing lists");
+    }
+    /* a refit on the CPU, uploaded with mlodvk_tree_update: incremental
+       cuts continue and still equal the CPU's */
+    {
+        mlod_view views[24];
+        mlod_cut *cpu = NULL;
+        mlodvk_cut *gpu = NULL;
+        mlod_cut_params p;
+        memset(&p, 0, sizeof p);
+        p.epsilon = 2.0f;
+        make_views(7, -1, c, R, views, 24);
+        if (mlod_cut_create(24, NULL, &cpu, &e) == MLOD_OK && mlodvk_cut_create(context, 24, 0, &gpu, &e) == MLOD_OK) {
+            int frame;
+            float *positions = (float *)malloc(sizeof(float) * 3 * s.vertex_count);
+            float *normals = (float *)malloc(sizeof(float) * 3 * s.vertex_count);
+            for (frame = 0; frame < 3 && positions && normals; frame++) {
+                p.mode = frame == 0 ? MLOD_CUT_BASIC : MLOD_CUT_INCREMENTAL;
+                if (frame > 0) {
+                    mlod_mesh mesh = tu_mesh(&s);
+                    scene_deform(&s, 0.2f * (float)frame, positions, normals);
+                    mesh.positions = positions;
+                    mesh.normals = normals;
+                    CHECK(mlod_refit_mesh(tree, &mesh, NULL, &e) == MLOD_OK, "refit: %s", e.message);
+                    CHECK(mlodvk_tree_update(context, vtree, tree, &e) == MLOD_OK, "mlodvk_tree_update: %s", e.message);
+                }
+                CHECK(mlod_cut_update(cpu, tree, views, &p, &e) == MLOD_OK, "refit frames: %s", e.message);
+                CHECK(mlodvk_cut_update(context, gpu, vtree, views, &p, &e) == MLOD_OK, "refit frames: %s", e.message);
+                CHECK(compare_cuts(gpu, cpu, 24, "after a refit") == 0, "refit frame %d: the cuts differ", frame);
+            }
+            free(positions);
+            free(normals);
+        } else {
+            CHECK(0, "refit frames: cut_create: %s", e.message);
+        }
+        mlodvk_cut_destroy(context, gpu);
+        mlod_cut_destroy(cpu);
+        check_validation("refit frames");
+    }
+    mlodvk_tree_destroy(context, vtree);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
+/* The device atlas equals mlod_splat's, pixel for pixel, for every kind. */
+static void test_splat_parity(void)
+{
+    scene_mesh s;
+    mlod_tree *tree;
+    mlodvk_tree *vtree = NULL;
+    mlod_error e;
+    double c[3], R;
+    int kind;
+    if (!scene_room(&s)) {
+        CHECK(0, "scene_room failed");
+        return;
+    }
+    tree = tu_build(&s, 40000, 9, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    tu_bounds(&s, c, &R);
+    if (!tree || mlodvk_tree_upload(context, tree, &vtree, &e) != MLOD_OK) {
+        CHECK(0, "splat: tree upload: %s", tree ? e.message : "build failed");
+        mlod_tree_destroy(tree);
+        scene_free(&s);
+        return;
+    }
+    for (kind = 0; kind < 5; kind++) {
+        mlod_view views[16];
+        mlod_atlas_desc ad;
+        mlod_atlas *cpu_atlas = NULL, *gpu_atlas = NULL;
+        mlodvk_atlas *vatlas = NULL;
+        mlod_cut *cpu = NULL;
+        mlodvk_cut *gpu = NULL;
+        mlod_cut_params p;
+        uint32_t v;
+        size_t pixels, i, depth_diff = 0, normal_diff = 0, color_diff = 0, drawn = 0;
+        memset(&p, 0, sizeof p);
+        p.mode = MLOD_CUT_BASIC;
+        p.epsilon = kind == 4 ? 3.0f : 1.0f;
+        make_views(500u + (uint64_t)kind, kind == 4 ? -1 : kind, c, R, views, 16);
+        for (v = 0; v < 16; v++) { /* larger tiles than the cut tests */
+            views[v].width = 16 + (views[v].width * 3) % 48;
+            views[v].height = 16 + (views[v].height * 5) % 48;
+        }
+        memset(&ad, 0, sizeof ad);
+        ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
+        if (mlod_atlas_create(views, 16, &ad, NULL, &cpu_atlas, &e) != MLOD_OK ||
+            mlod_atlas_create(views, 16, &ad, NULL, &gpu_atlas, &e) != MLOD_OK ||
+            mlodvk_atlas_create(context, cpu_atlas, &vatlas, &e) != MLOD_OK || mlod_cut_create(16, NULL, &cpu, &e) != MLOD_OK ||
+            mlodvk_cut_create(context, 16, 0, &gpu, &e) != MLOD_OK || mlod_cut_update(cpu, tree, views, &p, &e) != MLOD_OK ||
+            mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK ||
+            mlod_splat(cpu_atlas, tree, cpu, views, NULL, &e) != MLOD_OK || mlodvk_splat(context, vatlas, vtree, gpu, &e) != MLOD_OK ||
+            mlodvk_atlas_download(context, vatlas, gpu_atlas, &e) != MLOD_OK) {
+            CHECK(0, "splat parity, kind %d: set-up failed: %s", kind, e.message);
+        } else {
+            pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
+            for (i = 0; i < pixels; i++) {
+                drawn += isfinite(cpu_atlas->depth[i]);
+                depth_diff += memcmp(&cpu_atlas->depth[i], &gpu_atlas->depth[i], sizeof(float)) != 0;
+                normal_diff += memcmp(cpu_atlas->normal + 3 * i, gpu_atlas->normal + 3 * i, 3 * sizeof(float)) != 0;
+                color_diff += memcmp(cpu_atlas->color + 3 * i, gpu_atlas->color + 3 * i, 3 * sizeof(float)) != 0;
+            }
+            CHECK(drawn > pixels / 20, "splat parity, kind %d: only %zu of %zu pixels drawn", kind, drawn, pixels);
+            CHECK(depth_diff == 0 && normal_diff == 0 && color_diff == 0,
+                  "splat parity, kind %d: %zu depth, %zu normal, %zu colour pixels of %zu differ", kind, depth_diff,
+                  normal_diff, color_diff, pixels);
+        }
+        mlodvk_atlas_destroy(context, vatlas);
+        mlodvk_cut_destroy(context, gpu);
+        mlod_cut_destroy(cpu);
+        mlod_atlas_destroy(cpu_atlas);
+        mlod_atlas_destroy(gpu_atlas);
+        check_validation("splat parity");
+    }
+    mlodvk_tree_destroy(context, vtree);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
+/* Bit-for-bit equal bounds (spheres, cones, colours) of two trees of one
+   shape; returns the number of nodes that differ. */
+static uint32_t differing_nodes(const mlod_tree *a, const mlod_tree *b)
+{
+    uint32_t n, differ = 0;
+    for (n = 0; n < a->node_count; n++)
+        differ += memcmp(a->spheres + 4 * (size_t)n, b->spheres + 4 * (size_t)n, 16) != 0 ||
+                  (a->cones && memcmp(a->cones + 4 * (size_t)n, b->cones + 4 * (size_t)n, 16) != 0) ||
+                  (a->colors && memcmp(a->colors + 3 * (size_t)n, b->colors + 3 * (size_t)n, 12) != 0);
+    return differ;
+}
+
+/* mlodvk_refit_mesh against mlod_refit_mesh: the same bounds bit for bit,
+   with and without vertex normals, and the same cuts on the refitted
+   trees; bad input is refused with the device tree untouched. */
+static void test_refit_parity(void)
+{
+    scene_mesh s;
+    int with_normals;
+    if (!scene_torus(&s, 1.0f, 0.4f, 40, 20)) {
+        CHECK(0, "scene_torus failed");
+        return;
+    }
+    for (with_normals = 0; with_normals < 2; with_normals++) {
+        uint32_t attributes = MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT;
+        scene_mesh rest = s;
+        mlod_tree *cpu, *copy;
+        mlodvk_tree *vtree = NULL;
+        mlod_error e;
+        float *positions = (float *)malloc(sizeof(float) * 3 * s.vertex_count);
+        float *normals = (float *)malloc(sizeof(float) * 3 * s.vertex_count);
+        double c[3], R;
+        int frame;
+        if (!with_normals) rest.normals = NULL;
+        cpu = tu_build(&rest, 20000, 11, attributes);
+        copy = tu_build(&rest, 20000, 11, attributes); /* the same tree: downloads land here */
+        tu_bounds(&s, c, &R);
+        if (!cpu || !copy || !positions || !normals || mlodvk_tree_upload(context, cpu, &vtree, &e) != MLOD_OK ||
+            mlodvk_tree_upload_refit(context, vtree, cpu, s.indices, s.index_count, &e) != MLOD_OK) {
+            CHECK(0, "refit parity: set-up failed: %s", e.message);
+        } else {
+            mlod_cut *cut = NULL;
+            mlodvk_cut *vcut = NULL;
+            mlod_view views[16];
+            mlod_cut_params p;
+            memset(&p, 0, sizeof p);
+            p.epsilon = 1.5f;
+            make_views(77, -1, c, R, views, 16);
+            CHECK(mlod_cut_create(16, NULL, &cut, &e) == MLOD_OK && mlodvk_cut_create(context, 16, 0, &vcut, &e) == MLOD_OK,
+                  "refit parity: cut_create: %s", e.message);
+            for (frame = 1; frame <= 3 && cut && vcut; frame++) {
+                mlod_mesh mesh = tu_mesh(&rest);
+                uint32_t differ;
+                scene_deform(&s, 0.7f * (float)frame, positions, normals);
+                mesh.positions = positions;
+                mesh.normals = with_normals ? normals : NULL;
+                CHECK(mlod_refit_mesh(cpu, &mesh, NULL, &e) == MLOD_OK, "refit parity: mlod_refit_mesh: %s", e.message);
+                CHECK(mlodvk_refit_mesh_host(context, vtree, &mesh, &e) == MLOD_OK, "refit parity: mlodvk_refit_mesh_host: %s",
+                      e.message);
+                CHECK(mlodvk_tree_download(context, vtree, copy, &e) == MLOD_OK, "refit parity: download: %s", e.message);
+                differ = differing_nodes(cpu, copy);
+                CHECK(differ == 0, "refit parity (%s normals), frame %d: %u of %u nodes differ from the CPU refit",
+                      with_normals ? "vertex" : "face", frame, differ, cpu->node_count);
+                p.mode = frame == 1 ? MLOD_CUT_BASIC : MLOD_CUT_INCREMENTAL;
+                CHECK(mlod_cut_update(cut, cpu, views, &p, &e) == MLOD_OK, "refit parity: cut: %s", e.message);
+                CHECK(mlodvk_cut_update(context, vcut, vtree, views, &p, &e) == MLOD_OK, "refit parity: cut: %s", e.message);
+                CHECK(compare_cuts(vcut, cut, 16, "refit parity") == 0, "refit parity, frame %d: the cuts differ", frame);
+                move_views(views, 16, 0.03);
+            }
+            /* refused input: a NaN position, a triangle grown 1e60 times;
+               the device tree keeps the last frame's bounds */
+            {
+                mlod_mesh mesh = tu_mesh(&rest);
+                mlod_result res;
+                float saved = positions[3 * 5 + 1];
+                mesh.positions = positions;
+                mesh.normals = with_normals ? normals : NULL;
+                positions[3 * 5 + 1] = NAN;
+                res = mlodvk_refit_mesh_host(context, vtree, &mesh, &e);
+                CHECK(res == MLOD_ERROR_NON_FINITE && strstr(e.message, "position 5"),
+                      "refit parity: a NaN position gives %s (%s)", mlod_result_name(res), e.message);
+                positions[3 * 5 + 1] = saved;
+                {
+                    uint32_t v;
+                    for (v = 0; v < s.vertex_count; v++) positions[3 * v] *= 1e35f; /* areas grow ~1e35 times */
+                }
+                res = mlodvk_refit_mesh_host(context, vtree, &mesh, &e);
+                CHECK(res == MLOD_ERROR_RANGE, "refit parity: a mesh grown 1e35 times gives %s (%s)", mlod_result_name(res), e.message);
+                res = mlod_refit_mesh(cpu, &mesh, NULL, &e);
+                CHECK(res == MLOD_ERROR_RANGE, "refit parity: the CPU refit of the grown mesh gives %s", mlod_result_name(res));
+                CHECK(mlodvk_tree_download(context, vtree, copy, &e) == MLOD_OK && differing_nodes(cpu, copy) == 0,
+                      "refit parity: a refused refit changed the device tree");
+            }
+            mlodvk_cut_destroy(context, vcut);
+            mlod_cut_destroy(cut);
+        }
+        check_validation("refit parity");
+        mlodvk_tree_destroy(context, vtree);
+        mlod_tree_destroy(cpu);
+        mlod_tree_destroy(copy);
+        free(positions);
+        free(normals);
+    }
+    scene_free(&s);
+}
+
+/* ------------------------------------------------- failure injection -- */
+
+/* A function table whose AllocateMemory or QueueSubmit fails on the n-th
+   call (counting from 1; 0 never). */
+static mlodvk_functions real;
+static int alloc_calls, fail_alloc_at, submit_calls, fail_submit_at;
+static VkResult submit_result;
+
+static VKAPI_ATTR VkResult VKAPI_CALL failing_allocate(VkDevice d, const VkMemoryAllocateInfo *info,
+                                                       const VkAllocationCallbacks *a, VkDeviceMemory *out)
+{
+    if (++alloc_calls == fail_alloc_at) return VK_ERROR_OUT_OF_DEVICE_MEMORY;
+    return real.AllocateMemory(d, info, a, out);
+}
+
+static VKAPI_ATTR VkResult VKAPI_CALL failing_submit(VkQueue q, uint32_t n, const VkSubmitInfo *s, VkFence f)
+{
+    if (++submit_calls == fail_submit_at) return submit_result;
+    return real.QueueSubmit(q, n, s, f);
+}
+
+/* The whole pipeline (tree, cut that must grow, splat, downloads) on a
+   context made with the failing table; returns the first failure's
+   result, after destroying everything. */
+static const mlod_mesh *mesh; /* the failure tests' mesh, for the refit */
+
+static mlod_result pipeline_with(mlodvk_context *ctx, const mlod_tree *tree, const mlod_view *views, uint32_t view_count,
+                                 mlod_atlas *layout, mlod_error *e)
+{
+    mlodvk_tree *vtree = NULL;
+    mlodvk_cut *cut = NULL;
+    mlodvk_atlas *atlas = NULL;
+    mlod_cut_params p;
+    mlod_result res;
+    memset(&p, 0, sizeof p);
+    p.epsilon = 1.0f;
+    p.mode = MLOD_CUT_BASIC;
+    res = mlodvk_tree_upload(ctx, tree, &vtree, e);
+    if (res == MLOD_OK && mesh) res = mlodvk_tree_upload_refit(ctx, vtree, tree, mesh->indices, mesh->index_count, e);
+    if (res == MLOD_OK && mesh) res = mlodvk_refit_mesh_host(ctx, vtree, mesh, e);
+    if (res == MLOD_OK) res = mlodvk_cut_create(ctx, view_count, view_count, &cut, e);
+    if (res == MLOD_OK) res = mlodvk_cut_update(ctx, cut, vtree, views, &p, e);
+    if (res == MLOD_OK) {
+        p.mode = MLOD_CUT_INCREMENTAL;
+        res = mlodvk_cut_update(ctx, cut, vtree, views, &p, e);
+    }
+    if (res == MLOD_OK) res = mlodvk_cut_download(ctx, cut, e);
+    if (res == MLOD_OK) res = mlodvk_atlas_create(ctx, layout, &atlas, e);
+    if (res == MLOD_OK) res = mlodvk_splat(ctx, atlas, vtree, cut, e);
+    if (res == MLOD_OK) res = mlodvk_atlas_download(ctx, atlas, layout, e);
+    mlodvk_atlas_destroy(ctx, atlas);
+    mlodvk_cut_destroy(ctx, cut);
+    mlodvk_tree_destroy(ctx, vtree);
+    CHECK(mlodvk_context_device_bytes(ctx) == 0, "%llu bytes of device memory left after destroying every object",
+          (unsigned long long)mlodvk_context_device_bytes(ctx));
+    return res;
+}
+
+static void test_failures(void)
+{
+    scene_mesh s;
+    mlod_tree *tree;
+    mlodvk_functions table;
+    mlod_view views[8];
+    mlod_atlas *layout = NULL;
+    mlod_error e;
+    double c[3], R;
+    int k, total_allocs, total_submits, failures_seen = 0;
+    mlodvk_context_desc desc = mlodvk_device_context_desc(&device);
+    mlodvk_context *probe = NULL, *ctx = NULL;
+    mlod_mesh sphere_mesh;
+    if (!scene_uv_sphere(&s, 1.0f, 12, 24)) return;
+    tree = tu_build(&s, 4000, 3, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
+    sphere_mesh = tu_mesh(&s);
+    mesh = &sphere_mesh;
+    tu_bounds(&s, c, &R);
+    make_views(3, -1, c, R, views, 8);
+    mlod_atlas_desc ad;
+    memset(&ad, 0, sizeof ad);
+    if (!tree || mlod_atlas_create(views, 8, &ad, NULL, &layout, &e) != MLOD_OK ||
+        mlodvk_context_create(&desc, &probe, &e) != MLOD_OK) {
+        CHECK(0, "failures: set-up failed: %s", e.message);
+        mlod_tree_destroy(tree);
+        mlod_atlas_destroy(layout);
+        scene_free(&s);
+        return;
+    }
+    real = probe->vk; /* the loaded table, through the private struct */
+    mlodvk_context_destroy(probe);
+    table = real;
+    table.AllocateMemory = failing_allocate;
+    table.QueueSubmit = failing_submit;
+    desc.functions = &table;
+    if (mlodvk_context_create(&desc, &ctx, &e) != MLOD_OK) {
+        CHECK(0, "failures: a context with the failing table: %s", e.message);
+        mlod_tree_destroy(tree);
+        mlod_atlas_destroy(layout);
+        scene_free(&s);
+        return;
+    }
+    /* count the calls of a clean run */
+    alloc_calls = submit_calls = 0;
+    fail_alloc_at = fail_submit_at = 0;
+    CHECK(pipeline_with(ctx, tree, views, 8, layout, &e) == MLOD_OK, "failures: the clean run failed: %s", e.message);
+    total_allocs = alloc_calls;
+    total_submits = submit_calls;
+    CHECK(total_allocs > 10 && total_submits > 4, "failures: %d allocations, %d submissions counted", total_allocs,
+          total_submits);
+    for (k = 1; k <= total_allocs; k++) {
+        mlod_result res;
+        alloc_calls = submit_calls = 0;
+        fail_alloc_at = k;
+        fail_submit_at = 0;
+        res = pipeline_with(ctx, tree, views, 8, layout, &e);
+        failures_seen += res == MLOD_ERROR_OUT_OF_MEMORY;
+        if (res != MLOD_ERROR_OUT_OF_MEMORY || !strstr(e.message, "vkAllocateMemory")) {
+            CHECK(0, "failures: allocation %d of %d failed, the pipeline returned %s (%s)", k, total_allocs,
+                  mlod_result_name(res), res == MLOD_OK ? "" : e.message);
+            break;
+        }
+    }
+    CHECK(failures_seen == total_allocs, "failures: %d of %d failed allocations reported as MLOD_ERROR_OUT_OF_MEMORY",
+          failures_seen, total_allocs);
+    for (k = 1; k <= total_submits; k++) {
+        mlod_result res;
+        alloc_calls = submit_calls = 0;
+        fail_alloc_at = 0;
+        fail_submit_at = k;
+        submit_result = VK_ERROR_DEVICE_LOST;
+        res = pipeline_with(ctx, tree, views, 8, layout, &e);
+        if (res != MLOD_ERROR_DEVICE || !strstr(e.message, "device lost")) {
+            CHECK(0, "failures: submission %d of %d lost the device, the pipeline returned %s (%s)", k, total_submits,
+                  mlod_result_name(res), res == MLOD_OK ? "" : e.message);
+            break;
+        }
+    }
+    CHECK(k > total_submits, "failures: every lost-device submission reported as MLOD_ERROR_DEVICE");
+    /* after all that, the context still works */
+    alloc_calls = submit_calls = 0;
+    fail_alloc_at = fail_submit_at = 0;
+    CHECK(pipeline_with(ctx, tree, views, 8, layout, &e) == MLOD_OK, "failures: the context fails after recovered errors: %s",
+          e.message);
+    mlodvk_context_destroy(ctx);
+    mesh = NULL;
+    check_validation("failure injection");
+    mlod_atlas_destroy(layout);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
+/* The validation layer is on and reports to check_validation: a buffer of
+   size 0 is invalid usage. */
+static void test_validation_reports(void)
+{
+    VkBufferCreateInfo info;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    uint32_t before = device.validation_messages;
+    memset(&info, 0, sizeof info);
+    info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+    info.size = 0;
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    if (context->vk.CreateBuffer(device.device, &info, NULL, &buffer) == VK_SUCCESS && buffer)
+        context->vk.DestroyBuffer(device.device, buffer, NULL);
+    CHECK(device.validation_messages > before, "the validation layer reported no message for a buffer of size 0");
+    validation_seen = device.validation_messages; /* expected: not a failure */
+}
+
+/* Arguments the API refuses. */
+static void test_arguments(void)
+{
+    mlod_error e;
+    mlodvk_cut *cut = NULL;
+    mlodvk_context *none = NULL;
+    mlodvk_context_desc desc;
+    memset(&desc, 0, sizeof desc);
+    CHECK(mlodvk_context_create(&desc, &none, &e) == MLOD_ERROR_INVALID_ARGUMENT && none == NULL,
+          "an empty context description is refused");
+    CHECK(mlodvk_cut_create(context, 0, 0, &cut, &e) == MLOD_ERROR_INVALID_ARGUMENT && cut == NULL,
+          "a cut of 0 views is refused");
+    CHECK(strcmp(mlod_result_name(MLOD_ERROR_DEVICE), "MLOD_ERROR_DEVICE") == 0, "the name of MLOD_ERROR_DEVICE");
+}
+
+int main(void)
+{
+    const char *require = getenv("MANYLODS_REQUIRE_VULKAN");
+    int required = require && strcmp(require, "1") == 0;
+    mlodvk_device_desc dd;
+    mlodvk_context_desc desc;
+    mlod_error e;
+    memset(&dd, 0, sizeof dd);
+    dd.get_instance_proc_addr = vkGetInstanceProcAddr;
+    dd.validation = 1;
+    dd.prefer_cpu = getenv("MANYLODS_VULKAN_GPU") == NULL; /* lavapipe unless asked for the GPU */
+    if (mlodvk_device_create(&dd, &device, &e) != MLOD_OK) {
+        printf("SKIPPED: no usable Vulkan device with the validation layer: %s\n", e.message);
+        if (required) {
+            printf("MANYLODS_REQUIRE_VULKAN=1: a skip is a failure\n0 passed, 1 failed\n");
+            return 1;
+        }
+        printf("0 passed, 0 failed\n");
+        return 0;
+    }
+    desc = mlodvk_device_context_desc(&device);
+    if (mlodvk_context_create(&desc, &context, &e) != MLOD_OK) {
+        CHECK(0, "mlodvk_context_create on %s: %s", device.name, e.message);
+        mlodvk_device_destroy(&device);
+        return test_finish();
+    }
+    printf("  device: %s\n", mlodvk_context_device_name(context));
+    check_validation("device and context creation");
+    test_validation_reports();
+    test_arguments();
+    {
+        double t0 = seconds(), t1, t2, t3;
+        test_cut_parity();
+        t1 = seconds();
+        test_splat_parity();
+        test_refit_parity();
+        t2 = seconds();
+        test_failures();
+        t3 = seconds();
+        printf("  processor time: cut parity %.1f s, splat and refit parity %.1f s, failure injection %.1f s\n", t1 - t0, t2 - t1,
+               t3 - t2);
+    }
+    CHECK(mlodvk_context_device_bytes(context) == 0, "device memory left: %llu bytes",
+          (unsigned long long)mlodvk_context_device_bytes(context));
+    mlodvk_context_destroy(context);
+    mlodvk_device_destroy(&device);
+    check_validation("teardown");
+    return test_finish();
+}
