@@ -1,8 +1,11 @@
 # manylods - build, test and demo.
 #
-#   make demo        build and run examples/demo (a built-in procedural scene)
+#   make demo        build and run examples/instant_radiosity on its built-in
+#                    scene; writes its images into build/demo/
+#   make docs-images regenerate the pictures the README shows (docs/*.png)
 #   make test        every test, gcc -O2, clang with ASan+UBSan and the threaded
-#                    ones with TSan, the compile matrix and examples/minimal;
+#                    ones with TSan, the compile matrix, examples/minimal and
+#                    every example on a tiny scene (tests/check_examples.c);
 #                    ends with "N passed, M failed"
 #   make test-fast   only the tests built with gcc -O2
 #   make tsan        only the threaded tests under ThreadSanitizer (TSAN_TESTS)
@@ -55,7 +58,7 @@ DEMO_DEFINES ?= -DMANYLODS_PTHREADS
 BENCH_OPT    := -std=c99 -O2
 BENCH_CFLAGS := $(BENCH_OPT) $(WARNINGS) $(CFLAGS) -DBENCH_FLAGS='"$(BENCH_OPT)"'
 BENCH_LDLIBS := -lembree3 -lm -pthread
-BENCH_DEPS   := bench/bench.c $(wildcard bench/*.h) manylods.h examples/scenes.h
+BENCH_DEPS   := bench/bench.c $(wildcard bench/*.h) manylods.h examples/scenes.h examples/meshio.h
 # Test programs build in parallel: with the caller's -jN if given, else on
 # every core.
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -92,19 +95,39 @@ VULKAN_LIBS ?= -lvulkan
 HAVE_VULKAN := $(shell printf '\043include <vulkan/vulkan.h>\nint main(void) { return 0; }\n' | \
                  $(CC) -x c - $(VULKAN_LIBS) -o /dev/null 2>/dev/null && echo 1)
 ifeq ($(HAVE_VULKAN),1)
-VULKAN_TEST := $(BUILD)/vulkan/test_vulkan
+# make bench adds the Vulkan path (on lavapipe) next to the CPU's
+BENCH_CFLAGS += -DBENCH_VULKAN
+BENCH_LDLIBS += $(VULKAN_LIBS)
+BENCH_DEPS   += manylods_vk.h
+VULKAN_TEST := $(BUILD)/vulkan/test_vulkan tests/check_vulkan_example.sh
+VULKAN_PROGRAMS := $(BUILD)/vulkan/test_vulkan $(BUILD)/examples/vulkan_minimal
 else
 VULKAN_TEST := tests/vulkan_missing.sh
+VULKAN_PROGRAMS :=
 endif
 
 .PHONY: all demo test test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs \
-        shaders vulkan
+        shaders vulkan vulkan-minimal docs-images
 .DELETE_ON_ERROR:
 
-all: $(BUILD)/examples/demo $(BUILD)/examples/minimal
+# The examples that show the paper's applications (examples/*.c with app.h).
+EXAMPLES := $(BUILD)/examples/instant_radiosity $(BUILD)/examples/point_based_gi $(BUILD)/examples/reflections
+EXAMPLE_DEPS := $(HEADERS) bench/metrics.h
 
-demo: $(BUILD)/examples/demo
-	$(Q)$(BUILD)/examples/demo
+all: $(EXAMPLES) $(BUILD)/examples/minimal
+
+demo: $(BUILD)/examples/instant_radiosity
+	$(Q)$(BUILD)/examples/instant_radiosity --out $(BUILD)/demo
+
+# The README's pictures: each example's default run, the images it shows
+# copied into docs/ (the large atlas and mosaic stay in build/docs-images/).
+DOCS_IMAGES := instant_radiosity.png instant_radiosity_compare.png instant_radiosity_maps.png \
+               point_based_gi.png point_based_gi_indirect.png reflections_compare.png
+docs-images: $(EXAMPLES)
+	$(Q)$(BUILD)/examples/instant_radiosity --out $(BUILD)/docs-images
+	$(Q)$(BUILD)/examples/point_based_gi --out $(BUILD)/docs-images
+	$(Q)$(BUILD)/examples/reflections --out $(BUILD)/docs-images
+	$(Q)cp $(addprefix $(BUILD)/docs-images/,$(DOCS_IMAGES)) docs/
 
 # Build what can be built (-k), then let tests/run.sh count a program that did
 # not build as a failure: the last line is always the total.
@@ -115,15 +138,25 @@ test:
 	    --section "tests, $(CLANG) -fsanitize=address,undefined -O1" $(SAN_TESTS) \
 	    --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_PROGRAMS) \
 	    --section "compile matrix" tests/compile/matrix.sh \
-	    --section "examples" --check $(BUILD)/examples/minimal \
+	    --section "examples (each on a tiny scene: runs, valid PNGs, accuracy)" --check $(BUILD)/examples/minimal \
+	    $(BUILD)/examples/check_examples \
 	    --section "benchmark (bench --selftest: compiles, checks cuts and metrics against Embree)" \
 	    --check $(BUILD)/bench/selftest \
 	    --section "Vulkan (manylods_vk.h against the CPU, validation layer on; shaders/ against the embedded SPIR-V)" \
-	    $(VULKAN_TEST) tests/check_shaders.sh
+	    $(VULKAN_TEST) tests/check_shaders.sh tests/compile/vulkan.sh
 
 # The Vulkan tests alone.
-vulkan: $(if $(filter 1,$(HAVE_VULKAN)),$(VULKAN_TEST))
-	$(Q)tests/run.sh --section "Vulkan" $(VULKAN_TEST) tests/check_shaders.sh
+vulkan: $(VULKAN_PROGRAMS)
+	$(Q)tests/run.sh --section "Vulkan" $(VULKAN_TEST) tests/check_shaders.sh tests/compile/vulkan.sh
+
+# examples/vulkan_minimal: the cut and splat on a Vulkan device, the atlas as a PNG.
+vulkan-minimal: $(BUILD)/examples/vulkan_minimal
+	$(Q)$(BUILD)/examples/vulkan_minimal $(BUILD)/vulkan_atlas.png
+
+$(BUILD)/examples/vulkan_minimal: examples/vulkan_minimal.c manylods.h manylods_vk.h examples/png.h examples/scenes.h
+	$(say) CC $@
+	$(Q)mkdir -p $(@D)
+	$(Q)$(CC) $(EXAMPLE_CFLAGS) $< -o $@ $(VULKAN_LIBS) $(LDLIBS)
 
 # Compile shaders/*.comp and embed the SPIR-V in manylods_vk.h (glslang-tools, spirv-tools).
 shaders:
@@ -155,7 +188,8 @@ fuzz-corpus: $(BUILD)/fuzz/make_corpus
 	$(Q)mkdir -p fuzz/corpus && $(BUILD)/fuzz/make_corpus fuzz/corpus
 
 test-programs: $(GCC_TESTS) $(SAN_TESTS) $(TSAN_PROGRAMS) $(BUILD)/examples/minimal $(BUILD)/bench/selftest \
-               $(if $(filter 1,$(HAVE_VULKAN)),$(VULKAN_TEST))
+               $(EXAMPLES) $(BUILD)/examples/check_examples \
+               $(VULKAN_PROGRAMS)
 fast-programs: $(GCC_TESTS)
 
 $(BUILD)/gcc/%: tests/%.c $(HEADERS)
@@ -188,10 +222,16 @@ $(BUILD)/examples/minimal: examples/minimal.c manylods.h
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CC) $(EXAMPLE_CFLAGS) $< -o $@ $(LDLIBS)
 
-$(BUILD)/examples/demo: examples/demo.c $(HEADERS)
+$(EXAMPLES): $(BUILD)/examples/%: examples/%.c $(EXAMPLE_DEPS)
 	$(say) CC $@
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CC) $(EXAMPLE_CFLAGS) $(DEMO_DEFINES) $< -o $@ $(LDLIBS)
+
+# Runs the examples above (they must be built first) from the repository root.
+$(BUILD)/examples/check_examples: tests/check_examples.c $(HEADERS) | $(EXAMPLES)
+	$(say) CC $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CC) $(TEST_CFLAGS) -DEXAMPLES_DIR='"$(BUILD)/examples"' $< -o $@ $(LDLIBS)
 
 bench: $(BUILD)/bench/bench
 	$(Q)$(BUILD)/bench/bench --out docs

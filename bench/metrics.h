@@ -40,20 +40,27 @@
                       that mlod_view_project puts inside the view, at pixel
                       (floor(px), floor(py)) inside the tile, where R is not
                       NaN: with z the receiver's depth from mlod_view_project
-                      and b = bias * D,
+                      and b = bias * D + bias_pixels * f,
                           lit_X = !(z > X + b)       for X = S and X = R
-                      (an empty pixel, +inf, is lit);
+                      (an empty pixel, +inf, is lit), where f is the pixel
+                      footprint at the receiver (metrics_pixel_footprint:
+                      the world distance between the rays of that pixel's
+                      centre and of its horizontal neighbour's, taken at the
+                      receiver's distance from the first ray's origin);
      shadow_tests     the number of such (view, receiver) pairs;
      shadow_differences  pairs with lit_S != lit_R;
      shadow_disagreement = shadow_differences / shadow_tests.
      A rate whose denominator is 0 is 0.  Pixels where R is finite but S is
      not are holes; pixels where S is finite but R is +inf (a splat spilling
      past a silhouette) enter none of the sums.  bias is a fraction of the
-     scene diameter: the benchmark uses 0.01.  A bias smaller than the depth
-     change across one pixel (about footprint / tan(grazing angle)) lets
-     both maps shadow their own receivers at random (acne), and the
-     disagreement then measures that noise (with 32x32 tiles and bias 0.01,
-     tests/test_splat.c sees 10-30% for any splat).  overall sums every view;
+     scene diameter, bias_pixels a multiple of the footprint.  The receiver
+     lies up to half a pixel from the centre whose depth the map holds, so
+     on a surface tilted by an angle a from facing the view the map's depth
+     differs from the receiver's by up to about 0.7 f tan(a): a bias below
+     that shadows receivers at random in both maps (acne), and the
+     disagreement then measures that noise, not the splat (with 32x32 tiles
+     and a bias of 0.01 D alone, 10-30% for any splat).  The benchmark uses
+     bias_pixels = 2 (clean up to a = 70 degrees) plus 0.002 D.  overall sums every view;
      per_view (NULL, or atlas->view_count entries) gives each view's own.
      If the scratch for the percentile cannot be allocated, depth_p95 is NaN.
      Cost: one pass over the tiles, a sort of the errors, and one
@@ -138,6 +145,31 @@ static inline void metrics_reference_atlas(const mlod_atlas *layout, const mlod_
     }
 }
 
+/* The world size of one pixel at point q that projects to pixel
+   (x, y) of the view (pixel units): the distance, at q's distance t from
+   the pixel ray's origin, between the rays through (floor(x) + 0.5, ...)
+   and its horizontal neighbour (the left one at the tile's right edge or
+   outside a paraboloid's disc), |o1 - o0| + t |d1 - d0|.  0 when neither
+   neighbour has a ray. */
+static inline double metrics_pixel_footprint(const mlod_view *view, float x, float y, const float q[3])
+{
+    float o0[3], d0[3], o1[3], d1[3];
+    float cx = floorf(x) + 0.5f, cy = floorf(y) + 0.5f;
+    double t = 0.0, da = 0.0, oa = 0.0;
+    int k;
+    if (!mlod_view_pixel_ray(view, cx, cy, o0, d0)) return 0.0;
+    if (!(cx + 1.0f < (float)view->width && mlod_view_pixel_ray(view, cx + 1.0f, cy, o1, d1)) &&
+        !(cx > 1.0f && mlod_view_pixel_ray(view, cx - 1.0f, cy, o1, d1)))
+        return 0.0;
+    for (k = 0; k < 3; k++) {
+        double r = (double)q[k] - o0[k], dd = (double)d1[k] - d0[k], od = (double)o1[k] - o0[k];
+        t += r * r;
+        da += dd * dd;
+        oa += od * od;
+    }
+    return sqrt(oa) + sqrt(t) * sqrt(da);
+}
+
 static inline int metrics_compare_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -163,12 +195,13 @@ static inline void metrics_finish(metrics *m, double squared_sum)
 }
 
 /* Compare a splatted atlas with a reference (same layout; see the header
-   comment for every formula).  receivers: receiver_count points, 3 floats
+   comment for every formula; bias in scene diameters, bias_pixels in pixel
+   footprints).  receivers: receiver_count points, 3 floats
    each (may be NULL when receiver_count is 0).  per_view: NULL or
    splat->view_count entries. */
 static inline void metrics_compare(const mlod_atlas *splat, const float *reference, const mlod_view *views,
                             double scene_diameter, const float *receivers, uint32_t receiver_count, double bias,
-                            metrics *overall, metrics *per_view)
+                            double bias_pixels, metrics *overall, metrics *per_view)
 {
     size_t capacity = 0, used = 0;
     double *errors, total_squared = 0.0, bias_world = bias * scene_diameter;
@@ -199,7 +232,7 @@ static inline void metrics_compare(const mlod_atlas *splat, const float *referen
             }
         for (r = 0; r < receiver_count; r++) {
             float pixel[2], z;
-            double px, py;
+            double px, py, b;
             size_t p;
             float R, S;
             int lit_s, lit_r;
@@ -211,8 +244,10 @@ static inline void metrics_compare(const mlod_atlas *splat, const float *referen
             R = reference[p];
             S = splat->depth[p];
             if (isnan(R)) continue;
-            lit_s = !((double)z > (double)S + bias_world);
-            lit_r = !((double)z > (double)R + bias_world);
+            b = bias_world;
+            if (bias_pixels > 0.0) b += bias_pixels * metrics_pixel_footprint(views + v, pixel[0], pixel[1], receivers + 3 * (size_t)r);
+            lit_s = !((double)z > (double)S + b);
+            lit_r = !((double)z > (double)R + b);
             m.shadow_tests++;
             m.shadow_differences += lit_s != lit_r;
         }

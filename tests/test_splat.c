@@ -1481,6 +1481,26 @@ static mlod_atlas *metrics_setup(mlod_view *views, float **reference)
     return atlas;
 }
 
+/* Receivers at the pixel centres of the first (8x8 orthographic) view, at
+   depth 5 (64 points into receivers); the reference holds an occluder at
+   depth 4 in the left half of the tile, the splat one at splat_depth
+   there; the right half is empty in both.  Returns 64. */
+static uint32_t shadow_grid(mlod_atlas *atlas, float *ref, float *receivers, float splat_depth)
+{
+    uint32_t i, j, n = 0;
+    for (j = 0; j < 8; j++)
+        for (i = 0; i < 8; i++) {
+            size_t at = (size_t)j * atlas->width + i;
+            receivers[3 * n] = (float)(-1.0 + (i + 0.5) / 4.0);
+            receivers[3 * n + 1] = (float)(1.0 - (j + 0.5) / 4.0);
+            receivers[3 * n + 2] = -5.0f;
+            n++;
+            ref[at] = i < 4 ? 4.0f : INFINITY;
+            atlas->depth[at] = i < 4 ? splat_depth : INFINITY;
+        }
+    return n;
+}
+
 static void test_metrics_known(void)
 {
     mlod_view views[2];
@@ -1494,7 +1514,7 @@ static void test_metrics_known(void)
         return;
     }
     /* an empty atlas: every reference hit is a hole */
-    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, pv);
+    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, 0.0, &m, pv);
     CHECK(m.reference_hits == 88 && m.holes == 88 && m.hole_rate == 1.0 && m.depth_pixels == 0 && m.depth_rms == 0.0 &&
               m.depth_p95 == 0.0 && m.shadow_tests == 0 && m.shadow_disagreement == 0.0,
           "metrics, empty atlas: hits %llu holes %llu rate %g depth pixels %llu rms %g p95 %g (expected 88 88 1 0 0 0)",
@@ -1509,7 +1529,7 @@ static void test_metrics_known(void)
         for (j = 0; j < t[3]; j++)
             for (i = 0; i < t[2]; i++) atlas->depth[(size_t)(t[1] + j) * atlas->width + t[0] + i] = 2.0f;
     }
-    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, NULL);
+    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, 0.0, &m, NULL);
     CHECK(m.hole_rate == 0.0 && m.holes == 0 && m.depth_pixels == 88 && m.depth_rms == 0.0 && m.depth_p95 == 0.0,
           "metrics, equal atlas: holes %llu, depth pixels %llu, rms %g, p95 %g (expected 0 88 0 0)", (unsigned long long)m.holes,
           (unsigned long long)m.depth_pixels, m.depth_rms, m.depth_p95);
@@ -1520,7 +1540,7 @@ static void test_metrics_known(void)
             for (i = 0; i < t[2]; i++)
                 atlas->depth[(size_t)(t[1] + j) * atlas->width + t[0] + i] = (i + j) % 2 ? INFINITY : 2.0f;
     }
-    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, pv);
+    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, 0.0, &m, pv);
     CHECK(m.hole_rate == 0.5 && m.holes == 44 && m.depth_pixels == 44 && pv[0].hole_rate == 0.5 && pv[1].hole_rate == 0.5,
           "metrics, half covered: rate %g holes %llu depth pixels %llu, per view %g %g (expected 0.5 44 44 0.5 0.5)",
           m.hole_rate, (unsigned long long)m.holes, (unsigned long long)m.depth_pixels, pv[0].hole_rate, pv[1].hole_rate);
@@ -1551,7 +1571,7 @@ static void test_metrics_known(void)
             view_p95[v] = ev[v][(uint32_t)ceil(0.95 * count[v] - 1e-9) - 1];
             view_rms[v] = sqrt(vs[v] / count[v]);
         }
-        metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, pv);
+        metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, 0.0, &m, pv);
         CHECK(m.holes == 0 && m.depth_pixels == 88 && fabs(m.depth_rms - want_rms) <= 1e-15 && m.depth_p95 == want_p95,
               "metrics, offsets: rms %.17g p95 %.17g (expected %.17g and %.17g = 83/4096)", m.depth_rms, m.depth_p95, want_rms,
               want_p95);
@@ -1563,7 +1583,7 @@ static void test_metrics_known(void)
     /* a splat spilling where the reference misses counts nowhere */
     ref[0] = INFINITY;
     atlas->depth[0] = 1.0f;
-    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, &m, NULL);
+    metrics_compare(atlas, ref, views, D, NULL, 0, 0.01, 0.0, &m, NULL);
     CHECK(m.reference_hits == 87 && m.depth_pixels == 87 && m.holes == 0, "metrics, spill: hits %llu depth pixels %llu (expected 87 87)",
           (unsigned long long)m.reference_hits, (unsigned long long)m.depth_pixels);
     ref[0] = 2.0f;
@@ -1571,18 +1591,8 @@ static void test_metrics_known(void)
        the reference holds an occluder at depth 4 in the left half */
     {
         float receivers[3 * 68];
-        uint32_t n = 0, expect_tests, expect_diff = 0;
+        uint32_t n = shadow_grid(atlas, ref, receivers, 4.0f), expect_tests, expect_diff = 0;
         const double bias = 0.01; /* b = 0.04 world units */
-        for (j = 0; j < 8; j++)
-            for (i = 0; i < 8; i++) {
-                size_t at = (size_t)j * atlas->width + i;
-                receivers[3 * n] = (float)(-1.0 + (i + 0.5) / 4.0);
-                receivers[3 * n + 1] = (float)(1.0 - (j + 0.5) / 4.0);
-                receivers[3 * n + 2] = -5.0f;
-                n++;
-                ref[at] = i < 4 ? 4.0f : INFINITY;
-                atlas->depth[at] = ref[at];
-            }
         /* outside the box, beyond the far plane: not tests */
         receivers[3 * n] = 1.5f, receivers[3 * n + 1] = 0.0f, receivers[3 * n + 2] = -5.0f, n++;
         receivers[3 * n] = 0.1f, receivers[3 * n + 1] = 0.1f, receivers[3 * n + 2] = -20.0f, n++;
@@ -1592,7 +1602,7 @@ static void test_metrics_known(void)
            of the 8x8 grid inside its narrower box) are lit in both */
         for (j = 0; j < 4; j++)
             for (i = 0; i < 6; i++) ref[(size_t)j * atlas->width + 8 + i] = atlas->depth[(size_t)j * atlas->width + 8 + i] = INFINITY;
-        metrics_compare(atlas, ref, views, D, receivers, n, bias, &m, pv);
+        metrics_compare(atlas, ref, views, D, receivers, n, bias, 0.0, &m, pv);
         {
             /* receivers in the second view: |x| <= 1, |y| <= 2/3 */
             uint32_t in_second = 0;
@@ -1622,7 +1632,7 @@ static void test_metrics_known(void)
             }
         }
         ref[(size_t)7 * atlas->width + 7] = NAN;
-        metrics_compare(atlas, ref, views, D, receivers, n, bias, &m, pv);
+        metrics_compare(atlas, ref, views, D, receivers, n, bias, 0.0, &m, pv);
         CHECK(m.shadow_tests == expect_tests - 1 && m.shadow_differences == expect_diff &&
                   m.shadow_disagreement == (double)expect_diff / (double)(expect_tests - 1),
               "metrics, constructed shadows: %llu tests, %llu differences, %g (expected %u, %u, %g)",
@@ -1633,6 +1643,67 @@ static void test_metrics_known(void)
               "metrics, constructed shadows per view: %llu/%llu and %llu/%llu (expected 12/63 and 0/%u)",
               (unsigned long long)pv[0].shadow_differences, (unsigned long long)pv[0].shadow_tests,
               (unsigned long long)pv[1].shadow_differences, (unsigned long long)pv[1].shadow_tests, expect_tests - 64);
+    }
+    /* the footprint-scaled bias: the 8x8 orthographic view's pixels are
+       exactly 0.25 wide, so b = 1 footprint = 0.25 at every receiver; the
+       left half's occluder (reference 4) moves in the splat to 4.8 (within
+       b of the receivers at 5: lit, while the reference, 1 behind,
+       shadows them: differences) then to 4.7 (beyond b: shadowed, equal) */
+    {
+        float receivers[3 * 64];
+        uint32_t n = shadow_grid(atlas, ref, receivers, 4.8f);
+        for (k = 0; k < n; k++) {
+            float pixel[2], z;
+            double f = mlod_view_project(&views[0], receivers + 3 * k, pixel, &z)
+                           ? metrics_pixel_footprint(&views[0], pixel[0], pixel[1], receivers + 3 * k)
+                           : -1.0;
+            if (fabs(f - 0.25) > 1e-6) {
+                CHECK(0, "metrics, orthographic footprint of receiver %u: %.9g (expected 0.25)", k, f);
+                break;
+            }
+        }
+        metrics_compare(atlas, ref, views, D, receivers, n, 0.0, 1.0, &m, pv);
+        CHECK(pv[0].shadow_tests == 64 && pv[0].shadow_differences == 32,
+              "metrics, 1-footprint bias, occluder within it: %llu/%llu differences (expected 32/64)",
+              (unsigned long long)pv[0].shadow_differences, (unsigned long long)pv[0].shadow_tests);
+        for (j = 0; j < 8; j++)
+            for (i = 0; i < 4; i++) atlas->depth[(size_t)j * atlas->width + i] = 4.7f;
+        metrics_compare(atlas, ref, views, D, receivers, n, 0.0, 1.0, &m, pv);
+        CHECK(pv[0].shadow_tests == 64 && pv[0].shadow_differences == 0,
+              "metrics, 1-footprint bias, occluder beyond it: %llu/%llu differences (expected 0/64)",
+              (unsigned long long)pv[0].shadow_differences, (unsigned long long)pv[0].shadow_tests);
+        /* the same occluder at 4.8 with a 0.01 D = 0.04 bias alone: beyond */
+        metrics_compare(atlas, ref, views, D, receivers, n, 0.01, 0.0, &m, pv);
+        CHECK(pv[0].shadow_differences == 0, "metrics, 0.04 bias: %llu differences (expected 0)",
+              (unsigned long long)pv[0].shadow_differences);
+    }
+    /* the footprint of a perspective and of a paraboloid view, against
+       their pixel geometry: a perspective pixel at the centre spans
+       2 tan(fov/2) / H at unit depth; a paraboloid maps the angle theta
+       from its axis to radius tan(theta / 2) on a disc of radius W/2 px,
+       so at the centre one pixel spans 2 (2 / W) rad, at 90 degrees half
+       that.  Both scale with the distance. */
+    {
+        mlod_view pv_ = tu_view(MLOD_VIEW_PERSPECTIVE), pb = tu_view(MLOD_VIEW_PARABOLOID);
+        float q[3] = {0.0f, 0.0f, -3.0f}, q_side[3], pixel[2], z;
+        double f, expect;
+        /* the centre of pixel (32, 32), just right of the axis */
+        q[0] = (float)(3.0 * tan(0.5) * (0.5 / 32.0));
+        q[1] = -(float)(3.0 * tan(0.5) * (0.5 / 32.0));
+        f = mlod_view_project(&pv_, q, pixel, &z) ? metrics_pixel_footprint(&pv_, pixel[0], pixel[1], q) : -1.0;
+        expect = 3.0 * 2.0 * tan(0.5) / 64.0;
+        CHECK(fabs(f - expect) < 1e-3 * expect, "metrics, perspective footprint %.9g (expected about %.9g)", f, expect);
+        q[0] = 0.01f, q[1] = 0.01f;
+        f = mlod_view_project(&pb, q, pixel, &z) ? metrics_pixel_footprint(&pb, pixel[0], pixel[1], q) : -1.0;
+        expect = 3.0 * 2.0 * (2.0 / 64.0);
+        CHECK(fabs(f - expect) < 0.01 * expect, "metrics, paraboloid footprint at the centre %.9g (expected about %.9g)", f, expect);
+        /* 80 degrees off the axis, near the disc's rim: 2 (2 / W) cos^2(40) rad */
+        q_side[0] = (float)(3.0 * sin(1.3962634015954636));
+        q_side[1] = -0.01f;
+        q_side[2] = -(float)(3.0 * cos(1.3962634015954636));
+        f = mlod_view_project(&pb, q_side, pixel, &z) ? metrics_pixel_footprint(&pb, pixel[0], pixel[1], q_side) : -1.0;
+        expect = 3.0 * 2.0 * (2.0 / 64.0) * cos(0.6981317007977318) * cos(0.6981317007977318);
+        CHECK(fabs(f - expect) < 0.05 * expect, "metrics, paraboloid footprint at 80 degrees %.9g (expected about %.9g)", f, expect);
     }
     free(ref);
     mlod_atlas_destroy(atlas);
@@ -1860,7 +1931,7 @@ static void run_scene(const char *name, const scene_mesh *s, int inside, uint64_
         }
         add_atlas_comparison(rd, atlas, tree, cut, views);
         metrics_reference_atlas(atlas, views, rc_cast, &rc, ref);
-        metrics_compare(atlas, ref, views, 2.0 * R, receivers, receiver_count, 0.01, &m, NULL);
+        metrics_compare(atlas, ref, views, 2.0 * R, receivers, receiver_count, 0.002, 2.0, &m, NULL);
         /* pixels whose error is within two valid radii at the surface's
            distance (the disc's depth is its sphere's centre; the sphere
            holds surface within r of the ray's hit) */
@@ -1884,7 +1955,7 @@ static void run_scene(const char *name, const scene_mesh *s, int inside, uint64_
         }
         ppv = (uint32_t)((drawn + 3) / 4);
         mlod_splat_ism(atlas, tree, views, ppv, seed, NULL, NULL);
-        metrics_compare(atlas, ref, views, 2.0 * R, receivers, receiver_count, 0.01, &mi, NULL);
+        metrics_compare(atlas, ref, views, 2.0 * R, receivers, receiver_count, 0.002, 2.0, &mi, NULL);
         if (getenv("MANYLODS_TEST_VERBOSE"))
             printf("  %s, %s: cut holes %.4f rms %.4f p95 %.4f (two radii at most %.4f, within them %.3f) shadows %.4f | ISM (%u points/view) holes %.4f rms %.4f shadows %.4f\n",
                    name, kind_name((mlod_view_kind)k), m.hole_rate, m.depth_rms, m.depth_p95, bound,

@@ -1,20 +1,33 @@
-/* bench/meshio.h - a small OBJ and PLY loader for the benchmark.  C99.
+/* examples/meshio.h - a small OBJ and PLY loader for the examples and the
+   benchmark of manylods (the library itself reads no files).  C99,
+   header-only, no dependency beyond the C standard library and
+   examples/scenes.h.
 
      int meshio_load(const char *path, scene_mesh *out, char *error, size_t error_size);
+     int meshio_parse(const char *name, const void *data, size_t size, scene_mesh *out,
+                      char *error, size_t error_size);
 
-   Reads positions and faces only (polygons are split into triangle fans;
-   texture coordinates, normals, colours, lines and points are skipped).
+   meshio_load reads a file; meshio_parse the same bytes from memory (name
+   only labels the messages).  They read positions and faces only (polygons
+   are split into triangle fans; texture coordinates, normals, colours,
+   lines and points are skipped), so out has positions and indices and no
+   normals or colours; free it with scene_free.
    OBJ: "v x y z" and "f" lines with 1-based or negative (relative) indices
    in any of the forms i, i/t, i//n, i/t/n.  PLY: format ascii 1.0,
    binary_little_endian 1.0 or binary_big_endian 1.0; an element "vertex"
-   with float properties x, y, z (any scalar type) and an element "face"
+   with scalar properties x, y, z (any scalar type) and an element "face"
    with a list property vertex_indices (or vertex_index); other elements and
-   properties are skipped.  Returns 1 on success; 0 with a message naming
-   the file and, for OBJ and ASCII PLY, the line ("bunny.obj:12: ...") on a
-   malformed, truncated or empty file, an index out of range, a non-finite
-   coordinate, or when memory runs out. */
-#ifndef MANYLODS_BENCH_MESHIO_H
-#define MANYLODS_BENCH_MESHIO_H
+   properties are skipped.  The format comes from the extension (.obj,
+   .ply, any case), else from the first bytes ("ply").
+   Returns 1 on success; 0 with a message naming the file and, for OBJ and
+   ASCII PLY, the line ("bunny.obj:12: ...") on a malformed, truncated or
+   empty file, binary bytes in a text file, an index out of range, a
+   coordinate that is not finite or beyond 1e30, a count that is not a
+   whole number, or when memory runs out; *out is then left empty.  Memory
+   and time grow with the file's size, never with the counts its header
+   claims. */
+#ifndef MANYLODS_EXAMPLES_MESHIO_H
+#define MANYLODS_EXAMPLES_MESHIO_H
 
 #include <ctype.h>
 #include <errno.h>
@@ -138,7 +151,8 @@ static inline int meshio_load_obj(const char *path, char *text, scene_mesh *out,
                     goto done;
                 }
                 if (!isfinite(x) || fabs(x) > 1e30) {
-                    meshio_fail(error, error_size, "%s:%lu: vertex coordinate %g is not finite", path, line_number, x);
+                    meshio_fail(error, error_size, "%s:%lu: vertex coordinate %g is not finite or beyond 1e30", path,
+                                line_number, x);
                     goto done;
                 }
                 xyz[k] = (float)x;
@@ -159,6 +173,11 @@ static inline int meshio_load_obj(const char *path, char *text, scene_mesh *out,
                 i = strtol(p, &next, 10);
                 if (next == p || i == 0) {
                     meshio_fail(error, error_size, "%s:%lu: bad face vertex \"%.20s\" (expected a non-zero index)",
+                                path, line_number, p);
+                    goto done;
+                }
+                if (*next && *next != '/' && *next != ' ' && *next != '\t' && *next != '\r' && *next != '#') {
+                    meshio_fail(error, error_size, "%s:%lu: bad face vertex \"%.20s\" (expected i, i/t, i//n or i/t/n)",
                                 path, line_number, p);
                     goto done;
                 }
@@ -377,6 +396,7 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
                 goto done;
             }
         }
+        if (el->property_count == 0) continue; /* holds no bytes, however many it claims */
         for (i = 0; i < el->count; i++) {
             float xyz[3] = {0, 0, 0};
             for (k = 0; k < el->property_count; k++) {
@@ -385,14 +405,19 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
                 if (prop->count_type) {
                     double n;
                     unsigned long j;
-                    if (!meshio_read_value(&r, prop->count_type, &n) || n < 0) goto truncated;
+                    if (!meshio_read_value(&r, prop->count_type, &n)) goto truncated;
+                    if (!(n >= 0 && n <= 4294967295.0 && n == floor(n))) {
+                        meshio_fail(error, error_size, "%s: element %s %lu: list count %g is not a whole number in [0, 2^32)",
+                                    path, el->name, i, n);
+                        goto done;
+                    }
                     poly.count = 0;
                     for (j = 0; j < (unsigned long)n; j++) {
                         uint32_t index;
                         if (!meshio_read_value(&r, prop->type, &value)) goto truncated;
                         if (axis[k] != 3) continue;
-                        if (!(value >= 0 && value < (double)vertex_total)) {
-                            meshio_fail(error, error_size, "%s: face %lu: vertex index %.0f out of range (%lu vertices)",
+                        if (!(value >= 0 && value < (double)vertex_total && value == floor(value))) {
+                            meshio_fail(error, error_size, "%s: face %lu: vertex index %g out of range (%lu vertices)",
                                         path, i, value, vertex_total);
                             goto done;
                         }
@@ -411,7 +436,8 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
                     if (!meshio_read_value(&r, prop->type, &value)) goto truncated;
                     if (axis[k] >= 0 && axis[k] < 3) {
                         if (!isfinite(value) || fabs(value) > 1e30) {
-                            meshio_fail(error, error_size, "%s: vertex %lu: coordinate %g is not finite", path, i, value);
+                            meshio_fail(error, error_size, "%s: vertex %lu: coordinate %g is not finite or beyond 1e30", path, i,
+                                    value);
                             goto done;
                         }
                         xyz[axis[k]] = (float)value;
@@ -440,24 +466,54 @@ done:
     return ok;
 }
 
-/* Load an .obj or .ply file (by its extension, case-insensitive; else by
-   the first bytes). */
-static inline int meshio_load(const char *path, scene_mesh *out, char *error, size_t error_size)
+/* Whether path ends with ext (".ply"), ignoring ASCII case. */
+static inline int meshio_has_extension(const char *path, const char *ext)
 {
-    size_t length = 0, n = strlen(path);
-    char *text = meshio_read_file(path, &length, error, error_size);
-    int ok, ply;
-    if (!text) return 0;
-    if (strlen(text) != length && !(length >= 3 && memcmp(text, "ply", 3) == 0)) {
-        free(text);
-        return meshio_fail(error, error_size, "%s: binary data in a text file (only PLY may be binary)", path);
-    }
-    ply = (n >= 4 && (strcmp(path + n - 4, ".ply") == 0 || strcmp(path + n - 4, ".PLY") == 0)) ||
-          (length >= 3 && memcmp(text, "ply", 3) == 0);
-    ok = ply ? meshio_load_ply(path, text, length, out, error, error_size)
-             : meshio_load_obj(path, text, out, error, error_size);
+    size_t n = strlen(path), m = strlen(ext), i;
+    if (n < m) return 0;
+    for (i = 0; i < m; i++)
+        if (tolower((unsigned char)path[n - m + i]) != ext[i]) return 0;
+    return 1;
+}
+
+/* Parse text (length bytes, NUL-terminated, modified in place) as the file
+   `name`. */
+static inline int meshio_parse_text(const char *name, char *text, size_t length, scene_mesh *out, char *error,
+                                    size_t error_size)
+{
+    int is_ply = length >= 3 && memcmp(text, "ply", 3) == 0;
+    memset(out, 0, sizeof *out);
+    if (!is_ply && strlen(text) != length)
+        return meshio_fail(error, error_size, "%s: binary data in a text file (only PLY may be binary)", name);
+    if (is_ply || meshio_has_extension(name, ".ply")) return meshio_load_ply(name, text, length, out, error, error_size);
+    return meshio_load_obj(name, text, out, error, error_size);
+}
+
+static inline int meshio_parse(const char *name, const void *data, size_t size, scene_mesh *out, char *error,
+                               size_t error_size)
+{
+    char *text = (char *)malloc(size + 1);
+    int ok;
+    memset(out, 0, sizeof *out);
+    if (!text) return meshio_fail(error, error_size, "%s: out of memory for %lu bytes", name, (unsigned long)size);
+    if (size) memcpy(text, data, size);
+    text[size] = '\0';
+    ok = meshio_parse_text(name, text, size, out, error, error_size);
     free(text);
     return ok;
 }
 
-#endif /* MANYLODS_BENCH_MESHIO_H */
+static inline int meshio_load(const char *path, scene_mesh *out, char *error, size_t error_size)
+{
+    size_t length = 0;
+    char *text;
+    int ok;
+    memset(out, 0, sizeof *out);
+    text = meshio_read_file(path, &length, error, error_size);
+    if (!text) return 0;
+    ok = meshio_parse_text(path, text, length, out, error, error_size);
+    free(text);
+    return ok;
+}
+
+#endif /* MANYLODS_EXAMPLES_MESHIO_H */

@@ -1,0 +1,532 @@
+/* examples/instant_radiosity.c - instant radiosity with many shadow maps from
+   one manylods atlas: what `make demo` runs.
+
+   A spot light in a room (examples/app.h) spawns virtual point lights
+   (VPLs) where its rays first hit the surface.  Each VPL gets a paraboloid
+   shadow map: manylods cuts the room's sphere tree for all of them at once
+   and splats the cuts into one atlas.  Every camera pixel then sums the
+   light of every VPL, one bounce of indirect light, each VPL's visibility
+   read from its shadow map; direct light uses exact shadow rays.
+
+   Per frame the object twists (the tree is refitted) and the light moves
+   (the VPLs move, and the cuts are updated incrementally from the previous
+   frame's).  The program prints a timing table (refit, cut, splat, shade)
+   and, for the last frame, compares the indirect light against two others
+   computed from the same VPLs: Imperfect Shadow Maps (mlod_splat_ism, a
+   fixed random subset of the points per VPL, pull-push filled) given the
+   same time as manylods' cut and splat (or, with --ism-match drawn, as many
+   points per VPL as the cut draws nodes), and the reference with exact
+   visibility (a shadow ray per pixel and VPL).  It writes:
+
+     instant_radiosity.png          the lit frame (direct + indirect)
+     instant_radiosity_atlas.png    the shadow-map atlas (depth, nearer brighter)
+     instant_radiosity_compare.png  manylods | ISM | reference, side by side
+     instant_radiosity_maps.png     the first 64 shadow maps: manylods | ISM | ray-cast
+
+   Run with --help for the options. */
+#define _POSIX_C_SOURCE 200809L
+#define MANYLODS_IMPLEMENTATION
+#include "../manylods.h"
+#include "../bench/metrics.h"
+#include "app.h"
+
+static const char usage[] =
+    "usage: instant_radiosity [options]\n"
+    "  --out DIR          where the images go (default build/images)\n"
+    "  --mesh FILE        an OBJ or PLY file in place of the built-in torus\n"
+    "  --eps PX           the cut's threshold epsilon in pixels (default 1)\n"
+    "  --views N          virtual point lights (default 1024)\n"
+    "  --tile PX          shadow map size, PX x PX (default 32)\n"
+    "  --samples N        samples of the surface, the tree's leaves (default 100000)\n"
+    "  --size WxH         the image (default 256x192)\n"
+    "  --frames N         animated frames after the first (default 3)\n"
+    "  --mode M           basic, incremental or lazy cuts after the first frame (default incremental)\n"
+    "  --ism-match M      give ISM the same 'time' as manylods (default) or as many points as it 'drawn' nodes\n"
+    "  --threads N        threads (default 2)\n"
+    "  --tiny             a small run for the tests: 64 VPLs, 80x60 pixels, 2 frames\n";
+
+/* Shadow-map lookups.  The receiver moves off its surface by NORMAL_OFFSET
+   world units per unit of distance to the VPL and counts as lit where its
+   depth z is at most the map's plus a bias: DEPTH_BIAS z, plus the depth
+   its own plane gains across FILTER_PIXELS map pixels (z alpha tan(theta):
+   alpha the angle one pixel spans there, 2 / (1 + rho^2) / (T / 2) for a
+   paraboloid of T pixels, theta the receiver's angle to the VPL), since
+   every map pixel of the 2 x 2 filter holds the nearest depth within it.
+   The same lookups serve manylods' maps and ISM's. */
+#define NORMAL_OFFSET 0.02f
+#define DEPTH_BIAS 0.02f
+#define FILTER_PIXELS 2.0f
+/* VPLs sit this far (world units) above the surface they light: beyond a
+   leaf's radius at the default N, so the surface under a VPL is culled
+   from its map (behind its plane) instead of drawn as discs at its feet. */
+#define VPL_OFFSET 0.1f
+/* The geometry term is clamped at this distance (world units): the usual
+   cure for instant radiosity's bright splotches near a VPL.  The reference
+   uses the same clamp, so it differs only in visibility. */
+#define CLAMP_DISTANCE 0.25f
+
+/* Surface points at which the maps' shadow tests are compared. */
+#define RECEIVERS 2048
+
+/* The BVH as bench/metrics.h casts rays: nearest hit distance. */
+static int cast_ray(void *user, const float origin[3], const float direction[3], float *t)
+{
+    raytrace_hit hit;
+    if (!raytrace_closest((const raytrace_bvh *)user, origin, direction, INFINITY, &hit)) return 0;
+    *t = hit.t;
+    return 1;
+}
+
+typedef struct vpl {
+    float position[3], normal[3], flux[3];
+    int active;
+} vpl;
+
+/* Everything a frame's shading reads. */
+typedef struct shade_job {
+    const app_scene *scene;
+    const app_gbuffer *g;
+    const vpl *vpls;
+    const app_paraboloid *maps; /* per VPL */
+    const mlod_atlas *atlas;    /* NULL: exact visibility (shadow rays) */
+    uint32_t vpl_count;
+    app_image *indirect;
+    uint64_t *rays;             /* per block: shadow rays cast (reference only) */
+} shade_job;
+
+#define BLOCK 16 /* pixels per side of a shading block: its VPL maps stay in cache */
+
+/* Visibility of x (normal n, depth z from the VPL) in one shadow map,
+   filtered over the 2 x 2 nearest map pixels (percentage closer). */
+static float map_visibility(const mlod_atlas *atlas, const uint32_t *tile, const app_paraboloid *map, const float x[3],
+                            const float n[3], float distance, float cos_theta)
+{
+    float q[3], px, py, z, fx, fy, rx, ry, tan_theta, bias, lit = 0.0f;
+    int k, i0, j0, di, dj;
+    for (k = 0; k < 3; k++) q[k] = x[k] + NORMAL_OFFSET * distance * n[k];
+    if (!app_paraboloid_project(map, q, &px, &py, &z)) return 1.0f;
+    rx = px / map->half_width - 1.0f;
+    ry = py / map->half_height - 1.0f;
+    tan_theta = sqrtf(1.0f - cos_theta * cos_theta) / cos_theta;
+    if (tan_theta > 8.0f) tan_theta = 8.0f;
+    bias = z * (DEPTH_BIAS + FILTER_PIXELS * 2.0f / ((1.0f + rx * rx + ry * ry) * map->half_width) * tan_theta);
+    px -= 0.5f;
+    py -= 0.5f;
+    i0 = (int)floorf(px);
+    j0 = (int)floorf(py);
+    fx = px - (float)i0;
+    fy = py - (float)j0;
+    for (dj = 0; dj < 2; dj++)
+        for (di = 0; di < 2; di++) {
+            int i = i0 + di, j = j0 + dj;
+            float w = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy), d;
+            if (i < 0) i = 0;
+            if (j < 0) j = 0;
+            if (i >= (int)tile[2]) i = (int)tile[2] - 1;
+            if (j >= (int)tile[3]) j = (int)tile[3] - 1;
+            d = atlas->depth[(size_t)(tile[1] + (uint32_t)j) * atlas->width + tile[0] + (uint32_t)i];
+            if (z <= d + bias) lit += w;
+        }
+    return lit;
+}
+
+/* Shade one block of pixels: the indirect light of every VPL. */
+static void shade_block(void *context, uint32_t block)
+{
+    const shade_job *job = (const shade_job *)context;
+    const app_gbuffer *g = job->g;
+    uint32_t blocks_x = (g->width + BLOCK - 1) / BLOCK, bx = block % blocks_x, by = block / blocks_x;
+    uint32_t x0 = bx * BLOCK, y0 = by * BLOCK, x1 = x0 + BLOCK, y1 = y0 + BLOCK, x, y, k;
+    float sum[BLOCK * BLOCK][3];
+    uint64_t rays = 0;
+    if (x1 > g->width) x1 = g->width;
+    if (y1 > g->height) y1 = g->height;
+    memset(sum, 0, sizeof sum);
+    for (k = 0; k < job->vpl_count; k++) {
+        const vpl *l = &job->vpls[k];
+        const uint32_t *tile = job->atlas ? job->atlas->tiles + 4 * (size_t)k : NULL;
+        if (!l->active) continue;
+        for (y = y0; y < y1; y++)
+            for (x = x0; x < x1; x++) {
+                size_t i = (size_t)y * g->width + x;
+                const app_surface *s = &g->surface[i];
+                float w[3], d2, d, cos_l, cos_s, geometry, visibility;
+                int c;
+                if (!g->hit[i]) continue;
+                for (c = 0; c < 3; c++) w[c] = s->p[c] - l->position[c];
+                d2 = app_dot(w, w);
+                d = sqrtf(d2);
+                cos_l = app_dot(w, l->normal) / d;
+                cos_s = -app_dot(w, s->n) / d;
+                if (!(cos_l > 0.0f && cos_s > 0.0f)) continue;
+                geometry = cos_l * cos_s / (d2 > CLAMP_DISTANCE * CLAMP_DISTANCE ? d2 : CLAMP_DISTANCE * CLAMP_DISTANCE);
+                if (job->atlas) {
+                    visibility = map_visibility(job->atlas, tile, &job->maps[k], s->p, s->ng, d, cos_s);
+                } else {
+                    float start[3];
+                    app_offset(job->scene, s, start);
+                    visibility = (float)app_visible(job->scene, start, l->position);
+                    rays++;
+                }
+                if (visibility <= 0.0f) continue;
+                geometry *= visibility * (float)(1.0 / SCENE_PI);
+                for (c = 0; c < 3; c++) sum[(y - y0) * BLOCK + (x - x0)][c] += l->flux[c] * geometry;
+            }
+    }
+    for (y = y0; y < y1; y++)
+        for (x = x0; x < x1; x++) {
+            size_t i = (size_t)y * g->width + x;
+            int c;
+            for (c = 0; c < 3; c++)
+                job->indirect->rgb[3 * i + (size_t)c] =
+                    g->hit[i] ? g->surface[i].albedo[c] * (float)(1.0 / SCENE_PI) * sum[(y - y0) * BLOCK + (x - x0)][c]
+                              : 0.0f;
+        }
+    if (job->rays) job->rays[block] = rays;
+}
+
+/* The indirect light of the frame into job->indirect; returns the shadow
+   rays cast (0 with an atlas). */
+static uint64_t shade_indirect(shade_job *job, const app_threads *threads)
+{
+    uint32_t blocks = ((job->g->width + BLOCK - 1) / BLOCK) * ((job->g->height + BLOCK - 1) / BLOCK), b;
+    uint64_t total = 0;
+    job->rays = job->atlas ? NULL : (uint64_t *)calloc(blocks, sizeof(uint64_t));
+    app_parallel_for(threads, blocks, shade_block, job);
+    if (job->rays)
+        for (b = 0; b < blocks; b++) total += job->rays[b];
+    free(job->rays);
+    job->rays = NULL;
+    return total;
+}
+
+/* Shoot the light's rays: VPL k where ray k first hits, carrying the flux
+   it delivers there times the albedo; its shadow map looks along the
+   surface normal.  Directions follow the light's cosine lobe (a golden-
+   angle spiral, the same for every frame, so VPLs move smoothly). */
+static void spawn_vpls(const app_scene *scene, const app_light *light, uint32_t count, uint32_t tile, vpl *vpls,
+                       mlod_view *views, app_paraboloid *maps)
+{
+    float up[3], right[3], per_vpl = light->intensity * 2.0f * (float)SCENE_PI / ((light->exponent + 1.0f) * (float)count);
+    uint32_t k;
+    int c;
+    app_perpendicular(light->axis, up);
+    right[0] = light->axis[1] * up[2] - light->axis[2] * up[1];
+    right[1] = light->axis[2] * up[0] - light->axis[0] * up[2];
+    right[2] = light->axis[0] * up[1] - light->axis[1] * up[0];
+    app_normalize(right);
+    up[0] = right[1] * light->axis[2] - right[2] * light->axis[1];
+    up[1] = right[2] * light->axis[0] - right[0] * light->axis[2];
+    up[2] = right[0] * light->axis[1] - right[1] * light->axis[0];
+    for (k = 0; k < count; k++) {
+        /* p(w) = (e + 1) / (2 pi) cos^e: cos = u^(1 / (e + 1)); intensity / (count p) is then constant */
+        float u = ((float)k + 0.5f) / (float)count, phi = 2.39996323f * (float)k;
+        float cos_t = powf(u, 1.0f / (light->exponent + 1.0f)), sin_t = sqrtf(1.0f - cos_t * cos_t), d[3];
+        raytrace_hit hit;
+        vpl *l = &vpls[k];
+        mlod_view *v = &views[k];
+        for (c = 0; c < 3; c++)
+            d[c] = cos_t * light->axis[c] + sin_t * (cosf(phi) * right[c] + sinf(phi) * up[c]);
+        memset(l, 0, sizeof *l);
+        memset(v, 0, sizeof *v);
+        v->kind = MLOD_VIEW_PARABOLOID;
+        v->width = v->height = tile;
+        v->flags = MLOD_VIEW_CULL_BACKFACES;
+        if (raytrace_closest(&scene->bvh, light->position, d, INFINITY, &hit)) {
+            app_surface s;
+            app_surface_at(scene, light->position, d, &hit, &s);
+            for (c = 0; c < 3; c++) {
+                l->normal[c] = s.n[c];
+                l->position[c] = s.p[c] + VPL_OFFSET * s.n[c];
+                l->flux[c] = s.albedo[c] * per_vpl;
+            }
+            l->active = 1;
+            memcpy(v->position, l->position, sizeof v->position);
+            memcpy(v->forward, l->normal, sizeof v->forward);
+        } else { /* an open scene: a dark VPL at the light, still a valid view */
+            memcpy(v->position, light->position, sizeof v->position);
+            memcpy(v->forward, light->axis, sizeof v->forward);
+        }
+        app_perpendicular(v->forward, v->up);
+        app_paraboloid_of(v, &maps[k]);
+    }
+}
+
+/* Mean absolute difference of a and b over every pixel and channel,
+   relative to the mean of b: the error of an indirect image a against the
+   reference b. */
+static double relative_error(const app_image *a, const app_image *b)
+{
+    size_t n = 3 * (size_t)a->width * a->height, i;
+    double diff = 0.0, sum = 0.0;
+    for (i = 0; i < n; i++) {
+        diff += fabs((double)a->rgb[i] - b->rgb[i]);
+        sum += b->rgb[i];
+    }
+    return sum > 0.0 ? diff / sum : 0.0;
+}
+
+/* out = a + b (out may be a or b). */
+static void add_images(const app_image *a, const app_image *b, app_image *out)
+{
+    size_t n = 3 * (size_t)a->width * a->height, i;
+    for (i = 0; i < n; i++) out->rgb[i] = a->rgb[i] + b->rgb[i];
+}
+
+/* Splat ISM with `points` per view and fill its holes; returns the time. */
+static double splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views, uint32_t points,
+                        const app_threads *threads, mlod_error *error, int *ok)
+{
+    double t0 = app_now_ms();
+    *ok = mlod_splat_ism(atlas, tree, views, points, 7, threads->parallel, error) == MLOD_OK &&
+          mlod_atlas_fill_holes(atlas, threads->parallel, error) == MLOD_OK;
+    return app_now_ms() - t0;
+}
+
+int main(int argc, char **argv)
+{
+    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 2, MLOD_CUT_INCREMENTAL, 0, 0};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1};
+    app_options o;
+    app_threads threads;
+    app_scene scene;
+    app_gbuffer g;
+    app_image direct, indirect, lit, ism, reference, panels[3];
+    mlod_tree *tree = NULL;
+    mlod_cut *cut = NULL;
+    mlod_atlas *atlas = NULL, *ism_atlas = NULL;
+    mlod_view *views = NULL, camera;
+    mlod_build_desc desc;
+    mlod_cut_params params;
+    mlod_error error;
+    vpl *vpls = NULL;
+    app_paraboloid *maps = NULL;
+    float *exact = NULL;
+    metrics maps_cut, maps_ism;
+    shade_job job;
+    char message[512];
+    const char *program = "instant_radiosity";
+    double t0, build_ms, cut_ms = 0, splat_ms = 0, exposure = 0;
+    uint64_t drawn_total = 0, nodes_total = 0;
+    uint32_t frame, v, compare_width = 0;
+    int status = 1, parsed;
+
+    parsed = app_parse_options(argc, argv, usage, &normal, &tiny, &o);
+    if (parsed <= 0) return parsed < 0 ? 0 : 2;
+    memset(&error, 0, sizeof error);
+    memset(&g, 0, sizeof g);
+    memset(&direct, 0, sizeof direct);
+    memset(&indirect, 0, sizeof indirect);
+    memset(&lit, 0, sizeof lit);
+    memset(&ism, 0, sizeof ism);
+    memset(&reference, 0, sizeof reference);
+    app_threads_start(&threads, o.threads);
+    if (!app_scene_create(&scene, o.mesh_path, o.tiny, message, sizeof message)) {
+        fprintf(stderr, "%s: %s\n", program, message);
+        app_threads_stop(&threads);
+        return 1;
+    }
+    if (!app_make_dir(o.out_dir, message, sizeof message)) {
+        fprintf(stderr, "%s: %s\n", program, message);
+        goto done;
+    }
+    views = (mlod_view *)calloc(o.views, sizeof *views);
+    vpls = (vpl *)calloc(o.views, sizeof *vpls);
+    maps = (app_paraboloid *)calloc(o.views, sizeof *maps);
+    camera = app_camera(o.width, o.height);
+    if (!views || !vpls || !maps || !app_image_create(&direct, o.width, o.height) ||
+        !app_image_create(&indirect, o.width, o.height) || !app_image_create(&lit, o.width, o.height) ||
+        !app_image_create(&ism, o.width, o.height) || !app_image_create(&reference, o.width, o.height)) {
+        fprintf(stderr, "%s: out of memory\n", program);
+        goto done;
+    }
+
+    memset(&desc, 0, sizeof desc);
+    desc.sample_count = o.samples;
+    desc.seed = 1;
+    desc.attributes = MLOD_ATTR_CONE | MLOD_ATTR_REFIT;
+    t0 = app_now_ms();
+    if (mlod_build_mesh(&scene.mesh, &desc, &tree, &error) != MLOD_OK) goto failed;
+    build_ms = app_now_ms() - t0;
+    if (mlod_cut_create(o.views, NULL, &cut, &error) != MLOD_OK) goto failed;
+    memset(&params, 0, sizeof params);
+    params.epsilon = o.epsilon;
+    params.lazy_steps = 1;
+    params.parallel = threads.parallel;
+
+    printf("manylods %d.%d.%d instant radiosity: %s, %s\n", MANYLODS_VERSION_MAJOR, MANYLODS_VERSION_MINOR,
+           MANYLODS_VERSION_PATCH, scene.name, threads.description);
+    printf("tree    %u samples, %u nodes, %.1f MiB, built in %.0f ms\n", tree->leaf_count, tree->node_count,
+           (double)tree->bytes / (1024.0 * 1024.0), build_ms);
+    printf("lights  %u virtual point lights, paraboloid shadow maps %ux%u px, epsilon %g px, %s cuts after frame 0;"
+           " image %ux%u\n\n",
+           o.views, o.tile, o.tile, (double)o.epsilon, app_mode_name(o.mode), o.width, o.height);
+    printf("frame  refit ms  cut ms  splat ms  shade ms  nodes/view  drawn/view\n");
+
+    for (frame = 0; frame <= o.frames; frame++) {
+        float t = 0.5f * (float)frame;
+        app_light light = app_light_at(t);
+        double refit_ms, frame_cut_ms, frame_splat_ms, shade_ms;
+        app_scene_animate(&scene, t);
+        t0 = app_now_ms();
+        if (mlod_refit_mesh(tree, &scene.mesh, threads.parallel, &error) != MLOD_OK) goto failed;
+        refit_ms = app_now_ms() - t0;
+
+        spawn_vpls(&scene, &light, o.views, o.tile, vpls, views, maps);
+        params.mode = frame == 0 ? MLOD_CUT_BASIC : o.mode;
+        t0 = app_now_ms();
+        if (mlod_cut_update(cut, tree, views, &params, &error) != MLOD_OK) goto failed;
+        frame_cut_ms = app_now_ms() - t0;
+        if (!atlas) {
+            mlod_atlas_desc ad = {0, 0};
+            if (mlod_atlas_create(views, o.views, &ad, NULL, &atlas, &error) != MLOD_OK ||
+                mlod_atlas_create(views, o.views, &ad, NULL, &ism_atlas, &error) != MLOD_OK)
+                goto failed;
+        }
+        t0 = app_now_ms();
+        if (mlod_splat(atlas, tree, cut, views, threads.parallel, &error) != MLOD_OK) goto failed;
+        frame_splat_ms = app_now_ms() - t0;
+
+        t0 = app_now_ms();
+        if (!app_gbuffer_trace(&g, &scene, &camera, &threads)) {
+            fprintf(stderr, "%s: out of memory\n", program);
+            goto done;
+        }
+        app_direct_image(&scene, &light, &g, direct.rgb, &threads);
+        memset(&job, 0, sizeof job);
+        job.scene = &scene;
+        job.g = &g;
+        job.vpls = vpls;
+        job.maps = maps;
+        job.atlas = atlas;
+        job.vpl_count = o.views;
+        job.indirect = &indirect;
+        shade_indirect(&job, &threads);
+        add_images(&direct, &indirect, &lit);
+        shade_ms = app_now_ms() - t0;
+
+        nodes_total = drawn_total = 0;
+        for (v = 0; v < o.views; v++) {
+            mlod_cut_view c = mlod_cut_get(cut, v);
+            nodes_total += c.count;
+            drawn_total += c.drawn + c.oversize + c.coarse;
+        }
+        printf("%5u  %8.1f  %6.1f  %8.1f  %8.1f  %10.0f  %10.0f%s\n", frame, refit_ms, frame_cut_ms, frame_splat_ms,
+               shade_ms, (double)nodes_total / o.views, (double)drawn_total / o.views,
+               frame == 0 ? "   (basic cut from the root)" : "");
+        fflush(stdout);
+        cut_ms = frame_cut_ms;
+        splat_ms = frame_splat_ms;
+        if (frame == 0) exposure = app_auto_exposure(&lit);
+    }
+
+    { /* the last frame three ways: manylods, ISM at equal time (or equal drawn count), exact visibility */
+        uint32_t points = (uint32_t)((drawn_total + o.views - 1) / o.views), round, r;
+        double ism_ms = 0, target = cut_ms + splat_ms, reference_ms, error_cut, error_ism;
+        float receivers[3 * RECEIVERS];
+        uint64_t rays;
+        int ok = 1;
+        if (points == 0) points = 1;
+        ism_ms = splat_ism(ism_atlas, tree, views, points, &threads, &error, &ok);
+        for (round = 0; ok && !o.match_drawn && round < 3; round++) { /* points in proportion to the time */
+            double scaled = (double)points * target / (ism_ms > 0.01 ? ism_ms : 0.01);
+            points = scaled < 1.0 ? 1u : scaled > 1048576.0 ? 1048576u : (uint32_t)scaled;
+            ism_ms = splat_ism(ism_atlas, tree, views, points, &threads, &error, &ok);
+        }
+        if (!ok) goto failed;
+        job.atlas = ism_atlas;
+        job.indirect = &ism;
+        shade_indirect(&job, &threads);
+        job.atlas = NULL;
+        job.indirect = &reference;
+        t0 = app_now_ms();
+        rays = shade_indirect(&job, &threads);
+        reference_ms = app_now_ms() - t0;
+        error_cut = relative_error(&indirect, &reference);
+        error_ism = relative_error(&ism, &reference);
+
+        /* the maps themselves against ray-cast maps (bench/metrics.h) */
+        exact = (float *)malloc(sizeof(float) * atlas->width * atlas->height);
+        if (!exact) {
+            fprintf(stderr, "%s: out of memory\n", program);
+            goto done;
+        }
+        metrics_reference_atlas(atlas, views, cast_ray, &scene.bvh, exact);
+        for (r = 0; r < RECEIVERS; r++) /* receivers: surface samples, the leaves spread evenly */
+            memcpy(receivers + 3 * r, tree->spheres + 4 * ((size_t)tree->leaf_count - 1 + (uint64_t)r * tree->leaf_count / RECEIVERS),
+                   3 * sizeof(float));
+        metrics_compare(atlas, exact, views, scene.diameter, receivers, RECEIVERS, 0.002, 2.0, &maps_cut, NULL);
+        metrics_compare(ism_atlas, exact, views, scene.diameter, receivers, RECEIVERS, 0.002, 2.0, &maps_ism, NULL);
+
+        printf("\nlast frame against exact visibility    time ms  indirect  shadow maps against ray-cast maps\n");
+        printf("                                                light     depth RMS  depth p95  shadow tests  holes\n");
+        printf("  %-36s %7.0f  %5.1f %%   %6.2f %%   %6.2f %%   %6.2f %%     %5.2f %%\n", "manylods: cut + splat", target,
+               100.0 * error_cut, 100.0 * maps_cut.depth_rms, 100.0 * maps_cut.depth_p95,
+               100.0 * maps_cut.shadow_disagreement, 100.0 * maps_cut.hole_rate);
+        printf("  %-36s %7.0f  %5.1f %%   %6.2f %%   %6.2f %%   %6.2f %%     %5.2f %%\n", "ISM: splat + pull-push", ism_ms,
+               100.0 * error_ism, 100.0 * maps_ism.depth_rms, 100.0 * maps_ism.depth_p95,
+               100.0 * maps_ism.shadow_disagreement, 100.0 * maps_ism.hole_rate);
+        printf("  manylods: epsilon %g px, %.0f nodes drawn per VPL; ISM: %u points per VPL (%s)\n", (double)o.epsilon,
+               (double)drawn_total / o.views, points, o.match_drawn ? "as many as manylods draws nodes" : "matched to manylods' time");
+        printf("  reference: %.1f million shadow rays in %.0f ms\n", (double)rays / 1e6, reference_ms);
+        printf("  (indirect light: mean absolute error over the mean; maps: depth error in scene diameters, receivers\n"
+               "   whose lit/shadowed answer differs, empty pixels; bench/metrics.h defines them)\n");
+        add_images(&direct, &ism, &ism);
+        add_images(&direct, &reference, &reference);
+    }
+
+    {
+        uint8_t *rgb, *pictures[3];
+        uint32_t crop_w = (atlas->columns < 8 ? atlas->columns : 8) * atlas->cell_width, crop_h = atlas->cell_height * 8;
+        int wrote;
+        if (crop_h > atlas->height) crop_h = atlas->height;
+        rgb = app_compose(&lit, 1, (float)exposure, &compare_width);
+        wrote = app_write_png(program, o.out_dir, "instant_radiosity.png", o.width, o.height, rgb);
+        free(rgb);
+        pictures[0] = app_depth_picture(atlas, atlas->depth, 0.75f * scene.diameter);
+        pictures[1] = app_depth_picture(atlas, ism_atlas->depth, 0.75f * scene.diameter);
+        pictures[2] = app_depth_picture(atlas, exact, 0.75f * scene.diameter);
+        wrote = wrote && app_write_png(program, o.out_dir, "instant_radiosity_atlas.png", atlas->width, atlas->height,
+                                       pictures[0]);
+        rgb = app_crops_side_by_side(pictures, 3, atlas->width, 0, 0, crop_w, crop_h, 2);
+        wrote = wrote && app_write_png(program, o.out_dir, "instant_radiosity_maps.png", 3 * crop_w * 2, crop_h * 2, rgb);
+        free(rgb);
+        free(pictures[0]);
+        free(pictures[1]);
+        free(pictures[2]);
+        panels[0] = lit;
+        panels[1] = ism;
+        panels[2] = reference;
+        rgb = app_compose(panels, 3, (float)exposure, &compare_width);
+        wrote = wrote && app_write_png(program, o.out_dir, "instant_radiosity_compare.png", compare_width, o.height, rgb);
+        free(rgb);
+        if (!wrote) goto done;
+        printf("\nwrote %s/: instant_radiosity.png (the lit frame), instant_radiosity_atlas.png (%u shadow maps),\n"
+               "  instant_radiosity_compare.png (manylods | ISM | reference), instant_radiosity_maps.png (maps:"
+               " manylods | ISM | ray-cast)\n",
+               o.out_dir, o.views);
+    }
+    status = 0;
+    goto done;
+
+failed:
+    fprintf(stderr, "%s: %s: %s\n", program, mlod_result_name(error.code), error.message);
+done:
+    mlod_atlas_destroy(atlas);
+    mlod_atlas_destroy(ism_atlas);
+    mlod_cut_destroy(cut);
+    mlod_tree_destroy(tree);
+    free(views);
+    free(vpls);
+    free(maps);
+    free(exact);
+    app_gbuffer_free(&g);
+    app_image_free(&direct);
+    app_image_free(&indirect);
+    app_image_free(&lit);
+    app_image_free(&ism);
+    app_image_free(&reference);
+    app_scene_destroy(&scene);
+    app_threads_stop(&threads);
+    return status;
+}
