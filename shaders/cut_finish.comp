@@ -6,6 +6,8 @@
 // one entry; the list is grouped by view, in view order): view_offsets[v]
 // .. view_offsets[v + 1].  Dispatched with args[2].
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #include "cut_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)

@@ -2,6 +2,7 @@
 // shaders/cut_init.comp - a cut from the root: entry v of list A is (root,
 // view v), pending; the control block is armed for the first round.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #include "cut_layout.glsl"
 

@@ -8,6 +8,7 @@
 // its input intact (the host grows the buffers and resumes); otherwise the
 // next round's dispatch arguments and count are armed.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #include "cut_layout.glsl"
 

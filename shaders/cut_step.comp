@@ -7,6 +7,9 @@
 // into their parent when the parent is valid (the left child emits it, the
 // right one emits nothing); anything else keeps its place.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #include "cut_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
@@ -55,18 +58,20 @@ void main()
         acts[i] = act;
         out_count = act & 3u;
     }
-    sum_count[gl_LocalInvocationID.x] = out_count;
-    sum_evaluated[gl_LocalInvocationID.x] = evaluated;
-    sum_steps[gl_LocalInvocationID.x] = steps;
-    barrier();
-    for (uint stride = GROUP / 2u; stride > 0u; stride >>= 1) {
-        if (gl_LocalInvocationID.x < stride) {
-            sum_count[gl_LocalInvocationID.x] += sum_count[gl_LocalInvocationID.x + stride];
-            sum_evaluated[gl_LocalInvocationID.x] += sum_evaluated[gl_LocalInvocationID.x + stride];
-            sum_steps[gl_LocalInvocationID.x] += sum_steps[gl_LocalInvocationID.x + stride];
-        }
-        barrier();
+    // workgroup sums: subgroup sums, then the first invocation adds those
+    uint count_sg = subgroupAdd(out_count), evaluated_sg = subgroupAdd(evaluated), steps_sg = subgroupAdd(steps);
+    if (subgroupElect()) {
+        sum_count[gl_SubgroupID] = count_sg;
+        sum_evaluated[gl_SubgroupID] = evaluated_sg;
+        sum_steps[gl_SubgroupID] = steps_sg;
     }
+    barrier();
+    if (gl_LocalInvocationID.x == 0u)
+        for (uint k = 1u; k < gl_NumSubgroups; k++) {
+            sum_count[0] += sum_count[k];
+            sum_evaluated[0] += sum_evaluated[k];
+            sum_steps[0] += sum_steps[k];
+        }
     if (gl_LocalInvocationID.x == 0u && group * GROUP < n) {
         block_sums[group] = sum_count[0];
         if (sum_evaluated[0] != 0u) atomicAdd(ctl.evaluated, uint64_t(sum_evaluated[0]));

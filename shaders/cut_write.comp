@@ -4,6 +4,8 @@
 // plus its rank among the block's outputs, so each view's list stays in
 // left-to-right order, as on the CPU.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #include "cut_layout.glsl"
 
@@ -16,16 +18,15 @@ void main()
     uint t = gl_LocalInvocationID.x;
     uint i = group * GROUP + t;
     uint act = i < n ? acts[i] : 0u;
-    prefix[t] = act & 3u;
+    // the entry's rank among the workgroup's outputs: within its subgroup,
+    // plus the outputs of the subgroups before it
+    uint count = act & 3u, before = subgroupExclusiveAdd(count), total = subgroupAdd(count);
+    if (subgroupElect()) prefix[gl_SubgroupID] = total;
     barrier();
-    for (uint stride = 1u; stride < GROUP; stride <<= 1) {
-        uint add = t >= stride ? prefix[t - stride] : 0u;
-        barrier();
-        prefix[t] += add;
-        barrier();
-    }
+    uint base = 0u;
+    for (uint k = 0u; k < gl_SubgroupID; k++) base += prefix[k];
     if (i >= n) return;
-    uint at = block_sums[group] + prefix[t] - (act & 3u);
+    uint at = block_sums[group] + base + before;
     uvec2 e = list_in[i];
     uint kind = (act >> 2) & 3u;
     if (kind == ACT_KEEP) {

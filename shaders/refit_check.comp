@@ -6,6 +6,8 @@
 // over its area at build, for triangles that had area).  The host reads the
 // findings and refits only when they are clean.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #define MLOD_NO_VIEWS
 #include "refit_layout.glsl"

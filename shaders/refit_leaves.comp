@@ -3,6 +3,8 @@
 // barycentrics: mlod__mesh_leaf of manylods.h (position, radius from the
 // area ratio, cone from the interpolated or the face normal, colour).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #define MLOD_NO_VIEWS
 #include "refit_layout.glsl"

@@ -3,6 +3,8 @@
 // pc.count - 1 (one depth) from their children: mlod__merge_node of
 // manylods.h (sphere, cone, colour weighted by the leaves below).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #define MLOD_NO_VIEWS
 #include "refit_layout.glsl"

@@ -1,6 +1,7 @@
 #version 450
 // shaders/splat_clear.comp - every atlas pixel's key to empty.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #include "splat_layout.glsl"
 

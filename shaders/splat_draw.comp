@@ -6,6 +6,8 @@
 // or, when none of the 64-row band holding the disc's centre does, the
 // pixel holding the centre.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #include "splat_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)

@@ -3,6 +3,7 @@
 // where nothing was drawn) and, when the atlas has them, the winning node's
 // normal (its cone's axis) and colour (0 where nothing was drawn).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 layout(local_size_x = 256) in;
 #include "splat_layout.glsl"
 

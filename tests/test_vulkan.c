@@ -12,6 +12,7 @@
    Without a Vulkan loader or device it prints why and reports no test
    (0 passed, 0 failed) - unless MANYLODS_REQUIRE_VULKAN=1 (CI), which
    turns the skip into a failure. */
+#define _POSIX_C_SOURCE 200112L /* posix_memalign */
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
 #define MANYLODS_VK_IMPLEMENTATION
@@ -407,6 +408,50 @@ static void test_refit_parity(void)
     scene_free(&s);
 }
 
+/* VkAllocationCallbacks that count what is outstanding.  Each block keeps
+   its offset from the malloc'd start and its size just before it. */
+static long outstanding, allocations;
+
+static void *VKAPI_CALL counting_alloc(void *user, size_t size, size_t alignment, VkSystemAllocationScope scope)
+{
+    size_t offset = alignment > 16 ? alignment : 16;
+    char *base;
+    (void)user;
+    (void)scope;
+    if (posix_memalign((void **)&base, offset, offset + (size ? size : 1)) != 0) return NULL;
+    ((size_t *)(base + offset))[-1] = size;
+    ((size_t *)(base + offset))[-2] = offset;
+    outstanding++;
+    allocations++;
+    return base + offset;
+}
+
+static void VKAPI_CALL counting_free(void *user, void *p)
+{
+    (void)user;
+    if (!p) return;
+    outstanding--;
+    free((char *)p - ((size_t *)p)[-2]);
+}
+
+static void *VKAPI_CALL counting_realloc(void *user, void *old, size_t size, size_t alignment, VkSystemAllocationScope scope)
+{
+    void *p;
+    size_t old_size;
+    if (!old) return counting_alloc(user, size, alignment, scope);
+    if (size == 0) {
+        counting_free(user, old);
+        return NULL;
+    }
+    old_size = ((size_t *)old)[-1];
+    p = counting_alloc(user, size, alignment, scope);
+    if (p) {
+        memcpy(p, old, old_size < size ? old_size : size);
+        counting_free(user, old);
+    }
+    return p;
+}
+
 /* ------------------------------------------------- failure injection -- */
 
 /* A function table whose AllocateMemory or QueueSubmit fails on the n-th
@@ -544,6 +589,30 @@ static void test_failures(void)
         }
     }
     CHECK(k > total_submits, "failures: every lost-device submission reported as MLOD_ERROR_DEVICE");
+    /* the caller's VkAllocationCallbacks reach every Vulkan object the
+       context and its objects create, and all are given back */
+    {
+        VkAllocationCallbacks callbacks;
+        mlodvk_context_desc counted = mlodvk_device_context_desc(&device);
+        mlodvk_context *cctx = NULL;
+        memset(&callbacks, 0, sizeof callbacks);
+        callbacks.pfnAllocation = counting_alloc;
+        callbacks.pfnReallocation = counting_realloc;
+        callbacks.pfnFree = counting_free;
+        counted.vk_allocator = &callbacks;
+        outstanding = allocations = 0;
+        fail_alloc_at = fail_submit_at = 0;
+        if (mlodvk_context_create(&counted, &cctx, &e) == MLOD_OK) {
+            CHECK(pipeline_with(cctx, tree, views, 8, layout, &e) == MLOD_OK, "failures: with VkAllocationCallbacks: %s",
+                  e.message);
+            mlodvk_context_destroy(cctx);
+            CHECK(allocations > 0 && outstanding == 0,
+                  "failures: VkAllocationCallbacks saw %ld allocations, %ld outstanding after destruction", allocations,
+                  outstanding);
+        } else {
+            CHECK(0, "failures: a context with VkAllocationCallbacks: %s", e.message);
+        }
+    }
     /* after all that, the context still works */
     alloc_calls = submit_calls = 0;
     fail_alloc_at = fail_submit_at = 0;
