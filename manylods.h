@@ -792,12 +792,30 @@ static double mlod__distance_f(const float *a, const float *b)
    to degree 22 and 21: truncation below 1e-17).  Written out the same way
    in shaders/common.glsl, so that the CPU and the Vulkan path compute the
    same bits wherever the device's double arithmetic is IEEE (lavapipe). */
+/* 1 / (k (k - 1)) for k = 22, 20, .., 2 (cos) and 21, 19, .., 3 (sin), and
+   1 / (2k + 1) for k = 21 .. 0 (atan): the same decimal literals, so the
+   same doubles, in shaders/common.glsl. */
+static const double mlod__cos_terms[11] = {
+    0.0021645021645021645, 0.002631578947368421, 0.0032679738562091504, 0.004166666666666667,
+    0.005494505494505495, 0.007575757575757576, 0.011111111111111112, 0.017857142857142856,
+    0.03333333333333333, 0.08333333333333333, 0.5};
+static const double mlod__sin_terms[10] = {
+    0.002380952380952381, 0.0029239766081871343, 0.003676470588235294, 0.004761904761904762,
+    0.00641025641025641, 0.00909090909090909, 0.013888888888888888, 0.023809523809523808, 0.05,
+    0.16666666666666666};
+static const double mlod__atan_terms[22] = {
+    0.023255813953488372, 0.024390243902439025, 0.02564102564102564, 0.02702702702702703,
+    0.02857142857142857, 0.030303030303030304, 0.03225806451612903, 0.034482758620689655,
+    0.037037037037037035, 0.04, 0.043478260869565216, 0.047619047619047616, 0.05263157894736842,
+    0.058823529411764705, 0.06666666666666667, 0.07692307692307693, 0.09090909090909091,
+    0.1111111111111111, 0.14285714285714285, 0.2, 0.3333333333333333, 1.0};
+
 static void mlod__sin_cos(double a, double *sin_a, double *cos_a)
 {
     double x = a - 1.57079632679489661923, x2 = x * x, c = 1.0, s = 1.0;
     int k;
-    for (k = 22; k >= 2; k -= 2) c = 1.0 - x2 / (double)(k * (k - 1)) * c;
-    for (k = 21; k >= 3; k -= 2) s = 1.0 - x2 / (double)(k * (k - 1)) * s;
+    for (k = 0; k < 11; k++) c = 1.0 - x2 * mlod__cos_terms[k] * c;
+    for (k = 0; k < 10; k++) s = 1.0 - x2 * mlod__sin_terms[k] * s;
     *sin_a = c;      /* sin(pi/2 + x) = cos x */
     *cos_a = -x * s; /* cos(pi/2 + x) = -sin x */
 }
@@ -821,7 +839,7 @@ static double mlod__atan2(double y, double x)
     }
     u2 = u * u;
     s = 1.0 / 45.0;
-    for (k = 21; k >= 0; k--) s = 1.0 / (double)(2 * k + 1) - u2 * s;
+    for (k = 0; k < 22; k++) s = mlod__atan_terms[k] - u2 * s;
     a = base + u * s;
     if (swap) a = 1.57079632679489661923 - a;
     return x < 0.0 ? 3.14159265358979323846 - a : a;

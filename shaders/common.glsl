@@ -147,6 +147,22 @@ double dot3(dvec3 a, dvec3 b)
     return s;
 }
 
+// mlod__cos_terms, mlod__sin_terms, mlod__atan_terms (the same literals)
+const double COS_TERMS[11] = double[](
+    0.0021645021645021645LF, 0.002631578947368421LF, 0.0032679738562091504LF, 0.004166666666666667LF,
+    0.005494505494505495LF, 0.007575757575757576LF, 0.011111111111111112LF, 0.017857142857142856LF,
+    0.03333333333333333LF, 0.08333333333333333LF, 0.5LF);
+const double SIN_TERMS[10] = double[](
+    0.002380952380952381LF, 0.0029239766081871343LF, 0.003676470588235294LF, 0.004761904761904762LF,
+    0.00641025641025641LF, 0.00909090909090909LF, 0.013888888888888888LF, 0.023809523809523808LF, 0.05LF,
+    0.16666666666666666LF);
+const double ATAN_TERMS[22] = double[](
+    0.023255813953488372LF, 0.024390243902439025LF, 0.02564102564102564LF, 0.02702702702702703LF,
+    0.02857142857142857LF, 0.030303030303030304LF, 0.03225806451612903LF, 0.034482758620689655LF,
+    0.037037037037037035LF, 0.04LF, 0.043478260869565216LF, 0.047619047619047616LF, 0.05263157894736842LF,
+    0.058823529411764705LF, 0.06666666666666667LF, 0.07692307692307693LF, 0.09090909090909091LF,
+    0.1111111111111111LF, 0.14285714285714285LF, 0.2LF, 0.3333333333333333LF, 1.0LF);
+
 // mlod__sin_cos
 void sin_cos(double a, out double sin_a, out double cos_a)
 {
@@ -154,8 +170,8 @@ void sin_cos(double a, out double sin_a, out double cos_a)
     precise double x2 = x * x;
     precise double c = 1.0LF;
     precise double s = 1.0LF;
-    for (int k = 22; k >= 2; k -= 2) c = 1.0LF - x2 / double(k * (k - 1)) * c;
-    for (int k = 21; k >= 3; k -= 2) s = 1.0LF - x2 / double(k * (k - 1)) * s;
+    [[unroll]] for (int k = 0; k < 11; k++) c = 1.0LF - x2 * COS_TERMS[k] * c;
+    [[unroll]] for (int k = 0; k < 10; k++) s = 1.0LF - x2 * SIN_TERMS[k] * s;
     sin_a = c;
     cos_a = -x * s;
 }
@@ -358,7 +374,7 @@ double atan2_d(double y, double x)
     }
     precise double u2 = u * u;
     precise double s = 1.0LF / 45.0LF;
-    for (int k = 21; k >= 0; k--) s = 1.0LF / double(2 * k + 1) - u2 * s;
+    [[unroll]] for (int k = 0; k < 22; k++) s = ATAN_TERMS[k] - u2 * s;
     precise double a = base + u * s;
     if (swap) a = 1.57079632679489661923LF - a;
     precise double result = x < 0.0LF ? MLOD_PI - a : a;
