@@ -133,6 +133,7 @@ static void config_quick(config *c)
     memcpy(c->sizes, sizes, sizeof sizes);
     c->size_count = 2;
     c->room_skips[0] = c->room_skips[1] = 0;
+    c->vulkan_n = 1u << 12;
     c->warmup = 1;
     c->measured = 3;
     c->receivers = 1024;
