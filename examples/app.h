@@ -882,6 +882,27 @@ static inline int app_make_dir(const char *dir, char *error, size_t error_size)
     return 1;
 }
 
+/* The start every example shares: the thread pool, the scene, the output
+   directory.  Returns 1, or 0 after printing "program: why" and undoing
+   what it started. */
+static inline int app_begin(const char *program, const app_options *o, app_threads *threads, app_scene *scene)
+{
+    char message[256];
+    app_threads_start(threads, o->threads);
+    if (!app_scene_create(scene, o->mesh_path, o->tiny, message, sizeof message)) {
+        fprintf(stderr, "%s: %s\n", program, message);
+        app_threads_stop(threads);
+        return 0;
+    }
+    if (!app_make_dir(o->out_dir, message, sizeof message)) {
+        fprintf(stderr, "%s: %s\n", program, message);
+        app_scene_destroy(scene);
+        app_threads_stop(threads);
+        return 0;
+    }
+    return 1;
+}
+
 /* Write an 8-bit RGB picture as dir/name, printing what went wrong.
    Returns 1, or 0. */
 static inline int app_write_png(const char *program, const char *dir, const char *name, uint32_t width,

@@ -304,7 +304,6 @@ int main(int argc, char **argv)
     float *exact = NULL;
     metrics maps_cut, maps_ism;
     shade_job job;
-    char message[512];
     const char *program = "instant_radiosity";
     double t0, build_ms, cut_ms = 0, splat_ms = 0, exposure = 0;
     uint64_t drawn_total = 0, nodes_total = 0;
@@ -320,16 +319,7 @@ int main(int argc, char **argv)
     memset(&lit, 0, sizeof lit);
     memset(&ism, 0, sizeof ism);
     memset(&reference, 0, sizeof reference);
-    app_threads_start(&threads, o.threads);
-    if (!app_scene_create(&scene, o.mesh_path, o.tiny, message, sizeof message)) {
-        fprintf(stderr, "%s: %s\n", program, message);
-        app_threads_stop(&threads);
-        return 1;
-    }
-    if (!app_make_dir(o.out_dir, message, sizeof message)) {
-        fprintf(stderr, "%s: %s\n", program, message);
-        goto done;
-    }
+    if (!app_begin(program, &o, &threads, &scene)) return 1;
     views = (mlod_view *)calloc(o.views, sizeof *views);
     vpls = (vpl *)calloc(o.views, sizeof *vpls);
     maps = (app_paraboloid *)calloc(o.views, sizeof *maps);

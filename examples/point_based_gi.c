@@ -190,7 +190,6 @@ int main(int argc, char **argv)
     float *local = NULL, *weight = NULL;
     mlod_cut_params params;
     mlod_error error;
-    char message[512];
     const char *program = "point_based_gi";
     double t0, bake_ms, camera_ms, cut_ms, splat_ms, gather_ms, interpolate_ms, weight_sum;
     uint64_t nodes = 0, drawn = 0;
@@ -204,16 +203,7 @@ int main(int argc, char **argv)
     memset(&direct, 0, sizeof direct);
     memset(&indirect, 0, sizeof indirect);
     memset(&lit, 0, sizeof lit);
-    app_threads_start(&threads, o.threads);
-    if (!app_scene_create(&scene, o.mesh_path, o.tiny, message, sizeof message)) {
-        fprintf(stderr, "%s: %s\n", program, message);
-        app_threads_stop(&threads);
-        return 1;
-    }
-    if (!app_make_dir(o.out_dir, message, sizeof message)) {
-        fprintf(stderr, "%s: %s\n", program, message);
-        goto done;
-    }
+    if (!app_begin(program, &o, &threads, &scene)) return 1;
     /* gather points on a grid: one per spacing x spacing pixels */
     spacing = (uint32_t)floor(sqrt((double)o.width * o.height / o.views) + 0.5);
     if (spacing < 1) spacing = 1;

@@ -195,7 +195,6 @@ int main(int argc, char **argv)
     uint8_t *mirror = NULL;
     mlod_cut_params params;
     mlod_error error;
-    char message[512];
     const char *program = "reflections";
     double t0, bake_ms, cut_ms, splat_ms, fill_ms, render_ms, diff = 0.0, sum = 0.0;
     uint64_t nodes = 0, drawn = 0, mirror_pixels = 0;
@@ -207,16 +206,7 @@ int main(int argc, char **argv)
     memset(&error, 0, sizeof error);
     memset(&image, 0, sizeof image);
     memset(&reference, 0, sizeof reference);
-    app_threads_start(&threads, o.threads);
-    if (!app_scene_create(&scene, o.mesh_path, o.tiny, message, sizeof message)) {
-        fprintf(stderr, "%s: %s\n", program, message);
-        app_threads_stop(&threads);
-        return 1;
-    }
-    if (!app_make_dir(o.out_dir, message, sizeof message)) {
-        fprintf(stderr, "%s: %s\n", program, message);
-        goto done;
-    }
+    if (!app_begin(program, &o, &threads, &scene)) return 1;
     spheres = (sphere *)calloc(o.views, sizeof *spheres);
     views = (mlod_view *)calloc(o.views, sizeof *views);
     mirror = (uint8_t *)calloc((size_t)o.width * o.height, 1);
