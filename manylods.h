@@ -2137,24 +2137,26 @@ MANYLODS_DEF mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_fra
    - r^2) + cos a r), and cos(a + b) > 0; no inverse trigonometry. */
 static int mlod__backfacing(const mlod__pview *pv, const double *x, double d2, double r, const float *cone)
 {
-    double sa, ca, along, len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
+    double sa, ca, away, len;
     /* a half-angle of pi/2 or more, or an axis not turned away from the eye
        (g <= pi/2), always has a normal facing it: those return before the
-       series (half the nodes of a closed surface) */
-    if (!(cone[3] < 0.5 * MLOD__PI) || !(len > 0.0)) return 0;
+       square root and the series (half the nodes of a closed surface) */
+    if (!(cone[3] < 0.5 * MLOD__PI)) return 0;
     if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) { /* the eye is at -w, b = 0 */
-        along = -(cone[0] * pv->w[0] + cone[1] * pv->w[1] + cone[2] * pv->w[2]) / len;
-        if (!(along < 0.0)) return 0;
+        away = -(cone[0] * pv->w[0] + cone[1] * pv->w[1] + cone[2] * pv->w[2]);
+        if (!(away < 0.0)) return 0;
+        len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
         mlod__sin_cos(cone[3], &sa, &ca);
-        return ca > 0.0 && along < -sa;
+        return ca > 0.0 && away / len < -sa;
     } else {
         double tangent;
         if (d2 <= r * r) return 0;
-        along = -(cone[0] * x[0] + cone[1] * x[1] + cone[2] * x[2]) / len;
-        if (!(along < 0.0)) return 0;
+        away = -(cone[0] * x[0] + cone[1] * x[1] + cone[2] * x[2]);
+        if (!(away < 0.0)) return 0;
+        len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
         tangent = sqrt(d2 - r * r);
         mlod__sin_cos(cone[3], &sa, &ca);
-        return ca * tangent - sa * r > 0.0 && along < -(sa * tangent + ca * r);
+        return ca * tangent - sa * r > 0.0 && away / len < -(sa * tangent + ca * r);
     }
 }
 

@@ -181,23 +181,26 @@ void sin_cos(double a, out double sin_a, out double cos_a)
 bool backfacing(uint view, dvec3 x, double d2, double r, vec4 cone)
 {
     double c0 = double(cone.x), c1 = double(cone.y), c2 = double(cone.z);
-    precise double len = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
-    if (!(double(cone.w) < 0.5LF * MLOD_PI) || !(len > 0.0LF)) return false;
+    if (!(double(cone.w) < 0.5LF * MLOD_PI)) return false;
     double sa, ca;
     if (view_kind(view) == KIND_ORTHOGRAPHIC) {
         dvec3 w = vd3(view, V_FORWARD);
-        precise double along = -(c0 * w.x + c1 * w.y + c2 * w.z) / len;
-        if (!(along < 0.0LF)) return false;
+        precise double away = -(c0 * w.x + c1 * w.y + c2 * w.z);
+        if (!(away < 0.0LF)) return false;
+        precise double len = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
         sin_cos(double(cone.w), sa, ca);
+        precise double along = away / len;
         return ca > 0.0LF && along < -sa;
     }
     if (d2 <= r * r) return false;
-    precise double along = -(c0 * x.x + c1 * x.y + c2 * x.z) / len;
-    if (!(along < 0.0LF)) return false;
+    precise double away = -(c0 * x.x + c1 * x.y + c2 * x.z);
+    if (!(away < 0.0LF)) return false;
+    precise double len = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
     precise double tangent = sqrt(d2 - r * r);
     sin_cos(double(cone.w), sa, ca);
     precise double lhs = ca * tangent - sa * r;
     precise double rhs = -(sa * tangent + ca * r);
+    precise double along = away / len;
     return lhs > 0.0LF && along < rhs;
 }
 #endif // MLOD_NO_VIEWS
