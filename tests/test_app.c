@@ -16,6 +16,7 @@
 #include "../manylods.h"
 #include "../examples/app.h"
 #include "harness.h"
+#include "tempdir.h"
 
 #include <unistd.h>
 
@@ -167,9 +168,9 @@ static void test_scene(void)
     }
     app_scene_destroy(&s);
     {
-        char dir[] = "/tmp/manylods-app-XXXXXX", path[256];
+        char dir[200], path[256];
         FILE *f;
-        if (mkdtemp(dir)) {
+        if (test_temp_dir(dir, sizeof dir, "app")) {
             snprintf(path, sizeof path, "%s/quad.obj", dir);
             f = fopen(path, "w");
             if (f) {

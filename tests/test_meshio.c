@@ -28,6 +28,7 @@
 #include <unistd.h>
 
 #include "harness.h"
+#include "tempdir.h"
 #include "../examples/meshio.h"
 
 static char message[512];
@@ -496,10 +497,8 @@ static void test_mutations(void)
 
 int main(void)
 {
-    const char *tmp = getenv("TMPDIR");
-    snprintf(temp_dir, sizeof temp_dir, "%s/manylods-meshio-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(temp_dir)) {
-        perror("mkdtemp");
+    if (!test_temp_dir(temp_dir, sizeof temp_dir, "meshio")) {
+        perror("test_temp_dir");
         return 1;
     }
     test_obj_valid();

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "harness.h"
+#include "tempdir.h"
 #include "pngread.h"
 #include "../examples/scenes.h"
 
@@ -221,10 +222,8 @@ static void test_blank(void)
 
 int main(void)
 {
-    const char *tmp = getenv("TMPDIR");
-    snprintf(temp_dir, sizeof temp_dir, "%s/manylods-png-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(temp_dir)) {
-        perror("mkdtemp");
+    if (!test_temp_dir(temp_dir, sizeof temp_dir, "png")) {
+        perror("test_temp_dir");
         return 1;
     }
     test_checksums();
