@@ -389,6 +389,19 @@ MANYLODS_DEF mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *p
 /* Free the tree and everything it owns.  NULL is fine. */
 MANYLODS_DEF void mlod_tree_destroy(mlod_tree *tree);
 
+/* For refits done elsewhere (manylods_vk.h): the internal nodes at one
+   depth of the implicit tree of leaf_count leaves are first .. last
+   (returns 1), or there are none (returns 0).  Merging depth by depth,
+   deepest first, is the refit's order.  Pure. */
+MANYLODS_DEF int mlod_tree_depth_nodes(uint32_t leaf_count, uint32_t depth, uint32_t *first, uint32_t *last);
+
+/* The refit's range check: a sampled triangle grown `growth` times its
+   area at build must keep radii (radius_scale sqrt(area_unit growth)) and
+   summed areas (growth x leaf_count, in build units) within float range;
+   MLOD_OK or MLOD_ERROR_RANGE with a message.  Pure. */
+MANYLODS_DEF mlod_result mlod_refit_check_growth(float radius_scale, double area_unit, uint32_t leaf_count,
+                                                 double growth, mlod_error *error);
+
 /* ------------------------------------------------------------------ views */
 
 typedef enum mlod_view_kind {
@@ -494,6 +507,11 @@ MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
    Memory grows with the cut sizes, not with views x N. */
 MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                          const mlod_cut_params *params, mlod_error *error);
+
+/* The checks mlod_cut_update makes of its parameters alone (mode,
+   epsilon, lazy_steps): MLOD_OK, MLOD_ERROR_INVALID_ARGUMENT or
+   MLOD_ERROR_BAD_EPSILON with a message.  Pure. */
+MANYLODS_DEF mlod_result mlod_cut_params_check(const mlod_cut_params *params, mlod_error *error);
 
 /* Forget the previous cuts: the next update starts from the root. */
 MANYLODS_DEF void mlod_cut_reset(mlod_cut *cut);
@@ -1015,8 +1033,7 @@ static void mlod__merge_node(mlod_tree *tree, uint32_t i)
     }
 }
 
-/* Internal nodes of one depth: [first, last]. Returns 0 when none. */
-static int mlod__level_range(uint32_t depth, uint32_t leaf_count, uint32_t *first, uint32_t *last)
+MANYLODS_DEF int mlod_tree_depth_nodes(uint32_t leaf_count, uint32_t depth, uint32_t *first, uint32_t *last)
 {
     uint64_t lo = ((uint64_t)1 << depth) - 1, hi = ((uint64_t)1 << (depth + 1)) - 2;
     if (leaf_count < 2 || lo > (uint64_t)leaf_count - 2) return 0;
@@ -1211,7 +1228,7 @@ static void mlod__merge_all(mlod_tree *tree, const mlod_parallel *parallel)
     uint32_t depth, deepest = mlod__depth_of(2 * (uint64_t)tree->leaf_count - 2);
     for (depth = deepest; depth-- > 0;) {
         mlod__merge_job job;
-        if (!mlod__level_range(depth, tree->leaf_count, &job.first, &job.last)) continue;
+        if (!mlod_tree_depth_nodes(tree->leaf_count, depth, &job.first, &job.last)) continue;
         job.tree = tree;
         mlod__run(parallel, (job.last - job.first) / MLOD__MERGE_CHUNK + 1, mlod__merge_task, &job);
     }
@@ -1767,6 +1784,15 @@ static mlod_result mlod__check_refit_tree(const mlod_tree *tree, int mesh, mlod_
     return MLOD_OK;
 }
 
+MANYLODS_DEF mlod_result mlod_refit_check_growth(float radius_scale, double area_unit, uint32_t leaf_count,
+                                                 double growth, mlod_error *error)
+{
+    if (!(radius_scale * sqrt(area_unit * growth) <= MLOD__MAX_MEASURE) || !(growth * leaf_count <= MLOD__MAX_MEASURE))
+        return mlod__fail(error, MLOD_ERROR_RANGE, "a triangle grew %g times its build area: radii or areas would overflow",
+                          growth);
+    return MLOD_OK;
+}
+
 MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh, const mlod_parallel *parallel,
                                          mlod_error *error)
 {
@@ -1790,10 +1816,8 @@ MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
                 double g = mlod__triangle_area(mesh, t) / tree->triangle_areas[t];
                 if (g > growth) growth = g;
             }
-        if (!(tree->radius_scale * sqrt(tree->area_unit * growth) <= MLOD__MAX_MEASURE) ||
-            !(growth * tree->leaf_count <= MLOD__MAX_MEASURE))
-            return mlod__fail(error, MLOD_ERROR_RANGE, "a triangle grew %g times its build area: radii or areas would overflow",
-                              growth);
+        res = mlod_refit_check_growth(tree->radius_scale, tree->area_unit, tree->leaf_count, growth, error);
+        if (res != MLOD_OK) return res;
     }
     job.tree = tree;
     job.mesh = mesh;
@@ -2771,18 +2795,26 @@ static int mlod__place_output(mlod_cut *cut, mlod__list *out)
     return mlod__reserve_list(cut, out, at);
 }
 
-static mlod_result mlod__check_cut_params(const mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
-                                          const mlod_cut_params *params, mlod_error *error)
+MANYLODS_DEF mlod_result mlod_cut_params_check(const mlod_cut_params *params, mlod_error *error)
 {
-    uint32_t v;
-    if (!cut || !tree || !views || !params)
-        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "cut, tree, views and params must not be NULL");
+    if (!params) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "params is NULL");
     if ((unsigned)params->mode > (unsigned)MLOD_CUT_LAZY)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown cut mode %d", (int)params->mode);
     if (!(params->epsilon > 0.0f))
         return mlod__fail(error, MLOD_ERROR_BAD_EPSILON, "epsilon %g must be > 0 (pixels)", params->epsilon);
     if (params->mode == MLOD_CUT_LAZY && params->lazy_steps == 0)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "lazy mode needs lazy_steps >= 1");
+    return mlod__succeed(error);
+}
+
+static mlod_result mlod__check_cut_params(const mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+                                          const mlod_cut_params *params, mlod_error *error)
+{
+    uint32_t v;
+    mlod_result res;
+    if (!cut || !tree || !views || !params)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "cut, tree, views and params must not be NULL");
+    if ((res = mlod_cut_params_check(params, error)) != MLOD_OK) return res;
     if (tree->node_count == 0 || !tree->spheres)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the tree is empty");
     for (v = 0; v < cut->view_count; v++) {

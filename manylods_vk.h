@@ -8105,18 +8105,6 @@ MANYLODS_VK_DEF mlod_result mlodvk_tree_upload_refit(mlodvk_context *ctx, mlodvk
     return mlodvk__ok(error);
 }
 
-/* Internal nodes of one depth of the implicit tree: [first, last] (as
-   mlod__level_range). */
-static int mlodvk__level_range(uint32_t depth, uint32_t leaf_count, uint32_t *first, uint32_t *last)
-{
-    uint64_t lo = ((uint64_t)1 << depth) - 1, hi = ((uint64_t)1 << (depth + 1)) - 2;
-    if (leaf_count < 2 || lo > (uint64_t)leaf_count - 2) return 0;
-    if (hi > (uint64_t)leaf_count - 2) hi = (uint64_t)leaf_count - 2;
-    *first = (uint32_t)lo;
-    *last = (uint32_t)hi;
-    return 1;
-}
-
 static int mlodvk__aligned(const mlodvk_context *ctx, VkDeviceSize offset)
 {
     VkDeviceSize a = ctx->properties.limits.minStorageBufferOffsetAlignment;
@@ -8211,9 +8199,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *
     {
         double growth;
         memcpy(&growth, &found->growth_bits, sizeof growth);
-        if (!(t->radius_scale * sqrt(t->area_unit * growth) <= 1.0e37) || !(growth * t->leaf_count <= 1.0e37))
-            return mlodvk__fail(error, MLOD_ERROR_RANGE,
-                                "a triangle grew %g times its build area: radii or areas would overflow", growth);
+        res = mlod_refit_check_growth(t->radius_scale, t->area_unit, t->leaf_count, growth, error);
+        if (res != MLOD_OK) return res;
     }
     /* 2: the leaves, then one depth at a time, deepest first */
     res = mlodvk__begin(ctx, error);
@@ -8226,7 +8213,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *
         mlodvk__barrier(ctx);
         for (depth = 32; depth-- > 0;) {
             uint32_t first, last;
-            if (!mlodvk__level_range(depth, t->leaf_count, &first, &last)) continue;
+            if (!mlod_tree_depth_nodes(t->leaf_count, depth, &first, &last)) continue;
             push.first = first;
             push.count = last - first + 1;
             mlodvk__dispatch(ctx, MLODVK__REFIT_MERGE, ctx->layouts[MLODVK__LAYOUT_REFIT], t->set, &push, sizeof push,
@@ -8467,17 +8454,6 @@ static mlod_result mlodvk__cut_grow(mlodvk_context *ctx, mlodvk_cut *c, uint32_t
     return MLOD_OK;
 }
 
-static mlod_result mlodvk__check_params(const mlod_cut_params *p, mlod_error *error)
-{
-    if (!p) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "params is NULL");
-    if ((unsigned)p->mode > (unsigned)MLOD_CUT_LAZY)
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown cut mode %d", (int)p->mode);
-    if (!(p->epsilon > 0.0f)) return mlodvk__fail(error, MLOD_ERROR_BAD_EPSILON, "epsilon %g must be > 0", p->epsilon);
-    if (p->mode == MLOD_CUT_LAZY && p->lazy_steps == 0)
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "lazy_steps must be >= 1 in lazy mode");
-    return MLOD_OK;
-}
-
 /* Write the views' frames into the host-visible views buffer. */
 static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, mlod_error *error)
 {
@@ -8540,7 +8516,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
     uint32_t depth = 0, rounds_left, entries;
     uint64_t evaluated = 0, steps = 0;
     if (!ctx || !c || !t || !views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, cut, tree and views are needed");
-    if ((res = mlodvk__check_params(params, error)) != MLOD_OK) return res;
+    if ((res = mlod_cut_params_check(params, error)) != MLOD_OK) return res;
     if ((res = mlodvk__upload_views(c, views, error)) != MLOD_OK) return res;
     while (((uint64_t)1 << depth) < (uint64_t)t->node_count + 1) depth++;
     from_root = params->mode == MLOD_CUT_BASIC || !c->has_views || c->tree != t || c->tree_generation != t->generation ||

@@ -644,13 +644,18 @@ static int cut_partitions_by_walk(const mlod_tree *tree, const mlod_cut_view *c,
     return 1;
 }
 
+/* Two views' cuts list the same nodes with the same statuses. */
+static int same_cut_view(mlod_cut_view x, mlod_cut_view y)
+{
+    return x.count == y.count && memcmp(x.nodes, y.nodes, sizeof(uint32_t) * x.count) == 0 &&
+           memcmp(x.status, y.status, x.count) == 0;
+}
+
 static int cuts_equal(const mlod_cut *a, const mlod_cut *b, uint32_t *first_difference)
 {
     uint32_t v, views = mlod_cut_view_count(a);
     for (v = 0; v < views; v++) {
-        mlod_cut_view x = mlod_cut_get(a, v), y = mlod_cut_get(b, v);
-        if (x.count != y.count || memcmp(x.nodes, y.nodes, sizeof(uint32_t) * x.count) != 0 ||
-            memcmp(x.status, y.status, x.count) != 0) {
+        if (!same_cut_view(mlod_cut_get(a, v), mlod_cut_get(b, v))) {
             *first_difference = v;
             return 0;
         }
@@ -1180,12 +1185,7 @@ static void run_vulkan(bench *b, protocol *p, uint32_t n)
             }
             /* checked outside the times: the same cut, node for node */
             if (mlodvk_cut_download(ctx, vcut[m], &e) != MLOD_OK) fail("mlodvk_cut_download: %s", e.message);
-            for (v = 0; v < p->view_count; v++) {
-                mlod_cut_view a = mlodvk_cut_get(vcut[m], v), bb = mlod_cut_get(cut[m], v);
-                if (a.count != bb.count || memcmp(a.nodes, bb.nodes, 4 * (size_t)a.count) != 0 ||
-                    memcmp(a.status, bb.status, a.count) != 0)
-                    differing++;
-            }
+            for (v = 0; v < p->view_count; v++) differing += !same_cut_view(mlodvk_cut_get(vcut[m], v), mlod_cut_get(cut[m], v));
             /* equal on an IEEE device (lavapipe); a GPU may differ at near-ties (manylods_vk.h) */
             if (differing && device.type == VK_PHYSICAL_DEVICE_TYPE_CPU)
                 fail("vulkan, frame %d, %s: %u device cuts differ from the CPU's", f, names[VK_BASIC + m], differing);

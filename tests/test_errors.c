@@ -636,11 +636,55 @@ static void test_result_names(void)
     CHECK(unknown && unknown[0], "mlod_result_name(99) is NULL or empty");
 }
 
+/* The checks and tree helpers other backends share (manylods_vk.h). */
+static void test_shared_checks(void)
+{
+    mlod_cut_params p;
+    mlod_error e;
+    uint32_t n, d, first, last;
+    int bad = 0;
+    memset(&p, 0, sizeof p);
+    p.epsilon = 1.0f;
+    CHECK(mlod_cut_params_check(NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "params check: NULL");
+    CHECK(mlod_cut_params_check(&p, &e) == MLOD_OK, "params check: basic, epsilon 1");
+    p.epsilon = 0.0f;
+    CHECK(mlod_cut_params_check(&p, &e) == MLOD_ERROR_BAD_EPSILON, "params check: epsilon 0");
+    p.epsilon = NAN;
+    CHECK(mlod_cut_params_check(&p, &e) == MLOD_ERROR_BAD_EPSILON, "params check: epsilon NaN");
+    p.epsilon = INFINITY;
+    p.mode = MLOD_CUT_LAZY;
+    CHECK(mlod_cut_params_check(&p, &e) == MLOD_ERROR_INVALID_ARGUMENT, "params check: lazy with 0 steps");
+    p.lazy_steps = 1;
+    CHECK(mlod_cut_params_check(&p, &e) == MLOD_OK, "params check: lazy, 1 step, epsilon +inf");
+    p.mode = (mlod_cut_mode)7;
+    CHECK(mlod_cut_params_check(&p, &e) == MLOD_ERROR_INVALID_ARGUMENT, "params check: mode 7");
+    /* depth ranges against the depth of every internal node */
+    for (n = 1; n <= 70 && !bad; n++)
+        for (d = 0; d < 8 && !bad; d++) {
+            uint32_t i, lo = UINT32_MAX, hi = 0;
+            int any = 0;
+            for (i = 0; i + 1 < n; i++)
+                if (tu_depth(i) == d) {
+                    any = 1;
+                    if (i < lo) lo = i;
+                    if (i > hi) hi = i;
+                }
+            if (mlod_tree_depth_nodes(n, d, &first, &last) != any || (any && (first != lo || last != hi))) bad = 1;
+        }
+    CHECK(!bad, "mlod_tree_depth_nodes differs from the depths of the internal nodes (N %u, depth %u)", n - 1, d - 1);
+    /* the growth limit: radii and summed areas within 1e37 */
+    CHECK(mlod_refit_check_growth(1.0f, 1.0, 1000, 1e30, &e) == MLOD_OK, "growth 1e30 of 1000 leaves is fine");
+    CHECK(mlod_refit_check_growth(1.0f, 1.0, 1000, 1e35, &e) == MLOD_ERROR_RANGE, "growth 1e35 of 1000 leaves: summed areas");
+    CHECK(mlod_refit_check_growth(1.0f, 1e60, 1, 1e20, &e) == MLOD_ERROR_RANGE, "a radius sqrt(1e80): too large");
+    CHECK(mlod_refit_check_growth(1.0f, 1.0, 1, NAN, &e) == MLOD_ERROR_RANGE, "growth NaN is refused");
+}
+
 int main(void)
 {
     int rc;
     counting = tu_allocator(&counter);
     test_result_names();
+    test_shared_checks();
     test_build_errors();
     test_points_errors();
     test_view_errors();
