@@ -149,7 +149,16 @@
        paraboloid, dual paraboloid: |p - eye| (Euclidean distance).
      Pixel (i, j) of a tile covers [i, i+1) x [j, j+1), x to the right
      (forward x up), y downwards; mlod_view_project and mlod_view_pixel_ray
-     are the projection and its inverse.  mlod_splat_ism() is the Imperfect
+     are the projection and its inverse.
+     The whole image is conservative: every silhouette grows by up to the
+     drawn node's radius, up to epsilon / 2 pixels, so occluders (and their
+     shadows) come out wider than they are.  mlod_atlas_desc.disc_scale
+     draws smaller discs, sampled at pixel centres only; the holes left are
+     filled by mlod_atlas_fill_holes.  On the instant radiosity example
+     (epsilon 1, 32 x 32 paraboloid maps), disc_scale 0.5 with the fill cut
+     the indirect light's error against exact visibility from 7.2 % to
+     2.7 % (ISM at equal time: 4.2-4.8 %; ray-cast maps: 2.0 %), for about
+     the time of the fill.  mlod_splat_ism() is the Imperfect
      Shadow Maps baseline (a fixed random subset of leaves per view) and
      mlod_atlas_fill_holes() the pull-push hole filling for either.
      mlod_suggest_sample_count() gives the smallest N whose leaves are at
@@ -554,9 +563,12 @@ enum {
     MLOD_ATLAS_COLOR = 1u << 1   /* the drawn node's mean colour (trees with colours) */
 };
 
+/* Zero-initialise it (memset or = {0}): a zero field means its default. */
 typedef struct mlod_atlas_desc {
     uint32_t columns;  /* tiles per row; 0: ceil(sqrt(views)) */
     uint32_t channels; /* MLOD_ATLAS_* */
+    float disc_scale;  /* drawn disc radius / sphere image radius, in (0, 1];
+                          0: 1 (see mlod_splat) */
 } mlod_atlas_desc;
 
 /* One image holding a tile per view, laid out as a grid of equal cells (the
@@ -569,6 +581,7 @@ typedef struct mlod_atlas {
     uint32_t view_count;
     uint32_t channels;
     uint32_t cell_width, cell_height, columns;
+    float disc_scale;         /* as given in mlod_atlas_desc (0 became 1) */
     float *depth;
     float *normal;
     float *color;
@@ -579,7 +592,8 @@ typedef struct mlod_atlas {
 } mlod_atlas;
 
 /* Create an atlas for view_count >= 1 views (their tile sizes fix the
-   layout).  Sizes that overflow return MLOD_ERROR_OVERFLOW. */
+   layout).  Sizes that overflow return MLOD_ERROR_OVERFLOW; a disc_scale
+   outside (0, 1] (other than 0), or NaN, MLOD_ERROR_INVALID_ARGUMENT. */
 MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
                                            const mlod_allocator *allocator, mlod_atlas **out_atlas,
                                            mlod_error *error);
@@ -589,10 +603,13 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
    COARSE) of every view's cut into its tile as a disc: the disc around the
    exact image of the node's sphere (the image's diameter c(node, view),
    centred on the image's centre; paraboloid halves use the larger of their
-   two pixel scales), holding the depth of the sphere's centre (as in
-   mlod_view_project).  Nearest depth wins; equal depths keep the node drawn
-   first.  A pixel is drawn when its centre lies in the disc; a disc
-   covering no pixel centre still sets the pixel holding its centre.  Nodes
+   two pixel scales) with its radius times the atlas's disc_scale, holding
+   the depth of the sphere's centre (as in mlod_view_project).  Nearest
+   depth wins; equal depths keep the node drawn first.  A pixel is drawn
+   when its centre lies in the disc.  At disc_scale 1 a disc covering no
+   pixel centre still sets the pixel holding its centre, so a cut leaves no
+   holes where its surface is; below 1 it draws nothing, and the holes are
+   mlod_atlas_fill_holes' to fill (see SPLATTING in the manual).  Nodes
    whose image is unbounded are not drawn (for a dual paraboloid: not in the
    half where it is unbounded).  The views must be
    those of the cut's last update.  Parallel over tiles and row bands;
@@ -604,7 +621,7 @@ MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
    atlas, then draw into each view points_per_view leaves of the tree chosen
    at random for that view (with replacement, from (seed, view, k): the same
    subset every call), each as the disc of its own sphere, as mlod_splat
-   draws nodes.  Parallel as mlod_splat. */
+   draws nodes (disc_scale included).  Parallel as mlod_splat. */
 MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views,
                                         uint32_t points_per_view, uint64_t seed, const mlod_parallel *parallel,
                                         mlod_error *error);
@@ -3051,6 +3068,9 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
     if (desc->channels & ~(uint32_t)(MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR))
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown atlas channel bits 0x%x", desc->channels);
+    if (!(desc->disc_scale >= 0.0f && desc->disc_scale <= 1.0f))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "disc_scale %g is not in (0, 1] (or 0 for 1)",
+                          (double)desc->disc_scale);
     for (v = 0; v < view_count; v++) {
         if (views[v].width == 0 || views[v].height == 0)
             return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "view %u has an empty tile", v);
@@ -3084,6 +3104,7 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     atlas->cell_width = cell_w;
     atlas->cell_height = cell_h;
     atlas->columns = columns;
+    atlas->disc_scale = desc->disc_scale == 0.0f ? 1.0f : desc->disc_scale;
     atlas->depth = (float *)mlod__alloc_array(&a, (size_t)pixels, sizeof(float), &atlas->bytes);
     ok = atlas->depth != NULL;
     if (desc->channels & MLOD_ATLAS_NORMAL)
@@ -3140,9 +3161,9 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
                               uint32_t col_end)
 {
     mlod_atlas *atlas = band->atlas;
-    double r2 = disc->radius * disc->radius;
-    double y0 = floor(disc->y - disc->radius), y1 = ceil(disc->y + disc->radius);
-    double x0 = floor(disc->x - disc->radius), x1 = ceil(disc->x + disc->radius);
+    double radius = disc->radius * (double)atlas->disc_scale, r2 = radius * radius;
+    double y0 = floor(disc->y - radius), y1 = ceil(disc->y + radius);
+    double x0 = floor(disc->x - radius), x1 = ceil(disc->x + radius);
     uint32_t row, col, rb, re, cb, ce;
     float depth = (float)disc->depth;
     int hit = 0;
@@ -3167,7 +3188,8 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
             }
         }
     }
-    if (!hit && disc->x >= col_begin && disc->x < col_end && disc->y >= band->row_begin && disc->y < band->row_end) {
+    if (!hit && atlas->disc_scale >= 1.0f && disc->x >= col_begin && disc->x < col_end && disc->y >= band->row_begin &&
+        disc->y < band->row_end) {
         mlod__disc dot = *disc;
         dot.x = floor(disc->x) + 0.5;
         dot.y = floor(disc->y) + 0.5;

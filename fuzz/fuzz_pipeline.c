@@ -886,6 +886,7 @@ static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cu
     memset(&desc, 0, sizeof desc);
     desc.columns = rd_u8(r) % 10;
     desc.channels = channels & 3u;
+    desc.disc_scale = (float)((channels >> 2) & 7u) / 7.0f; /* 0 (whole discs), 1/7 .. 1 */
     if (!c->sane_views && r->chaos && channels >= 0xf8) desc.channels = channels;
     res = mlod_atlas_create(vs->views, vs->count, &desc, &c->alloc, &atlas, &e);
     if (res != MLOD_OK) {

@@ -1,10 +1,10 @@
 #version 450
 // shaders/splat_draw.comp - one thread per cut entry (ctl.current, args[2]):
 // a drawn entry (status DRAWN, OVERSIZE or COARSE) becomes the disc around
-// its sphere's image in its view's tile, as mlod__draw_node and
-// mlod__raster_disc in manylods.h: pixels whose centre lies in the disc,
-// or, when none of the 64-row band holding the disc's centre does, the
-// pixel holding the centre.
+// its sphere's image, its radius times pc.disc_scale, in its view's tile, as
+// mlod__draw_node and mlod__raster_disc in manylods.h: pixels whose centre
+// lies in the disc, or, at disc_scale 1, when none of the 64-row band
+// holding the disc's centre does, the pixel holding the centre.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
@@ -31,11 +31,12 @@ void plot(uint view, uint row, uint col, uint64_t key)
 void raster_disc(uint view, dvec4 disc, uint64_t entry, uint col_begin, uint col_end)
 {
     double tile_h = double(tiles[4u * view + 3u]);
-    precise double r2 = disc.z * disc.z;
+    precise double radius = disc.z * double(pc.disc_scale);
+    precise double r2 = radius * radius;
     if (!(disc.z < 1e9LF) || isinf(disc.x) || isnan(disc.x) || isinf(disc.y) || isnan(disc.y)) return;
     uint64_t key = (uint64_t(ordered_bits(float(disc.w))) << 32) | entry;
-    precise double y0 = floor(disc.y - disc.z), y1 = ceil(disc.y + disc.z);
-    precise double x0 = floor(disc.x - disc.z), x1 = ceil(disc.x + disc.z);
+    precise double y0 = floor(disc.y - radius), y1 = ceil(disc.y + radius);
+    precise double x0 = floor(disc.x - radius), x1 = ceil(disc.x + radius);
     uint rb = y0 < 0.0LF ? 0u : (y0 >= tile_h ? uint(tile_h) : uint(y0));
     uint re = y1 > tile_h ? uint(tile_h) : (y1 <= 0.0LF ? 0u : uint(y1));
     uint cb = x0 < double(col_begin) ? col_begin : (x0 >= double(col_end) ? col_end : uint(x0));
@@ -55,7 +56,7 @@ void raster_disc(uint view, dvec4 disc, uint64_t entry, uint col_begin, uint col
             }
         }
     }
-    if (!hit_in_band && centre_inside) plot(view, uint(floor(disc.y)), uint(floor(disc.x)), key);
+    if (!hit_in_band && centre_inside && pc.disc_scale >= 1.0) plot(view, uint(floor(disc.y)), uint(floor(disc.x)), key);
 }
 
 void main()

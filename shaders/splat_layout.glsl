@@ -36,6 +36,7 @@ layout(push_constant) uniform push_block {
     uint want_normal; // the atlas has normals (the tree has cones)
     uint want_color;  // the atlas has colours (the tree has colours)
     uint max_groups_x;
+    float disc_scale; // drawn radius / image radius, in (0, 1]; below 1, no pixel-holding-the-centre fallback
 } pc;
 
 uint group_index() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }

@@ -276,6 +276,7 @@ static int reaches_half(const frame *F, const double *c, double r, int half)
    none), and pixels whose outcome rounding may decide (skipped). */
 typedef struct expect {
     uint32_t W, H;
+    double disc_scale; /* the atlas's: drawn radius over the image's */
     double *depth;
     int64_t *node;
     uint8_t *unsure;
@@ -286,6 +287,7 @@ static void expect_init(expect *x, uint32_t W, uint32_t H)
     size_t n = (size_t)W * H, i;
     x->W = W;
     x->H = H;
+    x->disc_scale = 1.0;
     x->depth = (double *)malloc(sizeof(double) * n);
     x->node = (int64_t *)malloc(sizeof(int64_t) * n);
     x->unsure = (uint8_t *)calloc(n, 1);
@@ -314,18 +316,19 @@ static void expect_put(expect *x, uint32_t col, uint32_t row, double depth, int6
 }
 
 /* Draw a disc by the documented rule: every pixel whose centre lies in the
-   disc, clipped to columns [c0, c1); a disc covering no pixel centre sets
-   the pixel holding its centre. */
+   disc (its radius times disc_scale), clipped to columns [c0, c1); at
+   disc_scale 1, a disc covering no pixel centre sets the pixel holding its
+   centre. */
 static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, uint32_t c1)
 {
-    double tol = 1e-7 * (1.0 + dc->radius), lo_x, hi_x, lo_y, hi_y;
+    double radius = dc->radius * x->disc_scale, tol = 1e-7 * (1.0 + radius), lo_x, hi_x, lo_y, hi_y;
     int64_t i, j, i0, i1, j0, j1;
     int any = 0, maybe = 0;
     if (!(dc->radius < 1e6)) return;
-    lo_x = floor(dc->x - dc->radius - 1.0);
-    hi_x = ceil(dc->x + dc->radius + 1.0);
-    lo_y = floor(dc->y - dc->radius - 1.0);
-    hi_y = ceil(dc->y + dc->radius + 1.0);
+    lo_x = floor(dc->x - radius - 1.0);
+    hi_x = ceil(dc->x + radius + 1.0);
+    lo_y = floor(dc->y - radius - 1.0);
+    hi_y = ceil(dc->y + radius + 1.0);
     i0 = lo_x < (double)c0 ? c0 : (int64_t)lo_x;
     i1 = hi_x > (double)c1 ? c1 : (int64_t)hi_x;
     j0 = lo_y < 0.0 ? 0 : (int64_t)lo_y;
@@ -333,15 +336,15 @@ static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, ui
     for (j = j0; j < j1; j++)
         for (i = i0; i < i1; i++) {
             double ex = i + 0.5 - dc->x, ey = j + 0.5 - dc->y, dist = sqrt(ex * ex + ey * ey);
-            if (dist < dc->radius - tol) {
+            if (dist < radius - tol) {
                 any = 1;
                 expect_put(x, (uint32_t)i, (uint32_t)j, dc->depth, node);
-            } else if (dist <= dc->radius + tol) {
+            } else if (dist <= radius + tol) {
                 maybe = 1;
                 x->unsure[(size_t)j * x->W + i] |= 1;
             }
         }
-    if (!any && dc->x >= c0 && dc->x < c1 && dc->y >= 0.0 && dc->y < x->H) {
+    if (!any && x->disc_scale >= 1.0 && dc->x >= c0 && dc->x < c1 && dc->y >= 0.0 && dc->y < x->H) {
         uint32_t ci = (uint32_t)floor(dc->x), cj = (uint32_t)floor(dc->y);
         double fx = dc->x - floor(dc->x), fy = dc->y - floor(dc->y);
         if (maybe || fx < 1e-9 || fx > 1 - 1e-9 || fy < 1e-9 || fy > 1 - 1e-9)
@@ -455,6 +458,7 @@ static void add_atlas_comparison(raster_diff *rd, const mlod_atlas *atlas, const
         expect x;
         mlod_cut_view cv = mlod_cut_get(cut, v);
         expect_init(&x, views[v].width, views[v].height);
+        x.disc_scale = atlas->disc_scale;
         expect_cut_view(&x, tree, views + v, &cv);
         compare_tile(atlas, v, &x, tree, rd);
         expect_free(&x);
@@ -510,14 +514,20 @@ static mlod_cut_params cut_params(float eps)
     return p;
 }
 
-static mlod_atlas *make_atlas(const mlod_view *views, uint32_t count, uint32_t channels)
+static mlod_atlas *make_atlas_scaled(const mlod_view *views, uint32_t count, uint32_t channels, float disc_scale)
 {
     mlod_atlas_desc d;
     mlod_atlas *a = NULL;
-    d.columns = 0;
+    memset(&d, 0, sizeof d);
     d.channels = channels;
+    d.disc_scale = disc_scale;
     if (mlod_atlas_create(views, count, &d, NULL, &a, NULL) != MLOD_OK) return NULL;
     return a;
+}
+
+static mlod_atlas *make_atlas(const mlod_view *views, uint32_t count, uint32_t channels)
+{
+    return make_atlas_scaled(views, count, channels, 0.0f);
 }
 
 /* Points spread evenly on a sphere (Fibonacci lattice). */
@@ -1289,6 +1299,95 @@ done:
     for (h = 0; h < 3; h++) mlod_pool_destroy(pools[h]);
     mlod_atlas_destroy(atlas);
     mlod_cut_destroy(cut);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
+/* ========================================================== disc scale */
+
+/* Smaller discs (mlod_atlas_desc.disc_scale): the reference raster at each
+   scale; pixel by pixel, a smaller scale draws a subset of the pixels, each
+   no nearer (fewer candidates for the nearest); the same atlas for any
+   hook; and against ray casting, fewer pixels drawn where the surface is
+   not (the silhouette growth of whole bounding spheres). */
+static void test_disc_scale(void)
+{
+    static const float scales[4] = {1.0f, 0.75f, 0.5f, 0.25f};
+    scene_mesh s;
+    mlod_tree *tree;
+    mlod_view views[12];
+    mlod_cut *cut = NULL;
+    mlod_atlas *atlas[4] = {NULL, NULL, NULL, NULL};
+    mlod_cut_params cp = cut_params(1.0f);
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel hook;
+    rc_scene rc;
+    float *ref = NULL;
+    double c[3], R;
+    uint64_t rng = 977, off_surface[4] = {0, 0, 0, 0};
+    uint32_t count, k;
+    int ok;
+    if (!scene_torus(&s, 1.0f, 0.35f, 32, 16)) return;
+    tu_bounds(&s, c, &R);
+    tree = tu_build(&s, 20000, 5, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    count = mixed_views(&rng, c, R, views);
+    ok = tree && pool && mlod_cut_create(count, NULL, &cut, NULL) == MLOD_OK &&
+         mlod_cut_update(cut, tree, views, &cp, NULL) == MLOD_OK;
+    for (k = 0; k < 4 && ok; k++)
+        ok = (atlas[k] = make_atlas_scaled(views, count, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, k ? scales[k] : 0.0f)) != NULL &&
+             mlod_splat(atlas[k], tree, cut, views, NULL, NULL) == MLOD_OK;
+    ref = ok ? (float *)malloc(sizeof(float) * atlas[0]->width * atlas[0]->height) : NULL;
+    if (!ref) {
+        CHECK(0, "disc scale: set-up failed");
+        goto done;
+    }
+    hook = mlod_pool_parallel(pool);
+    rc_scene_init(&rc, &s);
+    metrics_reference_atlas(atlas[0], views, rc_cast, &rc, ref);
+    for (k = 0; k < 4; k++) {
+        raster_diff rd;
+        snapshot one;
+        char what[96];
+        size_t pixels = (size_t)atlas[k]->width * atlas[k]->height, i;
+        uint64_t added = 0, nearer = 0;
+        CHECK(atlas[k]->disc_scale == scales[k], "disc scale: the atlas holds %g, asked for %g (0 for 1)",
+              (double)atlas[k]->disc_scale, (double)scales[k]);
+        memset(&rd, 0, sizeof rd);
+        add_atlas_comparison(&rd, atlas[k], tree, cut, views);
+        snprintf(what, sizeof what, "torus, N = 20000, mixed views, epsilon 1, disc_scale %g", (double)scales[k]);
+        report_raster(&rd, what);
+        snap_take(&one, atlas[k]);
+        mlod_splat(atlas[k], tree, cut, views, &hook, NULL);
+        CHECK(snap_same(&one, atlas[k]), "disc_scale %g: two threads draw another atlas than one", (double)scales[k]);
+        snap_free(&one);
+        for (i = 0; i < pixels; i++) {
+            off_surface[k] += isfinite(atlas[k]->depth[i]) && !isfinite(ref[i]);
+            if (k == 0) continue;
+            added += isfinite(atlas[k]->depth[i]) && !isfinite(atlas[k - 1]->depth[i]);
+            nearer += atlas[k]->depth[i] < atlas[k - 1]->depth[i];
+        }
+        if (k == 0) continue;
+        CHECK(added == 0, "disc_scale %g draws %llu pixels that %g leaves empty", (double)scales[k],
+              (unsigned long long)added, (double)scales[k - 1]);
+        CHECK(nearer == 0, "disc_scale %g holds a nearer depth than %g at %llu pixels", (double)scales[k],
+              (double)scales[k - 1], (unsigned long long)nearer);
+    }
+    /* whole spheres grow every silhouette by up to half a pixel at epsilon
+       1; half discs take most of that back */
+    CHECK(off_surface[0] > 50, "disc scale: whole discs drew only %llu pixels off the surface (expected a silhouette band)",
+          (unsigned long long)off_surface[0]);
+    CHECK(2 * off_surface[2] < off_surface[0],
+          "disc scale: half discs drew %llu pixels off the surface, whole discs %llu (expected under half)",
+          (unsigned long long)off_surface[2], (unsigned long long)off_surface[0]);
+    if (getenv("MANYLODS_TEST_VERBOSE"))
+        printf("  disc scale 1, 0.75, 0.5, 0.25: %llu, %llu, %llu, %llu pixels drawn where a ray finds no surface\n",
+               (unsigned long long)off_surface[0], (unsigned long long)off_surface[1], (unsigned long long)off_surface[2],
+               (unsigned long long)off_surface[3]);
+done:
+    free(ref);
+    for (k = 0; k < 4; k++) mlod_atlas_destroy(atlas[k]);
+    mlod_cut_destroy(cut);
+    mlod_pool_destroy(pool);
     mlod_tree_destroy(tree);
     scene_free(&s);
 }
@@ -2362,6 +2461,18 @@ static void test_errors(void)
     desc.channels = 4;
     expect_code(mlod_atlas_create(views, 3, &desc, NULL, &out, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, "mlod_atlas_create, unknown channel");
     desc.channels = MLOD_ATLAS_COLOR;
+    {
+        static const float bad_scales[5] = {-0.5f, 1.0000001f, 2.0f, INFINITY, NAN};
+        int b;
+        for (b = 0; b < 5; b++) {
+            char what[80];
+            desc.disc_scale = bad_scales[b];
+            snprintf(what, sizeof what, "mlod_atlas_create, disc_scale %g", (double)bad_scales[b]);
+            expect_code(mlod_atlas_create(views, 3, &desc, NULL, &out, &e), &e, MLOD_ERROR_INVALID_ARGUMENT, what);
+            CHECK(out == NULL, "%s: *out_atlas should be NULL", what);
+        }
+        desc.disc_scale = 0.0f;
+    }
     /* mismatches */
     memcpy(wrong, views, sizeof views);
     wrong[1].width += 1;
@@ -2487,6 +2598,7 @@ int main(void)
     test_overlap();
     test_culling_and_clearing();
     test_determinism();
+    test_disc_scale();
     test_fill_holes();
     show_fill_weighting();
     test_metrics_known();

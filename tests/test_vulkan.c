@@ -228,7 +228,9 @@ static void test_cut_parity(void)
     scene_free(&s);
 }
 
-/* The device atlas equals mlod_splat's, pixel for pixel, for every kind. */
+/* The device atlas equals mlod_splat's, pixel for pixel, for every kind,
+   with whole discs (disc_scale 1) and with half discs (0.5: no fallback
+   pixel for discs that cover no pixel centre). */
 static void test_splat_parity(void)
 {
     scene_mesh s;
@@ -236,7 +238,7 @@ static void test_splat_parity(void)
     mlodvk_tree *vtree = NULL;
     mlod_error e;
     double c[3], R;
-    int kind;
+    int kind, round;
     if (!scene_room(&s)) {
         CHECK(0, "scene_room failed");
         return;
@@ -249,7 +251,8 @@ static void test_splat_parity(void)
         scene_free(&s);
         return;
     }
-    for (kind = 0; kind < 5; kind++) {
+    for (round = 0; round < 10; round++) {
+        float disc_scale = round < 5 ? 0.0f : 0.5f;
         mlod_view views[16];
         mlod_atlas_desc ad;
         mlod_atlas *cpu_atlas = NULL, *gpu_atlas = NULL;
@@ -259,6 +262,7 @@ static void test_splat_parity(void)
         mlod_cut_params p;
         uint32_t v;
         size_t pixels, i, depth_diff = 0, normal_diff = 0, color_diff = 0, drawn = 0;
+        kind = round % 5;
         memset(&p, 0, sizeof p);
         p.mode = MLOD_CUT_BASIC;
         p.epsilon = kind == 4 ? 3.0f : 1.0f;
@@ -269,6 +273,7 @@ static void test_splat_parity(void)
         }
         memset(&ad, 0, sizeof ad);
         ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
+        ad.disc_scale = disc_scale;
         if (mlod_atlas_create(views, 16, &ad, NULL, &cpu_atlas, &e) != MLOD_OK ||
             mlod_atlas_create(views, 16, &ad, NULL, &gpu_atlas, &e) != MLOD_OK ||
             mlodvk_atlas_create(context, cpu_atlas, &vatlas, &e) != MLOD_OK || mlod_cut_create(16, NULL, &cpu, &e) != MLOD_OK ||
@@ -276,7 +281,7 @@ static void test_splat_parity(void)
             mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK ||
             mlod_splat(cpu_atlas, tree, cpu, views, NULL, &e) != MLOD_OK || mlodvk_splat(context, vatlas, vtree, gpu, &e) != MLOD_OK ||
             mlodvk_atlas_download(context, vatlas, gpu_atlas, &e) != MLOD_OK) {
-            CHECK(0, "splat parity, kind %d: set-up failed: %s", kind, e.message);
+            CHECK(0, "splat parity, kind %d, disc_scale %g: set-up failed: %s", kind, (double)disc_scale, e.message);
         } else {
             pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
             for (i = 0; i < pixels; i++) {
@@ -285,10 +290,11 @@ static void test_splat_parity(void)
                 normal_diff += memcmp(cpu_atlas->normal + 3 * i, gpu_atlas->normal + 3 * i, 3 * sizeof(float)) != 0;
                 color_diff += memcmp(cpu_atlas->color + 3 * i, gpu_atlas->color + 3 * i, 3 * sizeof(float)) != 0;
             }
-            CHECK(drawn > pixels / 20, "splat parity, kind %d: only %zu of %zu pixels drawn", kind, drawn, pixels);
+            CHECK(drawn > pixels / 20, "splat parity, kind %d, disc_scale %g: only %zu of %zu pixels drawn", kind,
+                  (double)disc_scale, drawn, pixels);
             CHECK(depth_diff == 0 && normal_diff == 0 && color_diff == 0,
-                  "splat parity, kind %d: %zu depth, %zu normal, %zu colour pixels of %zu differ", kind, depth_diff,
-                  normal_diff, color_diff, pixels);
+                  "splat parity, kind %d, disc_scale %g: %zu depth, %zu normal, %zu colour pixels of %zu differ", kind,
+                  (double)disc_scale, depth_diff, normal_diff, color_diff, pixels);
         }
         mlodvk_atlas_destroy(context, vatlas);
         mlodvk_cut_destroy(context, gpu);
