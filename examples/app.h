@@ -57,6 +57,7 @@ typedef struct app_options {
     mlod_cut_mode mode;    /* --mode basic|incremental|lazy */
     int match_drawn;       /* --ism-match drawn (1) | time (0) */
     int tiny;              /* --tiny: the small preset */
+    float disc_scale;      /* --disc-scale S: mlod_atlas_desc.disc_scale, in (0, 1] */
 } app_options;
 
 /* "basic", "incremental" or "lazy". */
@@ -133,6 +134,10 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
         } else if (strcmp(arg, "--mode") == 0) {
             ok = value && (strcmp(value, "basic") == 0 || strcmp(value, "incremental") == 0 || strcmp(value, "lazy") == 0);
             if (ok) o->mode = value[0] == 'b' ? MLOD_CUT_BASIC : value[0] == 'i' ? MLOD_CUT_INCREMENTAL : MLOD_CUT_LAZY;
+        } else if (strcmp(arg, "--disc-scale") == 0) {
+            char *end = NULL;
+            o->disc_scale = value ? strtof(value, &end) : 0.0f;
+            ok = value && end && !*end && o->disc_scale > 0.0f && o->disc_scale <= 1.0f;
         } else if (strcmp(arg, "--ism-match") == 0) {
             ok = value && (strcmp(value, "drawn") == 0 || strcmp(value, "time") == 0);
             if (ok) o->match_drawn = value[0] == 'd';
