@@ -827,9 +827,10 @@ static double mlod__distance_f(const float *a, const float *b)
    to degree 22 and 21: truncation below 1e-17).  Written out the same way
    in shaders/common.glsl, so that the CPU and the Vulkan path compute the
    same bits wherever the device's double arithmetic is IEEE (lavapipe). */
-/* 1 / (k (k - 1)) for k = 22, 20, .., 2 (cos) and 21, 19, .., 3 (sin), and
-   1 / (2k + 1) for k = 21 .. 0 (atan): the same decimal literals, so the
-   same doubles, in shaders/common.glsl. */
+/* 1 / (k (k - 1)) for k = 22, 20, .., 2 (cos) and 21, 19, .., 3 (sin),
+   and 1 / (4i + 1) and 1 / (4i + 3) for i = 5 .. 0 (atan, its even and
+   odd powers of u^2): the same decimal literals, so the same doubles, in
+   shaders/common.glsl. */
 static const double mlod__cos_terms[11] = {
     0.0021645021645021645, 0.002631578947368421, 0.0032679738562091504, 0.004166666666666667,
     0.005494505494505495, 0.007575757575757576, 0.011111111111111112, 0.017857142857142856,
@@ -838,12 +839,10 @@ static const double mlod__sin_terms[10] = {
     0.002380952380952381, 0.0029239766081871343, 0.003676470588235294, 0.004761904761904762,
     0.00641025641025641, 0.00909090909090909, 0.013888888888888888, 0.023809523809523808, 0.05,
     0.16666666666666666};
-static const double mlod__atan_terms[22] = {
-    0.023255813953488372, 0.024390243902439025, 0.02564102564102564, 0.02702702702702703,
-    0.02857142857142857, 0.030303030303030304, 0.03225806451612903, 0.034482758620689655,
-    0.037037037037037035, 0.04, 0.043478260869565216, 0.047619047619047616, 0.05263157894736842,
-    0.058823529411764705, 0.06666666666666667, 0.07692307692307693, 0.09090909090909091,
-    0.1111111111111111, 0.14285714285714285, 0.2, 0.3333333333333333, 1.0};
+static const double mlod__atan_even[6] = {0.047619047619047616, 0.058823529411764705, 0.07692307692307693,
+                                          0.1111111111111111,   0.2,                  1.0};
+static const double mlod__atan_odd[6] = {0.043478260869565216, 0.05263157894736842, 0.06666666666666667,
+                                         0.09090909090909091,  0.14285714285714285, 0.3333333333333333};
 
 static void mlod__sin_cos(double a, double *sin_a, double *cos_a)
 {
@@ -855,15 +854,17 @@ static void mlod__sin_cos(double a, double *sin_a, double *cos_a)
     *cos_a = -x * s; /* cos(pi/2 + x) = -sin x */
 }
 
-/* atan2(y, x) for y >= 0, in [0, pi], to a few ulps, with + - * / only:
-   reduced to t = min/max in [0, 1], then to |u| <= tan(pi/8) by atan t =
-   pi/4 + atan((t - 1) / (t + 1)), then the Taylor series of atan u to
-   degree 45 (truncation below 1e-18).  Written out the same way in
-   shaders/common.glsl (atan2_d), so that the CPU and the Vulkan refit
-   compute the same bits. */
+/* atan2(y, x) for y >= 0, in [0, pi], within 1e-11 rad, with + - * /
+   only: reduced to t = min/max in [0, 1], then to |u| <= tan(pi/8) by
+   atan t = pi/4 + atan((t - 1) / (t + 1)), then the Taylor series of atan u
+   to degree 23 (alternating: truncation below u^25 / 25 < 1.1e-11), its
+   even and odd powers of u^2 summed as two Horner chains of half the
+   length.  Its one use, the cone merge, allows 2^-22 rad of error.
+   Written out the same way in shaders/common.glsl (atan2_d), so that the
+   CPU and the Vulkan refit compute the same bits. */
 static double mlod__atan2(double y, double x)
 {
-    double ax = fabs(x), t, u, u2, s, base = 0.0, a;
+    double ax = fabs(x), t, u, u2, w, even, odd, base = 0.0, a;
     int swap = y > ax, k;
     if (!(y > 0.0) && !(ax > 0.0)) return x < 0.0 ? 3.14159265358979323846 : 0.0;
     t = swap ? ax / y : y / ax;
@@ -873,14 +874,20 @@ static double mlod__atan2(double y, double x)
         base = 0.78539816339744830962;
     }
     u2 = u * u;
-    s = 1.0 / 45.0;
-    for (k = 0; k < 22; k++) s = mlod__atan_terms[k] - u2 * s;
-    a = base + u * s;
+    w = u2 * u2;
+    even = mlod__atan_even[0];
+    odd = mlod__atan_odd[0];
+    for (k = 1; k < 6; k++) {
+        even = mlod__atan_even[k] + w * even;
+        odd = mlod__atan_odd[k] + w * odd;
+    }
+    a = base + u * (even - u2 * odd);
     if (swap) a = 1.57079632679489661923 - a;
     return x < 0.0 ? 3.14159265358979323846 - a : a;
 }
 
-/* Angle between two (not necessarily unit) directions, accurate everywhere. */
+/* Angle between two (not necessarily unit) directions, within 1e-11 rad
+   everywhere (mlod__atan2). */
 static double mlod__angle(const double *a, const double *b)
 {
     double c[3];
@@ -922,17 +929,22 @@ static void mlod__cone_full(const float *axis, float *out)
     out[3] = mlod__float_up(MLOD__PI);
 }
 
+/* Rounding a unit axis to float turns it by at most 2^-24 rad (round to
+   nearest moves each component by at most 2^-24 of it); 2^-22 bounds that
+   and the error of the double arithmetic before it. */
+#define MLOD__CONE_ROUNDING (1.0 / 4194304.0)
+
 /* The smallest cone of directions around cones a and b (axis x, y, z,
    half-angle), rounded so that it contains both with the angular margin of
-   the tree.  out may alias a or b. */
+   the tree.  The merged axis X lies on the arc from A to B, at angle phi
+   from A and theta - phi from B, both at most the merged half-angle alpha;
+   the axis as stored (float) is within MLOD__CONE_ROUNDING of X, so alpha
+   plus that bound contains both cones without measuring the stored axis
+   again.  out may alias a or b. */
 static void mlod__cone_enclose(const float *a, const float *b, float *out)
 {
-    double A[3], B[3], X[3], t[3], theta, alpha, need_a, need_b, len;
-    /* volatile: the margin must be measured from the axis as rounded to
-       float; gcc 12 -O2 (SLP vectorisation) otherwise reuses the unrounded
-       doubles and the stored cone misses its margin by an ulp */
-    volatile float axis[3];
-    float stored[3];
+    double A[3], B[3], X[3], theta, alpha, len;
+    float axis[3];
     int k;
     if (a[3] >= MLOD__PI || b[3] >= MLOD__PI) {
         mlod__cone_full(a, out);
@@ -945,10 +957,12 @@ static void mlod__cone_enclose(const float *a, const float *b, float *out)
     theta = mlod__angle(A, B);
     if (theta + b[3] <= a[3]) {
         for (k = 0; k < 3; k++) X[k] = A[k];
+        alpha = a[3];
     } else if (theta + a[3] <= b[3]) {
         for (k = 0; k < 3; k++) X[k] = B[k];
+        alpha = b[3];
     } else {
-        double phi, la = mlod__length3(A), ab, sin_phi, cos_phi;
+        double phi, la = mlod__length3(A), ab, sin_phi, cos_phi, t[3];
         alpha = (theta + a[3] + b[3]) * 0.5;
         if (alpha >= MLOD__PI) {
             mlod__cone_full(a, out);
@@ -969,23 +983,13 @@ static void mlod__cone_enclose(const float *a, const float *b, float *out)
         for (k = 0; k < 3; k++) X[k] = A[k] * cos_phi + t[k] / len * sin_phi;
     }
     len = mlod__length3(X);
-    for (k = 0; k < 3; k++) {
-        axis[k] = (float)(X[k] / len);
-        X[k] = axis[k];
-    }
-    for (k = 0; k < 3; k++) {
-        A[k] = a[k];
-        B[k] = b[k];
-    }
-    need_a = mlod__angle(X, A) + a[3];
-    need_b = mlod__angle(X, B) + b[3];
-    alpha = (need_a > need_b ? need_a : need_b) + MLOD__CONE_MARGIN;
-    for (k = 0; k < 3; k++) stored[k] = axis[k];
+    for (k = 0; k < 3; k++) axis[k] = (float)(X[k] / len);
+    alpha = alpha + MLOD__CONE_ROUNDING + MLOD__CONE_MARGIN;
     if (alpha >= MLOD__PI) {
-        mlod__cone_full(stored, out);
+        mlod__cone_full(axis, out);
         return;
     }
-    for (k = 0; k < 3; k++) out[k] = stored[k];
+    for (k = 0; k < 3; k++) out[k] = axis[k];
     out[3] = mlod__float_up(alpha);
 }
 

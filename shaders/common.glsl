@@ -147,7 +147,7 @@ double dot3(dvec3 a, dvec3 b)
     return s;
 }
 
-// mlod__cos_terms, mlod__sin_terms, mlod__atan_terms (the same literals)
+// mlod__cos_terms, mlod__sin_terms, mlod__atan_even, mlod__atan_odd (the same literals)
 const double COS_TERMS[11] = double[](
     0.0021645021645021645LF, 0.002631578947368421LF, 0.0032679738562091504LF, 0.004166666666666667LF,
     0.005494505494505495LF, 0.007575757575757576LF, 0.011111111111111112LF, 0.017857142857142856LF,
@@ -156,12 +156,11 @@ const double SIN_TERMS[10] = double[](
     0.002380952380952381LF, 0.0029239766081871343LF, 0.003676470588235294LF, 0.004761904761904762LF,
     0.00641025641025641LF, 0.00909090909090909LF, 0.013888888888888888LF, 0.023809523809523808LF, 0.05LF,
     0.16666666666666666LF);
-const double ATAN_TERMS[22] = double[](
-    0.023255813953488372LF, 0.024390243902439025LF, 0.02564102564102564LF, 0.02702702702702703LF,
-    0.02857142857142857LF, 0.030303030303030304LF, 0.03225806451612903LF, 0.034482758620689655LF,
-    0.037037037037037035LF, 0.04LF, 0.043478260869565216LF, 0.047619047619047616LF, 0.05263157894736842LF,
-    0.058823529411764705LF, 0.06666666666666667LF, 0.07692307692307693LF, 0.09090909090909091LF,
-    0.1111111111111111LF, 0.14285714285714285LF, 0.2LF, 0.3333333333333333LF, 1.0LF);
+const double ATAN_EVEN[6] = double[](
+    0.047619047619047616LF, 0.058823529411764705LF, 0.07692307692307693LF, 0.1111111111111111LF, 0.2LF, 1.0LF);
+const double ATAN_ODD[6] = double[](
+    0.043478260869565216LF, 0.05263157894736842LF, 0.06666666666666667LF, 0.09090909090909091LF,
+    0.14285714285714285LF, 0.3333333333333333LF);
 
 // mlod__sin_cos
 void sin_cos(double a, out double sin_a, out double cos_a)
@@ -378,9 +377,14 @@ double atan2_d(double y, double x)
         base = 0.78539816339744830962LF;
     }
     precise double u2 = u * u;
-    precise double s = 1.0LF / 45.0LF;
-    [[unroll]] for (int k = 0; k < 22; k++) s = ATAN_TERMS[k] - u2 * s;
-    precise double a = base + u * s;
+    precise double w = u2 * u2;
+    precise double even = ATAN_EVEN[0];
+    precise double odd = ATAN_ODD[0];
+    [[unroll]] for (int k = 1; k < 6; k++) {
+        even = ATAN_EVEN[k] + w * even;
+        odd = ATAN_ODD[k] + w * odd;
+    }
+    precise double a = base + u * (even - u2 * odd);
     if (swap) a = 1.57079632679489661923LF - a;
     precise double result = x < 0.0LF ? MLOD_PI - a : a;
     return result;
@@ -426,19 +430,23 @@ vec4 sphere_enclose(vec4 a, vec4 b)
 // mlod__cone_full
 vec4 cone_full(vec3 axis) { return vec4(axis, float_up(MLOD_PI)); }
 
-// mlod__cone_enclose
+// mlod__cone_enclose (the stored axis is within MLOD__CONE_ROUNDING, 2^-22
+// rad, of the merged one)
 vec4 cone_enclose(vec4 a, vec4 b)
 {
     if (double(a.w) >= MLOD_PI || double(b.w) >= MLOD_PI) return cone_full(a.xyz);
     dvec3 A = dvec3(a.xyz), B = dvec3(b.xyz), X;
     precise double theta = angle_d(A, B);
+    precise double alpha;
     if (theta + double(b.w) <= double(a.w)) {
         X = A;
+        alpha = double(a.w);
     } else if (theta + double(a.w) <= double(b.w)) {
         X = B;
+        alpha = double(b.w);
     } else {
         precise double la = length_d(A);
-        precise double alpha = (theta + double(a.w) + double(b.w)) * 0.5LF;
+        alpha = (theta + double(a.w) + double(b.w)) * 0.5LF;
         if (alpha >= MLOD_PI) return cone_full(a.xyz);
         precise double phi = alpha - double(a.w);
         precise dvec3 An = dvec3(A.x / la, A.y / la, A.z / la);
@@ -459,12 +467,9 @@ vec4 cone_enclose(vec4 a, vec4 b)
     }
     precise double lx = length_d(X);
     vec3 axis = vec3(float(X.x / lx), float(X.y / lx), float(X.z / lx));
-    dvec3 Xs = dvec3(axis);
-    precise double need_a = angle_d(Xs, A) + double(a.w);
-    precise double need_b = angle_d(Xs, B) + double(b.w);
-    precise double alpha = (need_a > need_b ? need_a : need_b) + 1.0LF / 1048576.0LF;
-    if (alpha >= MLOD_PI) return cone_full(axis);
-    return vec4(axis, float_up(alpha));
+    precise double stored = alpha + 1.0LF / 4194304.0LF + 1.0LF / 1048576.0LF;
+    if (stored >= MLOD_PI) return cone_full(axis);
+    return vec4(axis, float_up(stored));
 }
 
 // mlod__depth_of
