@@ -306,7 +306,7 @@ enum {
     MLOD_ATTR_CONE = 1u << 0,  /* normal cones: 16 bytes per node */
     MLOD_ATTR_AREA = 1u << 1,  /* surface area below the node: 4 bytes per node */
     MLOD_ATTR_COLOR = 1u << 2, /* mean leaf colour: 12 bytes per node */
-    MLOD_ATTR_REFIT = 1u << 3  /* what refit needs: 12 bytes per leaf (+8 per triangle) */
+    MLOD_ATTR_REFIT = 1u << 3  /* what refit needs: 12 bytes per leaf (+40 per triangle) */
 };
 
 typedef struct mlod_build_desc {
@@ -360,6 +360,7 @@ typedef struct mlod_tree {
     uint32_t *leaf_sources;      /* N */
     float *leaf_barycentrics;    /* 2N, or NULL for point clouds */
     double *triangle_areas;      /* triangle count, world units^2, or NULL for points */
+    void *triangle_leaves;       /* private: refit's per-triangle scratch (32 bytes each), or NULL */
     uint32_t triangle_count;     /* of the mesh built from, 0 for points */
     uint32_t vertex_count;       /* of the mesh built from, 0 for points */
     float radius_scale;          /* as used at build */
@@ -1169,6 +1170,7 @@ static void mlod__tree_free_arrays(mlod_tree *t)
     mlod__free(&t->allocator, t->leaf_sources);
     mlod__free(&t->allocator, t->leaf_barycentrics);
     mlod__free(&t->allocator, t->triangle_areas);
+    mlod__free(&t->allocator, t->triangle_leaves);
 }
 
 MANYLODS_DEF void mlod_tree_destroy(mlod_tree *tree)
@@ -1179,6 +1181,15 @@ MANYLODS_DEF void mlod_tree_destroy(mlod_tree *tree)
     mlod__tree_free_arrays(tree);
     a.free(a.user, tree);
 }
+
+/* What the samples of one triangle share: the growth of its area since the
+   build (area now / at build), the leaf radius and area that follow, and
+   the cone of its face normal (with cones).  Refit computes it once per
+   triangle (mlod_tree.triangle_leaves), the build once per sample. */
+typedef struct mlod__triangle_leaf {
+    double growth;
+    float radius, area, cone[4];
+} mlod__triangle_leaf;
 
 /* A tree with every array its attributes need; NULL when out of memory. */
 static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, uint32_t attributes, int mesh,
@@ -1214,6 +1225,7 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
         if (mesh) {
             ok = ok && (t->leaf_barycentrics = (float *)mlod__alloc_array(a, leaves, 2 * sizeof(float), &t->bytes)) != NULL;
             ok = ok && (t->triangle_areas = (double *)mlod__alloc_array(a, triangles, sizeof(double), &t->bytes)) != NULL;
+            ok = ok && (t->triangle_leaves = mlod__alloc_array(a, triangles, sizeof(mlod__triangle_leaf), &t->bytes)) != NULL;
         }
     }
     t->bytes_per_node = per_node;
@@ -1306,33 +1318,47 @@ static void mlod__interpolate(const float *base, size_t stride, const uint32_t *
     for (k = 0; k < 3; k++) out[k] = (double)a[k] + s * ((double)b[k] - a[k]) + t * ((double)c[k] - a[k]);
 }
 
-/* Write leaf `node` of the tree from the mesh sample (tri, s, t): the one
-   function build and refit share.  area_ratio = triangle area now / at build. */
+static void mlod__triangle_leaf_of(const mlod_tree *tree, const mlod_mesh *mesh, uint32_t tri, double growth,
+                                   mlod__triangle_leaf *out)
+{
+    out->growth = growth;
+    out->radius = mlod__float_up(tree->radius_scale * sqrt(tree->area_unit * growth));
+    out->area = (float)growth;
+    if (tree->cones) {
+        double v[3][3], e1[3], e2[3], n[3];
+        int k;
+        mlod__triangle(mesh, tri, v);
+        for (k = 0; k < 3; k++) {
+            e1[k] = v[1][k] - v[0][k];
+            e2[k] = v[2][k] - v[0][k];
+        }
+        mlod__cross3(e1, e2, n);
+        mlod__cone_from_normal(n, out->cone);
+    }
+}
+
+/* Write leaf `node` of the tree from the mesh sample (tri, s, t) and what
+   its triangle's samples share: the one function build and refit share. */
 static void mlod__mesh_leaf(mlod_tree *tree, uint32_t node, const mlod_mesh *mesh, uint32_t tri, float s, float t,
-                            double area_ratio)
+                            const mlod__triangle_leaf *shared)
 {
     const uint32_t *corner = mesh->indices + 3 * (size_t)tri;
-    double p[3], leaf_area = area_ratio;
+    double p[3];
     float *sphere = tree->spheres + 4 * (size_t)node;
     int k;
     mlod__interpolate(mesh->positions, mesh->position_stride, corner, s, t, p);
     for (k = 0; k < 3; k++) sphere[k] = (float)p[k];
-    sphere[3] = mlod__float_up(tree->radius_scale * sqrt(tree->area_unit * leaf_area));
+    sphere[3] = shared->radius;
     if (tree->cones) {
         double n[3] = {0.0, 0.0, 0.0};
+        float *cone = tree->cones + 4 * (size_t)node;
         if (mesh->normals) mlod__interpolate(mesh->normals, mesh->normal_stride, corner, s, t, n);
-        if (!(mlod__dot3(n, n) > 0.0)) {
-            double v[3][3], e1[3], e2[3];
-            mlod__triangle(mesh, tri, v);
-            for (k = 0; k < 3; k++) {
-                e1[k] = v[1][k] - v[0][k];
-                e2[k] = v[2][k] - v[0][k];
-            }
-            mlod__cross3(e1, e2, n);
-        }
-        mlod__cone_from_normal(n, tree->cones + 4 * (size_t)node);
+        if (mlod__dot3(n, n) > 0.0)
+            mlod__cone_from_normal(n, cone);
+        else
+            for (k = 0; k < 4; k++) cone[k] = shared->cone[k];
     }
-    if (tree->areas) tree->areas[node] = (float)leaf_area;
+    if (tree->areas) tree->areas[node] = shared->area;
     if (tree->colors) {
         double c[3];
         mlod__interpolate(mesh->colors, mesh->color_stride, corner, s, t, c);
@@ -1627,7 +1653,9 @@ MANYLODS_DEF mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
     tree->vertex_count = mesh->vertex_count;
     for (i = 0; i < n; i++) {
         uint32_t item = leaf_item[i];
-        mlod__mesh_leaf(tree, n - 1 + i, mesh, tri[item], st[2 * (size_t)item], st[2 * (size_t)item + 1], 1.0);
+        mlod__triangle_leaf shared;
+        mlod__triangle_leaf_of(tree, mesh, tri[item], 1.0, &shared);
+        mlod__mesh_leaf(tree, n - 1 + i, mesh, tri[item], st[2 * (size_t)item], st[2 * (size_t)item + 1], &shared);
         if (tree->leaf_sources) {
             tree->leaf_sources[i] = tri[item];
             tree->leaf_barycentrics[2 * (size_t)i] = st[2 * (size_t)item];
@@ -1781,17 +1809,32 @@ typedef struct mlod__refit_job {
 
 #define MLOD__LEAF_CHUNK 4096u
 
+/* Each triangle's growth and shared leaf data (triangles of zero area at
+   build have no samples: growth 0). */
+static void mlod__refit_triangles_task(void *context, uint32_t index)
+{
+    mlod__refit_job *job = (mlod__refit_job *)context;
+    mlod_tree *tree = job->tree;
+    mlod__triangle_leaf *shared = (mlod__triangle_leaf *)tree->triangle_leaves;
+    uint32_t t = index * MLOD__LEAF_CHUNK, end = t + MLOD__LEAF_CHUNK;
+    if (end > tree->triangle_count || end < t) end = tree->triangle_count;
+    for (; t < end; t++) {
+        double growth = tree->triangle_areas[t] > 0.0 ? mlod__triangle_area(job->mesh, t) / tree->triangle_areas[t] : 0.0;
+        mlod__triangle_leaf_of(tree, job->mesh, t, growth, &shared[t]);
+    }
+}
+
 static void mlod__refit_mesh_task(void *context, uint32_t index)
 {
     mlod__refit_job *job = (mlod__refit_job *)context;
     mlod_tree *tree = job->tree;
+    const mlod__triangle_leaf *shared = (const mlod__triangle_leaf *)tree->triangle_leaves;
     uint32_t j = index * MLOD__LEAF_CHUNK, end = j + MLOD__LEAF_CHUNK;
     if (end > tree->leaf_count) end = tree->leaf_count;
     for (; j < end; j++) {
         uint32_t tri = tree->leaf_sources[j];
-        double ratio = mlod__triangle_area(job->mesh, tri) / tree->triangle_areas[tri];
         mlod__mesh_leaf(tree, tree->leaf_count - 1 + j, job->mesh, tri, tree->leaf_barycentrics[2 * (size_t)j],
-                        tree->leaf_barycentrics[2 * (size_t)j + 1], ratio);
+                        tree->leaf_barycentrics[2 * (size_t)j + 1], &shared[tri]);
     }
 }
 
@@ -1827,22 +1870,23 @@ MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
                           mesh->index_count / 3, mesh->vertex_count, tree->triangle_count, tree->vertex_count);
     if (tree->colors && !mesh->colors)
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the tree has colours and the mesh has none");
-    {
-        /* the largest growth of a sampled triangle must keep radii and
-           summed areas (in build units) within float range */
-        double growth = 0.0;
-        uint32_t t;
-        for (t = 0; t < tree->triangle_count; t++)
-            if (tree->triangle_areas[t] > 0.0) {
-                double g = mlod__triangle_area(mesh, t) / tree->triangle_areas[t];
-                if (g > growth) growth = g;
-            }
-        res = mlod_refit_check_growth(tree->radius_scale, tree->area_unit, tree->leaf_count, growth, error);
-        if (res != MLOD_OK) return res;
-    }
     job.tree = tree;
     job.mesh = mesh;
     job.points = NULL;
+    if (tree->triangle_count > 0)
+        mlod__run(parallel, (tree->triangle_count - 1) / MLOD__LEAF_CHUNK + 1, mlod__refit_triangles_task, &job);
+    {
+        /* the largest growth of a sampled triangle must keep radii and
+           summed areas (in build units) within float range; the scratch
+           above is all that was written so far */
+        const mlod__triangle_leaf *shared = (const mlod__triangle_leaf *)tree->triangle_leaves;
+        double growth = 0.0;
+        uint32_t t;
+        for (t = 0; t < tree->triangle_count; t++)
+            if (shared[t].growth > growth) growth = shared[t].growth;
+        res = mlod_refit_check_growth(tree->radius_scale, tree->area_unit, tree->leaf_count, growth, error);
+        if (res != MLOD_OK) return res;
+    }
     mlod__run(parallel, (tree->leaf_count - 1) / MLOD__LEAF_CHUNK + 1, mlod__refit_mesh_task, &job);
     mlod__merge_all(tree, parallel);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));

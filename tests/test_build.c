@@ -315,11 +315,12 @@ static void test_attributes(void)
               "attributes 0x%x: arrays cones %p areas %p colors %p", a, (void *)t->cones, (void *)t->areas,
               (void *)t->colors);
         CHECK(!(a & MLOD_ATTR_REFIT) == !t->leaf_sources && !(a & MLOD_ATTR_REFIT) == !t->leaf_barycentrics &&
-                  !(a & MLOD_ATTR_REFIT) == !t->triangle_areas,
+                  !(a & MLOD_ATTR_REFIT) == !t->triangle_areas && !(a & MLOD_ATTR_REFIT) == !t->triangle_leaves,
               "attributes 0x%x: refit arrays present iff asked", a);
         CHECK(same_array(t->spheres, base->spheres, 16 * (size_t)N * 2 - 16),
               "attributes 0x%x: the spheres depend on the attributes", a);
-        lo = extra + ((a & MLOD_ATTR_REFIT) ? 12 * (size_t)N + 8 * (s.index_count / 3) : 0);
+        /* refit: source and barycentrics per leaf, build area and refit scratch per triangle */
+        lo = extra + ((a & MLOD_ATTR_REFIT) ? 12 * (size_t)N + 40 * (s.index_count / 3) : 0);
         hi = lo + 256;
         CHECK(t->bytes >= base->bytes + lo && t->bytes <= base->bytes + hi,
               "attributes 0x%x: bytes %zu, without attributes %zu, expected %zu more (+256)", a, t->bytes, base->bytes, lo);
