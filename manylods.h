@@ -166,8 +166,8 @@
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat* and mlod_atlas_fill_holes take
-     an optional mlod_parallel hook (a parallel-for); with none they run on
-     the calling thread.  Work is
+     an optional mlod_parallel hook (a parallel-for), the builds one in
+     mlod_build_desc.parallel; with none they run on the calling thread.  Work is
      split into tasks of bounded size within and among views, so one view
      with a cut 100x the others does not serialise the frame.  Results are
      identical for any thread count.  Distinct objects may be used from
@@ -315,8 +315,9 @@ typedef struct mlod_build_desc {
     float radius_scale;        /* multiplies every leaf radius; 0 means 1 */
     uint32_t attributes;       /* MLOD_ATTR_* bits */
     const mlod_allocator *allocator; /* NULL: MANYLODS_MALLOC/FREE */
-    mlod_progress_fn *progress;      /* optional */
+    mlod_progress_fn *progress;      /* optional; called from the calling thread */
     void *progress_user;
+    const mlod_parallel *parallel;   /* optional parallel-for hook (NULL: the calling thread) */
 } mlod_build_desc;
 
 /* --------------------------------------------------------------- the tree */
@@ -1412,60 +1413,70 @@ static uint32_t mlod__sort_key(float f)
     return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
 }
 
-/* Stable LSD radix sort of order[] by key[order[i]]; scratch holds n more. */
-static void mlod__radix_sort(uint32_t *order, uint32_t *scratch, const uint32_t *key, uint32_t n)
+/* Stable LSD radix sort of n (key << 32 | item) pairs by key, 11 bits a
+   pass: the three passes read the pairs front to back.  The result lands
+   in scratch (n more). */
+static void mlod__radix_sort(uint64_t *pairs, uint64_t *scratch, uint32_t n)
 {
-    static const int shift[3] = {0, 11, 22};
+    static const int shift[3] = {32, 43, 54};
     uint32_t count[2048];
     int pass;
     for (pass = 0; pass < 3; pass++) {
-        uint32_t i, sum = 0, *tmp;
+        const uint64_t *from = pass == 1 ? scratch : pairs;
+        uint64_t *to = pass == 1 ? pairs : scratch;
+        uint32_t i, sum = 0;
         memset(count, 0, sizeof count);
-        for (i = 0; i < n; i++) count[(key[order[i]] >> shift[pass]) & 2047u]++;
+        for (i = 0; i < n; i++) count[(from[i] >> shift[pass]) & 2047u]++;
         for (i = 0; i < 2048; i++) {
             uint32_t c = count[i];
             count[i] = sum;
             sum += c;
         }
-        for (i = 0; i < n; i++) scratch[count[(key[order[i]] >> shift[pass]) & 2047u]++] = order[i];
-        tmp = order;
-        order = scratch;
-        scratch = tmp;
+        for (i = 0; i < n; i++) to[count[(from[i] >> shift[pass]) & 2047u]++] = from[i];
     }
-    /* three passes: the result sits in scratch's original buffer; copy back */
-    memcpy(scratch, order, n * sizeof(uint32_t));
 }
 
-static double mlod__box_volume_of(const float *pos, const uint32_t *items, uint32_t count)
+/* d^3 for the diagonal d of the box around count points (3 floats each,
+   consecutive): proportional to the volume of the box's sphere. */
+static double mlod__box_volume_of(const float *pts, uint32_t count)
 {
-    double lo[3], hi[3], d2 = 0.0;
+    /* six scalars, not arrays, so that they stay in registers */
+    float x0 = pts[0], x1 = x0, y0 = pts[1], y1 = y0, z0 = pts[2], z1 = z0;
+    double dx, dy, dz, d2;
     uint32_t i;
-    int k;
-    for (k = 0; k < 3; k++) {
-        lo[k] = pos[3 * (size_t)items[0] + k];
-        hi[k] = lo[k];
+    for (i = 1; i < count; i++) {
+        const float *p = pts + 3 * (size_t)i;
+        x0 = p[0] < x0 ? p[0] : x0;
+        x1 = p[0] > x1 ? p[0] : x1;
+        y0 = p[1] < y0 ? p[1] : y0;
+        y1 = p[1] > y1 ? p[1] : y1;
+        z0 = p[2] < z0 ? p[2] : z0;
+        z1 = p[2] > z1 ? p[2] : z1;
     }
-    for (i = 1; i < count; i++)
-        for (k = 0; k < 3; k++) {
-            double v = pos[3 * (size_t)items[i] + k];
-            if (v < lo[k]) lo[k] = v;
-            if (v > hi[k]) hi[k] = v;
-        }
-    for (k = 0; k < 3; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-    return d2 * sqrt(d2); /* proportional to the volume of the box's sphere */
+    dx = (double)x1 - x0;
+    dy = (double)y1 - y0;
+    dz = (double)z1 - z0;
+    d2 = dx * dx + dy * dy + dz * dz;
+    return d2 * sqrt(d2);
 }
 
+/* The items in the order of each axis, each with its position alongside
+   (so that a node's boxes are read front to back), split node by node. */
 typedef struct mlod__order_ctx {
-    const mlod_build_desc *desc;
     uint32_t n;
-    const float *pos;  /* 3 per item */
-    uint32_t *order[3];
-    uint32_t *scratch;
-    uint32_t *begin;   /* per node: first position of its items */
-    uint8_t *left;     /* per item */
+    uint32_t *order[3];  /* per axis: items, sorted along it within each node */
+    float *pts[3];       /* per axis: the positions of order[axis], 3 floats each */
+    uint32_t *scratch;   /* n items, and scratch_pts 3n floats, at the node's slots */
+    float *scratch_pts;
+    uint32_t *begin;     /* per node: its first slot */
+    uint8_t *left;       /* per item: in the left child of the node being split */
+    uint32_t first, last, per_task; /* the nodes of one depth, per_task of them per task */
 } mlod__order_ctx;
 
-/* Split node `node` (items order[*][b .. b+count)) between its children. */
+/* Split node `node` (slots b .. b+count of every axis) between its children:
+   along the axis whose two halves' boxes have the smaller summed sphere
+   volume (halves by leaf count); the other axes keep their order within
+   each half. */
 static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
 {
     uint32_t b = c->begin[node], count = mlod__leaves_below(node, c->n);
@@ -1473,8 +1484,8 @@ static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
     double best = 0.0;
     int axis = 0, k;
     for (k = 0; k < 3; k++) {
-        const uint32_t *o = c->order[k] + b;
-        double v = mlod__box_volume_of(c->pos, o, nl) + mlod__box_volume_of(c->pos, o + nl, count - nl);
+        const float *p = c->pts[k] + 3 * (size_t)b;
+        double v = mlod__box_volume_of(p, nl) + mlod__box_volume_of(p + 3 * (size_t)nl, count - nl);
         if (k == 0 || v < best) {
             best = v;
             axis = k;
@@ -1482,73 +1493,148 @@ static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
     }
     for (i = 0; i < count; i++) c->left[c->order[axis][b + i]] = (uint8_t)(i < nl);
     for (k = 0; k < 3; k++) {
-        uint32_t *o = c->order[k] + b, l = 0, r = nl;
+        uint32_t *o = c->order[k] + b, *so = c->scratch + b, l = 0, r = nl;
+        float *p = c->pts[k] + 3 * (size_t)b, *sp = c->scratch_pts + 3 * (size_t)b;
         if (k == axis) continue;
-        for (i = 0; i < count; i++) {
-            uint32_t item = o[i];
-            if (c->left[item])
-                c->scratch[l++] = item;
-            else
-                c->scratch[r++] = item;
+        for (i = 0; i < count; i++) { /* branch-free: left and right are a coin toss */
+            uint32_t item = o[i], is_left = c->left[item], to = is_left ? l : r;
+            l += is_left;
+            r += 1u - is_left;
+            so[to] = item;
+            sp[3 * (size_t)to] = p[3 * (size_t)i];
+            sp[3 * (size_t)to + 1] = p[3 * (size_t)i + 1];
+            sp[3 * (size_t)to + 2] = p[3 * (size_t)i + 2];
         }
-        memcpy(o, c->scratch, count * sizeof(uint32_t));
+        memcpy(o, so, count * sizeof(uint32_t));
+        memcpy(p, sp, 3 * (size_t)count * sizeof(float));
     }
     c->begin[2 * node + 1] = b;
     c->begin[2 * node + 2] = b + nl;
 }
 
+/* Split the nodes of one depth, per_task per task: disjoint slots and items. */
+static void mlod__split_task(void *context, uint32_t index)
+{
+    mlod__order_ctx *c = (mlod__order_ctx *)context;
+    uint32_t node = c->first + index * c->per_task, end = node + c->per_task - 1;
+    if (end > c->last || end < node) end = c->last;
+    for (;; node++) {
+        mlod__split_node(c, node);
+        if (node == end) break;
+    }
+}
+
+/* Sort axis k's items by their coordinate along it (ties by item), and
+   lay out their positions. */
+typedef struct mlod__sort_job {
+    mlod__order_ctx *c;
+    const float *pos;
+    uint64_t *scratch[3];
+} mlod__sort_job;
+
+static void mlod__sort_axis_task(void *context, uint32_t k)
+{
+    mlod__sort_job *job = (mlod__sort_job *)context;
+    mlod__order_ctx *c = job->c;
+    uint64_t *pairs = (uint64_t *)(void *)c->pts[k]; /* 12 bytes per item: room for the 8 of a pair */
+    uint32_t i;
+    for (i = 0; i < c->n; i++) pairs[i] = (uint64_t)mlod__sort_key(job->pos[3 * (size_t)i + k]) << 32 | i;
+    mlod__radix_sort(pairs, job->scratch[k], c->n);
+    for (i = 0; i < c->n; i++) c->order[k][i] = (uint32_t)job->scratch[k][i];
+    for (i = 0; i < c->n; i++) {
+        const float *p = job->pos + 3 * (size_t)c->order[k][i];
+        c->pts[k][3 * (size_t)i] = p[0];
+        c->pts[k][3 * (size_t)i + 1] = p[1];
+        c->pts[k][3 * (size_t)i + 2] = p[2];
+    }
+}
+
 /* Order n items (positions pos) into the leaves: leaf_item[j] is the item
-   of leaf j.  Returns MLOD_ERROR_OUT_OF_MEMORY or MLOD_ERROR_CANCELLED. */
+   of leaf j.  Nodes of one depth are split in parallel; the result does
+   not depend on the hook.  Returns MLOD_ERROR_OUT_OF_MEMORY or
+   MLOD_ERROR_CANCELLED. */
 static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_desc *desc, const float *pos, uint32_t n,
                                      uint32_t *leaf_item, float progress_from, float progress_to)
 {
     mlod__order_ctx c;
-    uint32_t *keys = NULL, i, node, last_depth = 0;
+    mlod__sort_job sort;
+    uint32_t i, depth;
     size_t nodes = 2 * (size_t)n - 1;
     mlod_result res = MLOD_OK;
-    int k;
+    int k, ok = 1;
     memset(&c, 0, sizeof c);
-    c.desc = desc;
+    memset(&sort, 0, sizeof sort);
     c.n = n;
-    c.pos = pos;
-    for (k = 0; k < 3; k++) c.order[k] = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL);
-    c.scratch = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL);
-    c.begin = (uint32_t *)mlod__alloc_array(a, nodes, sizeof(uint32_t), NULL);
-    c.left = (uint8_t *)mlod__alloc_array(a, n, 1, NULL);
-    keys = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL);
-    if (!c.order[0] || !c.order[1] || !c.order[2] || !c.scratch || !c.begin || !c.left || !keys) {
+    for (k = 0; k < 3; k++) {
+        ok = ok && (c.order[k] = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL)) != NULL;
+        ok = ok && (c.pts[k] = (float *)mlod__alloc_array(a, n, 3 * sizeof(float), NULL)) != NULL;
+    }
+    ok = ok && (c.scratch = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL)) != NULL;
+    ok = ok && (c.scratch_pts = (float *)mlod__alloc_array(a, n, 3 * sizeof(float), NULL)) != NULL;
+    ok = ok && (c.begin = (uint32_t *)mlod__alloc_array(a, nodes, sizeof(uint32_t), NULL)) != NULL;
+    ok = ok && (c.left = (uint8_t *)mlod__alloc_array(a, n, 1, NULL)) != NULL;
+    for (k = 0; k < 3; k++)
+        ok = ok && (sort.scratch[k] = (uint64_t *)mlod__alloc_array(a, n, sizeof(uint64_t), NULL)) != NULL;
+    if (!ok) {
         res = MLOD_ERROR_OUT_OF_MEMORY;
         goto done;
     }
-    for (k = 0; k < 3; k++) {
-        for (i = 0; i < n; i++) {
-            c.order[k][i] = i;
-            keys[i] = mlod__sort_key(pos[3 * (size_t)i + k]);
-        }
-        mlod__radix_sort(c.order[k], c.scratch, keys, n);
-    }
+    sort.c = &c;
+    sort.pos = pos;
+    mlod__run(desc->parallel, 3, mlod__sort_axis_task, &sort);
     c.begin[0] = 0;
-    for (node = 0; node + 1 < n; node++) {
-        uint32_t depth = mlod__depth_of(node);
-        if (depth != last_depth) {
-            last_depth = depth;
-            if (desc->progress &&
-                desc->progress(desc->progress_user,
-                               progress_from + (progress_to - progress_from) * (float)node / (float)n)) {
-                res = MLOD_ERROR_CANCELLED;
-                goto done;
-            }
+    for (depth = 0; mlod_tree_depth_nodes(n, depth, &c.first, &c.last); depth++) {
+        uint32_t count = c.last - c.first + 1;
+        if (depth > 0 && desc->progress &&
+            desc->progress(desc->progress_user, progress_from + (progress_to - progress_from) * (float)c.first / (float)n)) {
+            res = MLOD_ERROR_CANCELLED;
+            goto done;
         }
-        mlod__split_node(&c, node);
+        c.per_task = count / 256 + 1;
+        mlod__run(desc->parallel, (count - 1) / c.per_task + 1, mlod__split_task, &c);
     }
     for (i = 0; i < n; i++) leaf_item[i] = c.order[0][c.begin[(size_t)n - 1 + i]];
 done:
-    for (k = 0; k < 3; k++) mlod__free(a, c.order[k]);
+    for (k = 0; k < 3; k++) {
+        mlod__free(a, c.order[k]);
+        mlod__free(a, c.pts[k]);
+        mlod__free(a, sort.scratch[k]);
+    }
     mlod__free(a, c.scratch);
+    mlod__free(a, c.scratch_pts);
     mlod__free(a, c.begin);
     mlod__free(a, c.left);
-    mlod__free(a, keys);
     return res;
+}
+
+#define MLOD__LEAF_CHUNK 4096u
+
+/* The leaves of a mesh build, MLOD__LEAF_CHUNK per task. */
+typedef struct mlod__build_leaves_job {
+    mlod_tree *tree;
+    const mlod_mesh *mesh;
+    const uint32_t *leaf_item, *tri;
+    const float *st;
+} mlod__build_leaves_job;
+
+static void mlod__build_leaves_task(void *context, uint32_t index)
+{
+    const mlod__build_leaves_job *job = (const mlod__build_leaves_job *)context;
+    mlod_tree *tree = job->tree;
+    uint32_t i = index * MLOD__LEAF_CHUNK, end = i + MLOD__LEAF_CHUNK, n = tree->leaf_count;
+    if (end > n) end = n;
+    for (; i < end; i++) {
+        uint32_t item = job->leaf_item[i], tri = job->tri[item];
+        float s = job->st[2 * (size_t)item], t = job->st[2 * (size_t)item + 1];
+        mlod__triangle_leaf shared;
+        mlod__triangle_leaf_of(tree, job->mesh, tri, 1.0, &shared);
+        mlod__mesh_leaf(tree, n - 1 + i, job->mesh, tri, s, t, &shared);
+        if (tree->leaf_sources) {
+            tree->leaf_sources[i] = tri;
+            tree->leaf_barycentrics[2 * (size_t)i] = s;
+            tree->leaf_barycentrics[2 * (size_t)i + 1] = t;
+        }
+    }
 }
 
 static int mlod__report(const mlod_build_desc *desc, float fraction)
@@ -1651,20 +1737,18 @@ MANYLODS_DEF mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
     tree->area_unit = cumulative[triangles] / n;
     tree->triangle_count = triangles;
     tree->vertex_count = mesh->vertex_count;
-    for (i = 0; i < n; i++) {
-        uint32_t item = leaf_item[i];
-        mlod__triangle_leaf shared;
-        mlod__triangle_leaf_of(tree, mesh, tri[item], 1.0, &shared);
-        mlod__mesh_leaf(tree, n - 1 + i, mesh, tri[item], st[2 * (size_t)item], st[2 * (size_t)item + 1], &shared);
-        if (tree->leaf_sources) {
-            tree->leaf_sources[i] = tri[item];
-            tree->leaf_barycentrics[2 * (size_t)i] = st[2 * (size_t)item];
-            tree->leaf_barycentrics[2 * (size_t)i + 1] = st[2 * (size_t)item + 1];
-        }
+    {
+        mlod__build_leaves_job job;
+        job.tree = tree;
+        job.mesh = mesh;
+        job.leaf_item = leaf_item;
+        job.tri = tri;
+        job.st = st;
+        mlod__run(desc->parallel, (n - 1) / MLOD__LEAF_CHUNK + 1, mlod__build_leaves_task, &job);
     }
     if (tree->triangle_areas)
         for (i = 0; i < triangles; i++) tree->triangle_areas[i] = cumulative[i + 1] - cumulative[i];
-    mlod__merge_all(tree, NULL);
+    mlod__merge_all(tree, desc->parallel);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
     if (mlod__report(desc, 1.0f)) {
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
@@ -1764,7 +1848,7 @@ MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod
         float scale = tree->radius_scale;
         tree->radius_scale = 0.0f; /* a first tree of bare points gives the density */
         for (i = 0; i < n; i++) mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], 0.0);
-        mlod__merge_all(tree, NULL);
+        mlod__merge_all(tree, desc->parallel);
         for (i = 0; i < n; i++) radius[i] = mlod__density_radius(tree, i);
         tree->radius_scale = scale;
     }
@@ -1781,7 +1865,7 @@ MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod
         mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], radius[i]);
         if (tree->leaf_sources) tree->leaf_sources[i] = leaf_item[i];
     }
-    mlod__merge_all(tree, NULL);
+    mlod__merge_all(tree, desc->parallel);
     mlod__set_precision(tree, tree->radius_scale * sqrt(mean_area));
     if (mlod__report(desc, 1.0f)) {
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
@@ -1806,8 +1890,6 @@ typedef struct mlod__refit_job {
     const mlod_mesh *mesh;
     const mlod_points *points;
 } mlod__refit_job;
-
-#define MLOD__LEAF_CHUNK 4096u
 
 /* Each triangle's growth and shared leaf data (triangles of zero area at
    build have no samples: growth 0). */

@@ -836,12 +836,12 @@ static mlod_tree *build_tree(bench *b, const protocol *p, uint32_t n, double *bu
     mlod_tree *tree = NULL;
     double times[3], spent = 0;
     int i, repeats = 0;
-    (void)b;
     memset(&desc, 0, sizeof desc);
     desc.sample_count = n;
     desc.seed = 1;
     desc.radius_scale = 1.0f;
     desc.attributes = MLOD_ATTR_CONE | MLOD_ATTR_REFIT;
+    desc.parallel = &b->parallel;
     for (i = 0; i < 3 && (i == 0 || spent < 1500.0); i++) { /* a median of up to 3, within ~1.5 s */
         double t0;
         mlod_tree_destroy(tree);

@@ -770,6 +770,7 @@ static inline mlod_tree *app_bake_points(const app_scene *s, const app_light *li
     desc.sample_count = samples;
     desc.seed = 1;
     desc.attributes = MLOD_ATTR_CONE | MLOD_ATTR_COLOR;
+    desc.parallel = threads->parallel;
     if (mlod_build_mesh(&s->mesh, &desc, &sampled, error) != MLOD_OK) return NULL;
     job.scene = s;
     job.light = light;

@@ -341,6 +341,7 @@ int main(int argc, char **argv)
     desc.sample_count = o.samples;
     desc.seed = 1;
     desc.attributes = MLOD_ATTR_CONE | MLOD_ATTR_REFIT;
+    desc.parallel = threads.parallel;
     t0 = app_now_ms();
     if (mlod_build_mesh(&scene.mesh, &desc, &tree, &error) != MLOD_OK) goto failed;
     build_ms = app_now_ms() - t0;

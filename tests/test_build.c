@@ -1,8 +1,9 @@
 /* tests/test_build.c - sampling and build: tree shape, exact containment of
    spheres and cones, samples on the surface, stratified area-uniform
    sampling, coverage by the splats, attributes and their bytes, areas,
-   colours, determinism, point clouds. */
+   colours, determinism (also through parallel-for hooks), point clouds. */
 #define MANYLODS_IMPLEMENTATION
+#define MANYLODS_PTHREADS
 #include "../manylods.h"
 #include "testutil.h"
 
@@ -513,6 +514,84 @@ static void test_progress(void)
     scene_free(&s);
 }
 
+/* The build through a parallel-for hook (pools of 1, 2 and 3 threads, and
+   hooks that run tasks backwards or odds first) gives the tree it gives
+   without one, bit for bit, for a mesh and for points with and without
+   radii; progress is reported the same way. */
+static void test_parallel_build(void)
+{
+    const uint32_t all = MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT, N = 30011, P = 20000;
+    scene_mesh s;
+    mlod_mesh m;
+    mlod_points pts;
+    mlod_pool *pools[3];
+    mlod_parallel hooks[5];
+    mlod_tree *base[3] = {NULL, NULL, NULL};
+    float *pos = (float *)malloc(sizeof(float) * 3 * P), *rad = (float *)malloc(sizeof(float) * P);
+    uint64_t rng = 5;
+    uint32_t h, i, kind, differ[3] = {0, 0, 0}, progress_differ = 0;
+    progress_log base_log = {0, 0, 0.0f};
+    if (!pos || !rad || !scene_torus(&s, 1.0f, 0.4f, 48, 24)) {
+        CHECK(0, "parallel build: set-up failed");
+        free(pos);
+        free(rad);
+        return;
+    }
+    m = tu_mesh(&s);
+    for (i = 0; i < P; i++) {
+        double n[3];
+        tu_random_unit(&rng, n);
+        scene_set3(pos, i, 2 * n[0], n[1], 0.5 * n[2] + 0.1 * scene_rng_double(&rng));
+        rad[i] = scene_rng_range(&rng, 0.01f, 0.05f);
+    }
+    memset(&pts, 0, sizeof pts);
+    pts.positions = pos;
+    pts.count = P;
+    for (h = 0; h < 3; h++) pools[h] = mlod_pool_create(h + 1);
+    for (h = 0; h < 3; h++) hooks[h] = mlod_pool_parallel(pools[h]);
+    hooks[3].run = tu_run_reverse;
+    hooks[3].user = NULL;
+    hooks[4].run = tu_run_odd_even;
+    hooks[4].user = NULL;
+    for (h = 0; h <= 5; h++) { /* h == 5: no hook, the reference; built first */
+        uint32_t which = h == 0 ? 5 : h - 1;
+        for (kind = 0; kind < 3; kind++) {
+            mlod_build_desc d = tu_desc(N, 9, kind == 0 ? all : MLOD_ATTR_REFIT);
+            mlod_tree *t = NULL;
+            progress_log log = {0, 0, 0.0f};
+            mlod_result r;
+            d.parallel = which == 5 ? NULL : &hooks[which];
+            if (kind == 0) {
+                d.progress = log_progress;
+                d.progress_user = &log;
+            }
+            pts.radii = kind == 1 ? rad : NULL;
+            r = kind == 0 ? mlod_build_mesh(&m, &d, &t, NULL) : mlod_build_points(&pts, &d, &t, NULL);
+            CHECK(r == MLOD_OK && t, "parallel build: hook %u, %s: build", which, kind == 0 ? "mesh" : "points");
+            if (!t) continue;
+            if (which == 5) {
+                base[kind] = t;
+                if (kind == 0) base_log = log;
+                continue;
+            }
+            differ[kind] += base[kind] && !same_tree(base[kind], t);
+            if (kind == 0) progress_differ += log.calls != base_log.calls || log.last != base_log.last || log.bad;
+            mlod_tree_destroy(t);
+        }
+    }
+    CHECK(differ[0] == 0, "parallel build, mesh: %u of 5 hooks built another tree than no hook", differ[0]);
+    CHECK(differ[1] == 0, "parallel build, points with radii: %u of 5 hooks built another tree", differ[1]);
+    CHECK(differ[2] == 0, "parallel build, points without radii: %u of 5 hooks built another tree", differ[2]);
+    CHECK(progress_differ == 0 && base_log.calls > 10, "parallel build: progress differs under %u hooks (%u calls without)",
+          progress_differ, base_log.calls);
+    if (base[0]) tu_check_containment(base[0], "parallel build, mesh");
+    for (kind = 0; kind < 3; kind++) mlod_tree_destroy(base[kind]);
+    for (h = 0; h < 3; h++) mlod_pool_destroy(pools[h]);
+    free(pos);
+    free(rad);
+    scene_free(&s);
+}
+
 /* --------------------------------------------------------------- points */
 
 static void test_points(void)
@@ -627,6 +706,7 @@ int main(void)
     test_flat_cones();
     test_coarse_positions();
     test_progress();
+    test_parallel_build();
     test_points();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
