@@ -824,23 +824,26 @@ static double mlod__distance_f(const float *a, const float *b)
     return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-/* sin and cos of a in [0, pi], to a few ulps, with + and * only: the
-   Taylor series of cos and sin around pi/2 (|a - pi/2| <= pi/2, terms up
-   to degree 22 and 21: truncation below 1e-17).  Written out the same way
-   in shaders/common.glsl, so that the CPU and the Vulkan path compute the
-   same bits wherever the device's double arithmetic is IEEE (lavapipe). */
-/* 1 / (k (k - 1)) for k = 22, 20, .., 2 (cos) and 21, 19, .., 3 (sin),
-   and 1 / (4i + 1) and 1 / (4i + 3) for i = 5 .. 0 (atan, its even and
-   odd powers of u^2): the same decimal literals, so the same doubles, in
-   shaders/common.glsl. */
-static const double mlod__cos_terms[11] = {
-    0.0021645021645021645, 0.002631578947368421, 0.0032679738562091504, 0.004166666666666667,
-    0.005494505494505495, 0.007575757575757576, 0.011111111111111112, 0.017857142857142856,
-    0.03333333333333333, 0.08333333333333333, 0.5};
-static const double mlod__sin_terms[10] = {
-    0.002380952380952381, 0.0029239766081871343, 0.003676470588235294, 0.004761904761904762,
-    0.00641025641025641, 0.00909090909090909, 0.013888888888888888, 0.023809523809523808, 0.05,
-    0.16666666666666666};
+/* sin and cos of a in [0, pi], to a few ulps (absolute error ~1e-16),
+   with + and * only: the Taylor series of cos and sin around pi/2
+   (|x| = |a - pi/2| <= pi/2, terms up to degree 22 and 21: truncation
+   below 1e-17), each split into its even and odd powers of x^2 and summed
+   as Horner chains in x^4 of at most 6 terms, so that four short chains
+   run side by side.  Written out the same way in shaders/common.glsl, so
+   that the CPU and the Vulkan path compute the same bits wherever the
+   device's double arithmetic is IEEE (lavapipe). */
+/* 1 / (4i)! and 1 / (4i + 2)! (cos), 1 / (4i + 1)! and 1 / (4i + 3)! (sin),
+   highest i first, and 1 / (4i + 1) and 1 / (4i + 3) for i = 5 .. 0 (atan,
+   its even and odd powers of u^2): the same decimal literals, so the same
+   doubles, in shaders/common.glsl. */
+static const double mlod__cos_even[6] = {4.110317623312165e-19, 4.779477332387385e-14, 2.08767569878681e-09,
+                                         2.48015873015873e-05,  0.041666666666666664, 1.0};
+static const double mlod__cos_odd[6] = {8.896791392450574e-22, 1.5619206968586225e-16, 1.1470745597729725e-11,
+                                        2.755731922398589e-07, 0.001388888888888889,   0.5};
+static const double mlod__sin_even[6] = {1.9572941063391263e-20, 2.8114572543455206e-15, 1.6059043836821613e-10,
+                                         2.7557319223985893e-06, 0.008333333333333333,   1.0};
+static const double mlod__sin_odd[5] = {8.22063524662433e-18, 7.647163731819816e-13, 2.505210838544172e-08,
+                                        0.0001984126984126984, 0.16666666666666666};
 static const double mlod__atan_even[6] = {0.047619047619047616, 0.058823529411764705, 0.07692307692307693,
                                           0.1111111111111111,   0.2,                  1.0};
 static const double mlod__atan_odd[6] = {0.043478260869565216, 0.05263157894736842, 0.06666666666666667,
@@ -848,12 +851,17 @@ static const double mlod__atan_odd[6] = {0.043478260869565216, 0.052631578947368
 
 static void mlod__sin_cos(double a, double *sin_a, double *cos_a)
 {
-    double x = a - 1.57079632679489661923, x2 = x * x, c = 1.0, s = 1.0;
+    double x = a - 1.57079632679489661923, y = x * x, z = y * y;
+    double ce = mlod__cos_even[0], co = mlod__cos_odd[0], se = mlod__sin_even[0], so = mlod__sin_odd[0];
     int k;
-    for (k = 0; k < 11; k++) c = 1.0 - x2 * mlod__cos_terms[k] * c;
-    for (k = 0; k < 10; k++) s = 1.0 - x2 * mlod__sin_terms[k] * s;
-    *sin_a = c;      /* sin(pi/2 + x) = cos x */
-    *cos_a = -x * s; /* cos(pi/2 + x) = -sin x */
+    for (k = 1; k < 6; k++) {
+        ce = mlod__cos_even[k] + z * ce;
+        co = mlod__cos_odd[k] + z * co;
+        se = mlod__sin_even[k] + z * se;
+    }
+    for (k = 1; k < 5; k++) so = mlod__sin_odd[k] + z * so;
+    *sin_a = ce - y * co;         /* sin(pi/2 + x) = cos x */
+    *cos_a = -x * (se - y * so); /* cos(pi/2 + x) = -sin x */
 }
 
 /* atan2(y, x) for y >= 0, in [0, pi], within 1e-11 rad, with + - * /

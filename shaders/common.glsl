@@ -147,14 +147,19 @@ double dot3(dvec3 a, dvec3 b)
     return s;
 }
 
-// mlod__cos_terms, mlod__sin_terms, mlod__atan_even, mlod__atan_odd (the same literals)
-const double COS_TERMS[11] = double[](
-    0.0021645021645021645LF, 0.002631578947368421LF, 0.0032679738562091504LF, 0.004166666666666667LF,
-    0.005494505494505495LF, 0.007575757575757576LF, 0.011111111111111112LF, 0.017857142857142856LF,
-    0.03333333333333333LF, 0.08333333333333333LF, 0.5LF);
-const double SIN_TERMS[10] = double[](
-    0.002380952380952381LF, 0.0029239766081871343LF, 0.003676470588235294LF, 0.004761904761904762LF,
-    0.00641025641025641LF, 0.00909090909090909LF, 0.013888888888888888LF, 0.023809523809523808LF, 0.05LF,
+// mlod__cos_even, mlod__cos_odd, mlod__sin_even, mlod__sin_odd, mlod__atan_even,
+// mlod__atan_odd (the same literals)
+const double COS_EVEN[6] = double[](
+    4.110317623312165e-19LF, 4.779477332387385e-14LF, 2.08767569878681e-09LF, 2.48015873015873e-05LF,
+    0.041666666666666664LF, 1.0LF);
+const double COS_ODD[6] = double[](
+    8.896791392450574e-22LF, 1.5619206968586225e-16LF, 1.1470745597729725e-11LF, 2.755731922398589e-07LF,
+    0.001388888888888889LF, 0.5LF);
+const double SIN_EVEN[6] = double[](
+    1.9572941063391263e-20LF, 2.8114572543455206e-15LF, 1.6059043836821613e-10LF, 2.7557319223985893e-06LF,
+    0.008333333333333333LF, 1.0LF);
+const double SIN_ODD[5] = double[](
+    8.22063524662433e-18LF, 7.647163731819816e-13LF, 2.505210838544172e-08LF, 0.0001984126984126984LF,
     0.16666666666666666LF);
 const double ATAN_EVEN[6] = double[](
     0.047619047619047616LF, 0.058823529411764705LF, 0.07692307692307693LF, 0.1111111111111111LF, 0.2LF, 1.0LF);
@@ -166,13 +171,21 @@ const double ATAN_ODD[6] = double[](
 void sin_cos(double a, out double sin_a, out double cos_a)
 {
     precise double x = a - 1.57079632679489661923LF;
-    precise double x2 = x * x;
-    precise double c = 1.0LF;
-    precise double s = 1.0LF;
-    [[unroll]] for (int k = 0; k < 11; k++) c = 1.0LF - x2 * COS_TERMS[k] * c;
-    [[unroll]] for (int k = 0; k < 10; k++) s = 1.0LF - x2 * SIN_TERMS[k] * s;
-    sin_a = c;
-    cos_a = -x * s;
+    precise double y = x * x;
+    precise double z = y * y;
+    precise double ce = COS_EVEN[0];
+    precise double co = COS_ODD[0];
+    precise double se = SIN_EVEN[0];
+    precise double so = SIN_ODD[0];
+    [[unroll]] for (int k = 1; k < 6; k++) {
+        ce = COS_EVEN[k] + z * ce;
+        co = COS_ODD[k] + z * co;
+        se = SIN_EVEN[k] + z * se;
+    }
+    [[unroll]] for (int k = 1; k < 5; k++) so = SIN_ODD[k] + z * so;
+    sin_a = ce - y * co;
+    precise double sine = se - y * so;
+    cos_a = -x * sine;
 }
 
 #ifndef MLOD_NO_VIEWS
