@@ -29,7 +29,9 @@
    stop, checked at the smallest N), and every atlas must be non-empty; a
    failed check prints FAIL and exits 1.  Peers in the same run: a per-view
    recursive traversal (bench/recursive.h), Imperfect Shadow Maps at equal
-   time, Embree casting every pixel of the atlas ("Polys"), Embree's BVH
+   time, our basic cut drawn as half discs and pull-push filled
+   (mlod_atlas_desc.disc_scale 0.5), Embree casting every pixel of the
+   atlas ("Polys"), Embree's BVH
    build and refit; and the N that mlod_suggest_sample_count suggests (for
    the closest surface any light sees), run when at most twice the largest N.
 
@@ -72,6 +74,7 @@
 #define BENCH_MAX_FRAMES 16
 #define BENCH_BIAS 0.002      /* shadow test bias: this fraction of the scene diameter */
 #define BENCH_BIAS_PIXELS 2.0 /* plus this many pixel footprints at the receiver (bench/metrics.h) */
+#define BENCH_DISC_SCALE 0.5f /* the half-disc row: mlod_atlas_desc.disc_scale */
 #define BENCH_PI 3.14159265358979323846
 
 enum { MODE_BASIC, MODE_INCREMENTAL, MODE_LAZY1, MODE_LAZY2 };
@@ -213,7 +216,7 @@ static void set3(float out[3], double x, double y, double z)
 
 /* ------------------------------------------------------------ results */
 
-enum { ROW_OURS, ROW_RECURSIVE, ROW_ISM, ROW_POLYS, ROW_EMBREE, ROW_TREE, ROW_SUGGESTED, ROW_VULKAN };
+enum { ROW_OURS, ROW_RECURSIVE, ROW_ISM, ROW_POLYS, ROW_EMBREE, ROW_TREE, ROW_SUGGESTED, ROW_VULKAN, ROW_DISCS };
 
 typedef struct row {
     int kind;
@@ -292,6 +295,7 @@ typedef struct protocol {
     uint32_t view_count;
     double diameter, area;
     mlod_atlas *atlas;
+    mlod_atlas *half_atlas; /* the same layout, discs at BENCH_DISC_SCALE */
     float *reference; /* the last frame's */
     uint64_t reference_hits;
     float *receivers;
@@ -487,6 +491,9 @@ static void protocol_reference(bench *b, protocol *p)
     memset(&desc, 0, sizeof desc);
     if (mlod_atlas_create(frame_views(p, 0), p->view_count, &desc, NULL, &p->atlas, &error) != MLOD_OK)
         fail("mlod_atlas_create: %s", error.message);
+    desc.disc_scale = BENCH_DISC_SCALE;
+    if (mlod_atlas_create(frame_views(p, 0), p->view_count, &desc, NULL, &p->half_atlas, &error) != MLOD_OK)
+        fail("mlod_atlas_create: %s", error.message);
     pixels = (size_t)p->atlas->width * p->atlas->height;
     p->reference = (float *)checked_malloc(sizeof(float) * pixels);
 
@@ -553,6 +560,7 @@ static void protocol_free(protocol *p)
     free(p->reference);
     free(p->receivers);
     mlod_atlas_destroy(p->atlas);
+    mlod_atlas_destroy(p->half_atlas);
     memset(p, 0, sizeof *p);
 }
 
@@ -716,10 +724,43 @@ static void metrics_task(void *context, uint32_t index)
                     job->p->diameter, job->p->receivers, job->p->receiver_count, BENCH_BIAS, BENCH_BIAS_PIXELS, &s->m, NULL);
 }
 
-static void compare_last(const protocol *p, metrics *m)
+static void compare_atlas(const protocol *p, const mlod_atlas *atlas, metrics *m)
 {
-    metrics_compare(p->atlas, p->reference, frame_views(p, p->frame_count - 1), p->diameter, p->receivers,
+    metrics_compare(atlas, p->reference, frame_views(p, p->frame_count - 1), p->diameter, p->receivers,
                     p->receiver_count, BENCH_BIAS, BENCH_BIAS_PIXELS, m, NULL);
+}
+
+static void compare_last(const protocol *p, metrics *m) { compare_atlas(p, p->atlas, m); }
+
+/* The last frame's basic cut splatted as half discs (disc_scale
+   BENCH_DISC_SCALE) and pull-push filled: median time of 3 and metrics. */
+static void run_half_discs(bench *b, const protocol *p, const mlod_tree *tree, float eps, const mlod_cut *cut,
+                           double cut_ms)
+{
+    const mlod_view *views = frame_views(p, p->frame_count - 1);
+    double times[3];
+    mlod_error error;
+    row *r;
+    int i;
+    for (i = 0; i < 3; i++) {
+        double t0 = now_ms();
+        if (mlod_splat(p->half_atlas, tree, cut, views, &b->parallel, &error) != MLOD_OK ||
+            mlod_atlas_fill_holes(p->half_atlas, &b->parallel, &error) != MLOD_OK)
+            fail("half discs: %s", error.message);
+        times[i] = now_ms() - t0;
+        check_atlas(p->half_atlas, "half discs");
+    }
+    r = add_row(b, ROW_DISCS, p->name, "basic cut, half discs + pull-push");
+    r->eps = eps;
+    r->n = tree->leaf_count;
+    r->cut_ms = cut_ms;
+    r->splat_ms = median(times, 3);
+    r->total_ms = cut_ms + r->splat_ms;
+    compare_atlas(p, p->half_atlas, &r->m);
+    r->has_metrics = 1;
+    r->atlas_bytes = (double)p->half_atlas->bytes;
+    snprintf(r->note, sizeof r->note, "mlod_atlas_desc.disc_scale %g; splat + pull-push %.2f ms", (double)BENCH_DISC_SCALE,
+             r->splat_ms);
 }
 
 static void fill_ours(row *r, const protocol *p, float eps, uint32_t n, const mode_stats *s, int measured,
@@ -1010,6 +1051,11 @@ static void run_size(bench *b, protocol *p, uint32_t n, const float *eps_list, i
             if (!cuts_equal(stats[m].cut, stats[MODE_BASIC].cut, &diff))
                 fail("%s, N %u, eps %g: %s did not converge to the basic cut in 256 updates (view %u)", p->name, n,
                      (double)eps, mode_names[m], diff);
+        }
+        if (ism) { /* the basic cut of the last frame, as half discs */
+            double t0 = now_ms();
+            run_half_discs(b, p, tree, eps, stats[MODE_BASIC].cut, median(stats[MODE_BASIC].cut_ms, c->measured));
+            b->spent_ism += now_ms() - t0;
         }
         if (ism && stats[MODE_INCREMENTAL].present) { /* at the time of the incremental cut + splat */
             double t0 = now_ms();
@@ -1505,7 +1551,8 @@ static void write_markdown(const bench *b, FILE *f, protocol *const *protocols, 
         for (k = 0; k < b->row_count; k++) {
             const row *r = &b->rows[k];
             char cells[4][32], eps[16], n[16], cut[32];
-            if (strcmp(r->scene, scene) != 0 || (r->kind != ROW_RECURSIVE && r->kind != ROW_ISM && r->kind != ROW_POLYS))
+            if (strcmp(r->scene, scene) != 0 ||
+                (r->kind != ROW_RECURSIVE && r->kind != ROW_ISM && r->kind != ROW_POLYS && r->kind != ROW_DISCS))
                 continue;
             metric_cells(cells, r);
             fmt(eps, sizeof eps, "%g", r->eps ? r->eps : NAN);
