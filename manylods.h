@@ -2458,6 +2458,7 @@ struct mlod_cut {
     uint32_t *tasks; /* first segment of each task, then the end */
     size_t task_capacity;
     uint32_t *view_segment; /* per view: first segment, then the end */
+    uint8_t *view_done;     /* per view: nothing to split this round (copied as it is) */
     size_t bytes;
 };
 
@@ -2638,14 +2639,29 @@ static void mlod__segment_task(void *context, uint32_t index)
     }
 }
 
+/* A view with nothing left to split in a later round of basic or
+   incremental mode has no segments: the round copies its list. */
+static int mlod__view_finished(const mlod__cut_job *job, uint32_t view)
+{
+    return job->cut->view_done[view];
+}
+
 /* Concatenate one view's segment outputs into the output list, merging
-   sibling pairs that meet at segment boundaries, and count. */
+   sibling pairs that meet at segment boundaries, and count (a finished
+   view: copy its list). */
 static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod__pview *pv)
 {
     mlod_cut *cut = job->cut;
     mlod__view_stats *stats = &cut->stats[1][view];
     uint32_t *nodes = job->out->nodes + job->out->offset[view], count = 0, s, i;
     uint8_t *status = job->out->status + job->out->offset[view];
+    if (mlod__view_finished(job, view)) { /* copied as it is: its counts stand */
+        count = job->in->count[view];
+        memcpy(nodes, job->in->nodes + job->in->offset[view], count * sizeof(uint32_t));
+        memcpy(status, job->in->status + job->in->offset[view], count);
+        job->out->count[view] = count;
+        return;
+    }
     if (job->trust) {
         /* later rounds add to the first round's counts */
     } else {
@@ -2772,6 +2788,7 @@ MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut)
     mlod__free(&cut->allocator, cut->segments);
     mlod__free(&cut->allocator, cut->tasks);
     mlod__free(&cut->allocator, cut->view_segment);
+    mlod__free(&cut->allocator, cut->view_done);
     cut->allocator.free(cut->allocator.user, cut);
 }
 
@@ -2798,6 +2815,7 @@ MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
     for (i = 0; i < 2; i++)
         ok = ok && (cut->stats[i] = (mlod__view_stats *)mlod__alloc_array(&a, view_count, sizeof(mlod__view_stats), &cut->bytes));
     ok = ok && (cut->view_segment = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &cut->bytes));
+    ok = ok && (cut->view_done = (uint8_t *)mlod__alloc_array(&a, view_count, 1, &cut->bytes));
     if (!ok) {
         mlod_cut_destroy(cut);
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating a cut for %u views", view_count);
@@ -2877,14 +2895,31 @@ static size_t mlod__segment_room(uint32_t n, uint32_t splits, int lazy, int trus
 
 /* Cut the input lists into segments and the segments into tasks, place
    every segment's output in scratch.  Returns 0 when out of memory. */
-static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int trust, uint32_t *task_count)
+/* The split room of a view's root in the first round of a cut from the
+   root: what its previous cut held, a quarter more, so that the cut is
+   found in one round where the views moved little (at least the round's
+   share, at most MLOD__SEGMENT_GROWTH). */
+static size_t mlod__root_room(size_t unit, uint32_t previous)
+{
+    size_t room = (size_t)previous + previous / 4 + MLOD__MIN_SHARE;
+    if (room > MLOD__SEGMENT_GROWTH) room = MLOD__SEGMENT_GROWTH;
+    return room > unit ? room : unit;
+}
+
+/* hint: the previous cut's count per view when this round splits the
+   roots, else NULL. */
+static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int trust, const uint32_t *hint,
+                            uint32_t *task_count)
 {
     size_t total = 0, to_split = 0, segments = 0, s = 0, capacity = 0, unit = 0, work = 0;
     uint32_t v, tasks = 0, splits;
     for (v = 0; v < cut->view_count; v++) {
-        size_t at = in->offset[v], end = at + in->count[v];
+        size_t at = in->offset[v], end = at + in->count[v], view_splits = 0;
         total += in->count[v];
-        for (; at < end; at++) to_split += (size_t)mlod__to_split(in->status[at], lazy, trust);
+        for (; at < end; at++) view_splits += (size_t)mlod__to_split(in->status[at], lazy, trust);
+        to_split += view_splits;
+        /* later basic and incremental rounds leave finished views alone */
+        cut->view_done[v] = (uint8_t)(trust && !lazy && view_splits == 0);
     }
     /* the entries to split share a budget of scratch: at least the input */
     if (to_split) {
@@ -2893,9 +2928,10 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         if (unit > MLOD__SEGMENT_GROWTH) unit = MLOD__SEGMENT_GROWTH;
     }
     for (v = 0; v < cut->view_count; v++) {
-        size_t at = in->offset[v], end = at + in->count[v];
+        size_t at = in->offset[v], end = cut->view_done[v] ? at : at + in->count[v];
+        size_t view_unit = hint ? mlod__root_room(unit, hint[v]) : unit;
         while (at < end) {
-            at += mlod__segment_length(in, at, end, lazy, trust, unit, &splits);
+            at += mlod__segment_length(in, at, end, lazy, trust, view_unit, &splits);
             segments++;
         }
     }
@@ -2909,12 +2945,13 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         cut->tasks = (uint32_t *)p;
     }
     for (v = 0; v < cut->view_count; v++) {
-        size_t at = in->offset[v], end = at + in->count[v];
+        size_t at = in->offset[v], end = cut->view_done[v] ? at : at + in->count[v];
+        size_t view_unit = hint ? mlod__root_room(unit, hint[v]) : unit;
         cut->view_segment[v] = (uint32_t)s;
         while (at < end) {
             mlod__segment *seg = &cut->segments[s];
-            uint32_t n = mlod__segment_length(in, at, end, lazy, trust, unit, &splits);
-            size_t room = mlod__segment_room(n, splits, lazy, trust, unit);
+            uint32_t n = mlod__segment_length(in, at, end, lazy, trust, view_unit, &splits);
+            size_t room = mlod__segment_room(n, splits, lazy, trust, view_unit);
             seg->view = v;
             seg->in_begin = at;
             seg->in_count = n;
@@ -2939,12 +2976,13 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
 
 /* Lay out the output list: each view gets room for all its segments'
    output.  Returns 0 when out of memory. */
-static int mlod__place_output(mlod_cut *cut, mlod__list *out)
+static int mlod__place_output(mlod_cut *cut, const mlod__list *in, mlod__list *out)
 {
     size_t at = 0;
     uint32_t v, s;
     for (v = 0; v < cut->view_count; v++) {
         out->offset[v] = at;
+        if (cut->view_done[v]) at += in->count[v];
         for (s = cut->view_segment[v]; s < cut->view_segment[v + 1]; s++) at += cut->segments[s].out_count;
     }
     return mlod__reserve_list(cut, out, at);
@@ -2988,9 +3026,12 @@ MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     mlod__list *in, *out;
     uint32_t v, round, tasks;
     int from_root;
+    const uint32_t *hint;
     mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
     if (res != MLOD_OK) return res;
     from_root = params->mode == MLOD_CUT_BASIC || cut->tree_nodes != tree->node_count;
+    /* a basic cut's first round is sized by the previous cut of the tree */
+    hint = params->mode == MLOD_CUT_BASIC && cut->tree_nodes == tree->node_count ? cut->lists[cut->committed].count : NULL;
     memset(&job, 0, sizeof job);
     job.tree = tree;
     job.views = views;
@@ -3017,9 +3058,9 @@ MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         job.merge = params->mode == MLOD_CUT_INCREMENTAL && round == 0 && !from_root;
         job.in = in;
         job.out = out;
-        if (!mlod__plan_round(cut, in, job.lazy, job.trust, &tasks)) goto out_of_memory;
+        if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, &tasks)) goto out_of_memory;
         mlod__run(params->parallel, tasks, mlod__segment_task, &job);
-        if (!mlod__place_output(cut, out)) goto out_of_memory;
+        if (!mlod__place_output(cut, in, out)) goto out_of_memory;
         mlod__run(params->parallel, (cut->view_count - 1) / MLOD__JOIN_VIEWS + 1, mlod__join_task, &job);
         in = out;
         for (v = 0; v < cut->view_count; v++) coarse += cut->stats[1][v].coarse;
