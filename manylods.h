@@ -2411,6 +2411,11 @@ MANYLODS_DEF double mlod_criterion(const mlod_tree *tree, uint32_t node, const m
 /* Working status of a list entry: 0 = not evaluated yet, else MLOD_STATUS_*.
    Outside lazy mode, COARSE marks an entry still to be split. */
 #define MLOD__PENDING 0u
+/* Lazy rounds of one call: this valid node's parent was found invalid; the
+   views do not change within a call, so later rounds need not look again.
+   Or-ed into the status between rounds, cleared by the last round. */
+#define MLOD__PARENT_INVALID 8u
+#define MLOD__STATUS_MASK 7u
 /* A segment (a run of one view's list handled by one task) holds at most
    this many input entries. */
 #define MLOD__SEGMENT_INPUT 1024u
@@ -2480,6 +2485,7 @@ typedef struct mlod__cut_job {
     int trust;  /* statuses of the input are current */
     int merge;  /* look for sibling pairs to merge */
     int lazy;   /* one step per entry */
+    int last;   /* the call's last round: clear MLOD__PARENT_INVALID */
     const mlod__list *in;
     mlod__list *out;
     mlod_cut *cut;
@@ -2584,9 +2590,10 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
     for (k = 0; k < seg->in_count; k++) {
         size_t at = seg->in_begin + k;
         uint32_t node = job->in->nodes[at];
-        uint8_t st = job->in->status[at];
+        uint8_t raw = job->in->status[at], st = raw & MLOD__STATUS_MASK;
         if (st == MLOD__PENDING || !job->trust) {
             st = mlod__classify(pv, tree, node, job->epsilon);
+            raw = st;
             seg->evaluated++;
         }
         if (st == MLOD_STATUS_COARSE) {
@@ -2600,9 +2607,12 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
             uint32_t parent = (node - 1) / 2;
             int left = (node & 1u) != 0;
             /* a left child merges with its right sibling; a right child at
-               the start of a segment defers to its left sibling before it */
-            if (left ? (at + 1 < view_end && job->in->nodes[at + 1] == node + 1)
-                     : (k == 0 && at > view_begin && job->in->nodes[at - 1] == node - 1)) {
+               the start of a segment defers to its left sibling before it;
+               a parent found invalid this call stays invalid (the left
+               child carries the mark) */
+            if (left ? (!(raw & MLOD__PARENT_INVALID) && at + 1 < view_end && job->in->nodes[at + 1] == node + 1)
+                     : (k == 0 && at > view_begin && job->in->nodes[at - 1] == node - 1 &&
+                        !(job->trust && (job->in->status[at - 1] & MLOD__PARENT_INVALID)))) {
                 uint8_t ps = mlod__classify(pv, tree, parent, job->epsilon);
                 seg->evaluated++;
                 if (mlod__is_valid(ps)) {
@@ -2613,9 +2623,10 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
                     }
                     continue;
                 }
+                if (left) raw |= MLOD__PARENT_INVALID;
             }
         }
-        mlod__emit(&out, node, st);
+        mlod__emit(&out, node, raw);
     }
     seg->out_count = out.count;
 }
@@ -2695,7 +2706,8 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     job->out->count[view] = count;
     stats->drawn = stats->culled = stats->oversize = stats->coarse = 0;
     for (i = 0; i < count; i++) {
-        switch (status[i]) {
+        if (job->last) status[i] &= MLOD__STATUS_MASK;
+        switch (status[i] & MLOD__STATUS_MASK) {
         case MLOD_STATUS_DRAWN: stats->drawn++; break;
         case MLOD_STATUS_CULLED: stats->culled++; break;
         case MLOD_STATUS_OVERSIZE: stats->oversize++; break;
@@ -3055,6 +3067,7 @@ MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         out = &cut->lists[(cut->committed + 1) % 3];
         if (out == in) out = &cut->lists[(cut->committed + 2) % 3];
         job.trust = round > 0;
+        job.last = !job.lazy || round + 1 >= params->lazy_steps;
         job.merge = params->mode == MLOD_CUT_INCREMENTAL && round == 0 && !from_root;
         job.in = in;
         job.out = out;
