@@ -25,6 +25,7 @@
 #ifndef MANYLODS_EXAMPLES_APP_H
 #define MANYLODS_EXAMPLES_APP_H
 
+#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -55,7 +56,7 @@ typedef struct app_options {
     uint32_t frames;       /* --frames N: animated frames */
     uint32_t threads;      /* --threads N */
     mlod_cut_mode mode;    /* --mode basic|incremental|lazy */
-    int match_drawn;       /* --ism-match drawn (1) | time (0) */
+    uint32_t match_drawn;  /* --ism-match: time (0), drawn (1) or K (K times the drawn count, 1..16) */
     int tiny;              /* --tiny: the small preset */
     float disc_scale;      /* --disc-scale S: mlod_atlas_desc.disc_scale, in (0, 1] */
 } app_options;
@@ -139,8 +140,9 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             o->disc_scale = value ? strtof(value, &end) : 0.0f;
             ok = value && end && !*end && o->disc_scale > 0.0f && o->disc_scale <= 1.0f;
         } else if (strcmp(arg, "--ism-match") == 0) {
-            ok = value && (strcmp(value, "drawn") == 0 || strcmp(value, "time") == 0);
-            if (ok) o->match_drawn = value[0] == 'd';
+            ok = value && (strcmp(value, "drawn") == 0 || strcmp(value, "time") == 0 ||
+                           app_parse_u32(value, 1, 16, &o->match_drawn));
+            if (ok && !isdigit((unsigned char)value[0])) o->match_drawn = value[0] == 'd';
         } else {
             fprintf(stderr, "%s: unknown option \"%s\"\n\n%s", program, arg, usage);
             return 0;

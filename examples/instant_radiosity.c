@@ -44,7 +44,8 @@ static const char usage[] =
     "  --size WxH         the image (default 256x192)\n"
     "  --frames N         animated frames after the first (default 3)\n"
     "  --mode M           basic, incremental or lazy cuts after the first frame (default incremental)\n"
-    "  --ism-match M      give ISM the same 'time' as manylods (default) or as many points as it 'drawn' nodes\n"
+    "  --ism-match M      give ISM the same 'time' as manylods (default), as many points as it 'drawn' nodes,\n"
+    "                     or K times as many (K = 1 .. 16)\n"
     "  --disc-scale S     manylods' discs: S times the sphere image's radius, 0 < S <= 1 (default 0.5;\n"
     "                     below 1 the holes are pull-push filled, in the splat's time)\n"
     "  --threads N        threads (default 2)\n"
@@ -426,6 +427,7 @@ int main(int argc, char **argv)
         float receivers[3 * RECEIVERS];
         uint64_t rays;
         int ok = 1;
+        points *= o.match_drawn ? o.match_drawn : 1;
         if (points == 0) points = 1;
         ism_ms = splat_ism(ism_atlas, tree, views, points, &threads, &error, &ok);
         for (round = 0; ok && !o.match_drawn && round < 3; round++) { /* points in proportion to the time */
@@ -461,13 +463,17 @@ int main(int argc, char **argv)
         printf("\nlast frame against exact visibility    time ms  indirect  shadow maps against ray-cast maps\n");
         printf("                                                light     depth RMS  depth p95  shadow tests  holes\n");
         printf("  %-36s %7.0f  %5.1f %%   %6.2f %%   %6.2f %%   %6.2f %%     %5.2f %%\n",
-               o.disc_scale < 1.0f ? "manylods: cut + splat + pull-push" : "manylods: cut + splat", target, 100.0 * error_cut, 100.0 * maps_cut.depth_rms, 100.0 * maps_cut.depth_p95,
+               o.disc_scale < 1.0f ? "manylods: cut + splat + pull-push" : "manylods: cut + splat", target,
+               100.0 * error_cut, 100.0 * maps_cut.depth_rms, 100.0 * maps_cut.depth_p95,
                100.0 * maps_cut.shadow_disagreement, 100.0 * maps_cut.hole_rate);
         printf("  %-36s %7.0f  %5.1f %%   %6.2f %%   %6.2f %%   %6.2f %%     %5.2f %%\n", "ISM: splat + pull-push", ism_ms,
                100.0 * error_ism, 100.0 * maps_ism.depth_rms, 100.0 * maps_ism.depth_p95,
                100.0 * maps_ism.shadow_disagreement, 100.0 * maps_ism.hole_rate);
         printf("  manylods: epsilon %g px, %.0f nodes drawn per VPL; ISM: %u points per VPL (%s)\n", (double)o.epsilon,
-               (double)drawn_total / o.views, points, o.match_drawn ? "as many as manylods draws nodes" : "matched to manylods' time");
+               (double)drawn_total / o.views, points,
+               o.match_drawn == 1 ? "as many as manylods draws nodes"
+               : o.match_drawn    ? "a multiple of the nodes manylods draws"
+                                  : "matched to manylods' time");
         printf("  reference: %.1f million shadow rays in %.0f ms\n", (double)rays / 1e6, reference_ms);
         printf("  (indirect light: mean absolute error over the mean; maps: depth error in scene diameters, receivers\n"
                "   whose lit/shadowed answer differs, empty pixels; bench/metrics.h defines them)\n");

@@ -89,7 +89,7 @@ static void test_options(void)
                                    {"x", "--tile", "3"},       {"x", "--frames", "9999"}, {"x", "--threads", "0"},
                                    {"x", "--mode", "fast"},    {"x", "--ism-match", "x"}, {"x", "--bogus", "1"},
                                    {"x", "--eps", NULL},       {"x", "--disc-scale", "0"}, {"x", "--disc-scale", "1.5"},
-                                   {"x", "--disc-scale", "nan"}};
+                                   {"x", "--disc-scale", "nan"}, {"x", "--ism-match", "0"},  {"x", "--ism-match", "17"}};
     size_t i;
     CHECK(parse(usage, &normal, &tiny, &o, 1, all) == 1 && o.width == 320 && !o.tiny, "no arguments: the normal preset");
     CHECK(parse(usage, &normal, &tiny, &o, (int)(sizeof all / sizeof all[0]), all) == 1, "every option parses");
@@ -99,6 +99,12 @@ static void test_options(void)
           "every option's value lands in its field");
     CHECK(parse(usage, &normal, &tiny, &o, 4, tiny_last) == 1 && o.tiny && o.views == 9 && o.width == 80,
           "--tiny picks the small preset, wherever it is, and other options override it");
+    {
+        static const char *multiple[] = {"x", "--ism-match", "3"}, *by_time[] = {"x", "--ism-match", "time"};
+        CHECK(parse(usage, &normal, &tiny, &o, 3, multiple) == 1 && o.match_drawn == 3,
+              "--ism-match 3: three times the drawn count (got %u)", o.match_drawn);
+        CHECK(parse(usage, &normal, &tiny, &o, 3, by_time) == 1 && o.match_drawn == 0, "--ism-match time: 0");
+    }
     for (i = 0; i < sizeof bad / sizeof bad[0]; i++)
         CHECK(parse(usage, &normal, &tiny, &o, bad[i][2] ? 3 : 2, bad[i]) == 0, "%s %s is refused", bad[i][1],
               bad[i][2] ? bad[i][2] : "(no value)");
