@@ -3159,58 +3159,96 @@ typedef struct mlod__disc {
     double x, y, radius, depth;
 } mlod__disc;
 
+static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], const double *r, int half,
+                             mlod__disc *out, int *bounded, uint32_t n);
+
 static int mlod__image_disc(const mlod__pview *pv, const double *centre, double r, int half, mlod__disc *out)
 {
-    double x[3], d, a, b, cos_t, sin_t, sin_b, cos_b, dir_x = 0.0, dir_y = 0.0;
-    double s_hi, c_hi, s_lo, c_lo, hi, lo;
+    const double (*c)[3] = (const double (*)[3])centre;
+    int bounded;
+    mlod__image_discs(pv, c, &r, half, out, &bounded, 1);
+    return bounded;
+}
+
+/* The same for n <= MLOD__LANES spheres at once, step by step across them
+   (each lane computes what mlod__image_disc computes for it alone):
+   bounded[l] says whether out[l] was written.  Returns bounded[0]. */
+static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], const double *r, int half,
+                             mlod__disc *out, int *bounded, uint32_t n)
+{
+    double x[MLOD__LANES][3], d[MLOD__LANES], a[MLOD__LANES], b[MLOD__LANES], cos_t[MLOD__LANES];
+    double sin_t[MLOD__LANES], sin_b[MLOD__LANES], cos_b[MLOD__LANES];
+    uint32_t l;
     int k;
-    for (k = 0; k < 3; k++) x[k] = centre[k] - pv->e[k];
+    for (l = 0; l < n; l++)
+        for (k = 0; k < 3; k++) x[l][k] = centre[l][k] - pv->e[k];
     if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) {
-        out->x = 0.5 * pv->width + pv->sx * mlod__dot3(x, pv->u);
-        out->y = 0.5 * pv->height - pv->sy * mlod__dot3(x, pv->v);
-        out->radius = r * pv->scale;
-        out->depth = mlod__dot3(x, pv->w);
-        return 1;
+        for (l = 0; l < n; l++) {
+            out[l].x = 0.5 * pv->width + pv->sx * mlod__dot3(x[l], pv->u);
+            out[l].y = 0.5 * pv->height - pv->sy * mlod__dot3(x[l], pv->v);
+            out[l].radius = r[l] * pv->scale;
+            out[l].depth = mlod__dot3(x[l], pv->w);
+            bounded[l] = 1;
+        }
+        return bounded[0];
     }
-    d = mlod__length3(x);
-    if (!(d > r)) return 0;
-    a = mlod__dot3(x, pv->u) / d;
-    b = mlod__dot3(x, pv->v) / d;
-    cos_t = mlod__dot3(x, pv->w) / d;
-    if (half) { /* the back hemisphere, seen along -w with u mirrored */
-        a = -a;
-        cos_t = -cos_t;
+    for (l = 0; l < n; l++) {
+        d[l] = mlod__length3(x[l]);
+        bounded[l] = d[l] > r[l];
     }
-    sin_t = sqrt(a * a + b * b);
-    sin_b = r / d;
-    cos_b = sqrt(1.0 - sin_b * sin_b);
-    if (sin_t > 0.0) {
-        dir_x = a / sin_t;
-        dir_y = b / sin_t;
+    for (l = 0; l < n; l++) {
+        if (!bounded[l]) continue;
+        a[l] = mlod__dot3(x[l], pv->u) / d[l];
+        b[l] = mlod__dot3(x[l], pv->v) / d[l];
+        cos_t[l] = mlod__dot3(x[l], pv->w) / d[l];
+        if (half) { /* the back hemisphere, seen along -w with u mirrored */
+            a[l] = -a[l];
+            cos_t[l] = -cos_t[l];
+        }
+        sin_b[l] = r[l] / d[l];
     }
-    /* the image spans radially from angle t - b to t + b off the axis */
-    s_hi = sin_t * cos_b + cos_t * sin_b;
-    c_hi = cos_t * cos_b - sin_t * sin_b;
-    s_lo = sin_t * cos_b - cos_t * sin_b;
-    c_lo = cos_t * cos_b + sin_t * sin_b;
-    if (pv->kind == MLOD_VIEW_PERSPECTIVE) {
-        if (!(c_hi > 0.0)) return 0;
-        hi = s_hi / c_hi; /* tan(t + b) */
-        lo = s_lo / c_lo; /* tan(t - b) */
-        out->x = 0.5 * pv->width + pv->scale * 0.5 * (hi + lo) * dir_x;
-        out->y = 0.5 * pv->height - pv->scale * 0.5 * (hi + lo) * dir_y;
-        out->depth = mlod__dot3(x, pv->w);
-    } else {
-        double tile_width = pv->kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv->width : pv->width;
-        if (!(1.0 + c_hi > 0.0)) return 0;
-        hi = s_hi / (1.0 + c_hi); /* tan((t + b) / 2) */
-        lo = s_lo / (1.0 + c_lo);
-        out->x = half * tile_width + 0.5 * tile_width * (1.0 + 0.5 * (hi + lo) * dir_x);
-        out->y = 0.5 * pv->height * (1.0 - 0.5 * (hi + lo) * dir_y);
-        out->depth = d;
+    for (l = 0; l < n; l++) {
+        if (!bounded[l]) continue;
+        sin_t[l] = sqrt(a[l] * a[l] + b[l] * b[l]);
+        cos_b[l] = sqrt(1.0 - sin_b[l] * sin_b[l]);
     }
-    out->radius = pv->scale * 0.5 * (hi - lo);
-    return 1;
+    for (l = 0; l < n; l++) {
+        double dir_x = 0.0, dir_y = 0.0, s_hi, c_hi, s_lo, c_lo, hi, lo;
+        if (!bounded[l]) continue;
+        if (sin_t[l] > 0.0) {
+            dir_x = a[l] / sin_t[l];
+            dir_y = b[l] / sin_t[l];
+        }
+        /* the image spans radially from angle t - b to t + b off the axis */
+        s_hi = sin_t[l] * cos_b[l] + cos_t[l] * sin_b[l];
+        c_hi = cos_t[l] * cos_b[l] - sin_t[l] * sin_b[l];
+        s_lo = sin_t[l] * cos_b[l] - cos_t[l] * sin_b[l];
+        c_lo = cos_t[l] * cos_b[l] + sin_t[l] * sin_b[l];
+        if (pv->kind == MLOD_VIEW_PERSPECTIVE) {
+            if (!(c_hi > 0.0)) {
+                bounded[l] = 0;
+                continue;
+            }
+            hi = s_hi / c_hi; /* tan(t + b) */
+            lo = s_lo / c_lo; /* tan(t - b) */
+            out[l].x = 0.5 * pv->width + pv->scale * 0.5 * (hi + lo) * dir_x;
+            out[l].y = 0.5 * pv->height - pv->scale * 0.5 * (hi + lo) * dir_y;
+            out[l].depth = mlod__dot3(x[l], pv->w);
+        } else {
+            double tile_width = pv->kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv->width : pv->width;
+            if (!(1.0 + c_hi > 0.0)) {
+                bounded[l] = 0;
+                continue;
+            }
+            hi = s_hi / (1.0 + c_hi); /* tan((t + b) / 2) */
+            lo = s_lo / (1.0 + c_lo);
+            out[l].x = half * tile_width + 0.5 * tile_width * (1.0 + 0.5 * (hi + lo) * dir_x);
+            out[l].y = 0.5 * pv->height * (1.0 - 0.5 * (hi + lo) * dir_y);
+            out[l].depth = d[l];
+        }
+        out[l].radius = pv->scale * 0.5 * (hi - lo);
+    }
+    return bounded[0];
 }
 
 /* Inside the view: in every culling half-space. */
@@ -3405,11 +3443,23 @@ typedef struct mlod__band {
     uint32_t row_begin, row_end; /* tile rows */
 } mlod__band;
 
+/* Keep the node's depth (and channels) at a tile pixel if it is nearer. */
+static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node)
+{
+    mlod_atlas *atlas = band->atlas;
+    size_t at = (size_t)(band->tile[1] + row) * atlas->width + band->tile[0] + col;
+    int k;
+    if (!(depth < atlas->depth[at])) return;
+    atlas->depth[at] = depth;
+    for (k = 0; k < 3 && atlas->normal; k++) atlas->normal[3 * at + k] = band->tree->cones[4 * (size_t)node + k];
+    for (k = 0; k < 3 && atlas->color; k++) atlas->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
+}
+
 /* Draw the disc into the band, clipped to tile columns [col_begin, col_end). */
 static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, uint32_t node, uint32_t col_begin,
                               uint32_t col_end)
 {
-    mlod_atlas *atlas = band->atlas;
+    const mlod_atlas *atlas = band->atlas;
     double radius = disc->radius * (double)atlas->disc_scale, r2 = radius * radius;
     double y0 = floor(disc->y - radius), y1 = ceil(disc->y + radius);
     double x0 = floor(disc->x - radius), x1 = ceil(disc->x + radius);
@@ -3426,46 +3476,45 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
         for (col = cb; col < ce; col++) {
             double dx = col + 0.5 - disc->x;
             if (dx * dx + dy * dy <= r2) {
-                size_t at = (size_t)(band->tile[1] + row) * atlas->width + band->tile[0] + col;
                 hit = 1;
-                if (depth < atlas->depth[at]) {
-                    int k;
-                    atlas->depth[at] = depth;
-                    for (k = 0; k < 3 && atlas->normal; k++) atlas->normal[3 * at + k] = band->tree->cones[4 * (size_t)node + k];
-                    for (k = 0; k < 3 && atlas->color; k++) atlas->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
-                }
+                mlod__plot(band, row, col, depth, node);
             }
         }
     }
+    /* no pixel centre in the disc: at disc_scale 1, the pixel holding its centre */
     if (!hit && atlas->disc_scale >= 1.0f && disc->x >= col_begin && disc->x < col_end && disc->y >= band->row_begin &&
-        disc->y < band->row_end) {
-        mlod__disc dot = *disc;
-        dot.x = floor(disc->x) + 0.5;
-        dot.y = floor(disc->y) + 0.5;
-        dot.radius = 0.0;
-        mlod__raster_disc(band, &dot, node, col_begin, col_end);
-    }
+        disc->y < band->row_end)
+        mlod__plot(band, (uint32_t)floor(disc->y), (uint32_t)floor(disc->x), depth, node);
 }
 
-/* Draw a node into the band: each hemisphere its sphere reaches for dual
-   paraboloids, else the one projection. */
-static void mlod__draw_node(const mlod__band *band, const mlod__pview *pv, uint32_t node)
+/* Draw n <= MLOD__LANES nodes into the band, in order: each hemisphere its
+   sphere reaches for dual paraboloids, else the one projection (the
+   images of all n at once). */
+static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, const uint32_t *nodes, uint32_t n)
 {
-    const float *s = band->tree->spheres + 4 * (size_t)node;
-    double c[3];
-    mlod__disc disc;
-    int k, half;
-    for (k = 0; k < 3; k++) c[k] = s[k];
+    double c[MLOD__LANES][3], r[MLOD__LANES] = {0.0};
+    mlod__disc disc[MLOD__LANES];
+    int bounded[MLOD__LANES], k, half;
+    uint32_t l;
+    if (n == 0) return;
+    for (l = 0; l < n; l++) {
+        const float *s = band->tree->spheres + 4 * (size_t)nodes[l];
+        for (k = 0; k < 3; k++) c[l][k] = s[k];
+        r[l] = s[3];
+    }
     if (pv->kind != MLOD_VIEW_DUAL_PARABOLOID) {
-        if (mlod__image_disc(pv, c, s[3], 0, &disc)) mlod__raster_disc(band, &disc, node, 0, band->tile[2]);
+        mlod__image_discs(pv, (const double (*)[3])c, r, 0, disc, bounded, n);
+        for (l = 0; l < n; l++)
+            if (bounded[l]) mlod__raster_disc(band, &disc[l], nodes[l], 0, band->tile[2]);
         return;
     }
-    for (half = 0; half < 2; half++) {
-        uint32_t w = band->tile[2] / 2;
-        if (mlod__outside(&pv->halves[half], s)) continue;
-        if (mlod__image_disc(pv, c, s[3], half, &disc))
-            mlod__raster_disc(band, &disc, node, half ? w : 0, half ? band->tile[2] : w);
-    }
+    for (l = 0; l < n; l++)
+        for (half = 0; half < 2; half++) {
+            uint32_t w = band->tile[2] / 2;
+            if (mlod__outside(&pv->halves[half], band->tree->spheres + 4 * (size_t)nodes[l])) continue;
+            if (mlod__image_disc(pv, c[l], r[l], half, &disc[0]))
+                mlod__raster_disc(band, &disc[0], nodes[l], half ? w : 0, half ? band->tile[2] : w);
+        }
 }
 
 /* Which view and rows a band task covers; clears those rows. */
@@ -3502,11 +3551,18 @@ static void mlod__splat_task(void *context, uint32_t index)
     const mlod__splat_job *job = (const mlod__splat_job *)context;
     mlod__band band;
     mlod__pview pv;
-    uint32_t view = mlod__band_begin(job, index, &band), i;
+    uint32_t view = mlod__band_begin(job, index, &band), i, batch[MLOD__LANES], n = 0;
     mlod_cut_view cv = mlod_cut_get(job->cut, view);
     mlod__view_prepare(&job->views[view], &pv, NULL);
-    for (i = 0; i < cv.count; i++)
-        if (cv.status[i] != MLOD_STATUS_CULLED) mlod__draw_node(&band, &pv, cv.nodes[i]);
+    for (i = 0; i < cv.count; i++) { /* MLOD__LANES drawn nodes at a time, in order */
+        if (cv.status[i] == MLOD_STATUS_CULLED) continue;
+        batch[n++] = cv.nodes[i];
+        if (n == MLOD__LANES) {
+            mlod__draw_nodes(&band, &pv, batch, n);
+            n = 0;
+        }
+    }
+    mlod__draw_nodes(&band, &pv, batch, n);
 }
 
 static void mlod__ism_task(void *context, uint32_t index)
@@ -3522,7 +3578,7 @@ static void mlod__ism_task(void *context, uint32_t index)
         uint32_t node = tree->leaf_count - 1 + (leaf < tree->leaf_count ? leaf : tree->leaf_count - 1);
         int culled;
         mlod__evaluate(&pv, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node), &culled);
-        if (!culled) mlod__draw_node(&band, &pv, node);
+        if (!culled) mlod__draw_nodes(&band, &pv, &node, 1);
     }
 }
 
