@@ -956,8 +956,15 @@ static void mlod__cone_full(const float *axis, float *out)
 
 /* Rounding a unit axis to float turns it by at most 2^-24 rad (round to
    nearest moves each component by at most 2^-24 of it); 2^-22 bounds that
-   and the error of the double arithmetic before it. */
+   and the error of the double arithmetic before it, as long as the two
+   axes are not nearly opposite: the direction from A towards B is then
+   the difference of nearly equal vectors, its error ~1e-16 over its length
+   (the sine of their angle), and the axis turns by nearly pi/2 along it
+   (nearly equal axes turn by as little: no harm).  Below
+   MLOD__CONE_OPPOSITE of that length, for axes more than pi/2 apart, the
+   merge measures the stored axis against both cones instead. */
 #define MLOD__CONE_ROUNDING (1.0 / 4194304.0)
+#define MLOD__CONE_OPPOSITE (1.0 / 1024.0)
 
 /* For each lane l < n: the smallest cone of directions around cones a[l]
    and b[l] (axis x, y, z, half-angle), rounded so that it contains both
@@ -966,16 +973,17 @@ static void mlod__cone_full(const float *axis, float *out)
    from A and theta - phi from B, both at most the merged half-angle
    alpha; the axis as stored (float) is within MLOD__CONE_ROUNDING of X, so
    alpha plus that bound contains both cones without measuring the stored
-   axis again. */
+   axis again (but for nearly opposite axes, see MLOD__CONE_OPPOSITE). */
 static void mlod__cone_enclose(const float *const *a, const float *const *b, float *const *out, uint32_t n)
 {
     enum { DONE, AXIS, ROTATE }; /* per lane: written; X and alpha known; X to rotate */
     double A[MLOD__LANES][3], B[MLOD__LANES][3], X[MLOD__LANES][3], theta[MLOD__LANES], alpha[MLOD__LANES];
     double phi[MLOD__LANES], sin_phi[MLOD__LANES], cos_phi[MLOD__LANES];
-    int state[MLOD__LANES], k;
+    int state[MLOD__LANES], measure[MLOD__LANES], k;
     uint32_t l;
     for (l = 0; l < n; l++) {
         state[l] = a[l][3] >= MLOD__PI || b[l][3] >= MLOD__PI ? DONE : AXIS;
+        measure[l] = 0;
         if (state[l] == DONE) {
             mlod__cone_full(a[l], out[l]);
             continue;
@@ -1015,6 +1023,7 @@ static void mlod__cone_enclose(const float *const *a, const float *const *b, flo
         ab = mlod__dot3(A[l], B[l]);
         for (k = 0; k < 3; k++) t[k] = B[l][k] - A[l][k] * ab;
         len = mlod__length3(t);
+        measure[l] = !(len >= MLOD__CONE_OPPOSITE) && !(ab > 0.0); /* nearly opposite, not nearly equal */
         if (!(len > 0.0)) { /* antiparallel: any direction orthogonal to A */
             double helper[3] = {0.0, 0.0, 0.0};
             helper[fabs(A[l][0]) < 0.5 ? 0 : 1] = 1.0;
@@ -1025,10 +1034,27 @@ static void mlod__cone_enclose(const float *const *a, const float *const *b, flo
     }
     for (l = 0; l < n; l++) {
         double len, stored;
+        /* volatile: a measured margin must start from the axis as rounded
+           to float (gcc 12 -O2 otherwise may reuse the unrounded doubles) */
+        volatile float rounded[3];
         float axis[3];
         if (state[l] == DONE) continue;
         len = mlod__length3(X[l]);
-        for (k = 0; k < 3; k++) axis[k] = (float)(X[l][k] / len);
+        for (k = 0; k < 3; k++) {
+            rounded[k] = (float)(X[l][k] / len);
+            axis[k] = rounded[k];
+        }
+        if (measure[l]) { /* the stored axis against both cones (the atan2 error is within the rounding bound) */
+            double S[3], need_a, need_b;
+            for (k = 0; k < 3; k++) {
+                S[k] = rounded[k];
+                A[l][k] = a[l][k];
+                B[l][k] = b[l][k];
+            }
+            need_a = mlod__angle(S, A[l]) + a[l][3];
+            need_b = mlod__angle(S, B[l]) + b[l][3];
+            alpha[l] = need_a > need_b ? need_a : need_b;
+        }
         stored = alpha[l] + MLOD__CONE_ROUNDING + MLOD__CONE_MARGIN;
         if (stored >= MLOD__PI) {
             mlod__cone_full(axis, out[l]);

@@ -444,13 +444,15 @@ vec4 sphere_enclose(vec4 a, vec4 b)
 vec4 cone_full(vec3 axis) { return vec4(axis, float_up(MLOD_PI)); }
 
 // mlod__cone_enclose (the stored axis is within MLOD__CONE_ROUNDING, 2^-22
-// rad, of the merged one)
+// rad, of the merged one; nearly opposite axes, closer than
+// MLOD__CONE_OPPOSITE, measure the stored axis against both cones)
 vec4 cone_enclose(vec4 a, vec4 b)
 {
     if (double(a.w) >= MLOD_PI || double(b.w) >= MLOD_PI) return cone_full(a.xyz);
     dvec3 A = dvec3(a.xyz), B = dvec3(b.xyz), X;
     precise double theta = angle_d(A, B);
     precise double alpha;
+    bool measure = false;
     if (theta + double(b.w) <= double(a.w)) {
         X = A;
         alpha = double(a.w);
@@ -458,28 +460,35 @@ vec4 cone_enclose(vec4 a, vec4 b)
         X = B;
         alpha = double(b.w);
     } else {
-        precise double la = length_d(A);
         alpha = (theta + double(a.w) + double(b.w)) * 0.5LF;
         if (alpha >= MLOD_PI) return cone_full(a.xyz);
         precise double phi = alpha - double(a.w);
+        double sin_phi, cos_phi;
+        sin_cos(phi, sin_phi, cos_phi);
+        precise double la = length_d(A);
         precise dvec3 An = dvec3(A.x / la, A.y / la, A.z / la);
         precise double ab = dot3(An, B);
         precise dvec3 t = dvec3(B.x - An.x * ab, B.y - An.y * ab, B.z - An.z * ab);
         precise double len = length_d(t);
+        measure = !(len >= 1.0LF / 1024.0LF) && !(ab > 0.0LF);
         if (!(len > 0.0LF)) {
             dvec3 helper = dvec3(0.0LF);
             if (abs(An.x) < 0.5LF) helper.x = 1.0LF; else helper.y = 1.0LF;
             t = cross_d(An, helper);
             len = length_d(t);
         }
-        double sin_phi, cos_phi;
-        sin_cos(phi, sin_phi, cos_phi);
         precise dvec3 Xr = dvec3(An.x * cos_phi + t.x / len * sin_phi, An.y * cos_phi + t.y / len * sin_phi,
                                  An.z * cos_phi + t.z / len * sin_phi);
         X = Xr;
     }
     precise double lx = length_d(X);
     vec3 axis = vec3(float(X.x / lx), float(X.y / lx), float(X.z / lx));
+    if (measure) {
+        dvec3 S = dvec3(axis);
+        precise double need_a = angle_d(S, A) + double(a.w);
+        precise double need_b = angle_d(S, B) + double(b.w);
+        alpha = need_a > need_b ? need_a : need_b;
+    }
     precise double stored = alpha + 1.0LF / 4194304.0LF + 1.0LF / 1048576.0LF;
     if (stored >= MLOD_PI) return cone_full(axis);
     return vec4(axis, float_up(stored));

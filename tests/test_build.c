@@ -438,6 +438,49 @@ static void test_flat_cones(void)
     scene_free(&s);
 }
 
+/* Cones of nearly opposite normals (the merge's axis then rotates by about
+   pi/2 from a direction found as the difference of nearly equal vectors):
+   pairs and quadruples of points whose normals are n and -n turned by
+   0 to 1e-3 rad, their tree's cones checked exactly for containment. */
+static void test_opposite_cones(void)
+{
+    static const double turns[6] = {0.0, 1e-12, 1e-9, 1e-7, 1e-5, 1e-3};
+    uint64_t rng = 31337;
+    uint32_t trial, built = 0;
+    for (trial = 0; trial < 600; trial++) {
+        float pos[12], nrm[12];
+        double n[3], d[3], turn = turns[trial % 6];
+        uint32_t i, count = trial % 2 ? 4 : 2;
+        mlod_points pts;
+        mlod_build_desc desc = tu_desc(0, 1, MLOD_ATTR_CONE);
+        mlod_tree *t = NULL;
+        tu_random_unit(&rng, n);
+        for (i = 0; i < count; i++) {
+            double sign = i % 2 ? -1.0 : 1.0, len;
+            int k;
+            tu_random_unit(&rng, d);
+            for (k = 0; k < 3; k++) d[k] = sign * n[k] + turn * d[k];
+            len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            for (k = 0; k < 3; k++) {
+                nrm[3 * i + k] = (float)(d[k] / len);
+                pos[3 * i + k] = (float)(0.01 * i + 0.001 * k);
+            }
+        }
+        memset(&pts, 0, sizeof pts);
+        pts.positions = pos;
+        pts.normals = nrm;
+        pts.count = count;
+        if (mlod_build_points(&pts, &desc, &t, NULL) != MLOD_OK || !t) {
+            CHECK(0, "opposite cones: trial %u: build", trial);
+            continue;
+        }
+        built++;
+        tu_check_containment(t, "opposite cones");
+        mlod_tree_destroy(t);
+    }
+    CHECK(built == 600, "opposite cones: %u of 600 trees built", built);
+}
+
 /* MLOD_PRECISION_COARSE_POSITIONS: set iff |x|max 2^-23 > radius_scale
    sqrt(A/N) / 4; bounds stay exact either way.  Cases sit a factor >= 1.6
    away from the threshold. */
@@ -704,6 +747,7 @@ int main(void)
     test_constant_color_and_scale();
     test_strides();
     test_flat_cones();
+    test_opposite_cones();
     test_coarse_positions();
     test_progress();
     test_parallel_build();
