@@ -1042,6 +1042,7 @@ static void mlod__cone_enclose(const float *const *a, const float *const *b, flo
         len = mlod__length3(X[l]);
         for (k = 0; k < 3; k++) {
             rounded[k] = (float)(X[l][k] / len);
+            if (rounded[k] == 0.0f) rounded[k] = 0.0f; /* +0, however the zero was reached (as the shader) */
             axis[k] = rounded[k];
         }
         if (measure[l]) { /* the stored axis against both cones (the atan2 error is within the rounding bound) */

@@ -483,6 +483,11 @@ vec4 cone_enclose(vec4 a, vec4 b)
     }
     precise double lx = length_d(X);
     vec3 axis = vec3(float(X.x / lx), float(X.y / lx), float(X.z / lx));
+    // +0 for a zero component however it was reached: the compiler may fold
+    // away the terms that decide the sign of a zero (x + 0 -> x), the CPU
+    // does not; the test on the bits cannot be folded
+    [[unroll]] for (int k = 0; k < 3; k++)
+        if (floatBitsToUint(axis[k]) == 0x80000000u) axis[k] = 0.0;
     if (measure) {
         dvec3 S = dvec3(axis);
         precise double need_a = angle_d(S, A) + double(a.w);

@@ -320,6 +320,73 @@ static uint32_t differing_nodes(const mlod_tree *a, const mlod_tree *b)
     return differ;
 }
 
+/* Two-sided sheets, turned to no particular axis: a grid and the same grid
+   wound the other way, tilted by 1e-11, 1e-9 or 1e-4 rad (so that leaves of nearly opposite normals
+   merge: the cone merge's measured case, where the direction between the
+   axes is least accurate).  The device refit gives the CPU's bounds bit for
+   bit, and such merges do occur. */
+static void test_opposite_cone_parity(void)
+{
+    static const float tilts[3] = {1e-11f, 1e-9f, 1e-4f};
+    const uint32_t G = 24, per = (G + 1) * (G + 1);
+    int t;
+    for (t = 0; t < 3; t++) {
+        scene_mesh s;
+        mlod_tree *cpu = NULL, *copy = NULL;
+        mlodvk_tree *vtree = NULL;
+        mlod_error e;
+        uint32_t side, i, j, n, opposite = 0, differ;
+        if (!scene_alloc(&s, 2 * per, 2 * 6 * G * G, 0, 1)) {
+            CHECK(0, "opposite cones: scene_alloc failed");
+            return;
+        }
+        for (side = 0; side < 2; side++)
+            for (j = 0; j <= G; j++)
+                for (i = 0; i <= G; i++) {
+                    uint32_t v = side * per + j * (G + 1) + i;
+                    double x = (double)i / G, y = (double)j / G, z = side ? tilts[t] * x : 0.0;
+                    /* turned to no particular axis (cos, sin of 0.4 about x, 0.7 about y) */
+                    double y1 = 0.921060994 * y - 0.389418342 * z, z1 = 0.389418342 * y + 0.921060994 * z;
+                    scene_set3(s.positions, v, 0.764842187 * x + 0.644217687 * z1, y1, -0.644217687 * x + 0.764842187 * z1);
+                    scene_set3(s.colors, v, (float)x, (float)y, (float)side);
+                }
+        for (side = 0, n = 0; side < 2; side++)
+            for (j = 0; j < G; j++)
+                for (i = 0; i < G; i++) {
+                    uint32_t a = side * per + j * (G + 1) + i, b = a + 1, c = a + G + 1, d = c + 1;
+                    uint32_t q[6] = {a, b, d, a, d, c}, k;
+                    for (k = 0; k < 6; k++) s.indices[n++] = side ? q[5 - k] : q[k];
+                }
+        cpu = tu_build(&s, 6000, 3, MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT);
+        copy = tu_build(&s, 6000, 3, MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT);
+        if (!cpu || !copy || mlodvk_tree_upload(context, cpu, &vtree, &e) != MLOD_OK ||
+            mlodvk_tree_upload_refit(context, vtree, cpu, s.indices, s.index_count, &e) != MLOD_OK) {
+            CHECK(0, "opposite cones: set-up failed: %s", cpu && copy ? e.message : "build failed");
+        } else {
+            mlod_mesh mesh = tu_mesh(&s);
+            for (i = 0; 2 * i + 2 < cpu->node_count; i++) { /* parents of two leaves of nearly opposite normals */
+                const float *l = cpu->cones + 4 * (2 * (size_t)i + 1), *r = cpu->cones + 4 * (2 * (size_t)i + 2);
+                opposite += l[3] == 0.0f && r[3] == 0.0f && l[0] * r[0] + l[1] * r[1] + l[2] * r[2] < -0.999999f;
+            }
+            CHECK(mlod_refit_mesh(cpu, &mesh, NULL, &e) == MLOD_OK, "opposite cones: mlod_refit_mesh: %s", e.message);
+            CHECK(mlodvk_refit_mesh_host(context, vtree, &mesh, &e) == MLOD_OK, "opposite cones: device refit: %s",
+                  e.message);
+            CHECK(mlodvk_tree_download(context, vtree, copy, &e) == MLOD_OK, "opposite cones: download: %s", e.message);
+            differ = differing_nodes(cpu, copy);
+            CHECK(opposite > 10, "opposite cones, tilt %g: only %u merges of nearly opposite leaves", (double)tilts[t],
+                  opposite);
+            CHECK(differ == 0, "opposite cones, tilt %g: %u of %u nodes differ from the CPU refit", (double)tilts[t], differ,
+                  cpu->node_count);
+            tu_check_containment(cpu, "opposite cones (CPU refit)");
+        }
+        check_validation("opposite cone parity");
+        mlodvk_tree_destroy(context, vtree);
+        mlod_tree_destroy(cpu);
+        mlod_tree_destroy(copy);
+        scene_free(&s);
+    }
+}
+
 /* mlodvk_refit_mesh against mlod_refit_mesh: the same bounds bit for bit,
    with and without vertex normals, and the same cuts on the refitted
    trees; bad input is refused with the device tree untouched. */
@@ -700,6 +767,7 @@ int main(void)
         t1 = seconds();
         test_splat_parity();
         test_refit_parity();
+        test_opposite_cone_parity();
         t2 = seconds();
         test_failures();
         t3 = seconds();
