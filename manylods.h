@@ -1016,21 +1016,21 @@ static void mlod__cone_enclose(const float *const *a, const float *const *b, flo
     for (l = 0; l < n; l++)
         if (state[l] == ROTATE) mlod__sin_cos(phi[l], &sin_phi[l], &cos_phi[l]);
     for (l = 0; l < n; l++) {
-        double la, ab, t[3], len;
+        double la, an[3], ab, t[3], len;
         if (state[l] != ROTATE) continue;
         la = mlod__length3(A[l]);
-        for (k = 0; k < 3; k++) A[l][k] /= la;
-        ab = mlod__dot3(A[l], B[l]);
-        for (k = 0; k < 3; k++) t[k] = B[l][k] - A[l][k] * ab;
+        for (k = 0; k < 3; k++) an[k] = A[l][k] / la;
+        ab = mlod__dot3(an, B[l]);
+        for (k = 0; k < 3; k++) t[k] = B[l][k] - an[k] * ab;
         len = mlod__length3(t);
         measure[l] = !(len >= MLOD__CONE_OPPOSITE) && !(ab > 0.0); /* nearly opposite, not nearly equal */
         if (!(len > 0.0)) { /* antiparallel: any direction orthogonal to A */
             double helper[3] = {0.0, 0.0, 0.0};
-            helper[fabs(A[l][0]) < 0.5 ? 0 : 1] = 1.0;
-            mlod__cross3(A[l], helper, t);
+            helper[fabs(an[0]) < 0.5 ? 0 : 1] = 1.0;
+            mlod__cross3(an, helper, t);
             len = mlod__length3(t);
         }
-        for (k = 0; k < 3; k++) X[l][k] = A[l][k] * cos_phi[l] + t[k] / len * sin_phi[l];
+        for (k = 0; k < 3; k++) X[l][k] = an[k] * cos_phi[l] + t[k] / len * sin_phi[l];
     }
     for (l = 0; l < n; l++) {
         double len, stored;
@@ -1047,11 +1047,7 @@ static void mlod__cone_enclose(const float *const *a, const float *const *b, flo
         }
         if (measure[l]) { /* the stored axis against both cones (the atan2 error is within the rounding bound) */
             double S[3], need_a, need_b;
-            for (k = 0; k < 3; k++) {
-                S[k] = rounded[k];
-                A[l][k] = a[l][k];
-                B[l][k] = b[l][k];
-            }
+            for (k = 0; k < 3; k++) S[k] = rounded[k];
             need_a = mlod__angle(S, A[l]) + a[l][3];
             need_b = mlod__angle(S, B[l]) + b[l][3];
             alpha[l] = need_a > need_b ? need_a : need_b;
@@ -1110,6 +1106,20 @@ static uint32_t mlod__leaves_below(uint32_t i, uint32_t n)
     return (uint32_t)((nodes + 1) / 2);
 }
 
+/* The 4-float records of nodes first .. first + n - 1 of a per-node array,
+   and of their left and right children. */
+static void mlod__lane_pointers(float *base, uint32_t first, uint32_t n, const float **left, const float **right,
+                                float **parent)
+{
+    uint32_t j;
+    for (j = 0; j < n; j++) {
+        size_t i = (size_t)first + j;
+        left[j] = base + 4 * (2 * i + 1);
+        right[j] = base + 4 * (2 * i + 2);
+        parent[j] = base + 4 * i;
+    }
+}
+
 /* Merge the bounds of nodes first .. first + n - 1 (n <= MLOD__LANES, one
    depth) from their children. */
 static void mlod__merge_nodes(mlod_tree *tree, uint32_t first, uint32_t n)
@@ -1117,20 +1127,10 @@ static void mlod__merge_nodes(mlod_tree *tree, uint32_t first, uint32_t n)
     const float *left[MLOD__LANES], *right[MLOD__LANES];
     float *parent[MLOD__LANES];
     uint32_t j;
-    for (j = 0; j < n; j++) {
-        size_t i = (size_t)first + j;
-        left[j] = tree->spheres + 4 * (2 * i + 1);
-        right[j] = tree->spheres + 4 * (2 * i + 2);
-        parent[j] = tree->spheres + 4 * i;
-    }
+    mlod__lane_pointers(tree->spheres, first, n, left, right, parent);
     mlod__sphere_enclose(left, right, parent, n);
     if (tree->cones) {
-        for (j = 0; j < n; j++) {
-            size_t i = (size_t)first + j;
-            left[j] = tree->cones + 4 * (2 * i + 1);
-            right[j] = tree->cones + 4 * (2 * i + 2);
-            parent[j] = tree->cones + 4 * i;
-        }
+        mlod__lane_pointers(tree->cones, first, n, left, right, parent);
         mlod__cone_enclose(left, right, parent, n);
     }
     for (j = 0; j < n; j++) {
@@ -1389,9 +1389,10 @@ static void mlod__triangle(const mlod_mesh *mesh, uint32_t tri, double v[3][3])
     }
 }
 
-static double mlod__triangle_area(const mlod_mesh *mesh, uint32_t tri)
+/* The triangle's face normal, (v1 - v0) x (v2 - v0): twice its area long. */
+static void mlod__face_normal(const mlod_mesh *mesh, uint32_t tri, double *n)
 {
-    double v[3][3], e1[3], e2[3], n[3];
+    double v[3][3], e1[3], e2[3];
     int k;
     mlod__triangle(mesh, tri, v);
     for (k = 0; k < 3; k++) {
@@ -1399,6 +1400,12 @@ static double mlod__triangle_area(const mlod_mesh *mesh, uint32_t tri)
         e2[k] = v[2][k] - v[0][k];
     }
     mlod__cross3(e1, e2, n);
+}
+
+static double mlod__triangle_area(const mlod_mesh *mesh, uint32_t tri)
+{
+    double n[3];
+    mlod__face_normal(mesh, tri, n);
     return 0.5 * mlod__length3(n);
 }
 
@@ -1411,23 +1418,14 @@ static void mlod__interpolate(const float *base, size_t stride, const uint32_t *
     for (k = 0; k < 3; k++) out[k] = (double)a[k] + s * ((double)b[k] - a[k]) + t * ((double)c[k] - a[k]);
 }
 
-static void mlod__triangle_leaf_of(const mlod_tree *tree, const mlod_mesh *mesh, uint32_t tri, double growth,
-                                   mlod__triangle_leaf *out)
+/* What the samples of a triangle of face normal n (mlod__face_normal)
+   share, its area grown `growth` times since the build. */
+static void mlod__triangle_leaf_of(const mlod_tree *tree, const double *n, double growth, mlod__triangle_leaf *out)
 {
     out->growth = growth;
     out->radius = mlod__float_up(tree->radius_scale * sqrt(tree->area_unit * growth));
     out->area = (float)growth;
-    if (tree->cones) {
-        double v[3][3], e1[3], e2[3], n[3];
-        int k;
-        mlod__triangle(mesh, tri, v);
-        for (k = 0; k < 3; k++) {
-            e1[k] = v[1][k] - v[0][k];
-            e2[k] = v[2][k] - v[0][k];
-        }
-        mlod__cross3(e1, e2, n);
-        mlod__cone_from_normal(n, out->cone);
-    }
+    if (tree->cones) mlod__cone_from_normal(n, out->cone);
 }
 
 /* Write leaf `node` of the tree from the mesh sample (tri, s, t) and what
@@ -1674,6 +1672,10 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
     sort.c = &c;
     sort.pos = pos;
     mlod__run(desc->parallel, 3, mlod__sort_axis_task, &sort);
+    for (k = 0; k < 3; k++) { /* the splits do not need it: a lower peak */
+        mlod__free(a, sort.scratch[k]);
+        sort.scratch[k] = NULL;
+    }
     c.begin[0] = 0;
     for (depth = 0; mlod_tree_depth_nodes(n, depth, &c.first, &c.last); depth++) {
         uint32_t count = c.last - c.first + 1;
@@ -1719,7 +1721,9 @@ static void mlod__build_leaves_task(void *context, uint32_t index)
         uint32_t item = job->leaf_item[i], tri = job->tri[item];
         float s = job->st[2 * (size_t)item], t = job->st[2 * (size_t)item + 1];
         mlod__triangle_leaf shared;
-        mlod__triangle_leaf_of(tree, job->mesh, tri, 1.0, &shared);
+        double normal[3];
+        mlod__face_normal(job->mesh, tri, normal);
+        mlod__triangle_leaf_of(tree, normal, 1.0, &shared);
         mlod__mesh_leaf(tree, n - 1 + i, job->mesh, tri, s, t, &shared);
         if (tree->leaf_sources) {
             tree->leaf_sources[i] = tri;
@@ -1993,8 +1997,10 @@ static void mlod__refit_triangles_task(void *context, uint32_t index)
     uint32_t t = index * MLOD__LEAF_CHUNK, end = t + MLOD__LEAF_CHUNK;
     if (end > tree->triangle_count || end < t) end = tree->triangle_count;
     for (; t < end; t++) {
-        double growth = tree->triangle_areas[t] > 0.0 ? mlod__triangle_area(job->mesh, t) / tree->triangle_areas[t] : 0.0;
-        mlod__triangle_leaf_of(tree, job->mesh, t, growth, &shared[t]);
+        double normal[3], growth;
+        mlod__face_normal(job->mesh, t, normal); /* one cross product for the area and the cone */
+        growth = tree->triangle_areas[t] > 0.0 ? 0.5 * mlod__length3(normal) / tree->triangle_areas[t] : 0.0;
+        mlod__triangle_leaf_of(tree, normal, growth, &shared[t]);
     }
 }
 

@@ -25,7 +25,6 @@
 #ifndef MANYLODS_EXAMPLES_APP_H
 #define MANYLODS_EXAMPLES_APP_H
 
-#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -140,9 +139,12 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             o->disc_scale = value ? strtof(value, &end) : 0.0f;
             ok = value && end && !*end && o->disc_scale > 0.0f && o->disc_scale <= 1.0f;
         } else if (strcmp(arg, "--ism-match") == 0) {
-            ok = value && (strcmp(value, "drawn") == 0 || strcmp(value, "time") == 0 ||
-                           app_parse_u32(value, 1, 16, &o->match_drawn));
-            if (ok && !isdigit((unsigned char)value[0])) o->match_drawn = value[0] == 'd';
+            if (value && strcmp(value, "time") == 0)
+                o->match_drawn = 0;
+            else if (value && strcmp(value, "drawn") == 0)
+                o->match_drawn = 1;
+            else
+                ok = app_parse_u32(value, 1, 16, &o->match_drawn);
         } else {
             fprintf(stderr, "%s: unknown option \"%s\"\n\n%s", program, arg, usage);
             return 0;

@@ -590,12 +590,7 @@ static void test_parallel_build(void)
     memset(&pts, 0, sizeof pts);
     pts.positions = pos;
     pts.count = P;
-    for (h = 0; h < 3; h++) pools[h] = mlod_pool_create(h + 1);
-    for (h = 0; h < 3; h++) hooks[h] = mlod_pool_parallel(pools[h]);
-    hooks[3].run = tu_run_reverse;
-    hooks[3].user = NULL;
-    hooks[4].run = tu_run_odd_even;
-    hooks[4].user = NULL;
+    tu_hooks(pools, hooks);
     for (h = 0; h <= 5; h++) { /* h == 5: no hook, the reference; built first */
         uint32_t which = h == 0 ? 5 : h - 1;
         for (kind = 0; kind < 3; kind++) {

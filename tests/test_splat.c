@@ -1253,12 +1253,7 @@ static void test_determinism(void)
     tree = tu_build(&s, 20000, 3, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
     count = mixed_views(&rng, c, R, views);
     atlas = make_atlas(views, count, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR);
-    for (h = 0; h < 3; h++) pools[h] = mlod_pool_create(h + 1);
-    for (h = 0; h < 3; h++) hooks[h] = mlod_pool_parallel(pools[h]);
-    hooks[3].run = tu_run_reverse;
-    hooks[3].user = NULL;
-    hooks[4].run = tu_run_odd_even;
-    hooks[4].user = NULL;
+    tu_hooks(pools, hooks);
     if (!tree || !atlas || !pools[0] || !pools[1] || !pools[2] || mlod_cut_create(count, NULL, &cut, NULL) != MLOD_OK ||
         mlod_cut_update(cut, tree, views, &cp, NULL) != MLOD_OK) {
         CHECK(0, "determinism: set-up failed");

@@ -525,4 +525,22 @@ static inline void tu_run_odd_even(void *user, uint32_t count, mlod_task_fn *tas
     for (i = 0; i < count; i += 2) task(context, i);
 }
 
+#ifdef MANYLODS_PTHREADS
+/* The hooks results must not depend on: pools of 1, 2 and 3 threads
+   (pools[0..2], NULL when one could not start), tasks backwards, odd
+   tasks first.  mlod_pool_destroy the pools after. */
+static inline void tu_hooks(mlod_pool *pools[3], mlod_parallel hooks[5])
+{
+    uint32_t h;
+    for (h = 0; h < 3; h++) {
+        pools[h] = mlod_pool_create(h + 1);
+        hooks[h] = mlod_pool_parallel(pools[h]);
+    }
+    hooks[3].run = tu_run_reverse;
+    hooks[3].user = NULL;
+    hooks[4].run = tu_run_odd_even;
+    hooks[4].user = NULL;
+}
+#endif
+
 #endif /* MANYLODS_TEST_UTIL_H */
