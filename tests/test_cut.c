@@ -712,6 +712,115 @@ static void test_criterion_reference(void)
     scene_free(&s);
 }
 
+/* ----------------------------------------------- back faces, up close */
+
+/* Back-face culling a hair either side of its boundary, for paraboloid
+   and orthographic views (the criterion's two forms of the test): where
+   long double arithmetic on the very inputs the library sees (the float
+   sphere and cone, the eye and forward of mlod_view_frame_of) is clear
+   of the boundary by 1e-13 of the scale, the criterion decides the same.
+   The offsets straddle the margin (2^-30 of the scale) inside which the
+   criterion stops trusting its polynomial bounds on sin and cos and sums
+   their series. */
+static void test_backface_boundary(void)
+{
+    static const double offsets[] = {1e-3, 1e-5, 1e-7, 1e-8, 3e-9, 1.5e-9, 6e-10, 2e-10, 1e-11};
+    static const double angles[] = {0.0, 1e-6, 1e-4, 1e-2, 0.1, 0.5, 1.0, 1.4, 1.5706};
+    static const double radii[] = {1e-7, 1e-5, 1e-3, 0.05, 0.4}; /* > 0: c = 0 means culled */
+    uint64_t rng = 0xbac0face5eedull;
+    float position[3] = {0, 0, 0}, normal[3] = {0, 0, 1}, radius = 1;
+    mlod_points pts;
+    mlod_build_desc desc;
+    mlod_tree *t = NULL;
+    uint32_t i, cases = 0, decided[2] = {0, 0}, near[2] = {0, 0}, wrong = 0;
+    char first[256] = "";
+    memset(&pts, 0, sizeof pts);
+    pts.positions = position;
+    pts.normals = normal;
+    pts.radii = &radius;
+    pts.count = 1;
+    memset(&desc, 0, sizeof desc);
+    desc.attributes = MLOD_ATTR_CONE;
+    CHECK(mlod_build_points(&pts, &desc, &t, NULL) == MLOD_OK && t && t->cones, "back-face boundary: a one-node tree");
+    if (!t || !t->cones) return;
+    for (i = 0; i < 20000; i++) {
+        int ortho = i % 3 == 0, k, lib_culled, exact_culled;
+        double ax[3], perp[3], dir[3], centre[3], d = 1.0 + 2.0 * scene_rng_double(&rng), beta, delta, c;
+        double r = d * radii[(i / 3) % 5], a = angles[(i / 15) % 9] * (1.0 + 0.01 * scene_rng_double(&rng));
+        long double x[3], lr, la, len, away, tt, ss, m1, m2, scale, tol;
+        mlod_view v;
+        mlod_view_frame f;
+        delta = offsets[(i / 135) % 9] * (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * scene_rng_double(&rng));
+        tu_random_unit(&rng, ax);
+        tu_random_perp(&rng, ax, perp);
+        for (k = 0; k < 3; k++) {
+            centre[k] = 2.0 * scene_rng_double(&rng) - 1.0;
+            t->spheres[k] = (float)centre[k];
+            t->cones[k] = (float)ax[k];
+        }
+        t->spheres[3] = (float)r;
+        t->cones[3] = (float)a;
+        beta = TU_PI / 2 + a + (ortho ? 0.0 : asin(r / d)) + delta;
+        for (k = 0; k < 3; k++) dir[k] = cos(beta) * ax[k] + sin(beta) * perp[k]; /* centre to eye */
+        v = tu_view(ortho ? MLOD_VIEW_ORTHOGRAPHIC : MLOD_VIEW_PARABOLOID);
+        v.flags = MLOD_VIEW_CULL_BACKFACES;
+        tu_random_perp(&rng, dir, perp);
+        for (k = 0; k < 3; k++) {
+            v.position[k] = (float)(centre[k] + (ortho ? 2.0 * r + 1.0 : d) * dir[k]);
+            v.forward[k] = (float)-dir[k];
+            v.up[k] = (float)perp[k];
+        }
+        if (ortho) {
+            v.half_width = v.half_height = (float)(2.0 * r + 1.0);
+            v.near_plane = 0.0f;
+            v.far_plane = (float)(4.0 * r + 4.0);
+        }
+        if (mlod_view_frame_of(&v, &f, NULL) != MLOD_OK) continue;
+        /* exactly: culled when cos a t - sin a s > 0 and axis.(eye - centre) / |axis| < -(sin a t + cos a s) */
+        for (k = 0; k < 3; k++) x[k] = (long double)t->spheres[k] - (long double)f.eye[k];
+        lr = t->spheres[3];
+        la = t->cones[3];
+        len = sqrtl((long double)t->cones[0] * t->cones[0] + (long double)t->cones[1] * t->cones[1] +
+                    (long double)t->cones[2] * t->cones[2]);
+        if (ortho) {
+            away = 0;
+            for (k = 0; k < 3; k++) away -= (long double)t->cones[k] * (long double)f.forward[k];
+            tt = 1;
+            ss = 0;
+        } else {
+            long double d2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+            if (!(d2 > lr * lr * (1 + 1e-9L))) continue;
+            away = 0;
+            for (k = 0; k < 3; k++) away -= (long double)t->cones[k] * x[k];
+            tt = sqrtl(d2 - lr * lr);
+            ss = lr;
+        }
+        m1 = cosl(la) * tt - sinl(la) * ss;
+        m2 = -(sinl(la) * tt + cosl(la) * ss) - away / len;
+        scale = tt + ss;
+        tol = 1e-13L * scale;
+        cases++;
+        if (fabsl(m1) <= tol || fabsl(m2) <= tol || fabsl(away) <= tol) continue;
+        exact_culled = la < EXACT_PI / 2 && away < 0 && m1 > 0 && m2 > 0;
+        c = mlod_criterion(t, 0, &v);
+        lib_culled = c == 0.0;
+        decided[exact_culled]++;
+        if (fabsl(m2) < 1e-8L * scale) near[exact_culled]++;
+        if (lib_culled != exact_culled && !wrong++)
+            snprintf(first, sizeof first, "%s, half-angle %.9g, r %.3g, d %.3g, offset %.3g: criterion %g, exactly %s",
+                     ortho ? "orthographic" : "paraboloid", (double)la, (double)lr, d, delta, c,
+                     exact_culled ? "culled" : "visible");
+    }
+    CHECK(wrong == 0, "back-face boundary: %u of %u decided cases differ from exact arithmetic; first: %s", wrong,
+          decided[0] + decided[1], first);
+    CHECK(decided[0] > 2000 && decided[1] > 2000 && near[0] > 200 && near[1] > 200,
+          "back-face boundary: too few cases (%u visible, %u culled; %u and %u within 1e-8)", decided[0], decided[1],
+          near[0], near[1]);
+    printf("  back-face boundary: %u cases, %u visible and %u culled decided (%u and %u within 1e-8 of the scale)\n",
+           cases, decided[0], decided[1], near[0], near[1]);
+    mlod_tree_destroy(t);
+}
+
 /* ------------------------------------------------------- monotonicity */
 
 static const double deltas[] = {-1e-3, -1e-6, -1e-7, 0.0, 1e-7, 1e-6, 1e-3};
@@ -1316,6 +1425,7 @@ int main(void)
     TIMED(test_hand_made());
     TIMED(test_restart());
     TIMED(test_criterion_reference());
+    TIMED(test_backface_boundary());
     TIMED(test_monotonicity());
     TIMED(test_motion());
     TIMED(test_threads());
