@@ -308,7 +308,8 @@ enum {
     MLOD_ATTR_CONE = 1u << 0,  /* normal cones: 16 bytes per node */
     MLOD_ATTR_AREA = 1u << 1,  /* surface area below the node: 4 bytes per node */
     MLOD_ATTR_COLOR = 1u << 2, /* mean leaf colour: 12 bytes per node */
-    MLOD_ATTR_REFIT = 1u << 3  /* what refit needs: 12 bytes per leaf (+40 per triangle) */
+    MLOD_ATTR_REFIT = 1u << 3  /* what refit needs: 12 bytes per leaf, 8 per triangle (40 when
+                                  the tree has at least as many leaves as triangles) */
 };
 
 typedef struct mlod_build_desc {
@@ -363,7 +364,9 @@ typedef struct mlod_tree {
     uint32_t *leaf_sources;      /* N */
     float *leaf_barycentrics;    /* 2N, or NULL for point clouds */
     double *triangle_areas;      /* triangle count, world units^2, or NULL for points */
-    void *triangle_leaves;       /* private: refit's per-triangle scratch (32 bytes each), or NULL */
+    void *triangle_leaves;       /* private: refit's per-triangle scratch (32 bytes each) when the
+                                    tree has at least as many leaves as triangles, else NULL (each
+                                    leaf then works out its triangle's share itself) */
     uint32_t triangle_count;     /* of the mesh built from, 0 for points */
     uint32_t vertex_count;       /* of the mesh built from, 0 for points */
     float radius_scale;          /* as used at build */
@@ -389,8 +392,14 @@ MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod
 
 /* Recompute every leaf from the deformed mesh (same triangles, same vertex
    count, new positions, normals, colours) and merge bounds bottom-up, with
-   the build's containment guarantees.  Needs MLOD_ATTR_REFIT.  O(N), no
-   allocation.  On error the tree is unchanged. */
+   the build's containment guarantees.  Needs MLOD_ATTR_REFIT.  No
+   allocation.  On error the tree is unchanged.  Cost: the leaves and their
+   merges, plus light passes over the indices and vertices (validation and
+   a bound on every triangle's growth); with at least as many leaves as
+   triangles, one pass over the triangles computes what their samples share
+   (with fewer, each leaf computes its own triangle's, and the triangles get
+   a pass of their own only when the bound cannot rule out a growth out of
+   float range).  Results are the same bits either way. */
 MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
                                          const mlod_parallel *parallel, mlod_error *error);
 
@@ -1316,7 +1325,9 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
         if (mesh) {
             ok = ok && (t->leaf_barycentrics = (float *)mlod__alloc_array(a, leaves, 2 * sizeof(float), &t->bytes)) != NULL;
             ok = ok && (t->triangle_areas = (double *)mlod__alloc_array(a, triangles, sizeof(double), &t->bytes)) != NULL;
-            ok = ok && (t->triangle_leaves = mlod__alloc_array(a, triangles, sizeof(mlod__triangle_leaf), &t->bytes)) != NULL;
+            if (leaves >= triangles) /* refit shares each triangle's work among its samples */
+                ok = ok &&
+                     (t->triangle_leaves = mlod__alloc_array(a, triangles, sizeof(mlod__triangle_leaf), &t->bytes)) != NULL;
         }
     }
     t->bytes_per_node = per_node;
@@ -1981,27 +1992,80 @@ done:
 
 /* --------------------------------------------------------------- refit -- */
 
+/* Triangle t's area now over its area at build, from its face normal n
+   (mlod__face_normal); triangles of zero area at build have no samples:
+   growth 0. */
+static double mlod__triangle_growth(const mlod_tree *tree, uint32_t t, const double *n)
+{
+    return tree->triangle_areas[t] > 0.0 ? 0.5 * mlod__length3(n) / tree->triangle_areas[t] : 0.0;
+}
+
+/* What refit gives the samples of triangle t of the deformed mesh. */
+static void mlod__refit_triangle(const mlod_tree *tree, const mlod_mesh *mesh, uint32_t t, mlod__triangle_leaf *out)
+{
+    double normal[3];
+    mlod__face_normal(mesh, t, normal); /* one cross product for the area and the cone */
+    mlod__triangle_leaf_of(tree, normal, mlod__triangle_growth(tree, t, normal), out);
+}
+
+/* Refit's first pass, MLOD__REFIT_SLICES tasks over the triangles: with
+   the per-triangle scratch, each triangle's shared leaf data; without,
+   only the largest growth (the range check looks at every triangle either
+   way, as the Vulkan path does).  slice_growth[i]: task i's largest. */
+#define MLOD__REFIT_SLICES 64u
 typedef struct mlod__refit_job {
     mlod_tree *tree;
     const mlod_mesh *mesh;
     const mlod_points *points;
+    double slice_growth[MLOD__REFIT_SLICES];
 } mlod__refit_job;
 
-/* Each triangle's growth and shared leaf data (triangles of zero area at
-   build have no samples: growth 0). */
 static void mlod__refit_triangles_task(void *context, uint32_t index)
 {
     mlod__refit_job *job = (mlod__refit_job *)context;
-    mlod_tree *tree = job->tree;
+    const mlod_tree *tree = job->tree;
     mlod__triangle_leaf *shared = (mlod__triangle_leaf *)tree->triangle_leaves;
-    uint32_t t = index * MLOD__LEAF_CHUNK, end = t + MLOD__LEAF_CHUNK;
-    if (end > tree->triangle_count || end < t) end = tree->triangle_count;
+    uint32_t t = (uint32_t)((uint64_t)tree->triangle_count * index / MLOD__REFIT_SLICES);
+    uint32_t end = (uint32_t)((uint64_t)tree->triangle_count * (index + 1) / MLOD__REFIT_SLICES);
+    double largest = 0.0;
     for (; t < end; t++) {
-        double normal[3], growth;
-        mlod__face_normal(job->mesh, t, normal); /* one cross product for the area and the cone */
-        growth = tree->triangle_areas[t] > 0.0 ? 0.5 * mlod__length3(normal) / tree->triangle_areas[t] : 0.0;
-        mlod__triangle_leaf_of(tree, normal, growth, &shared[t]);
+        double growth;
+        if (shared) {
+            mlod__refit_triangle(tree, job->mesh, t, &shared[t]);
+            growth = shared[t].growth;
+        } else {
+            double normal[3];
+            mlod__face_normal(job->mesh, t, normal);
+            growth = mlod__triangle_growth(tree, t, normal);
+        }
+        if (growth > largest) largest = growth;
     }
+    job->slice_growth[index] = largest;
+}
+
+/* An upper bound on every triangle's growth without visiting the
+   triangles: one inside a box of diagonal D has area at most D^2 / 2, so
+   grows at most D^2 / (2 a), a the smallest area at build of a triangle
+   that had area (0 when none had); 2^-30 of slack covers the rounding of
+   this bound and of each growth as refit computes it. */
+static double mlod__growth_bound(const mlod_tree *tree, const mlod_mesh *mesh)
+{
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, d2 = 0.0;
+    double smallest = INFINITY;
+    uint32_t i;
+    int k;
+    for (i = 0; i < tree->triangle_count; i++)
+        if (tree->triangle_areas[i] > 0.0 && tree->triangle_areas[i] < smallest) smallest = tree->triangle_areas[i];
+    if (smallest == INFINITY) return 0.0;
+    for (i = 0; i < mesh->vertex_count; i++) {
+        const float *p = mlod__at(mesh->positions, mesh->position_stride, i);
+        for (k = 0; k < 3; k++) {
+            lo[k] = p[k] < lo[k] ? p[k] : lo[k];
+            hi[k] = p[k] > hi[k] ? p[k] : hi[k];
+        }
+    }
+    for (k = 0; k < 3; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    return d2 / (2.0 * smallest) * (1.0 + 1.0 / 1073741824.0);
 }
 
 static void mlod__refit_mesh_task(void *context, uint32_t index)
@@ -2013,8 +2077,10 @@ static void mlod__refit_mesh_task(void *context, uint32_t index)
     if (end > tree->leaf_count) end = tree->leaf_count;
     for (; j < end; j++) {
         uint32_t tri = tree->leaf_sources[j];
+        mlod__triangle_leaf own;
+        if (!shared) mlod__refit_triangle(tree, job->mesh, tri, &own); /* fewer leaves than triangles */
         mlod__mesh_leaf(tree, tree->leaf_count - 1 + j, job->mesh, tri, tree->leaf_barycentrics[2 * (size_t)j],
-                        tree->leaf_barycentrics[2 * (size_t)j + 1], &shared[tri]);
+                        tree->leaf_barycentrics[2 * (size_t)j + 1], shared ? &shared[tri] : &own);
     }
 }
 
@@ -2053,17 +2119,20 @@ MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
     job.tree = tree;
     job.mesh = mesh;
     job.points = NULL;
-    if (tree->triangle_count > 0)
-        mlod__run(parallel, (tree->triangle_count - 1) / MLOD__LEAF_CHUNK + 1, mlod__refit_triangles_task, &job);
-    {
-        /* the largest growth of a sampled triangle must keep radii and
-           summed areas (in build units) within float range; the scratch
-           above is all that was written so far */
-        const mlod__triangle_leaf *shared = (const mlod__triangle_leaf *)tree->triangle_leaves;
+    if (!tree->triangle_leaves &&
+        mlod_refit_check_growth(tree->radius_scale, tree->area_unit, tree->leaf_count, mlod__growth_bound(tree, mesh),
+                                NULL) == MLOD_OK) {
+        /* fewer leaves than triangles, and no triangle can have grown out
+           of range: the triangles need no pass of their own */
+    } else {
+        /* the largest growth of a triangle must keep radii and summed
+           areas (in build units) within float range; the scratch this
+           pass writes is all that was written so far */
         double growth = 0.0;
-        uint32_t t;
-        for (t = 0; t < tree->triangle_count; t++)
-            if (shared[t].growth > growth) growth = shared[t].growth;
+        uint32_t i;
+        mlod__run(parallel, MLOD__REFIT_SLICES, mlod__refit_triangles_task, &job);
+        for (i = 0; i < MLOD__REFIT_SLICES; i++)
+            if (job.slice_growth[i] > growth) growth = job.slice_growth[i];
         res = mlod_refit_check_growth(tree->radius_scale, tree->area_unit, tree->leaf_count, growth, error);
         if (res != MLOD_OK) return res;
     }

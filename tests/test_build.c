@@ -330,6 +330,22 @@ static void test_attributes(void)
         mlod_tree_destroy(t);
     }
     mlod_tree_destroy(base);
+    { /* fewer leaves than triangles: no per-triangle refit scratch */
+        const uint32_t few = 100, triangles = s.index_count / 3;
+        base = tu_build(&s, few, 1, 0);
+        t = tu_build(&s, few, 1, MLOD_ATTR_REFIT);
+        CHECK(base && t && few < triangles, "attributes, %u leaves on %u triangles: builds", few, triangles);
+        if (base && t) {
+            size_t lo = 12 * (size_t)few + 8 * (size_t)triangles;
+            CHECK(t->triangle_areas && !t->triangle_leaves, "attributes, %u leaves: refit scratch %p, expected none", few,
+                  t->triangle_leaves);
+            CHECK(t->bytes >= base->bytes + lo && t->bytes <= base->bytes + lo + 256,
+                  "attributes, %u leaves: bytes %zu, without refit data %zu, expected %zu more (+256)", few, t->bytes,
+                  base->bytes, lo);
+        }
+        mlod_tree_destroy(base);
+        mlod_tree_destroy(t);
+    }
     scene_free(&s);
 }
 

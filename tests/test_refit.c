@@ -133,25 +133,30 @@ static void check_refitted(const mlod_tree *t, const scene_mesh *rest, const sce
     tu_check_containment(t, what);
 }
 
-static void test_deform(void)
+/* N leaves on 1024 triangles: with N >= 1024 refit shares each triangle's
+   work among its samples (mlod_tree.triangle_leaves), below that each
+   leaf does its own; either way the same properties hold. */
+static void test_deform(uint32_t N)
 {
     static const float times[] = {0.3f, 0.7f, 1.5f, 3.0f, 6.0f};
     scene_mesh rest, now;
     mlod_tree *t;
     mlod_mesh m;
     snapshot build;
-    uint32_t i, N = 3000, leaf;
+    uint32_t i, leaf;
     scene_torus(&rest, 1.0f, 0.35f, 32, 16);
     scene_torus(&now, 1.0f, 0.35f, 32, 16);
     t = tu_build(&rest, N, 17, ALL_ATTRIBUTES);
     CHECK(t != NULL, "deform: build");
     if (!t) return;
+    CHECK(!t->triangle_leaves == (N < rest.index_count / 3), "deform, N %u: per-triangle scratch %p with %u triangles",
+          N, t->triangle_leaves, rest.index_count / 3);
     snapshot_take(&build, t);
     m = tu_mesh(&now);
     for (i = 0; i < sizeof times / sizeof times[0]; i++) {
         char what[64];
         mlod_error e;
-        snprintf(what, sizeof what, "refit at t=%g", times[i]);
+        snprintf(what, sizeof what, "N %u, refit at t=%g", N, times[i]);
         scene_deform(&rest, times[i], now.positions, now.normals);
         CHECK(mlod_refit_mesh(t, &m, NULL, &e) == MLOD_OK, "%s: %s", what, e.message);
         check_refitted(t, &rest, &now, what);
@@ -220,7 +225,7 @@ static void test_collapse(void)
 
 /* ---------------------------------------------------------------- threads */
 
-static void test_threads(void)
+static void test_threads(uint32_t N)
 {
     enum { CONFIGS = 5 };
     scene_mesh rest, now;
@@ -239,7 +244,7 @@ static void test_threads(void)
     hooks[4].run = tu_run_reverse;
     scene_uv_sphere(&rest, 1.0f, 24, 48);
     scene_uv_sphere(&now, 1.0f, 24, 48);
-    for (cfg = 0; cfg < CONFIGS; cfg++) t[cfg] = tu_build(&rest, 9000, 3, ALL_ATTRIBUTES); /* 3 tasks of 4096 leaves */
+    for (cfg = 0; cfg < CONFIGS; cfg++) t[cfg] = tu_build(&rest, N, 3, ALL_ATTRIBUTES);
     m = tu_mesh(&now);
     for (frame = 1; frame <= 3; frame++) {
         scene_deform(&rest, 0.5f * frame, now.positions, now.normals);
@@ -250,7 +255,7 @@ static void test_threads(void)
         }
     }
     for (cfg = 1; cfg < CONFIGS; cfg++)
-        CHECK(mismatch[cfg] == 0, "refit threads: %s differs from no hook in %u frames", names[cfg], mismatch[cfg]);
+        CHECK(mismatch[cfg] == 0, "refit threads, N %u: %s differs from no hook in %u frames", N, names[cfg], mismatch[cfg]);
     if (t[2]) check_refitted(t[2], &rest, &now, "refit with a pool of 2");
     for (cfg = 0; cfg < CONFIGS; cfg++) mlod_tree_destroy(t[cfg]);
     mlod_pool_destroy(pool1);
@@ -276,7 +281,7 @@ static void expect_refit_error(mlod_tree *t, const mlod_mesh *m, mlod_result a, 
     snapshot_free(&s);
 }
 
-static void test_errors(void)
+static void test_errors(uint32_t N)
 {
     scene_mesh rest, now;
     mlod_tree *t, *plain, *pts_tree = NULL;
@@ -288,9 +293,9 @@ static void test_errors(void)
     scene_torus(&rest, 1.0f, 0.3f, 16, 8);
     scene_torus(&now, 1.0f, 0.3f, 16, 8);
     scene_deform(&rest, 1.0f, now.positions, now.normals);
-    t = tu_build(&rest, 2000, 5, ALL_ATTRIBUTES);
-    plain = tu_build(&rest, 2000, 5, MLOD_ATTR_CONE);
-    CHECK(t && plain, "refit errors: builds");
+    t = tu_build(&rest, N, 5, ALL_ATTRIBUTES);
+    plain = tu_build(&rest, N, 5, MLOD_ATTR_CONE);
+    CHECK(t && plain, "refit errors, N %u: builds", N);
     if (!t || !plain) return;
     m = tu_mesh(&now);
     expect_refit_error(plain, &m, MLOD_ERROR_MISMATCH, MLOD_ERROR_INVALID_ARGUMENT, "refit of a tree without MLOD_ATTR_REFIT");
@@ -447,10 +452,13 @@ static void test_points(void)
 int main(void)
 {
     int rc;
-    test_deform();
+    test_deform(3000); /* more leaves than triangles */
+    test_deform(300);  /* fewer */
     test_collapse();
-    test_threads();
-    test_errors();
+    test_threads(9000); /* 3 tasks of 4096 leaves, more than the 2208 triangles */
+    test_threads(1000);
+    test_errors(2000); /* 256 triangles */
+    test_errors(100);
     test_points();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
