@@ -3089,11 +3089,16 @@ static size_t mlod__segment_room(uint32_t n, uint32_t splits, int lazy, int trus
 /* The split room of a view's root in the first round of a cut from the
    root: what its previous cut held, a quarter more, so that the cut is
    found in one round where the views moved little (at least the round's
-   share, at most MLOD__SEGMENT_GROWTH). */
+   share, at most MLOD__ROOT_ROOM entries).  Every later round reads and
+   writes every unfinished view's whole list, so a view whose cut does not
+   fit pays for it again: the room is not held to MLOD__SEGMENT_GROWTH
+   (the room's 1024 views of 13.6 k nodes took four rounds when it was).
+   The scratch this takes is 1.25 times the previous cut's. */
+#define MLOD__ROOT_ROOM ((size_t)1 << 26)
 static size_t mlod__root_room(size_t unit, uint32_t previous)
 {
     size_t room = (size_t)previous + previous / 4 + MLOD__MIN_SHARE;
-    if (room > MLOD__SEGMENT_GROWTH) room = MLOD__SEGMENT_GROWTH;
+    if (room > MLOD__ROOT_ROOM) room = MLOD__ROOT_ROOM;
     return room > unit ? room : unit;
 }
 
