@@ -814,6 +814,21 @@ static const float *mlod__at(const float *base, size_t stride, size_t index)
     return (const float *)((const char *)base + index * (stride ? stride : 3 * sizeof(float)));
 }
 
+/* The box around count >= 1 strided positions (mlod__at): lo and hi. */
+static void mlod__box_of(const float *base, size_t stride, uint32_t count, double lo[3], double hi[3])
+{
+    uint32_t i;
+    int k;
+    for (k = 0; k < 3; k++) lo[k] = hi[k] = base[k];
+    for (i = 1; i < count; i++) {
+        const float *p = mlod__at(base, stride, i);
+        for (k = 0; k < 3; k++) {
+            if (p[k] < lo[k]) lo[k] = p[k];
+            if (p[k] > hi[k]) hi[k] = p[k];
+        }
+    }
+}
+
 static double mlod__dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 static void mlod__cross3(const double *a, const double *b, double *out)
@@ -2050,20 +2065,13 @@ static void mlod__refit_triangles_task(void *context, uint32_t index)
    this bound and of each growth as refit computes it. */
 static double mlod__growth_bound(const mlod_tree *tree, const mlod_mesh *mesh)
 {
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, d2 = 0.0;
-    double smallest = INFINITY;
+    double lo[3], hi[3], d2 = 0.0, smallest = INFINITY;
     uint32_t i;
     int k;
     for (i = 0; i < tree->triangle_count; i++)
         if (tree->triangle_areas[i] > 0.0 && tree->triangle_areas[i] < smallest) smallest = tree->triangle_areas[i];
-    if (smallest == INFINITY) return 0.0;
-    for (i = 0; i < mesh->vertex_count; i++) {
-        const float *p = mlod__at(mesh->positions, mesh->position_stride, i);
-        for (k = 0; k < 3; k++) {
-            lo[k] = p[k] < lo[k] ? p[k] : lo[k];
-            hi[k] = p[k] > hi[k] ? p[k] : hi[k];
-        }
-    }
+    if (smallest == INFINITY) return 0.0; /* (a triangle had area, so there are vertices) */
+    mlod__box_of(mesh->positions, mesh->position_stride, mesh->vertex_count, lo, hi);
     for (k = 0; k < 3; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
     return d2 / (2.0 * smallest) * (1.0 + 1.0 / 1073741824.0);
 }
@@ -2174,17 +2182,13 @@ MANYLODS_DEF mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *p
         double largest = 0.0, lo[3], hi[3];
         uint32_t i;
         int k;
-        for (k = 0; k < 3; k++) lo[k] = hi[k] = points->positions[k];
-        for (i = 0; i < points->count; i++) {
-            const float *p = mlod__at(points->positions, points->position_stride, i);
-            if (points->radii && mlod__point_radius(points, i) > largest) largest = mlod__point_radius(points, i);
-            for (k = 0; k < 3; k++) {
-                if (p[k] < lo[k]) lo[k] = p[k];
-                if (p[k] > hi[k]) hi[k] = p[k];
-            }
-        }
-        if (!points->radii)
+        if (points->radii)
+            for (i = 0; i < points->count; i++)
+                if (mlod__point_radius(points, i) > largest) largest = mlod__point_radius(points, i);
+        if (!points->radii) {
+            mlod__box_of(points->positions, points->position_stride, points->count, lo, hi);
             for (k = 0; k < 3; k++) largest += hi[k] - lo[k];
+        }
         if (!(tree->radius_scale * largest <= MLOD__MAX_MEASURE) ||
             (tree->areas && !(largest * largest / tree->area_unit * points->count <= MLOD__MAX_MEASURE)))
             return mlod__fail(error, MLOD_ERROR_RANGE, "point radii up to %g would overflow float bounds", largest);
@@ -2829,13 +2833,6 @@ static void mlod__segment_task(void *context, uint32_t index)
     }
 }
 
-/* A view with nothing left to split in a later round of basic or
-   incremental mode has no segments: the round copies its list. */
-static int mlod__view_finished(const mlod__cut_job *job, uint32_t view)
-{
-    return job->cut->view_done[view];
-}
-
 /* Concatenate one view's segment outputs into the output list, merging
    sibling pairs that meet at segment boundaries, and count (a finished
    view: copy its list). */
@@ -2845,7 +2842,7 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     mlod__view_stats *stats = &cut->stats[1][view];
     uint32_t *nodes = job->out->nodes + job->out->offset[view], count = 0, s, i;
     uint8_t *status = job->out->status + job->out->offset[view];
-    if (mlod__view_finished(job, view)) { /* copied as it is: its counts stand */
+    if (cut->view_done[view]) { /* nothing to split this round: copied as it is, its counts stand */
         count = job->in->count[view];
         memcpy(nodes, job->in->nodes + job->in->offset[view], count * sizeof(uint32_t));
         memcpy(status, job->in->status + job->in->offset[view], count);
@@ -3084,8 +3081,6 @@ static size_t mlod__segment_room(uint32_t n, uint32_t splits, int lazy, int trus
     return trust ? n : n + n / 4 + MLOD__MIN_SHARE;
 }
 
-/* Cut the input lists into segments and the segments into tasks, place
-   every segment's output in scratch.  Returns 0 when out of memory. */
 /* The split room of a view's root in the first round of a cut from the
    root: what its previous cut held, a quarter more, so that the cut is
    found in one round where the views moved little (at least the round's
@@ -3102,8 +3097,10 @@ static size_t mlod__root_room(size_t unit, uint32_t previous)
     return room > unit ? room : unit;
 }
 
-/* hint: the previous cut's count per view when this round splits the
-   roots, else NULL. */
+/* Cut the input lists into segments and the segments into tasks, place
+   every segment's output in scratch.  hint: the previous cut's count per
+   view when this round splits the roots, else NULL.  Returns 0 when out of
+   memory. */
 static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int trust, const uint32_t *hint,
                             uint32_t *task_count)
 {
@@ -3281,25 +3278,14 @@ out_of_memory:
 /* The image of a sphere (centre, radius r) in one projection of a view: the
    disc around it (centre and radius in tile pixels) and the depth of its
    centre.  half: the dual paraboloid hemisphere (0 front, 1 back), else 0.
-   A point is a sphere of radius 0.  Returns 0 when the image is unbounded. */
+   A point is a sphere of radius 0. */
 typedef struct mlod__disc {
     double x, y, radius, depth;
 } mlod__disc;
 
-static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], const double *r, int half,
-                             mlod__disc *out, int *bounded, uint32_t n);
-
-static int mlod__image_disc(const mlod__pview *pv, const double *centre, double r, int half, mlod__disc *out)
-{
-    const double (*c)[3] = (const double (*)[3])centre;
-    int bounded;
-    mlod__image_discs(pv, c, &r, half, out, &bounded, 1);
-    return bounded;
-}
-
-/* The same for n <= MLOD__LANES spheres at once, step by step across them
-   (each lane computes what mlod__image_disc computes for it alone):
-   bounded[l] says whether out[l] was written.  Returns bounded[0]. */
+/* The images of n <= MLOD__LANES spheres at once, step by step across them
+   (each lane computes what it would alone): bounded[l] says whether out[l]
+   was written (0: the image is unbounded).  Returns bounded[0]. */
 static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], const double *r, int half,
                              mlod__disc *out, int *bounded, uint32_t n)
 {
@@ -3376,6 +3362,13 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
         out[l].radius = pv->scale * 0.5 * (hi - lo);
     }
     return bounded[0];
+}
+
+/* One sphere: mlod__image_discs with one lane; 0 when unbounded. */
+static int mlod__image_disc(const mlod__pview *pv, const double *centre, double r, int half, mlod__disc *out)
+{
+    int bounded;
+    return mlod__image_discs(pv, (const double (*)[3])centre, &r, half, out, &bounded, 1);
 }
 
 /* Inside the view: in every culling half-space. */

@@ -79,6 +79,16 @@ static inline int app_parse_u32(const char *text, uint32_t lo, uint32_t hi, uint
     return 1;
 }
 
+/* A finite number in (0, hi] from text; 0 when it is not one. */
+static inline int app_parse_positive(const char *text, float hi, float *out)
+{
+    char *end = NULL;
+    float v = text ? strtof(text, &end) : 0.0f;
+    if (!text || !end || end == text || *end || !isfinite(v) || !(v > 0.0f) || !(v <= hi)) return 0;
+    *out = v;
+    return 1;
+}
+
 /* Parse the command line into *o, starting from *normal, or *tiny when
    --tiny is among the arguments.  Only the options that `usage` names are
    accepted; usage is printed for --help and errors.  Returns 1 to run, 0
@@ -109,9 +119,7 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             ok = value && *value;
             o->mesh_path = value;
         } else if (strcmp(arg, "--eps") == 0) {
-            char *end = NULL;
-            o->epsilon = value ? strtof(value, &end) : 0.0f;
-            ok = value && end && !*end && isfinite(o->epsilon) && o->epsilon > 0.0f;
+            ok = app_parse_positive(value, FLT_MAX, &o->epsilon);
         } else if (strcmp(arg, "--size") == 0) {
             char w[16];
             const char *x = value ? strchr(value, 'x') : NULL;
@@ -135,9 +143,7 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             ok = value && (strcmp(value, "basic") == 0 || strcmp(value, "incremental") == 0 || strcmp(value, "lazy") == 0);
             if (ok) o->mode = value[0] == 'b' ? MLOD_CUT_BASIC : value[0] == 'i' ? MLOD_CUT_INCREMENTAL : MLOD_CUT_LAZY;
         } else if (strcmp(arg, "--disc-scale") == 0) {
-            char *end = NULL;
-            o->disc_scale = value ? strtof(value, &end) : 0.0f;
-            ok = value && end && !*end && o->disc_scale > 0.0f && o->disc_scale <= 1.0f;
+            ok = app_parse_positive(value, 1.0f, &o->disc_scale);
         } else if (strcmp(arg, "--ism-match") == 0) {
             if (value && strcmp(value, "time") == 0)
                 o->match_drawn = 0;

@@ -3,7 +3,7 @@
 // mlodvk_refit_mesh in manylods_vk.h.  The refit is mlod_refit_mesh's:
 // every leaf from its triangle and barycentrics (mlod__mesh_leaf), then
 // every internal node from its children, one dispatch per depth, deepest
-// first (mlod__merge_node).
+// first (mlod__merge_nodes).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 

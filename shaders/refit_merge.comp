@@ -1,6 +1,6 @@
 #version 450
 // shaders/refit_merge.comp - the internal nodes pc.first .. pc.first +
-// pc.count - 1 (one depth) from their children: mlod__merge_node of
+// pc.count - 1 (one depth) from their children: mlod__merge_nodes of
 // manylods.h (sphere, cone, colour weighted by the leaves below).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require

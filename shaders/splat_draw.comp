@@ -2,7 +2,7 @@
 // shaders/splat_draw.comp - one thread per cut entry (ctl.current, args[2]):
 // a drawn entry (status DRAWN, OVERSIZE or COARSE) becomes the disc around
 // its sphere's image, its radius times pc.disc_scale, in its view's tile, as
-// mlod__draw_node and mlod__raster_disc in manylods.h: pixels whose centre
+// mlod__draw_nodes and mlod__raster_disc in manylods.h: pixels whose centre
 // lies in the disc, or, at disc_scale 1, when none of the 64-row band
 // holding the disc's centre does, the pixel holding the centre.
 #extension GL_GOOGLE_include_directive : require
