@@ -364,6 +364,8 @@ typedef struct mlod_tree {
     uint32_t *leaf_sources;      /* N */
     float *leaf_barycentrics;    /* 2N, or NULL for point clouds */
     double *triangle_areas;      /* triangle count, world units^2, or NULL for points */
+    double smallest_area;        /* private: the smallest triangle_areas[] > 0 (refit's bound on
+                                    how far a triangle can grow), 0 without them */
     void *triangle_leaves;       /* private: refit's per-triangle scratch (32 bytes each) when the
                                     tree has at least as many leaves as triangles, else NULL (each
                                     leaf then works out its triangle's share itself) */
@@ -816,18 +818,27 @@ static const float *mlod__at(const float *base, size_t stride, size_t index)
 }
 
 /* The box around count >= 1 strided positions (mlod__at): lo and hi. */
-static void mlod__box_of(const float *base, size_t stride, uint32_t count, double lo[3], double hi[3])
+static inline void mlod__box_of(const float *base, size_t stride, uint32_t count, double lo[3], double hi[3])
 {
+    /* six scalars, not arrays, so that they stay in registers (the build's
+       splits box every node along three axes: their hottest loop) */
+    float x0 = base[0], x1 = x0, y0 = base[1], y1 = y0, z0 = base[2], z1 = z0;
     uint32_t i;
-    int k;
-    for (k = 0; k < 3; k++) lo[k] = hi[k] = base[k];
     for (i = 1; i < count; i++) {
         const float *p = mlod__at(base, stride, i);
-        for (k = 0; k < 3; k++) {
-            if (p[k] < lo[k]) lo[k] = p[k];
-            if (p[k] > hi[k]) hi[k] = p[k];
-        }
+        x0 = p[0] < x0 ? p[0] : x0;
+        x1 = p[0] > x1 ? p[0] : x1;
+        y0 = p[1] < y0 ? p[1] : y0;
+        y1 = p[1] > y1 ? p[1] : y1;
+        z0 = p[2] < z0 ? p[2] : z0;
+        z1 = p[2] > z1 ? p[2] : z1;
     }
+    lo[0] = x0;
+    lo[1] = y0;
+    lo[2] = z0;
+    hi[0] = x1;
+    hi[1] = y1;
+    hi[2] = z1;
 }
 
 static double mlod__dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -1557,22 +1568,11 @@ static void mlod__radix_sort(uint64_t *pairs, uint64_t *scratch, uint32_t n)
    consecutive): proportional to the volume of the box's sphere. */
 static double mlod__box_volume_of(const float *pts, uint32_t count)
 {
-    /* six scalars, not arrays, so that they stay in registers */
-    float x0 = pts[0], x1 = x0, y0 = pts[1], y1 = y0, z0 = pts[2], z1 = z0;
-    double dx, dy, dz, d2;
-    uint32_t i;
-    for (i = 1; i < count; i++) {
-        const float *p = pts + 3 * (size_t)i;
-        x0 = p[0] < x0 ? p[0] : x0;
-        x1 = p[0] > x1 ? p[0] : x1;
-        y0 = p[1] < y0 ? p[1] : y0;
-        y1 = p[1] > y1 ? p[1] : y1;
-        z0 = p[2] < z0 ? p[2] : z0;
-        z1 = p[2] > z1 ? p[2] : z1;
-    }
-    dx = (double)x1 - x0;
-    dy = (double)y1 - y0;
-    dz = (double)z1 - z0;
+    double lo[3], hi[3], dx, dy, dz, d2;
+    mlod__box_of(pts, 3 * sizeof(float), count, lo, hi);
+    dx = hi[0] - lo[0];
+    dy = hi[1] - lo[1];
+    dz = hi[2] - lo[2];
     d2 = dx * dx + dy * dy + dz * dz;
     return d2 * sqrt(d2);
 }
@@ -1869,8 +1869,15 @@ MANYLODS_DEF mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
         job.st = st;
         mlod__run(desc->parallel, (n - 1) / MLOD__LEAF_CHUNK + 1, mlod__build_leaves_task, &job);
     }
-    if (tree->triangle_areas)
-        for (i = 0; i < triangles; i++) tree->triangle_areas[i] = cumulative[i + 1] - cumulative[i];
+    if (tree->triangle_areas) {
+        double smallest = INFINITY;
+        for (i = 0; i < triangles; i++) {
+            double area = cumulative[i + 1] - cumulative[i];
+            tree->triangle_areas[i] = area;
+            if (area > 0.0 && area < smallest) smallest = area;
+        }
+        tree->smallest_area = smallest; /* finite: the mesh has area */
+    }
     mlod__merge_all(tree, desc->parallel);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
     if (mlod__report(desc, 1.0f)) {
@@ -2062,16 +2069,15 @@ static void mlod__refit_triangles_task(void *context, uint32_t index)
 /* An upper bound on every triangle's growth without visiting the
    triangles: one inside a box of diagonal D has area at most D^2 / 2, so
    grows at most D^2 / (2 a), a the smallest area at build of a triangle
-   that had area (0 when none had); 2^-30 of slack covers the rounding of
-   this bound and of each growth as refit computes it. */
+   that had area (kept by the build: mlod_tree.smallest_area); 2^-30 of
+   slack covers the rounding of this bound and of each growth as refit
+   computes it.  +inf (no bound: the triangles' own pass decides) when the
+   tree does not know a. */
 static double mlod__growth_bound(const mlod_tree *tree, const mlod_mesh *mesh)
 {
-    double lo[3], hi[3], d2 = 0.0, smallest = INFINITY;
-    uint32_t i;
+    double lo[3], hi[3], d2 = 0.0, smallest = tree->smallest_area;
     int k;
-    for (i = 0; i < tree->triangle_count; i++)
-        if (tree->triangle_areas[i] > 0.0 && tree->triangle_areas[i] < smallest) smallest = tree->triangle_areas[i];
-    if (smallest == INFINITY) return 0.0; /* (a triangle had area, so there are vertices) */
+    if (!(smallest > 0.0 && smallest < INFINITY)) return INFINITY;
     mlod__box_of(mesh->positions, mesh->position_stride, mesh->vertex_count, lo, hi);
     for (k = 0; k < 3; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
     return d2 / (2.0 * smallest) * (1.0 + 1.0 / 1073741824.0);
