@@ -2654,6 +2654,7 @@ struct mlod_cut {
     size_t task_capacity;
     uint32_t *view_segment; /* per view: first segment, then the end */
     uint8_t *view_done;     /* per view: nothing to split this round (copied as it is) */
+    size_t *view_work;      /* planning, per view: entries to split, then its segments' scratch */
     size_t bytes;
 };
 
@@ -2984,6 +2985,7 @@ MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut)
     mlod__free(&cut->allocator, cut->tasks);
     mlod__free(&cut->allocator, cut->view_segment);
     mlod__free(&cut->allocator, cut->view_done);
+    mlod__free(&cut->allocator, cut->view_work);
     cut->allocator.free(cut->allocator.user, cut);
 }
 
@@ -3011,6 +3013,7 @@ MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
         ok = ok && (cut->stats[i] = (mlod__view_stats *)mlod__alloc_array(&a, view_count, sizeof(mlod__view_stats), &cut->bytes));
     ok = ok && (cut->view_segment = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &cut->bytes));
     ok = ok && (cut->view_done = (uint8_t *)mlod__alloc_array(&a, view_count, 1, &cut->bytes));
+    ok = ok && (cut->view_work = (size_t *)mlod__alloc_array(&a, view_count, sizeof(size_t), &cut->bytes));
     if (!ok) {
         mlod_cut_destroy(cut);
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating a cut for %u views", view_count);
@@ -3104,38 +3107,122 @@ static size_t mlod__root_room(size_t unit, uint32_t previous)
     return room > unit ? room : unit;
 }
 
+/* Planning a round, MLOD__PLAN_VIEWS views per task: three passes over
+   every entry of the input (the entries to split; the segments; their
+   layout), run in parallel, with sums over views in between. */
+#define MLOD__PLAN_VIEWS 16u
+typedef struct mlod__plan_job {
+    mlod_cut *cut;
+    const mlod__list *in;
+    int lazy, trust;
+    const uint32_t *hint; /* see mlod__plan_round */
+    size_t unit;
+} mlod__plan_job;
+
+static uint32_t mlod__plan_views(const mlod__plan_job *job, uint32_t index, uint32_t *end)
+{
+    uint32_t v = index * MLOD__PLAN_VIEWS;
+    *end = (uint64_t)v + MLOD__PLAN_VIEWS > job->cut->view_count ? job->cut->view_count : v + MLOD__PLAN_VIEWS;
+    return v;
+}
+
+/* Pass 1: each view's entries to split (view_work), and whether it is done. */
+static void mlod__plan_splits_task(void *context, uint32_t index)
+{
+    const mlod__plan_job *job = (const mlod__plan_job *)context;
+    mlod_cut *cut = job->cut;
+    uint32_t end, v = mlod__plan_views(job, index, &end);
+    for (; v < end; v++) {
+        size_t at = job->in->offset[v], stop = at + job->in->count[v], view_splits = 0;
+        for (; at < stop; at++) view_splits += (size_t)mlod__to_split(job->in->status[at], job->lazy, job->trust);
+        cut->view_work[v] = view_splits;
+        /* later basic and incremental rounds leave finished views alone */
+        cut->view_done[v] = (uint8_t)(job->trust && !job->lazy && view_splits == 0);
+    }
+}
+
+/* Walk view v's segments: count them and their scratch (fill = 0), or
+   write them from segment view_segment[v] and scratch entry view_work[v]. */
+static void mlod__plan_view(const mlod__plan_job *job, uint32_t v, int fill)
+{
+    mlod_cut *cut = job->cut;
+    size_t at = job->in->offset[v], end = cut->view_done[v] ? at : at + job->in->count[v];
+    size_t unit = job->hint ? mlod__root_room(job->unit, job->hint[v]) : job->unit;
+    size_t s = fill ? cut->view_segment[v] : 0, capacity = fill ? cut->view_work[v] : 0;
+    while (at < end) {
+        uint32_t splits, n = mlod__segment_length(job->in, at, end, job->lazy, job->trust, unit, &splits);
+        size_t room = mlod__segment_room(n, splits, job->lazy, job->trust, unit);
+        if (fill) {
+            mlod__segment *seg = &cut->segments[s];
+            seg->view = v;
+            seg->in_begin = at;
+            seg->in_count = n;
+            seg->out_begin = capacity;
+            seg->out_capacity = (uint32_t)room;
+            seg->out_count = 0;
+            seg->evaluated = seg->steps = 0;
+        }
+        capacity += room;
+        at += n;
+        s++;
+    }
+    if (!fill) {
+        cut->view_segment[v] = (uint32_t)(s < (uint32_t)-1 ? s : (uint32_t)-1);
+        cut->view_work[v] = capacity;
+    }
+}
+
+/* Pass 2 (fill 0): each view's segment count (view_segment) and scratch
+   (view_work); pass 3 (fill 1): its segments, once those are prefix sums. */
+static void mlod__plan_count_task(void *context, uint32_t index)
+{
+    uint32_t end, v = mlod__plan_views((const mlod__plan_job *)context, index, &end);
+    for (; v < end; v++) mlod__plan_view((const mlod__plan_job *)context, v, 0);
+}
+
+static void mlod__plan_fill_task(void *context, uint32_t index)
+{
+    uint32_t end, v = mlod__plan_views((const mlod__plan_job *)context, index, &end);
+    for (; v < end; v++) mlod__plan_view((const mlod__plan_job *)context, v, 1);
+}
+
 /* Cut the input lists into segments and the segments into tasks, place
    every segment's output in scratch.  hint: the previous cut's count per
    view when this round splits the roots, else NULL.  Returns 0 when out of
-   memory. */
+   memory (or too many segments). */
 static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int trust, const uint32_t *hint,
-                            uint32_t *task_count)
+                            const mlod_parallel *parallel, uint32_t *task_count)
 {
-    size_t total = 0, to_split = 0, segments = 0, s = 0, capacity = 0, unit = 0, work = 0;
-    uint32_t v, tasks = 0, splits;
+    mlod__plan_job job;
+    size_t total = 0, to_split = 0, segments = 0, capacity = 0, work = 0, s;
+    uint32_t v, tasks = 0, chunks = (cut->view_count - 1) / MLOD__PLAN_VIEWS + 1;
+    job.cut = cut;
+    job.in = in;
+    job.lazy = lazy;
+    job.trust = trust;
+    job.hint = hint;
+    job.unit = 0;
+    mlod__run(parallel, chunks, mlod__plan_splits_task, &job);
     for (v = 0; v < cut->view_count; v++) {
-        size_t at = in->offset[v], end = at + in->count[v], view_splits = 0;
         total += in->count[v];
-        for (; at < end; at++) view_splits += (size_t)mlod__to_split(in->status[at], lazy, trust);
-        to_split += view_splits;
-        /* later basic and incremental rounds leave finished views alone */
-        cut->view_done[v] = (uint8_t)(trust && !lazy && view_splits == 0);
+        to_split += cut->view_work[v];
     }
     /* the entries to split share a budget of scratch: at least the input */
     if (to_split) {
-        unit = (MLOD__ROUND_BUDGET > total ? MLOD__ROUND_BUDGET : total) / to_split;
-        if (unit < MLOD__MIN_SHARE) unit = MLOD__MIN_SHARE;
-        if (unit > MLOD__SEGMENT_GROWTH) unit = MLOD__SEGMENT_GROWTH;
+        job.unit = (MLOD__ROUND_BUDGET > total ? MLOD__ROUND_BUDGET : total) / to_split;
+        if (job.unit < MLOD__MIN_SHARE) job.unit = MLOD__MIN_SHARE;
+        if (job.unit > MLOD__SEGMENT_GROWTH) job.unit = MLOD__SEGMENT_GROWTH;
     }
-    for (v = 0; v < cut->view_count; v++) {
-        size_t at = in->offset[v], end = cut->view_done[v] ? at : at + in->count[v];
-        size_t view_unit = hint ? mlod__root_room(unit, hint[v]) : unit;
-        while (at < end) {
-            at += mlod__segment_length(in, at, end, lazy, trust, view_unit, &splits);
-            segments++;
-        }
+    mlod__run(parallel, chunks, mlod__plan_count_task, &job);
+    for (v = 0; v < cut->view_count; v++) { /* counts to first segments and scratch entries */
+        size_t n = cut->view_segment[v], room = cut->view_work[v];
+        if (n >= (uint32_t)-1 - segments) return 0;
+        cut->view_segment[v] = (uint32_t)segments;
+        cut->view_work[v] = capacity;
+        segments += n;
+        capacity += room;
     }
-    if (segments >= (uint32_t)-1) return 0;
+    cut->view_segment[cut->view_count] = (uint32_t)segments;
     {
         void *p = cut->segments;
         if (!mlod__reserve(cut, &p, &cut->segment_capacity, segments, sizeof(mlod__segment))) return 0;
@@ -3144,32 +3231,13 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         if (!mlod__reserve(cut, &p, &cut->task_capacity, segments + 1, sizeof(uint32_t))) return 0;
         cut->tasks = (uint32_t *)p;
     }
-    for (v = 0; v < cut->view_count; v++) {
-        size_t at = in->offset[v], end = cut->view_done[v] ? at : at + in->count[v];
-        size_t view_unit = hint ? mlod__root_room(unit, hint[v]) : unit;
-        cut->view_segment[v] = (uint32_t)s;
-        while (at < end) {
-            mlod__segment *seg = &cut->segments[s];
-            uint32_t n = mlod__segment_length(in, at, end, lazy, trust, view_unit, &splits);
-            size_t room = mlod__segment_room(n, splits, lazy, trust, view_unit);
-            seg->view = v;
-            seg->in_begin = at;
-            seg->in_count = n;
-            seg->out_begin = capacity;
-            seg->out_capacity = (uint32_t)room;
-            seg->out_count = 0;
-            seg->evaluated = seg->steps = 0;
-            capacity += room;
-            /* tasks: consecutive segments worth about one segment of work */
-            if (work == 0) cut->tasks[tasks++] = (uint32_t)s;
-            work += room;
-            if (work >= MLOD__SEGMENT_INPUT) work = 0;
-            at += n;
-            s++;
-        }
+    mlod__run(parallel, chunks, mlod__plan_fill_task, &job);
+    for (s = 0; s < segments; s++) { /* tasks: consecutive segments worth about one segment of work */
+        if (work == 0) cut->tasks[tasks++] = (uint32_t)s;
+        work += cut->segments[s].out_capacity;
+        if (work >= MLOD__SEGMENT_INPUT) work = 0;
     }
-    cut->view_segment[cut->view_count] = (uint32_t)s;
-    cut->tasks[tasks] = (uint32_t)s;
+    cut->tasks[tasks] = (uint32_t)segments;
     *task_count = tasks;
     return mlod__reserve_entries(cut, &cut->scratch_nodes, &cut->scratch_status, &cut->scratch_capacity, capacity);
 }
@@ -3259,7 +3327,8 @@ MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         job.merge = params->mode == MLOD_CUT_INCREMENTAL && round == 0 && !from_root;
         job.in = in;
         job.out = out;
-        if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, &tasks)) goto out_of_memory;
+        if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, params->parallel, &tasks))
+            goto out_of_memory;
         mlod__run(params->parallel, tasks, mlod__segment_task, &job);
         if (!mlod__place_output(cut, in, out)) goto out_of_memory;
         mlod__run(params->parallel, (cut->view_count - 1) / MLOD__JOIN_VIEWS + 1, mlod__join_task, &job);
