@@ -25,6 +25,15 @@
      MANYLODS_ASSERT(x)   internal consistency checks (default: assert).
                      Never used on user input: bad input returns an error.
 
+   FLOATING POINT
+     The implementation needs IEEE rounding as written: it refuses
+     -ffast-math, and under gcc and clang turns off the fusing of a * b + c
+     into one multiply-add for its own code (gcc fuses in its default GNU
+     modes once the target has FMA, e.g. -march=native), so that builds
+     with and without FMA compute the same trees, cuts and images: the bits
+     manylods_vk.h's shaders compute where the device's doubles are IEEE.
+     With other compilers, build it without floating-point contraction.
+
    PIPELINE
      1. Build (once):   mlod_build_mesh() samples N points on a triangle mesh
         (or mlod_build_points() takes a point cloud) and orders them into a
@@ -707,6 +716,19 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
 #ifndef MANYLODS_ASSERT
 #include <assert.h>
 #define MANYLODS_ASSERT(x) assert(x)
+#endif
+
+/* Every a * b + c here is rounded twice, as written: the shaders compute
+   the same bits only so (where the device's doubles are IEEE), and the
+   error bounds assume it.  gcc fuses such sums into one multiply-add in
+   its GNU modes (the default) once the target has FMA (-march=native),
+   clang within an expression: the implementation turns that off for its
+   own code and restores the caller's setting at its end. */
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#elif defined(__GNUC__)
+#pragma GCC push_options
+#pragma GCC optimize("fp-contract=off")
 #endif
 
 /* ------------------------------------------------------------ errors ---- */
@@ -3420,8 +3442,11 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
             }
             hi = s_hi / c_hi; /* tan(t + b) */
             lo = s_lo / c_lo; /* tan(t - b) */
+            /* y as a sum with -dir_y (the same bits as the difference):
+               gcc 12 fuses an add beside a subtract into one vector
+               multiply-add-subtract even with -ffp-contract=off */
             out[l].x = 0.5 * pv->width + pv->scale * 0.5 * (hi + lo) * dir_x;
-            out[l].y = 0.5 * pv->height - pv->scale * 0.5 * (hi + lo) * dir_y;
+            out[l].y = 0.5 * pv->height + pv->scale * 0.5 * (hi + lo) * -dir_y;
             out[l].depth = mlod__dot3(x[l], pv->w);
         } else {
             double tile_width = pv->kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv->width : pv->width;
@@ -4146,6 +4171,11 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 }
 #endif /* MANYLODS_PTHREADS */
 
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT DEFAULT
+#elif defined(__GNUC__)
+#pragma GCC pop_options
+#endif
 #endif /* MANYLODS_IMPLEMENTATION_DONE */
 #endif /* MANYLODS_IMPLEMENTATION */
 

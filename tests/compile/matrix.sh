@@ -95,6 +95,32 @@ foreign_symbols() { # object, allowed extra names (regex)
     echo "exports only public mlod_ names"
 }
 
+# Fused multiply-adds in an object's x86-64 code (vfmadd..., vfnmsub...).
+fma_count() { # object
+    objdump -d "$1" | grep -Ec '\svfn?m(add|sub)[0-9a-z]*\s'
+}
+
+# The implementation compiled where the compiler would fuse a * b + c
+# (GNU C mode, FMA target) has no fused multiply-add, while a plain a * b + c
+# in the same mode has one (so that the check can see them at all).
+no_fused_multiply_add() { # compiler
+    local cc=$1 tag
+    tag=$(basename "$cc")
+    printf 'double fma_probe(double a, double b, double c) { return a * b + c; }\n' >"$OUT/fma_probe.c"
+    $cc -std=gnu11 -O2 -mfma -c "$OUT/fma_probe.c" -o "$OUT/fma_probe-$tag.o" || return 1
+    if [ "$(fma_count "$OUT/fma_probe-$tag.o")" = 0 ]; then
+        echo "$cc -std=gnu11 -mfma did not fuse a * b + c: the check would see nothing"
+        return 1
+    fi
+    $cc -std=gnu11 $STRICT -mfma -DMANYLODS_PTHREADS -c $SRC/tu_impl.c -o "$OUT/tu_impl-fma-$tag.o" || return 1
+    if [ "$(fma_count "$OUT/tu_impl-fma-$tag.o")" != 0 ]; then
+        echo "fused multiply-adds in the implementation ($cc -std=gnu11 -mfma):"
+        objdump -d "$OUT/tu_impl-fma-$tag.o" | grep -E '\svfn?m(add|sub)[0-9a-z]*\s' | head
+        return 1
+    fi
+    echo "a * b + c fused in the probe, never in the implementation"
+}
+
 patterns=("$@")
 
 echo "compile matrix (build/matrix; each entry: -Wall -Wextra -pedantic -Werror, link, run)"
@@ -134,6 +160,15 @@ entry two-tu-cxx-impl-c-user "two TUs: implementation in C++11 ($CXX), user in C
 entry exported-symbols "the implementation exports only mlod_ names ($CC, with MANYLODS_PTHREADS)" \
     "$CC -std=c99 $STRICT -DMANYLODS_PTHREADS -c $SRC/tu_impl.c -o $OUT/tu_impl-pthreads.o" \
     "foreign_symbols $OUT/tu_impl-pthreads.o"
+
+# Rounding as written: no fused multiply-add where the compiler would fuse
+# (the CPU computes the shaders' bits only so).  x86-64 only: -mfma.
+if [ "$(uname -m)" = x86_64 ]; then
+    for cc in "$CC" "$CLANG"; do
+        entry "no-fma-$(basename "$cc")" "no fused multiply-add in the implementation, -std=gnu11 -mfma, $cc" \
+            "no_fused_multiply_add $cc"
+    done
+fi
 
 # MANYLODS_STATIC: two private copies in one program.
 entry static-gcc "MANYLODS_STATIC, two private copies in one program, $CC" \
