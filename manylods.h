@@ -2922,14 +2922,23 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     }
 }
 
-#define MLOD__JOIN_VIEWS 16u
+/* Per-view work of a cut (joining, planning) runs MLOD__VIEW_CHUNK views a
+   task: mlod__view_chunks tasks; task `index` takes views first .. *end - 1. */
+#define MLOD__VIEW_CHUNK 16u
+static uint32_t mlod__view_chunks(const mlod_cut *cut) { return (cut->view_count - 1) / MLOD__VIEW_CHUNK + 1; }
+
+static uint32_t mlod__view_chunk(const mlod_cut *cut, uint32_t index, uint32_t *end)
+{
+    uint32_t first = index * MLOD__VIEW_CHUNK;
+    *end = (uint64_t)first + MLOD__VIEW_CHUNK > cut->view_count ? cut->view_count : first + MLOD__VIEW_CHUNK;
+    return first;
+}
 
 static void mlod__join_task(void *context, uint32_t index)
 {
     const mlod__cut_job *job = (const mlod__cut_job *)context;
-    uint32_t v = index * MLOD__JOIN_VIEWS, end;
+    uint32_t end, v = mlod__view_chunk(job->cut, index, &end);
     mlod__pview pv;
-    end = (uint64_t)v + MLOD__JOIN_VIEWS > job->cut->view_count ? job->cut->view_count : v + MLOD__JOIN_VIEWS;
     for (; v < end; v++) {
         if (job->merge) mlod__view_prepare(&job->views[v], &pv, NULL);
         mlod__join_view(job, v, &pv);
@@ -3129,31 +3138,24 @@ static size_t mlod__root_room(size_t unit, uint32_t previous)
     return room > unit ? room : unit;
 }
 
-/* Planning a round, MLOD__PLAN_VIEWS views per task: three passes over
-   every entry of the input (the entries to split; the segments; their
-   layout), run in parallel, with sums over views in between. */
-#define MLOD__PLAN_VIEWS 16u
+/* Planning a round, a chunk of views per task: three passes over every
+   entry of the input (the entries to split; the segments; their layout),
+   run in parallel, with sums over views in between. */
 typedef struct mlod__plan_job {
     mlod_cut *cut;
     const mlod__list *in;
     int lazy, trust;
     const uint32_t *hint; /* see mlod__plan_round */
     size_t unit;
+    int fill; /* segments pass: 0 counts, 1 writes */
 } mlod__plan_job;
-
-static uint32_t mlod__plan_views(const mlod__plan_job *job, uint32_t index, uint32_t *end)
-{
-    uint32_t v = index * MLOD__PLAN_VIEWS;
-    *end = (uint64_t)v + MLOD__PLAN_VIEWS > job->cut->view_count ? job->cut->view_count : v + MLOD__PLAN_VIEWS;
-    return v;
-}
 
 /* Pass 1: each view's entries to split (view_work), and whether it is done. */
 static void mlod__plan_splits_task(void *context, uint32_t index)
 {
     const mlod__plan_job *job = (const mlod__plan_job *)context;
     mlod_cut *cut = job->cut;
-    uint32_t end, v = mlod__plan_views(job, index, &end);
+    uint32_t end, v = mlod__view_chunk(cut, index, &end);
     for (; v < end; v++) {
         size_t at = job->in->offset[v], stop = at + job->in->count[v], view_splits = 0;
         for (; at < stop; at++) view_splits += (size_t)mlod__to_split(job->in->status[at], job->lazy, job->trust);
@@ -3165,8 +3167,9 @@ static void mlod__plan_splits_task(void *context, uint32_t index)
 
 /* Walk view v's segments: count them and their scratch (fill = 0), or
    write them from segment view_segment[v] and scratch entry view_work[v]. */
-static void mlod__plan_view(const mlod__plan_job *job, uint32_t v, int fill)
+static void mlod__plan_view(const mlod__plan_job *job, uint32_t v)
 {
+    int fill = job->fill;
     mlod_cut *cut = job->cut;
     size_t at = job->in->offset[v], end = cut->view_done[v] ? at : at + job->in->count[v];
     size_t unit = job->hint ? mlod__root_room(job->unit, job->hint[v]) : job->unit;
@@ -3196,16 +3199,11 @@ static void mlod__plan_view(const mlod__plan_job *job, uint32_t v, int fill)
 
 /* Pass 2 (fill 0): each view's segment count (view_segment) and scratch
    (view_work); pass 3 (fill 1): its segments, once those are prefix sums. */
-static void mlod__plan_count_task(void *context, uint32_t index)
+static void mlod__plan_segments_task(void *context, uint32_t index)
 {
-    uint32_t end, v = mlod__plan_views((const mlod__plan_job *)context, index, &end);
-    for (; v < end; v++) mlod__plan_view((const mlod__plan_job *)context, v, 0);
-}
-
-static void mlod__plan_fill_task(void *context, uint32_t index)
-{
-    uint32_t end, v = mlod__plan_views((const mlod__plan_job *)context, index, &end);
-    for (; v < end; v++) mlod__plan_view((const mlod__plan_job *)context, v, 1);
+    const mlod__plan_job *job = (const mlod__plan_job *)context;
+    uint32_t end, v = mlod__view_chunk(job->cut, index, &end);
+    for (; v < end; v++) mlod__plan_view(job, v);
 }
 
 /* Cut the input lists into segments and the segments into tasks, place
@@ -3217,13 +3215,14 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
 {
     mlod__plan_job job;
     size_t total = 0, to_split = 0, segments = 0, capacity = 0, work = 0, s;
-    uint32_t v, tasks = 0, chunks = (cut->view_count - 1) / MLOD__PLAN_VIEWS + 1;
+    uint32_t v, tasks = 0, chunks = mlod__view_chunks(cut);
     job.cut = cut;
     job.in = in;
     job.lazy = lazy;
     job.trust = trust;
     job.hint = hint;
     job.unit = 0;
+    job.fill = 0;
     mlod__run(parallel, chunks, mlod__plan_splits_task, &job);
     for (v = 0; v < cut->view_count; v++) {
         total += in->count[v];
@@ -3235,7 +3234,7 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         if (job.unit < MLOD__MIN_SHARE) job.unit = MLOD__MIN_SHARE;
         if (job.unit > MLOD__SEGMENT_GROWTH) job.unit = MLOD__SEGMENT_GROWTH;
     }
-    mlod__run(parallel, chunks, mlod__plan_count_task, &job);
+    mlod__run(parallel, chunks, mlod__plan_segments_task, &job);
     for (v = 0; v < cut->view_count; v++) { /* counts to first segments and scratch entries */
         size_t n = cut->view_segment[v], room = cut->view_work[v];
         if (n >= (uint32_t)-1 - segments) return 0;
@@ -3253,7 +3252,8 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         if (!mlod__reserve(cut, &p, &cut->task_capacity, segments + 1, sizeof(uint32_t))) return 0;
         cut->tasks = (uint32_t *)p;
     }
-    mlod__run(parallel, chunks, mlod__plan_fill_task, &job);
+    job.fill = 1;
+    mlod__run(parallel, chunks, mlod__plan_segments_task, &job);
     for (s = 0; s < segments; s++) { /* tasks: consecutive segments worth about one segment of work */
         if (work == 0) cut->tasks[tasks++] = (uint32_t)s;
         work += cut->segments[s].out_capacity;
@@ -3353,7 +3353,7 @@ MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
             goto out_of_memory;
         mlod__run(params->parallel, tasks, mlod__segment_task, &job);
         if (!mlod__place_output(cut, in, out)) goto out_of_memory;
-        mlod__run(params->parallel, (cut->view_count - 1) / MLOD__JOIN_VIEWS + 1, mlod__join_task, &job);
+        mlod__run(params->parallel, mlod__view_chunks(cut), mlod__join_task, &job);
         in = out;
         for (v = 0; v < cut->view_count; v++) coarse += cut->stats[1][v].coarse;
         if (job.lazy ? round + 1 >= params->lazy_steps : coarse == 0) break;
