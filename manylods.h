@@ -24,15 +24,34 @@
                      mlod_allocator struct overrides them.
      MANYLODS_ASSERT(x)   internal consistency checks (default: assert).
                      Never used on user input: bad input returns an error.
+     MANYLODS_DEF    what every public declaration and definition starts
+                     with (default: extern, extern "C" in C++, or static
+                     with MANYLODS_STATIC), e.g. to add a visibility or
+                     dllexport attribute; define it the same in every file.
 
    FLOATING POINT
-     The implementation needs IEEE rounding as written: it refuses
-     -ffast-math, and under gcc and clang turns off the fusing of a * b + c
-     into one multiply-add for its own code (gcc fuses in its default GNU
-     modes once the target has FMA, e.g. -march=native), so that builds
-     with and without FMA compute the same trees, cuts and images: the bits
-     manylods_vk.h's shaders compute where the device's doubles are IEEE.
-     With other compilers, build it without floating-point contraction.
+     The implementation computes IEEE binary32/binary64 arithmetic exactly
+     as written, so that every build of it gives the same trees, cuts and
+     images bit for bit, and the bits manylods_vk.h's shaders compute.  The
+     flags of the translation unit that holds MANYLODS_IMPLEMENTATION:
+       -O0 .. -O3, -march=native, -mfma, -std=c99/gnu11/c++NN: any; the
+         implementation turns off the fusing of a * b + c into one
+         multiply-add for its own code (gcc in its GNU modes and clang
+         within an expression fuse by default once the target has FMA).
+       -ffp-contract=fast: the same results with gcc, and with clang on
+         x86, where the implementation is compiled for its target without
+         FMA instructions (and its public functions are never inlined into
+         the caller); clang on other targets (AArch64) fuses whatever a
+         pragma says and defines no macro to tell: do not use it there.
+       -funsafe-math-optimizations, -fassociative-math, -freciprocal-math,
+         -fno-signed-zeros: refused with an #error under gcc (which defines
+         macros for them); harmless under clang (which does not), where the
+         implementation turns them off with float_control(precise).
+       -ffast-math, -Ofast, -ffinite-math-only: refused with an #error
+         (finite-only math would drop the checks that refuse NaN input).
+     Other translation units may use any flags.  Other compilers: build
+     the implementation without floating-point contraction or fast math.
+     tests/compile/matrix.sh checks every line above (the fp-* entries).
 
    PIPELINE
      1. Build (once):   mlod_build_mesh() samples N points on a triangle mesh
@@ -210,6 +229,7 @@
 /* major * 10000 + minor * 100 + patch */
 #define MANYLODS_VERSION 100
 
+#ifndef MANYLODS_DEF
 #ifdef MANYLODS_STATIC
 #if defined(__GNUC__) || defined(__clang__)
 #define MANYLODS_DEF static __attribute__((unused))
@@ -221,6 +241,7 @@
 #define MANYLODS_DEF extern "C"
 #else
 #define MANYLODS_DEF extern
+#endif
 #endif
 #endif
 
@@ -695,8 +716,18 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
 #ifndef MANYLODS_IMPLEMENTATION_DONE
 #define MANYLODS_IMPLEMENTATION_DONE
 
+/* Flags that change what a floating-point operation computes, refused
+   where the compiler says it was given them (see FLOATING POINT above):
+   finite-only math drops the NaN and infinity checks that bad input needs,
+   reassociation, reciprocals and unsigned zeros change the bits. */
 #if defined(__FAST_MATH__)
-#error "manylods: compile the implementation without -ffast-math: its exact plane tests need IEEE rounding"
+#error "manylods: compile the implementation without -ffast-math (or -Ofast): its results need IEEE arithmetic as written"
+#endif
+#if defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__
+#error "manylods: compile the implementation without -ffinite-math-only: it must see NaN and infinite input to refuse it"
+#endif
+#if defined(__ASSOCIATIVE_MATH__) || defined(__RECIPROCAL_MATH__) || defined(__NO_SIGNED_ZEROS__)
+#error "manylods: compile the implementation without -funsafe-math-optimizations, -fassociative-math, -freciprocal-math or -fno-signed-zeros: they change its results"
 #endif
 
 #include <math.h>
@@ -717,23 +748,49 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
 #include <assert.h>
 #define MANYLODS_ASSERT(x) assert(x)
 #endif
+#ifdef MANYLODS_PTHREADS
+#include <pthread.h>
+#endif
 
 /* Every a * b + c here is rounded twice, as written: the shaders compute
    the same bits only so (where the device's doubles are IEEE), and the
    error bounds assume it.  gcc fuses such sums into one multiply-add in
    its GNU modes (the default) once the target has FMA (-march=native),
    clang within an expression: the implementation turns that off for its
-   own code and restores the caller's setting at its end. */
+   own code and restores the caller's setting at its end.
+   clang defines no macro for -funsafe-math-optimizations (or its parts)
+   nor for -ffp-contract=fast, so they cannot be refused above: its
+   float_control(precise) turns the first off for the code below, and
+   since -ffp-contract=fast fuses in the code generator whatever a pragma
+   says, the code below is compiled for a target without FMA instructions
+   where the caller's target has them (x86); nothing else changes. */
 #if defined(__clang__)
+#if __clang_major__ >= 11
+#pragma float_control(precise, on, push)
+#endif
 #pragma STDC FP_CONTRACT OFF
+#if defined(__FMA__) || defined(__AVX512F__)
+#define MLOD__NO_FMA_TARGET 1
+#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
+#endif
 #elif defined(__GNUC__)
 #pragma GCC push_options
 #pragma GCC optimize("fp-contract=off")
 #endif
 
+/* What the public functions' definitions start with.  Compiled without
+   FMA, they are never inlined into the caller's code, where the code
+   generator would fuse them again (MANYLODS_STATIC, link-time
+   optimisation). */
+#ifdef MLOD__NO_FMA_TARGET
+#define MLOD__PUBLIC MANYLODS_DEF __attribute__((noinline))
+#else
+#define MLOD__PUBLIC MANYLODS_DEF
+#endif
+
 /* ------------------------------------------------------------ errors ---- */
 
-MANYLODS_DEF const char *mlod_result_name(mlod_result result)
+MLOD__PUBLIC const char *mlod_result_name(mlod_result result)
 {
     switch (result) {
     case MLOD_OK: return "MLOD_OK";
@@ -1204,7 +1261,7 @@ static void mlod__merge_nodes(mlod_tree *tree, uint32_t first, uint32_t n)
     }
 }
 
-MANYLODS_DEF int mlod_tree_depth_nodes(uint32_t leaf_count, uint32_t depth, uint32_t *first, uint32_t *last)
+MLOD__PUBLIC int mlod_tree_depth_nodes(uint32_t leaf_count, uint32_t depth, uint32_t *first, uint32_t *last)
 {
     uint64_t lo = ((uint64_t)1 << depth) - 1, hi = ((uint64_t)1 << (depth + 1)) - 2;
     if (leaf_count < 2 || lo > (uint64_t)leaf_count - 2) return 0;
@@ -1322,7 +1379,7 @@ static void mlod__tree_free_arrays(mlod_tree *t)
     mlod__free(&t->allocator, t->triangle_leaves);
 }
 
-MANYLODS_DEF void mlod_tree_destroy(mlod_tree *tree)
+MLOD__PUBLIC void mlod_tree_destroy(mlod_tree *tree)
 {
     mlod_allocator a;
     if (!tree) return;
@@ -1485,7 +1542,10 @@ static void mlod__triangle_leaf_of(const mlod_tree *tree, const double *n, doubl
     out->growth = growth;
     out->radius = mlod__float_up(tree->radius_scale * sqrt(tree->area_unit * growth));
     out->area = (float)growth;
-    if (tree->cones) mlod__cone_from_normal(n, out->cone);
+    if (tree->cones)
+        mlod__cone_from_normal(n, out->cone);
+    else /* never read then, but gcc -O3 cannot see that */
+        memset(out->cone, 0, sizeof out->cone);
 }
 
 /* Write leaf `node` of the tree from the mesh sample (tri, s, t) and what
@@ -1805,7 +1865,7 @@ static mlod_result mlod__build_error(mlod_error *error, mlod_result res)
     return mlod__fail(error, res, "out of memory while building the tree");
 }
 
-MANYLODS_DEF mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build_desc *desc, mlod_tree **out_tree,
+MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build_desc *desc, mlod_tree **out_tree,
                                          mlod_error *error)
 {
     mlod_allocator a;
@@ -1959,7 +2019,7 @@ static double mlod__density_radius(const mlod_tree *tree, uint32_t j)
     return tree->spheres[4 * (size_t)node + 3] * sqrt(MLOD__PI / leaves);
 }
 
-MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod_build_desc *desc, mlod_tree **out_tree,
+MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod_build_desc *desc, mlod_tree **out_tree,
                                            mlod_error *error)
 {
     mlod_allocator a;
@@ -2131,7 +2191,7 @@ static mlod_result mlod__check_refit_tree(const mlod_tree *tree, int mesh, mlod_
     return MLOD_OK;
 }
 
-MANYLODS_DEF mlod_result mlod_refit_check_growth(float radius_scale, double area_unit, uint32_t leaf_count,
+MLOD__PUBLIC mlod_result mlod_refit_check_growth(float radius_scale, double area_unit, uint32_t leaf_count,
                                                  double growth, mlod_error *error)
 {
     if (!(radius_scale * sqrt(area_unit * growth) <= MLOD__MAX_MEASURE) || !(growth * leaf_count <= MLOD__MAX_MEASURE))
@@ -2140,7 +2200,7 @@ MANYLODS_DEF mlod_result mlod_refit_check_growth(float radius_scale, double area
     return MLOD_OK;
 }
 
-MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh, const mlod_parallel *parallel,
+MLOD__PUBLIC mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh, const mlod_parallel *parallel,
                                          mlod_error *error)
 {
     mlod__refit_job job;
@@ -2192,7 +2252,7 @@ static void mlod__refit_points_task(void *context, uint32_t index)
     }
 }
 
-MANYLODS_DEF mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *points, const mlod_parallel *parallel,
+MLOD__PUBLIC mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *points, const mlod_parallel *parallel,
                                            mlod_error *error)
 {
     mlod__refit_job job;
@@ -2462,14 +2522,14 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
     return MLOD_OK;
 }
 
-MANYLODS_DEF mlod_result mlod_view_check(const mlod_view *view, mlod_error *error)
+MLOD__PUBLIC mlod_result mlod_view_check(const mlod_view *view, mlod_error *error)
 {
     mlod__pview pv;
     mlod_result res = mlod__view_prepare(view, &pv, error);
     return res == MLOD_OK ? mlod__succeed(error) : res;
 }
 
-MANYLODS_DEF mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_frame *frame, mlod_error *error)
+MLOD__PUBLIC mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_frame *frame, mlod_error *error)
 {
     mlod__pview pv;
     mlod_result res;
@@ -2609,7 +2669,7 @@ static const float *mlod__cone_of(const mlod_tree *tree, uint32_t node)
     return tree->cones ? tree->cones + 4 * (size_t)node : NULL;
 }
 
-MANYLODS_DEF double mlod_criterion(const mlod_tree *tree, uint32_t node, const mlod_view *view)
+MLOD__PUBLIC double mlod_criterion(const mlod_tree *tree, uint32_t node, const mlod_view *view)
 {
     mlod__pview pv;
     int culled;
@@ -2998,7 +3058,7 @@ static int mlod__reserve_list(mlod_cut *cut, mlod__list *list, size_t need)
     return mlod__reserve_entries(cut, &list->nodes, &list->status, &list->capacity, need);
 }
 
-MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut)
+MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
 {
     int i;
     if (!cut) return;
@@ -3020,7 +3080,7 @@ MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut)
     cut->allocator.free(cut->allocator.user, cut);
 }
 
-MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator, mlod_cut **out_cut,
+MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator, mlod_cut **out_cut,
                                          mlod_error *error)
 {
     mlod_allocator a = mlod__allocator(allocator);
@@ -3058,7 +3118,7 @@ MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
     return mlod__succeed(error);
 }
 
-MANYLODS_DEF void mlod_cut_reset(mlod_cut *cut)
+MLOD__PUBLIC void mlod_cut_reset(mlod_cut *cut)
 {
     if (!cut) return;
     cut->tree_nodes = 0;
@@ -3066,11 +3126,11 @@ MANYLODS_DEF void mlod_cut_reset(mlod_cut *cut)
     memset(cut->stats[0], 0, cut->view_count * sizeof(mlod__view_stats));
 }
 
-MANYLODS_DEF uint32_t mlod_cut_view_count(const mlod_cut *cut) { return cut ? cut->view_count : 0; }
+MLOD__PUBLIC uint32_t mlod_cut_view_count(const mlod_cut *cut) { return cut ? cut->view_count : 0; }
 
-MANYLODS_DEF size_t mlod_cut_bytes(const mlod_cut *cut) { return cut ? cut->bytes : 0; }
+MLOD__PUBLIC size_t mlod_cut_bytes(const mlod_cut *cut) { return cut ? cut->bytes : 0; }
 
-MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
+MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
 {
     mlod_cut_view r;
     memset(&r, 0, sizeof r);
@@ -3278,7 +3338,7 @@ static int mlod__place_output(mlod_cut *cut, const mlod__list *in, mlod__list *o
     return mlod__reserve_list(cut, out, at);
 }
 
-MANYLODS_DEF mlod_result mlod_cut_params_check(const mlod_cut_params *params, mlod_error *error)
+MLOD__PUBLIC mlod_result mlod_cut_params_check(const mlod_cut_params *params, mlod_error *error)
 {
     if (!params) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "params is NULL");
     if ((unsigned)params->mode > (unsigned)MLOD_CUT_LAZY)
@@ -3309,7 +3369,7 @@ static mlod_result mlod__check_cut_params(const mlod_cut *cut, const mlod_tree *
     return MLOD_OK;
 }
 
-MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                          const mlod_cut_params *params, mlod_error *error)
 {
     mlod__cut_job job;
@@ -3484,7 +3544,7 @@ static int mlod__point_inside(const mlod__pview *pv, const float *point)
     return 1;
 }
 
-MANYLODS_DEF int mlod_view_project(const mlod_view *view, const float point[3], float pixel[2], float *depth)
+MLOD__PUBLIC int mlod_view_project(const mlod_view *view, const float point[3], float pixel[2], float *depth)
 {
     mlod__pview pv;
     mlod__disc disc;
@@ -3506,7 +3566,7 @@ MANYLODS_DEF int mlod_view_project(const mlod_view *view, const float point[3], 
     return mlod__point_inside(&pv, point);
 }
 
-MANYLODS_DEF int mlod_view_pixel_ray(const mlod_view *view, float x, float y, float origin[3], float direction[3])
+MLOD__PUBLIC int mlod_view_pixel_ray(const mlod_view *view, float x, float y, float origin[3], float direction[3])
 {
     mlod__pview pv;
     double o[3], dir[3], len;
@@ -3547,7 +3607,7 @@ MANYLODS_DEF int mlod_view_pixel_ray(const mlod_view *view, float x, float y, fl
 
 /* --------------------------------------------------------------- atlas -- */
 
-MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas)
+MLOD__PUBLIC void mlod_atlas_destroy(mlod_atlas *atlas)
 {
     mlod_allocator a;
     if (!atlas) return;
@@ -3562,7 +3622,7 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas)
 
 #define MLOD__BAND_ROWS 64u
 
-MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
                                            const mlod_allocator *allocator, mlod_atlas **out_atlas, mlod_error *error)
 {
     mlod_allocator a = mlod__allocator(allocator);
@@ -3826,7 +3886,7 @@ static mlod_result mlod__check_splat(const mlod_atlas *atlas, const mlod_tree *t
     return MLOD_OK;
 }
 
-MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
+MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
                                     const mlod_view *views, const mlod_parallel *parallel, mlod_error *error)
 {
     mlod__splat_job job;
@@ -3847,7 +3907,7 @@ MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
     return mlod__succeed(error);
 }
 
-MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views,
+MLOD__PUBLIC mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views,
                                         uint32_t points_per_view, uint64_t seed, const mlod_parallel *parallel,
                                         mlod_error *error)
 {
@@ -3960,7 +4020,7 @@ static void mlod__fill_task(void *context, uint32_t view)
     }
 }
 
-MANYLODS_DEF mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error)
+MLOD__PUBLIC mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error)
 {
     mlod__fill_job job;
     size_t total = 0;
@@ -3987,7 +4047,7 @@ MANYLODS_DEF mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_par
 
 /* ----------------------------------------------------------- choosing N -- */
 
-MANYLODS_DEF double mlod_mesh_area(const mlod_mesh *mesh)
+MLOD__PUBLIC double mlod_mesh_area(const mlod_mesh *mesh)
 {
     double total = 0.0;
     uint32_t i;
@@ -4031,7 +4091,7 @@ static double mlod__largest_leaf_radius(const mlod__pview *pv, double epsilon, d
     return lo;
 }
 
-MANYLODS_DEF uint32_t mlod_suggest_sample_count(double surface_area, const mlod_view *views, uint32_t view_count,
+MLOD__PUBLIC uint32_t mlod_suggest_sample_count(double surface_area, const mlod_view *views, uint32_t view_count,
                                                 float epsilon, float radius_scale, double closest)
 {
     double radius = INFINITY, n;
@@ -4059,7 +4119,6 @@ MANYLODS_DEF uint32_t mlod_suggest_sample_count(double surface_area, const mlod_
 
 /* ------------------------------------------------- pthreads thread pool -- */
 #ifdef MANYLODS_PTHREADS
-#include <pthread.h>
 
 struct mlod_pool {
     pthread_t *threads;
@@ -4119,7 +4178,7 @@ static void mlod__pool_run(void *user, uint32_t count, mlod_task_fn *task, void 
     pthread_mutex_unlock(&pool->lock);
 }
 
-MANYLODS_DEF mlod_pool *mlod_pool_create(uint32_t threads)
+MLOD__PUBLIC mlod_pool *mlod_pool_create(uint32_t threads)
 {
     mlod_pool *pool;
     uint32_t i;
@@ -4146,7 +4205,7 @@ MANYLODS_DEF mlod_pool *mlod_pool_create(uint32_t threads)
     return pool;
 }
 
-MANYLODS_DEF void mlod_pool_destroy(mlod_pool *pool)
+MLOD__PUBLIC void mlod_pool_destroy(mlod_pool *pool)
 {
     uint32_t i;
     if (!pool) return;
@@ -4162,7 +4221,7 @@ MANYLODS_DEF void mlod_pool_destroy(mlod_pool *pool)
     free(pool);
 }
 
-MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool)
+MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 {
     mlod_parallel p;
     p.run = mlod__pool_run;
@@ -4172,10 +4231,18 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #endif /* MANYLODS_PTHREADS */
 
 #if defined(__clang__)
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute pop
+#undef MLOD__NO_FMA_TARGET
+#endif
 #pragma STDC FP_CONTRACT DEFAULT
+#if __clang_major__ >= 11
+#pragma float_control(pop)
+#endif
 #elif defined(__GNUC__)
 #pragma GCC pop_options
 #endif
+#undef MLOD__PUBLIC
 #endif /* MANYLODS_IMPLEMENTATION_DONE */
 #endif /* MANYLODS_IMPLEMENTATION */
 

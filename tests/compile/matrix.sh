@@ -170,6 +170,67 @@ if [ "$(uname -m)" = x86_64 ]; then
     done
 fi
 
+# Floating-point flags: every build the header accepts computes the same
+# bits (tests/compile/fp_hash.c hashes trees, refits, cuts in every mode,
+# splats, ISM and hole filling); the flags it cannot honour stop the build
+# with a "manylods:" message.  The reference is $CC -std=c99 -O2.
+fp_reference=
+fp_hash_of() { # compiler, flags...: build fp_hash.c with them, print its hash
+    local cc=$1 exe
+    shift
+    exe="$OUT/fp-$(basename "$cc")-$(printf '%s' "$*" | tr -c 'a-zA-Z0-9' '_')"
+    $cc -Wall -Wextra -pedantic -Werror "$@" $SRC/fp_hash.c -o "$exe" $LIBS >&2 || return 1
+    "$exe" | sed -n 's/^hash //p'
+}
+fp_same_hash() { # compiler, flags...
+    local hash
+    hash=$(fp_hash_of "$@") || return 1
+    echo "hash $hash ($*)"
+    [ -n "$hash" ] && [ "$hash" = "$fp_reference" ] && return 0
+    echo "differs from the reference $fp_reference ($CC -std=c99 -O2)"
+    return 1
+}
+fp_refused() { # compiler, flags...: the build fails with the header's message
+    local cc=$1 log="$OUT/fp-refused.log"
+    shift
+    if $cc "$@" -c $SRC/fp_hash.c -o "$OUT/fp-refused.o" >"$log" 2>&1; then
+        echo "$cc $* compiled the implementation: it must refuse these flags"
+        return 1
+    fi
+    grep -m1 'manylods: compile the implementation without' "$log" || { cat "$log"; return 1; }
+}
+fp_reference=$(fp_hash_of "$CC" -std=c99 -O2 2>"$OUT/fp-reference.log")
+[ -n "$fp_reference" ] || { echo "  FAIL  fp_hash.c does not build or run with $CC -std=c99 -O2"; cat "$OUT/fp-reference.log"; }
+echo "  floating-point reference hash $fp_reference ($CC -std=c99 -O2)"
+native=-march=native
+for cc in "$CC" "$CLANG" "$CXX" "$CLANGXX"; do
+    tag=$(basename "$cc")
+    std=-std=gnu11
+    case $tag in *++*) std="-x c++ -std=gnu++17" ;; esac
+    entry "fp-native-$tag" "same hash: $tag -O3 $native" "fp_same_hash $cc $std -O3 $native"
+    entry "fp-contract-$tag" "same hash: $tag -O3 $native -ffp-contract=fast" \
+        "fp_same_hash $cc $std -O3 $native -ffp-contract=fast"
+    entry "fp-fast-math-$tag" "refused: $tag -ffast-math, -Ofast, -ffinite-math-only" \
+        "fp_refused $cc $std -O2 -ffast-math" "fp_refused $cc $std -Ofast" "fp_refused $cc $std -O2 -ffinite-math-only"
+done
+for cc in "$CC" "$CXX"; do
+    tag=$(basename "$cc")
+    std=-std=gnu11
+    case $tag in *++*) std="-x c++ -std=gnu++17" ;; esac
+    entry "fp-unsafe-$tag" "refused: $tag -funsafe-math-optimizations and its parts (they have macros)" \
+        "fp_refused $cc $std -O2 -funsafe-math-optimizations" "fp_refused $cc $std -O2 -fassociative-math -fno-signed-zeros -fno-trapping-math" \
+        "fp_refused $cc $std -O2 -freciprocal-math" "fp_refused $cc $std -O2 -fno-signed-zeros"
+done
+for cc in "$CLANG" "$CLANGXX"; do
+    tag=$(basename "$cc")
+    std=-std=gnu11
+    case $tag in *++*) std="-x c++ -std=gnu++17" ;; esac
+    entry "fp-unsafe-$tag" "same hash: $tag -funsafe-math-optimizations and its parts (no macro: made harmless)" \
+        "fp_same_hash $cc $std -O2 -funsafe-math-optimizations" \
+        "fp_same_hash $cc $std -O3 $native -ffp-contract=fast -fassociative-math -freciprocal-math -fno-signed-zeros -fno-trapping-math" \
+        "fp_same_hash $cc $std -O2 -fno-honor-nans"
+done
+
 # MANYLODS_STATIC: two private copies in one program.
 entry static-gcc "MANYLODS_STATIC, two private copies in one program, $CC" \
     "$CC -std=c99 $STRICT -c $SRC/static_a.c -o $OUT/static_a.o" \
@@ -216,6 +277,18 @@ entry prefixed-macros "every macro the header defines is MANYLODS_ or MLOD_ pref
 # The configuration macros.
 entry config-macros "MANYLODS_MALLOC/FREE and MANYLODS_ASSERT replace the defaults, $CC" \
     "$CC -std=c99 $STRICT $SRC/alloc.c -o $OUT/config-macros $LIBS" "$OUT/config-macros"
+
+# MANYLODS_DEF replaced: the object's public functions take its attribute.
+hidden_api() { # object: mlod_ functions defined, every one hidden
+    local all hidden
+    all=$(readelf -sW "$1" | awk '$4 == "FUNC" && $5 == "GLOBAL" && $8 ~ /^mlod_[a-z]/' | wc -l)
+    hidden=$(readelf -sW "$1" | awk '$4 == "FUNC" && $5 == "GLOBAL" && $6 == "HIDDEN" && $8 ~ /^mlod_[a-z]/' | wc -l)
+    echo "$hidden of $all public functions hidden"
+    [ "$all" -gt 20 ] && [ "$hidden" = "$all" ]
+}
+entry def-override "MANYLODS_DEF replaces the default declaration specifiers, $CC" \
+    "$CC -std=c99 $STRICT -c $SRC/def_override.c -o $OUT/def_override.o" "hidden_api $OUT/def_override.o" \
+    "$CC $OUT/def_override.o -o $OUT/def-override $LIBS" "$OUT/def-override"
 
 # The README's example, as strict as the rest, and quoted verbatim.
 readme_quotes() { # file: the README's first C code block is exactly this file
