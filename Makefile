@@ -3,10 +3,14 @@
 #   make demo        build and run examples/instant_radiosity on its built-in
 #                    scene; writes its images into build/demo/
 #   make docs-images regenerate the pictures the README shows (docs/*.png)
-#   make test        every test, gcc -O2, clang with ASan+UBSan and the threaded
-#                    ones with TSan, the compile matrix, examples/minimal and
-#                    every example on a tiny scene (tests/check_examples.c);
-#                    ends with "N passed, M failed"
+#   make test        first tests/deps.sh (installs the Debian packages the tests
+#                    need when run as root, else stops with the apt-get line),
+#                    then every test: gcc -O2, clang with ASan+UBSan and the
+#                    threaded ones with TSan, the compile matrix, examples/minimal
+#                    and every example on a tiny scene (tests/check_examples.c),
+#                    bench --selftest, the Vulkan tests; ends with
+#                    "N passed, M failed"
+#   make test-only   the same tests without the package check
 #   make test-fast   only the tests built with gcc -O2
 #   make tsan        only the threaded tests under ThreadSanitizer (TSAN_TESTS)
 #   make matrix      only the compile matrix (tests/compile/matrix.sh)
@@ -88,9 +92,11 @@ endif
 
 # The Vulkan companion: its test needs the Vulkan headers and loader
 # (Debian: libvulkan-dev) at build time, a device (mesa-vulkan-drivers) and
-# the validation layer (vulkan-validationlayers) at run time; without them
-# `make test` says it skipped it and counts nothing, unless
-# MANYLODS_REQUIRE_VULKAN=1 (CI), which makes a skip a failure.
+# the validation layer (vulkan-validationlayers) at run time, which
+# tests/deps.sh brings; without them the Vulkan tests fail.  Only
+# MANYLODS_REQUIRE_VULKAN=0, given by hand, turns that into a skip that
+# counts nothing (SKIP in the report, never a pass).
+export MANYLODS_REQUIRE_VULKAN ?= 1
 VULKAN_LIBS ?= -lvulkan
 HAVE_VULKAN := $(shell printf '\043include <vulkan/vulkan.h>\nint main(void) { return 0; }\n' | \
                  $(CC) -x c - $(VULKAN_LIBS) -o /dev/null 2>/dev/null && echo 1)
@@ -106,7 +112,7 @@ VULKAN_TEST := tests/vulkan_missing.sh
 VULKAN_PROGRAMS :=
 endif
 
-.PHONY: all demo test test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs \
+.PHONY: all demo test test-only test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs \
         shaders vulkan vulkan-minimal docs-images
 .DELETE_ON_ERROR:
 
@@ -129,9 +135,17 @@ docs-images: $(EXAMPLES)
 	$(Q)$(BUILD)/examples/reflections --out $(BUILD)/docs-images
 	$(Q)cp $(addprefix $(BUILD)/docs-images/,$(DOCS_IMAGES)) docs/
 
-# Build what can be built (-k), then let tests/run.sh count a program that did
-# not build as a failure: the last line is always the total.
+# First what the tests need (tests/deps.sh: installs the missing Debian
+# packages as root, else stops with the apt-get line), then, in a new make
+# that sees them, the tests.
 test:
+	$(Q)tests/deps.sh
+	$(Q)$(MAKE) --no-print-directory test-only
+
+# The tests without the check of packages.  Build what can be built (-k),
+# then let tests/run.sh count a program that did not build as a failure: the
+# last line is always the total.
+test-only:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) test-programs
 	$(Q)tests/run.sh \
 	    --section "tests, $(CC) -O2" $(GCC_TESTS) \
@@ -233,10 +247,14 @@ $(BUILD)/examples/check_examples: tests/check_examples.c $(HEADERS) | $(EXAMPLES
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CC) $(TEST_CFLAGS) -DEXAMPLES_DIR='"$(BUILD)/examples"' $< -o $@ $(LDLIBS)
 
-bench: $(BUILD)/bench/bench
+bench:
+	$(Q)tests/deps.sh
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bench/bench
 	$(Q)$(BUILD)/bench/bench --out docs
 
-bench-quick: $(BUILD)/bench/bench
+bench-quick:
+	$(Q)tests/deps.sh
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bench/bench
 	$(Q)$(BUILD)/bench/bench --quick --out $(BUILD)/bench
 
 $(BUILD)/bench/bench: $(BENCH_DEPS)
