@@ -108,9 +108,15 @@
      c(node, view) = diameter, in pixels of the view's tile, of the image of
      the node's bounding sphere under the view's projection: the exact
      diameter of that image, which bounds the node's projected size from
-     above.  c = 0 when the node is culled (a sphere of radius 0 also has
-     c = 0; the cut's status tells the two apart), c = +inf when the eye is inside
-     or on the sphere or the image is unbounded.  Notation: e eye, (u, v, w)
+     above.  Culling is decided first: c = 0 when the node is culled (the
+     frustum, box or hemisphere planes, then back faces), even when the eye
+     is inside its sphere; a sphere of radius 0 also has c = 0, and the
+     cut's status tells the two apart.  Otherwise c = +inf exactly where
+     the image is unbounded: perspective when x.w <= r (the sphere reaches
+     the eye's plane, the eye inside or on it included); paraboloids when
+     d <= r (the eye inside or on the sphere) or x.w + sqrt(d^2 - r^2) <= 0;
+     a dual paraboloid when d <= r or a half it reaches is unbounded;
+     orthographic views are never +inf.  Notation: e eye, (u, v, w)
      the view frame (right, up, forward), x = centre - e, d = |x|, r radius.
 
      PERSPECTIVE (pinhole, vertical field of view fov_y, tile W x H, square
@@ -359,7 +365,8 @@ typedef struct mlod_build_desc {
 enum {
     /* Float positions are quantised coarser than a quarter of the typical
        leaf radius: the spacing of floats at the scene's largest coordinate
-       (|x| * 2^-23) exceeds radius_scale * sqrt(A/N) / 4.  A scene far from
+       (max(|x| * 2^-23, 2^-149), 2^-149 being the spacing of denormals)
+       exceeds radius_scale * sqrt(A/N) / 4.  A scene far from
        the origin, or sampled finer than floats can place.  Samples then
        collapse onto each other; bounds, cuts and partitions stay exact for
        the stored (quantised) positions.  Translate the scene towards the
@@ -468,7 +475,12 @@ typedef enum mlod_view_kind {
 enum { MLOD_VIEW_CULL_BACKFACES = 1u << 0 };
 
 /* One view.  World units; angles in radians.  forward and up need not be
-   unit length but must not be parallel; right = forward x up. */
+   unit length but must not be parallel: the sine of their angle must
+   exceed 1e-6; right = forward x up.  position, forward and up must be
+   finite.  A kind reads only the fields marked for it below; the others
+   are never read and may hold anything (NaN and infinities included).
+   In a field a kind reads, NaN is MLOD_ERROR_NON_FINITE, and so is an
+   infinity in a field that must be finite (far_plane may be +inf). */
 typedef struct mlod_view {
     mlod_view_kind kind;
     float position[3];   /* eye; orthographic: a point on the box's axis, depth 0 */
@@ -477,7 +489,7 @@ typedef struct mlod_view {
     uint32_t width;      /* tile size in pixels, >= 1 each */
     uint32_t height;
     float fov_y;         /* perspective: vertical field of view, (0, pi) */
-    float near_plane;    /* perspective: > 0; orthographic: any */
+    float near_plane;    /* perspective: > 0; orthographic: any finite value */
     float far_plane;     /* perspective, orthographic: > near, may be +inf */
     float half_width;    /* orthographic: half-extents of the box, > 0 */
     float half_height;
@@ -1847,8 +1859,13 @@ static int mlod__report(const mlod_build_desc *desc, float fraction)
     return desc->progress && desc->progress(desc->progress_user, fraction);
 }
 
+/* The spacing of floats below 2^-126 (denormals): 2^-149. */
+#define MLOD__FLOAT_DENORMAL_SPACING 1.4012984643248171e-45
+
 /* Flag a tree whose float positions are quantised coarser than a quarter of
-   its typical leaf radius (see MLOD_PRECISION_COARSE_POSITIONS). */
+   its typical leaf radius (see MLOD_PRECISION_COARSE_POSITIONS): the
+   spacing of floats at its largest coordinate, never finer than the
+   denormals' 2^-149. */
 static void mlod__set_precision(mlod_tree *tree, double typical_radius)
 {
     const float *root = tree->spheres;
@@ -1856,7 +1873,9 @@ static void mlod__set_precision(mlod_tree *tree, double typical_radius)
     int k;
     for (k = 1; k < 3; k++)
         if (fabs(root[k]) + root[3] > reach) reach = fabs(root[k]) + root[3];
-    tree->precision = (reach * (1.0 / 8388608.0) > 0.25 * typical_radius) ? (uint32_t)MLOD_PRECISION_COARSE_POSITIONS : 0u;
+    double spacing = reach * (1.0 / 8388608.0);
+    if (spacing < MLOD__FLOAT_DENORMAL_SPACING) spacing = MLOD__FLOAT_DENORMAL_SPACING;
+    tree->precision = spacing > 0.25 * typical_radius ? (uint32_t)MLOD_PRECISION_COARSE_POSITIONS : 0u;
 }
 
 static mlod_result mlod__build_error(mlod_error *error, mlod_result res)
@@ -2417,14 +2436,21 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
         return mlod__fail(error, MLOD_ERROR_NON_FINITE, "the view's position, forward or up is not finite");
     if (view->width == 0 || view->height == 0)
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "tile size %ux%u: both must be >= 1", view->width, view->height);
-    if (isnan(view->fov_y) || isnan(view->near_plane) || isnan(view->far_plane) || isnan(view->half_width) ||
-        isnan(view->half_height))
-        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "a field of the view is NaN");
-    if (view->kind == MLOD_VIEW_PERSPECTIVE && (isinf(view->fov_y) || isinf(view->near_plane)))
-        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "fov_y and near_plane must be finite");
+    /* Only the fields a kind reads are checked (see mlod_view): a paraboloid
+       accepts anything, NaN included, in fov_y, near_plane, far_plane,
+       half_width and half_height. */
+    if (view->kind == MLOD_VIEW_PERSPECTIVE &&
+        (!isfinite(view->fov_y) || !isfinite(view->near_plane) || isnan(view->far_plane)))
+        return mlod__fail(error, MLOD_ERROR_NON_FINITE,
+                          "perspective fov_y %g and near_plane %g must be finite, far_plane %g not NaN", view->fov_y,
+                          view->near_plane, view->far_plane);
     if (view->kind == MLOD_VIEW_ORTHOGRAPHIC &&
-        (isinf(view->near_plane) || isinf(view->half_width) || isinf(view->half_height)))
-        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "near_plane, half_width and half_height must be finite");
+        (!isfinite(view->near_plane) || !isfinite(view->half_width) || !isfinite(view->half_height) ||
+         isnan(view->far_plane)))
+        return mlod__fail(error, MLOD_ERROR_NON_FINITE,
+                          "orthographic near_plane %g, half_width %g and half_height %g must be finite, far_plane %g "
+                          "not NaN",
+                          view->near_plane, view->half_width, view->half_height, view->far_plane);
     if (view->flags & ~(uint32_t)MLOD_VIEW_CULL_BACKFACES)
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown view flags 0x%x", view->flags);
     memset(pv, 0, sizeof *pv);

@@ -497,9 +497,9 @@ static void test_opposite_cones(void)
     CHECK(built == 600, "opposite cones: %u of 600 trees built", built);
 }
 
-/* MLOD_PRECISION_COARSE_POSITIONS: set iff |x|max 2^-23 > radius_scale
-   sqrt(A/N) / 4; bounds stay exact either way.  Cases sit a factor >= 1.6
-   away from the threshold. */
+/* MLOD_PRECISION_COARSE_POSITIONS: set iff max(|x|max 2^-23, 2^-149) >
+   radius_scale sqrt(A/N) / 4 (2^-149: the spacing of denormal floats); bounds
+   stay exact either way.  Cases sit a factor >= 1.6 away from the threshold. */
 static void check_precision(const scene_mesh *rest, double offset, float scale, uint32_t N, const char *what)
 {
     scene_mesh s;
@@ -512,7 +512,7 @@ static void check_precision(const scene_mesh *rest, double offset, float scale, 
         if (fabs(s.positions[i]) > xmax) xmax = fabs(s.positions[i]);
     }
     A = scene_area(&s);
-    spacing = xmax * pow(2.0, -23);
+    spacing = fmax(xmax * pow(2.0, -23), pow(2.0, -149));
     limit = sqrt(A / N) / 4;
     t = tu_build(&s, N, 1, MLOD_ATTR_CONE);
     CHECK(t != NULL, "%s: build", what);
@@ -536,6 +536,10 @@ static void test_coarse_positions(void)
     check_precision(&s, 1e5, 1.0f, 20000, "precision: unit sphere at 1e5, N=20000");
     check_precision(&s, 0.0, 1e-15f, 2000, "precision: sphere of radius 1e-15");
     check_precision(&s, 0.0, 1e15f, 2000, "precision: sphere of radius 1e15");
+    /* Denormal scales: the float spacing is 2^-149 there, however small |x|. */
+    check_precision(&s, 0.0, 1e-36f, 2000, "precision: sphere of radius 1e-36 (normal floats)");
+    check_precision(&s, 0.0, 1e-44f, 2000, "precision: sphere of radius 1e-44 (denormal floats, leaves finer)");
+    check_precision(&s, 0.0, 1e-41f, 2000, "precision: sphere of radius 1e-41 (denormal floats, leaves coarser)");
     scene_free(&s);
 }
 

@@ -256,6 +256,50 @@ static void expect_valid_view(const mlod_view *v, const char *what, const mlod_t
     CHECK(!isnan(mlod_criterion(t, 0, v)), "%s: criterion NaN", what);
 }
 
+/* One rule for the fields a kind does not read (fov_y, near_plane,
+   far_plane, half_width, half_height): any value, NaN and infinities
+   included, is accepted and changes nothing; in a field it reads, NaN is
+   MLOD_ERROR_NON_FINITE and so is an infinity where the value must be
+   finite. */
+static void test_view_unused_fields(const mlod_tree *t)
+{
+    static const float values[5] = {NAN, INFINITY, -INFINITY, -1e30f, 0.0f};
+    /* which kinds read each field: perspective 1, paraboloids 2 and 4, orthographic 8 */
+    static const unsigned readers[5] = {1u, 1u | 8u, 1u | 8u, 8u, 8u};
+    static const char *names[5] = {"fov_y", "near_plane", "far_plane", "half_width", "half_height"};
+    int kind, field, k;
+    for (kind = 0; kind < 4; kind++)
+        for (field = 0; field < 5; field++)
+            for (k = 0; k < 5; k++) {
+                mlod_view base = valid_view(kind), v = base;
+                mlod_view_frame fa, fb;
+                mlod_error e;
+                float *f[5];
+                char what[128];
+                f[0] = &v.fov_y, f[1] = &v.near_plane, f[2] = &v.far_plane, f[3] = &v.half_width,
+                f[4] = &v.half_height;
+                *f[field] = values[k];
+                snprintf(what, sizeof what, "view kind %d, %s = %g", kind, names[field], values[k]);
+                memset(&e, 0, sizeof e);
+                if (!(readers[field] & (1u << kind))) {
+                    uint32_t node;
+                    int same = 1;
+                    memset(&fa, 0, sizeof fa);
+                    memset(&fb, 0, sizeof fb);
+                    CHECK(mlod_view_frame_of(&v, &fa, &e) == MLOD_OK && mlod_view_frame_of(&base, &fb, NULL) == MLOD_OK,
+                          "%s (a field the kind does not read): refused (%s)", what, e.message);
+                    for (node = 0; node < t->node_count; node += 97)
+                        same = same && mlod_criterion(t, node, &v) == mlod_criterion(t, node, &base);
+                    CHECK(same && memcmp(&fa, &fb, sizeof fa) == 0,
+                          "%s (a field the kind does not read): the frame or criterion changed", what);
+                } else if (isnan(values[k]) || (isinf(values[k]) && field != 2)) {
+                    CHECK(mlod_view_check(&v, &e) == MLOD_ERROR_NON_FINITE && e.message[0],
+                          "%s (a field the kind reads): %s, expected MLOD_ERROR_NON_FINITE", what,
+                          mlod_result_name(e.code));
+                }
+            }
+}
+
 static void test_view_errors(void)
 {
     scene_mesh s;
@@ -345,6 +389,7 @@ static void test_view_errors(void)
             expect_valid_view(&v, "orthographic: near -10, far -5, fov 0", t);
         }
     }
+    test_view_unused_fields(t);
     CHECK(isnan(mlod_criterion(t, t->node_count, views)), "mlod_criterion of node == node_count is not NaN");
     CHECK(isnan(mlod_criterion(t, 0xFFFFFFFFu, views)), "mlod_criterion of node 2^32-1 is not NaN");
     mlod_cut_destroy(cut);
