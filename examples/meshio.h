@@ -32,7 +32,8 @@
      skipped.  An ASCII value used (a coordinate, a list count, an index)
      must fit its declared type; ASCII text after the last element is an
      error, binary bytes after it are ignored.
-   - Coordinates must be finite and within +-1e30; indices in range; the
+   - Coordinates must be finite and within +-1e30 as floats (1.00000002e30,
+     the float of 1e30, is accepted); indices in range; the
      mesh at least one vertex and one triangle, fewer than 2^32 of each.
 
    Messages.  Every message starts with the file's name.  An error found at
@@ -176,6 +177,14 @@ fail:
     return NULL;
 }
 
+/* Whether x, stored as a float, is finite and within +-1e30: the bound
+   is the float nearest 1e30, so that the float of an accepted coordinate,
+   written out and read back, is accepted again. */
+static inline int meshio_coordinate_ok(double x)
+{
+    return fabs(x) <= 1.0000001e30 && fabsf((float)x) <= (float)1e30;
+}
+
 /* Move the triangles and vertices into a scene_mesh (no normals, colours). */
 static inline int meshio_finish(const char *path, meshio_buf *vertices, meshio_buf *indices, scene_mesh *out,
                                 char *error, size_t error_size)
@@ -262,7 +271,7 @@ static inline int meshio_load_obj(const char *path, char *text, size_t length, s
                                 line_number, meshio_token(token, p, NULL));
                     goto done;
                 }
-                if (!isfinite(x) || fabs(x) > 1e30) {
+                if (!meshio_coordinate_ok(x)) {
                     meshio_fail(error, error_size, "%s:%lu: vertex coordinate %s is not finite or beyond 1e30", path,
                                 line_number, meshio_token(token, p, NULL));
                     goto done;
@@ -503,7 +512,7 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
     meshio_element elements[16];
     int element_count = 0, format = -1, vertex_element = -1, e, ok = 0;
     unsigned long line_number = 1, vertex_total = 0;
-    char *p = text, *text_end = text + length, *body, token[48];
+    char *p = text, *text_end = text + length, *body, token[48], token2[48];
     meshio_buf vertices = {NULL, 0, 0, sizeof(float)}, indices = {NULL, 0, 0, sizeof(uint32_t)};
     meshio_buf poly = {NULL, 0, 0, sizeof(uint32_t)};
     meshio_reader r;
@@ -591,7 +600,8 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
                 prop->type = meshio_ply_type(word[3]);
                 if (!prop->count_type || !prop->type || (prop->count_type & 0x40))
                     return meshio_fail(error, error_size, "%s:%lu: bad list types \"%s\" \"%s\" (an integer count type, "
-                                       "any value type)", path, line_number, word[2], word[3]);
+                                       "any value type)", path, line_number, meshio_token(token, word[2], NULL),
+                                       meshio_token(token2, word[3], NULL));
                 name = word[4];
             } else {
                 if (words != 3)
@@ -710,7 +720,7 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
                                              meshio_type_name(prop->type));
                             goto done;
                         }
-                        if (!isfinite(value) || fabs(value) > 1e30) {
+                        if (!meshio_coordinate_ok(value)) {
                             meshio_body_fail(&r, error, error_size, "coordinate %s of vertex %lu is not finite or "
                                              "beyond 1e30", meshio_value_text(token, &r, prop->type, value), i);
                             goto done;

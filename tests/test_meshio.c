@@ -405,6 +405,27 @@ static void test_obj_messages(void)
         expect_failure_at("a long bad token", "token.obj", longtoken, strlen(longtoken),
                           "bad face vertex \"3?abcdefghijabcdefghijabcdefghijabcdefgh...\"", 5);
     }
+    /* the bound of 1e30 applies to the float stored: the float of 1e30
+       (1.00000002e30 when printed with 9 digits) loads again, in OBJ and
+       in ASCII PLY; the next float up does not */
+    {
+        scene_mesh m;
+        float e30 = (float)1e30, above = nextafterf(e30, INFINITY);
+        char printed[64];
+        snprintf(printed, sizeof printed, "%.9g", e30);
+        snprintf(text, sizeof text, "v %s -%s 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", printed, printed);
+        CHECK(parse_text("e30.obj", text, &m), "the float of 1e30 written as %s loads: %s", printed, message);
+        CHECK(m.vertex_count == 3 && m.positions[0] == e30 && m.positions[1] == -e30, "as the float of 1e30");
+        scene_free(&m);
+        snprintf(text, sizeof text, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                 "%s 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", printed);
+        CHECK(parse_text("e30.ply", text, &m), "in ASCII PLY too: %s", message);
+        scene_free(&m);
+        snprintf(printed, sizeof printed, "%.9g", above);
+        snprintf(text, sizeof text, "v 0 %s 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", printed);
+        expect_failure_at("the float after that of 1e30", "above.obj", text, strlen(text), "beyond 1e30", 1);
+    }
     /* still accepted: w after z, a comment after a face, tabs */
     {
         scene_mesh m;
