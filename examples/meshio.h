@@ -20,33 +20,39 @@
 
    Accepted.  The format comes from the first bytes ("ply": PLY), else from
    the extension (.ply, any case: PLY; anything else: OBJ).
-   - OBJ: "v x y z" lines (more numbers after z are ignored) and "f" lines
-     of 3 or more vertices, each i, i/t, i//n or i/t/n where i is 1-based,
-     or negative to count back from the last vertex so far (-1 is the last);
-     t and n must be integers and are not used.  Other lines are skipped.
-   - PLY 1.0: format ascii, binary_little_endian or binary_big_endian; an
-     element "vertex" with scalar properties x, y, z (any scalar type) and,
-     after it, an element "face" with one list property vertex_indices (or
-     vertex_index); at most 16 elements of at most 16 properties, names of
-     at most 31 characters; other elements and properties are read and
-     skipped.  An ASCII value used (a coordinate, a list count, an index)
-     must fit its declared type; ASCII text after the last element is an
-     error, binary bytes after it are ignored.
-   - Coordinates must be finite and within +-1e30 as floats (1.00000002e30,
-     the float of 1e30, is accepted); indices in range; the
-     mesh at least one vertex and one triangle, fewer than 2^32 of each.
+   - OBJ (text, no NUL byte): "v x y z" lines (numbers after z are
+     ignored) and "f" lines of 3 or more vertices, each i, i/t, i//n or
+     i/t/n: i is 1-based, or negative to count back from the last vertex so
+     far (-1 is the last); t and n must be integers and are not used.
+     Other lines are skipped.
+   - PLY 1.0: a first line "ply"; one line "format ascii 1.0",
+     "format binary_little_endian 1.0" or "format binary_big_endian 1.0";
+     comment, obj_info and empty lines; an element "vertex" with scalar
+     properties x, y, z (any scalar type) and, after it, an element "face"
+     with one list property vertex_indices (or vertex_index); other
+     elements and properties are read and skipped.  At most 16 elements of
+     at most 16 properties; names of at most 31 printable ASCII characters;
+     element counts of digits only.  An ASCII value used (a coordinate, a
+     list count, an index) must fit its declared type; text after the last
+     element is an error in ASCII, bytes after it are ignored in binary.
+   - Coordinates finite and within +-1e30 as floats (1.00000002e30, the
+     float of 1e30, is accepted); indices in range; at least one vertex and
+     one triangle, fewer than 2^32 vertices and indices.
 
-   Messages.  Every message starts with the file's name.  An error found at
-   a place in a text (an OBJ line, a PLY header line, a value of an ASCII
-   PLY body) names that line: "bunny.obj:12: ..." (lines count from 1; the
-   end of the file is the last line).  An error in a binary PLY body names
-   the byte offset of the value: "bunny.ply: byte 4096: ...".  Numbers are
-   quoted as written in a text (an index of 99999999999999999999 is reported
-   so, a relative OBJ index with the vertex count so far); PLY entries count
-   from 0 like PLY's own indices.  Only errors of the whole file name no
-   place: cannot open or read it (with the system's reason, such as "Is a
-   directory"), out of memory, no vertices, no triangles, 2^32 or more
-   vertices or indices. */
+   Messages.  Every message starts with the file's name (the path for
+   meshio_load).  An error found at a place in a text (an OBJ line, a PLY
+   header line, a value of an ASCII PLY body) names that line:
+   "bunny.obj:12: ..." (lines count from 1; an error at the end of the file
+   names its last line).  An error in a binary PLY body names the byte
+   offset, from the start of the file, of the value: "bunny.ply: byte 4096:
+   ...".  Values are quoted as written in a text (an OBJ index of
+   99999999999999999999 as such; a relative OBJ index out of range with the
+   vertex count so far); binary values as their type holds them; PLY
+   entries count from 0 like PLY's own indices.  Only errors about the
+   whole file name no place: cannot open or read it (with the system's
+   reason, such as "Is a directory"), an empty PLY, out of memory (except
+   in OBJ, which names the line it was reading), no vertices, no triangles,
+   2^32 or more vertices or indices. */
 #ifndef MANYLODS_EXAMPLES_MESHIO_H
 #define MANYLODS_EXAMPLES_MESHIO_H
 
