@@ -333,7 +333,10 @@ static inline int meshio_load_obj(const char *path, char *text, size_t length, s
                     goto done;
                 }
                 if (i > have) {
-                    if (negative)
+                    if (negative && have == 0)
+                        meshio_fail(error, error_size, "%s:%lu: relative face index %s out of range (no vertex so far)",
+                                    path, line_number, token);
+                    else if (negative)
                         meshio_fail(error, error_size, "%s:%lu: relative face index %s out of range (%lu vertices so far, "
                                     "so -1 .. -%lu)", path, line_number, token, have, have);
                     else
@@ -427,6 +430,7 @@ typedef struct meshio_reader {
     unsigned long line;         /* ASCII: the line of p */
     const unsigned char *value; /* the last value read or tried: its first byte */
     unsigned long value_line;   /* ASCII: its line */
+    int newline_at_end;         /* whether the file's last byte is a newline */
 } meshio_reader;
 
 /* 1 with *value; 0 at the end of the data (r->value_line: the last line);
@@ -442,7 +446,7 @@ static inline int meshio_read_value(meshio_reader *r, int type, double *value)
         r->value = r->p;
         r->value_line = r->line;
         if (r->p >= r->end) {
-            if (r->end[-1] == '\n') r->value_line--; /* the header ends with one: the body's lines are its lines */
+            r->value_line -= r->newline_at_end; /* no line after the last newline */
             return 0;
         }
         *value = strtod((const char *)r->p, &next);
@@ -451,24 +455,28 @@ static inline int meshio_read_value(meshio_reader *r, int type, double *value)
         r->p = (const unsigned char *)next;
         return 1;
     } else {
-        unsigned char b[8];
         size_t n = meshio_type_bytes(type), i;
+        uint64_t u = 0; /* the value's bits, whatever the host's byte order */
         r->value = r->p;
         if ((size_t)(r->end - r->p) < n) {
             r->value = r->end;
             return 0;
         }
-        for (i = 0; i < n; i++) b[i] = r->p[r->format == MESHIO_LITTLE ? i : n - 1 - i];
+        for (i = 0; i < n; i++) u |= (uint64_t)r->p[r->format == MESHIO_LITTLE ? i : n - 1 - i] << (8 * i);
         r->p += n;
-        switch (type) {
-        case -1: *value = (int8_t)b[0]; break;
-        case 1: *value = b[0]; break;
-        case -2: { int16_t v; memcpy(&v, b, 2); *value = v; } break;
-        case 2: { uint16_t v; memcpy(&v, b, 2); *value = v; } break;
-        case -4: { int32_t v; memcpy(&v, b, 4); *value = v; } break;
-        case 4: { uint32_t v; memcpy(&v, b, 4); *value = v; } break;
-        case 0x44: { float v; memcpy(&v, b, 4); *value = v; } break;
-        default: { double v; memcpy(&v, b, 8); *value = v; } break;
+        if (type == 0x44) {
+            uint32_t bits = (uint32_t)u;
+            float v;
+            memcpy(&v, &bits, 4);
+            *value = v;
+        } else if (type == 0x48) {
+            double v;
+            memcpy(&v, &u, 8);
+            *value = v;
+        } else if (type < 0 && (u >> (8 * n - 1))) {
+            *value = (double)u - ldexp(1.0, 8 * (int)n); /* two's complement */
+        } else {
+            *value = (double)u;
         }
         return 1;
     }
@@ -516,13 +524,14 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
                                   size_t error_size)
 {
     meshio_element elements[16];
-    int element_count = 0, format = -1, vertex_element = -1, e, ok = 0;
+    int element_count = 0, format = -1, vertex_element = -1, e, ok = 0, newline_at_end;
     unsigned long line_number = 1, vertex_total = 0;
     char *p = text, *text_end = text + length, *body, token[48], token2[48];
     meshio_buf vertices = {NULL, 0, 0, sizeof(float)}, indices = {NULL, 0, 0, sizeof(uint32_t)};
     meshio_buf poly = {NULL, 0, 0, sizeof(uint32_t)};
     meshio_reader r;
     if (length == 0) return meshio_fail(error, error_size, "%s: empty file (not even a \"ply\" line)", path);
+    newline_at_end = text[length - 1] == '\n'; /* before the header's newlines become NULs */
     /* the header, line by line, up to end_header */
     for (;; line_number++) {
         char *end = (char *)memchr(p, '\n', (size_t)(text_end - p)), *word[6], *s;
@@ -604,7 +613,7 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
                                        path, line_number);
                 prop->count_type = meshio_ply_type(word[2]);
                 prop->type = meshio_ply_type(word[3]);
-                if (!prop->count_type || !prop->type || (prop->count_type & 0x40))
+                if (!prop->count_type || !prop->type || (prop->count_type > 0 && (prop->count_type & 0x40)))
                     return meshio_fail(error, error_size, "%s:%lu: bad list types \"%s\" \"%s\" (an integer count type, "
                                        "any value type)", path, line_number, meshio_token(token, word[2], NULL),
                                        meshio_token(token2, word[3], NULL));
@@ -667,6 +676,7 @@ static inline int meshio_load_ply(const char *path, char *text, size_t length, s
     r.end = (const unsigned char *)text_end;
     r.format = format;
     r.line = r.value_line = line_number + 1;
+    r.newline_at_end = newline_at_end;
     for (e = 0; e < element_count; e++) {
         meshio_element *el = &elements[e];
         int k, got;

@@ -276,6 +276,39 @@ static void test_ply_valid(void)
         CHECK(m.index_count == 3 && m.indices[2] == 2, "vertex_index with a ushort count");
         scene_free(&m);
     }
+    for (big = 0; big < 2; big++) { /* negative values of every signed type, in both byte orders */
+        uint8_t data[512], *p = data;
+        int16_t x = -2;
+        int32_t y = -70000;
+        int8_t z = -1;
+        uint32_t v;
+        double d = -0.375;
+        p += sprintf((char *)data, "ply\nformat %s 1.0\nelement vertex 3\nproperty short x\nproperty int y\n"
+                                   "property char z\nproperty double w\nelement face 1\n"
+                                   "property list char int16 vertex_indices\nend_header\n",
+                     big ? "binary_big_endian" : "binary_little_endian");
+        for (v = 0; v < 3; v++) {
+            int16_t xv = (int16_t)(x * (int16_t)v);
+            int32_t yv = y + (int32_t)v;
+            put(&p, &xv, 2, big);
+            put(&p, &yv, 4, big);
+            *p++ = (uint8_t)z;
+            put(&p, &d, 8, big);
+        }
+        *p++ = 3;
+        for (v = 0; v < 3; v++) {
+            int16_t index = (int16_t)(2 - v);
+            put(&p, &index, 2, big);
+        }
+        CHECK(parse(big ? "signed-big.ply" : "signed-little.ply", data, (size_t)(p - data), &m), "signed types: %s",
+              message);
+        if (m.vertex_count == 3 && m.index_count == 3)
+            CHECK(m.positions[3] == -2.0f && m.positions[4] == -69999.0f && m.positions[5] == -1.0f &&
+                      m.positions[6] == -4.0f && m.indices[0] == 2 && m.indices[2] == 0,
+                  "signed types, %s-endian: (%g %g %g), index %u", big ? "big" : "little", m.positions[3], m.positions[4],
+                  m.positions[5], m.indices[0]);
+        scene_free(&m);
+    }
 }
 
 /* ---------------------------------------------------------------- files */
@@ -373,6 +406,8 @@ static void test_obj_messages(void)
     snprintf(text, sizeof text, "v 0 0 0\nf -1 -2 -3\n%s", tri);
     expect_failure_at("a relative index with 1 vertex so far", "early.obj", text, strlen(text),
                       "index -2 out of range (1 vertices so far, so -1 .. -1)", 2);
+    expect_text_failure_at("a relative index before any vertex", "none.obj", "f -1 -2 -3\nv 0 0 0\n",
+                           "relative face index -1 out of range (no vertex so far)", "f");
     snprintf(text, sizeof text, "%sf 1 2 +4\n", tri);
     expect_failure_at("an index with a plus sign", "plus.obj", text, strlen(text), "face index +4 out of range", 4);
     snprintf(text, sizeof text, "%sf 1 2 3\nf 1 2 1234567890123456789012345678901234567890123456789\n", tri);
@@ -661,6 +696,10 @@ static void test_hostile_ply(void)
     expect_failure_at("a cut ASCII body", "cut.ply", text, strlen(text), "truncated", 12);
     snprintf(text, sizeof text, "%s0 0 0\n1 0 0\n0 1 0\n3 0 1", head3);
     expect_failure_at("a cut ASCII body without a last newline", "cutnl.ply", text, strlen(text), "truncated", 13);
+    expect_failure_at("an empty body", "nobody.ply", head3, strlen(head3), "truncated: the file ends inside vertex 0 of 3",
+                      9);
+    snprintf(text, sizeof text, "%s\n  \n", head3);
+    expect_failure_at("a body of blank lines", "blank.ply", text, strlen(text), "truncated", 11);
     snprintf(text, sizeof text, "%s0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n", head3);
     expect_failure_at("a word in an ASCII body", "word.ply", text, strlen(text), "malformed: \"zero\" is not a number", 11);
     snprintf(text, sizeof text, "%s0 0 0\n1 0 0x\n0 1 0\n3 0 1 2\n", head3);
