@@ -410,6 +410,11 @@ static void check_message(const char *message, const char *name, const uint8_t *
 
 static char fuzz_dir[256];
 
+static void fuzz_remove_dir(void)
+{
+    if (fuzz_dir[0]) rmdir(fuzz_dir);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size);
 int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size)
 {
@@ -507,6 +512,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size)
             const char *tmp = getenv("TMPDIR");
             snprintf(fuzz_dir, sizeof fuzz_dir, "%s/manylods-fuzz-loader-XXXXXX", tmp && *tmp ? tmp : "/tmp");
             REQUIRE(mkdtemp(fuzz_dir) != NULL, "cannot create a directory for the harness's files");
+            atexit(fuzz_remove_dir);
         }
         snprintf(path, sizeof path, "%s/%s", fuzz_dir, name);
         file = fopen(path, "wb");

@@ -5,7 +5,9 @@
      form (i, i/t, i//n, i/t/n), quads and larger polygons (fans), negative
      indices, CRLF and tabs; PLY in ASCII, binary little- and big-endian,
      with extra properties and elements, vertex_index, integer and double
-     coordinates; files on disk by extension in any case, and by content;
+     coordinates, negative values of every signed type and a signed list
+     count in both byte orders; files on disk by extension in any case, and
+     by content; the float of 1e30 written out and read back;
    - hostile files, each rejected with a message naming the file, leaving
      the output empty: empty, comments only, no faces, truncated (every
      prefix of a binary PLY, of an ASCII PLY up to its last number, a cut
