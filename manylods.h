@@ -536,8 +536,11 @@ MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
 /* Compute the cuts of all views (views[0 .. view_count-1]) in the tree.
    Incremental and lazy modes start from the previous update's cuts when the
    previous update used a tree of the same node count, else from the root.
-   All views are checked before any work; on error the previous cuts stay.
-   Memory grows with the cut sizes, not with views x N. */
+   All views are checked before any work; on error the previous cuts stay,
+   and so does the cut's memory: what the call grew is given back
+   (mlod_cut_bytes and the allocator's live bytes as before the call).
+   Memory grows with the cut sizes, not with views x N; an update that
+   grows the cut holds the arrays it replaces until it returns. */
 MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                          const mlod_cut_params *params, mlod_error *error);
 
@@ -2660,6 +2663,17 @@ typedef struct mlod__segment {
     uint64_t evaluated, steps;
 } mlod__segment;
 
+/* The work buffers an update may grow, by index: the entries (nodes and
+   statuses) of lists[0 .. 2], those of the scratch, the segments, the
+   tasks.  One or two arrays of `capacity` elements, sizes[0] and sizes[1]
+   bytes each (sizes[1] = 0: no second array). */
+enum { MLOD__WORK_SCRATCH = 3, MLOD__WORK_SEGMENTS = 4, MLOD__WORK_TASKS = 5, MLOD__WORK_COUNT = 6 };
+typedef struct mlod__work_buffer {
+    void *first, *second;
+    size_t capacity;
+    size_t sizes[2];
+} mlod__work_buffer;
+
 struct mlod_cut {
     mlod_allocator allocator;
     uint32_t view_count;
@@ -2677,6 +2691,8 @@ struct mlod_cut {
     uint32_t *view_segment; /* per view: first segment, then the end */
     uint8_t *view_done;     /* per view: nothing to split this round (copied as it is) */
     size_t *view_work;      /* planning, per view: entries to split, then its segments' scratch */
+    mlod__work_buffer kept[MLOD__WORK_COUNT]; /* during an update: what its growth replaced */
+    uint8_t grown[MLOD__WORK_COUNT];          /* during an update: kept[i] holds buffer i's old arrays */
     size_t bytes;
 };
 
@@ -2945,75 +2961,124 @@ static void mlod__join_task(void *context, uint32_t index)
     }
 }
 
-/* Grow a buffer to hold `need` elements (contents are not kept). */
-static int mlod__reserve(mlod_cut *cut, void **buffer, size_t *capacity, size_t need, size_t element)
+static mlod__work_buffer mlod__work_get(const mlod_cut *cut, int which)
 {
-    size_t grown;
-    void *p;
-    if (need <= *capacity) return 1;
-    grown = need + need / 8;
-    if (grown < need) grown = need;
-    p = mlod__alloc_array(&cut->allocator, grown, element, NULL);
-    if (!p) {
-        grown = need;
-        p = mlod__alloc_array(&cut->allocator, grown, element, NULL);
-        if (!p) return 0;
+    mlod__work_buffer b;
+    b.second = NULL;
+    b.sizes[1] = 0;
+    if (which < MLOD__WORK_SCRATCH) {
+        b.first = cut->lists[which].nodes;
+        b.second = cut->lists[which].status;
+        b.capacity = cut->lists[which].capacity;
+        b.sizes[0] = sizeof(uint32_t);
+        b.sizes[1] = sizeof(uint8_t);
+    } else if (which == MLOD__WORK_SCRATCH) {
+        b.first = cut->scratch_nodes;
+        b.second = cut->scratch_status;
+        b.capacity = cut->scratch_capacity;
+        b.sizes[0] = sizeof(uint32_t);
+        b.sizes[1] = sizeof(uint8_t);
+    } else if (which == MLOD__WORK_SEGMENTS) {
+        b.first = cut->segments;
+        b.capacity = cut->segment_capacity;
+        b.sizes[0] = sizeof(mlod__segment);
+    } else {
+        b.first = cut->tasks;
+        b.capacity = cut->task_capacity;
+        b.sizes[0] = sizeof(uint32_t);
     }
-    mlod__free(&cut->allocator, *buffer);
-    cut->bytes = cut->bytes - *capacity * element + grown * element;
-    *buffer = p;
-    *capacity = grown;
+    return b;
+}
+
+static void mlod__work_set(mlod_cut *cut, int which, const mlod__work_buffer *b)
+{
+    if (which < MLOD__WORK_SCRATCH) {
+        cut->lists[which].nodes = (uint32_t *)b->first;
+        cut->lists[which].status = (uint8_t *)b->second;
+        cut->lists[which].capacity = b->capacity;
+    } else if (which == MLOD__WORK_SCRATCH) {
+        cut->scratch_nodes = (uint32_t *)b->first;
+        cut->scratch_status = (uint8_t *)b->second;
+        cut->scratch_capacity = b->capacity;
+    } else if (which == MLOD__WORK_SEGMENTS) {
+        cut->segments = (mlod__segment *)b->first;
+        cut->segment_capacity = b->capacity;
+    } else {
+        cut->tasks = (uint32_t *)b->first;
+        cut->task_capacity = b->capacity;
+    }
+}
+
+static void mlod__work_free(mlod_cut *cut, const mlod__work_buffer *b)
+{
+    mlod__free(&cut->allocator, b->first);
+    mlod__free(&cut->allocator, b->second);
+    cut->bytes -= b->capacity * (b->sizes[0] + b->sizes[1]);
+}
+
+/* Grow work buffer `which` to hold `need` elements (contents are not
+   kept), an eighth more when the allocator gives it.  The arrays the update
+   began with are kept, not freed, until mlod__work_end: a failed update
+   puts them back and leaves the cut's memory as it found it.  Returns 0
+   when out of memory, with the buffer as it was. */
+static int mlod__work_reserve(mlod_cut *cut, int which, size_t need)
+{
+    mlod__work_buffer old = mlod__work_get(cut, which), b = old;
+    int attempt;
+    if (need <= old.capacity) return 1;
+    for (attempt = 0; attempt < 2; attempt++) {
+        b.capacity = attempt == 0 && need + need / 8 > need ? need + need / 8 : need;
+        b.first = mlod__alloc_array(&cut->allocator, b.capacity, b.sizes[0], NULL);
+        b.second = b.first && b.sizes[1] ? mlod__alloc_array(&cut->allocator, b.capacity, b.sizes[1], NULL) : NULL;
+        if (b.first && (b.second || !b.sizes[1])) break;
+        mlod__free(&cut->allocator, b.first);
+        b.first = NULL;
+    }
+    if (!b.first) return 0;
+    if (cut->grown[which]) {
+        mlod__work_free(cut, &old); /* grown earlier in this update */
+    } else {
+        cut->kept[which] = old;
+        cut->grown[which] = 1;
+    }
+    cut->bytes += b.capacity * (b.sizes[0] + b.sizes[1]);
+    mlod__work_set(cut, which, &b);
     return 1;
 }
 
-/* Grow a pair of entry arrays (nodes and statuses) to hold `need` entries,
-   both to the same capacity (contents are not kept).  Returns 0 when out
-   of memory, with the arrays as they were. */
-static int mlod__reserve_entries(mlod_cut *cut, uint32_t **nodes, uint8_t **status, size_t *capacity, size_t need)
+/* End an update: on success free the arrays its growth replaced; on
+   failure free what it grew and put those arrays back. */
+static void mlod__work_end(mlod_cut *cut, int success)
 {
-    size_t sizes[2];
-    int attempt;
-    if (need <= *capacity) return 1;
-    sizes[0] = need + need / 8 > need ? need + need / 8 : need;
-    sizes[1] = need;
-    for (attempt = 0; attempt < 2; attempt++) {
-        uint32_t *n = (uint32_t *)mlod__alloc_array(&cut->allocator, sizes[attempt], sizeof(uint32_t), NULL);
-        uint8_t *s = n ? (uint8_t *)mlod__alloc_array(&cut->allocator, sizes[attempt], sizeof(uint8_t), NULL) : NULL;
-        if (n && s) {
-            mlod__free(&cut->allocator, *nodes);
-            mlod__free(&cut->allocator, *status);
-            cut->bytes = cut->bytes - *capacity * 5 + sizes[attempt] * 5;
-            *nodes = n;
-            *status = s;
-            *capacity = sizes[attempt];
-            return 1;
+    int which;
+    for (which = 0; which < MLOD__WORK_COUNT; which++) {
+        mlod__work_buffer now;
+        if (!cut->grown[which]) continue;
+        cut->grown[which] = 0;
+        if (success) {
+            mlod__work_free(cut, &cut->kept[which]);
+            continue;
         }
-        mlod__free(&cut->allocator, n);
+        now = mlod__work_get(cut, which);
+        mlod__work_free(cut, &now);
+        mlod__work_set(cut, which, &cut->kept[which]);
     }
-    return 0;
-}
-
-static int mlod__reserve_list(mlod_cut *cut, mlod__list *list, size_t need)
-{
-    return mlod__reserve_entries(cut, &list->nodes, &list->status, &list->capacity, need);
 }
 
 MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut)
 {
     int i;
     if (!cut) return;
+    for (i = 0; i < MLOD__WORK_COUNT; i++) {
+        mlod__work_buffer b = mlod__work_get(cut, i);
+        mlod__work_free(cut, &b);
+    }
     for (i = 0; i < 3; i++) {
-        mlod__free(&cut->allocator, cut->lists[i].nodes);
-        mlod__free(&cut->allocator, cut->lists[i].status);
         mlod__free(&cut->allocator, cut->lists[i].offset);
         mlod__free(&cut->allocator, cut->lists[i].count);
     }
     mlod__free(&cut->allocator, cut->stats[0]);
     mlod__free(&cut->allocator, cut->stats[1]);
-    mlod__free(&cut->allocator, cut->scratch_nodes);
-    mlod__free(&cut->allocator, cut->scratch_status);
-    mlod__free(&cut->allocator, cut->segments);
-    mlod__free(&cut->allocator, cut->tasks);
     mlod__free(&cut->allocator, cut->view_segment);
     mlod__free(&cut->allocator, cut->view_done);
     mlod__free(&cut->allocator, cut->view_work);
@@ -3244,14 +3309,8 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         capacity += room;
     }
     cut->view_segment[cut->view_count] = (uint32_t)segments;
-    {
-        void *p = cut->segments;
-        if (!mlod__reserve(cut, &p, &cut->segment_capacity, segments, sizeof(mlod__segment))) return 0;
-        cut->segments = (mlod__segment *)p;
-        p = cut->tasks;
-        if (!mlod__reserve(cut, &p, &cut->task_capacity, segments + 1, sizeof(uint32_t))) return 0;
-        cut->tasks = (uint32_t *)p;
-    }
+    if (!mlod__work_reserve(cut, MLOD__WORK_SEGMENTS, segments) || !mlod__work_reserve(cut, MLOD__WORK_TASKS, segments + 1))
+        return 0;
     job.fill = 1;
     mlod__run(parallel, chunks, mlod__plan_segments_task, &job);
     for (s = 0; s < segments; s++) { /* tasks: consecutive segments worth about one segment of work */
@@ -3261,7 +3320,7 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
     }
     cut->tasks[tasks] = (uint32_t)segments;
     *task_count = tasks;
-    return mlod__reserve_entries(cut, &cut->scratch_nodes, &cut->scratch_status, &cut->scratch_capacity, capacity);
+    return mlod__work_reserve(cut, MLOD__WORK_SCRATCH, capacity);
 }
 
 /* Lay out the output list: each view gets room for all its segments'
@@ -3275,7 +3334,7 @@ static int mlod__place_output(mlod_cut *cut, const mlod__list *in, mlod__list *o
         if (cut->view_done[v]) at += in->count[v];
         for (s = cut->view_segment[v]; s < cut->view_segment[v + 1]; s++) at += cut->segments[s].out_count;
     }
-    return mlod__reserve_list(cut, out, at);
+    return mlod__work_reserve(cut, (int)(out - cut->lists), at);
 }
 
 MANYLODS_DEF mlod_result mlod_cut_params_check(const mlod_cut_params *params, mlod_error *error)
@@ -3331,7 +3390,7 @@ MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     in = &cut->lists[cut->committed];
     if (from_root) {
         in = &cut->lists[(cut->committed + 1) % 3];
-        if (!mlod__reserve_list(cut, in, cut->view_count)) goto out_of_memory;
+        if (!mlod__work_reserve(cut, (int)(in - cut->lists), cut->view_count)) goto out_of_memory;
         for (v = 0; v < cut->view_count; v++) {
             in->nodes[v] = 0;
             in->status[v] = MLOD__PENDING;
@@ -3365,8 +3424,10 @@ MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     }
     cut->committed = (int)(in - cut->lists);
     cut->tree_nodes = tree->node_count;
+    mlod__work_end(cut, 1);
     return mlod__succeed(error);
 out_of_memory:
+    mlod__work_end(cut, 0);
     return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory updating the cut of %u views", cut->view_count);
 }
 

@@ -1,0 +1,327 @@
+/* tests/test_memory.c - memory a caller can plan for.
+
+   1. A failed mlod_cut_update gives back what it grew: after any error (an
+      allocator failing its k-th call, a live-bytes budget, a bad view or
+      epsilon), in every mode, with and without a parallel hook, the cut
+      holds the same cuts, reports the same bytes and holds the same live
+      bytes of its allocator as before the call; and the next update with
+      room to spare gives the cut an undisturbed cut gives.
+   2. The sizing functions: mlod_build_mesh_bound / mlod_build_points_bound
+      against the allocator's high-water mark of live bytes (at or above
+      it, at most 10 % above), mlod_cut_bound against a cut's bytes and
+      its updates' peaks, mlod_atlas_bound against mlod_atlas_create. */
+#define MANYLODS_IMPLEMENTATION
+#define MANYLODS_PTHREADS
+#include "../manylods.h"
+#include "testutil.h"
+
+/* ---------------------------------------------------- budget allocator */
+
+/* Counts live bytes and their high-water mark; refuses a block that would
+   take the live bytes past `budget` (0: no budget), and every call from
+   the one numbered fail_at on (1-based, 0: none). */
+typedef struct budget {
+    size_t live, peak, budget;
+    unsigned long calls, fail_at, blocks, refused;
+} budget;
+
+static void *budget_alloc(void *user, size_t bytes)
+{
+    budget *b = (budget *)user;
+    unsigned char *p;
+    b->calls++;
+    if ((b->fail_at && b->calls >= b->fail_at) || (b->budget && bytes > b->budget - (b->live < b->budget ? b->live : b->budget))) {
+        b->refused++;
+        return NULL;
+    }
+    p = (unsigned char *)malloc(bytes + 16);
+    if (!p) return NULL;
+    memcpy(p, &bytes, sizeof bytes);
+    b->live += bytes;
+    b->blocks++;
+    if (b->live > b->peak) b->peak = b->live;
+    return p + 16;
+}
+
+static void budget_free(void *user, void *pointer)
+{
+    budget *b = (budget *)user;
+    unsigned char *p = (unsigned char *)pointer;
+    size_t bytes;
+    if (!p) return;
+    p -= 16;
+    memcpy(&bytes, p, sizeof bytes);
+    b->live -= bytes;
+    b->blocks--;
+    free(p);
+}
+
+static mlod_allocator budget_allocator(budget *b)
+{
+    mlod_allocator a;
+    memset(b, 0, sizeof *b);
+    a.alloc = budget_alloc;
+    a.free = budget_free;
+    a.user = b;
+    return a;
+}
+
+/* ------------------------------------------------------- cut snapshots */
+
+/* Everything mlod_cut_get says about every view, copied. */
+typedef struct snapshot {
+    uint32_t views;
+    mlod_cut_view *cv;
+    uint32_t **nodes;
+    uint8_t **status;
+    size_t bytes;
+} snapshot;
+
+static void snapshot_take(snapshot *s, const mlod_cut *cut)
+{
+    uint32_t v;
+    s->views = mlod_cut_view_count(cut);
+    s->cv = (mlod_cut_view *)calloc(s->views, sizeof *s->cv);
+    s->nodes = (uint32_t **)calloc(s->views, sizeof *s->nodes);
+    s->status = (uint8_t **)calloc(s->views, sizeof *s->status);
+    s->bytes = mlod_cut_bytes(cut);
+    for (v = 0; v < s->views; v++) {
+        s->cv[v] = mlod_cut_get(cut, v);
+        s->nodes[v] = (uint32_t *)malloc(s->cv[v].count * sizeof(uint32_t) + 1);
+        s->status[v] = (uint8_t *)malloc(s->cv[v].count + 1);
+        if (s->cv[v].count) {
+            memcpy(s->nodes[v], s->cv[v].nodes, s->cv[v].count * sizeof(uint32_t));
+            memcpy(s->status[v], s->cv[v].status, s->cv[v].count);
+        }
+    }
+}
+
+static void snapshot_free(snapshot *s)
+{
+    uint32_t v;
+    for (v = 0; v < s->views; v++) {
+        free(s->nodes[v]);
+        free(s->status[v]);
+    }
+    free(s->cv);
+    free(s->nodes);
+    free(s->status);
+    memset(s, 0, sizeof *s);
+}
+
+/* The view whose cut differs from the snapshot's (its lists, counts and
+   statistics), or -1 when every view's is the same. */
+static long snapshot_differs(const snapshot *s, const mlod_cut *cut)
+{
+    uint32_t v;
+    for (v = 0; v < s->views; v++) {
+        mlod_cut_view now = mlod_cut_get(cut, v), was = s->cv[v];
+        if (now.count != was.count || now.drawn != was.drawn || now.culled != was.culled ||
+            now.oversize != was.oversize || now.coarse != was.coarse || now.evaluated != was.evaluated ||
+            now.steps != was.steps)
+            return (long)v;
+        if (now.count && (memcmp(now.nodes, s->nodes[v], now.count * sizeof(uint32_t)) != 0 ||
+                          memcmp(now.status, s->status[v], now.count) != 0))
+            return (long)v;
+    }
+    return -1;
+}
+
+/* ----------------------------------------------- 1. memory after failure */
+
+static scene_mesh room;
+static mlod_tree *room_tree;
+#define VIEWS 24
+static mlod_view far_views[VIEWS], near_views[VIEWS];
+
+static void make_views(void)
+{
+    uint64_t rng = 77;
+    double c[3], R;
+    uint32_t v;
+    int k;
+    tu_bounds(&room, c, &R);
+    for (v = 0; v < VIEWS; v++) {
+        mlod_view_kind kind = (mlod_view_kind)(v % 4);
+        double eye[3], dir[3];
+        far_views[v] = tu_random_view(&rng, kind, c, R);
+        far_views[v].width = far_views[v].height = 16;
+        near_views[v] = far_views[v];
+        /* the same views, closer and finer: every cut grows */
+        tu_random_unit(&rng, dir);
+        for (k = 0; k < 3; k++) eye[k] = c[k] + 0.3 * R * dir[k];
+        tu_set3f(near_views[v].position, eye);
+        near_views[v].width = near_views[v].height = 64;
+        if (kind == MLOD_VIEW_ORTHOGRAPHIC) near_views[v].half_width = near_views[v].half_height = (float)(0.3 * R);
+    }
+}
+
+/* A cut of `mode` with the far views' cut (lazy: after two calls) on an
+   allocator of its own. */
+static mlod_cut *settled_cut(const mlod_allocator *a, mlod_cut_params p)
+{
+    mlod_cut *cut = NULL;
+    int i;
+    if (mlod_cut_create(VIEWS, a, &cut, NULL) != MLOD_OK) return NULL;
+    p.epsilon = 3.0f;
+    for (i = 0; i < 2; i++)
+        if (mlod_cut_update(cut, room_tree, far_views, &p, NULL) != MLOD_OK) {
+            mlod_cut_destroy(cut);
+            return NULL;
+        }
+    return cut;
+}
+
+/* The near views' update of a settled cut, on an allocator with no
+   limit: the bytes its peak takes above what the cut held, and the
+   allocations it makes. */
+static size_t growth_of_update(mlod_cut_params p, unsigned long *calls)
+{
+    budget b;
+    mlod_allocator a = budget_allocator(&b);
+    mlod_cut *cut = settled_cut(&a, p);
+    size_t before;
+    *calls = 0;
+    if (!cut) return 0;
+    before = b.live;
+    b.peak = b.live;
+    b.calls = 0;
+    p.epsilon = 0.75f;
+    CHECK(mlod_cut_update(cut, room_tree, near_views, &p, NULL) == MLOD_OK, "growth: the unlimited update failed");
+    *calls = b.calls;
+    mlod_cut_destroy(cut);
+    return b.peak - before;
+}
+
+/* After a failed update, the cut is as it was: same cuts, bytes and
+   allocator live bytes. */
+static int check_unchanged(const snapshot *s, const mlod_cut *cut, const budget *b, size_t live, mlod_result got,
+                           mlod_result expected, const char *what, unsigned long at)
+{
+    long view = snapshot_differs(s, cut);
+    int ok = got == expected && view < 0 && mlod_cut_bytes(cut) == s->bytes && b->live == live;
+    CHECK(got == expected, "%s %lu: returned %s, expected %s", what, at, mlod_result_name(got), mlod_result_name(expected));
+    CHECK(view < 0, "%s %lu: view %ld's cut changed", what, at, view);
+    CHECK(mlod_cut_bytes(cut) == s->bytes, "%s %lu: mlod_cut_bytes %zu, was %zu", what, at, mlod_cut_bytes(cut), s->bytes);
+    CHECK(b->live == live, "%s %lu: the allocator holds %zu live bytes, held %zu", what, at, b->live, live);
+    return ok;
+}
+
+/* After the update that succeeded: the cut an undisturbed cut of the same
+   history computes for the near views. */
+static void check_as_undisturbed(const mlod_cut *cut, const budget *b, mlod_cut_params p, const char *what)
+{
+    budget rb;
+    mlod_allocator ra = budget_allocator(&rb);
+    mlod_cut *ref = settled_cut(&ra, p);
+    snapshot want;
+    long view;
+    p.epsilon = 0.75f;
+    CHECK(ref && mlod_cut_update(ref, room_tree, near_views, &p, NULL) == MLOD_OK, "%s: reference update", what);
+    if (!ref) return;
+    snapshot_take(&want, ref);
+    view = snapshot_differs(&want, cut);
+    CHECK(view < 0, "%s: after the failures view %ld's cut differs from an undisturbed cut's", what, view);
+    CHECK(mlod_cut_bytes(cut) == b->live, "%s: the cut reports %zu bytes, holds %zu", what, mlod_cut_bytes(cut), b->live);
+    snapshot_free(&want);
+    mlod_cut_destroy(ref);
+}
+
+static void test_failed_updates(void)
+{
+    static const char *mode_names[3] = {"basic", "incremental", "lazy"};
+    mlod_pool *pool = mlod_pool_create(3);
+    mlod_parallel hooks[3];
+    const char *hook_names[3] = {"no hook", "reverse hook", "3 threads"};
+    uint32_t h, mode, fails = 0, budgets = 0;
+    hooks[1].run = tu_run_reverse;
+    hooks[1].user = NULL;
+    hooks[2] = mlod_pool_parallel(pool);
+    for (mode = 0; mode < 3; mode++)
+        for (h = 0; h < 3; h++) {
+            mlod_cut_params p;
+            budget b;
+            mlod_allocator a = budget_allocator(&b);
+            mlod_cut *cut;
+            snapshot s;
+            unsigned long calls, k;
+            size_t growth, live;
+            char what[96];
+            int f;
+            if (h == 2 && !pool) continue;
+            memset(&p, 0, sizeof p);
+            p.mode = (mlod_cut_mode)mode;
+            p.lazy_steps = 3;
+            p.parallel = h ? &hooks[h] : NULL;
+            growth = growth_of_update(p, &calls);
+            CHECK(growth > 0 && calls > 0, "%s, %s: the near views' update grows the cut (%zu bytes, %lu allocations)",
+                  mode_names[mode], hook_names[h], growth, calls);
+            cut = settled_cut(&a, p);
+            CHECK(cut != NULL, "%s, %s: settled cut", mode_names[mode], hook_names[h]);
+            if (!cut) continue;
+            snapshot_take(&s, cut);
+            live = b.live;
+            CHECK(s.bytes == live, "%s, %s: the cut reports %zu bytes, holds %zu", mode_names[mode], hook_names[h], s.bytes,
+                  live);
+            /* errors found before any work */
+            {
+                mlod_view bad[VIEWS];
+                memcpy(bad, near_views, sizeof bad);
+                bad[VIEWS - 1].width = 0;
+                p.epsilon = -1.0f;
+                snprintf(what, sizeof what, "%s, %s, bad epsilon", mode_names[mode], hook_names[h]);
+                check_unchanged(&s, cut, &b, live, mlod_cut_update(cut, room_tree, near_views, &p, NULL),
+                                MLOD_ERROR_BAD_EPSILON, what, 0);
+                p.epsilon = 0.75f;
+                snprintf(what, sizeof what, "%s, %s, bad view", mode_names[mode], hook_names[h]);
+                check_unchanged(&s, cut, &b, live, mlod_cut_update(cut, room_tree, bad, &p, NULL), MLOD_ERROR_BAD_VIEW, what, 0);
+            }
+            /* the allocator fails the update's k-th call and every later one, for every k */
+            snprintf(what, sizeof what, "%s, %s, failing allocation", mode_names[mode], hook_names[h]);
+            for (k = 1; k <= calls; k++) {
+                mlod_error e;
+                b.fail_at = b.calls + k;
+                check_unchanged(&s, cut, &b, live, mlod_cut_update(cut, room_tree, near_views, &p, &e), MLOD_ERROR_OUT_OF_MEMORY,
+                                what, k);
+                fails++;
+            }
+            b.fail_at = 0;
+            /* budgets from what the cut holds up to the peak the update takes
+               with room to spare (near it, an update may succeed: its
+               buffers' spare eighth is only asked for, not needed), then
+               none: the first update that succeeds computes the cut an
+               undisturbed cut computes */
+            snprintf(what, sizeof what, "%s, %s, budget of live bytes (per mille of the growth)", mode_names[mode],
+                     hook_names[h]);
+            for (f = 0;; f += 37) {
+                mlod_result r;
+                b.budget = f < 1000 ? live + growth * (size_t)f / 1000 : 0;
+                r = mlod_cut_update(cut, room_tree, near_views, &p, NULL);
+                if (r == MLOD_OK) break;
+                check_unchanged(&s, cut, &b, live, r, MLOD_ERROR_OUT_OF_MEMORY, what, (unsigned long)f);
+                budgets++;
+            }
+            CHECK(f >= 500, "%s: an update succeeded with %d per mille of the growth it takes", what, f);
+            b.budget = 0;
+            snprintf(what, sizeof what, "%s, %s", mode_names[mode], hook_names[h]);
+            check_as_undisturbed(cut, &b, p, what);
+            snapshot_free(&s);
+            mlod_cut_destroy(cut);
+            CHECK(b.blocks == 0 && b.live == 0, "%s: %lu blocks, %zu bytes left after destroy", what, b.blocks, b.live);
+        }
+    printf("  failed updates checked: %u with a failing allocation, %u under a budget\n", fails,
+           budgets);
+    mlod_pool_destroy(pool);
+}
+
+int main(void)
+{
+    if (!scene_room(&room)) return 1;
+    room_tree = tu_build(&room, 20000, 5, MLOD_ATTR_CONE);
+    if (!room_tree) return 1;
+    make_views();
+    test_failed_updates();
+    mlod_tree_destroy(room_tree);
+    scene_free(&room);
+    return test_finish();
+}
