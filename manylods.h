@@ -191,10 +191,16 @@
      prints, aborts or exits.
 
    MEMORY
-     Every object reports its bytes (mlod_tree.bytes, mlod_cut_bytes).
-     Attributes a scene does not ask for take no memory.  All memory comes
-     from the allocator given at creation (or MANYLODS_MALLOC/FREE, or
-     malloc/free); the allocator is only called from the calling thread.
+     Size before you allocate: mlod_build_mesh_bound and
+     mlod_build_points_bound give a build's peak bytes (exactly; N = 2^30
+     needs 125 GiB), mlod_cut_bound an upper bound on a cut's bytes for a
+     mean cut size, mlod_atlas_bound an atlas's bytes (exactly).  Every
+     object reports its bytes (mlod_tree.bytes, mlod_cut_bytes,
+     mlod_atlas.bytes).  Attributes a scene does not ask for take no memory.
+     A failed call gives back what it allocated (a cut keeps its bytes and
+     cuts).  All memory comes from the allocator given at creation (or
+     MANYLODS_MALLOC/FREE, or malloc/free); the allocator is only called
+     from the calling thread.
 
    LICENSE: MIT or public domain, your choice; see the end of this file.
 */
@@ -386,6 +392,21 @@ typedef struct mlod_tree {
     mlod_allocator allocator;
 } mlod_tree;
 
+/* Sizing, before a build: the peak bytes mlod_build_mesh takes from its
+   allocator (scratch and tree together, the high-water mark of its live
+   bytes) for sample_count N, a mesh of triangle_count (index_count / 3)
+   triangles and the MLOD_ATTR_* attributes.  Exact for a build that
+   succeeds (one that fails takes no more): about 125 bytes per sample,
+   136 with every attribute (the ordering's scratch or the tree, whichever
+   is larger, on top of 28 bytes per sample and 8 per triangle).  mlod_tree.bytes, what the tree keeps, is
+   part of it.  0 when the build refuses N (0, above MANYLODS_MAX_LEAVES)
+   before allocating, (size_t)-1 when the peak exceeds size_t.  Pure. */
+MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes);
+
+/* The same for mlod_build_points with point_count points (about 121 bytes
+   per point).  0 for point_count 0.  Pure. */
+MANYLODS_DEF size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes);
+
 /* Sample desc->sample_count points on the mesh and build the tree.  O(N log N
    + triangles).  On success *out_tree owns its memory (mlod_tree_destroy);
    on failure *out_tree is NULL.  Reentrant: no shared state. */
@@ -528,6 +549,21 @@ typedef struct mlod_cut_view {
 
 typedef struct mlod_cut mlod_cut;
 
+/* Sizing, before a cut: an upper bound on the bytes a cut of view_count
+   views holds (mlod_cut_bytes) while its views' cuts average at most
+   mean_cut_nodes nodes, in any mode, and on the peak of its first update:
+   the per-view arrays, three lists of the cuts, the scratch of an update's
+   rounds, its segments, with the eighth each grows by.  Not exact: the
+   rounds depend on how the cuts spread over views.  The scratch is
+   allotted up to 2^21 entries (10.5 MB) when views split, whatever the
+   cuts' sizes, so small cuts are far below the bound; for cuts of millions
+   of nodes it is 1.2 to 1.5 times what the tests' cuts held.  (Not
+   covered: a round that leaves more than one entry in 16 to split, which
+   the tests never saw.)  An update that grows a cut from a to b bytes
+   peaks at up to a + b (see mlod_cut_update).  0 for view_count 0,
+   (size_t)-1 when the figure exceeds size_t.  Pure. */
+MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes);
+
 /* Create an empty cut for view_count >= 1 views (it keeps the lists that
    incremental and lazy modes start from).  allocator may be NULL. */
 MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator,
@@ -617,6 +653,16 @@ typedef struct mlod_atlas {
     size_t bytes;
     mlod_allocator allocator;
 } mlod_atlas;
+
+/* Sizing, before an atlas: the bytes mlod_atlas_create allocates for these
+   views and desc (the atlas's bytes, exactly): 4 bytes per pixel of depth,
+   12 more per channel, the per-view tables.  0 when mlod_atlas_create
+   would refuse them (no views, an empty tile, a bad desc, a size that
+   overflows).  mlod_atlas_fill_holes allocates for its call, on top, about
+   a third of the tiles' pixels times 4 (values + 1) bytes, values = 1 + 3
+   per channel.
+   Pure. */
+MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc);
 
 /* Create an atlas for view_count >= 1 views (their tile sizes fix the
    layout).  Sizes that overflow return MLOD_ERROR_OVERFLOW; a disc_scale
@@ -1343,6 +1389,25 @@ typedef struct mlod__triangle_leaf {
     float radius, area, cone[4];
 } mlod__triangle_leaf;
 
+/* mlod_tree.bytes of a tree of `leaves` leaves: what mlod__tree_create
+   allocates. */
+static uint64_t mlod__tree_bytes(uint64_t leaves, uint32_t attributes, int mesh, uint64_t triangles)
+{
+    uint64_t per_node = 4 * sizeof(float), bytes = sizeof(mlod_tree);
+    if (attributes & MLOD_ATTR_CONE) per_node += 4 * sizeof(float);
+    if (attributes & MLOD_ATTR_AREA) per_node += sizeof(float);
+    if (attributes & MLOD_ATTR_COLOR) per_node += 3 * sizeof(float);
+    bytes += (2 * leaves - 1) * per_node;
+    if (attributes & MLOD_ATTR_REFIT) {
+        bytes += leaves * sizeof(uint32_t);
+        if (mesh) {
+            bytes += leaves * 2 * sizeof(float) + triangles * sizeof(double);
+            if (leaves >= triangles) bytes += triangles * sizeof(mlod__triangle_leaf);
+        }
+    }
+    return bytes;
+}
+
 /* A tree with every array its attributes need; NULL when out of memory. */
 static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, uint32_t attributes, int mesh,
                                     uint32_t triangles)
@@ -1387,6 +1452,7 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
         mlod_tree_destroy(t);
         return NULL;
     }
+    MANYLODS_ASSERT(t->bytes == mlod__tree_bytes(leaves, attributes, mesh, triangles));
     return t;
 }
 
@@ -1751,6 +1817,40 @@ done:
     mlod__free(a, c.begin);
     mlod__free(a, c.left);
     return res;
+}
+
+/* The peak of mlod__order_items' scratch for n items: every array above,
+   the sort's included. */
+static uint64_t mlod__order_bytes(uint64_t n)
+{
+    return n * (3 * (sizeof(uint32_t) + 3 * sizeof(float) + sizeof(uint64_t)) + sizeof(uint32_t) + 3 * sizeof(float) + 1) +
+           (2 * n - 1) * sizeof(uint32_t);
+}
+
+/* A build's peak: its own arrays (`held`), then the largest of the ordering
+   scratch and the tree, which never live at once. */
+static size_t mlod__build_peak(uint64_t held, uint64_t n, uint64_t tree)
+{
+    uint64_t order = mlod__order_bytes(n), peak = held + (order > tree ? order : tree);
+    return peak > (uint64_t)(size_t)-1 ? (size_t)-1 : (size_t)peak;
+}
+
+MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes)
+{
+    uint64_t n = sample_count, held;
+    if (n == 0 || n > MANYLODS_MAX_LEAVES) return 0;
+    /* cumulative areas, then per sample: triangle, (s, t), position, leaf order */
+    held = ((uint64_t)triangle_count + 1) * sizeof(double) + n * (sizeof(uint32_t) + 2 * sizeof(float) + 3 * sizeof(float) + sizeof(uint32_t));
+    return mlod__build_peak(held, n, mlod__tree_bytes(n, attributes, 1, triangle_count));
+}
+
+MANYLODS_DEF size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes)
+{
+    uint64_t n = point_count;
+    if (n == 0) return 0;
+    /* per point: position, leaf order, radius */
+    return mlod__build_peak(n * (3 * sizeof(float) + sizeof(uint32_t) + sizeof(double)), n,
+                            mlod__tree_bytes(n, attributes, 0, 0));
 }
 
 #define MLOD__LEAF_CHUNK 4096u
@@ -3135,6 +3235,34 @@ MANYLODS_DEF uint32_t mlod_cut_view_count(const mlod_cut *cut) { return cut ? cu
 
 MANYLODS_DEF size_t mlod_cut_bytes(const mlod_cut *cut) { return cut ? cut->bytes : 0; }
 
+MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
+{
+    double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v, budget = (double)MLOD__ROUND_BUDGET;
+    double roots, first, later, scratch, segments, bytes;
+    if (view_count == 0) return 0;
+    /* a round's scratch: its input and the room of its splits.  A first
+       round splits the roots with a share of the round's budget each (at
+       least MLOD__MIN_SHARE, at most MLOD__SEGMENT_GROWTH), plus, for a
+       basic cut, 1.25 times each view's previous cut and MLOD__MIN_SHARE;
+       an incremental one reads the previous cuts with a quarter more and
+       MLOD__MIN_SHARE per segment; later rounds share max(budget, input)
+       among their splits; a lazy round at most doubles its input. */
+    roots = MLOD__MIN_SHARE * v > budget ? MLOD__MIN_SHARE * v : budget;
+    if (roots > MLOD__SEGMENT_GROWTH * v) roots = MLOD__SEGMENT_GROWTH * v;
+    first = v + roots + 1.25 * total + MLOD__MIN_SHARE * (v + total / 64);
+    later = most + (budget > most ? budget : most);
+    scratch = first > later ? first : later;
+    /* segments: one per view, per MLOD__SEGMENT_INPUT / 4 entries, per
+       MLOD__SEGMENT_GROWTH entries of the budget's room */
+    segments = v + total / (MLOD__SEGMENT_INPUT / 4) + budget / MLOD__SEGMENT_GROWTH;
+    bytes = (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
+            v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t));
+    /* three lists and the scratch, 5 bytes an entry, segments and tasks,
+       each with the spare eighth it grows by */
+    bytes += 1.125 * ((3 * most + scratch) * (sizeof(uint32_t) + 1) + segments * (sizeof(mlod__segment) + sizeof(uint32_t)));
+    return bytes >= (double)(size_t)-1 ? (size_t)-1 : (size_t)bytes;
+}
+
 MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
 {
     mlod_cut_view r;
@@ -3623,16 +3751,20 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas)
 
 #define MLOD__BAND_ROWS 64u
 
-MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
-                                           const mlod_allocator *allocator, mlod_atlas **out_atlas, mlod_error *error)
+/* The grid of an atlas for these views and desc, and its bytes; the error
+   mlod_atlas_create returns for them, if any. */
+typedef struct mlod__atlas_layout {
+    uint32_t columns, cell_w, cell_h;
+    uint64_t width, height, pixels;
+    size_t bytes;
+} mlod__atlas_layout;
+
+static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+                                         mlod__atlas_layout *L, mlod_error *error)
 {
-    mlod_allocator a = mlod__allocator(allocator);
-    mlod_atlas *atlas;
-    uint32_t v, columns, rows, cell_w = 1, cell_h = 1;
-    uint64_t width, height, pixels, bands = 0;
-    int ok;
-    if (!out_atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out_atlas is NULL");
-    *out_atlas = NULL;
+    uint32_t v, rows;
+    uint64_t bands = 0;
+    size_t per_pixel, tables;
     if (!views || !desc) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "views and desc must not be NULL");
     if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
     if (desc->channels & ~(uint32_t)(MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR))
@@ -3640,27 +3772,61 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     if (!(desc->disc_scale >= 0.0f && desc->disc_scale <= 1.0f))
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "disc_scale %g is not in (0, 1] (or 0 for 1)",
                           (double)desc->disc_scale);
+    L->cell_w = L->cell_h = 1;
     for (v = 0; v < view_count; v++) {
         if (views[v].width == 0 || views[v].height == 0)
             return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "view %u has an empty tile", v);
-        if (views[v].width > cell_w) cell_w = views[v].width;
-        if (views[v].height > cell_h) cell_h = views[v].height;
+        if (views[v].width > L->cell_w) L->cell_w = views[v].width;
+        if (views[v].height > L->cell_h) L->cell_h = views[v].height;
         bands += ((uint64_t)views[v].height + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
         if (bands >= 0x7fffffffu) return mlod__fail(error, MLOD_ERROR_OVERFLOW, "too many tile rows");
     }
-    columns = desc->columns;
-    if (columns == 0) {
-        columns = (uint32_t)ceil(sqrt((double)view_count));
-        if (columns == 0) columns = 1;
+    L->columns = desc->columns;
+    if (L->columns == 0) {
+        L->columns = (uint32_t)ceil(sqrt((double)view_count));
+        if (L->columns == 0) L->columns = 1;
     }
-    if (columns > view_count) columns = view_count;
-    rows = (uint32_t)(((uint64_t)view_count + columns - 1) / columns);
-    width = (uint64_t)columns * cell_w;
-    height = (uint64_t)rows * cell_h;
-    pixels = width * height;
-    if (width > 0xffffffffu || height > 0xffffffffu || pixels > (size_t)-1 / (3 * sizeof(float)))
+    if (L->columns > view_count) L->columns = view_count;
+    rows = (uint32_t)(((uint64_t)view_count + L->columns - 1) / L->columns);
+    L->width = (uint64_t)L->columns * L->cell_w;
+    L->height = (uint64_t)rows * L->cell_h;
+    L->pixels = L->width * L->height;
+    if (L->width > 0xffffffffu || L->height > 0xffffffffu || L->pixels > (size_t)-1 / (3 * sizeof(float)))
         return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
-                          (unsigned long long)width, (unsigned long long)height);
+                          (unsigned long long)L->width, (unsigned long long)L->height);
+    /* depth and the channels per pixel, the tile and band tables per view */
+    per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
+                ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
+    tables = sizeof(mlod_atlas) + (size_t)view_count * 4 * sizeof(uint32_t) + ((size_t)view_count + 1) * sizeof(uint32_t);
+    L->bytes = L->pixels > ((size_t)-1 - tables) / per_pixel ? (size_t)-1 : tables + (size_t)L->pixels * per_pixel;
+    return MLOD_OK;
+}
+
+MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc)
+{
+    mlod__atlas_layout L;
+    return mlod__atlas_layout_of(views, view_count, desc, &L, NULL) == MLOD_OK ? L.bytes : 0;
+}
+
+MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+                                           const mlod_allocator *allocator, mlod_atlas **out_atlas, mlod_error *error)
+{
+    mlod_allocator a = mlod__allocator(allocator);
+    mlod_atlas *atlas;
+    mlod__atlas_layout L;
+    uint32_t v, columns, cell_w, cell_h;
+    uint64_t width, height, pixels;
+    mlod_result res;
+    int ok;
+    if (!out_atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out_atlas is NULL");
+    *out_atlas = NULL;
+    if ((res = mlod__atlas_layout_of(views, view_count, desc, &L, error)) != MLOD_OK) return res;
+    columns = L.columns;
+    cell_w = L.cell_w;
+    cell_h = L.cell_h;
+    width = L.width;
+    height = L.height;
+    pixels = L.pixels;
     atlas = (mlod_atlas *)a.alloc(a.user, sizeof(mlod_atlas));
     if (!atlas) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating an atlas");
     memset(atlas, 0, sizeof *atlas);
@@ -3687,6 +3853,7 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for an atlas of %llu x %llu pixels",
                           (unsigned long long)width, (unsigned long long)height);
     }
+    MANYLODS_ASSERT(atlas->bytes == L.bytes);
     atlas->bands[0] = 0;
     for (v = 0; v < view_count; v++) {
         uint32_t *t = atlas->tiles + 4 * (size_t)v;

@@ -314,6 +314,256 @@ static void test_failed_updates(void)
     mlod_pool_destroy(pool);
 }
 
+/* --------------------------------------------- 2. sizing: builds */
+
+static mlod_pool *pool2;
+
+/* One build on a counting allocator: its peak equals the bound, the tree
+   reports what it holds.  Returns the peak. */
+static size_t check_build(const mlod_mesh *m, const mlod_points *pts, uint32_t n, uint32_t attributes, int hook,
+                          const char *what)
+{
+    budget b;
+    mlod_allocator a = budget_allocator(&b);
+    mlod_build_desc d = tu_desc(n, 9, attributes);
+    mlod_parallel par = mlod_pool_parallel(pool2);
+    mlod_tree *t = NULL;
+    mlod_error e;
+    mlod_result r;
+    size_t bound;
+    d.allocator = &a;
+    if (hook && pool2) d.parallel = &par;
+    if (m) {
+        r = mlod_build_mesh(m, &d, &t, &e);
+        bound = mlod_build_mesh_bound(n, m->index_count / 3, attributes);
+    } else {
+        r = mlod_build_points(pts, &d, &t, &e);
+        bound = mlod_build_points_bound(pts->count, attributes);
+        n = pts->count;
+    }
+    CHECK(r == MLOD_OK, "%s, N = %u, attributes %#x: build failed: %s", what, n, attributes, e.message);
+    if (r != MLOD_OK) return 0;
+    CHECK(b.peak <= bound && (double)bound <= 1.1 * (double)b.peak,
+          "%s, N = %u, attributes %#x%s: bound %zu bytes against a peak of %zu (within 10 %% above)", what, n, attributes,
+          hook ? ", 2 threads" : "", bound, b.peak);
+    CHECK(bound == b.peak, "%s, N = %u, attributes %#x: bound %zu is not the peak %zu exactly", what, n, attributes, bound,
+          b.peak);
+    CHECK(t->bytes == b.live, "%s, N = %u: the tree reports %zu bytes, holds %zu", what, n, t->bytes, b.live);
+    CHECK(t->bytes <= bound, "%s, N = %u: the tree's %zu bytes above the peak bound %zu", what, n, t->bytes, bound);
+    mlod_tree_destroy(t);
+    CHECK(b.live == 0 && b.blocks == 0, "%s, N = %u: %zu bytes left after destroy", what, n, b.live);
+    return b.peak;
+}
+
+static void test_build_bounds(void)
+{
+    static const uint32_t attrs[5] = {0, MLOD_ATTR_CONE, MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR, MLOD_ATTR_REFIT,
+                                      MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT};
+    static const uint32_t ns[6] = {1, 2, 7, 100, 3000, 40000};
+    scene_mesh soup, torus;
+    mlod_mesh meshes[2];
+    const char *names[2] = {"soup (5000 triangles)", "torus"};
+    uint32_t i, k, a, h, builds = 0;
+    size_t big;
+    pool2 = mlod_pool_create(2);
+    if (!scene_soup(&soup, 5000, 3) || !scene_torus(&torus, 1.0f, 0.3f, 24, 12)) return;
+    torus.colors = (float *)malloc(3 * sizeof(float) * torus.vertex_count);
+    scene_color_from_position(&torus);
+    meshes[0] = tu_mesh(&soup);
+    meshes[1] = tu_mesh(&torus);
+    /* meshes: N below and above the triangle count (refit data differs) */
+    for (k = 0; k < 2; k++)
+        for (i = 0; i < 6; i++)
+            for (a = 0; a < 5; a++)
+                for (h = 0; h < 2; h++) {
+                    if (h && (i % 2 || a % 2)) continue;
+                    check_build(&meshes[k], NULL, ns[i], attrs[a], (int)h, names[k]);
+                    builds++;
+                }
+    /* points: with and without radii and normals */
+    for (i = 0; i < 6; i++)
+        for (a = 0; a < 5; a++) {
+            uint32_t n = ns[i], j;
+            uint64_t rng = 11;
+            float *xyz = (float *)malloc(3 * sizeof(float) * n), *radii = (float *)malloc(sizeof(float) * n);
+            mlod_points pts;
+            memset(&pts, 0, sizeof pts);
+            for (j = 0; j < 3 * n; j++) xyz[j] = scene_rng_range(&rng, -1.0f, 1.0f);
+            for (j = 0; j < n; j++) radii[j] = scene_rng_range(&rng, 0.001f, 0.01f);
+            pts.positions = xyz;
+            pts.count = n;
+            pts.colors = xyz; /* any floats */
+            pts.normals = a % 2 ? xyz : NULL;
+            pts.radii = a % 2 ? NULL : radii;
+            check_build(NULL, &pts, n, attrs[a], (int)(i == 5), "points");
+            builds++;
+            free(xyz);
+            free(radii);
+        }
+    /* what the issue met: N = 2^30 is accepted and needs far more than a
+       small machine has (the sampling arrays alone are 28 GiB) */
+    big = mlod_build_mesh_bound(MANYLODS_MAX_LEAVES, 12, 0);
+    CHECK(sizeof(size_t) < 8 ? big == (size_t)-1 : big > (size_t)120 << 30,
+          "N = 2^30: bound %zu bytes, expected over 120 GiB (or (size_t)-1)", big);
+    CHECK(mlod_build_mesh_bound(0, 12, 0) == 0 && mlod_build_mesh_bound(MANYLODS_MAX_LEAVES + 1u, 12, 0) == 0 &&
+              mlod_build_points_bound(0, MLOD_ATTR_CONE) == 0,
+          "bounds of builds refused before allocating are not 0");
+    CHECK(mlod_build_mesh_bound(1000, 10, MLOD_ATTR_CONE) < mlod_build_mesh_bound(1001, 10, MLOD_ATTR_CONE) &&
+              mlod_build_mesh_bound(1000, 10, 0) < mlod_build_mesh_bound(1000, 10, attrs[4]),
+          "build bound not increasing with N and attributes");
+    printf("  build bounds: %u builds, each bound equal to the allocator's peak; N = 2^30 needs %.0f GiB\n", builds,
+           (double)big / 1073741824.0);
+    free(torus.colors);
+    torus.colors = NULL;
+    scene_free(&soup);
+    scene_free(&torus);
+    mlod_pool_destroy(pool2);
+}
+
+/* ------------------------------------------------ 2. sizing: the cut */
+
+static void test_cut_bounds(void)
+{
+    static const uint32_t counts[4] = {1, 16, 256, 256};
+    static const float eps[3] = {8.0f, 1.0f, 0.35f};
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel par = mlod_pool_parallel(pool);
+    double c[3], R, worst_large = 0.0;
+    uint32_t ci, ei, mode, cases = 0;
+    tu_bounds(&room, c, &R);
+    for (ci = 0; ci < 4; ci++)
+        for (ei = 0; ei < 3; ei++)
+            for (mode = 0; mode < 3; mode++) {
+                uint32_t V = counts[ci], v, call;
+                mlod_view *views = (mlod_view *)malloc(2 * V * sizeof(mlod_view));
+                uint64_t rng = 3 + ci, most = 0;
+                budget b;
+                mlod_allocator a = budget_allocator(&b);
+                mlod_cut *cut = NULL;
+                mlod_cut_params p;
+                size_t bound, created;
+                if (ci == 3 && (ei < 2 || mode != 0)) { /* the one large case: 2.2 M nodes */
+                    free(views);
+                    continue;
+                }
+                for (v = 0; v < 2 * V; v++) {
+                    views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 4), c, R);
+                    views[v].width = views[v].height = 32;
+                }
+                memset(&p, 0, sizeof p);
+                p.mode = (mlod_cut_mode)mode;
+                p.epsilon = eps[ei];
+                p.lazy_steps = 2;
+                p.parallel = ci == 2 && pool ? &par : NULL;
+                if (mlod_cut_create(V, &a, &cut, NULL) != MLOD_OK) {
+                    free(views);
+                    continue;
+                }
+                created = b.live;
+                /* the first update of a new cut: its peak */
+                b.peak = b.live;
+                CHECK(mlod_cut_update(cut, room_tree, views, &p, NULL) == MLOD_OK, "cut bound: update");
+                for (v = 0; v < V; v++) most += mlod_cut_get(cut, v).count;
+                bound = mlod_cut_bound(V, (uint32_t)((most + V - 1) / V));
+                CHECK(b.peak <= bound, "cut bound, %u views, eps %g, mode %u: the first update peaks at %zu bytes, above the bound %zu",
+                      V, eps[ei], mode, b.peak, bound);
+                /* later updates, the views moving between two sets: what the cut holds */
+                for (call = 1; call < 5; call++) {
+                    uint64_t total = 0;
+                    CHECK(mlod_cut_update(cut, room_tree, views + (call % 2) * V, &p, NULL) == MLOD_OK, "cut bound: update");
+                    for (v = 0; v < V; v++) total += mlod_cut_get(cut, v).count;
+                    if (total > most) most = total;
+                }
+                bound = mlod_cut_bound(V, (uint32_t)((most + V - 1) / V));
+                CHECK(mlod_cut_bytes(cut) == b.live, "cut bound: the cut reports %zu bytes, holds %zu", mlod_cut_bytes(cut),
+                      b.live);
+                CHECK(mlod_cut_bytes(cut) <= bound, "cut bound, %u views, eps %g, mode %u, %llu nodes at most: holds %zu bytes, above the bound %zu",
+                      V, eps[ei], mode, (unsigned long long)most, mlod_cut_bytes(cut), bound);
+                if (most >= ((uint64_t)1 << 21)) {
+                    double ratio = (double)bound / (double)mlod_cut_bytes(cut);
+                    CHECK(ratio <= 1.5, "cut bound, %llu nodes: %zu bytes, %.2f times what the cut holds", (unsigned long long)most,
+                          bound, ratio);
+                    if (ratio > worst_large) worst_large = ratio;
+                }
+                CHECK(created <= mlod_cut_bound(V, 0),
+                      "cut bound: a new cut of %u views holds %zu bytes, above the bound for empty cuts %zu", V, created,
+                      mlod_cut_bound(V, 0));
+                cases++;
+                mlod_cut_destroy(cut);
+                free(views);
+            }
+    CHECK(mlod_cut_bound(0, 10) == 0 && mlod_cut_bound(1000, 100) < mlod_cut_bound(1000, 200), "cut bound: 0 views or not increasing");
+    printf("  cut bounds: %u cases at or above what cuts held and first updates peaked at; %.2f times it for cuts of 2 M nodes\n",
+           cases, worst_large);
+    mlod_pool_destroy(pool);
+}
+
+/* ----------------------------------------------- 2. sizing: the atlas */
+
+static void test_atlas_bounds(void)
+{
+    uint64_t rng = 5;
+    uint32_t trial, exact = 0;
+    for (trial = 0; trial < 60; trial++) {
+        uint32_t V = 1 + (uint32_t)(scene_rng_double(&rng) * 40), v;
+        mlod_view views[40];
+        mlod_atlas_desc desc;
+        mlod_atlas *atlas = NULL;
+        budget b;
+        mlod_allocator a = budget_allocator(&b);
+        size_t bound, before;
+        double pyramid = 0.0;
+        uint32_t values;
+        memset(&desc, 0, sizeof desc);
+        desc.channels = trial % 4;
+        desc.columns = trial % 3 ? 0 : 1 + trial % 7;
+        for (v = 0; v < V; v++) {
+            views[v] = tu_view(MLOD_VIEW_PERSPECTIVE);
+            views[v].width = trial % 2 ? 64 : 1 + (uint32_t)(scene_rng_double(&rng) * 100);
+            views[v].height = trial % 2 ? 32 : 1 + (uint32_t)(scene_rng_double(&rng) * 100);
+        }
+        bound = mlod_atlas_bound(views, V, &desc);
+        CHECK(mlod_atlas_create(views, V, &desc, &a, &atlas, NULL) == MLOD_OK, "atlas bound: create");
+        if (!atlas) continue;
+        CHECK(bound == atlas->bytes && bound == b.live && bound == b.peak,
+              "atlas bound %zu: the atlas reports %zu, allocated %zu (peak %zu)", bound, atlas->bytes, b.live, b.peak);
+        exact += bound == b.peak;
+        /* fill_holes' scratch, on power-of-two tiles: a third of the pixels
+           times (values + 1) floats */
+        values = 1 + (desc.channels & MLOD_ATLAS_NORMAL ? 3 : 0) + (desc.channels & MLOD_ATLAS_COLOR ? 3 : 0);
+        for (v = 0; v < V; v++) pyramid += (double)views[v].width * views[v].height / 3.0 * (values + 1) * sizeof(float);
+        before = b.live;
+        b.peak = b.live;
+        CHECK(mlod_atlas_fill_holes(atlas, NULL, NULL) == MLOD_OK, "atlas bound: fill holes");
+        if (trial % 2)
+            CHECK((double)(b.peak - before) <= 1.01 * pyramid + 8.0 * V && (double)(b.peak - before) >= 0.9 * pyramid,
+                  "atlas: fill_holes took %zu bytes, the manual says about %.0f", b.peak - before, pyramid);
+        mlod_atlas_destroy(atlas);
+        CHECK(b.live == 0, "atlas: %zu bytes left after destroy", b.live);
+    }
+    /* what mlod_atlas_create refuses has no size */
+    {
+        mlod_view views[2];
+        mlod_atlas_desc desc;
+        memset(&desc, 0, sizeof desc);
+        views[0] = views[1] = tu_view(MLOD_VIEW_PERSPECTIVE);
+        views[1].width = 0;
+        CHECK(mlod_atlas_bound(views, 2, &desc) == 0 && mlod_atlas_bound(views, 0, &desc) == 0 &&
+                  mlod_atlas_bound(NULL, 1, &desc) == 0 && mlod_atlas_bound(views, 1, NULL) == 0,
+              "atlas bound: not 0 for an empty tile, no views or no desc");
+        desc.disc_scale = 1.5f;
+        CHECK(mlod_atlas_bound(views, 1, &desc) == 0, "atlas bound: not 0 for disc_scale 1.5");
+        desc.disc_scale = 0.0f;
+        desc.channels = 4;
+        CHECK(mlod_atlas_bound(views, 1, &desc) == 0, "atlas bound: not 0 for unknown channels");
+        desc.channels = 0;
+        views[0].width = views[0].height = 0xffffffffu;
+        views[1] = views[0];
+        CHECK(mlod_atlas_bound(views, 2, &desc) == 0, "atlas bound: not 0 for an atlas of 2^33 x 2^32 pixels");
+    }
+    printf("  atlas bounds: %u atlases, each bound what mlod_atlas_create allocated\n", exact);
+}
+
 int main(void)
 {
     if (!scene_room(&room)) return 1;
@@ -321,6 +571,9 @@ int main(void)
     if (!room_tree) return 1;
     make_views();
     test_failed_updates();
+    test_build_bounds();
+    test_cut_bounds();
+    test_atlas_bounds();
     mlod_tree_destroy(room_tree);
     scene_free(&room);
     return test_finish();
