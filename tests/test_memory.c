@@ -367,8 +367,6 @@ static void test_build_bounds(void)
     size_t big;
     pool2 = mlod_pool_create(2);
     if (!scene_soup(&soup, 5000, 3) || !scene_torus(&torus, 1.0f, 0.3f, 24, 12)) return;
-    torus.colors = (float *)malloc(3 * sizeof(float) * torus.vertex_count);
-    scene_color_from_position(&torus);
     meshes[0] = tu_mesh(&soup);
     meshes[1] = tu_mesh(&torus);
     /* meshes: N below and above the triangle count (refit data differs) */
@@ -413,8 +411,6 @@ static void test_build_bounds(void)
           "build bound not increasing with N and attributes");
     printf("  build bounds: %u builds, each bound equal to the allocator's peak; N = 2^30 needs %.0f GiB\n", builds,
            (double)big / 1073741824.0);
-    free(torus.colors);
-    torus.colors = NULL;
     scene_free(&soup);
     scene_free(&torus);
     mlod_pool_destroy(pool2);
