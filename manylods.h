@@ -393,14 +393,13 @@ typedef struct mlod_tree {
 } mlod_tree;
 
 /* Sizing, before a build: the peak bytes mlod_build_mesh takes from its
-   allocator (scratch and tree together, the high-water mark of its live
-   bytes) for sample_count N, a mesh of triangle_count (index_count / 3)
+   allocator (the high-water mark of its live bytes: scratch, then the
+   tree) for sample_count N, a mesh of triangle_count (index_count / 3)
    triangles and the MLOD_ATTR_* attributes.  Exact for a build that
-   succeeds (one that fails takes no more): about 125 bytes per sample,
-   136 with every attribute (the ordering's scratch or the tree, whichever
-   is larger, on top of 28 bytes per sample and 8 per triangle).  mlod_tree.bytes, what the tree keeps, is
-   part of it.  0 when the build refuses N (0, above MANYLODS_MAX_LEAVES)
-   before allocating, (size_t)-1 when the peak exceeds size_t.  Pure. */
+   succeeds; one that fails takes no more.  About 125 bytes per sample (136
+   with every attribute) and 8 per triangle; mlod_tree.bytes is the part
+   the tree keeps.  0 when the build refuses N (0, above
+   MANYLODS_MAX_LEAVES) before allocating, (size_t)-1 beyond size_t.  Pure. */
 MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes);
 
 /* The same for mlod_build_points with point_count points (about 121 bytes
@@ -556,12 +555,12 @@ typedef struct mlod_cut mlod_cut;
    rounds, its segments, with the eighth each grows by.  Not exact: the
    rounds depend on how the cuts spread over views.  The scratch is
    allotted up to 2^21 entries (10.5 MB) when views split, whatever the
-   cuts' sizes, so small cuts are far below the bound; for cuts of millions
-   of nodes it is 1.2 to 1.5 times what the tests' cuts held.  (Not
-   covered: a round that leaves more than one entry in 16 to split, which
-   the tests never saw.)  An update that grows a cut from a to b bytes
+   cuts' sizes, so small cuts stay far below the bound; cuts of millions of
+   nodes held 1/1.3 to 1/1.2 of it in the tests.  (Not covered: a round
+   that leaves more than one entry in 16 of its input to split, which the
+   tests never saw.)  A later update that grows a cut from a to b bytes
    peaks at up to a + b (see mlod_cut_update).  0 for view_count 0,
-   (size_t)-1 when the figure exceeds size_t.  Pure. */
+   (size_t)-1 beyond size_t.  Pure. */
 MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes);
 
 /* Create an empty cut for view_count >= 1 views (it keeps the lists that
@@ -658,10 +657,9 @@ typedef struct mlod_atlas {
    views and desc (the atlas's bytes, exactly): 4 bytes per pixel of depth,
    12 more per channel, the per-view tables.  0 when mlod_atlas_create
    would refuse them (no views, an empty tile, a bad desc, a size that
-   overflows).  mlod_atlas_fill_holes allocates for its call, on top, about
-   a third of the tiles' pixels times 4 (values + 1) bytes, values = 1 + 3
-   per channel.
-   Pure. */
+   overflows), (size_t)-1 beyond size_t.  mlod_atlas_fill_holes allocates
+   for its call, on top, about a third of the tiles' pixels times
+   4 (values + 1) bytes, values = 1 + 3 per channel.  Pure. */
 MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc);
 
 /* Create an atlas for view_count >= 1 views (their tile sizes fix the
@@ -1823,8 +1821,8 @@ done:
    the sort's included. */
 static uint64_t mlod__order_bytes(uint64_t n)
 {
-    return n * (3 * (sizeof(uint32_t) + 3 * sizeof(float) + sizeof(uint64_t)) + sizeof(uint32_t) + 3 * sizeof(float) + 1) +
-           (2 * n - 1) * sizeof(uint32_t);
+    uint64_t per_axis = sizeof(uint32_t) + 3 * sizeof(float) + sizeof(uint64_t); /* order, positions, sort */
+    return n * (3 * per_axis + sizeof(uint32_t) + 3 * sizeof(float) + 1) + (2 * n - 1) * sizeof(uint32_t);
 }
 
 /* A build's peak: its own arrays (`held`), then the largest of the ordering
@@ -1840,7 +1838,8 @@ MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triang
     uint64_t n = sample_count, held;
     if (n == 0 || n > MANYLODS_MAX_LEAVES) return 0;
     /* cumulative areas, then per sample: triangle, (s, t), position, leaf order */
-    held = ((uint64_t)triangle_count + 1) * sizeof(double) + n * (sizeof(uint32_t) + 2 * sizeof(float) + 3 * sizeof(float) + sizeof(uint32_t));
+    held = ((uint64_t)triangle_count + 1) * sizeof(double) +
+           n * (sizeof(uint32_t) + 2 * sizeof(float) + 3 * sizeof(float) + sizeof(uint32_t));
     return mlod__build_peak(held, n, mlod__tree_bytes(n, attributes, 1, triangle_count));
 }
 
@@ -3237,7 +3236,8 @@ MANYLODS_DEF size_t mlod_cut_bytes(const mlod_cut *cut) { return cut ? cut->byte
 
 MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
 {
-    double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v, budget = (double)MLOD__ROUND_BUDGET;
+    double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v;
+    double budget = (double)MLOD__ROUND_BUDGET;
     double roots, first, later, scratch, segments, bytes;
     if (view_count == 0) return 0;
     /* a round's scratch: its input and the room of its splits.  A first
@@ -3259,7 +3259,8 @@ MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
             v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t));
     /* three lists and the scratch, 5 bytes an entry, segments and tasks,
        each with the spare eighth it grows by */
-    bytes += 1.125 * ((3 * most + scratch) * (sizeof(uint32_t) + 1) + segments * (sizeof(mlod__segment) + sizeof(uint32_t)));
+    bytes += 1.125 * ((3 * most + scratch) * (sizeof(uint32_t) + 1) +
+                      segments * (sizeof(mlod__segment) + sizeof(uint32_t)));
     return bytes >= (double)(size_t)-1 ? (size_t)-1 : (size_t)bytes;
 }
 
@@ -3437,7 +3438,8 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         capacity += room;
     }
     cut->view_segment[cut->view_count] = (uint32_t)segments;
-    if (!mlod__work_reserve(cut, MLOD__WORK_SEGMENTS, segments) || !mlod__work_reserve(cut, MLOD__WORK_TASKS, segments + 1))
+    if (!mlod__work_reserve(cut, MLOD__WORK_SEGMENTS, segments) ||
+        !mlod__work_reserve(cut, MLOD__WORK_TASKS, segments + 1))
         return 0;
     job.fill = 1;
     mlod__run(parallel, chunks, mlod__plan_segments_task, &job);
@@ -3797,7 +3799,8 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
     /* depth and the channels per pixel, the tile and band tables per view */
     per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
                 ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
-    tables = sizeof(mlod_atlas) + (size_t)view_count * 4 * sizeof(uint32_t) + ((size_t)view_count + 1) * sizeof(uint32_t);
+    tables = sizeof(mlod_atlas) + (size_t)view_count * 4 * sizeof(uint32_t) +
+             ((size_t)view_count + 1) * sizeof(uint32_t);
     L->bytes = L->pixels > ((size_t)-1 - tables) / per_pixel ? (size_t)-1 : tables + (size_t)L->pixels * per_pixel;
     return MLOD_OK;
 }
