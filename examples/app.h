@@ -1,6 +1,8 @@
 /* examples/app.h - what the three global-illumination examples share
    (instant_radiosity.c, point_based_gi.c, reflections.c): their options,
-   a clock, the thread pool, the scene, the light, camera rays, images.
+   a clock, memory (a counting allocator, the check that refuses a
+   --samples the machine cannot build), the thread pool, the scene, the
+   light, camera rays, images.
    C99, header-only; include it after manylods.h (with its implementation,
    and MANYLODS_PTHREADS for threads) in a file that defines
    _POSIX_C_SOURCE 200809L before any system header (clock_gettime, mkdir).
