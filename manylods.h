@@ -556,11 +556,11 @@ typedef struct mlod_cut mlod_cut;
    rounds depend on how the cuts spread over views.  The scratch is
    allotted up to 2^21 entries (10.5 MB) when views split, whatever the
    cuts' sizes, so small cuts stay far below the bound; cuts of millions of
-   nodes held 1/1.3 to 1/1.2 of it in the tests.  (Not covered: a round
-   that leaves more than one entry in 16 of its input to split, which the
-   tests never saw.)  A later update that grows a cut from a to b bytes
-   peaks at up to a + b (see mlod_cut_update).  0 for view_count 0,
-   (size_t)-1 beyond size_t.  Pure. */
+   nodes held 1/1.6 to 1/1.1 of it in the tests and examples.  (Not
+   covered: a round that leaves more than one entry in 16 of its input to
+   split, which the tests never saw.)  A later update that grows a cut
+   from a to b bytes peaks at up to a + b (see mlod_cut_update).  0 for
+   view_count 0, (size_t)-1 beyond size_t.  Pure. */
 MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes);
 
 /* Create an empty cut for view_count >= 1 views (it keeps the lists that
