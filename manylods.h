@@ -3234,6 +3234,26 @@ MANYLODS_DEF uint32_t mlod_cut_view_count(const mlod_cut *cut) { return cut ? cu
 
 MANYLODS_DEF size_t mlod_cut_bytes(const mlod_cut *cut) { return cut ? cut->bytes : 0; }
 
+MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
+{
+    mlod_cut_view r;
+    memset(&r, 0, sizeof r);
+    if (cut && view < cut->view_count) {
+        const mlod__list *list = &cut->lists[cut->committed];
+        const mlod__view_stats *s = &cut->stats[0][view];
+        r.nodes = list->nodes ? list->nodes + list->offset[view] : NULL;
+        r.status = list->status ? list->status + list->offset[view] : NULL;
+        r.count = list->count[view];
+        r.drawn = s->drawn;
+        r.culled = s->culled;
+        r.oversize = s->oversize;
+        r.coarse = s->coarse;
+        r.evaluated = s->evaluated;
+        r.steps = s->steps;
+    }
+    return r;
+}
+
 MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
 {
     double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v;
@@ -3262,26 +3282,6 @@ MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
     bytes += 1.125 * ((3 * most + scratch) * (sizeof(uint32_t) + 1) +
                       segments * (sizeof(mlod__segment) + sizeof(uint32_t)));
     return bytes >= (double)(size_t)-1 ? (size_t)-1 : (size_t)bytes;
-}
-
-MANYLODS_DEF mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
-{
-    mlod_cut_view r;
-    memset(&r, 0, sizeof r);
-    if (cut && view < cut->view_count) {
-        const mlod__list *list = &cut->lists[cut->committed];
-        const mlod__view_stats *s = &cut->stats[0][view];
-        r.nodes = list->nodes ? list->nodes + list->offset[view] : NULL;
-        r.status = list->status ? list->status + list->offset[view] : NULL;
-        r.count = list->count[view];
-        r.drawn = s->drawn;
-        r.culled = s->culled;
-        r.oversize = s->oversize;
-        r.coarse = s->coarse;
-        r.evaluated = s->evaluated;
-        r.steps = s->steps;
-    }
-    return r;
 }
 
 /* Does this entry still have to be split (or evaluated first)? */
@@ -3738,19 +3738,6 @@ MANYLODS_DEF int mlod_view_pixel_ray(const mlod_view *view, float x, float y, fl
 
 /* --------------------------------------------------------------- atlas -- */
 
-MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas)
-{
-    mlod_allocator a;
-    if (!atlas) return;
-    a = atlas->allocator;
-    mlod__free(&a, atlas->depth);
-    mlod__free(&a, atlas->normal);
-    mlod__free(&a, atlas->color);
-    mlod__free(&a, atlas->tiles);
-    mlod__free(&a, atlas->bands);
-    a.free(a.user, atlas);
-}
-
 #define MLOD__BAND_ROWS 64u
 
 /* The grid of an atlas for these views and desc, and its bytes; the error
@@ -3810,6 +3797,20 @@ MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count
     mlod__atlas_layout L;
     return mlod__atlas_layout_of(views, view_count, desc, &L, NULL) == MLOD_OK ? L.bytes : 0;
 }
+
+MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas)
+{
+    mlod_allocator a;
+    if (!atlas) return;
+    a = atlas->allocator;
+    mlod__free(&a, atlas->depth);
+    mlod__free(&a, atlas->normal);
+    mlod__free(&a, atlas->color);
+    mlod__free(&a, atlas->tiles);
+    mlod__free(&a, atlas->bands);
+    a.free(a.user, atlas);
+}
+
 
 MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
                                            const mlod_allocator *allocator, mlod_atlas **out_atlas, mlod_error *error)
