@@ -3738,66 +3738,6 @@ MANYLODS_DEF int mlod_view_pixel_ray(const mlod_view *view, float x, float y, fl
 
 /* --------------------------------------------------------------- atlas -- */
 
-#define MLOD__BAND_ROWS 64u
-
-/* The grid of an atlas for these views and desc, and its bytes; the error
-   mlod_atlas_create returns for them, if any. */
-typedef struct mlod__atlas_layout {
-    uint32_t columns, cell_w, cell_h;
-    uint64_t width, height, pixels;
-    size_t bytes;
-} mlod__atlas_layout;
-
-static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
-                                         mlod__atlas_layout *L, mlod_error *error)
-{
-    uint32_t v, rows;
-    uint64_t bands = 0;
-    size_t per_pixel, tables;
-    if (!views || !desc) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "views and desc must not be NULL");
-    if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
-    if (desc->channels & ~(uint32_t)(MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR))
-        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown atlas channel bits 0x%x", desc->channels);
-    if (!(desc->disc_scale >= 0.0f && desc->disc_scale <= 1.0f))
-        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "disc_scale %g is not in (0, 1] (or 0 for 1)",
-                          (double)desc->disc_scale);
-    L->cell_w = L->cell_h = 1;
-    for (v = 0; v < view_count; v++) {
-        if (views[v].width == 0 || views[v].height == 0)
-            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "view %u has an empty tile", v);
-        if (views[v].width > L->cell_w) L->cell_w = views[v].width;
-        if (views[v].height > L->cell_h) L->cell_h = views[v].height;
-        bands += ((uint64_t)views[v].height + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
-        if (bands >= 0x7fffffffu) return mlod__fail(error, MLOD_ERROR_OVERFLOW, "too many tile rows");
-    }
-    L->columns = desc->columns;
-    if (L->columns == 0) {
-        L->columns = (uint32_t)ceil(sqrt((double)view_count));
-        if (L->columns == 0) L->columns = 1;
-    }
-    if (L->columns > view_count) L->columns = view_count;
-    rows = (uint32_t)(((uint64_t)view_count + L->columns - 1) / L->columns);
-    L->width = (uint64_t)L->columns * L->cell_w;
-    L->height = (uint64_t)rows * L->cell_h;
-    L->pixels = L->width * L->height;
-    if (L->width > 0xffffffffu || L->height > 0xffffffffu || L->pixels > (size_t)-1 / (3 * sizeof(float)))
-        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
-                          (unsigned long long)L->width, (unsigned long long)L->height);
-    /* depth and the channels per pixel, the tile and band tables per view */
-    per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
-                ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
-    tables = sizeof(mlod_atlas) + (size_t)view_count * 4 * sizeof(uint32_t) +
-             ((size_t)view_count + 1) * sizeof(uint32_t);
-    L->bytes = L->pixels > ((size_t)-1 - tables) / per_pixel ? (size_t)-1 : tables + (size_t)L->pixels * per_pixel;
-    return MLOD_OK;
-}
-
-MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc)
-{
-    mlod__atlas_layout L;
-    return mlod__atlas_layout_of(views, view_count, desc, &L, NULL) == MLOD_OK ? L.bytes : 0;
-}
-
 MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas)
 {
     mlod_allocator a;
@@ -3811,6 +3751,18 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas)
     a.free(a.user, atlas);
 }
 
+/* The grid of an atlas for these views and desc, and its bytes; the error
+   mlod_atlas_create returns for them, if any. */
+typedef struct mlod__atlas_layout {
+    uint32_t columns, cell_w, cell_h;
+    uint64_t width, height, pixels;
+    size_t bytes;
+} mlod__atlas_layout;
+
+static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+                                         mlod__atlas_layout *L, mlod_error *error);
+
+#define MLOD__BAND_ROWS 64u
 
 MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
                                            const mlod_allocator *allocator, mlod_atlas **out_atlas, mlod_error *error)
@@ -3875,6 +3827,56 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     if (atlas->color) memset(atlas->color, 0, (size_t)pixels * 3 * sizeof(float));
     *out_atlas = atlas;
     return mlod__succeed(error);
+}
+
+static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+                                         mlod__atlas_layout *L, mlod_error *error)
+{
+    uint32_t v, rows;
+    uint64_t bands = 0;
+    size_t per_pixel, tables;
+    if (!views || !desc) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "views and desc must not be NULL");
+    if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
+    if (desc->channels & ~(uint32_t)(MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown atlas channel bits 0x%x", desc->channels);
+    if (!(desc->disc_scale >= 0.0f && desc->disc_scale <= 1.0f))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "disc_scale %g is not in (0, 1] (or 0 for 1)",
+                          (double)desc->disc_scale);
+    L->cell_w = L->cell_h = 1;
+    for (v = 0; v < view_count; v++) {
+        if (views[v].width == 0 || views[v].height == 0)
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "view %u has an empty tile", v);
+        if (views[v].width > L->cell_w) L->cell_w = views[v].width;
+        if (views[v].height > L->cell_h) L->cell_h = views[v].height;
+        bands += ((uint64_t)views[v].height + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
+        if (bands >= 0x7fffffffu) return mlod__fail(error, MLOD_ERROR_OVERFLOW, "too many tile rows");
+    }
+    L->columns = desc->columns;
+    if (L->columns == 0) {
+        L->columns = (uint32_t)ceil(sqrt((double)view_count));
+        if (L->columns == 0) L->columns = 1;
+    }
+    if (L->columns > view_count) L->columns = view_count;
+    rows = (uint32_t)(((uint64_t)view_count + L->columns - 1) / L->columns);
+    L->width = (uint64_t)L->columns * L->cell_w;
+    L->height = (uint64_t)rows * L->cell_h;
+    L->pixels = L->width * L->height;
+    if (L->width > 0xffffffffu || L->height > 0xffffffffu || L->pixels > (size_t)-1 / (3 * sizeof(float)))
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
+                          (unsigned long long)L->width, (unsigned long long)L->height);
+    /* depth and the channels per pixel, the tile and band tables per view */
+    per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
+                ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
+    tables = sizeof(mlod_atlas) + (size_t)view_count * 4 * sizeof(uint32_t) +
+             ((size_t)view_count + 1) * sizeof(uint32_t);
+    L->bytes = L->pixels > ((size_t)-1 - tables) / per_pixel ? (size_t)-1 : tables + (size_t)L->pixels * per_pixel;
+    return MLOD_OK;
+}
+
+MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc)
+{
+    mlod__atlas_layout L;
+    return mlod__atlas_layout_of(views, view_count, desc, &L, NULL) == MLOD_OK ? L.bytes : 0;
 }
 
 /* ------------------------------------------------------------- splat -- */
