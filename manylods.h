@@ -3835,6 +3835,7 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
     uint32_t v, rows;
     uint64_t bands = 0;
     size_t per_pixel, tables;
+    memset(L, 0, sizeof *L);
     if (!views || !desc) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "views and desc must not be NULL");
     if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
     if (desc->channels & ~(uint32_t)(MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR))
