@@ -216,10 +216,16 @@
      prints, aborts or exits.
 
    MEMORY
-     Every object reports its bytes (mlod_tree.bytes, mlod_cut_bytes).
-     Attributes a scene does not ask for take no memory.  All memory comes
-     from the allocator given at creation (or MANYLODS_MALLOC/FREE, or
-     malloc/free); the allocator is only called from the calling thread.
+     Size before you allocate: mlod_build_mesh_bound and
+     mlod_build_points_bound give a build's peak bytes (exactly; N = 2^30
+     needs 125 GiB), mlod_cut_bound an upper bound on a cut's bytes for a
+     mean cut size, mlod_atlas_bound an atlas's bytes (exactly).  Every
+     object reports its bytes (mlod_tree.bytes, mlod_cut_bytes,
+     mlod_atlas.bytes).  Attributes a scene does not ask for take no memory.
+     A failed call gives back what it allocated (a cut keeps its bytes and
+     cuts).  All memory comes from the allocator given at creation (or
+     MANYLODS_MALLOC/FREE, or malloc/free); the allocator is only called
+     from the calling thread.
 
    LICENSE: MIT or public domain, your choice; see the end of this file.
 */
@@ -414,6 +420,20 @@ typedef struct mlod_tree {
     mlod_allocator allocator;
 } mlod_tree;
 
+/* Sizing, before a build: the peak bytes mlod_build_mesh takes from its
+   allocator (the high-water mark of its live bytes: scratch, then the
+   tree) for sample_count N, a mesh of triangle_count (index_count / 3)
+   triangles and the MLOD_ATTR_* attributes.  Exact for a build that
+   succeeds; one that fails takes no more.  About 125 bytes per sample (136
+   with every attribute) and 8 per triangle; mlod_tree.bytes is the part
+   the tree keeps.  0 when the build refuses N (0, above
+   MANYLODS_MAX_LEAVES) before allocating, (size_t)-1 beyond size_t.  Pure. */
+MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes);
+
+/* The same for mlod_build_points with point_count points (about 121 bytes
+   per point).  0 for point_count 0.  Pure. */
+MANYLODS_DEF size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes);
+
 /* Sample desc->sample_count points on the mesh and build the tree.  O(N log N
    + triangles).  On success *out_tree owns its memory (mlod_tree_destroy);
    on failure *out_tree is NULL.  Reentrant: no shared state. */
@@ -561,6 +581,21 @@ typedef struct mlod_cut_view {
 
 typedef struct mlod_cut mlod_cut;
 
+/* Sizing, before a cut: an upper bound on the bytes a cut of view_count
+   views holds (mlod_cut_bytes) while its views' cuts average at most
+   mean_cut_nodes nodes, in any mode, and on the peak of its first update:
+   the per-view arrays, three lists of the cuts, the scratch of an update's
+   rounds, its segments, with the eighth each grows by.  Not exact: the
+   rounds depend on how the cuts spread over views.  The scratch is
+   allotted up to 2^21 entries (10.5 MB) when views split, whatever the
+   cuts' sizes, so small cuts stay far below the bound; cuts of millions of
+   nodes held 1/1.6 to 1/1.1 of it in the tests and examples.  (Not
+   covered: a round that leaves more than one entry in 16 of its input to
+   split, which the tests never saw.)  A later update that grows a cut
+   from a to b bytes peaks at up to a + b (see mlod_cut_update).  0 for
+   view_count 0, (size_t)-1 beyond size_t.  Pure. */
+MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes);
+
 /* Create an empty cut for view_count >= 1 views (it keeps the lists that
    incremental and lazy modes start from).  allocator may be NULL. */
 MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator,
@@ -569,8 +604,11 @@ MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
 /* Compute the cuts of all views (views[0 .. view_count-1]) in the tree.
    Incremental and lazy modes start from the previous update's cuts when the
    previous update used a tree of the same node count, else from the root.
-   All views are checked before any work; on error the previous cuts stay.
-   Memory grows with the cut sizes, not with views x N. */
+   All views are checked before any work; on error the previous cuts stay,
+   and so does the cut's memory: what the call grew is given back
+   (mlod_cut_bytes and the allocator's live bytes as before the call).
+   Memory grows with the cut sizes, not with views x N; an update that
+   grows the cut holds the arrays it replaces until it returns. */
 MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                          const mlod_cut_params *params, mlod_error *error);
 
@@ -647,6 +685,15 @@ typedef struct mlod_atlas {
     size_t bytes;
     mlod_allocator allocator;
 } mlod_atlas;
+
+/* Sizing, before an atlas: the bytes mlod_atlas_create allocates for these
+   views and desc (the atlas's bytes, exactly): 4 bytes per pixel of depth,
+   12 more per channel, the per-view tables.  0 when mlod_atlas_create
+   would refuse them (no views, an empty tile, a bad desc, a size that
+   overflows), (size_t)-1 beyond size_t.  mlod_atlas_fill_holes allocates
+   for its call, on top, about a third of the tiles' pixels times
+   4 (values + 1) bytes, values = 1 + 3 per channel.  Pure. */
+MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc);
 
 /* Create an atlas for view_count >= 1 views (their tile sizes fix the
    layout).  Sizes that overflow return MLOD_ERROR_OVERFLOW; a disc_scale
@@ -1409,6 +1456,25 @@ typedef struct mlod__triangle_leaf {
     float radius, area, cone[4];
 } mlod__triangle_leaf;
 
+/* mlod_tree.bytes of a tree of `leaves` leaves: what mlod__tree_create
+   allocates. */
+static uint64_t mlod__tree_bytes(uint64_t leaves, uint32_t attributes, int mesh, uint64_t triangles)
+{
+    uint64_t per_node = 4 * sizeof(float), bytes = sizeof(mlod_tree);
+    if (attributes & MLOD_ATTR_CONE) per_node += 4 * sizeof(float);
+    if (attributes & MLOD_ATTR_AREA) per_node += sizeof(float);
+    if (attributes & MLOD_ATTR_COLOR) per_node += 3 * sizeof(float);
+    bytes += (2 * leaves - 1) * per_node;
+    if (attributes & MLOD_ATTR_REFIT) {
+        bytes += leaves * sizeof(uint32_t);
+        if (mesh) {
+            bytes += leaves * 2 * sizeof(float) + triangles * sizeof(double);
+            if (leaves >= triangles) bytes += triangles * sizeof(mlod__triangle_leaf);
+        }
+    }
+    return bytes;
+}
+
 /* A tree with every array its attributes need; NULL when out of memory. */
 static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, uint32_t attributes, int mesh,
                                     uint32_t triangles)
@@ -1453,6 +1519,7 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
         mlod_tree_destroy(t);
         return NULL;
     }
+    MANYLODS_ASSERT(t->bytes == mlod__tree_bytes(leaves, attributes, mesh, triangles));
     return t;
 }
 
@@ -1820,6 +1887,41 @@ done:
     mlod__free(a, c.begin);
     mlod__free(a, c.left);
     return res;
+}
+
+/* The peak of mlod__order_items' scratch for n items: every array above,
+   the sort's included. */
+static uint64_t mlod__order_bytes(uint64_t n)
+{
+    uint64_t per_axis = sizeof(uint32_t) + 3 * sizeof(float) + sizeof(uint64_t); /* order, positions, sort */
+    return n * (3 * per_axis + sizeof(uint32_t) + 3 * sizeof(float) + 1) + (2 * n - 1) * sizeof(uint32_t);
+}
+
+/* A build's peak: its own arrays (`held`), then the largest of the ordering
+   scratch and the tree, which never live at once. */
+static size_t mlod__build_peak(uint64_t held, uint64_t n, uint64_t tree)
+{
+    uint64_t order = mlod__order_bytes(n), peak = held + (order > tree ? order : tree);
+    return peak > (uint64_t)(size_t)-1 ? (size_t)-1 : (size_t)peak;
+}
+
+MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes)
+{
+    uint64_t n = sample_count, held;
+    if (n == 0 || n > MANYLODS_MAX_LEAVES) return 0;
+    /* cumulative areas, then per sample: triangle, (s, t), position, leaf order */
+    held = ((uint64_t)triangle_count + 1) * sizeof(double) +
+           n * (sizeof(uint32_t) + 2 * sizeof(float) + 3 * sizeof(float) + sizeof(uint32_t));
+    return mlod__build_peak(held, n, mlod__tree_bytes(n, attributes, 1, triangle_count));
+}
+
+MANYLODS_DEF size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes)
+{
+    uint64_t n = point_count;
+    if (n == 0) return 0;
+    /* per point: position, leaf order, radius */
+    return mlod__build_peak(n * (3 * sizeof(float) + sizeof(uint32_t) + sizeof(double)), n,
+                            mlod__tree_bytes(n, attributes, 0, 0));
 }
 
 #define MLOD__LEAF_CHUNK 4096u
@@ -2746,6 +2848,17 @@ typedef struct mlod__segment {
     uint64_t evaluated, steps;
 } mlod__segment;
 
+/* The work buffers an update may grow, by index: the entries (nodes and
+   statuses) of lists[0 .. 2], those of the scratch, the segments, the
+   tasks.  One or two arrays of `capacity` elements, sizes[0] and sizes[1]
+   bytes each (sizes[1] = 0: no second array). */
+enum { MLOD__WORK_SCRATCH = 3, MLOD__WORK_SEGMENTS = 4, MLOD__WORK_TASKS = 5, MLOD__WORK_COUNT = 6 };
+typedef struct mlod__work_buffer {
+    void *first, *second;
+    size_t capacity;
+    size_t sizes[2];
+} mlod__work_buffer;
+
 struct mlod_cut {
     mlod_allocator allocator;
     uint32_t view_count;
@@ -2763,6 +2876,8 @@ struct mlod_cut {
     uint32_t *view_segment; /* per view: first segment, then the end */
     uint8_t *view_done;     /* per view: nothing to split this round (copied as it is) */
     size_t *view_work;      /* planning, per view: entries to split, then its segments' scratch */
+    mlod__work_buffer kept[MLOD__WORK_COUNT]; /* during an update: what its growth replaced */
+    uint8_t grown[MLOD__WORK_COUNT];          /* during an update: kept[i] holds buffer i's old arrays */
     size_t bytes;
 };
 
@@ -3031,75 +3146,124 @@ static void mlod__join_task(void *context, uint32_t index)
     }
 }
 
-/* Grow a buffer to hold `need` elements (contents are not kept). */
-static int mlod__reserve(mlod_cut *cut, void **buffer, size_t *capacity, size_t need, size_t element)
+static mlod__work_buffer mlod__work_get(const mlod_cut *cut, int which)
 {
-    size_t grown;
-    void *p;
-    if (need <= *capacity) return 1;
-    grown = need + need / 8;
-    if (grown < need) grown = need;
-    p = mlod__alloc_array(&cut->allocator, grown, element, NULL);
-    if (!p) {
-        grown = need;
-        p = mlod__alloc_array(&cut->allocator, grown, element, NULL);
-        if (!p) return 0;
+    mlod__work_buffer b;
+    b.second = NULL;
+    b.sizes[1] = 0;
+    if (which < MLOD__WORK_SCRATCH) {
+        b.first = cut->lists[which].nodes;
+        b.second = cut->lists[which].status;
+        b.capacity = cut->lists[which].capacity;
+        b.sizes[0] = sizeof(uint32_t);
+        b.sizes[1] = sizeof(uint8_t);
+    } else if (which == MLOD__WORK_SCRATCH) {
+        b.first = cut->scratch_nodes;
+        b.second = cut->scratch_status;
+        b.capacity = cut->scratch_capacity;
+        b.sizes[0] = sizeof(uint32_t);
+        b.sizes[1] = sizeof(uint8_t);
+    } else if (which == MLOD__WORK_SEGMENTS) {
+        b.first = cut->segments;
+        b.capacity = cut->segment_capacity;
+        b.sizes[0] = sizeof(mlod__segment);
+    } else {
+        b.first = cut->tasks;
+        b.capacity = cut->task_capacity;
+        b.sizes[0] = sizeof(uint32_t);
     }
-    mlod__free(&cut->allocator, *buffer);
-    cut->bytes = cut->bytes - *capacity * element + grown * element;
-    *buffer = p;
-    *capacity = grown;
+    return b;
+}
+
+static void mlod__work_set(mlod_cut *cut, int which, const mlod__work_buffer *b)
+{
+    if (which < MLOD__WORK_SCRATCH) {
+        cut->lists[which].nodes = (uint32_t *)b->first;
+        cut->lists[which].status = (uint8_t *)b->second;
+        cut->lists[which].capacity = b->capacity;
+    } else if (which == MLOD__WORK_SCRATCH) {
+        cut->scratch_nodes = (uint32_t *)b->first;
+        cut->scratch_status = (uint8_t *)b->second;
+        cut->scratch_capacity = b->capacity;
+    } else if (which == MLOD__WORK_SEGMENTS) {
+        cut->segments = (mlod__segment *)b->first;
+        cut->segment_capacity = b->capacity;
+    } else {
+        cut->tasks = (uint32_t *)b->first;
+        cut->task_capacity = b->capacity;
+    }
+}
+
+static void mlod__work_free(mlod_cut *cut, const mlod__work_buffer *b)
+{
+    mlod__free(&cut->allocator, b->first);
+    mlod__free(&cut->allocator, b->second);
+    cut->bytes -= b->capacity * (b->sizes[0] + b->sizes[1]);
+}
+
+/* Grow work buffer `which` to hold `need` elements (contents are not
+   kept), an eighth more when the allocator gives it.  The arrays the update
+   began with are kept, not freed, until mlod__work_end: a failed update
+   puts them back and leaves the cut's memory as it found it.  Returns 0
+   when out of memory, with the buffer as it was. */
+static int mlod__work_reserve(mlod_cut *cut, int which, size_t need)
+{
+    mlod__work_buffer old = mlod__work_get(cut, which), b = old;
+    int attempt;
+    if (need <= old.capacity) return 1;
+    for (attempt = 0; attempt < 2; attempt++) {
+        b.capacity = attempt == 0 && need + need / 8 > need ? need + need / 8 : need;
+        b.first = mlod__alloc_array(&cut->allocator, b.capacity, b.sizes[0], NULL);
+        b.second = b.first && b.sizes[1] ? mlod__alloc_array(&cut->allocator, b.capacity, b.sizes[1], NULL) : NULL;
+        if (b.first && (b.second || !b.sizes[1])) break;
+        mlod__free(&cut->allocator, b.first);
+        b.first = NULL;
+    }
+    if (!b.first) return 0;
+    if (cut->grown[which]) {
+        mlod__work_free(cut, &old); /* grown earlier in this update */
+    } else {
+        cut->kept[which] = old;
+        cut->grown[which] = 1;
+    }
+    cut->bytes += b.capacity * (b.sizes[0] + b.sizes[1]);
+    mlod__work_set(cut, which, &b);
     return 1;
 }
 
-/* Grow a pair of entry arrays (nodes and statuses) to hold `need` entries,
-   both to the same capacity (contents are not kept).  Returns 0 when out
-   of memory, with the arrays as they were. */
-static int mlod__reserve_entries(mlod_cut *cut, uint32_t **nodes, uint8_t **status, size_t *capacity, size_t need)
+/* End an update: on success free the arrays its growth replaced; on
+   failure free what it grew and put those arrays back. */
+static void mlod__work_end(mlod_cut *cut, int success)
 {
-    size_t sizes[2];
-    int attempt;
-    if (need <= *capacity) return 1;
-    sizes[0] = need + need / 8 > need ? need + need / 8 : need;
-    sizes[1] = need;
-    for (attempt = 0; attempt < 2; attempt++) {
-        uint32_t *n = (uint32_t *)mlod__alloc_array(&cut->allocator, sizes[attempt], sizeof(uint32_t), NULL);
-        uint8_t *s = n ? (uint8_t *)mlod__alloc_array(&cut->allocator, sizes[attempt], sizeof(uint8_t), NULL) : NULL;
-        if (n && s) {
-            mlod__free(&cut->allocator, *nodes);
-            mlod__free(&cut->allocator, *status);
-            cut->bytes = cut->bytes - *capacity * 5 + sizes[attempt] * 5;
-            *nodes = n;
-            *status = s;
-            *capacity = sizes[attempt];
-            return 1;
+    int which;
+    for (which = 0; which < MLOD__WORK_COUNT; which++) {
+        mlod__work_buffer now;
+        if (!cut->grown[which]) continue;
+        cut->grown[which] = 0;
+        if (success) {
+            mlod__work_free(cut, &cut->kept[which]);
+            continue;
         }
-        mlod__free(&cut->allocator, n);
+        now = mlod__work_get(cut, which);
+        mlod__work_free(cut, &now);
+        mlod__work_set(cut, which, &cut->kept[which]);
     }
-    return 0;
-}
-
-static int mlod__reserve_list(mlod_cut *cut, mlod__list *list, size_t need)
-{
-    return mlod__reserve_entries(cut, &list->nodes, &list->status, &list->capacity, need);
 }
 
 MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
 {
     int i;
     if (!cut) return;
+    for (i = 0; i < MLOD__WORK_COUNT; i++) {
+        mlod__work_buffer b = mlod__work_get(cut, i);
+        mlod__work_free(cut, &b);
+    }
     for (i = 0; i < 3; i++) {
-        mlod__free(&cut->allocator, cut->lists[i].nodes);
-        mlod__free(&cut->allocator, cut->lists[i].status);
         mlod__free(&cut->allocator, cut->lists[i].offset);
         mlod__free(&cut->allocator, cut->lists[i].count);
     }
     mlod__free(&cut->allocator, cut->stats[0]);
     mlod__free(&cut->allocator, cut->stats[1]);
-    mlod__free(&cut->allocator, cut->scratch_nodes);
-    mlod__free(&cut->allocator, cut->scratch_status);
-    mlod__free(&cut->allocator, cut->segments);
-    mlod__free(&cut->allocator, cut->tasks);
     mlod__free(&cut->allocator, cut->view_segment);
     mlod__free(&cut->allocator, cut->view_done);
     mlod__free(&cut->allocator, cut->view_work);
@@ -3174,6 +3338,36 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
         r.steps = s->steps;
     }
     return r;
+}
+
+MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
+{
+    double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v;
+    double budget = (double)MLOD__ROUND_BUDGET;
+    double roots, first, later, scratch, segments, bytes;
+    if (view_count == 0) return 0;
+    /* a round's scratch: its input and the room of its splits.  A first
+       round splits the roots with a share of the round's budget each (at
+       least MLOD__MIN_SHARE, at most MLOD__SEGMENT_GROWTH), plus, for a
+       basic cut, 1.25 times each view's previous cut and MLOD__MIN_SHARE;
+       an incremental one reads the previous cuts with a quarter more and
+       MLOD__MIN_SHARE per segment; later rounds share max(budget, input)
+       among their splits; a lazy round at most doubles its input. */
+    roots = MLOD__MIN_SHARE * v > budget ? MLOD__MIN_SHARE * v : budget;
+    if (roots > MLOD__SEGMENT_GROWTH * v) roots = MLOD__SEGMENT_GROWTH * v;
+    first = v + roots + 1.25 * total + MLOD__MIN_SHARE * (v + total / 64);
+    later = most + (budget > most ? budget : most);
+    scratch = first > later ? first : later;
+    /* segments: one per view, per MLOD__SEGMENT_INPUT / 4 entries, per
+       MLOD__SEGMENT_GROWTH entries of the budget's room */
+    segments = v + total / (MLOD__SEGMENT_INPUT / 4) + budget / MLOD__SEGMENT_GROWTH;
+    bytes = (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
+            v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t));
+    /* three lists and the scratch, 5 bytes an entry, segments and tasks,
+       each with the spare eighth it grows by */
+    bytes += 1.125 * ((3 * most + scratch) * (sizeof(uint32_t) + 1) +
+                      segments * (sizeof(mlod__segment) + sizeof(uint32_t)));
+    return bytes >= (double)(size_t)-1 ? (size_t)-1 : (size_t)bytes;
 }
 
 /* Does this entry still have to be split (or evaluated first)? */
@@ -3330,14 +3524,9 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         capacity += room;
     }
     cut->view_segment[cut->view_count] = (uint32_t)segments;
-    {
-        void *p = cut->segments;
-        if (!mlod__reserve(cut, &p, &cut->segment_capacity, segments, sizeof(mlod__segment))) return 0;
-        cut->segments = (mlod__segment *)p;
-        p = cut->tasks;
-        if (!mlod__reserve(cut, &p, &cut->task_capacity, segments + 1, sizeof(uint32_t))) return 0;
-        cut->tasks = (uint32_t *)p;
-    }
+    if (!mlod__work_reserve(cut, MLOD__WORK_SEGMENTS, segments) ||
+        !mlod__work_reserve(cut, MLOD__WORK_TASKS, segments + 1))
+        return 0;
     job.fill = 1;
     mlod__run(parallel, chunks, mlod__plan_segments_task, &job);
     for (s = 0; s < segments; s++) { /* tasks: consecutive segments worth about one segment of work */
@@ -3347,7 +3536,7 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
     }
     cut->tasks[tasks] = (uint32_t)segments;
     *task_count = tasks;
-    return mlod__reserve_entries(cut, &cut->scratch_nodes, &cut->scratch_status, &cut->scratch_capacity, capacity);
+    return mlod__work_reserve(cut, MLOD__WORK_SCRATCH, capacity);
 }
 
 /* Lay out the output list: each view gets room for all its segments'
@@ -3361,7 +3550,7 @@ static int mlod__place_output(mlod_cut *cut, const mlod__list *in, mlod__list *o
         if (cut->view_done[v]) at += in->count[v];
         for (s = cut->view_segment[v]; s < cut->view_segment[v + 1]; s++) at += cut->segments[s].out_count;
     }
-    return mlod__reserve_list(cut, out, at);
+    return mlod__work_reserve(cut, (int)(out - cut->lists), at);
 }
 
 MLOD__PUBLIC mlod_result mlod_cut_params_check(const mlod_cut_params *params, mlod_error *error)
@@ -3417,7 +3606,7 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     in = &cut->lists[cut->committed];
     if (from_root) {
         in = &cut->lists[(cut->committed + 1) % 3];
-        if (!mlod__reserve_list(cut, in, cut->view_count)) goto out_of_memory;
+        if (!mlod__work_reserve(cut, (int)(in - cut->lists), cut->view_count)) goto out_of_memory;
         for (v = 0; v < cut->view_count; v++) {
             in->nodes[v] = 0;
             in->status[v] = MLOD__PENDING;
@@ -3451,8 +3640,10 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     }
     cut->committed = (int)(in - cut->lists);
     cut->tree_nodes = tree->node_count;
+    mlod__work_end(cut, 1);
     return mlod__succeed(error);
 out_of_memory:
+    mlod__work_end(cut, 0);
     return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory updating the cut of %u views", cut->view_count);
 }
 
@@ -3646,6 +3837,17 @@ MLOD__PUBLIC void mlod_atlas_destroy(mlod_atlas *atlas)
     a.free(a.user, atlas);
 }
 
+/* The grid of an atlas for these views and desc, and its bytes; the error
+   mlod_atlas_create returns for them, if any. */
+typedef struct mlod__atlas_layout {
+    uint32_t columns, cell_w, cell_h;
+    uint64_t width, height, pixels;
+    size_t bytes;
+} mlod__atlas_layout;
+
+static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+                                         mlod__atlas_layout *L, mlod_error *error);
+
 #define MLOD__BAND_ROWS 64u
 
 MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
@@ -3653,39 +3855,20 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
 {
     mlod_allocator a = mlod__allocator(allocator);
     mlod_atlas *atlas;
-    uint32_t v, columns, rows, cell_w = 1, cell_h = 1;
-    uint64_t width, height, pixels, bands = 0;
+    mlod__atlas_layout L;
+    uint32_t v, columns, cell_w, cell_h;
+    uint64_t width, height, pixels;
+    mlod_result res;
     int ok;
     if (!out_atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out_atlas is NULL");
     *out_atlas = NULL;
-    if (!views || !desc) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "views and desc must not be NULL");
-    if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
-    if (desc->channels & ~(uint32_t)(MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR))
-        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown atlas channel bits 0x%x", desc->channels);
-    if (!(desc->disc_scale >= 0.0f && desc->disc_scale <= 1.0f))
-        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "disc_scale %g is not in (0, 1] (or 0 for 1)",
-                          (double)desc->disc_scale);
-    for (v = 0; v < view_count; v++) {
-        if (views[v].width == 0 || views[v].height == 0)
-            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "view %u has an empty tile", v);
-        if (views[v].width > cell_w) cell_w = views[v].width;
-        if (views[v].height > cell_h) cell_h = views[v].height;
-        bands += ((uint64_t)views[v].height + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
-        if (bands >= 0x7fffffffu) return mlod__fail(error, MLOD_ERROR_OVERFLOW, "too many tile rows");
-    }
-    columns = desc->columns;
-    if (columns == 0) {
-        columns = (uint32_t)ceil(sqrt((double)view_count));
-        if (columns == 0) columns = 1;
-    }
-    if (columns > view_count) columns = view_count;
-    rows = (uint32_t)(((uint64_t)view_count + columns - 1) / columns);
-    width = (uint64_t)columns * cell_w;
-    height = (uint64_t)rows * cell_h;
-    pixels = width * height;
-    if (width > 0xffffffffu || height > 0xffffffffu || pixels > (size_t)-1 / (3 * sizeof(float)))
-        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
-                          (unsigned long long)width, (unsigned long long)height);
+    if ((res = mlod__atlas_layout_of(views, view_count, desc, &L, error)) != MLOD_OK) return res;
+    columns = L.columns;
+    cell_w = L.cell_w;
+    cell_h = L.cell_h;
+    width = L.width;
+    height = L.height;
+    pixels = L.pixels;
     atlas = (mlod_atlas *)a.alloc(a.user, sizeof(mlod_atlas));
     if (!atlas) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating an atlas");
     memset(atlas, 0, sizeof *atlas);
@@ -3712,6 +3895,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for an atlas of %llu x %llu pixels",
                           (unsigned long long)width, (unsigned long long)height);
     }
+    MANYLODS_ASSERT(atlas->bytes == L.bytes);
     atlas->bands[0] = 0;
     for (v = 0; v < view_count; v++) {
         uint32_t *t = atlas->tiles + 4 * (size_t)v;
@@ -3729,6 +3913,57 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     if (atlas->color) memset(atlas->color, 0, (size_t)pixels * 3 * sizeof(float));
     *out_atlas = atlas;
     return mlod__succeed(error);
+}
+
+static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
+                                         mlod__atlas_layout *L, mlod_error *error)
+{
+    uint32_t v, rows;
+    uint64_t bands = 0;
+    size_t per_pixel, tables;
+    memset(L, 0, sizeof *L);
+    if (!views || !desc) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "views and desc must not be NULL");
+    if (view_count == 0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count is 0");
+    if (desc->channels & ~(uint32_t)(MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown atlas channel bits 0x%x", desc->channels);
+    if (!(desc->disc_scale >= 0.0f && desc->disc_scale <= 1.0f))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "disc_scale %g is not in (0, 1] (or 0 for 1)",
+                          (double)desc->disc_scale);
+    L->cell_w = L->cell_h = 1;
+    for (v = 0; v < view_count; v++) {
+        if (views[v].width == 0 || views[v].height == 0)
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "view %u has an empty tile", v);
+        if (views[v].width > L->cell_w) L->cell_w = views[v].width;
+        if (views[v].height > L->cell_h) L->cell_h = views[v].height;
+        bands += ((uint64_t)views[v].height + MLOD__BAND_ROWS - 1) / MLOD__BAND_ROWS;
+        if (bands >= 0x7fffffffu) return mlod__fail(error, MLOD_ERROR_OVERFLOW, "too many tile rows");
+    }
+    L->columns = desc->columns;
+    if (L->columns == 0) {
+        L->columns = (uint32_t)ceil(sqrt((double)view_count));
+        if (L->columns == 0) L->columns = 1;
+    }
+    if (L->columns > view_count) L->columns = view_count;
+    rows = (uint32_t)(((uint64_t)view_count + L->columns - 1) / L->columns);
+    L->width = (uint64_t)L->columns * L->cell_w;
+    L->height = (uint64_t)rows * L->cell_h;
+    L->pixels = L->width * L->height;
+    if (L->width > 0xffffffffu || L->height > 0xffffffffu || L->pixels > (size_t)-1 / (3 * sizeof(float)))
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
+                          (unsigned long long)L->width, (unsigned long long)L->height);
+    /* depth and the channels per pixel, the tile and band tables per view */
+    per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
+                ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
+    tables = sizeof(mlod_atlas) + (size_t)view_count * 4 * sizeof(uint32_t) +
+             ((size_t)view_count + 1) * sizeof(uint32_t);
+    L->bytes = L->pixels > ((size_t)-1 - tables) / per_pixel ? (size_t)-1 : tables + (size_t)L->pixels * per_pixel;
+    return MLOD_OK;
+}
+
+MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc)
+{
+    mlod__atlas_layout L;
+    return mlod__atlas_layout_of(views, view_count, desc, &L, NULL) == MLOD_OK ? L.bytes : 0;
 }
 
 /* ------------------------------------------------------------- splat -- */

@@ -1,6 +1,8 @@
 /* examples/app.h - what the three global-illumination examples share
    (instant_radiosity.c, point_based_gi.c, reflections.c): their options,
-   a clock, the thread pool, the scene, the light, camera rays, images.
+   a clock, memory (a counting allocator, the check that refuses a
+   --samples the machine cannot build), the thread pool, the scene, the
+   light, camera rays, images.
    C99, header-only; include it after manylods.h (with its implementation,
    and MANYLODS_PTHREADS for threads) in a file that defines
    _POSIX_C_SOURCE 200809L before any system header (clock_gettime, mkdir).
@@ -34,6 +36,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "../manylods.h"
 #include "meshio.h"
@@ -172,6 +175,77 @@ static inline double app_now_ms(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+/* ---------------------------------------------------------------- memory */
+
+/* Bytes of memory this machine has (sysconf), 0 when it cannot tell. */
+static inline double app_machine_bytes(void)
+{
+#if defined(_SC_PHYS_PAGES) && defined(_SC_PAGESIZE)
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    if (pages > 0 && page > 0) return (double)pages * (double)page;
+#endif
+    return 0.0;
+}
+
+static inline double app_mib(double bytes) { return bytes / (1024.0 * 1024.0); }
+
+/* An allocator that counts the bytes it holds and their high-water mark,
+   to print beside what the sizing functions predicted.  The library calls
+   it from the calling thread only. */
+typedef struct app_counter {
+    size_t live, peak;
+} app_counter;
+
+static inline void *app_counter_alloc(void *user, size_t bytes)
+{
+    app_counter *c = (app_counter *)user;
+    unsigned char *p = (unsigned char *)malloc(bytes + 16);
+    if (!p) return NULL;
+    memcpy(p, &bytes, sizeof bytes);
+    c->live += bytes;
+    if (c->live > c->peak) c->peak = c->live;
+    return p + 16;
+}
+
+static inline void app_counter_free(void *user, void *pointer)
+{
+    app_counter *c = (app_counter *)user;
+    unsigned char *p = (unsigned char *)pointer;
+    size_t bytes;
+    if (!p) return;
+    p -= 16;
+    memcpy(&bytes, p, sizeof bytes);
+    c->live -= bytes;
+    free(p);
+}
+
+static inline mlod_allocator app_counting(app_counter *c)
+{
+    mlod_allocator a;
+    a.alloc = app_counter_alloc;
+    a.free = app_counter_free;
+    a.user = c;
+    return a;
+}
+
+/* Size before you allocate: refuse --samples when the build's peak
+   (`peak`, from mlod_build_mesh_bound or app_bake_bound) exceeds this
+   machine's memory, with a message that says so, rather than let the
+   system kill the program halfway (Linux overcommits: malloc succeeds, the
+   pages do not).  Returns 1 to go on, 0 after printing why not. */
+static inline int app_check_build(const char *program, uint32_t samples, size_t peak)
+{
+    double have = app_machine_bytes();
+    if (have > 0.0 && (double)peak > have) {
+        fprintf(stderr,
+                "%s: --samples %u: building the tree would take %.1f GiB at its peak, more than this machine's "
+                "%.1f GiB of memory; ask for fewer samples\n",
+                program, samples, (double)peak / 1073741824.0, have / 1073741824.0);
+        return 0;
+    }
+    return 1;
 }
 
 /* --------------------------------------------------------------- threads */
@@ -763,13 +837,27 @@ static inline void app_bake_leaves(void *context, uint32_t block)
     }
 }
 
+#define APP_BAKE_ATTRIBUTES (MLOD_ATTR_CONE | MLOD_ATTR_COLOR)
+
+/* The peak bytes of app_bake_points, at most: the sampling build's peak,
+   or the sampled tree (within that peak), the points' arrays (40 bytes
+   each) and the points' build. */
+static inline size_t app_bake_bound(const app_scene *s, uint32_t samples)
+{
+    double sampling = (double)mlod_build_mesh_bound(samples, s->mesh.index_count / 3, APP_BAKE_ATTRIBUTES);
+    double points = sampling + 40.0 * samples + (double)mlod_build_points_bound(samples, APP_BAKE_ATTRIBUTES);
+    double peak = points > sampling ? points : sampling;
+    return peak >= (double)(size_t)-1 ? (size_t)-1 : (size_t)peak;
+}
+
 /* The scene as point-based GI and reflection maps see it: N samples of the
    surface (mlod_build_mesh), each lit by the light (exact shadow ray), made
    into a tree of points (mlod_build_points) whose colour is the outgoing
    radiance (direct light, plus `ambient` times the albedo), with normal
-   cones.  Returns the tree, or NULL with an error. */
+   cones.  allocator: the library's memory (both builds), or NULL.  Returns
+   the tree, or NULL with an error. */
 static inline mlod_tree *app_bake_points(const app_scene *s, const app_light *light, float ambient, uint32_t samples,
-                                         const app_threads *threads, mlod_error *error)
+                                         const app_threads *threads, const mlod_allocator *allocator, mlod_error *error)
 {
     mlod_build_desc desc;
     mlod_tree *sampled = NULL, *baked = NULL;
@@ -779,8 +867,9 @@ static inline mlod_tree *app_bake_points(const app_scene *s, const app_light *li
     memset(&job, 0, sizeof job);
     desc.sample_count = samples;
     desc.seed = 1;
-    desc.attributes = MLOD_ATTR_CONE | MLOD_ATTR_COLOR;
+    desc.attributes = APP_BAKE_ATTRIBUTES;
     desc.parallel = threads->parallel;
+    desc.allocator = allocator;
     if (mlod_build_mesh(&s->mesh, &desc, &sampled, error) != MLOD_OK) return NULL;
     job.scene = s;
     job.light = light;

@@ -313,7 +313,11 @@ int main(int argc, char **argv)
     shade_job job;
     const char *program = "instant_radiosity";
     double t0, build_ms, cut_ms = 0, splat_ms = 0, exposure = 0;
-    uint64_t drawn_total = 0, nodes_total = 0;
+    uint64_t drawn_total = 0, nodes_total = 0, nodes_most = 0;
+    app_counter build_memory = {0, 0};
+    mlod_allocator build_allocator = app_counting(&build_memory);
+    size_t build_bound;
+    mlod_atlas_desc atlas_desc = {0, 0, 0.0f};
     uint32_t frame, v, compare_width = 0;
     int status = 1, parsed;
 
@@ -343,6 +347,10 @@ int main(int argc, char **argv)
     desc.seed = 1;
     desc.attributes = MLOD_ATTR_CONE | MLOD_ATTR_REFIT;
     desc.parallel = threads.parallel;
+    desc.allocator = &build_allocator;
+    /* size before you allocate: refuse a --samples this machine cannot build */
+    build_bound = mlod_build_mesh_bound(o.samples, scene.mesh.index_count / 3, desc.attributes);
+    if (!app_check_build(program, o.samples, build_bound)) goto done;
     t0 = app_now_ms();
     if (mlod_build_mesh(&scene.mesh, &desc, &tree, &error) != MLOD_OK) goto failed;
     build_ms = app_now_ms() - t0;
@@ -354,8 +362,10 @@ int main(int argc, char **argv)
 
     printf("manylods %d.%d.%d instant radiosity: %s, %s\n", MANYLODS_VERSION_MAJOR, MANYLODS_VERSION_MINOR,
            MANYLODS_VERSION_PATCH, scene.name, threads.description);
-    printf("tree    %u samples, %u nodes, %.1f MiB, built in %.0f ms\n", tree->leaf_count, tree->node_count,
-           (double)tree->bytes / (1024.0 * 1024.0), build_ms);
+    printf("tree    %u samples, %u nodes, %.1f MiB, built in %.0f ms; the build's peak %.1f MiB"
+           " (mlod_build_mesh_bound: %.1f MiB)\n",
+           tree->leaf_count, tree->node_count, app_mib((double)tree->bytes), build_ms, app_mib((double)build_memory.peak),
+           app_mib((double)build_bound));
     printf("lights  %u virtual point lights, paraboloid shadow maps %ux%u px, epsilon %g px, %s cuts after frame 0;"
            " image %ux%u\n",
            o.views, o.tile, o.tile, (double)o.epsilon, app_mode_name(o.mode), o.width, o.height);
@@ -378,10 +388,9 @@ int main(int argc, char **argv)
         if (mlod_cut_update(cut, tree, views, &params, &error) != MLOD_OK) goto failed;
         frame_cut_ms = app_now_ms() - t0;
         if (!atlas) {
-            mlod_atlas_desc ad = {0, 0, 0.0f};
-            if (mlod_atlas_create(views, o.views, &ad, NULL, &ism_atlas, &error) != MLOD_OK) goto failed;
-            ad.disc_scale = o.disc_scale;
-            if (mlod_atlas_create(views, o.views, &ad, NULL, &atlas, &error) != MLOD_OK) goto failed;
+            if (mlod_atlas_create(views, o.views, &atlas_desc, NULL, &ism_atlas, &error) != MLOD_OK) goto failed;
+            atlas_desc.disc_scale = o.disc_scale;
+            if (mlod_atlas_create(views, o.views, &atlas_desc, NULL, &atlas, &error) != MLOD_OK) goto failed;
         }
         t0 = app_now_ms();
         if (mlod_splat(atlas, tree, cut, views, threads.parallel, &error) != MLOD_OK) goto failed;
@@ -412,6 +421,7 @@ int main(int argc, char **argv)
             nodes_total += c.count;
             drawn_total += c.drawn + c.oversize + c.coarse;
         }
+        if (nodes_total > nodes_most) nodes_most = nodes_total;
         printf("%5u  %8.1f  %6.1f  %8.1f  %8.1f  %10.0f  %10.0f%s\n", frame, refit_ms, frame_cut_ms, frame_splat_ms,
                shade_ms, (double)nodes_total / o.views, (double)drawn_total / o.views,
                frame == 0 ? "   (basic cut from the root)" : "");
@@ -420,6 +430,11 @@ int main(int argc, char **argv)
         splat_ms = frame_splat_ms;
         if (frame == 0) exposure = app_auto_exposure(&lit);
     }
+    printf("memory  cut %.1f MiB (mlod_cut_bound for %.0f nodes per view at most: %.1f MiB);"
+           " atlas %.1f MiB (mlod_atlas_bound: %.1f MiB)\n",
+           app_mib((double)mlod_cut_bytes(cut)), (double)nodes_most / o.views,
+           app_mib((double)mlod_cut_bound(o.views, (uint32_t)((nodes_most + o.views - 1) / o.views))),
+           app_mib((double)atlas->bytes), app_mib((double)mlod_atlas_bound(views, o.views, &atlas_desc)));
 
     { /* the last frame three ways: manylods, ISM at equal time (or equal drawn count), exact visibility */
         uint32_t points = (uint32_t)((drawn_total + o.views - 1) / o.views), round, r;

@@ -21,10 +21,13 @@ int main(void)
                                .flags = MLOD_VIEW_CULL_BACKFACES};
         for (int k = 0; k < 3; k++) views[v].position[k] = lights[v][k], views[v].forward[k] = -lights[v][k];
     }
+    /* size before you allocate: the build's peak, in bytes, for this N */
+    size_t peak = mlod_build_mesh_bound(desc.sample_count, mesh.index_count / 3, desc.attributes);
     if (mlod_build_mesh(&mesh, &desc, &tree, &error) == MLOD_OK &&
         mlod_cut_create(4, NULL, &cut, &error) == MLOD_OK &&
         mlod_cut_update(cut, tree, views, &params, &error) == MLOD_OK) {
-        printf("%u leaves, %u nodes, %zu bytes\n", tree->leaf_count, tree->node_count, tree->bytes);
+        printf("%u leaves, %u nodes, %zu bytes (the build peaked at %zu)\n", tree->leaf_count, tree->node_count,
+               tree->bytes, peak);
         for (uint32_t v = 0; v < 4; v++) {
             mlod_cut_view c = mlod_cut_get(cut, v);
             printf("view %u: cut of %u nodes, %u drawn, %u culled\n", v, c.count, c.drawn, c.culled);

@@ -193,6 +193,9 @@ int main(int argc, char **argv)
     const char *program = "point_based_gi";
     double t0, bake_ms, camera_ms, cut_ms, splat_ms, gather_ms, interpolate_ms, weight_sum;
     uint64_t nodes = 0, drawn = 0;
+    app_counter bake_memory = {0, 0};
+    mlod_allocator bake_allocator = app_counting(&bake_memory);
+    size_t bake_bound, atlas_bound = 0;
     uint32_t spacing, grid_w, grid_h, count, k;
     int status = 1, parsed;
 
@@ -223,8 +226,11 @@ int main(int argc, char **argv)
     }
     weight_sum = tile_weights(o.tile, local, weight);
 
+    /* size before you allocate: refuse a --samples this machine cannot bake */
+    bake_bound = app_bake_bound(&scene, o.samples);
+    if (!app_check_build(program, o.samples, bake_bound)) goto done;
     t0 = app_now_ms();
-    tree = app_bake_points(&scene, &light, 0.0f, o.samples, &threads, &error);
+    tree = app_bake_points(&scene, &light, 0.0f, o.samples, &threads, &bake_allocator, &error);
     if (!tree) goto failed;
     bake_ms = app_now_ms() - t0;
 
@@ -267,6 +273,7 @@ int main(int argc, char **argv)
         memset(&desc, 0, sizeof desc);
         desc.columns = grid_w; /* the mosaic mirrors the image */
         desc.channels = MLOD_ATLAS_COLOR | MLOD_ATLAS_NORMAL;
+        atlas_bound = mlod_atlas_bound(views, count, &desc);
         if (mlod_cut_create(count, NULL, &cut, &error) != MLOD_OK ||
             mlod_atlas_create(views, count, &desc, NULL, &atlas, &error) != MLOD_OK)
             goto failed;
@@ -313,7 +320,11 @@ int main(int argc, char **argv)
     printf("manylods %d.%d.%d point-based GI: %s, %s\n", MANYLODS_VERSION_MAJOR, MANYLODS_VERSION_MINOR,
            MANYLODS_VERSION_PATCH, scene.name, threads.description);
     printf("points      %u surface samples lit by the spot light (exact shadow rays), a tree of %u nodes, %.1f MiB\n",
-           tree->leaf_count, tree->node_count, (double)tree->bytes / (1024.0 * 1024.0));
+           tree->leaf_count, tree->node_count, app_mib((double)tree->bytes));
+    printf("memory      baking peaked at %.1f MiB of the library's (at most %.1f MiB with the baked arrays:"
+           " app_bake_bound); cut %.1f MiB (mlod_cut_bound: %.1f MiB)\n",
+           app_mib((double)bake_memory.peak), app_mib((double)bake_bound), app_mib((double)mlod_cut_bytes(cut)),
+           app_mib((double)mlod_cut_bound(count, (uint32_t)((nodes + count - 1) / count))));
     printf("micro-views %u (%ux%u gather points, one per %ux%u pixels of the %ux%u image): paraboloid %ux%u px,\n"
            "            radiance, depth and normal; epsilon %g px; pixel weights sum to %.4f (pi = 3.1416)\n\n",
            count, grid_w, grid_h, spacing, spacing, o.width, o.height, o.tile, o.tile, (double)o.epsilon, weight_sum);
@@ -322,8 +333,8 @@ int main(int argc, char **argv)
     printf("camera  %8.1f  ray trace the image, direct light with shadow rays\n", camera_ms);
     printf("cut     %8.1f  %.0f nodes per micro-view (%.0f drawn)\n", cut_ms, (double)nodes / count,
            (double)drawn / count);
-    printf("splat   %8.1f  atlas of %ux%u px, %.1f MiB\n", splat_ms, atlas->width, atlas->height,
-           (double)atlas->bytes / (1024.0 * 1024.0));
+    printf("splat   %8.1f  atlas of %ux%u px, %.1f MiB (mlod_atlas_bound: %.1f MiB)\n", splat_ms, atlas->width,
+           atlas->height, app_mib((double)atlas->bytes), app_mib((double)atlas_bound));
     printf("gather  %8.1f  sum every micro-view: one bounce of indirect light\n", gather_ms);
     printf("interp  %8.1f  spread the gather points to every pixel (normal- and depth-aware)\n", interpolate_ms);
 

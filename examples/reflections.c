@@ -198,6 +198,9 @@ int main(int argc, char **argv)
     const char *program = "reflections";
     double t0, bake_ms, cut_ms, splat_ms, fill_ms, render_ms, diff = 0.0, sum = 0.0;
     uint64_t nodes = 0, drawn = 0, mirror_pixels = 0;
+    app_counter bake_memory = {0, 0};
+    mlod_allocator bake_allocator = app_counting(&bake_memory);
+    size_t bake_bound, atlas_bound = 0;
     uint32_t count, k;
     int status = 1, parsed;
 
@@ -233,8 +236,11 @@ int main(int argc, char **argv)
         v->flags = MLOD_VIEW_CULL_BACKFACES;
     }
 
+    /* size before you allocate: refuse a --samples this machine cannot bake */
+    bake_bound = app_bake_bound(&scene, o.samples);
+    if (!app_check_build(program, o.samples, bake_bound)) goto done;
     t0 = app_now_ms();
-    tree = app_bake_points(&scene, &light, AMBIENT, o.samples, &threads, &error);
+    tree = app_bake_points(&scene, &light, AMBIENT, o.samples, &threads, &bake_allocator, &error);
     if (!tree) goto failed;
     bake_ms = app_now_ms() - t0;
     params.mode = MLOD_CUT_BASIC;
@@ -243,6 +249,7 @@ int main(int argc, char **argv)
     params.parallel = threads.parallel;
     {
         mlod_atlas_desc desc = {0, MLOD_ATLAS_COLOR, 0.0f};
+        atlas_bound = mlod_atlas_bound(views, count, &desc);
         if (mlod_cut_create(count, NULL, &cut, &error) != MLOD_OK ||
             mlod_atlas_create(views, count, &desc, NULL, &atlas, &error) != MLOD_OK)
             goto failed;
@@ -291,8 +298,13 @@ int main(int argc, char **argv)
 
     printf("manylods %d.%d.%d reflections: %s, %s\n", MANYLODS_VERSION_MAJOR, MANYLODS_VERSION_MINOR,
            MANYLODS_VERSION_PATCH, scene.name, threads.description);
-    printf("points   %u surface samples lit by the spot light (exact shadow rays), a tree of %u nodes\n",
-           tree->leaf_count, tree->node_count);
+    printf("points   %u surface samples lit by the spot light (exact shadow rays), a tree of %u nodes, %.1f MiB\n",
+           tree->leaf_count, tree->node_count, app_mib((double)tree->bytes));
+    printf("memory   baking peaked at %.1f MiB of the library's (at most %.1f MiB with the baked arrays: app_bake_bound);"
+           " cut %.1f MiB (mlod_cut_bound: %.1f MiB); atlas %.1f MiB (mlod_atlas_bound: %.1f MiB)\n",
+           app_mib((double)bake_memory.peak), app_mib((double)bake_bound), app_mib((double)mlod_cut_bytes(cut)),
+           app_mib((double)mlod_cut_bound(count, (uint32_t)((nodes + count - 1) / count))), app_mib((double)atlas->bytes),
+           app_mib((double)atlas_bound));
     printf("mirrors  %u spheres of radius %.3f, each a dual-paraboloid map %ux%u px; epsilon %g px; image %ux%u\n\n",
            count, (double)spheres[0].radius, 2 * o.tile, o.tile, (double)o.epsilon, o.width, o.height);
     printf("step          ms  what\n");

@@ -1,0 +1,574 @@
+/* tests/test_memory.c - memory a caller can plan for.
+
+   1. A failed mlod_cut_update gives back what it grew: after any error (an
+      allocator failing its k-th call, a live-bytes budget, a bad view or
+      epsilon), in every mode, with and without a parallel hook, the cut
+      holds the same cuts, reports the same bytes and holds the same live
+      bytes of its allocator as before the call; and the next update with
+      room to spare gives the cut an undisturbed cut gives.
+   2. The sizing functions: mlod_build_mesh_bound / mlod_build_points_bound
+      against the allocator's high-water mark of live bytes (at or above
+      it, at most 10 % above), mlod_cut_bound against a cut's bytes and
+      its updates' peaks, mlod_atlas_bound against mlod_atlas_create. */
+#define MANYLODS_IMPLEMENTATION
+#define MANYLODS_PTHREADS
+#include "../manylods.h"
+#include "testutil.h"
+
+/* ---------------------------------------------------- budget allocator */
+
+/* Counts live bytes and their high-water mark; refuses a block that would
+   take the live bytes past `budget` (0: no budget), and every call from
+   the one numbered fail_at on (1-based, 0: none). */
+typedef struct budget {
+    size_t live, peak, budget;
+    unsigned long calls, fail_at, blocks, refused;
+} budget;
+
+static void *budget_alloc(void *user, size_t bytes)
+{
+    budget *b = (budget *)user;
+    unsigned char *p;
+    b->calls++;
+    if ((b->fail_at && b->calls >= b->fail_at) || (b->budget && bytes > b->budget - (b->live < b->budget ? b->live : b->budget))) {
+        b->refused++;
+        return NULL;
+    }
+    p = (unsigned char *)malloc(bytes + 16);
+    if (!p) return NULL;
+    memcpy(p, &bytes, sizeof bytes);
+    b->live += bytes;
+    b->blocks++;
+    if (b->live > b->peak) b->peak = b->live;
+    return p + 16;
+}
+
+static void budget_free(void *user, void *pointer)
+{
+    budget *b = (budget *)user;
+    unsigned char *p = (unsigned char *)pointer;
+    size_t bytes;
+    if (!p) return;
+    p -= 16;
+    memcpy(&bytes, p, sizeof bytes);
+    b->live -= bytes;
+    b->blocks--;
+    free(p);
+}
+
+static mlod_allocator budget_allocator(budget *b)
+{
+    mlod_allocator a;
+    memset(b, 0, sizeof *b);
+    a.alloc = budget_alloc;
+    a.free = budget_free;
+    a.user = b;
+    return a;
+}
+
+/* ------------------------------------------------------- cut snapshots */
+
+/* Everything mlod_cut_get says about every view, copied. */
+typedef struct snapshot {
+    uint32_t views;
+    mlod_cut_view *cv;
+    uint32_t **nodes;
+    uint8_t **status;
+    size_t bytes;
+} snapshot;
+
+static void snapshot_take(snapshot *s, const mlod_cut *cut)
+{
+    uint32_t v;
+    s->views = mlod_cut_view_count(cut);
+    s->cv = (mlod_cut_view *)calloc(s->views, sizeof *s->cv);
+    s->nodes = (uint32_t **)calloc(s->views, sizeof *s->nodes);
+    s->status = (uint8_t **)calloc(s->views, sizeof *s->status);
+    s->bytes = mlod_cut_bytes(cut);
+    for (v = 0; v < s->views; v++) {
+        s->cv[v] = mlod_cut_get(cut, v);
+        s->nodes[v] = (uint32_t *)malloc(s->cv[v].count * sizeof(uint32_t) + 1);
+        s->status[v] = (uint8_t *)malloc(s->cv[v].count + 1);
+        if (s->cv[v].count) {
+            memcpy(s->nodes[v], s->cv[v].nodes, s->cv[v].count * sizeof(uint32_t));
+            memcpy(s->status[v], s->cv[v].status, s->cv[v].count);
+        }
+    }
+}
+
+static void snapshot_free(snapshot *s)
+{
+    uint32_t v;
+    for (v = 0; v < s->views; v++) {
+        free(s->nodes[v]);
+        free(s->status[v]);
+    }
+    free(s->cv);
+    free(s->nodes);
+    free(s->status);
+    memset(s, 0, sizeof *s);
+}
+
+/* The view whose cut differs from the snapshot's (its lists, counts and
+   statistics), or -1 when every view's is the same. */
+static long snapshot_differs(const snapshot *s, const mlod_cut *cut)
+{
+    uint32_t v;
+    for (v = 0; v < s->views; v++) {
+        mlod_cut_view now = mlod_cut_get(cut, v), was = s->cv[v];
+        if (now.count != was.count || now.drawn != was.drawn || now.culled != was.culled ||
+            now.oversize != was.oversize || now.coarse != was.coarse || now.evaluated != was.evaluated ||
+            now.steps != was.steps)
+            return (long)v;
+        if (now.count && (memcmp(now.nodes, s->nodes[v], now.count * sizeof(uint32_t)) != 0 ||
+                          memcmp(now.status, s->status[v], now.count) != 0))
+            return (long)v;
+    }
+    return -1;
+}
+
+/* ----------------------------------------------- 1. memory after failure */
+
+static scene_mesh room;
+static mlod_tree *room_tree;
+#define VIEWS 24
+static mlod_view far_views[VIEWS], near_views[VIEWS];
+
+static void make_views(void)
+{
+    uint64_t rng = 77;
+    double c[3], R;
+    uint32_t v;
+    int k;
+    tu_bounds(&room, c, &R);
+    for (v = 0; v < VIEWS; v++) {
+        mlod_view_kind kind = (mlod_view_kind)(v % 4);
+        double eye[3], dir[3];
+        far_views[v] = tu_random_view(&rng, kind, c, R);
+        far_views[v].width = far_views[v].height = 16;
+        near_views[v] = far_views[v];
+        /* the same views, closer and finer: every cut grows */
+        tu_random_unit(&rng, dir);
+        for (k = 0; k < 3; k++) eye[k] = c[k] + 0.3 * R * dir[k];
+        tu_set3f(near_views[v].position, eye);
+        near_views[v].width = near_views[v].height = 48;
+        if (kind == MLOD_VIEW_ORTHOGRAPHIC) near_views[v].half_width = near_views[v].half_height = (float)(0.3 * R);
+    }
+}
+
+/* A cut of `mode` with the far views' cut (lazy: after two calls) on an
+   allocator of its own. */
+static mlod_cut *settled_cut(const mlod_allocator *a, mlod_cut_params p)
+{
+    mlod_cut *cut = NULL;
+    int i;
+    if (mlod_cut_create(VIEWS, a, &cut, NULL) != MLOD_OK) return NULL;
+    p.epsilon = 3.0f;
+    for (i = 0; i < 2; i++)
+        if (mlod_cut_update(cut, room_tree, far_views, &p, NULL) != MLOD_OK) {
+            mlod_cut_destroy(cut);
+            return NULL;
+        }
+    return cut;
+}
+
+/* The near views' update of a settled cut, on an allocator with no
+   limit: the bytes its peak takes above what the cut held, and the
+   allocations it makes. */
+static size_t growth_of_update(mlod_cut_params p, unsigned long *calls)
+{
+    budget b;
+    mlod_allocator a = budget_allocator(&b);
+    mlod_cut *cut = settled_cut(&a, p);
+    size_t before;
+    *calls = 0;
+    if (!cut) return 0;
+    before = b.live;
+    b.peak = b.live;
+    b.calls = 0;
+    p.epsilon = 0.75f;
+    CHECK(mlod_cut_update(cut, room_tree, near_views, &p, NULL) == MLOD_OK, "growth: the unlimited update failed");
+    *calls = b.calls;
+    mlod_cut_destroy(cut);
+    return b.peak - before;
+}
+
+/* After a failed update, the cut is as it was: same cuts, bytes and
+   allocator live bytes. */
+static int check_unchanged(const snapshot *s, const mlod_cut *cut, const budget *b, size_t live, mlod_result got,
+                           mlod_result expected, const char *what, unsigned long at)
+{
+    long view = snapshot_differs(s, cut);
+    int ok = got == expected && view < 0 && mlod_cut_bytes(cut) == s->bytes && b->live == live;
+    CHECK(got == expected, "%s %lu: returned %s, expected %s", what, at, mlod_result_name(got), mlod_result_name(expected));
+    CHECK(view < 0, "%s %lu: view %ld's cut changed", what, at, view);
+    CHECK(mlod_cut_bytes(cut) == s->bytes, "%s %lu: mlod_cut_bytes %zu, was %zu", what, at, mlod_cut_bytes(cut), s->bytes);
+    CHECK(b->live == live, "%s %lu: the allocator holds %zu live bytes, held %zu", what, at, b->live, live);
+    return ok;
+}
+
+/* After the update that succeeded: the cut an undisturbed cut of the same
+   history computes for the near views. */
+static void check_as_undisturbed(const mlod_cut *cut, const budget *b, mlod_cut_params p, const char *what)
+{
+    budget rb;
+    mlod_allocator ra = budget_allocator(&rb);
+    mlod_cut *ref = settled_cut(&ra, p);
+    snapshot want;
+    long view;
+    p.epsilon = 0.75f;
+    CHECK(ref && mlod_cut_update(ref, room_tree, near_views, &p, NULL) == MLOD_OK, "%s: reference update", what);
+    if (!ref) return;
+    snapshot_take(&want, ref);
+    view = snapshot_differs(&want, cut);
+    CHECK(view < 0, "%s: after the failures view %ld's cut differs from an undisturbed cut's", what, view);
+    CHECK(mlod_cut_bytes(cut) == b->live, "%s: the cut reports %zu bytes, holds %zu", what, mlod_cut_bytes(cut), b->live);
+    snapshot_free(&want);
+    mlod_cut_destroy(ref);
+}
+
+static void test_failed_updates(void)
+{
+    static const char *mode_names[3] = {"basic", "incremental", "lazy"};
+    mlod_pool *pool = mlod_pool_create(3);
+    mlod_parallel hooks[2];
+    const char *hook_names[2] = {"no hook", "3 threads"};
+    uint32_t h, mode, fails = 0, budgets = 0;
+    hooks[1] = mlod_pool_parallel(pool);
+    for (mode = 0; mode < 3; mode++)
+        for (h = 0; h < 2; h++) {
+            mlod_cut_params p;
+            budget b;
+            mlod_allocator a = budget_allocator(&b);
+            mlod_cut *cut;
+            snapshot s;
+            unsigned long calls, k;
+            size_t growth, live;
+            char what[96];
+            int f;
+            if (h == 1 && !pool) continue;
+            memset(&p, 0, sizeof p);
+            p.mode = (mlod_cut_mode)mode;
+            p.lazy_steps = 3;
+            p.parallel = h ? &hooks[h] : NULL;
+            growth = growth_of_update(p, &calls);
+            CHECK(growth > 0 && calls > 0, "%s, %s: the near views' update grows the cut (%zu bytes, %lu allocations)",
+                  mode_names[mode], hook_names[h], growth, calls);
+            cut = settled_cut(&a, p);
+            CHECK(cut != NULL, "%s, %s: settled cut", mode_names[mode], hook_names[h]);
+            if (!cut) continue;
+            snapshot_take(&s, cut);
+            live = b.live;
+            CHECK(s.bytes == live, "%s, %s: the cut reports %zu bytes, holds %zu", mode_names[mode], hook_names[h], s.bytes,
+                  live);
+            /* errors found before any work */
+            {
+                mlod_view bad[VIEWS];
+                memcpy(bad, near_views, sizeof bad);
+                bad[VIEWS - 1].width = 0;
+                p.epsilon = -1.0f;
+                snprintf(what, sizeof what, "%s, %s, bad epsilon", mode_names[mode], hook_names[h]);
+                check_unchanged(&s, cut, &b, live, mlod_cut_update(cut, room_tree, near_views, &p, NULL),
+                                MLOD_ERROR_BAD_EPSILON, what, 0);
+                p.epsilon = 0.75f;
+                snprintf(what, sizeof what, "%s, %s, bad view", mode_names[mode], hook_names[h]);
+                check_unchanged(&s, cut, &b, live, mlod_cut_update(cut, room_tree, bad, &p, NULL), MLOD_ERROR_BAD_VIEW, what, 0);
+            }
+            /* the allocator fails the update's k-th call and every later one, for every k */
+            snprintf(what, sizeof what, "%s, %s, failing allocation", mode_names[mode], hook_names[h]);
+            for (k = 1; k <= calls; k++) {
+                mlod_error e;
+                b.fail_at = b.calls + k;
+                check_unchanged(&s, cut, &b, live, mlod_cut_update(cut, room_tree, near_views, &p, &e), MLOD_ERROR_OUT_OF_MEMORY,
+                                what, k);
+                fails++;
+            }
+            b.fail_at = 0;
+            /* budgets from what the cut holds up to the peak the update takes
+               with room to spare (near it, an update may succeed: its
+               buffers' spare eighth is only asked for, not needed), then
+               none: the first update that succeeds computes the cut an
+               undisturbed cut computes */
+            snprintf(what, sizeof what, "%s, %s, budget of live bytes (per mille of the growth)", mode_names[mode],
+                     hook_names[h]);
+            for (f = 0;; f += 71) {
+                mlod_result r;
+                b.budget = f < 1000 ? live + growth * (size_t)f / 1000 : 0;
+                r = mlod_cut_update(cut, room_tree, near_views, &p, NULL);
+                if (r == MLOD_OK) break;
+                check_unchanged(&s, cut, &b, live, r, MLOD_ERROR_OUT_OF_MEMORY, what, (unsigned long)f);
+                budgets++;
+            }
+            CHECK(f >= 500, "%s: an update succeeded with %d per mille of the growth it takes", what, f);
+            b.budget = 0;
+            snprintf(what, sizeof what, "%s, %s", mode_names[mode], hook_names[h]);
+            check_as_undisturbed(cut, &b, p, what);
+            snapshot_free(&s);
+            mlod_cut_destroy(cut);
+            CHECK(b.blocks == 0 && b.live == 0, "%s: %lu blocks, %zu bytes left after destroy", what, b.blocks, b.live);
+        }
+    printf("  failed updates checked: %u with a failing allocation, %u under a budget\n", fails,
+           budgets);
+    mlod_pool_destroy(pool);
+}
+
+/* --------------------------------------------- 2. sizing: builds */
+
+static mlod_pool *pool2;
+
+/* One build on a counting allocator: its peak equals the bound, the tree
+   reports what it holds.  Returns the peak. */
+static size_t check_build(const mlod_mesh *m, const mlod_points *pts, uint32_t n, uint32_t attributes, int hook,
+                          const char *what)
+{
+    budget b;
+    mlod_allocator a = budget_allocator(&b);
+    mlod_build_desc d = tu_desc(n, 9, attributes);
+    mlod_parallel par = mlod_pool_parallel(pool2);
+    mlod_tree *t = NULL;
+    mlod_error e;
+    mlod_result r;
+    size_t bound;
+    d.allocator = &a;
+    if (hook && pool2) d.parallel = &par;
+    if (m) {
+        r = mlod_build_mesh(m, &d, &t, &e);
+        bound = mlod_build_mesh_bound(n, m->index_count / 3, attributes);
+    } else {
+        r = mlod_build_points(pts, &d, &t, &e);
+        bound = mlod_build_points_bound(pts->count, attributes);
+        n = pts->count;
+    }
+    CHECK(r == MLOD_OK, "%s, N = %u, attributes %#x: build failed: %s", what, n, attributes, e.message);
+    if (r != MLOD_OK) return 0;
+    CHECK(b.peak <= bound && (double)bound <= 1.1 * (double)b.peak,
+          "%s, N = %u, attributes %#x%s: bound %zu bytes against a peak of %zu (within 10 %% above)", what, n, attributes,
+          hook ? ", 2 threads" : "", bound, b.peak);
+    CHECK(bound == b.peak, "%s, N = %u, attributes %#x: bound %zu is not the peak %zu exactly", what, n, attributes, bound,
+          b.peak);
+    CHECK(t->bytes == b.live, "%s, N = %u: the tree reports %zu bytes, holds %zu", what, n, t->bytes, b.live);
+    CHECK(t->bytes <= bound, "%s, N = %u: the tree's %zu bytes above the peak bound %zu", what, n, t->bytes, bound);
+    mlod_tree_destroy(t);
+    CHECK(b.live == 0 && b.blocks == 0, "%s, N = %u: %zu bytes left after destroy", what, n, b.live);
+    return b.peak;
+}
+
+static void test_build_bounds(void)
+{
+    static const uint32_t attrs[5] = {0, MLOD_ATTR_CONE, MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR, MLOD_ATTR_REFIT,
+                                      MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT};
+    static const uint32_t ns[6] = {1, 2, 7, 100, 3000, 40000};
+    scene_mesh soup, torus;
+    mlod_mesh meshes[2];
+    const char *names[2] = {"soup (5000 triangles)", "torus"};
+    uint32_t i, k, a, h, builds = 0;
+    size_t big;
+    pool2 = mlod_pool_create(2);
+    if (!scene_soup(&soup, 5000, 3) || !scene_torus(&torus, 1.0f, 0.3f, 24, 12)) return;
+    meshes[0] = tu_mesh(&soup);
+    meshes[1] = tu_mesh(&torus);
+    /* meshes: N below and above the triangle count (refit data differs) */
+    for (k = 0; k < 2; k++)
+        for (i = 0; i < 6; i++)
+            for (a = 0; a < 5; a++)
+                for (h = 0; h < 2; h++) {
+                    if (h && (i % 2 || a % 2)) continue;
+                    check_build(&meshes[k], NULL, ns[i], attrs[a], (int)h, names[k]);
+                    builds++;
+                }
+    /* points: with and without radii and normals */
+    for (i = 0; i < 6; i++)
+        for (a = 0; a < 5; a++) {
+            uint32_t n = ns[i], j;
+            uint64_t rng = 11;
+            float *xyz = (float *)malloc(3 * sizeof(float) * n), *radii = (float *)malloc(sizeof(float) * n);
+            mlod_points pts;
+            memset(&pts, 0, sizeof pts);
+            for (j = 0; j < 3 * n; j++) xyz[j] = scene_rng_range(&rng, -1.0f, 1.0f);
+            for (j = 0; j < n; j++) radii[j] = scene_rng_range(&rng, 0.001f, 0.01f);
+            pts.positions = xyz;
+            pts.count = n;
+            pts.colors = xyz; /* any floats */
+            pts.normals = a % 2 ? xyz : NULL;
+            pts.radii = a % 2 ? NULL : radii;
+            check_build(NULL, &pts, n, attrs[a], (int)(i == 5), "points");
+            builds++;
+            free(xyz);
+            free(radii);
+        }
+    /* what the issue met: N = 2^30 is accepted and needs far more than a
+       small machine has (the sampling arrays alone are 28 GiB) */
+    big = mlod_build_mesh_bound(MANYLODS_MAX_LEAVES, 12, 0);
+    CHECK(sizeof(size_t) < 8 ? big == (size_t)-1 : big > (size_t)120 << 30,
+          "N = 2^30: bound %zu bytes, expected over 120 GiB (or (size_t)-1)", big);
+    CHECK(mlod_build_mesh_bound(0, 12, 0) == 0 && mlod_build_mesh_bound(MANYLODS_MAX_LEAVES + 1u, 12, 0) == 0 &&
+              mlod_build_points_bound(0, MLOD_ATTR_CONE) == 0,
+          "bounds of builds refused before allocating are not 0");
+    CHECK(mlod_build_mesh_bound(1000, 10, MLOD_ATTR_CONE) < mlod_build_mesh_bound(1001, 10, MLOD_ATTR_CONE) &&
+              mlod_build_mesh_bound(1000, 10, 0) < mlod_build_mesh_bound(1000, 10, attrs[4]),
+          "build bound not increasing with N and attributes");
+    printf("  build bounds: %u builds, each bound equal to the allocator's peak; N = 2^30 needs %.0f GiB\n", builds,
+           (double)big / 1073741824.0);
+    scene_free(&soup);
+    scene_free(&torus);
+    mlod_pool_destroy(pool2);
+}
+
+/* ------------------------------------------------ 2. sizing: the cut */
+
+static void test_cut_bounds(void)
+{
+    static const uint32_t counts[3] = {1, 16, 256};
+    static const float eps[3] = {8.0f, 1.0f, 0.35f};
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel par = mlod_pool_parallel(pool);
+    double c[3], R, worst_large = 0.0;
+    uint32_t ci, ei, mode, cases = 0;
+    tu_bounds(&room, c, &R);
+    for (ci = 0; ci < 3; ci++)
+        for (ei = 0; ei < 3; ei++)
+            for (mode = 0; mode < 3; mode++) {
+                uint32_t V = counts[ci], v, call;
+                mlod_view *views = (mlod_view *)malloc(2 * V * sizeof(mlod_view));
+                uint64_t rng = 3 + ci, most = 0;
+                budget b;
+                mlod_allocator a = budget_allocator(&b);
+                mlod_cut *cut = NULL;
+                mlod_cut_params p;
+                size_t bound, created;
+                if (ci == 2 && ei == 2) { /* 2.2 M nodes: too slow for the tests */
+                    free(views);
+                    continue;
+                }
+                for (v = 0; v < 2 * V; v++) {
+                    views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 4), c, R);
+                    views[v].width = views[v].height = 32;
+                }
+                memset(&p, 0, sizeof p);
+                p.mode = (mlod_cut_mode)mode;
+                p.epsilon = eps[ei];
+                p.lazy_steps = 2;
+                p.parallel = ci == 2 && pool ? &par : NULL;
+                if (mlod_cut_create(V, &a, &cut, NULL) != MLOD_OK) {
+                    free(views);
+                    continue;
+                }
+                created = b.live;
+                /* the first update of a new cut: its peak */
+                b.peak = b.live;
+                CHECK(mlod_cut_update(cut, room_tree, views, &p, NULL) == MLOD_OK, "cut bound: update");
+                for (v = 0; v < V; v++) most += mlod_cut_get(cut, v).count;
+                bound = mlod_cut_bound(V, (uint32_t)((most + V - 1) / V));
+                CHECK(b.peak <= bound, "cut bound, %u views, eps %g, mode %u: the first update peaks at %zu bytes, above the bound %zu",
+                      V, eps[ei], mode, b.peak, bound);
+                /* later updates, the views moving between two sets: what the cut holds */
+                for (call = 1; call < (ci == 2 ? 3u : 5u); call++) {
+                    uint64_t total = 0;
+                    CHECK(mlod_cut_update(cut, room_tree, views + (call % 2) * V, &p, NULL) == MLOD_OK, "cut bound: update");
+                    for (v = 0; v < V; v++) total += mlod_cut_get(cut, v).count;
+                    if (total > most) most = total;
+                }
+                bound = mlod_cut_bound(V, (uint32_t)((most + V - 1) / V));
+                CHECK(mlod_cut_bytes(cut) == b.live, "cut bound: the cut reports %zu bytes, holds %zu", mlod_cut_bytes(cut),
+                      b.live);
+                CHECK(mlod_cut_bytes(cut) <= bound, "cut bound, %u views, eps %g, mode %u, %llu nodes at most: holds %zu bytes, above the bound %zu",
+                      V, eps[ei], mode, (unsigned long long)most, mlod_cut_bytes(cut), bound);
+                if (most >= ((uint64_t)1 << 20)) {
+                    double ratio = (double)bound / (double)mlod_cut_bytes(cut);
+                    CHECK(ratio <= 1.5, "cut bound, %llu nodes: %zu bytes, %.2f times what the cut holds", (unsigned long long)most,
+                          bound, ratio);
+                    if (ratio > worst_large) worst_large = ratio;
+                }
+                CHECK(created <= mlod_cut_bound(V, 0),
+                      "cut bound: a new cut of %u views holds %zu bytes, above the bound for empty cuts %zu", V, created,
+                      mlod_cut_bound(V, 0));
+                cases++;
+                mlod_cut_destroy(cut);
+                free(views);
+            }
+    CHECK(mlod_cut_bound(0, 10) == 0 && mlod_cut_bound(1000, 100) < mlod_cut_bound(1000, 200), "cut bound: 0 views or not increasing");
+    printf("  cut bounds: %u cases at or above what cuts held and first updates peaked at; %.2f times it for cuts of a million nodes\n",
+           cases, worst_large);
+    mlod_pool_destroy(pool);
+}
+
+/* ----------------------------------------------- 2. sizing: the atlas */
+
+static void test_atlas_bounds(void)
+{
+    uint64_t rng = 5;
+    uint32_t trial, exact = 0;
+    for (trial = 0; trial < 60; trial++) {
+        uint32_t V = 1 + (uint32_t)(scene_rng_double(&rng) * 40), v;
+        mlod_view views[40];
+        mlod_atlas_desc desc;
+        mlod_atlas *atlas = NULL;
+        budget b;
+        mlod_allocator a = budget_allocator(&b);
+        size_t bound, before;
+        double pyramid = 0.0;
+        uint32_t values;
+        memset(&desc, 0, sizeof desc);
+        desc.channels = trial % 4;
+        desc.columns = trial % 3 ? 0 : 1 + trial % 7;
+        for (v = 0; v < V; v++) {
+            views[v] = tu_view(MLOD_VIEW_PERSPECTIVE);
+            views[v].width = trial % 2 ? 64 : 1 + (uint32_t)(scene_rng_double(&rng) * 100);
+            views[v].height = trial % 2 ? 32 : 1 + (uint32_t)(scene_rng_double(&rng) * 100);
+        }
+        bound = mlod_atlas_bound(views, V, &desc);
+        CHECK(mlod_atlas_create(views, V, &desc, &a, &atlas, NULL) == MLOD_OK, "atlas bound: create");
+        if (!atlas) continue;
+        CHECK(bound == atlas->bytes && bound == b.live && bound == b.peak,
+              "atlas bound %zu: the atlas reports %zu, allocated %zu (peak %zu)", bound, atlas->bytes, b.live, b.peak);
+        exact += bound == b.peak;
+        /* fill_holes' scratch, on power-of-two tiles: a third of the pixels
+           times (values + 1) floats */
+        values = 1 + (desc.channels & MLOD_ATLAS_NORMAL ? 3 : 0) + (desc.channels & MLOD_ATLAS_COLOR ? 3 : 0);
+        for (v = 0; v < V; v++) pyramid += (double)views[v].width * views[v].height / 3.0 * (values + 1) * sizeof(float);
+        before = b.live;
+        b.peak = b.live;
+        CHECK(mlod_atlas_fill_holes(atlas, NULL, NULL) == MLOD_OK, "atlas bound: fill holes");
+        if (trial % 2)
+            CHECK((double)(b.peak - before) <= 1.01 * pyramid + 8.0 * V && (double)(b.peak - before) >= 0.9 * pyramid,
+                  "atlas: fill_holes took %zu bytes, the manual says about %.0f", b.peak - before, pyramid);
+        mlod_atlas_destroy(atlas);
+        CHECK(b.live == 0, "atlas: %zu bytes left after destroy", b.live);
+    }
+    /* what mlod_atlas_create refuses has no size */
+    {
+        mlod_view views[2];
+        mlod_atlas_desc desc;
+        memset(&desc, 0, sizeof desc);
+        views[0] = views[1] = tu_view(MLOD_VIEW_PERSPECTIVE);
+        views[1].width = 0;
+        CHECK(mlod_atlas_bound(views, 2, &desc) == 0 && mlod_atlas_bound(views, 0, &desc) == 0 &&
+                  mlod_atlas_bound(NULL, 1, &desc) == 0 && mlod_atlas_bound(views, 1, NULL) == 0,
+              "atlas bound: not 0 for an empty tile, no views or no desc");
+        desc.disc_scale = 1.5f;
+        CHECK(mlod_atlas_bound(views, 1, &desc) == 0, "atlas bound: not 0 for disc_scale 1.5");
+        desc.disc_scale = 0.0f;
+        desc.channels = 4;
+        CHECK(mlod_atlas_bound(views, 1, &desc) == 0, "atlas bound: not 0 for unknown channels");
+        desc.channels = 0;
+        views[0].width = views[0].height = 0xffffffffu;
+        views[1] = views[0];
+        CHECK(mlod_atlas_bound(views, 2, &desc) == 0, "atlas bound: not 0 for an atlas of 2^33 x 2^32 pixels");
+    }
+    printf("  atlas bounds: %u atlases, each bound what mlod_atlas_create allocated\n", exact);
+}
+
+int main(void)
+{
+    if (!scene_room(&room)) return 1;
+    room_tree = tu_build(&room, 20000, 5, MLOD_ATTR_CONE);
+    if (!room_tree) return 1;
+    make_views();
+    test_failed_updates();
+    test_build_bounds();
+    test_cut_bounds();
+    test_atlas_bounds();
+    mlod_tree_destroy(room_tree);
+    scene_free(&room);
+    return test_finish();
+}
