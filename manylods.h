@@ -1905,7 +1905,7 @@ static size_t mlod__build_peak(uint64_t held, uint64_t n, uint64_t tree)
     return peak > (uint64_t)(size_t)-1 ? (size_t)-1 : (size_t)peak;
 }
 
-MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes)
+MLOD__PUBLIC size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes)
 {
     uint64_t n = sample_count, held;
     if (n == 0 || n > MANYLODS_MAX_LEAVES) return 0;
@@ -1915,7 +1915,7 @@ MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triang
     return mlod__build_peak(held, n, mlod__tree_bytes(n, attributes, 1, triangle_count));
 }
 
-MANYLODS_DEF size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes)
+MLOD__PUBLIC size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes)
 {
     uint64_t n = point_count;
     if (n == 0) return 0;
@@ -3340,7 +3340,7 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
     return r;
 }
 
-MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
+MLOD__PUBLIC size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
 {
     double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v;
     double budget = (double)MLOD__ROUND_BUDGET;
@@ -3960,7 +3960,7 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
     return MLOD_OK;
 }
 
-MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc)
+MLOD__PUBLIC size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc)
 {
     mlod__atlas_layout L;
     return mlod__atlas_layout_of(views, view_count, desc, &L, NULL) == MLOD_OK ? L.bytes : 0;
