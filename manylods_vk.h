@@ -297,7 +297,10 @@ MANYLODS_VK_DEF void mlodvk_cut_destroy(mlodvk_context *context, mlodvk_cut *cut
 /* mlod_cut_update on the device: the same modes and parameters
    (params->parallel is ignored), the same cut.  Incremental and lazy start
    from the previous update of this cut with the same tree, else from the
-   root.  The views are uploaded with the call and kept for mlodvk_splat. */
+   root.  The views are uploaded with the call and kept for mlodvk_splat.
+   The parameters and every view are checked first, with mlod_cut_update's
+   codes and messages: a refused update changes nothing (the last cut, its
+   views buffer and the next splat stay as they were). */
 MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *context, mlodvk_cut *cut, const mlodvk_tree *vtree,
                                               const mlod_view *views, const mlod_cut_params *params,
                                               mlod_error *error);
@@ -8538,7 +8541,22 @@ static mlod_result mlodvk__cut_grow(mlodvk_context *ctx, mlodvk_cut *c, uint32_t
     return MLOD_OK;
 }
 
-/* Write the views' frames into the host-visible views buffer. */
+/* Check every view as mlod_cut_update does, with its message: a refused
+   update must not touch the views buffer, which the kept cut's next splat
+   reads. */
+static mlod_result mlodvk__check_views(const mlodvk_cut *c, const mlod_view *views, mlod_error *error)
+{
+    uint32_t v;
+    for (v = 0; v < c->view_count; v++) {
+        mlod_error detail;
+        mlod_result res = mlod_view_check(&views[v], &detail);
+        if (res != MLOD_OK) return mlodvk__fail(error, res, "view %u: %.160s", v, detail.message);
+    }
+    return MLOD_OK;
+}
+
+/* Write the views' frames into the host-visible views buffer; the views
+   passed mlodvk__check_views. */
 static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, mlod_error *error)
 {
     double *out = (double *)c->views.mapped;
@@ -8600,7 +8618,9 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
     uint32_t depth = 0, rounds_left, entries;
     uint64_t evaluated = 0, steps = 0;
     if (!ctx || !c || !t || !views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, cut, tree and views are needed");
+    /* every check before the first change: a refusal keeps the last cut and its views */
     if ((res = mlod_cut_params_check(params, error)) != MLOD_OK) return res;
+    if ((res = mlodvk__check_views(c, views, error)) != MLOD_OK) return res;
     if ((res = mlodvk__upload_views(c, views, error)) != MLOD_OK) return res;
     while (((uint64_t)1 << depth) < (uint64_t)t->node_count + 1) depth++;
     from_root = params->mode == MLOD_CUT_BASIC || !c->has_views || c->tree != t || c->tree_generation != t->generation ||

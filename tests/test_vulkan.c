@@ -481,6 +481,148 @@ static void test_refit_parity(void)
     scene_free(&s);
 }
 
+/* ------------------------------------------------------- refusals -- */
+
+/* The device views buffer of a cut (mlodvk_cut_get_buffers().views),
+   downloaded into bytes (8 * MLODVK__VIEW_DOUBLES per view). */
+static int download_views(mlodvk_cut *cut, uint32_t view_count, unsigned char *bytes)
+{
+    mlodvk__buffer src;
+    mlodvk__download_range range;
+    mlod_error e;
+    memset(&src, 0, sizeof src);
+    src.buffer = mlodvk_cut_get_buffers(cut).views;
+    range.src = &src;
+    range.size = 8 * MLODVK__VIEW_DOUBLES * (VkDeviceSize)view_count;
+    range.dst = bytes;
+    return mlodvk__download(context, &range, 1, &e) == MLOD_OK;
+}
+
+/* The depth, normal and colour of a device splat of the cut, downloaded. */
+static int splat_bytes(mlodvk_atlas *vatlas, mlodvk_tree *vtree, mlodvk_cut *cut, mlod_atlas *into)
+{
+    mlod_error e;
+    return mlodvk_splat(context, vatlas, vtree, cut, &e) == MLOD_OK &&
+           mlodvk_atlas_download(context, vatlas, into, &e) == MLOD_OK;
+}
+
+static int same_atlas(const mlod_atlas *a, const mlod_atlas *b)
+{
+    size_t pixels = (size_t)a->width * a->height;
+    return memcmp(a->depth, b->depth, pixels * sizeof(float)) == 0 &&
+           memcmp(a->normal, b->normal, 3 * pixels * sizeof(float)) == 0 &&
+           memcmp(a->color, b->color, 3 * pixels * sizeof(float)) == 0;
+}
+
+/* A refused mlodvk_cut_update changes nothing: for each kind of refusal
+   (a bad view at index k > 0, bad parameters), with views 0..k-1 of the
+   refused call unlike the kept ones, it returns the code mlod_cut_update
+   returns, and afterwards the device views buffer is unchanged byte for
+   byte, the next splat gives the same atlas bit for bit, and the next
+   incremental update still equals the CPU's. */
+static void test_refusals(void)
+{
+    enum { VIEWS = 8, BAD = 5 };
+    static const char *names[] = {"NaN position",      "width 0",       "kind 7",       "up parallel to forward",
+                                  "+inf forward",      "epsilon 0",     "epsilon NaN",  "lazy_steps 0",
+                                  "unknown mode",      "params NULL",   "views NULL"};
+    const int cases = (int)(sizeof names / sizeof names[0]);
+    scene_mesh s;
+    mlod_tree *tree = NULL;
+    mlodvk_tree *vtree = NULL;
+    mlod_cut *cpu = NULL;
+    mlodvk_cut *gpu = NULL;
+    mlodvk_atlas *vatlas = NULL;
+    mlod_atlas *before = NULL, *after = NULL;
+    mlod_view views[VIEWS], next[VIEWS];
+    mlod_atlas_desc ad;
+    mlod_cut_params p;
+    mlod_error e;
+    double c[3], R;
+    unsigned char views_before[8 * MLODVK__VIEW_DOUBLES * VIEWS], views_after[8 * MLODVK__VIEW_DOUBLES * VIEWS];
+    int k, ready = 1;
+    uint32_t v;
+    if (!scene_uv_sphere(&s, 1.0f, 12, 24)) {
+        CHECK(0, "refusals: scene_uv_sphere failed");
+        return;
+    }
+    tree = tu_build(&s, 3000, 21, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    tu_bounds(&s, c, &R);
+    make_views(77, -1, c, R, views, VIEWS);
+    memset(&p, 0, sizeof p);
+    p.mode = MLOD_CUT_BASIC;
+    p.epsilon = 1.0f;
+    p.lazy_steps = 1;
+    memset(&ad, 0, sizeof ad);
+    ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
+    if (!tree || mlodvk_tree_upload(context, tree, &vtree, &e) != MLOD_OK ||
+        mlod_atlas_create(views, VIEWS, &ad, NULL, &before, &e) != MLOD_OK ||
+        mlod_atlas_create(views, VIEWS, &ad, NULL, &after, &e) != MLOD_OK ||
+        mlodvk_atlas_create(context, before, &vatlas, &e) != MLOD_OK || mlod_cut_create(VIEWS, NULL, &cpu, &e) != MLOD_OK ||
+        mlodvk_cut_create(context, VIEWS, 0, &gpu, &e) != MLOD_OK) {
+        CHECK(0, "refusals: set-up failed: %s", e.message);
+        ready = 0;
+    }
+    for (k = 0; ready && k < cases; k++) {
+        mlod_cut_params q = p;
+        const mlod_cut_params *qp = &q;
+        const mlod_view *vp = next;
+        mlod_result want, got;
+        mlod_error ce;
+        /* each case from the same accepted update */
+        if (mlod_cut_update(cpu, tree, views, &p, &e) != MLOD_OK || mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK ||
+            !splat_bytes(vatlas, vtree, gpu, before) || !download_views(gpu, VIEWS, views_before)) {
+            CHECK(0, "refusals, %s: the accepted update before it failed: %s", names[k], e.message);
+            ready = 0;
+            break;
+        }
+        memcpy(next, views, sizeof next);
+        move_views(next, VIEWS, 0.3); /* the refused frame's views differ from the kept ones */
+        switch (k) {
+        case 0: next[BAD].position[1] = (float)NAN; break;
+        case 1: next[BAD].width = 0; break;
+        case 2: next[BAD].kind = (mlod_view_kind)7; break;
+        case 3: memcpy(next[BAD].up, next[BAD].forward, sizeof next[BAD].up); break;
+        case 4: next[BAD].forward[2] = (float)INFINITY; break;
+        case 5: q.epsilon = 0.0f; break;
+        case 6: q.epsilon = (float)NAN; break;
+        case 7: q.mode = MLOD_CUT_LAZY; q.lazy_steps = 0; break;
+        case 8: q.mode = (mlod_cut_mode)9; break;
+        case 9: qp = NULL; break;
+        default: vp = NULL; break;
+        }
+        q.mode = k == 7 || k == 8 ? q.mode : MLOD_CUT_INCREMENTAL;
+        want = mlod_cut_update(cpu, tree, vp, qp, &ce);
+        got = mlodvk_cut_update(context, gpu, vtree, vp, qp, &e);
+        CHECK(want != MLOD_OK && got == want, "refusals, %s: the device returned %s, the CPU %s", names[k],
+              mlod_result_name(got), mlod_result_name(want));
+        CHECK(download_views(gpu, VIEWS, views_after) && memcmp(views_before, views_after, sizeof views_before) == 0,
+              "refusals, %s: the device views buffer changed", names[k]);
+        CHECK(splat_bytes(vatlas, vtree, gpu, after) && same_atlas(before, after),
+              "refusals, %s: the next splat differs from the splat before the refusal", names[k]);
+        CHECK(compare_cuts(gpu, cpu, VIEWS, names[k]) == 0, "refusals, %s: the kept cut differs from the CPU's", names[k]);
+        check_validation("refusals");
+    }
+    /* and the next accepted incremental update continues from the kept cut */
+    if (ready) {
+        for (v = 0; v < VIEWS; v++) next[v] = views[v];
+        move_views(next, VIEWS, 0.05);
+        p.mode = MLOD_CUT_INCREMENTAL;
+        CHECK(mlod_cut_update(cpu, tree, next, &p, &e) == MLOD_OK && mlodvk_cut_update(context, gpu, vtree, next, &p, &e) == MLOD_OK &&
+                  compare_cuts(gpu, cpu, VIEWS, "after the refusals") == 0,
+              "refusals: the incremental update after them differs from the CPU's");
+    }
+    mlodvk_atlas_destroy(context, vatlas);
+    mlodvk_cut_destroy(context, gpu);
+    mlodvk_tree_destroy(context, vtree);
+    mlod_cut_destroy(cpu);
+    mlod_atlas_destroy(before);
+    mlod_atlas_destroy(after);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+    check_validation("refusals");
+}
+
 /* VkAllocationCallbacks that count what is outstanding.  Each block keeps
    its offset from the malloc'd start and its size just before it. */
 static long outstanding, allocations;
@@ -761,6 +903,7 @@ int main(void)
     check_validation("device and context creation");
     test_validation_reports();
     test_arguments();
+    test_refusals();
     {
         double t0 = seconds(), t1, t2, t3;
         test_cut_parity();
