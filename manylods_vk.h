@@ -163,7 +163,7 @@ typedef struct mlodvk_context_desc {
     uint32_t queue_family;   /* with VK_QUEUE_COMPUTE_BIT */
     VkQueue queue;
     const VkAllocationCallbacks *vk_allocator; /* optional, for every Vulkan object */
-    const mlod_allocator *allocator;           /* optional, for host memory */
+    const mlod_allocator *allocator;           /* optional, for host memory; NULL: mlod_default_allocator() */
 } mlodvk_context_desc;
 
 typedef struct mlodvk_context mlodvk_context;
@@ -379,7 +379,6 @@ MANYLODS_VK_DEF mlodvk_atlas_buffers mlodvk_atlas_get_buffers(const mlodvk_atlas
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 /* BEGIN GENERATED SPIR-V (make shaders) */
@@ -7206,18 +7205,6 @@ static mlod_result mlodvk__vk_fail(mlod_error *error, VkResult result, const cha
 
 /* --------------------------------------------------------- host memory -- */
 
-static void *mlodvk__default_alloc(void *user, size_t size)
-{
-    (void)user;
-    return malloc(size);
-}
-
-static void mlodvk__default_free(void *user, void *p)
-{
-    (void)user;
-    free(p);
-}
-
 static void *mlodvk__alloc(const mlod_allocator *a, size_t count, size_t size)
 {
     if (size && count > (size_t)-1 / size) return NULL;
@@ -7755,13 +7742,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_context_create(const mlodvk_context_desc *des
         return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "instance, physical_device, device and queue are needed");
     if (desc->allocator && (desc->allocator->alloc == NULL) != (desc->allocator->free == NULL))
         return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "allocator: alloc and free go together");
-    if (desc->allocator && desc->allocator->alloc) {
-        a = *desc->allocator;
-    } else {
-        a.alloc = mlodvk__default_alloc;
-        a.free = mlodvk__default_free;
-        a.user = NULL;
-    }
+    /* no allocator: manylods.h's default, MANYLODS_MALLOC/FREE where defined */
+    a = desc->allocator && desc->allocator->alloc ? *desc->allocator : mlod_default_allocator();
     ctx = (mlodvk_context *)mlodvk__alloc(&a, 1, sizeof *ctx);
     if (!ctx) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the context");
     memset(ctx, 0, sizeof *ctx);

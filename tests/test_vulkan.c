@@ -13,6 +13,25 @@
    (0 passed, 0 failed) - unless MANYLODS_REQUIRE_VULKAN=1 (CI), which
    turns the skip into a failure. */
 #define _POSIX_C_SOURCE 200112L /* posix_memalign */
+#include <stdlib.h>
+
+/* MANYLODS_MALLOC/FREE count the blocks: the Vulkan objects' host memory
+   must come from them when the context is given no allocator. */
+static long default_blocks, default_live;
+static void *counted_malloc(size_t bytes)
+{
+    void *p = malloc(bytes);
+    default_blocks += p != NULL;
+    default_live += p != NULL;
+    return p;
+}
+static void counted_free(void *p)
+{
+    default_live -= p != NULL;
+    free(p);
+}
+#define MANYLODS_MALLOC(size, user) ((void)(user), counted_malloc(size))
+#define MANYLODS_FREE(pointer, user) ((void)(user), counted_free(pointer))
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
 #define MANYLODS_VK_IMPLEMENTATION
@@ -858,6 +877,50 @@ static void test_validation_reports(void)
     validation_seen = device.validation_messages; /* expected: not a failure */
 }
 
+/* A context given no allocator takes its host memory from manylods.h's
+   default, MANYLODS_MALLOC/FREE (counted above), and gives it all back. */
+static void test_default_allocator(void)
+{
+    mlodvk_context_desc desc = mlodvk_device_context_desc(&device);
+    mlodvk_context *ctx = NULL;
+    mlodvk_cut *cut = NULL;
+    mlodvk_tree *vtree = NULL;
+    mlod_tree *tree;
+    scene_mesh s;
+    mlod_view views[4];
+    mlod_cut_params p;
+    mlod_error e;
+    double c[3], R;
+    long blocks, live;
+    if (!scene_uv_sphere(&s, 1.0f, 8, 16)) {
+        CHECK(0, "default allocator: scene_uv_sphere failed");
+        return;
+    }
+    tree = tu_build(&s, 500, 5, 0);
+    tu_bounds(&s, c, &R);
+    make_views(9, -1, c, R, views, 4);
+    memset(&p, 0, sizeof p);
+    p.epsilon = 1.0f;
+    desc.allocator = NULL;
+    blocks = default_blocks;
+    live = default_live;
+    CHECK(tree && mlodvk_context_create(&desc, &ctx, &e) == MLOD_OK && mlodvk_tree_upload(ctx, tree, &vtree, &e) == MLOD_OK &&
+              mlodvk_cut_create(ctx, 4, 0, &cut, &e) == MLOD_OK && mlodvk_cut_update(ctx, cut, vtree, views, &p, &e) == MLOD_OK &&
+              mlodvk_cut_download(ctx, cut, &e) == MLOD_OK,
+          "default allocator: the pipeline failed: %s", e.message);
+    /* the context, the tree, the cut, its per-view arrays, the downloaded lists */
+    CHECK(default_blocks - blocks >= 6, "default allocator: MANYLODS_MALLOC gave %ld blocks to the Vulkan objects",
+          default_blocks - blocks);
+    mlodvk_cut_destroy(ctx, cut);
+    mlodvk_tree_destroy(ctx, vtree);
+    mlodvk_context_destroy(ctx);
+    CHECK(default_live == live, "default allocator: %ld blocks of MANYLODS_MALLOC not given back to MANYLODS_FREE",
+          default_live - live);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+    check_validation("default allocator");
+}
+
 /* Arguments the API refuses. */
 static void test_arguments(void)
 {
@@ -904,6 +967,7 @@ int main(void)
     test_validation_reports();
     test_arguments();
     test_refusals();
+    test_default_allocator();
     {
         double t0 = seconds(), t1, t2, t3;
         test_cut_parity();
