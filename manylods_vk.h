@@ -348,7 +348,8 @@ MANYLODS_VK_DEF void mlodvk_atlas_destroy(mlodvk_context *context, mlodvk_atlas 
 
 /* mlod_splat on the device: clear, then draw the cut's drawn entries (with
    the views of its last update) into the atlas; the same pixels as the
-   CPU. */
+   CPU.  MLOD_ERROR_MISMATCH, as mlod_splat, when a view's tile size is not
+   the atlas's. */
 MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *context, mlodvk_atlas *vatlas, const mlodvk_tree *vtree,
                                          const mlodvk_cut *cut, mlod_error *error);
 
@@ -7160,6 +7161,7 @@ struct mlodvk_cut {
 struct mlodvk_atlas {
     uint32_t width, height, view_count, channels;
     float disc_scale;
+    uint32_t *host_tiles; /* the layout's tiles: x, y, width, height per view */
     mlodvk__buffer keys, depth, normal, color, tiles;
     VkDescriptorPool pool;
     VkDescriptorSet set;
@@ -8789,6 +8791,7 @@ MANYLODS_VK_DEF void mlodvk_atlas_destroy(mlodvk_context *ctx, mlodvk_atlas *a)
     mlodvk__buffer_destroy(ctx, &a->color);
     mlodvk__buffer_destroy(ctx, &a->tiles);
     if (a->pool) ctx->vk.DestroyDescriptorPool(ctx->device, a->pool, ctx->vk_allocator);
+    mlodvk__free(&ctx->allocator, a->host_tiles);
     mlodvk__free(&ctx->allocator, a);
 }
 
@@ -8813,6 +8816,12 @@ MANYLODS_VK_DEF mlod_result mlodvk_atlas_create(mlodvk_context *ctx, const mlod_
     a->view_count = layout->view_count;
     a->channels = layout->channels;
     a->disc_scale = layout->disc_scale == 0.0f ? 1.0f : layout->disc_scale;
+    a->host_tiles = (uint32_t *)mlodvk__alloc(&ctx->allocator, 4 * (size_t)layout->view_count, sizeof(uint32_t));
+    if (!a->host_tiles) {
+        mlodvk_atlas_destroy(ctx, a);
+        return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the tiles of %u views", layout->view_count);
+    }
+    memcpy(a->host_tiles, layout->tiles, 4 * sizeof(uint32_t) * (size_t)layout->view_count);
     res = mlodvk__buffer_create(ctx, 8 * pixels, usage, 0, &a->keys, error);
     if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * pixels, usage, 0, &a->depth, error);
     if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, layout->normal ? 12 * pixels : 16, usage, 0, &a->normal, error);
@@ -8836,6 +8845,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, c
     mlodvk__splat_push push;
     VkBuffer b[MLODVK__SPLAT_BINDINGS];
     mlod_result res;
+    uint32_t v;
     if (!ctx || !a || !t || !c) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, atlas, tree and cut are needed");
     if (!c->has_views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the cut has no successful update");
     if (c->tree != t || c->tree_generation != t->generation)
@@ -8846,6 +8856,13 @@ MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, c
         return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has normals and the tree no cones");
     if ((a->channels & 2u) && !t->has_colors)
         return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the tree none");
+    for (v = 0; v < c->view_count; v++) { /* as mlod_splat: the views' tiles are the atlas's */
+        const double *d = (const double *)c->views.mapped + (size_t)v * MLODVK__VIEW_DOUBLES;
+        const uint32_t *tile = a->host_tiles + 4 * (size_t)v;
+        if (d[13] != (double)tile[2] || d[14] != (double)tile[3])
+            return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "view %u has a %ux%u tile, the atlas was made for %ux%u", v,
+                                (uint32_t)d[13], (uint32_t)d[14], tile[2], tile[3]);
+    }
     b[0] = t->spheres.buffer;
     b[1] = t->cones.buffer;
     b[2] = c->views.buffer;

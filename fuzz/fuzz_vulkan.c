@@ -14,8 +14,9 @@
    - the device returns the code the CPU returns, error.code equal to it and
      a non-empty message on failure;
    - accepted: the downloaded cut equals the CPU's node for node and status
-     for status, and, where the atlas was made for these tiles, the device
-     splat equals mlod_splat's bit for bit (depth, normal, colour);
+     for status, and the device splat equals mlod_splat's bit for bit
+     (depth, normal, colour), or both refuse views whose tiles are not the
+     atlas's (MLOD_ERROR_MISMATCH);
    - refused: nothing changed - the device views buffer
      (mlodvk_cut_get_buffers().views, downloaded) is the same byte for byte,
      the cut downloads the same, and the next splat gives the same atlas bit
@@ -415,8 +416,12 @@ static void run_update(fz_run *run, const mlod_view *views, const mlod_cut_param
                        3 * sizeof(float) * run->gpu_atlas->width * run->gpu_atlas->height);
                 run->splat_kept = 1;
             } else {
-                /* tiles that moved off the atlas's layout: mlod_splat refuses (MISMATCH) */
+                /* tiles that moved off the atlas's layout: both refuse */
                 FZ_REQUIRE(cs == MLOD_ERROR_MISMATCH, "%s: mlod_splat of an accepted cut: %s", what, ce.message);
+                got = mlodvk_splat(fz_context, run->vatlas, fz_vtree, run->gpu, &ge);
+                require_error(got, &ge, "mlodvk_splat");
+                FZ_REQUIRE(got == MLOD_ERROR_MISMATCH, "%s: mlod_splat refused another tile size, mlodvk_splat returned %s",
+                           what, mlod_result_name(got));
             }
         }
         return;
@@ -437,6 +442,10 @@ static void run_update(fz_run *run, const mlod_view *views, const mlod_cut_param
                        mlodvk_atlas_download(fz_context, run->vatlas, run->gpu_atlas, &ge) == MLOD_OK,
                    "%s: the splat after a refusal failed: %s", what, ge.message);
         FZ_REQUIRE(same_atlas(run->kept_atlas, run->gpu_atlas), "%s: a refused update changed the next splat", what);
+    } else if (run->vatlas) { /* the kept views' tiles are not the atlas's: still refused */
+        FZ_REQUIRE(mlodvk_splat(fz_context, run->vatlas, fz_vtree, run->gpu, &ge) == MLOD_ERROR_MISMATCH,
+                   "%s: after a refusal the splat of the kept cut returned %s, before it MLOD_ERROR_MISMATCH", what,
+                   mlod_result_name(ge.code));
     }
 }
 

@@ -538,7 +538,8 @@ static int same_atlas(const mlod_atlas *a, const mlod_atlas *b)
    refused call unlike the kept ones, it returns the code mlod_cut_update
    returns, and afterwards the device views buffer is unchanged byte for
    byte, the next splat gives the same atlas bit for bit, and the next
-   incremental update still equals the CPU's. */
+   incremental update still equals the CPU's.  A splat with views whose
+   tiles are not the atlas's is refused by both. */
 static void test_refusals(void)
 {
     enum { VIEWS = 8, BAD = 5 };
@@ -630,6 +631,14 @@ static void test_refusals(void)
         CHECK(mlod_cut_update(cpu, tree, next, &p, &e) == MLOD_OK && mlodvk_cut_update(context, gpu, vtree, next, &p, &e) == MLOD_OK &&
                   compare_cuts(gpu, cpu, VIEWS, "after the refusals") == 0,
               "refusals: the incremental update after them differs from the CPU's");
+        /* views whose tiles are not the atlas's: both splats refuse */
+        next[3].width += 1;
+        CHECK(mlod_cut_update(cpu, tree, next, &p, &e) == MLOD_OK && mlodvk_cut_update(context, gpu, vtree, next, &p, &e) == MLOD_OK,
+              "refusals: an update with another tile size failed: %s", e.message);
+        CHECK(mlod_splat(after, tree, cpu, next, NULL, &e) == MLOD_ERROR_MISMATCH &&
+                  mlodvk_splat(context, vatlas, vtree, gpu, &e) == MLOD_ERROR_MISMATCH,
+              "refusals: a splat whose view tile is not the atlas's is not refused as MLOD_ERROR_MISMATCH (%s)",
+              mlod_result_name(e.code));
     }
     mlodvk_atlas_destroy(context, vatlas);
     mlodvk_cut_destroy(context, gpu);
