@@ -297,6 +297,11 @@ typedef struct mlod_allocator {
     void *user;
 } mlod_allocator;
 
+/* The allocator used where none is given: MANYLODS_MALLOC/FREE as defined
+   where MANYLODS_IMPLEMENTATION is (else malloc/free), user NULL.  For
+   companions (manylods_vk.h) and wrappers.  Pure, thread-safe. */
+MANYLODS_DEF mlod_allocator mlod_default_allocator(void);
+
 /* A parallel-for: run(user, count, task, context) must call
    task(context, i) once for every i in [0, count), from any threads in any
    order, and return when all calls have returned.  Tasks never allocate and
@@ -895,14 +900,19 @@ static mlod_result mlod__succeed(mlod_error *error)
 static void *mlod__default_alloc(void *user, size_t bytes) { return MANYLODS_MALLOC(bytes, user); }
 static void mlod__default_free(void *user, void *pointer) { MANYLODS_FREE(pointer, user); }
 
-static mlod_allocator mlod__allocator(const mlod_allocator *given)
+MANYLODS_DEF mlod_allocator mlod_default_allocator(void)
 {
     mlod_allocator a;
-    if (given && given->alloc && given->free) return *given;
     a.alloc = mlod__default_alloc;
     a.free = mlod__default_free;
     a.user = NULL;
     return a;
+}
+
+static mlod_allocator mlod__allocator(const mlod_allocator *given)
+{
+    if (given && given->alloc && given->free) return *given;
+    return mlod_default_allocator();
 }
 
 /* count * size bytes, or NULL when that overflows or the allocator fails;

@@ -163,7 +163,7 @@ typedef struct mlodvk_context_desc {
     uint32_t queue_family;   /* with VK_QUEUE_COMPUTE_BIT */
     VkQueue queue;
     const VkAllocationCallbacks *vk_allocator; /* optional, for every Vulkan object */
-    const mlod_allocator *allocator;           /* optional, for host memory */
+    const mlod_allocator *allocator;           /* optional, for host memory; NULL: mlod_default_allocator() */
 } mlodvk_context_desc;
 
 typedef struct mlodvk_context mlodvk_context;
@@ -297,7 +297,10 @@ MANYLODS_VK_DEF void mlodvk_cut_destroy(mlodvk_context *context, mlodvk_cut *cut
 /* mlod_cut_update on the device: the same modes and parameters
    (params->parallel is ignored), the same cut.  Incremental and lazy start
    from the previous update of this cut with the same tree, else from the
-   root.  The views are uploaded with the call and kept for mlodvk_splat. */
+   root.  The views are uploaded with the call and kept for mlodvk_splat.
+   The parameters and every view are checked first, with mlod_cut_update's
+   codes and messages: a refused update changes nothing (the last cut, its
+   views buffer and the next splat stay as they were). */
 MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *context, mlodvk_cut *cut, const mlodvk_tree *vtree,
                                               const mlod_view *views, const mlod_cut_params *params,
                                               mlod_error *error);
@@ -345,7 +348,8 @@ MANYLODS_VK_DEF void mlodvk_atlas_destroy(mlodvk_context *context, mlodvk_atlas 
 
 /* mlod_splat on the device: clear, then draw the cut's drawn entries (with
    the views of its last update) into the atlas; the same pixels as the
-   CPU. */
+   CPU.  MLOD_ERROR_MISMATCH, as mlod_splat, when a view's tile size is not
+   the atlas's. */
 MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *context, mlodvk_atlas *vatlas, const mlodvk_tree *vtree,
                                          const mlodvk_cut *cut, mlod_error *error);
 
@@ -376,7 +380,6 @@ MANYLODS_VK_DEF mlodvk_atlas_buffers mlodvk_atlas_get_buffers(const mlodvk_atlas
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 /* BEGIN GENERATED SPIR-V (make shaders) */
@@ -7158,6 +7161,7 @@ struct mlodvk_cut {
 struct mlodvk_atlas {
     uint32_t width, height, view_count, channels;
     float disc_scale;
+    uint32_t *host_tiles; /* the layout's tiles: x, y, width, height per view */
     mlodvk__buffer keys, depth, normal, color, tiles;
     VkDescriptorPool pool;
     VkDescriptorSet set;
@@ -7202,18 +7206,6 @@ static mlod_result mlodvk__vk_fail(mlod_error *error, VkResult result, const cha
     } while (0)
 
 /* --------------------------------------------------------- host memory -- */
-
-static void *mlodvk__default_alloc(void *user, size_t size)
-{
-    (void)user;
-    return malloc(size);
-}
-
-static void mlodvk__default_free(void *user, void *p)
-{
-    (void)user;
-    free(p);
-}
 
 static void *mlodvk__alloc(const mlod_allocator *a, size_t count, size_t size)
 {
@@ -7752,13 +7744,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_context_create(const mlodvk_context_desc *des
         return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "instance, physical_device, device and queue are needed");
     if (desc->allocator && (desc->allocator->alloc == NULL) != (desc->allocator->free == NULL))
         return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "allocator: alloc and free go together");
-    if (desc->allocator && desc->allocator->alloc) {
-        a = *desc->allocator;
-    } else {
-        a.alloc = mlodvk__default_alloc;
-        a.free = mlodvk__default_free;
-        a.user = NULL;
-    }
+    /* no allocator: manylods.h's default, MANYLODS_MALLOC/FREE where defined */
+    a = desc->allocator && desc->allocator->alloc ? *desc->allocator : mlod_default_allocator();
     ctx = (mlodvk_context *)mlodvk__alloc(&a, 1, sizeof *ctx);
     if (!ctx) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the context");
     memset(ctx, 0, sizeof *ctx);
@@ -8538,7 +8525,22 @@ static mlod_result mlodvk__cut_grow(mlodvk_context *ctx, mlodvk_cut *c, uint32_t
     return MLOD_OK;
 }
 
-/* Write the views' frames into the host-visible views buffer. */
+/* Check every view as mlod_cut_update does, with its message: a refused
+   update must not touch the views buffer, which the kept cut's next splat
+   reads. */
+static mlod_result mlodvk__check_views(const mlodvk_cut *c, const mlod_view *views, mlod_error *error)
+{
+    uint32_t v;
+    for (v = 0; v < c->view_count; v++) {
+        mlod_error detail;
+        mlod_result res = mlod_view_check(&views[v], &detail);
+        if (res != MLOD_OK) return mlodvk__fail(error, res, "view %u: %.160s", v, detail.message);
+    }
+    return MLOD_OK;
+}
+
+/* Write the views' frames into the host-visible views buffer; the views
+   passed mlodvk__check_views. */
 static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, mlod_error *error)
 {
     double *out = (double *)c->views.mapped;
@@ -8600,7 +8602,9 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
     uint32_t depth = 0, rounds_left, entries;
     uint64_t evaluated = 0, steps = 0;
     if (!ctx || !c || !t || !views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, cut, tree and views are needed");
+    /* every check before the first change: a refusal keeps the last cut and its views */
     if ((res = mlod_cut_params_check(params, error)) != MLOD_OK) return res;
+    if ((res = mlodvk__check_views(c, views, error)) != MLOD_OK) return res;
     if ((res = mlodvk__upload_views(c, views, error)) != MLOD_OK) return res;
     while (((uint64_t)1 << depth) < (uint64_t)t->node_count + 1) depth++;
     from_root = params->mode == MLOD_CUT_BASIC || !c->has_views || c->tree != t || c->tree_generation != t->generation ||
@@ -8787,6 +8791,7 @@ MANYLODS_VK_DEF void mlodvk_atlas_destroy(mlodvk_context *ctx, mlodvk_atlas *a)
     mlodvk__buffer_destroy(ctx, &a->color);
     mlodvk__buffer_destroy(ctx, &a->tiles);
     if (a->pool) ctx->vk.DestroyDescriptorPool(ctx->device, a->pool, ctx->vk_allocator);
+    mlodvk__free(&ctx->allocator, a->host_tiles);
     mlodvk__free(&ctx->allocator, a);
 }
 
@@ -8811,6 +8816,12 @@ MANYLODS_VK_DEF mlod_result mlodvk_atlas_create(mlodvk_context *ctx, const mlod_
     a->view_count = layout->view_count;
     a->channels = layout->channels;
     a->disc_scale = layout->disc_scale == 0.0f ? 1.0f : layout->disc_scale;
+    a->host_tiles = (uint32_t *)mlodvk__alloc(&ctx->allocator, 4 * (size_t)layout->view_count, sizeof(uint32_t));
+    if (!a->host_tiles) {
+        mlodvk_atlas_destroy(ctx, a);
+        return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the tiles of %u views", layout->view_count);
+    }
+    memcpy(a->host_tiles, layout->tiles, 4 * sizeof(uint32_t) * (size_t)layout->view_count);
     res = mlodvk__buffer_create(ctx, 8 * pixels, usage, 0, &a->keys, error);
     if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * pixels, usage, 0, &a->depth, error);
     if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, layout->normal ? 12 * pixels : 16, usage, 0, &a->normal, error);
@@ -8834,6 +8845,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, c
     mlodvk__splat_push push;
     VkBuffer b[MLODVK__SPLAT_BINDINGS];
     mlod_result res;
+    uint32_t v;
     if (!ctx || !a || !t || !c) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, atlas, tree and cut are needed");
     if (!c->has_views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the cut has no successful update");
     if (c->tree != t || c->tree_generation != t->generation)
@@ -8844,6 +8856,13 @@ MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, c
         return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has normals and the tree no cones");
     if ((a->channels & 2u) && !t->has_colors)
         return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the tree none");
+    for (v = 0; v < c->view_count; v++) { /* as mlod_splat: the views' tiles are the atlas's */
+        const double *d = (const double *)c->views.mapped + (size_t)v * MLODVK__VIEW_DOUBLES;
+        const uint32_t *tile = a->host_tiles + 4 * (size_t)v;
+        if (d[13] != (double)tile[2] || d[14] != (double)tile[3])
+            return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "view %u has a %ux%u tile, the atlas was made for %ux%u", v,
+                                (uint32_t)d[13], (uint32_t)d[14], tile[2], tile[3]);
+    }
     b[0] = t->spheres.buffer;
     b[1] = t->cones.buffer;
     b[2] = c->views.buffer;
