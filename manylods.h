@@ -900,7 +900,7 @@ static mlod_result mlod__succeed(mlod_error *error)
 static void *mlod__default_alloc(void *user, size_t bytes) { return MANYLODS_MALLOC(bytes, user); }
 static void mlod__default_free(void *user, void *pointer) { MANYLODS_FREE(pointer, user); }
 
-MANYLODS_DEF mlod_allocator mlod_default_allocator(void)
+MLOD__PUBLIC mlod_allocator mlod_default_allocator(void)
 {
     mlod_allocator a;
     a.alloc = mlod__default_alloc;
