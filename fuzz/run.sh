@@ -74,7 +74,14 @@ if [ -d "$corpus" ]; then
     find "$corpus" -maxdepth 1 -type f -exec cp {} "$work/corpus/" \; || fail "cannot copy $corpus"
 fi
 seeds=$(find "$work/corpus" -type f | wc -l)
-source_flags=$(sed -n 's/.*FUZZ_FLAGS: *\(-.*\)$/\1/p' "fuzz/fuzz_$name.c" 2>/dev/null | head -n 1)
+# the harness's own flags: the words of its "FUZZ_FLAGS:" line that look
+# like -name=value (so a comment's closing */ is not taken for a path)
+source_flags=""
+for word in $(sed -n 's/.*FUZZ_FLAGS://p' "fuzz/fuzz_$name.c" 2>/dev/null | head -n 1 | tr -c 'A-Za-z0-9_=.:/-' ' '); do
+    case $word in
+    -[a-z]*=*) source_flags="$source_flags $word" ;;
+    esac
+done
 
 echo "fuzzing $fuzzer for ${seconds}s from $seeds seeds"
 # shellcheck disable=SC2086
