@@ -14,11 +14,12 @@
 #   make test-fast   only the tests built with gcc -O2
 #   make tsan        only the threaded tests under ThreadSanitizer (TSAN_TESTS)
 #   make matrix      only the compile matrix (tests/compile/matrix.sh)
-#   make fuzz        the libFuzzer harness (fuzz/fuzz_pipeline.c, needs clang's
-#                    libFuzzer: libclang-rt-14-dev) on a copy of fuzz/corpus/
-#                    for FUZZ_SECONDS (60) after replaying fuzz/crashes/; ends
-#                    with "1 passed, 0 failed" or "0 passed, 1 failed"
-#   make fuzz-corpus regenerate fuzz/corpus/ with fuzz/make_corpus.c
+#   make fuzz        every libFuzzer harness fuzz/fuzz_NAME.c (needs clang's
+#                    libFuzzer: libclang-rt-14-dev): replays each
+#                    fuzz/crashes/NAME/, then fuzzes each on a copy of
+#                    fuzz/corpus/NAME/ for its share of FUZZ_SECONDS (60 in
+#                    all); ends with "N passed, M failed" counting harnesses
+#   make fuzz-corpus regenerate fuzz/corpus/pipeline/ with fuzz/make_corpus.c
 #   make bench       the benchmark (bench/bench.c, needs Embree 3: Debian's
 #                    libembree-dev); prints its tables and writes
 #                    docs/BENCHMARKS.md, docs/bench.csv, docs/bench.svg
@@ -54,6 +55,11 @@ TSAN_CFLAGS := -std=c99 -fsanitize=thread -g -O1 $(WARNINGS) -I. $(CFLAGS)
 # tripled the time per input, and the harness reads its fields through
 # modular arithmetic that comparison hints do not help with.
 FUZZ_SECONDS ?= 60
+FUZZ_HARNESSES := $(patsubst fuzz/fuzz_%.c,%,$(sort $(wildcard fuzz/fuzz_*.c)))
+FUZZ_PROGRAMS  := $(FUZZ_HARNESSES:%=$(BUILD)/fuzz/fuzz_%)
+# Every harness links the Vulkan loader where there is one (the Vulkan
+# harness needs it; without it that harness fails to build and counts failed).
+FUZZ_LDLIBS     = -lm -pthread $(if $(filter 1,$(HAVE_VULKAN)),$(VULKAN_LIBS))
 FUZZ_CFLAGS  := -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
                 -fno-sanitize-coverage=trace-cmp $(WARNINGS) -I. $(CFLAGS)
 EXAMPLE_CFLAGS := -std=c99 -O2 $(WARNINGS) $(CFLAGS)
@@ -192,14 +198,16 @@ tsan:
 matrix:
 	$(Q)tests/compile/matrix.sh
 
-# Not part of `make test` (it takes FUZZ_SECONDS); .ci/run calls it.
+# Not part of `make test` (it takes FUZZ_SECONDS); .ci/run calls it.  Every
+# fuzz/fuzz_NAME.c is a harness (seeds in fuzz/corpus/NAME/, regression
+# inputs in fuzz/crashes/NAME/); FUZZ_SECONDS is split evenly among them.
 fuzz:
-	-$(Q)$(MAKE) --no-print-directory -s $(BUILD)/fuzz/fuzz_pipeline
-	$(Q)fuzz/run.sh $(BUILD)/fuzz/fuzz_pipeline $(FUZZ_SECONDS) $(BUILD)/fuzz
+	-$(Q)$(MAKE) --no-print-directory -s -k $(FUZZ_PROGRAMS)
+	$(Q)fuzz/run_all.sh $(BUILD)/fuzz $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
 
 fuzz-corpus: $(BUILD)/fuzz/make_corpus
-	$(Q)rm -f fuzz/corpus/seed-*
-	$(Q)mkdir -p fuzz/corpus && $(BUILD)/fuzz/make_corpus fuzz/corpus
+	$(Q)rm -f fuzz/corpus/pipeline/seed-*
+	$(Q)mkdir -p fuzz/corpus/pipeline && $(BUILD)/fuzz/make_corpus fuzz/corpus/pipeline
 
 test-programs: $(GCC_TESTS) $(SAN_TESTS) $(TSAN_PROGRAMS) $(BUILD)/examples/minimal $(BUILD)/bench/selftest \
                $(EXAMPLES) $(BUILD)/examples/check_examples \
@@ -221,10 +229,10 @@ $(BUILD)/tsan/%: tests/%.c $(HEADERS)
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CLANG) $(TSAN_CFLAGS) $< -o $@ $(LDLIBS)
 
-$(BUILD)/fuzz/fuzz_pipeline: fuzz/fuzz_pipeline.c manylods.h tests/exact.h
+$(FUZZ_PROGRAMS): $(BUILD)/fuzz/fuzz_%: fuzz/fuzz_%.c $(HEADERS) manylods_vk.h
 	$(say) CLANG $@
 	$(Q)mkdir -p $(@D) && rm -f $@
-	$(Q)$(CLANG) $(FUZZ_CFLAGS) $< -o $@ -lm
+	$(Q)$(CLANG) $(FUZZ_CFLAGS) $< -o $@ $(FUZZ_LDLIBS)
 
 $(BUILD)/fuzz/make_corpus: fuzz/make_corpus.c
 	$(say) CC $@

@@ -319,8 +319,10 @@ typedef int mlod_progress_fn(void *user, float fraction);
 /* ------------------------------------------------------------------ input */
 
 /* A triangle mesh.  Positions: 3 floats per vertex, position_stride bytes
-   apart (0 = tightly packed).  Normals and colours are optional (NULL),
-   per vertex, 3 floats each (colours are linear RGB, any range).
+   apart (0 = tightly packed); every stride is 0 or a multiple of
+   sizeof(float) of at least 3 floats (else MLOD_ERROR_INVALID_ARGUMENT).
+   Normals and colours are optional (NULL), per vertex, 3 floats each
+   (colours are linear RGB, any range), strided likewise.
    index_count is a multiple of 3; every index < vertex_count. */
 typedef struct mlod_mesh {
     const float *positions;
@@ -337,7 +339,9 @@ typedef struct mlod_mesh {
 /* A point cloud: each point becomes one leaf.  Normals, radii and colours
    are optional (NULL); normals only matter for cones (without them a leaf's
    cone is the full sphere); radii are world units >= 0, and without them a
-   radius is estimated from the local density (see mlod_build_points). */
+   radius is estimated from the local density (see mlod_build_points).
+   Strides as in mlod_mesh; radius_stride: 0 (packed) or a multiple of
+   sizeof(float). */
 typedef struct mlod_points {
     const float *positions;
     size_t position_stride;
@@ -1332,8 +1336,11 @@ static void mlod__merge_nodes(mlod_tree *tree, uint32_t first, uint32_t n)
 
 MLOD__PUBLIC int mlod_tree_depth_nodes(uint32_t leaf_count, uint32_t depth, uint32_t *first, uint32_t *last)
 {
-    uint64_t lo = ((uint64_t)1 << depth) - 1, hi = ((uint64_t)1 << (depth + 1)) - 2;
-    if (leaf_count < 2 || lo > (uint64_t)leaf_count - 2) return 0;
+    uint64_t lo, hi;
+    if (leaf_count < 2 || depth >= 32) return 0; /* depth 32 starts at node 2^32 - 1 > leaf_count - 2 */
+    lo = ((uint64_t)1 << depth) - 1;
+    hi = ((uint64_t)1 << (depth + 1)) - 2;
+    if (lo > (uint64_t)leaf_count - 2) return 0;
     if (hi > (uint64_t)leaf_count - 2) hi = (uint64_t)leaf_count - 2;
     *first = (uint32_t)lo;
     *last = (uint32_t)hi;
@@ -1364,6 +1371,9 @@ static mlod_result mlod__check_floats(const float *base, size_t stride, uint32_t
                                       const char *what, mlod_error *error)
 {
     uint32_t i;
+    if (stride && (stride < 3 * sizeof(float) || stride % sizeof(float)))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "%s stride %lu is not 0 or a multiple of 4 of at least 12",
+                          what, (unsigned long)stride);
     for (i = 0; i < count; i++) {
         const float *p = mlod__at(base, stride, i);
         int k;
@@ -1413,6 +1423,9 @@ static mlod_result mlod__check_points(const mlod_points *points, mlod_error *err
         res = mlod__check_floats(points->normals, points->normal_stride, points->count, 0, "normal", error);
     if (res == MLOD_OK && points->colors)
         res = mlod__check_floats(points->colors, points->color_stride, points->count, 0, "colour", error);
+    if (res == MLOD_OK && points->radii && points->radius_stride % sizeof(float))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "radius stride %lu is not a multiple of 4",
+                          (unsigned long)points->radius_stride);
     for (i = 0; res == MLOD_OK && points->radii && i < points->count; i++) {
         float r = *(const float *)((const char *)points->radii + i * (points->radius_stride ? points->radius_stride : sizeof(float)));
         if (!isfinite(r)) return mlod__fail(error, MLOD_ERROR_NON_FINITE, "radius %u is not finite", i);
@@ -3600,7 +3613,8 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     mlod__cut_job job;
     mlod__list *in, *out;
     uint32_t v, round, tasks;
-    int from_root;
+    uint64_t round_steps = 0; /* steps up to the last round */
+    int from_root, idle = 0;
     const uint32_t *hint;
     mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
     if (res != MLOD_OK) return res;
@@ -3627,10 +3641,13 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     for (v = 0; v < cut->view_count; v++) cut->stats[1][v].coarse = 0;
     for (round = 0;; round++) {
         uint32_t coarse = 0;
+        uint64_t steps = 0;
         out = &cut->lists[(cut->committed + 1) % 3];
         if (out == in) out = &cut->lists[(cut->committed + 2) % 3];
         job.trust = round > 0;
-        job.last = !job.lazy || round + 1 >= params->lazy_steps;
+        /* lazy: a round without a move leaves a cut the next rounds keep,
+           so the round after it is the last whatever lazy_steps says */
+        job.last = !job.lazy || round + 1 >= params->lazy_steps || (round > 0 && idle);
         job.merge = params->mode == MLOD_CUT_INCREMENTAL && round == 0 && !from_root;
         job.in = in;
         job.out = out;
@@ -3640,8 +3657,13 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         if (!mlod__place_output(cut, in, out)) goto out_of_memory;
         mlod__run(params->parallel, mlod__view_chunks(cut), mlod__join_task, &job);
         in = out;
-        for (v = 0; v < cut->view_count; v++) coarse += cut->stats[1][v].coarse;
-        if (job.lazy ? round + 1 >= params->lazy_steps : coarse == 0) break;
+        for (v = 0; v < cut->view_count; v++) {
+            coarse += cut->stats[1][v].coarse;
+            steps += cut->stats[1][v].steps;
+        }
+        if (job.lazy ? job.last : coarse == 0) break;
+        idle = steps == round_steps;
+        round_steps = steps;
     }
     {
         mlod__view_stats *t = cut->stats[0];

@@ -2,10 +2,11 @@
    a point cloud, build options, views, epsilon and modes; the whole pipeline
    runs (build, refit, cut in basic, incremental and lazy modes, splat, ISM,
    hole filling) and every result is checked against the definitions of
-   manylods.h.  A violation prints what broke and aborts, so libFuzzer keeps
-   the input as a crash.
+   manylods.h, as are the public helpers.  A violation prints what broke and
+   aborts, so libFuzzer keeps the input as a crash.
 
-     make fuzz                      (FUZZ_SECONDS=60; see fuzz/run.sh), or
+     make fuzz                      (every harness; see fuzz/run_all.sh), or
+     fuzz/run.sh build/fuzz/fuzz_pipeline SECONDS WORKDIR   (this one), or
      clang -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined \
            -fno-sanitize-recover=all -I. fuzz/fuzz_pipeline.c -lm -o fuzz_pipeline
      ./fuzz_pipeline -max_len=4096 CORPUS_DIR
@@ -13,18 +14,27 @@
 
    Checked:
    - a call that fails returns an error code equal to error.code, with a
-     non-empty NUL-terminated message, sets its output pointer to NULL and
+     non-empty NUL-terminated message, sets its output pointer to NULL,
      leaves the caller's objects as they were (tree after refit, cut after
-     update; a failed allocation is retried once and must then succeed);
+     update: its lists and its mlod_cut_bytes, atlas after hole filling) and
+     holds no block it took; a call failed by an injected allocation failure
+     returns MLOD_ERROR_OUT_OF_MEMORY and is tried again (one failure, or
+     with the extension byte up to 16, every k-th allocation);
      input the documentation calls invalid (non-finite or >1e36 coordinates,
      indices out of range, N = 0 or > MANYLODS_MAX_LEAVES, bad radius_scale
-     or attributes, epsilon <= 0 or NaN, bad views, lazy_steps 0, refit of
-     another mesh) never succeeds, and input this harness made sane never
-     fails except as documented (MLOD_ERROR_EMPTY for a mesh without area,
-     OUT_OF_MEMORY when a failing allocation was injected);
+     or attributes, strides not 0 or a multiple of 4 of at least 12 (radii:
+     a multiple of 4), epsilon <= 0 or NaN, bad views, lazy_steps 0, refit
+     of another mesh, a disc_scale outside (0, 1] other than 0 or NaN) never
+     succeeds (a bad stride or disc_scale: MLOD_ERROR_INVALID_ARGUMENT), and
+     input this harness made sane never fails except as documented
+     (MLOD_ERROR_EMPTY for a mesh without area, OUT_OF_MEMORY when a failing
+     allocation was injected);
    - after a build or refit: the tree's shape, every float finite, every
      child sphere inside its parent with the documented slack (exact
-     arithmetic, tests/exact.h), cones likewise, unit cone axes;
+     arithmetic, tests/exact.h), cones likewise (trees over 16384 nodes:
+     the first 8192 nodes and a scattered 1 in node_count / 8192 of the
+     rest), unit cone axes; a build
+     from strided arrays (NaN between the elements) equals the packed one;
    - after every cut update: each view's cut lists nodes left to right whose
      subtrees partition the leaves exactly once, status counts agree, and on
      sampled nodes c(child) <= c(parent); a basic cut agrees with the
@@ -32,16 +42,28 @@
      (from the previous frame's cut, or from the root after mlod_cut_reset);
      lazy is a partition and reaches the basic cut when views stop; the cut
      is the same with and without a parallel-for hook;
-   - the atlas is empty when made and holds no NaN after splat, ISM and
-     hole filling; projections and pixel rays give no NaN;
+   - the atlas is empty when made, keeps the disc_scale given (0: 1) and
+     holds no NaN after splat, ISM and hole filling; projections and pixel
+     rays give no NaN;
+   - the helpers: mlod_view_frame_of agrees with mlod_view_check on every
+     view, valid or not, and its frame is orthonormal, the view's, and culls
+     only nodes whose criterion is 0; mlod_cut_params_check follows the
+     documented rules and mlod_cut_update accepts exactly what it accepts;
+     mlod_tree_depth_nodes tiles the internal nodes depth by depth in the
+     heap layout, for this tree, hostile leaf counts and any depth;
+     mlod_refit_check_growth is monotone, within float range, refuses NaN,
+     and refuses exactly the growths for which refit gives MLOD_ERROR_RANGE;
    - every block the library allocated is given back.
-   Each input stays in the milliseconds: at most 256 vertices, 512
-   triangles, 512 points, N = 4096, 8 views, and tiles shrunk until leaves x
+   Each input stays in the tens of milliseconds: at most 256 vertices, 512
+   triangles, 512 points, N = 4096, 8 views, 256-pixel tiles; the large case
+   (1 in 16 extension bytes) allows 16384 points, N up to 65536, 64 views and
+   2048-pixel tiles, with views x leaves <= 2^16; tiles shrink until leaves x
    tile pixels stays under 2^22.
 
    Input format: bytes are read in order (little endian) by rd_*; once the
-   input is used up they come from a generator seeded by the whole input,
-   so short inputs still make whole scenes.  First a flags byte:
+   input is used up they come from a generator seeded by the whole input
+   but its extension byte, so short inputs still make whole scenes.  First
+   a flags byte:
      bit 0  point cloud (else a mesh)
      bit 1  sane geometry (finite, |x| <= 1e30, indices in range)
      bit 2  sane views, epsilon and options
@@ -52,9 +74,18 @@
      bit 7  radii (point clouds)
    then the chaos bytes of geometry and of views: the chance, in 256, that
    a float of a part that is not sane is replaced by a hostile one (NaN,
-   infinities, 1e38, denormals, raw bits); then the scene (parse_scene),
-   the build options (parse_build), the views (parse_views) and the rest in
-   the order run_views reads them.  fuzz/make_corpus.c writes the seeds. */
+   infinities, 1e38, denormals, raw bits); then the extension byte (0 when
+   the input ends before it, so inputs of the format without it, given a 0
+   there, run as they did):
+     bit 0  strides: four bytes pick those of positions, normals, colours,
+            radii (refit picks its positions' own)
+     bit 1  a hostile disc_scale
+     bit 2  failures: two bytes, every (2 + low nibble)-th allocation after
+            the first (second byte) fails, 1 + high nibble times
+     bits 3-6, all four: the large case
+   then the scene (parse_scene), the build options (parse_build), the views
+   (parse_views), the rest in the order run_views reads them, and the
+   helpers' arguments.  fuzz/make_corpus.c writes the seeds. */
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
 #include "../tests/exact.h"
@@ -72,9 +103,24 @@
 #define FZ_MAX_SAMPLES 4096u
 #define FZ_MAX_VIEWS 8u
 #define FZ_MAX_TILE 256u
-/* Bounds on the splat work: leaves x tile pixels, and atlas pixels. */
+/* The same with extension bit 3 (large): N, points, views, tile sides. */
+#define FZ_LARGE_POINTS 16384u
+#define FZ_LARGE_SAMPLES 65536u
+#define FZ_LARGE_VIEWS 64u
+#define FZ_LARGE_TILE 2048u
+/* Bounds on the splat work: leaves x tile pixels, and atlas pixels; on the
+   cut work: views x leaves. */
 #define FZ_SPLAT_BUDGET ((uint64_t)1 << 22)
 #define FZ_ATLAS_PIXELS ((uint64_t)1 << 18)
+#define FZ_LARGE_ATLAS_PIXELS ((uint64_t)1 << 22)
+#define FZ_CUT_BUDGET ((uint64_t)1 << 16)
+/* Strides: at most 16 floats per element. */
+#define FZ_MAX_STRIDE_FLOATS 16u
+/* Extension byte bits. */
+#define FZ_EXT_STRIDES 1u
+#define FZ_EXT_DISC_SCALE 2u
+#define FZ_EXT_FAILURES 4u
+#define FZ_EXT_LARGE 0x78u /* all four bits: the large case stays occasional */
 #define FZ_SAMPLED 24u   /* nodes per view checked against the criterion */
 #define FZ_LAZY_CALLS 64 /* lazy updates allowed to reach the basic cut */
 
@@ -162,9 +208,12 @@ static float rd_maybe_raw(fz_reader *r, double value)
 
 /* -------------------------------------------------------- allocator */
 
+/* Injected failures: allocation number fail_at, and (extension bit 2)
+   every every_k-th allocation after the first fail_after until fail_left
+   more have failed. */
 typedef struct fz_counter {
-    unsigned long calls, live, fail_at;
-    int failed;
+    unsigned long calls, live, fail_at, every_k, fail_after, fail_left;
+    unsigned long failed; /* allocations failed on purpose so far */
 } fz_counter;
 
 static void *fz_alloc(void *user, size_t bytes)
@@ -172,8 +221,10 @@ static void *fz_alloc(void *user, size_t bytes)
     fz_counter *c = (fz_counter *)user;
     void *p;
     c->calls++;
-    if (c->fail_at && c->calls == c->fail_at) {
-        c->failed = 1;
+    if ((c->fail_at && c->calls == c->fail_at) ||
+        (c->every_k && c->fail_left && c->calls > c->fail_after && (c->calls - c->fail_after) % c->every_k == 0)) {
+        if (!(c->fail_at && c->calls == c->fail_at)) c->fail_left--;
+        c->failed++;
         return NULL;
     }
     if (bytes > ((size_t)1 << 30)) return NULL; /* no input here needs that much */
@@ -220,15 +271,28 @@ static int injected_oom(const fz_counter *c, mlod_result res)
     return res == MLOD_ERROR_OUT_OF_MEMORY && c->failed;
 }
 
+/* A call that failed because an allocation failed on purpose: it is tried
+   again while the allocator has failures left; this bounds the tries. */
+#define FZ_RETRIES 40
+
+/* Around each call that may allocate: the live blocks before it.  A call
+   that fails must give back everything it took. */
+static void check_no_leak(const fz_counter *c, unsigned long live_before, const char *what)
+{
+    FZ_REQUIRE(c->live == live_before, "%s failed but holds %ld blocks more than before", what,
+               (long)c->live - (long)live_before);
+    FZ_NOTE("fuzz: %s failed (%lu allocations failed on purpose so far), gave back what it took\n", what, c->failed);
+}
+
 /* ------------------------------------------------------------ scenes */
 
 typedef struct fz_scene {
     int points;
     uint32_t vertex_count, index_count;
-    float positions[3 * FZ_MAX_POINTS];
-    float normals[3 * FZ_MAX_POINTS];
-    float colors[3 * FZ_MAX_POINTS];
-    float radii[FZ_MAX_POINTS];
+    float positions[3 * FZ_LARGE_POINTS];
+    float normals[3 * FZ_LARGE_POINTS];
+    float colors[3 * FZ_LARGE_POINTS];
+    float radii[FZ_LARGE_POINTS];
     uint32_t indices[3 * FZ_MAX_TRIANGLES];
     int has_normals, has_colors, has_radii;
     double centre[3], radius; /* of the finite positions, for sane views */
@@ -304,10 +368,10 @@ static int vectors_invalid(const float *v, uint32_t count, double limit)
     return 0;
 }
 
-static void parse_scene(fz_reader *r, fz_scene *s, uint8_t flags, int sane)
+static void parse_scene(fz_reader *r, fz_scene *s, uint8_t flags, int sane, int large)
 {
     fz_frame frame;
-    uint32_t i, triangles;
+    uint32_t i, triangles, cap = large ? FZ_LARGE_POINTS : FZ_MAX_POINTS;
     memset(s, 0, sizeof *s);
     s->points = flags & 1;
     s->has_normals = (flags >> 5) & 1;
@@ -315,7 +379,7 @@ static void parse_scene(fz_reader *r, fz_scene *s, uint8_t flags, int sane)
     s->has_radii = s->points && (flags >> 7);
     parse_frame(r, &frame);
     if (s->points) {
-        s->vertex_count = sane ? 1 + rd_u16(r) % FZ_MAX_POINTS : rd_u16(r) % (FZ_MAX_POINTS + 1);
+        s->vertex_count = sane ? 1 + rd_u16(r) % cap : rd_u16(r) % (cap + 1);
     } else {
         s->vertex_count = sane ? 1 + rd_u16(r) % FZ_MAX_VERTICES : rd_u16(r) % (FZ_MAX_VERTICES + 1);
         triangles = 1 + rd_u16(r) % FZ_MAX_TRIANGLES;
@@ -370,6 +434,68 @@ static mlod_mesh scene_mesh(const fz_scene *s, const float *positions)
     return m;
 }
 
+/* ------------------------------------------------------------ strides */
+
+/* Strides of the attributes (extension bit 0), in bytes; 0 is packed.
+   Invalid ones (not a multiple of 4, or under 3 floats; radii: not a
+   multiple of 4) only where the input is not sane. */
+typedef struct fz_strides {
+    int on;
+    size_t position, normal, color, radius;
+    int bad_position, bad_normal, bad_color, bad_radius;
+} fz_strides;
+
+static size_t pick_stride(fz_reader *r, int sane, unsigned floats, int *bad)
+{
+    static const size_t bad3[8] = {1, 4, 8, 11, 13, 14, 15, 50}, bad1[8] = {1, 2, 3, 5, 6, 7, 13, 62};
+    uint8_t b = rd_u8(r);
+    *bad = 0;
+    if (b < 0x20) return 0;
+    if (b >= 0xe8 && !sane) {
+        *bad = 1;
+        return floats == 1 ? bad1[b & 7] : bad3[b & 7];
+    }
+    return 4 * (floats + b % (FZ_MAX_STRIDE_FLOATS + 1 - floats));
+}
+
+static void parse_strides(fz_reader *r, fz_strides *st, int sane)
+{
+    st->on = 1;
+    st->position = pick_stride(r, sane, 3, &st->bad_position);
+    st->normal = pick_stride(r, sane, 3, &st->bad_normal);
+    st->color = pick_stride(r, sane, 3, &st->bad_color);
+    st->radius = pick_stride(r, sane, 1, &st->bad_radius);
+}
+
+/* Copies of the arrays at the given strides; the bytes between elements
+   are NaN, which the library must never read. */
+static float fz_strided[5][FZ_MAX_STRIDE_FLOATS * FZ_LARGE_POINTS + 16];
+
+static const float *strided_copy(int slot, const float *packed, uint32_t count, size_t stride, unsigned floats)
+{
+    unsigned char *dst = (unsigned char *)fz_strided[slot];
+    size_t step = stride ? stride : floats * sizeof(float), i;
+    memset(dst, 0xff, count * step + 16);
+    for (i = 0; i < count; i++) memcpy(dst + i * step, packed + (size_t)floats * i, floats * sizeof(float));
+    return fz_strided[slot];
+}
+
+static void stride_mesh(mlod_mesh *m, const fz_strides *st)
+{
+    if (!st->on) return;
+    m->positions = strided_copy(0, m->positions, m->vertex_count, st->position, 3);
+    m->position_stride = st->position;
+    if (m->normals) m->normals = strided_copy(1, m->normals, m->vertex_count, st->normal, 3);
+    m->normal_stride = st->normal;
+    if (m->colors) m->colors = strided_copy(2, m->colors, m->vertex_count, st->color, 3);
+    m->color_stride = st->color;
+}
+
+static int stride_mesh_bad(const mlod_mesh *m, const fz_strides *st)
+{
+    return st->on && (st->bad_position || (m->normals && st->bad_normal) || (m->colors && st->bad_color));
+}
+
 static mlod_points scene_points(const fz_scene *s, const float *positions)
 {
     mlod_points p;
@@ -382,6 +508,25 @@ static mlod_points scene_points(const fz_scene *s, const float *positions)
     return p;
 }
 
+static void stride_points(mlod_points *p, const fz_strides *st)
+{
+    if (!st->on) return;
+    p->positions = strided_copy(0, p->positions, p->count, st->position, 3);
+    p->position_stride = st->position;
+    if (p->normals) p->normals = strided_copy(1, p->normals, p->count, st->normal, 3);
+    p->normal_stride = st->normal;
+    if (p->colors) p->colors = strided_copy(2, p->colors, p->count, st->color, 3);
+    p->color_stride = st->color;
+    if (p->radii) p->radii = strided_copy(3, p->radii, p->count, st->radius, 1);
+    p->radius_stride = st->radius;
+}
+
+static int stride_points_bad(const mlod_points *p, const fz_strides *st)
+{
+    return st->on && (st->bad_position || (p->normals && st->bad_normal) || (p->colors && st->bad_color) ||
+                      (p->radii && st->bad_radius));
+}
+
 /* ---------------------------------------------------- build options */
 
 typedef struct fz_build {
@@ -389,20 +534,25 @@ typedef struct fz_build {
     int must_fail;
 } fz_build;
 
-static void parse_build(fz_reader *r, fz_build *b, const fz_scene *s, int sane, const mlod_allocator *a)
+static void parse_build(fz_reader *r, fz_build *b, const fz_scene *s, int sane, int large, const mlod_allocator *a)
 {
-    uint32_t n = rd_u16(r);
+    uint32_t n = rd_u16(r), cap = FZ_MAX_SAMPLES;
     uint8_t scale = rd_u8(r), attributes = rd_u8(r);
     memset(b, 0, sizeof *b);
     b->desc.allocator = a;
     b->desc.seed = rd_u32(r);
+    if (large) { /* up to 8192, 16384, 32768 or 65536: N beyond the usual cap more often than not */
+        uint8_t high = rd_u8(r);
+        n |= (uint32_t)high << 16;
+        cap = FZ_LARGE_SAMPLES >> (high >> 6);
+    }
     if (sane) {
-        b->desc.sample_count = 1 + n % FZ_MAX_SAMPLES;
-    } else if (n >= 0xfffd && r->chaos) {
+        b->desc.sample_count = 1 + n % cap;
+    } else if ((n & 0xffff) >= 0xfffd && r->chaos) {
         static const uint32_t huge[3] = {MANYLODS_MAX_LEAVES + 1u, 0xffffffffu, 0u};
-        b->desc.sample_count = huge[n - 0xfffd];
+        b->desc.sample_count = huge[(n & 0xffff) - 0xfffd];
     } else {
-        b->desc.sample_count = n % (FZ_MAX_SAMPLES + 1);
+        b->desc.sample_count = n % (cap + 1);
     }
     if (!s->points && (b->desc.sample_count == 0 || b->desc.sample_count > MANYLODS_MAX_LEAVES)) b->must_fail = 1;
     b->desc.radius_scale = scale < 64 ? 0.0f : rd_maybe_raw(r, ldexp(1.0 + (scale & 15) / 16.0, (int)(scale >> 4) - 8));
@@ -420,7 +570,7 @@ static void parse_build(fz_reader *r, fz_build *b, const fz_scene *s, int sane, 
 
 typedef struct fz_views {
     uint32_t count;
-    mlod_view views[FZ_MAX_VIEWS];
+    mlod_view views[FZ_LARGE_VIEWS];
     int must_fail; /* some view is invalid by the documentation */
 } fz_views;
 
@@ -442,7 +592,7 @@ static float finite_float(double x)
 }
 
 /* One sane view around the scene, then (with chaos) hostile fields. */
-static void parse_view(fz_reader *r, mlod_view *v, const fz_scene *s, int sane)
+static void parse_view(fz_reader *r, mlod_view *v, const fz_scene *s, int sane, int large)
 {
     static const double z[3] = {0.0, 0.0, 1.0}, x[3] = {1.0, 0.0, 0.0};
     double dir[3], eye[3], target[3], f[3], up[3], R = s->radius, dist, dot;
@@ -476,8 +626,14 @@ static void parse_view(fz_reader *r, mlod_view *v, const fz_scene *s, int sane)
         v->forward[k] = rd_maybe_raw(r, f[k]);
         v->up[k] = rd_maybe_raw(r, up[k]);
     }
-    v->width = sane || tile_w ? 1u + tile_w % FZ_MAX_TILE : 0u;
-    v->height = sane || tile_h ? 1u + tile_h % FZ_MAX_TILE : 0u;
+    if (large) { /* 1 .. 2048 pixels */
+        uint8_t low = rd_u8(r);
+        v->width = sane || tile_w ? 1u + (((uint32_t)tile_w << 3 | (low & 7u)) % FZ_LARGE_TILE) : 0u;
+        v->height = sane || tile_h ? 1u + (((uint32_t)tile_h << 3 | (low >> 5)) % FZ_LARGE_TILE) : 0u;
+    } else {
+        v->width = sane || tile_w ? 1u + tile_w % FZ_MAX_TILE : 0u;
+        v->height = sane || tile_h ? 1u + tile_h % FZ_MAX_TILE : 0u;
+    }
     v->fov_y = rd_maybe_raw(r, 0.01 + 3.1 * rd_unit(r));
     if (v->kind == MLOD_VIEW_ORTHOGRAPHIC) {
         double near = -R * rd_unit(r) * 4.0;
@@ -530,7 +686,7 @@ static int view_invalid(const mlod_view *v)
 }
 
 /* Tiles shrink (halving) until the splat work stays bounded. */
-static void bound_tiles(fz_views *vs, uint32_t leaves)
+static void bound_tiles(fz_views *vs, uint32_t leaves, uint64_t atlas_pixels)
 {
     for (;;) {
         uint64_t sum = 0, cell_w = 1, cell_h = 1, columns;
@@ -541,7 +697,7 @@ static void bound_tiles(fz_views *vs, uint32_t leaves)
             if (vs->views[v].height > cell_h) cell_h = vs->views[v].height;
         }
         columns = (uint64_t)ceil(sqrt((double)vs->count));
-        if (sum * leaves <= FZ_SPLAT_BUDGET && cell_w * cell_h * columns * columns <= FZ_ATLAS_PIXELS) return;
+        if (sum * leaves <= FZ_SPLAT_BUDGET && cell_w * cell_h * columns * columns <= atlas_pixels) return;
         for (v = 0; v < vs->count; v++) {
             if (vs->views[v].width > 1) vs->views[v].width /= 2;
             if (vs->views[v].height > 1) vs->views[v].height /= 2;
@@ -550,13 +706,14 @@ static void bound_tiles(fz_views *vs, uint32_t leaves)
     }
 }
 
-static void parse_views(fz_reader *r, fz_views *vs, const fz_scene *s, int sane)
+static void parse_views(fz_reader *r, fz_views *vs, const fz_scene *s, int sane, int large, uint32_t leaves)
 {
     uint32_t v;
-    vs->count = 1 + rd_u8(r) % FZ_MAX_VIEWS;
+    vs->count = 1 + rd_u8(r) % (large ? FZ_LARGE_VIEWS : FZ_MAX_VIEWS);
+    if ((uint64_t)vs->count * leaves > FZ_CUT_BUDGET) vs->count = leaves >= FZ_CUT_BUDGET ? 1 : (uint32_t)(FZ_CUT_BUDGET / leaves);
     vs->must_fail = 0;
     for (v = 0; v < vs->count; v++) {
-        parse_view(r, &vs->views[v], s, sane);
+        parse_view(r, &vs->views[v], s, sane, large);
         if (view_invalid(&vs->views[v])) vs->must_fail = 1;
     }
 }
@@ -586,7 +743,7 @@ static void move_views(fz_reader *r, const fz_views *from, fz_views *to, double 
    first[n] + count[n] - 1. */
 typedef struct fz_layout {
     uint32_t leaves, nodes;
-    uint32_t first[2 * FZ_MAX_SAMPLES], count[2 * FZ_MAX_SAMPLES];
+    uint32_t first[2 * FZ_LARGE_SAMPLES], count[2 * FZ_LARGE_SAMPLES];
 } fz_layout;
 
 static void layout_assign(fz_layout *L, uint32_t n, uint32_t *next)
@@ -656,6 +813,9 @@ static void check_tree(const mlod_tree *t, uint32_t leaves, uint32_t attributes,
     }
     for (n = 1; n < t->node_count; n++) {
         uint32_t p = (n - 1) / 2;
+        /* large trees: every node of the top 2^13, then one in `every`
+           (scattered by a multiplicative hash), in exact arithmetic */
+        if (n >= 8192u && t->node_count > 16384u && (uint32_t)(n * 2654435761u) % (t->node_count / 8192u) != 0) continue;
         const float *ps = t->spheres + 4 * (size_t)p, *cs = t->spheres + 4 * (size_t)n;
         FZ_REQUIRE(sphere_contains(ps, cs),
                    "%s: sphere of node %u (%.9g %.9g %.9g r %.9g) not inside its parent %u (%.9g %.9g %.9g r %.9g) "
@@ -768,7 +928,7 @@ static int same_cut(const mlod_cut *a, const mlod_cut *b, uint32_t views, uint32
 
 /* A copy of a cut's lists, to see that a failed update changed nothing. */
 typedef struct fz_snapshot {
-    uint32_t count[FZ_MAX_VIEWS];
+    uint32_t count[FZ_LARGE_VIEWS];
     uint32_t *nodes;
     uint8_t *status;
     size_t total;
@@ -824,10 +984,23 @@ typedef struct fz_ctx {
     const mlod_parallel *parallel;
     fz_rng rng;
     int sane_geometry, sane_views;
+    uint8_t ext;         /* the extension byte: FZ_EXT_* */
+    fz_strides strides;  /* extension bit 0 */
 } fz_ctx;
 
+/* A failed update gives back what it grew: the cut holds the bytes it held
+   before.  (-DFZ_NO_CUT_BYTES_CHECK turns this off.) */
+#ifndef FZ_NO_CUT_BYTES_CHECK
+#define FZ_CUT_BYTES_CHECK(before, after, what)                                                                        \
+    FZ_REQUIRE((after) == (before), "%s failed but the cut grew from %zu to %zu bytes", what, (size_t)(before),       \
+               (size_t)(after))
+#else
+#define FZ_CUT_BYTES_CHECK(before, after, what) ((void)0)
+#endif
+
 /* One cut update, checked: on failure an error with a message and the cut
-   unchanged; an injected allocation failure is retried once.  Returns the
+   unchanged; an injected allocation failure is retried (up to FZ_RETRIES
+   times: every failure must leave the cut as it was).  Returns the
    result. */
 static mlod_result cut_update(fz_ctx *c, mlod_cut *cut, const mlod_tree *t, const fz_views *vs,
                               const mlod_cut_params *p, int must_fail, int may_fail, const char *what)
@@ -835,8 +1008,14 @@ static mlod_result cut_update(fz_ctx *c, mlod_cut *cut, const mlod_tree *t, cons
     fz_snapshot snap;
     mlod_error e;
     mlod_result res;
+    unsigned long live;
+    size_t bytes;
+    int tries = 0;
     memset(&e, 0, sizeof e);
     snapshot_take(&snap, cut, vs->count);
+retry:
+    live = c->counter.live;
+    bytes = mlod_cut_bytes(cut);
     res = mlod_cut_update(cut, t, vs->views, p, &e);
     if (res != MLOD_OK) {
         if (injected_oom(&c->counter, res)) FZ_NOTE("fuzz: %s: injected allocation failure, retrying\n", what);
@@ -845,10 +1024,9 @@ static mlod_result cut_update(fz_ctx *c, mlod_cut *cut, const mlod_tree *t, cons
         check_error(res, &e);
         FZ_REQUIRE(snapshot_same(&snap, cut, vs->count), "%s: failed with %s but changed the cut", what,
                    mlod_result_name(res));
-        if (injected_oom(&c->counter, res)) {
-            snapshot_free(&snap);
-            return cut_update(c, cut, t, vs, p, must_fail, may_fail, what);
-        }
+        FZ_CUT_BYTES_CHECK(bytes, mlod_cut_bytes(cut), what);
+        check_no_leak(&c->counter, live, what);
+        if (injected_oom(&c->counter, res) && tries++ < FZ_RETRIES) goto retry;
         FZ_REQUIRE(res != MLOD_ERROR_OUT_OF_MEMORY, "%s: out of memory without an injected failure", what);
         FZ_REQUIRE(must_fail || may_fail, "%s: valid input failed with %s: %s", what, mlod_result_name(res), e.message);
     } else {
@@ -874,6 +1052,62 @@ static void check_atlas(const mlod_atlas *a, const char *when)
     }
 }
 
+/* A hash of the atlas's images, to see that a failed call changed nothing. */
+static uint64_t atlas_hash(const mlod_atlas *a)
+{
+    size_t pixels = (size_t)a->width * a->height, i;
+    uint64_t h = 1469598103934665603ull;
+    const float *arrays[3];
+    size_t sizes[3];
+    int k;
+    arrays[0] = a->depth;
+    sizes[0] = pixels;
+    arrays[1] = a->normal;
+    sizes[1] = a->normal ? 3 * pixels : 0;
+    arrays[2] = a->color;
+    sizes[2] = a->color ? 3 * pixels : 0;
+    for (k = 0; k < 3; k++)
+        for (i = 0; i < sizes[k]; i++) {
+            uint32_t bits;
+            memcpy(&bits, arrays[k] + i, sizeof bits);
+            h = (h ^ bits) * 1099511628211ull;
+        }
+    return h;
+}
+
+/* Hole filling, checked: a failure is an injected OUT_OF_MEMORY that
+   changes nothing and leaks nothing, tried again. */
+static void fill_holes(fz_ctx *c, mlod_atlas *atlas, const char *when)
+{
+    int may_fail = c->counter.fail_at || c->counter.every_k, tries;
+    for (tries = 0;; tries++) {
+        uint64_t before = may_fail ? atlas_hash(atlas) : 0;
+        unsigned long live = c->counter.live;
+        mlod_error e;
+        mlod_result res = mlod_atlas_fill_holes(atlas, c->parallel, &e);
+        if (res == MLOD_OK) break;
+        fz_where = "mlod_atlas_fill_holes";
+        check_error(res, &e);
+        FZ_REQUIRE(injected_oom(&c->counter, res), "mlod_atlas_fill_holes failed with %s", mlod_result_name(res));
+        FZ_REQUIRE(atlas_hash(atlas) == before, "mlod_atlas_fill_holes failed but changed the atlas");
+        check_no_leak(&c->counter, live, "mlod_atlas_fill_holes");
+        if (tries >= FZ_RETRIES) return;
+    }
+    check_atlas(atlas, when);
+}
+
+/* A hostile disc_scale (extension bit 1). */
+static float rd_disc_scale(fz_reader *r)
+{
+    static const uint32_t bits[16] = {
+        0x7fc00000u /* NaN */, 0xffc00000u /* -NaN */, 0xbf800000u /* -1 */, 0x80000001u /* -denormal */,
+        0x7f800000u /* inf */, 0xff800000u /* -inf */, 0x3f800001u /* 1 + ulp */, 0x40000000u /* 2 */,
+        0x7f7fffffu /* FLT_MAX */, 0x00000001u /* denormal: valid */, 0x3f800000u /* 1 */, 0x00000000u /* 0: 1 */,
+        0x80000000u /* -0: 1 */, 0x3f7fffffu /* 1 - ulp */, 0x3c23d70au /* 0.01 */, 0x7f800001u /* signalling NaN */};
+    uint8_t b = rd_u8(r);
+    return b < 0xf0 ? bits_float(bits[b & 15]) : bits_float(rd_u32(r));
+}
+
 /* Atlas, splat, ISM, hole filling. */
 static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cut *cut, const fz_views *vs)
 {
@@ -882,23 +1116,40 @@ static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cu
     mlod_error e;
     mlod_result res;
     uint8_t channels = rd_u8(r);
-    int mismatch;
+    int mismatch, bad_disc, bad_channels, tries = 0;
     memset(&desc, 0, sizeof desc);
     desc.columns = rd_u8(r) % 10;
     desc.channels = channels & 3u;
     desc.disc_scale = (float)((channels >> 2) & 7u) / 7.0f; /* 0 (whole discs), 1/7 .. 1 */
     if (!c->sane_views && r->chaos && channels >= 0xf8) desc.channels = channels;
-    res = mlod_atlas_create(vs->views, vs->count, &desc, &c->alloc, &atlas, &e);
-    if (res != MLOD_OK) {
-        fz_where = "mlod_atlas_create";
-        check_error(res, &e);
-        FZ_REQUIRE(atlas == NULL, "mlod_atlas_create failed but left *out_atlas set");
-        FZ_REQUIRE(injected_oom(&c->counter, res) || (desc.channels & ~3u),
-                   "mlod_atlas_create failed with %s for tiles of at most 256 pixels: %s", mlod_result_name(res),
-                   e.message);
-        return;
+    if (c->ext & FZ_EXT_DISC_SCALE) desc.disc_scale = rd_disc_scale(r);
+    /* the documentation: outside (0, 1] other than 0, or NaN, is invalid */
+    bad_disc = !(desc.disc_scale >= 0.0f && desc.disc_scale <= 1.0f);
+    bad_channels = (desc.channels & ~3u) != 0;
+retry:
+    {
+        unsigned long live = c->counter.live;
+        atlas = (mlod_atlas *)&desc;
+        res = mlod_atlas_create(vs->views, vs->count, &desc, &c->alloc, &atlas, &e);
+        if (res != MLOD_OK) {
+            fz_where = "mlod_atlas_create";
+            check_error(res, &e);
+            FZ_REQUIRE(atlas == NULL, "mlod_atlas_create failed but left *out_atlas set");
+            check_no_leak(&c->counter, live, "mlod_atlas_create");
+            FZ_REQUIRE(injected_oom(&c->counter, res) || bad_channels || bad_disc,
+                       "mlod_atlas_create failed with %s for valid tiles and options: %s", mlod_result_name(res),
+                       e.message);
+            FZ_REQUIRE(!bad_disc || bad_channels || res == MLOD_ERROR_INVALID_ARGUMENT,
+                       "mlod_atlas_create refused disc_scale %g with %s, not MLOD_ERROR_INVALID_ARGUMENT",
+                       (double)desc.disc_scale, mlod_result_name(res));
+            if (injected_oom(&c->counter, res) && !bad_channels && !bad_disc && tries++ < FZ_RETRIES) goto retry;
+            return;
+        }
     }
-    FZ_REQUIRE(!(desc.channels & ~3u), "mlod_atlas_create accepted unknown channel bits 0x%x", desc.channels);
+    FZ_REQUIRE(!bad_channels, "mlod_atlas_create accepted unknown channel bits 0x%x", desc.channels);
+    FZ_REQUIRE(!bad_disc, "mlod_atlas_create accepted disc_scale %g", (double)desc.disc_scale);
+    FZ_REQUIRE(atlas->disc_scale == (desc.disc_scale == 0.0f ? 1.0f : desc.disc_scale),
+               "atlas disc_scale %g for desc.disc_scale %g", (double)atlas->disc_scale, (double)desc.disc_scale);
     {
         size_t i, pixels = (size_t)atlas->width * atlas->height;
         for (i = 0; i < pixels; i++)
@@ -915,14 +1166,7 @@ static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cu
     } else {
         FZ_REQUIRE(!mismatch, "mlod_splat accepted atlas channels the tree lacks");
         check_atlas(atlas, "after mlod_splat");
-        res = mlod_atlas_fill_holes(atlas, c->parallel, &e);
-        if (res != MLOD_OK) {
-            fz_where = "mlod_atlas_fill_holes";
-            check_error(res, &e);
-            FZ_REQUIRE(injected_oom(&c->counter, res), "mlod_atlas_fill_holes failed with %s", mlod_result_name(res));
-        } else {
-            check_atlas(atlas, "after mlod_atlas_fill_holes (splat)");
-        }
+        fill_holes(c, atlas, "after mlod_atlas_fill_holes (splat)");
     }
     res = mlod_splat_ism(atlas, t, vs->views, rd_u8(r) % 64, rd_u32(r), c->parallel, &e);
     if (res != MLOD_OK) {
@@ -931,14 +1175,7 @@ static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cu
         FZ_REQUIRE(mismatch, "mlod_splat_ism failed with %s: %s", mlod_result_name(res), e.message);
     } else {
         check_atlas(atlas, "after mlod_splat_ism");
-        res = mlod_atlas_fill_holes(atlas, c->parallel, &e);
-        if (res != MLOD_OK) {
-            fz_where = "mlod_atlas_fill_holes";
-            check_error(res, &e);
-            FZ_REQUIRE(injected_oom(&c->counter, res), "mlod_atlas_fill_holes failed with %s", mlod_result_name(res));
-        } else {
-            check_atlas(atlas, "after mlod_atlas_fill_holes (ISM)");
-        }
+        fill_holes(c, atlas, "after mlod_atlas_fill_holes (ISM)");
     }
     FZ_NOTE("fuzz: %u views, every cut mode, splat, ISM and hole filling checked\n", vs->count);
     mlod_atlas_destroy(atlas);
@@ -989,11 +1226,258 @@ static void check_projection(fz_reader *r, const mlod_tree *t, const fz_scene *s
     }
 }
 
+/* ------------------------------------------------------ the helpers */
+
+/* mlod_tree_depth_nodes(leaves, d): the ranges of depths 0, 1, ... tile
+   the internal nodes 0 .. leaves - 2 in order; depth d's range holds 2^d
+   nodes (the last range fewer), the parents (heap layout: (n - 1) / 2) of
+   its ends lie in depth d - 1's range; past them, and at any depth from 32
+   on (node 2^32 - 1 is beyond every tree), there is none. */
+static void check_depth_nodes(uint32_t leaves, uint32_t hostile_depth)
+{
+    static const uint32_t far[5] = {32u, 33u, 63u, 64u, 0xffffffffu};
+    uint32_t d, prev_first = 0, prev_last = 0, f, l;
+    uint64_t next = 0;
+    int k;
+    for (d = 0; d < 36; d++) {
+        int has;
+        f = l = 0xdeadbeefu;
+        has = mlod_tree_depth_nodes(leaves, d, &f, &l);
+        if (leaves < 2 || next > (uint64_t)leaves - 2) {
+            FZ_REQUIRE(!has, "mlod_tree_depth_nodes(%u, %u) gave %u .. %u past the last internal node", leaves, d, f, l);
+            continue;
+        }
+        FZ_REQUIRE(has, "mlod_tree_depth_nodes(%u, %u) gave none, node %llu is internal", leaves, d,
+                   (unsigned long long)next);
+        FZ_REQUIRE(f == next && l >= f && l <= leaves - 2, "mlod_tree_depth_nodes(%u, %u) gave %u .. %u, expected from %llu",
+                   leaves, d, f, l, (unsigned long long)next);
+        FZ_REQUIRE((uint64_t)l - f + 1 == ((uint64_t)1 << d) || l == leaves - 2,
+                   "mlod_tree_depth_nodes(%u, %u): %u .. %u is not 2^%u nodes nor the last depth", leaves, d, f, l, d);
+        if (d > 0)
+            FZ_REQUIRE((f - 1) / 2 == prev_first && (l - 1) / 2 >= prev_first && (l - 1) / 2 <= prev_last,
+                       "mlod_tree_depth_nodes(%u, %u): parents of %u .. %u not in depth %u's %u .. %u", leaves, d, f, l,
+                       d - 1, prev_first, prev_last);
+        prev_first = f;
+        prev_last = l;
+        next = (uint64_t)l + 1;
+    }
+    FZ_REQUIRE(leaves < 2 || next == (uint64_t)leaves - 1, "mlod_tree_depth_nodes(%u, ...) covers %llu of %u internal nodes",
+               leaves, (unsigned long long)next, leaves - 1);
+    for (k = 0; k < 6; k++) {
+        uint32_t depth = k < 5 ? far[k] : hostile_depth;
+        if (depth < 32) continue;
+        FZ_REQUIRE(!mlod_tree_depth_nodes(leaves, depth, &f, &l), "mlod_tree_depth_nodes(%u, %u) gave %u .. %u", leaves,
+                   depth, f, l);
+    }
+}
+
+static uint32_t rd_leaf_count(fz_reader *r)
+{
+    uint8_t b = rd_u8(r);
+    switch (b % 8) {
+    case 0: return b / 8; /* 0 .. 31 */
+    case 1: return (uint32_t)1 << (b / 8);
+    case 2: return ((uint32_t)1 << (b / 8)) + 1;
+    case 3: return ((uint32_t)1 << (b / 8)) - 1;
+    case 4: return 0xffffffffu - b / 8;
+    case 5: return MANYLODS_MAX_LEAVES + b / 8 - 16;
+    default: return rd_u32(r);
+    }
+}
+
+/* mlod_cut_params_check on fuzzed parameters: it follows the documented
+   rules, and mlod_cut_update (valid views) fails exactly when it does,
+   with the same code; a cut it accepts is checked like the others. */
+static void check_params(fz_ctx *c, fz_reader *r, mlod_cut *cut, const mlod_tree *t, const fz_views *vs,
+                         const fz_layout *L)
+{
+    mlod_cut_params q;
+    mlod_error e;
+    mlod_result res, upd;
+    uint8_t b = rd_u8(r);
+    int bad_mode, bad_eps, bad_lazy;
+    memset(&q, 0, sizeof q);
+    q.mode = (mlod_cut_mode)((b & 0xc0) == 0xc0 ? rd_u8(r) : b % 3u);
+    q.epsilon = (b & 0x30) == 0x30 ? rd_raw_float(r) : (float)ldexp(1.0, (int)(rd_u8(r) % 24) - 8);
+    q.lazy_steps = (b & 0x0c) == 0x0c ? 0u : (b & 0x0c) == 0x08 ? rd_u32(r) : 1u + (b & 3u);
+    q.parallel = c->parallel;
+    bad_mode = (unsigned)q.mode > (unsigned)MLOD_CUT_LAZY;
+    bad_eps = !(q.epsilon > 0.0f);
+    bad_lazy = q.mode == MLOD_CUT_LAZY && q.lazy_steps == 0;
+    memset(&e, 0, sizeof e);
+    res = mlod_cut_params_check(&q, &e);
+    fz_where = "mlod_cut_params_check";
+    if (bad_mode || bad_eps || bad_lazy) {
+        check_error(res, &e);
+        FZ_REQUIRE(bad_mode || bad_lazy || res == MLOD_ERROR_BAD_EPSILON, "epsilon %g refused with %s", (double)q.epsilon,
+                   mlod_result_name(res));
+        FZ_REQUIRE(bad_eps || res == MLOD_ERROR_INVALID_ARGUMENT, "mode %u, lazy_steps %u refused with %s",
+                   (unsigned)q.mode, q.lazy_steps, mlod_result_name(res));
+        FZ_REQUIRE(res == MLOD_ERROR_BAD_EPSILON || res == MLOD_ERROR_INVALID_ARGUMENT, "params refused with %s",
+                   mlod_result_name(res));
+    } else {
+        FZ_REQUIRE(res == MLOD_OK && e.code == MLOD_OK, "mlod_cut_params_check refused mode %u, epsilon %g, lazy_steps %u: %s",
+                   (unsigned)q.mode, (double)q.epsilon, q.lazy_steps, e.message);
+    }
+    res = mlod_cut_params_check(NULL, &e);
+    check_error(res, &e);
+    FZ_REQUIRE(res == MLOD_ERROR_INVALID_ARGUMENT, "mlod_cut_params_check(NULL) gave %s", mlod_result_name(res));
+    res = mlod_cut_params_check(&q, NULL); /* error may be NULL */
+    FZ_NOTE("fuzz: fuzzed params: mode %u, epsilon %g, lazy_steps %u: %s\n", (unsigned)q.mode, (double)q.epsilon,
+            q.lazy_steps, mlod_result_name(res));
+    if (vs->must_fail) return;
+    upd = cut_update(c, cut, t, vs, &q, res != MLOD_OK, 0, "update with fuzzed params");
+    FZ_REQUIRE(upd == res, "mlod_cut_update gave %s where mlod_cut_params_check gave %s", mlod_result_name(upd),
+               mlod_result_name(res));
+    if (upd == MLOD_OK) check_cut(cut, t, L, vs, q.epsilon, q.mode != MLOD_CUT_LAZY, 1, &c->rng, "cut with fuzzed params");
+}
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* mlod_view_frame_of agrees with mlod_view_check on every view, valid or
+   not; a frame it gives is the view's (eye, kind, tile, flags), its
+   forward along the view's, right, up, forward orthonormal with right =
+   forward x up, and a node that some culling plane puts clearly outside
+   has criterion 0. */
+static void check_frames(fz_reader *r, const mlod_tree *t, const fz_views *vs)
+{
+    uint32_t v, i;
+    mlod_view_frame f;
+    mlod_error e1, e2;
+    mlod_result r1;
+    r1 = mlod_view_frame_of(vs->views, NULL, &e1);
+    fz_where = "mlod_view_frame_of(view, NULL)";
+    check_error(r1, &e1);
+    for (v = 0; v < vs->count; v++) {
+        const mlod_view *view = &vs->views[v];
+        double fw[3], vu[3], x[3], len;
+        int k, j;
+        memset(&f, 0, sizeof f);
+        r1 = mlod_view_frame_of(view, &f, &e1);
+        FZ_REQUIRE(r1 == mlod_view_check(view, &e2), "view %u: mlod_view_frame_of gave %s, mlod_view_check %s", v,
+                   mlod_result_name(r1), mlod_result_name(e2.code));
+        if (r1 != MLOD_OK) {
+            fz_where = "mlod_view_frame_of";
+            check_error(r1, &e1);
+            FZ_REQUIRE(e1.code == e2.code, "view %u: codes differ", v);
+            continue;
+        }
+        FZ_REQUIRE(!view_invalid(view), "view %u: mlod_view_frame_of accepted an invalid view", v);
+        for (k = 0; k < 3; k++) {
+            FZ_REQUIRE(f.eye[k] == (double)view->position[k], "view %u: frame eye differs from the position", v);
+            fw[k] = view->forward[k];
+            vu[k] = view->up[k];
+        }
+        FZ_REQUIRE(f.kind == (uint32_t)view->kind && f.cull_backfaces == (view->flags & 1u) &&
+                       f.width == (double)view->width && f.height == (double)view->height && f.plane_count <= 6,
+                   "view %u: frame kind %u, culling %u, tile %g x %g, %u planes", v, f.kind, f.cull_backfaces, f.width,
+                   f.height, f.plane_count);
+        FZ_REQUIRE(isfinite(f.scale) && f.scale > 0.0, "view %u: frame scale %g", v, f.scale);
+        len = sqrt(dot3(fw, fw));
+        FZ_REQUIRE(fabs(dot3(f.forward, f.forward) - 1.0) < 1e-9 && fabs(dot3(f.right, f.right) - 1.0) < 1e-9 &&
+                       fabs(dot3(f.up, f.up) - 1.0) < 1e-9,
+                   "view %u: frame axes not unit", v);
+        FZ_REQUIRE(dot3(f.forward, fw) >= len * (1.0 - 1e-9), "view %u: frame forward not along the view's", v);
+        FZ_REQUIRE(fabs(dot3(f.forward, f.up)) < 1e-9 && fabs(dot3(f.forward, f.right)) < 1e-9 &&
+                       fabs(dot3(f.up, f.right)) < 1e-9 && dot3(f.up, vu) > 0.0,
+                   "view %u: frame axes not orthogonal, or up against the view's", v);
+        x[0] = f.forward[1] * f.up[2] - f.forward[2] * f.up[1];
+        x[1] = f.forward[2] * f.up[0] - f.forward[0] * f.up[2];
+        x[2] = f.forward[0] * f.up[1] - f.forward[1] * f.up[0];
+        FZ_REQUIRE(fabs(x[0] - f.right[0]) < 1e-9 && fabs(x[1] - f.right[1]) < 1e-9 && fabs(x[2] - f.right[2]) < 1e-9,
+                   "view %u: frame right is not forward x up", v);
+        for (j = 0; j < (int)f.plane_count; j++)
+            for (k = 0; k < 5; k++) FZ_REQUIRE(!isnan(f.planes[j][k]), "view %u: plane %d is NaN", v, j);
+        for (i = 0; i < 4 && t->node_count; i++) {
+            uint32_t n = rng_below_reader(r, t->node_count);
+            const float *sp = t->spheres + 4 * (size_t)n;
+            for (j = 0; j < (int)f.plane_count; j++) {
+                const double *pl = f.planes[j];
+                double nc = pl[0] * sp[0] + pl[1] * sp[1] + pl[2] * sp[2], lr = pl[4] * sp[3];
+                double slack = 1e-6 * (fabs(pl[0] * sp[0]) + fabs(pl[1] * sp[1]) + fabs(pl[2] * sp[2]) + fabs(lr) + fabs(pl[3]));
+                if (isfinite(pl[3]) && nc + lr < pl[3] - slack) {
+                    double crit = mlod_criterion(t, n, view);
+                    FZ_REQUIRE(crit == 0.0, "view %u: node %u is outside plane %d (%.17g < %.17g) but c = %g", v, n, j,
+                               nc + lr, pl[3], crit);
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/* mlod_refit_check_growth on fuzzed arguments: OK or RANGE; what it
+   accepts keeps radius_scale sqrt(area_unit growth) and growth x
+   leaf_count within float range; it accepts when both are far inside
+   (<= 1e30); it is monotone in growth; it refuses a NaN growth. */
+static void check_growth(fz_reader *r, const mlod_tree *t)
+{
+    uint8_t b = rd_u8(r);
+    float rs = (b & 1) ? rd_raw_float(r) : t->radius_scale;
+    double au = (b & 2) ? (double)rd_raw_float(r) * ldexp(1.0, (int)(rd_u8(r) % 200) - 100) : t->area_unit;
+    uint32_t leaves = (b & 4) ? rd_leaf_count(r) : t->leaf_count;
+    double g = (b & 8) ? (double)rd_raw_float(r) : ldexp(rd_unit(r), (int)(rd_u8(r) % 240) - 120);
+    double radius = rs * sqrt(au * g), sum = g * leaves;
+    mlod_error e;
+    mlod_result res = mlod_refit_check_growth(rs, au, leaves, g, &e);
+    fz_where = "mlod_refit_check_growth";
+    if (res != MLOD_OK) {
+        check_error(res, &e);
+        FZ_REQUIRE(res == MLOD_ERROR_RANGE, "mlod_refit_check_growth gave %s", mlod_result_name(res));
+        FZ_REQUIRE(!(radius >= 0.0 && radius <= 1e30 && sum >= 0.0 && sum <= 1e30),
+                   "mlod_refit_check_growth(%g, %g, %u, %g) refused radius %g, sum %g", (double)rs, au, leaves, g, radius,
+                   sum);
+    } else {
+        FZ_REQUIRE(radius <= FLT_MAX && sum <= FLT_MAX, "mlod_refit_check_growth(%g, %g, %u, %g) accepted radius %g, sum %g",
+                   (double)rs, au, leaves, g, radius, sum);
+        if (g > 0.0)
+            FZ_REQUIRE(mlod_refit_check_growth(rs, au, leaves, 0.5 * g, NULL) == MLOD_OK,
+                       "mlod_refit_check_growth accepts growth %g but not %g", g, 0.5 * g);
+    }
+    FZ_REQUIRE(mlod_refit_check_growth(rs, au, leaves, NAN, NULL) == MLOD_ERROR_RANGE,
+               "mlod_refit_check_growth accepted a NaN growth");
+}
+
+/* The largest growth of a triangle of the mesh between the build's
+   positions and new ones (triangles of zero area at build: none).  The
+   build keeps a triangle's area as a difference of prefix sums of the
+   areas, which loses a triangle far smaller than the total: *comparable
+   says every triangle with area has at least 2^-20 of the total, where
+   that difference is within 2^-30 of the area. */
+static double triangle_area2(const float *pos, const uint32_t *tri)
+{
+    const float *a = pos + 3 * (size_t)tri[0], *b = pos + 3 * (size_t)tri[1], *c = pos + 3 * (size_t)tri[2];
+    double e1[3], e2[3], n[3];
+    int k;
+    for (k = 0; k < 3; k++) {
+        e1[k] = (double)b[k] - a[k];
+        e2[k] = (double)c[k] - a[k];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    return sqrt(dot3(n, n));
+}
+
+static double largest_growth(const fz_scene *s, const float *moved, int *comparable)
+{
+    double g = 0.0, total = 0.0, smallest = INFINITY;
+    uint32_t i;
+    for (i = 0; i + 3 <= s->index_count; i += 3) {
+        double before = triangle_area2(s->positions, s->indices + i), after = triangle_area2(moved, s->indices + i);
+        total += before;
+        if (before > 0.0 && before < smallest) smallest = before;
+        if (before > 0.0 && after / before > g) g = after / before;
+    }
+    *comparable = isfinite(total) && smallest >= ldexp(total, -20);
+    return g;
+}
+
 /* Cut, refit, cut again in every mode, splat. */
 static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, uint32_t leaves)
 {
     static fz_layout layout;
-    static float moved[3 * (FZ_MAX_POINTS + 1)];
+    static float moved[3 * (FZ_LARGE_POINTS + 1)];
     fz_views v1, v2;
     mlod_cut *basic = NULL, *incremental = NULL, *lazy = NULL;
     mlod_cut_params p;
@@ -1004,8 +1488,9 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
     int bad_eps, lazy_bad, call, refit_must_fail = 0;
     uint32_t differs = 0;
 
-    parse_views(r, &v1, s, c->sane_views);
-    bound_tiles(&v1, leaves);
+    int large = (c->ext & FZ_EXT_LARGE) == FZ_EXT_LARGE;
+    parse_views(r, &v1, s, c->sane_views, large, leaves);
+    bound_tiles(&v1, leaves, large ? FZ_LARGE_ATLAS_PIXELS : FZ_ATLAS_PIXELS);
     move_views(r, &v1, &v2, s->radius);
     eps_byte = rd_u8(r);
     if (eps_byte >= 200 && !c->sane_views)
@@ -1024,6 +1509,10 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
 
     for (call = 0; call < 3; call++) {
         mlod_cut **cut = call == 0 ? &basic : call == 1 ? &incremental : &lazy;
+        int tries = 0;
+        unsigned long live;
+    create:
+        live = c->counter.live;
         *cut = (mlod_cut *)&p;
         res = mlod_cut_create(v1.count, &c->alloc, cut, &e);
         if (res != MLOD_OK) {
@@ -1031,6 +1520,8 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
             check_error(res, &e);
             FZ_REQUIRE(*cut == NULL && injected_oom(&c->counter, res), "mlod_cut_create(%u) failed: %s", v1.count,
                        e.message);
+            check_no_leak(&c->counter, live, "mlod_cut_create");
+            if (tries++ < FZ_RETRIES && (c->ext & FZ_EXT_FAILURES)) goto create;
             goto done;
         }
         FZ_REQUIRE(mlod_cut_get(*cut, 0).count == 0, "a new cut is not empty");
@@ -1076,6 +1567,12 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
                 points.count -= 1;
                 refit_must_fail = 1;
             }
+            if (c->strides.on) { /* strides of their own: the tree does not keep the build's */
+                fz_strides st = c->strides;
+                st.position = pick_stride(r, c->sane_geometry, 3, &st.bad_position);
+                stride_points(&points, &st);
+                if (stride_points_bad(&points, &st)) refit_must_fail = 1;
+            }
             res = mlod_refit_points(t, &points, c->parallel, &e);
         } else {
             mesh = scene_mesh(s, moved);
@@ -1084,9 +1581,30 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
                     mesh.vertex_count += 1;
                 else
                     mesh.index_count = mesh.index_count > 3 ? mesh.index_count - 3 : mesh.index_count;
-                refit_must_fail = mesh.index_count != s->index_count || mesh.vertex_count != s->vertex_count;
+                refit_must_fail |= mesh.index_count != s->index_count || mesh.vertex_count != s->vertex_count;
+            }
+            if (c->strides.on) {
+                fz_strides st = c->strides;
+                st.position = pick_stride(r, c->sane_geometry, 3, &st.bad_position);
+                stride_mesh(&mesh, &st);
+                if (stride_mesh_bad(&mesh, &st)) refit_must_fail = 1;
             }
             res = mlod_refit_mesh(t, &mesh, c->parallel, &e);
+            if (!refit_must_fail) {
+                /* refit refuses a growth exactly when mlod_refit_check_growth
+                   does (where halving or doubling it does not change the
+                   answer, and the build's areas are those of the triangles) */
+                int comparable;
+                double g = largest_growth(s, moved, &comparable);
+                mlod_result lo = mlod_refit_check_growth(t->radius_scale, t->area_unit, t->leaf_count, 0.5 * g, NULL);
+                mlod_result hi = mlod_refit_check_growth(t->radius_scale, t->area_unit, t->leaf_count, 2.0 * g, NULL);
+                FZ_NOTE("fuzz: refit %s, largest growth %g (%s)\n", mlod_result_name(res), g,
+                        comparable ? "compared with mlod_refit_check_growth" : "areas too far apart to compare");
+                if (comparable && lo == hi)
+                    FZ_REQUIRE((res == MLOD_ERROR_RANGE) == (lo == MLOD_ERROR_RANGE),
+                               "refit gave %s for largest growth %g, mlod_refit_check_growth %s", mlod_result_name(res), g,
+                               mlod_result_name(lo));
+            }
         }
         if (res != MLOD_OK) {
             fz_where = "refit";
@@ -1134,10 +1652,45 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
         p.parallel = c->parallel;
     }
     run_splat(c, r, t, basic, &v2);
+    check_params(c, r, lazy, t, &v2, &layout);
 done:
+    /* the public helpers, on this tree and these views (valid or not) and
+       on hostile arguments */
+    check_frames(r, t, &v1);
+    check_frames(r, t, &v2);
+    check_depth_nodes(t->leaf_count, rd_u32(r));
+    check_depth_nodes(rd_leaf_count(r), rd_u32(r));
+    check_growth(r, t);
     mlod_cut_destroy(basic);
     mlod_cut_destroy(incremental);
     mlod_cut_destroy(lazy);
+}
+
+/* The tree built again from packed arrays, without injected failures:
+   strides change nothing. */
+static void check_same_as_packed(const mlod_tree *t, const fz_scene *s, const fz_build *b)
+{
+    mlod_build_desc desc = b->desc;
+    mlod_tree *packed = NULL;
+    mlod_error e;
+    mlod_result res;
+    size_t n;
+    desc.allocator = NULL;
+    if (s->points) {
+        mlod_points points = scene_points(s, s->positions);
+        res = mlod_build_points(&points, &desc, &packed, &e);
+    } else {
+        mlod_mesh mesh = scene_mesh(s, s->positions);
+        res = mlod_build_mesh(&mesh, &desc, &packed, &e);
+    }
+    FZ_REQUIRE(res == MLOD_OK, "the packed build failed (%s) where the strided one succeeded", mlod_result_name(res));
+    n = packed->node_count;
+    FZ_REQUIRE(packed->node_count == t->node_count && !memcmp(packed->spheres, t->spheres, 4 * n * sizeof(float)) &&
+                   (!t->cones || !memcmp(packed->cones, t->cones, 4 * n * sizeof(float))) &&
+                   (!t->areas || !memcmp(packed->areas, t->areas, n * sizeof(float))) &&
+                   (!t->colors || !memcmp(packed->colors, t->colors, 3 * n * sizeof(float))),
+               "strides gave another tree than packed arrays");
+    mlod_tree_destroy(packed);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -1151,10 +1704,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     mlod_result res;
     uint64_t h = 1469598103934665603ull;
     uint8_t flags, chaos, view_chaos;
-    size_t i;
-    int sane;
+    size_t i, ext_at;
+    int sane, large, must_fail, tries = 0;
+    unsigned long live;
     if (fz_verbose < 0) fz_verbose = getenv("MANYLODS_FUZZ_VERBOSE") != NULL;
-    for (i = 0; i < size; i++) h = (h ^ data[i]) * 1099511628211ull;
+    /* the generator's seed: every byte but the extension byte, so that an
+       input of the format before it, given a 0 there, runs as it did */
+    ext_at = size && (data[0] & 16) ? 4 : 3;
+    for (i = 0; i < size; i++)
+        if (i != ext_at) h = (h ^ data[i]) * 1099511628211ull;
     memset(&r, 0, sizeof r);
     r.data = data;
     r.size = size;
@@ -1173,20 +1731,43 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (flags & 16) c.counter.fail_at = 1 + rd_u8(&r);
     chaos = rd_u8(&r);
     view_chaos = rd_u8(&r);
+    c.ext = r.at < r.size ? rd_u8(&r) : 0; /* an input that ends before it has none */
+    large = (c.ext & FZ_EXT_LARGE) == FZ_EXT_LARGE;
+    if (c.ext & FZ_EXT_FAILURES) { /* after allocation s, every k-th fails, 1 .. 16 times */
+        uint8_t m = rd_u8(&r);
+        c.counter.every_k = 2 + (m & 15u);
+        c.counter.fail_left = 1 + (m >> 4);
+        c.counter.fail_after = rd_u8(&r);
+    }
     r.chaos = c.sane_geometry ? 0 : chaos;
     sane = c.sane_geometry;
-    parse_scene(&r, &scene, flags, sane);
-    parse_build(&r, &b, &scene, sane, &c.alloc);
+    if (c.ext & FZ_EXT_STRIDES) parse_strides(&r, &c.strides, sane);
+    parse_scene(&r, &scene, flags, sane, large);
+    parse_build(&r, &b, &scene, sane, large, &c.alloc);
     if (scene.points && b.desc.sample_count == 0) b.desc.sample_count = 1; /* ignored for points */
     memset(&e, 0, sizeof e);
-    t = (mlod_tree *)&c;
-    if (scene.points) {
-        mlod_points points = scene_points(&scene, scene.positions);
-        res = mlod_build_points(&points, &b.desc, &t, &e);
-    } else {
-        mlod_mesh mesh = scene_mesh(&scene, scene.positions);
-        res = mlod_build_mesh(&mesh, &b.desc, &t, &e);
+    for (;;) {
+        live = c.counter.live;
+        t = (mlod_tree *)&c;
+        if (scene.points) {
+            mlod_points points = scene_points(&scene, scene.positions);
+            stride_points(&points, &c.strides);
+            must_fail = stride_points_bad(&points, &c.strides);
+            res = mlod_build_points(&points, &b.desc, &t, &e);
+        } else {
+            mlod_mesh mesh = scene_mesh(&scene, scene.positions);
+            stride_mesh(&mesh, &c.strides);
+            must_fail = stride_mesh_bad(&mesh, &c.strides);
+            res = mlod_build_mesh(&mesh, &b.desc, &t, &e);
+        }
+        if (res == MLOD_OK || !injected_oom(&c.counter, res) || !(c.ext & FZ_EXT_FAILURES) || tries++ >= FZ_RETRIES)
+            break;
+        fz_where = "build";
+        check_error(res, &e);
+        FZ_REQUIRE(t == NULL, "build failed with %s but left *out_tree set", mlod_result_name(res));
+        check_no_leak(&c.counter, live, "build");
     }
+    must_fail |= scene.must_fail || b.must_fail;
     FZ_NOTE("fuzz: %s, %u %s, N %u, attributes 0x%x, radius_scale %g, scene centre (%g %g %g) radius %g: %s\n",
             scene.points ? "points" : "mesh", scene.vertex_count, scene.points ? "points" : "vertices",
             b.desc.sample_count, b.desc.attributes, (double)b.desc.radius_scale, scene.centre[0], scene.centre[1],
@@ -1195,21 +1776,25 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fz_where = "build";
         check_error(res, &e);
         FZ_REQUIRE(t == NULL, "build failed with %s but left *out_tree set", mlod_result_name(res));
+        check_no_leak(&c.counter, live, "build");
         /* MLOD_ERROR_RANGE: radius_scale times the leaf spacing overflows */
-        FZ_REQUIRE(scene.must_fail || b.must_fail || injected_oom(&c.counter, res) ||
-                       (!scene.points && res == MLOD_ERROR_EMPTY) || res == MLOD_ERROR_RANGE,
+        FZ_REQUIRE(must_fail || injected_oom(&c.counter, res) || (!scene.points && res == MLOD_ERROR_EMPTY) ||
+                       res == MLOD_ERROR_RANGE,
                    "build of valid input failed with %s: %s", mlod_result_name(res), e.message);
+        FZ_REQUIRE(scene.must_fail || b.must_fail || !must_fail || res == MLOD_ERROR_INVALID_ARGUMENT,
+                   "build refused a bad stride with %s, not MLOD_ERROR_INVALID_ARGUMENT", mlod_result_name(res));
     } else {
         uint32_t leaves = scene.points ? scene.vertex_count : b.desc.sample_count;
-        FZ_REQUIRE(!scene.must_fail && !b.must_fail, "build accepted invalid input (scene %d, options %d)",
-                   scene.must_fail, b.must_fail);
+        FZ_REQUIRE(!must_fail, "build accepted invalid input (scene %d, options %d, strides %d)", scene.must_fail,
+                   b.must_fail, must_fail);
         FZ_REQUIRE(e.code == MLOD_OK && t != NULL && t != (mlod_tree *)&c, "build succeeded without a tree or with error.code %d",
                    (int)e.code);
         check_tree(t, leaves, b.desc.attributes, "after build");
+        if (c.strides.on) check_same_as_packed(t, &scene, &b);
         r.chaos = c.sane_views ? 0 : view_chaos;
         run_views(&c, &r, t, &scene, leaves);
-        FZ_NOTE("fuzz: pipeline done (%u leaves, %lu allocations%s)\n", leaves, c.counter.calls,
-                c.counter.failed ? ", one failed on purpose" : "");
+        FZ_NOTE("fuzz: pipeline done (%u leaves, %lu allocations, %lu failed on purpose)\n", leaves, c.counter.calls,
+                c.counter.failed);
         mlod_tree_destroy(t);
     }
     FZ_REQUIRE(c.counter.live == 0, "%lu blocks not given back", c.counter.live);

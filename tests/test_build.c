@@ -424,6 +424,36 @@ static void test_strides(void)
     mlod_tree_destroy(b);
     b = NULL;
     CHECK(mlod_build_mesh(&m, &d, &b, NULL) == MLOD_OK && b && a && same_tree(a, b), "strides: stride 12 equals stride 0");
+    {
+        /* strides that are not 0 or a multiple of 4 of at least 12 (radii:
+           a multiple of 4) are refused, before any float is read */
+        static const size_t bad[5] = {4, 8, 11, 13, 38};
+        mlod_points p;
+        mlod_tree *c = NULL;
+        mlod_error e;
+        int k, refused = 0;
+        for (k = 0; k < 5; k++) {
+            m.position_stride = bad[k];
+            refused += mlod_build_mesh(&m, &d, &c, &e) == MLOD_ERROR_INVALID_ARGUMENT && c == NULL;
+            m.position_stride = 0;
+            m.normal_stride = bad[k];
+            refused += mlod_build_mesh(&m, &d, &c, &e) == MLOD_ERROR_INVALID_ARGUMENT && c == NULL;
+            m.normal_stride = 0;
+        }
+        CHECK(refused == 10, "strides: %d of 10 bad position and normal strides refused", refused);
+        memset(&p, 0, sizeof p);
+        p.positions = s.positions;
+        p.count = s.vertex_count;
+        p.radii = s.positions; /* any non-negative floats would do; only the stride matters here */
+        p.radius_stride = 6;
+        CHECK(mlod_build_points(&p, &d, &c, &e) == MLOD_ERROR_INVALID_ARGUMENT && c == NULL, "strides: radius stride 6 refused");
+        p.color_stride = 0;
+        p.radius_stride = 12;
+        p.radii = NULL;
+        p.position_stride = 14;
+        CHECK(mlod_build_points(&p, &d, &c, &e) == MLOD_ERROR_INVALID_ARGUMENT && c == NULL, "strides: point stride 14 refused");
+        mlod_tree_destroy(c);
+    }
     mlod_tree_destroy(a);
     mlod_tree_destroy(b);
     free(inter);

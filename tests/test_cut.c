@@ -1208,6 +1208,22 @@ static void run_motion(float eps, uint64_t seed)
         CHECK(converged[q] != 0, "%s lazy q=%u: not equal to basic after %u calls with still views", what, q + 1, bound);
         printf("  %s lazy q=%u: converged after %u calls (bound %u)\n", what, q + 1, converged[q], bound);
     }
+    {
+        /* lazy_steps as large as it goes: one call from the root reaches the
+           basic cut and stops when no move is left (it used to run all
+           2^32 - 1 rounds) */
+        mlod_cut_params pl = params(MLOD_CUT_LAZY, eps, UINT32_MAX, NULL);
+        mlod_cut *cu = NULL;
+        uint32_t same = 0;
+        CHECK(mlod_cut_create(nv, NULL, &cu, NULL) == MLOD_OK && mlod_cut_update(cu, tree, views, &pl, NULL) == MLOD_OK,
+              "%s lazy q=2^32-1: update", what);
+        for (v = 0; cu && v < nv; v++) {
+            mlod_cut_view a = mlod_cut_get(cb, v), b = mlod_cut_get(cu, v);
+            same += tu_same_cut(&a, &b);
+        }
+        CHECK(same == nv, "%s lazy q=2^32-1: %u of %u views equal basic after one call", what, same, nv);
+        mlod_cut_destroy(cu);
+    }
     for (q = 0; q < 2; q++)
         for (v = 0; v < nv; v++) free(prev[q].nodes[v]);
     mlod_cut_destroy(cb);

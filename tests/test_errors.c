@@ -717,6 +717,13 @@ static void test_shared_checks(void)
             if (mlod_tree_depth_nodes(n, d, &first, &last) != any || (any && (first != lo || last != hi))) bad = 1;
         }
     CHECK(!bad, "mlod_tree_depth_nodes differs from the depths of the internal nodes (N %u, depth %u)", n - 1, d - 1);
+    /* any depth is fine: none from 32 on (a shift by 64 was undefined) */
+    CHECK(mlod_tree_depth_nodes(UINT32_MAX, 31, &first, &last) == 1 && first == 0x7fffffffu && last == 0xfffffffdu,
+          "depth 31 of 2^32 - 1 leaves: nodes 2^31 - 1 .. 2^32 - 3");
+    CHECK(!mlod_tree_depth_nodes(UINT32_MAX, 32, &first, &last) && !mlod_tree_depth_nodes(UINT32_MAX, 63, &first, &last) &&
+              !mlod_tree_depth_nodes(UINT32_MAX, 64, &first, &last) &&
+              !mlod_tree_depth_nodes(UINT32_MAX, UINT32_MAX, &first, &last) && !mlod_tree_depth_nodes(5, 64, &first, &last),
+          "depths 32, 63, 64 and 2^32 - 1 have no nodes");
     /* the growth limit: radii and summed areas within 1e37 */
     CHECK(mlod_refit_check_growth(1.0f, 1.0, 1000, 1e30, &e) == MLOD_OK, "growth 1e30 of 1000 leaves is fine");
     CHECK(mlod_refit_check_growth(1.0f, 1.0, 1000, 1e35, &e) == MLOD_ERROR_RANGE, "growth 1e35 of 1000 leaves: summed areas");
