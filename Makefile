@@ -14,14 +14,15 @@
 #   make test-fast   only the tests built with gcc -O2
 #   make tsan        only the threaded tests under ThreadSanitizer (TSAN_TESTS)
 #   make matrix      only the compile matrix (tests/compile/matrix.sh)
-#   make fuzz        every libFuzzer harness fuzz/fuzz_NAME.c (needs clang's
-#                    libFuzzer: libclang-rt-14-dev): replays each
+#   make fuzz        tests/deps.sh, then every libFuzzer harness
+#                    fuzz/fuzz_NAME.c (make fuzz-only: without the package
+#                    check; clang's libFuzzer is libclang-rt-14-dev): replays each
 #                    fuzz/crashes/NAME/, then fuzzes each on a copy of
 #                    fuzz/corpus/NAME/ for its share of FUZZ_SECONDS (60 in
 #                    all); ends with "N passed, M failed" counting harnesses
 #   make fuzz-corpus regenerate fuzz/corpus/pipeline/ with fuzz/make_corpus.c
-#   make bench       the benchmark (bench/bench.c, needs Embree 3: Debian's
-#                    libembree-dev); prints its tables and writes
+#   make bench       tests/deps.sh, then the benchmark (bench/bench.c, needs
+#                    Embree 3: Debian's libembree-dev); prints its tables and writes
 #                    docs/BENCHMARKS.md, docs/bench.csv, docs/bench.svg
 #   make bench-quick a smaller sweep, written under build/bench/
 #   make clean       remove build/
@@ -118,7 +119,7 @@ VULKAN_TEST := tests/vulkan_missing.sh
 VULKAN_PROGRAMS :=
 endif
 
-.PHONY: all demo test test-only test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs \
+.PHONY: all demo test test-only fuzz-only test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs \
         shaders vulkan vulkan-minimal docs-images
 .DELETE_ON_ERROR:
 
@@ -202,6 +203,10 @@ matrix:
 # fuzz/fuzz_NAME.c is a harness (seeds in fuzz/corpus/NAME/, regression
 # inputs in fuzz/crashes/NAME/); FUZZ_SECONDS is split evenly among them.
 fuzz:
+	$(Q)tests/deps.sh
+	$(Q)$(MAKE) --no-print-directory fuzz-only
+
+fuzz-only:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(FUZZ_PROGRAMS)
 	$(Q)fuzz/run_all.sh $(BUILD)/fuzz $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
 

@@ -669,9 +669,7 @@ static int view_invalid(const mlod_view *v)
     double f2, u2;
     if ((unsigned)v->kind > 3u || !v->width || !v->height || (v->flags & ~1u)) return 1;
     if (!vec_finite(v->position) || !vec_finite(v->forward) || !vec_finite(v->up)) return 1;
-    if (isnan(v->fov_y) || isnan(v->near_plane) || isnan(v->far_plane) || isnan(v->half_width) ||
-        isnan(v->half_height))
-        return 1;
+    /* only the fields a kind reads count (NaN fails their comparisons below) */
     f2 = (double)v->forward[0] * v->forward[0] + (double)v->forward[1] * v->forward[1] +
          (double)v->forward[2] * v->forward[2];
     u2 = (double)v->up[0] * v->up[0] + (double)v->up[1] * v->up[1] + (double)v->up[2] * v->up[2];
