@@ -58,24 +58,7 @@ static void *fuzz_realloc(void *p, size_t size)
 #define MESHIO_MALLOC(size) fuzz_malloc(size)
 #define MESHIO_REALLOC(p, size) fuzz_realloc(p, size)
 #include "../examples/meshio.h"
-
-static int fuzz_verbose = -1;
-
-static void fuzz_fail(const char *format, ...)
-{
-    va_list args;
-    fprintf(stderr, "manylods fuzz: ");
-    va_start(args, format);
-    vfprintf(stderr, format, args);
-    va_end(args);
-    fputc('\n', stderr);
-    abort();
-}
-
-#define REQUIRE(cond, ...) \
-    do { \
-        if (!(cond)) fuzz_fail(__VA_ARGS__); \
-    } while (0)
+#include "fuzz.h"
 
 /* ------------------------------------------------------- naive readers */
 
@@ -92,7 +75,7 @@ static void ref_vertex(ref_mesh *m, const double xyz[3])
     if (m->vertex_count == m->vertex_capacity) {
         m->vertex_capacity = m->vertex_capacity ? 2 * m->vertex_capacity : 64;
         m->positions = (float *)realloc(m->positions, sizeof(float) * 3 * m->vertex_capacity);
-        REQUIRE(m->positions != NULL, "the harness ran out of memory");
+        FZ_REQUIRE(m->positions != NULL, "the harness ran out of memory");
     }
     for (k = 0; k < 3; k++) m->positions[3 * m->vertex_count + (size_t)k] = (float)xyz[k];
     m->vertex_count++;
@@ -103,7 +86,7 @@ static void ref_index(ref_mesh *m, uint32_t index)
     if (m->index_count == m->index_capacity) {
         m->index_capacity = m->index_capacity ? 2 * m->index_capacity : 64;
         m->indices = (uint32_t *)realloc(m->indices, sizeof(uint32_t) * m->index_capacity);
-        REQUIRE(m->indices != NULL, "the harness ran out of memory");
+        FZ_REQUIRE(m->indices != NULL, "the harness ran out of memory");
     }
     m->indices[m->index_count++] = index;
 }
@@ -130,7 +113,7 @@ static void ref_obj(const char *text, ref_mesh *m)
         const char *end = strchr(line, '\n'), *p = line;
         size_t length = end ? (size_t)(end - line) : strlen(line);
         char *copy = (char *)malloc(length + 1);
-        REQUIRE(copy != NULL, "the harness ran out of memory");
+        FZ_REQUIRE(copy != NULL, "the harness ran out of memory");
         memcpy(copy, line, length);
         copy[length] = '\0';
         p = copy;
@@ -156,7 +139,7 @@ static void ref_obj(const char *text, ref_mesh *m)
                 if (n == poly_capacity) {
                     poly_capacity = poly_capacity ? 2 * poly_capacity : 16;
                     poly = (uint32_t *)realloc(poly, sizeof *poly * poly_capacity);
-                    REQUIRE(poly != NULL, "the harness ran out of memory");
+                    FZ_REQUIRE(poly != NULL, "the harness ran out of memory");
                 }
                 poly[n++] = (uint32_t)(i < 0 ? (long long)m->vertex_count + i : i - 1);
                 while (*p && *p != ' ' && *p != '\t' && *p != '\r' && *p != '#') p++;
@@ -208,7 +191,7 @@ static double ref_value(ref_reader *r, int bytes, int kind)
         r->p = (const uint8_t *)next;
         return v;
     }
-    REQUIRE((size_t)(r->end - r->p) >= (size_t)bytes, "the loader accepted a binary PLY that ends early");
+    FZ_REQUIRE((size_t)(r->end - r->p) >= (size_t)bytes, "the loader accepted a binary PLY that ends early");
     for (i = 0; i < bytes; i++) b[i] = r->p[r->big ? bytes - 1 - i : i];
     r->p += bytes;
     {
@@ -245,7 +228,7 @@ static void ref_ply(const uint8_t *data, size_t size, ref_mesh *m)
         char line[512], w[5][64];
         size_t length;
         int words;
-        REQUIRE(nl != NULL, "the loader accepted a PLY without an end_header line");
+        FZ_REQUIRE(nl != NULL, "the loader accepted a PLY without an end_header line");
         length = (size_t)(nl - p) < sizeof line - 1 ? (size_t)(nl - p) : sizeof line - 1;
         memcpy(line, p, length);
         line[length] = '\0';
@@ -257,7 +240,7 @@ static void ref_ply(const uint8_t *data, size_t size, ref_mesh *m)
             r.binary = strcmp(w[1], "ascii") != 0;
             r.big = strcmp(w[1], "binary_big_endian") == 0;
         } else if (strcmp(w[0], "element") == 0) {
-            REQUIRE(nelements < 16, "the loader accepted more than 16 elements");
+            FZ_REQUIRE(nelements < 16, "the loader accepted more than 16 elements");
             strcpy(names[nelements], w[1]);
             counts[nelements] = strtoul(w[2], NULL, 10);
             nelements++;
@@ -291,7 +274,7 @@ static void ref_ply(const uint8_t *data, size_t size, ref_mesh *m)
                     if (used && n > poly_capacity) {
                         poly_capacity = n;
                         poly = (uint32_t *)realloc(poly, sizeof *poly * n);
-                        REQUIRE(poly != NULL, "the harness ran out of memory");
+                        FZ_REQUIRE(poly != NULL, "the harness ran out of memory");
                     }
                     for (j = 0; j < n; j++) {
                         double v = ref_value(&r, q->bytes, q->kind);
@@ -328,28 +311,28 @@ static void check_mesh(const scene_mesh *m, const uint8_t *data, size_t size, in
 {
     ref_mesh ref = {NULL, NULL, 0, 0, 0, 0};
     uint32_t i;
-    REQUIRE(m->vertex_count >= 1 && m->index_count >= 3 && m->index_count % 3 == 0, "a mesh of %u vertices, %u indices",
+    FZ_REQUIRE(m->vertex_count >= 1 && m->index_count >= 3 && m->index_count % 3 == 0, "a mesh of %u vertices, %u indices",
             m->vertex_count, m->index_count);
-    REQUIRE(m->positions && m->indices && !m->normals && !m->colors, "the mesh's arrays");
+    FZ_REQUIRE(m->positions && m->indices && !m->normals && !m->colors, "the mesh's arrays");
     for (i = 0; i < m->index_count; i++)
-        REQUIRE(m->indices[i] < m->vertex_count, "index %u of %u vertices", m->indices[i], m->vertex_count);
+        FZ_REQUIRE(m->indices[i] < m->vertex_count, "index %u of %u vertices", m->indices[i], m->vertex_count);
     for (i = 0; i < 3 * m->vertex_count; i++)
-        REQUIRE(isfinite(m->positions[i]) && fabsf(m->positions[i]) <= (float)1e30, "coordinate %g", m->positions[i]);
+        FZ_REQUIRE(isfinite(m->positions[i]) && fabsf(m->positions[i]) <= (float)1e30, "coordinate %g", m->positions[i]);
     {
         char *text = (char *)malloc(size + 1);
-        REQUIRE(text != NULL, "the harness ran out of memory");
+        FZ_REQUIRE(text != NULL, "the harness ran out of memory");
         memcpy(text, data, size);
         text[size] = '\0';
         if (is_ply) ref_ply(data, size, &ref);
         else ref_obj(text, &ref);
         free(text);
     }
-    REQUIRE(ref.vertex_count == m->vertex_count && ref.index_count == m->index_count,
+    FZ_REQUIRE(ref.vertex_count == m->vertex_count && ref.index_count == m->index_count,
             "the naive reader finds %lu vertices and %lu indices, the loader %u and %u", (unsigned long)ref.vertex_count,
             (unsigned long)ref.index_count, m->vertex_count, m->index_count);
-    REQUIRE(memcmp(ref.positions, m->positions, sizeof(float) * 3 * m->vertex_count) == 0,
+    FZ_REQUIRE(memcmp(ref.positions, m->positions, sizeof(float) * 3 * m->vertex_count) == 0,
             "the coordinates differ from the naive reader's");
-    REQUIRE(memcmp(ref.indices, m->indices, sizeof(uint32_t) * m->index_count) == 0,
+    FZ_REQUIRE(memcmp(ref.indices, m->indices, sizeof(uint32_t) * m->index_count) == 0,
             "the indices differ from the naive reader's");
     free(ref.positions);
     free(ref.indices);
@@ -362,7 +345,7 @@ static void check_round_trip(const scene_mesh *m)
     char *text = (char *)malloc(capacity), error[256];
     scene_mesh again;
     uint32_t i;
-    REQUIRE(text != NULL, "the harness ran out of memory");
+    FZ_REQUIRE(text != NULL, "the harness ran out of memory");
     for (i = 0; i < m->vertex_count; i++)
         n += (size_t)snprintf(text + n, capacity - n, "v %.9g %.9g %.9g\n", m->positions[3 * i], m->positions[3 * i + 1],
                               m->positions[3 * i + 2]);
@@ -370,8 +353,8 @@ static void check_round_trip(const scene_mesh *m)
         n += (size_t)snprintf(text + n, capacity - n, "f %u %u %u\n", m->indices[i] + 1, m->indices[i + 1] + 1,
                               m->indices[i + 2] + 1);
     fuzz_fail_at = 0;
-    REQUIRE(meshio_parse("again.obj", text, n, &again, error, sizeof error), "the mesh written as OBJ: %s", error);
-    REQUIRE(again.vertex_count == m->vertex_count && again.index_count == m->index_count &&
+    FZ_REQUIRE(meshio_parse("again.obj", text, n, &again, error, sizeof error), "the mesh written as OBJ: %s", error);
+    FZ_REQUIRE(again.vertex_count == m->vertex_count && again.index_count == m->index_count &&
                 memcmp(again.positions, m->positions, sizeof(float) * 3 * m->vertex_count) == 0 &&
                 memcmp(again.indices, m->indices, sizeof(uint32_t) * m->index_count) == 0,
             "the mesh written as OBJ loads as another mesh");
@@ -388,24 +371,24 @@ static void check_message(const char *message, const char *name, const uint8_t *
     size_t n = strlen(name), i;
     const char *rest = message + n;
     char *end;
-    REQUIRE(message[0] != '\0', "a failure without a message");
-    REQUIRE(strncmp(message, name, n) == 0, "the message does not start with the name \"%s\": %s", name, message);
+    FZ_REQUIRE(message[0] != '\0', "a failure without a message");
+    FZ_REQUIRE(strncmp(message, name, n) == 0, "the message does not start with the name \"%s\": %s", name, message);
     if (rest[0] == ':' && rest[1] >= '1' && rest[1] <= '9') {
         unsigned long line = strtoul(rest + 1, &end, 10);
         size_t lines = line_count(data, size);
-        REQUIRE(end[0] == ':' && end[1] == ' ' && end[2] != '\0', "a line number without a message: %s", message);
-        REQUIRE(line <= lines, "line %lu of an input of %lu lines: %s", line, (unsigned long)lines, message);
+        FZ_REQUIRE(end[0] == ':' && end[1] == ' ' && end[2] != '\0', "a line number without a message: %s", message);
+        FZ_REQUIRE(line <= lines, "line %lu of an input of %lu lines: %s", line, (unsigned long)lines, message);
         return;
     }
     if (is_ply && strncmp(rest, ": byte ", 7) == 0 && rest[7] >= '0' && rest[7] <= '9') {
         unsigned long offset = strtoul(rest + 7, &end, 10);
-        REQUIRE(end[0] == ':' && end[1] == ' ' && end[2] != '\0', "a byte offset without a message: %s", message);
-        REQUIRE(offset <= size, "byte %lu of an input of %lu bytes: %s", offset, (unsigned long)size, message);
+        FZ_REQUIRE(end[0] == ':' && end[1] == ' ' && end[2] != '\0', "a byte offset without a message: %s", message);
+        FZ_REQUIRE(offset <= size, "byte %lu of an input of %lu bytes: %s", offset, (unsigned long)size, message);
         return;
     }
     for (i = 0; i < sizeof whole / sizeof *whole; i++)
         if (strncmp(rest, whole[i], strlen(whole[i])) == 0) return;
-    fuzz_fail("a message with no place (line, byte offset) that is not about the whole file: %s", message);
+    fz_fail(__FILE__, __LINE__, "a message with no place (line, byte offset) that is not about the whole file: %s", message);
 }
 
 static char fuzz_dir[256];
@@ -426,7 +409,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size)
     int flags, ok, is_ply;
     const char *name;
     scene_mesh m;
-    if (fuzz_verbose < 0) fuzz_verbose = getenv("MANYLODS_FUZZ_VERBOSE") != NULL;
     if (input_size < 1) return 0;
     flags = input[0];
     data = input + 1;
@@ -448,13 +430,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size)
     fuzz_allocations = fuzz_fail_at = 0;
     memset(message, 0, sizeof message);
     ok = meshio_parse(name, data, size, &m, message, sizeof message);
-    if (fuzz_verbose) fprintf(stderr, "%s, %lu bytes: %s\n", name, (unsigned long)size, ok ? "loaded" : message);
+    if (fz_verbose()) fprintf(stderr, "%s, %lu bytes: %s\n", name, (unsigned long)size, ok ? "loaded" : message);
     if (ok) {
         check_mesh(&m, data, size, is_ply);
         check_round_trip(&m);
     } else {
-        REQUIRE(mesh_empty(&m), "a failure left a mesh");
-        REQUIRE(memchr(message, '\0', sizeof message) != NULL, "the message is not NUL-terminated");
+        FZ_REQUIRE(mesh_empty(&m), "a failure left a mesh");
+        FZ_REQUIRE(memchr(message, '\0', sizeof message) != NULL, "the message is not NUL-terminated");
         check_message(message, name, data, size, is_ply);
     }
 
@@ -464,18 +446,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size)
         int ok2;
         memset(small, 0x5a, sizeof small);
         ok2 = meshio_parse(name, data, size, &s, small_size ? small : NULL, small_size);
-        REQUIRE(ok2 == ok, "a small error buffer changed the result");
+        FZ_REQUIRE(ok2 == ok, "a small error buffer changed the result");
         if (ok2) scene_free(&s);
         else if (small_size) {
-            REQUIRE(memchr(small, '\0', small_size) != NULL, "a message of a %lu-byte buffer is not NUL-terminated",
+            FZ_REQUIRE(memchr(small, '\0', small_size) != NULL, "a message of a %lu-byte buffer is not NUL-terminated",
                     (unsigned long)small_size);
-            REQUIRE(strncmp(small, message, small_size - 1) == 0 &&
+            FZ_REQUIRE(strncmp(small, message, small_size - 1) == 0 &&
                         strlen(small) == (strlen(message) < small_size - 1 ? strlen(message) : small_size - 1),
                     "the message cut to %lu bytes is \"%s\", not a prefix of \"%s\"", (unsigned long)small_size, small,
                     message);
         }
         for (size_t i = small_size; i < sizeof small; i++)
-            REQUIRE((uint8_t)small[i] == 0x5a, "a %lu-byte error buffer was written past its end",
+            FZ_REQUIRE((uint8_t)small[i] == 0x5a, "a %lu-byte error buffer was written past its end",
                     (unsigned long)small_size);
     }
 
@@ -489,14 +471,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size)
         ok3 = meshio_parse(name, data, size, &f, failed, sizeof failed);
         fuzz_fail_at = 0;
         if (ok3) {
-            REQUIRE(ok && f.vertex_count == m.vertex_count && f.index_count == m.index_count &&
+            FZ_REQUIRE(ok && f.vertex_count == m.vertex_count && f.index_count == m.index_count &&
                         memcmp(f.positions, m.positions, sizeof(float) * 3 * m.vertex_count) == 0 &&
                         memcmp(f.indices, m.indices, sizeof(uint32_t) * m.index_count) == 0,
                     "with allocation %u failing, another mesh", fail_at);
             scene_free(&f);
         } else {
-            REQUIRE(mesh_empty(&f), "a failure left a mesh");
-            REQUIRE(strstr(failed, "out of memory") || (!ok && strcmp(failed, message) == 0),
+            FZ_REQUIRE(mesh_empty(&f), "a failure left a mesh");
+            FZ_REQUIRE(strstr(failed, "out of memory") || (!ok && strcmp(failed, message) == 0),
                     "with allocation %u failing: \"%s\" (without: \"%s\")", fail_at, failed, ok ? "loaded" : message);
             check_message(failed, name, data, size, is_ply);
         }
@@ -511,25 +493,25 @@ int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size)
         if (!fuzz_dir[0]) {
             const char *tmp = getenv("TMPDIR");
             snprintf(fuzz_dir, sizeof fuzz_dir, "%s/manylods-fuzz-loader-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-            REQUIRE(mkdtemp(fuzz_dir) != NULL, "cannot create a directory for the harness's files");
+            FZ_REQUIRE(mkdtemp(fuzz_dir) != NULL, "cannot create a directory for the harness's files");
             atexit(fuzz_remove_dir);
         }
         snprintf(path, sizeof path, "%s/%s", fuzz_dir, name);
         file = fopen(path, "wb");
-        REQUIRE(file != NULL, "cannot write %s", path);
-        REQUIRE(fwrite(data, 1, size, file) == size && fclose(file) == 0, "cannot write %s", path);
+        FZ_REQUIRE(file != NULL, "cannot write %s", path);
+        FZ_REQUIRE(fwrite(data, 1, size, file) == size && fclose(file) == 0, "cannot write %s", path);
         ok4 = meshio_load(path, &l, loaded, sizeof loaded);
         remove(path);
-        REQUIRE(ok4 == ok, "meshio_load and meshio_parse disagree: %s", ok4 ? "loaded" : loaded);
+        FZ_REQUIRE(ok4 == ok, "meshio_load and meshio_parse disagree: %s", ok4 ? "loaded" : loaded);
         if (ok4) {
-            REQUIRE(l.vertex_count == m.vertex_count && l.index_count == m.index_count &&
+            FZ_REQUIRE(l.vertex_count == m.vertex_count && l.index_count == m.index_count &&
                         memcmp(l.positions, m.positions, sizeof(float) * 3 * m.vertex_count) == 0 &&
                         memcmp(l.indices, m.indices, sizeof(uint32_t) * m.index_count) == 0,
                     "meshio_load gives another mesh");
             scene_free(&l);
         } else {
             /* the same message, with the path for the name */
-            REQUIRE(strncmp(loaded, path, strlen(path)) == 0 && strcmp(loaded + strlen(path), message + strlen(name)) == 0,
+            FZ_REQUIRE(strncmp(loaded, path, strlen(path)) == 0 && strcmp(loaded + strlen(path), message + strlen(name)) == 0,
                     "meshio_load says \"%s\", meshio_parse \"%s\"", loaded, message);
         }
     }

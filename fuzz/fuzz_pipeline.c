@@ -88,6 +88,7 @@
    helpers' arguments.  fuzz/make_corpus.c writes the seeds. */
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
+#include "fuzz.h"
 #include "../tests/exact.h"
 
 #include <float.h>
@@ -124,28 +125,6 @@
 #define FZ_SAMPLED 24u   /* nodes per view checked against the criterion */
 #define FZ_LAZY_CALLS 64 /* lazy updates allowed to reach the basic cut */
 
-static int fz_verbose = -1;
-
-#define FZ_NOTE(...)                                                                                                   \
-    do {                                                                                                               \
-        if (fz_verbose) fprintf(stderr, __VA_ARGS__);                                                                  \
-    } while (0)
-
-/* Report a broken invariant and abort (libFuzzer saves the input). */
-static void fz_fail(const char *file, int line, const char *fmt, ...)
-{
-    va_list args;
-    fprintf(stderr, "\nmanylods fuzz: invariant broken at %s:%d: ", file, line);
-    va_start(args, fmt);
-    vfprintf(stderr, fmt, args);
-    va_end(args);
-    fputc('\n', stderr);
-    abort();
-}
-#define FZ_REQUIRE(cond, ...)                                                                                          \
-    do {                                                                                                               \
-        if (!(cond)) fz_fail(__FILE__, __LINE__, __VA_ARGS__);                                                         \
-    } while (0)
 
 /* ------------------------------------------------------------- reader */
 
@@ -1705,7 +1684,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t i, ext_at;
     int sane, large, must_fail, tries = 0;
     unsigned long live;
-    if (fz_verbose < 0) fz_verbose = getenv("MANYLODS_FUZZ_VERBOSE") != NULL;
     /* the generator's seed: every byte but the extension byte, so that an
        input of the format before it, given a 0 there, runs as it did */
     ext_at = size && (data[0] & 16) ? 4 : 3;

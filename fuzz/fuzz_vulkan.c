@@ -43,6 +43,7 @@
    every block of ours goes through manylods' allocators and is checked. */
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
+#include "fuzz.h"
 #define MANYLODS_VK_IMPLEMENTATION
 #include "../manylods_vk.h"
 
@@ -57,28 +58,6 @@
 #define FZ_POINTS 256u
 #define FZ_SPLAT_TILE 32u /* the splat runs when every tile is at most this */
 
-static int fz_verbose = -1;
-
-#define FZ_NOTE(...)                                                                                                   \
-    do {                                                                                                               \
-        if (fz_verbose) fprintf(stderr, __VA_ARGS__);                                                                  \
-    } while (0)
-
-/* Report a broken invariant and abort (libFuzzer saves the input). */
-static void fz_fail(const char *file, int line, const char *fmt, ...)
-{
-    va_list args;
-    fprintf(stderr, "\nmanylods fuzz: invariant broken at %s:%d: ", file, line);
-    va_start(args, fmt);
-    vfprintf(stderr, fmt, args);
-    va_end(args);
-    fputc('\n', stderr);
-    abort();
-}
-#define FZ_REQUIRE(cond, ...)                                                                                          \
-    do {                                                                                                               \
-        if (!(cond)) fz_fail(__FILE__, __LINE__, __VA_ARGS__);                                                         \
-    } while (0)
 
 /* Leaks whose allocation stack holds a frame of lavapipe (see above). */
 const char *__lsan_default_suppressions(void);
@@ -172,8 +151,6 @@ static void fz_setup(void)
     mlod_build_desc bd;
     mlod_error e;
     uint32_t i;
-    const char *verbose = getenv("MANYLODS_FUZZ_VERBOSE");
-    fz_verbose = verbose && verbose[0] == '1';
     for (i = 0; i < FZ_POINTS; i++) {
         double z = 1.0 - (2.0 * i + 1.0) / FZ_POINTS, rho = sqrt(1.0 - z * z), phi = 2.399963229728653 * i;
         double n[3], bump = 1.0 + 0.1 * sin(5.0 * phi) * z;

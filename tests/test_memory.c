@@ -17,53 +17,15 @@
 
 /* ---------------------------------------------------- budget allocator */
 
-/* Counts live bytes and their high-water mark; refuses a block that would
-   take the live bytes past `budget` (0: no budget), and every call from
-   the one numbered fail_at on (1-based, 0: none). */
-typedef struct budget {
-    size_t live, peak, budget;
-    unsigned long calls, fail_at, blocks, refused;
-} budget;
-
-static void *budget_alloc(void *user, size_t bytes)
-{
-    budget *b = (budget *)user;
-    unsigned char *p;
-    b->calls++;
-    if ((b->fail_at && b->calls >= b->fail_at) || (b->budget && bytes > b->budget - (b->live < b->budget ? b->live : b->budget))) {
-        b->refused++;
-        return NULL;
-    }
-    p = (unsigned char *)malloc(bytes + 16);
-    if (!p) return NULL;
-    memcpy(p, &bytes, sizeof bytes);
-    b->live += bytes;
-    b->blocks++;
-    if (b->live > b->peak) b->peak = b->live;
-    return p + 16;
-}
-
-static void budget_free(void *user, void *pointer)
-{
-    budget *b = (budget *)user;
-    unsigned char *p = (unsigned char *)pointer;
-    size_t bytes;
-    if (!p) return;
-    p -= 16;
-    memcpy(&bytes, p, sizeof bytes);
-    b->live -= bytes;
-    b->blocks--;
-    free(p);
-}
+/* testutil.h's counting allocator, zeroed, failing every call from fail_at
+   on once that is set (the budget of live bytes is budget_bytes). */
+typedef tu_counter budget;
 
 static mlod_allocator budget_allocator(budget *b)
 {
-    mlod_allocator a;
     memset(b, 0, sizeof *b);
-    a.alloc = budget_alloc;
-    a.free = budget_free;
-    a.user = b;
-    return a;
+    b->fail_after = 1;
+    return tu_allocator(b);
 }
 
 /* ------------------------------------------------------- cut snapshots */
@@ -183,14 +145,14 @@ static size_t growth_of_update(mlod_cut_params p, unsigned long *calls)
     size_t before;
     *calls = 0;
     if (!cut) return 0;
-    before = b.live;
-    b.peak = b.live;
+    before = b.live_bytes;
+    b.peak_bytes = b.live_bytes;
     b.calls = 0;
     p.epsilon = 0.75f;
     CHECK(mlod_cut_update(cut, room_tree, near_views, &p, NULL) == MLOD_OK, "growth: the unlimited update failed");
     *calls = b.calls;
     mlod_cut_destroy(cut);
-    return b.peak - before;
+    return b.peak_bytes - before;
 }
 
 /* After a failed update, the cut is as it was: same cuts, bytes and
@@ -199,11 +161,11 @@ static int check_unchanged(const snapshot *s, const mlod_cut *cut, const budget 
                            mlod_result expected, const char *what, unsigned long at)
 {
     long view = snapshot_differs(s, cut);
-    int ok = got == expected && view < 0 && mlod_cut_bytes(cut) == s->bytes && b->live == live;
+    int ok = got == expected && view < 0 && mlod_cut_bytes(cut) == s->bytes && b->live_bytes == live;
     CHECK(got == expected, "%s %lu: returned %s, expected %s", what, at, mlod_result_name(got), mlod_result_name(expected));
     CHECK(view < 0, "%s %lu: view %ld's cut changed", what, at, view);
     CHECK(mlod_cut_bytes(cut) == s->bytes, "%s %lu: mlod_cut_bytes %zu, was %zu", what, at, mlod_cut_bytes(cut), s->bytes);
-    CHECK(b->live == live, "%s %lu: the allocator holds %zu live bytes, held %zu", what, at, b->live, live);
+    CHECK(b->live_bytes == live, "%s %lu: the allocator holds %zu live bytes, held %zu", what, at, b->live_bytes, live);
     return ok;
 }
 
@@ -222,7 +184,7 @@ static void check_as_undisturbed(const mlod_cut *cut, const budget *b, mlod_cut_
     snapshot_take(&want, ref);
     view = snapshot_differs(&want, cut);
     CHECK(view < 0, "%s: after the failures view %ld's cut differs from an undisturbed cut's", what, view);
-    CHECK(mlod_cut_bytes(cut) == b->live, "%s: the cut reports %zu bytes, holds %zu", what, mlod_cut_bytes(cut), b->live);
+    CHECK(mlod_cut_bytes(cut) == b->live_bytes, "%s: the cut reports %zu bytes, holds %zu", what, mlod_cut_bytes(cut), b->live_bytes);
     snapshot_free(&want);
     mlod_cut_destroy(ref);
 }
@@ -258,7 +220,7 @@ static void test_failed_updates(void)
             CHECK(cut != NULL, "%s, %s: settled cut", mode_names[mode], hook_names[h]);
             if (!cut) continue;
             snapshot_take(&s, cut);
-            live = b.live;
+            live = b.live_bytes;
             CHECK(s.bytes == live, "%s, %s: the cut reports %zu bytes, holds %zu", mode_names[mode], hook_names[h], s.bytes,
                   live);
             /* errors found before any work */
@@ -293,19 +255,19 @@ static void test_failed_updates(void)
                      hook_names[h]);
             for (f = 0;; f += 71) {
                 mlod_result r;
-                b.budget = f < 1000 ? live + growth * (size_t)f / 1000 : 0;
+                b.budget_bytes = f < 1000 ? live + growth * (size_t)f / 1000 : 0;
                 r = mlod_cut_update(cut, room_tree, near_views, &p, NULL);
                 if (r == MLOD_OK) break;
                 check_unchanged(&s, cut, &b, live, r, MLOD_ERROR_OUT_OF_MEMORY, what, (unsigned long)f);
                 budgets++;
             }
             CHECK(f >= 500, "%s: an update succeeded with %d per mille of the growth it takes", what, f);
-            b.budget = 0;
+            b.budget_bytes = 0;
             snprintf(what, sizeof what, "%s, %s", mode_names[mode], hook_names[h]);
             check_as_undisturbed(cut, &b, p, what);
             snapshot_free(&s);
             mlod_cut_destroy(cut);
-            CHECK(b.blocks == 0 && b.live == 0, "%s: %lu blocks, %zu bytes left after destroy", what, b.blocks, b.live);
+            CHECK(b.live_blocks == 0 && b.live_bytes == 0, "%s: %lu blocks, %zu bytes left after destroy", what, b.live_blocks, b.live_bytes);
         }
     printf("  failed updates checked: %u with a failing allocation, %u under a budget\n", fails,
            budgets);
@@ -341,16 +303,16 @@ static size_t check_build(const mlod_mesh *m, const mlod_points *pts, uint32_t n
     }
     CHECK(r == MLOD_OK, "%s, N = %u, attributes %#x: build failed: %s", what, n, attributes, e.message);
     if (r != MLOD_OK) return 0;
-    CHECK(b.peak <= bound && (double)bound <= 1.1 * (double)b.peak,
+    CHECK(b.peak_bytes <= bound && (double)bound <= 1.1 * (double)b.peak_bytes,
           "%s, N = %u, attributes %#x%s: bound %zu bytes against a peak of %zu (within 10 %% above)", what, n, attributes,
-          hook ? ", 2 threads" : "", bound, b.peak);
-    CHECK(bound == b.peak, "%s, N = %u, attributes %#x: bound %zu is not the peak %zu exactly", what, n, attributes, bound,
-          b.peak);
-    CHECK(t->bytes == b.live, "%s, N = %u: the tree reports %zu bytes, holds %zu", what, n, t->bytes, b.live);
+          hook ? ", 2 threads" : "", bound, b.peak_bytes);
+    CHECK(bound == b.peak_bytes, "%s, N = %u, attributes %#x: bound %zu is not the peak %zu exactly", what, n, attributes, bound,
+          b.peak_bytes);
+    CHECK(t->bytes == b.live_bytes, "%s, N = %u: the tree reports %zu bytes, holds %zu", what, n, t->bytes, b.live_bytes);
     CHECK(t->bytes <= bound, "%s, N = %u: the tree's %zu bytes above the peak bound %zu", what, n, t->bytes, bound);
     mlod_tree_destroy(t);
-    CHECK(b.live == 0 && b.blocks == 0, "%s, N = %u: %zu bytes left after destroy", what, n, b.live);
-    return b.peak;
+    CHECK(b.live_bytes == 0 && b.live_blocks == 0, "%s, N = %u: %zu bytes left after destroy", what, n, b.live_bytes);
+    return b.peak_bytes;
 }
 
 static void test_build_bounds(void)
@@ -453,14 +415,14 @@ static void test_cut_bounds(void)
                     free(views);
                     continue;
                 }
-                created = b.live;
+                created = b.live_bytes;
                 /* the first update of a new cut: its peak */
-                b.peak = b.live;
+                b.peak_bytes = b.live_bytes;
                 CHECK(mlod_cut_update(cut, room_tree, views, &p, NULL) == MLOD_OK, "cut bound: update");
                 for (v = 0; v < V; v++) most += mlod_cut_get(cut, v).count;
                 bound = mlod_cut_bound(V, (uint32_t)((most + V - 1) / V));
-                CHECK(b.peak <= bound, "cut bound, %u views, eps %g, mode %u: the first update peaks at %zu bytes, above the bound %zu",
-                      V, eps[ei], mode, b.peak, bound);
+                CHECK(b.peak_bytes <= bound, "cut bound, %u views, eps %g, mode %u: the first update peaks at %zu bytes, above the bound %zu",
+                      V, eps[ei], mode, b.peak_bytes, bound);
                 /* later updates, the views moving between two sets: what the cut holds */
                 for (call = 1; call < (ci == 2 ? 3u : 5u); call++) {
                     uint64_t total = 0;
@@ -469,8 +431,8 @@ static void test_cut_bounds(void)
                     if (total > most) most = total;
                 }
                 bound = mlod_cut_bound(V, (uint32_t)((most + V - 1) / V));
-                CHECK(mlod_cut_bytes(cut) == b.live, "cut bound: the cut reports %zu bytes, holds %zu", mlod_cut_bytes(cut),
-                      b.live);
+                CHECK(mlod_cut_bytes(cut) == b.live_bytes, "cut bound: the cut reports %zu bytes, holds %zu", mlod_cut_bytes(cut),
+                      b.live_bytes);
                 CHECK(mlod_cut_bytes(cut) <= bound, "cut bound, %u views, eps %g, mode %u, %llu nodes at most: holds %zu bytes, above the bound %zu",
                       V, eps[ei], mode, (unsigned long long)most, mlod_cut_bytes(cut), bound);
                 if (most >= ((uint64_t)1 << 20)) {
@@ -519,21 +481,21 @@ static void test_atlas_bounds(void)
         bound = mlod_atlas_bound(views, V, &desc);
         CHECK(mlod_atlas_create(views, V, &desc, &a, &atlas, NULL) == MLOD_OK, "atlas bound: create");
         if (!atlas) continue;
-        CHECK(bound == atlas->bytes && bound == b.live && bound == b.peak,
-              "atlas bound %zu: the atlas reports %zu, allocated %zu (peak %zu)", bound, atlas->bytes, b.live, b.peak);
-        exact += bound == b.peak;
+        CHECK(bound == atlas->bytes && bound == b.live_bytes && bound == b.peak_bytes,
+              "atlas bound %zu: the atlas reports %zu, allocated %zu (peak %zu)", bound, atlas->bytes, b.live_bytes, b.peak_bytes);
+        exact += bound == b.peak_bytes;
         /* fill_holes' scratch, on power-of-two tiles: a third of the pixels
            times (values + 1) floats */
         values = 1 + (desc.channels & MLOD_ATLAS_NORMAL ? 3 : 0) + (desc.channels & MLOD_ATLAS_COLOR ? 3 : 0);
         for (v = 0; v < V; v++) pyramid += (double)views[v].width * views[v].height / 3.0 * (values + 1) * sizeof(float);
-        before = b.live;
-        b.peak = b.live;
+        before = b.live_bytes;
+        b.peak_bytes = b.live_bytes;
         CHECK(mlod_atlas_fill_holes(atlas, NULL, NULL) == MLOD_OK, "atlas bound: fill holes");
         if (trial % 2)
-            CHECK((double)(b.peak - before) <= 1.01 * pyramid + 8.0 * V && (double)(b.peak - before) >= 0.9 * pyramid,
-                  "atlas: fill_holes took %zu bytes, the manual says about %.0f", b.peak - before, pyramid);
+            CHECK((double)(b.peak_bytes - before) <= 1.01 * pyramid + 8.0 * V && (double)(b.peak_bytes - before) >= 0.9 * pyramid,
+                  "atlas: fill_holes took %zu bytes, the manual says about %.0f", b.peak_bytes - before, pyramid);
         mlod_atlas_destroy(atlas);
-        CHECK(b.live == 0, "atlas: %zu bytes left after destroy", b.live);
+        CHECK(b.live_bytes == 0, "atlas: %zu bytes left after destroy", b.live_bytes);
     }
     /* what mlod_atlas_create refuses has no size */
     {

@@ -453,11 +453,13 @@ static inline void tu_check_containment(const mlod_tree *t, const char *what)
 
 /* ----------------------------------------------------------- allocator */
 
-/* Counts live blocks and bytes; can fail the fail_at-th call (1-based), or
-   every call from it on (fail_after), or any block above max_bytes. */
+/* Counts live blocks and bytes and their high-water mark; can fail the
+   fail_at-th call (1-based), or every call from it on (fail_after), any
+   block above max_bytes, or any block that would take the live bytes past
+   budget_bytes (0: none). */
 typedef struct tu_counter {
     unsigned long calls, live_blocks, frees_of_unknown;
-    size_t live_bytes, peak_bytes, max_bytes;
+    size_t live_bytes, peak_bytes, max_bytes, budget_bytes;
     unsigned long fail_at;
     int fail_after;
 } tu_counter;
@@ -469,6 +471,7 @@ static inline void *tu_counter_alloc(void *user, size_t bytes)
     c->calls++;
     if (c->fail_at && (c->calls == c->fail_at || (c->fail_after && c->calls > c->fail_at))) return NULL;
     if (c->max_bytes && bytes > c->max_bytes) return NULL;
+    if (c->budget_bytes && (c->live_bytes >= c->budget_bytes || bytes > c->budget_bytes - c->live_bytes)) return NULL;
     p = (unsigned char *)malloc(bytes + 16);
     if (!p) return NULL;
     memcpy(p, &bytes, sizeof bytes);
