@@ -234,7 +234,7 @@ $(BUILD)/tsan/%: tests/%.c $(HEADERS)
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CLANG) $(TSAN_CFLAGS) $< -o $@ $(LDLIBS)
 
-$(FUZZ_PROGRAMS): $(BUILD)/fuzz/fuzz_%: fuzz/fuzz_%.c $(HEADERS) manylods_vk.h
+$(FUZZ_PROGRAMS): $(BUILD)/fuzz/fuzz_%: fuzz/fuzz_%.c $(HEADERS) $(wildcard fuzz/*.h) manylods_vk.h
 	$(say) CLANG $@
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CLANG) $(FUZZ_CFLAGS) $< -o $@ $(FUZZ_LDLIBS)

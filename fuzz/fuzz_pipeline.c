@@ -89,6 +89,7 @@
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
 #include "fuzz.h"
+#include "reader.h"
 #include "../tests/exact.h"
 
 #include <float.h>
@@ -128,42 +129,7 @@
 
 /* ------------------------------------------------------------- reader */
 
-typedef struct fz_reader {
-    const uint8_t *data;
-    size_t size, at;
-    uint64_t state; /* generator for bytes past the end */
-    unsigned chaos; /* 0..255: chance (of 256) that a float is raw bits */
-} fz_reader;
-
-static uint8_t rd_u8(fz_reader *r)
-{
-    if (r->at < r->size) return r->data[r->at++];
-    r->state = r->state * 6364136223846793005ull + 1442695040888963407ull;
-    return (uint8_t)(r->state >> 56);
-}
-
-static uint32_t rd_u16(fz_reader *r)
-{
-    uint32_t lo = rd_u8(r);
-    return lo | (uint32_t)rd_u8(r) << 8;
-}
-
-static uint32_t rd_u32(fz_reader *r)
-{
-    uint32_t lo = rd_u16(r);
-    return lo | rd_u16(r) << 16;
-}
-
-static double rd_unit(fz_reader *r) { return rd_u16(r) / 65535.0; }            /* [0, 1] */
 static uint32_t rng_below_reader(fz_reader *r, uint32_t n) { return (uint32_t)(((uint64_t)rd_u32(r) * n) >> 32); }
-static double rd_signed(fz_reader *r) { return (int16_t)rd_u16(r) / 32768.0; } /* [-1, 1) */
-
-static float bits_float(uint32_t bits)
-{
-    float f;
-    memcpy(&f, &bits, sizeof f);
-    return f;
-}
 
 /* A hostile float: one of the interesting values, or raw bits. */
 static float rd_raw_float(fz_reader *r)
@@ -178,12 +144,6 @@ static float rd_raw_float(fz_reader *r)
     return bits_float(rd_u32(r));
 }
 
-/* value, or (with the reader's chaos) a hostile float instead. */
-static float rd_maybe_raw(fz_reader *r, double value)
-{
-    if (r->chaos && rd_u8(r) < r->chaos) return rd_raw_float(r);
-    return (float)value;
-}
 
 /* -------------------------------------------------------- allocator */
 
