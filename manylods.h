@@ -218,8 +218,10 @@
    MEMORY
      Size before you allocate: mlod_build_mesh_bound and
      mlod_build_points_bound give a build's peak bytes (exactly; N = 2^30
-     needs 125 GiB), mlod_cut_bound an upper bound on a cut's bytes for a
-     mean cut size, mlod_atlas_bound an atlas's bytes (exactly).  Every
+     needs 125 GiB), mlod_cut_bound a cut's bytes for a mean cut size
+     (exactly what mlod_cut_reserve gives it, after which its updates
+     allocate nothing; an upper bound otherwise), mlod_atlas_bound an
+     atlas's bytes (exactly).  Every
      object reports its bytes (mlod_tree.bytes, mlod_cut_bytes,
      mlod_atlas.bytes).  Attributes a scene does not ask for take no memory.
      A failed call gives back what it allocated (a cut keeps its bytes and
@@ -590,20 +592,29 @@ typedef struct mlod_cut_view {
 
 typedef struct mlod_cut mlod_cut;
 
-/* Sizing, before a cut: an upper bound on the bytes a cut of view_count
-   views holds (mlod_cut_bytes) while its views' cuts average at most
-   mean_cut_nodes nodes, in any mode, and on the peak of its first update:
-   the per-view arrays, three lists of the cuts, the scratch of an update's
-   rounds, its segments, with the eighth each grows by.  Not exact: the
-   rounds depend on how the cuts spread over views.  The scratch is
-   allotted up to 2^21 entries (10.5 MB) when views split, whatever the
-   cuts' sizes, so small cuts stay far below the bound; cuts of millions of
-   nodes held 1/1.6 to 1/1.1 of it in the tests and examples.  (Not
-   covered: a round that leaves more than one entry in 16 of its input to
-   split, which the tests never saw.)  A later update that grows a cut
-   from a to b bytes peaks at up to a + b (see mlod_cut_update).  0 for
+/* Sizing, before a cut: the bytes a cut of view_count views holds once
+   mlod_cut_reserve(cut, mean_cut_nodes) has grown it, exactly, and so the
+   peak of its updates while its views' cuts average at most
+   mean_cut_nodes nodes, in any mode (they then allocate nothing): the
+   per-view arrays, three lists of the cuts, the scratch of an update's
+   rounds and its segments, each with a spare eighth.  A cut that is not
+   reserved grows as its updates need and stays at or below the bound;
+   how far below depends on how the cuts spread over views (the rounds'
+   scratch is allotted up to 2^21 entries, 10.5 MB, whatever the cuts'
+   sizes): cuts of millions of nodes held 1/1.6 to 1/1.1 of it in the
+   tests and examples.  (Not covered: a round that leaves more than one
+   entry in 16 of its input to split, which the tests never saw.)  0 for
    view_count 0, (size_t)-1 beyond size_t.  Pure. */
 MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes);
+
+/* Grow the cut now to mlod_cut_bound(view_count, mean_cut_nodes) bytes, so
+   that its updates allocate nothing while its views' cuts average at most
+   mean_cut_nodes nodes (allocation-free frames; the bound is then exactly
+   what the cut holds when it held less before).  A cut never shrinks: one
+   that already holds more keeps it.  MLOD_OK, or MLOD_ERROR_OUT_OF_MEMORY
+   / MLOD_ERROR_OVERFLOW with the cut as it was.  Not thread-safe for one
+   cut. */
+MANYLODS_DEF mlod_result mlod_cut_reserve(mlod_cut *cut, uint32_t mean_cut_nodes, mlod_error *error);
 
 /* Create an empty cut for view_count >= 1 views (it keeps the lists that
    incremental and lazy modes start from).  allocator may be NULL. */
@@ -3225,17 +3236,18 @@ static void mlod__work_free(mlod_cut *cut, const mlod__work_buffer *b)
 }
 
 /* Grow work buffer `which` to hold `need` elements (contents are not
-   kept), an eighth more when the allocator gives it.  The arrays the update
-   began with are kept, not freed, until mlod__work_end: a failed update
-   puts them back and leaves the cut's memory as it found it.  Returns 0
-   when out of memory, with the buffer as it was. */
-static int mlod__work_reserve(mlod_cut *cut, int which, size_t need)
+   kept), an eighth more when `spare` is set and the allocator gives it.
+   The arrays the update began with are kept, not freed, until
+   mlod__work_end: a failed update puts them back and leaves the cut's
+   memory as it found it.  Returns 0 when out of memory, with the buffer as
+   it was. */
+static int mlod__work_grow(mlod_cut *cut, int which, size_t need, int spare)
 {
     mlod__work_buffer old = mlod__work_get(cut, which), b = old;
     int attempt;
     if (need <= old.capacity) return 1;
     for (attempt = 0; attempt < 2; attempt++) {
-        b.capacity = attempt == 0 && need + need / 8 > need ? need + need / 8 : need;
+        b.capacity = spare && attempt == 0 && need + need / 8 > need ? need + need / 8 : need;
         b.first = mlod__alloc_array(&cut->allocator, b.capacity, b.sizes[0], NULL);
         b.second = b.first && b.sizes[1] ? mlod__alloc_array(&cut->allocator, b.capacity, b.sizes[1], NULL) : NULL;
         if (b.first && (b.second || !b.sizes[1])) break;
@@ -3253,6 +3265,8 @@ static int mlod__work_reserve(mlod_cut *cut, int which, size_t need)
     mlod__work_set(cut, which, &b);
     return 1;
 }
+
+static int mlod__work_reserve(mlod_cut *cut, int which, size_t need) { return mlod__work_grow(cut, which, need, 1); }
 
 /* End an update: on success free the arrays its growth replaced; on
    failure free what it grew and put those arrays back. */
@@ -3363,34 +3377,67 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
     return r;
 }
 
-MLOD__PUBLIC size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
+/* What mlod_cut_bound counts and mlod_cut_reserve allocates, for views
+   whose cuts average at most mean_cut_nodes: the capacity, in elements, of
+   each work buffer (MLOD__WORK_*), and the bytes of the per-view arrays a
+   cut holds from its creation.  Doubles: the caller checks the range.
+   A round's scratch holds its input and the room of its splits.  A first
+   round splits the roots with a share of the round's budget each (at
+   least MLOD__MIN_SHARE, at most MLOD__SEGMENT_GROWTH), plus, for a basic
+   cut, 1.25 times each view's previous cut and MLOD__MIN_SHARE; an
+   incremental one reads the previous cuts with a quarter more and
+   MLOD__MIN_SHARE per segment; later rounds share max(budget, input) among
+   their splits; a lazy round at most doubles its input.  Segments: one per
+   view, per MLOD__SEGMENT_INPUT / 4 entries, per MLOD__SEGMENT_GROWTH
+   entries of the budget's room.  Each buffer with the eighth it grows by. */
+static double mlod__cut_capacities(uint32_t view_count, uint32_t mean_cut_nodes, double capacity[MLOD__WORK_COUNT])
 {
     double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v;
     double budget = (double)MLOD__ROUND_BUDGET;
-    double roots, first, later, scratch, segments, bytes;
-    if (view_count == 0) return 0;
-    /* a round's scratch: its input and the room of its splits.  A first
-       round splits the roots with a share of the round's budget each (at
-       least MLOD__MIN_SHARE, at most MLOD__SEGMENT_GROWTH), plus, for a
-       basic cut, 1.25 times each view's previous cut and MLOD__MIN_SHARE;
-       an incremental one reads the previous cuts with a quarter more and
-       MLOD__MIN_SHARE per segment; later rounds share max(budget, input)
-       among their splits; a lazy round at most doubles its input. */
+    double roots, first, later, segments;
+    int i;
     roots = MLOD__MIN_SHARE * v > budget ? MLOD__MIN_SHARE * v : budget;
     if (roots > MLOD__SEGMENT_GROWTH * v) roots = MLOD__SEGMENT_GROWTH * v;
     first = v + roots + 1.25 * total + MLOD__MIN_SHARE * (v + total / 64);
     later = most + (budget > most ? budget : most);
-    scratch = first > later ? first : later;
-    /* segments: one per view, per MLOD__SEGMENT_INPUT / 4 entries, per
-       MLOD__SEGMENT_GROWTH entries of the budget's room */
     segments = v + total / (MLOD__SEGMENT_INPUT / 4) + budget / MLOD__SEGMENT_GROWTH;
-    bytes = (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
-            v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t));
-    /* three lists and the scratch, 5 bytes an entry, segments and tasks,
-       each with the spare eighth it grows by */
-    bytes += 1.125 * ((3 * most + scratch) * (sizeof(uint32_t) + 1) +
-                      segments * (sizeof(mlod__segment) + sizeof(uint32_t)));
+    for (i = 0; i < MLOD__WORK_SCRATCH; i++) capacity[i] = ceil(1.125 * most);
+    capacity[MLOD__WORK_SCRATCH] = ceil(1.125 * (first > later ? first : later));
+    capacity[MLOD__WORK_SEGMENTS] = ceil(1.125 * segments);
+    capacity[MLOD__WORK_TASKS] = capacity[MLOD__WORK_SEGMENTS] + 1.0;
+    return (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
+           v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t));
+}
+
+MLOD__PUBLIC size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
+{
+    double capacity[MLOD__WORK_COUNT], bytes;
+    mlod_cut empty;
+    int i;
+    if (view_count == 0) return 0;
+    memset(&empty, 0, sizeof empty);
+    bytes = mlod__cut_capacities(view_count, mean_cut_nodes, capacity);
+    for (i = 0; i < MLOD__WORK_COUNT; i++) {
+        mlod__work_buffer b = mlod__work_get(&empty, i);
+        bytes += capacity[i] * (double)(b.sizes[0] + b.sizes[1]);
+    }
     return bytes >= (double)(size_t)-1 ? (size_t)-1 : (size_t)bytes;
+}
+
+MLOD__PUBLIC mlod_result mlod_cut_reserve(mlod_cut *cut, uint32_t mean_cut_nodes, mlod_error *error)
+{
+    double capacity[MLOD__WORK_COUNT];
+    int i, ok = 1;
+    if (!cut) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "cut is NULL");
+    if (mlod_cut_bound(cut->view_count, mean_cut_nodes) == (size_t)-1)
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "a cut of %u views of %u nodes each does not fit in memory",
+                          cut->view_count, mean_cut_nodes);
+    mlod__cut_capacities(cut->view_count, mean_cut_nodes, capacity);
+    for (i = 0; i < MLOD__WORK_COUNT && ok; i++) ok = mlod__work_grow(cut, i, (size_t)capacity[i], 0);
+    mlod__work_end(cut, ok);
+    return ok ? mlod__succeed(error)
+              : mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory reserving the cut of %u views",
+                           cut->view_count);
 }
 
 /* Does this entry still have to be split (or evaluated first)? */

@@ -378,6 +378,68 @@ static void test_build_bounds(void)
 
 /* ------------------------------------------------ 2. sizing: the cut */
 
+/* mlod_cut_reserve's allocations: nodes and statuses of three lists and of
+   the scratch, the segments, the tasks. */
+#define MLOD_TEST_WORK_BUFFERS 10u
+
+/* A cut reserved with mlod_cut_reserve for the largest mean cut the same
+   sequence of updates reached (views[call % 2 * V], `calls` updates): it
+   holds exactly mlod_cut_bound, its updates allocate nothing and give the
+   cuts of an unreserved cut (compared by hash), so the bound is the real
+   peak, exactly. */
+static void check_reserved(const mlod_view *views, uint32_t V, mlod_cut_params p, uint32_t calls, uint64_t most,
+                           uint64_t hash, const char *what)
+{
+    budget b;
+    mlod_allocator a = budget_allocator(&b);
+    mlod_cut *cut = NULL;
+    uint32_t mean = (uint32_t)((most + V - 1) / V), call, v;
+    size_t bound = mlod_cut_bound(V, mean);
+    unsigned long allocations;
+    uint64_t h = TU_HASH_START;
+    CHECK(mlod_cut_create(V, &a, &cut, NULL) == MLOD_OK && mlod_cut_reserve(cut, mean, NULL) == MLOD_OK,
+          "%s: reserve", what);
+    if (!cut) return;
+    CHECK(b.live_bytes == bound && mlod_cut_bytes(cut) == bound,
+          "%s: reserved for %u nodes per view, holds %zu bytes (reports %zu), the bound is %zu", what, mean, b.live_bytes,
+          mlod_cut_bytes(cut), bound);
+    allocations = b.calls;
+    for (call = 0; call < calls; call++) {
+        CHECK(mlod_cut_update(cut, room_tree, views + (call % 2) * V, &p, NULL) == MLOD_OK, "%s: update", what);
+        for (v = 0; v < V; v++) {
+            mlod_cut_view c = mlod_cut_get(cut, v);
+            h = tu_hash(h, c.nodes, c.count * sizeof *c.nodes);
+        }
+    }
+    CHECK(b.calls == allocations && b.peak_bytes == bound,
+          "%s: after reserving %zu bytes, %lu allocations in the updates, peak %zu", what, bound,
+          b.calls - allocations, b.peak_bytes);
+    CHECK(h == hash, "%s: the reserved cut's cuts differ from an unreserved cut's", what);
+    mlod_cut_destroy(cut);
+    CHECK(b.live_bytes == 0, "%s: %zu bytes left after destroy", what, b.live_bytes);
+    /* a reserve that runs out of memory leaves the cut as it was */
+    if (V == 16 && p.mode == MLOD_CUT_BASIC) {
+        unsigned long k;
+        for (k = 1; k <= MLOD_TEST_WORK_BUFFERS + 1; k++) {
+            size_t created;
+            mlod_result r;
+            mlod_error e;
+            a = budget_allocator(&b);
+            cut = NULL;
+            if (mlod_cut_create(V, &a, &cut, NULL) != MLOD_OK) continue;
+            created = b.live_bytes;
+            b.fail_at = b.calls + k;
+            r = mlod_cut_reserve(cut, mean, &e);
+            CHECK(k > MLOD_TEST_WORK_BUFFERS ? r == MLOD_OK
+                                              : r == MLOD_ERROR_OUT_OF_MEMORY && b.live_bytes == created &&
+                                                    mlod_cut_bytes(cut) == created,
+                  "%s: reserve failing at allocation %lu of the work buffers: %s, %zu bytes held, %zu before", what, k,
+                  mlod_result_name(r), b.live_bytes, created);
+            mlod_cut_destroy(cut);
+        }
+    }
+}
+
 static void test_cut_bounds(void)
 {
     static const uint32_t counts[3] = {1, 16, 256};
@@ -390,7 +452,9 @@ static void test_cut_bounds(void)
     for (ci = 0; ci < 3; ci++)
         for (ei = 0; ei < 3; ei++)
             for (mode = 0; mode < 3; mode++) {
-                uint32_t V = counts[ci], v, call;
+                uint32_t V = counts[ci], v, call, calls = ci == 2 ? 3u : 5u;
+                uint64_t hash = TU_HASH_START;
+                char what[96];
                 mlod_view *views = (mlod_view *)malloc(2 * V * sizeof(mlod_view));
                 uint64_t rng = 3 + ci, most = 0;
                 budget b;
@@ -423,13 +487,23 @@ static void test_cut_bounds(void)
                 bound = mlod_cut_bound(V, (uint32_t)((most + V - 1) / V));
                 CHECK(b.peak_bytes <= bound, "cut bound, %u views, eps %g, mode %u: the first update peaks at %zu bytes, above the bound %zu",
                       V, eps[ei], mode, b.peak_bytes, bound);
+                for (v = 0; v < V; v++) {
+                    mlod_cut_view cv = mlod_cut_get(cut, v);
+                    hash = tu_hash(hash, cv.nodes, cv.count * sizeof *cv.nodes);
+                }
                 /* later updates, the views moving between two sets: what the cut holds */
-                for (call = 1; call < (ci == 2 ? 3u : 5u); call++) {
+                for (call = 1; call < calls; call++) {
                     uint64_t total = 0;
                     CHECK(mlod_cut_update(cut, room_tree, views + (call % 2) * V, &p, NULL) == MLOD_OK, "cut bound: update");
-                    for (v = 0; v < V; v++) total += mlod_cut_get(cut, v).count;
+                    for (v = 0; v < V; v++) {
+                        mlod_cut_view cv = mlod_cut_get(cut, v);
+                        total += cv.count;
+                        hash = tu_hash(hash, cv.nodes, cv.count * sizeof *cv.nodes);
+                    }
                     if (total > most) most = total;
                 }
+                snprintf(what, sizeof what, "reserved cut, %u views, eps %g, mode %u", V, eps[ei], mode);
+                check_reserved(views, V, p, calls, most, hash, what);
                 bound = mlod_cut_bound(V, (uint32_t)((most + V - 1) / V));
                 CHECK(mlod_cut_bytes(cut) == b.live_bytes, "cut bound: the cut reports %zu bytes, holds %zu", mlod_cut_bytes(cut),
                       b.live_bytes);

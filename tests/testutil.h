@@ -509,6 +509,16 @@ static inline mlod_allocator tu_allocator(tu_counter *c)
     return a;
 }
 
+/* 64-bit FNV-1a of bytes, continuing from hash (start: TU_HASH_START). */
+#define TU_HASH_START 0xcbf29ce484222325ull
+static inline uint64_t tu_hash(uint64_t hash, const void *data, size_t bytes)
+{
+    const unsigned char *p = (const unsigned char *)data;
+    size_t i;
+    for (i = 0; i < bytes; i++) hash = (hash ^ p[i]) * 0x100000001b3ull;
+    return hash;
+}
+
 /* ------------------------------------------------------- serial hooks */
 
 /* Runs the tasks on the calling thread in reverse order. */
