@@ -83,6 +83,8 @@
      bit 2  failures: two bytes, every (2 + low nibble)-th allocation after
             the first (second byte) fails, 1 + high nibble times
      bits 3-6, all four: the large case
+     bit 7  the incremental cut is reserved first (mlod_cut_reserve, two
+            bytes: the mean cut size, below 2^14)
    then the scene (parse_scene), the build options (parse_build), the views
    (parse_views), the rest in the order run_views reads them, and the
    helpers' arguments.  fuzz/make_corpus.c writes the seeds. */
@@ -123,6 +125,7 @@
 #define FZ_EXT_DISC_SCALE 2u
 #define FZ_EXT_FAILURES 4u
 #define FZ_EXT_LARGE 0x78u /* all four bits: the large case stays occasional */
+#define FZ_EXT_RESERVE 0x80u
 #define FZ_SAMPLED 24u   /* nodes per view checked against the criterion */
 #define FZ_LAZY_CALLS 64 /* lazy updates allowed to reach the basic cut */
 
@@ -1411,6 +1414,31 @@ static double largest_growth(const fz_scene *s, const float *moved, int *compara
 }
 
 /* Cut, refit, cut again in every mode, splat. */
+/* mlod_cut_reserve on a new cut: it then holds exactly mlod_cut_bound, or
+   fails only with an injected failure, holding what it held. */
+static void reserve_cut(fz_ctx *c, mlod_cut *cut, uint32_t views, uint32_t mean)
+{
+    unsigned long live = c->counter.live;
+    size_t before = mlod_cut_bytes(cut);
+    mlod_error e;
+    mlod_result res;
+    fz_where = "mlod_cut_reserve";
+    res = mlod_cut_reserve(cut, mean, &e);
+    FZ_NOTE("mlod_cut_reserve(%u views, %u nodes): %s\n", views, mean, mlod_result_name(res));
+    if (res != MLOD_OK) {
+        check_error(res, &e);
+        FZ_REQUIRE(injected_oom(&c->counter, res), "mlod_cut_reserve(%u views, %u nodes) failed: %s", views, mean,
+                   e.message);
+        FZ_REQUIRE(mlod_cut_bytes(cut) == before, "a failed reserve changed the cut's bytes: %zu, was %zu",
+                   mlod_cut_bytes(cut), before);
+        check_no_leak(&c->counter, live, "mlod_cut_reserve");
+        return;
+    }
+    FZ_REQUIRE(mlod_cut_bytes(cut) == mlod_cut_bound(views, mean),
+               "a new cut reserved for %u views of %u nodes holds %zu bytes, the bound is %zu", views, mean,
+               mlod_cut_bytes(cut), mlod_cut_bound(views, mean));
+}
+
 static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, uint32_t leaves)
 {
     static fz_layout layout;
@@ -1462,6 +1490,7 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
             goto done;
         }
         FZ_REQUIRE(mlod_cut_get(*cut, 0).count == 0, "a new cut is not empty");
+        if (call == 1 && (c->ext & FZ_EXT_RESERVE)) reserve_cut(c, *cut, v1.count, rd_u16(r) & 0x3fffu);
     }
 
     /* frame 1: basic from the root; incremental and lazy from nothing */

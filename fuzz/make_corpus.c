@@ -52,6 +52,8 @@ static const seed seeds[] = {
     {"mesh-large-hook", 0x0e, 0, 0, 0, 0x78, 0, 0, 102, 1500},
     {"mesh-raw-views-helpers", 0x02, 0, 0, 0, 0x02, 0, 0, 101, 1500},
     {"mesh-everything", 0x6e, 0, 0, 0, 0x7f, 0x42, 60, 104, 3000},
+    {"mesh-reserved-cut", 0x06, 0, 0, 0, 0x80, 0, 0, 105, 1500},
+    {"mesh-reserved-cut-failing", 0x0e, 0, 0, 0, 0x84, 0x11, 8, 106, 1500},
 };
 
 static uint64_t next(uint64_t *state)
