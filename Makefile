@@ -164,11 +164,11 @@ test-only:
 	    --section "benchmark (bench --selftest: compiles, checks cuts and metrics against Embree)" \
 	    --check $(BUILD)/bench/selftest \
 	    --section "Vulkan (manylods_vk.h against the CPU, validation layer on; shaders/ against the embedded SPIR-V)" \
-	    $(VULKAN_TEST) tests/check_shaders.sh tests/compile/vulkan.sh
+	    $(VULKAN_TEST) tests/check_shaders.sh tests/check_twins.sh tests/compile/vulkan.sh
 
 # The Vulkan tests alone.
 vulkan: $(VULKAN_PROGRAMS)
-	$(Q)tests/run.sh --section "Vulkan" $(VULKAN_TEST) tests/check_shaders.sh tests/compile/vulkan.sh
+	$(Q)tests/run.sh --section "Vulkan" $(VULKAN_TEST) tests/check_shaders.sh tests/check_twins.sh tests/compile/vulkan.sh
 
 # examples/vulkan_minimal: the cut and splat on a Vulkan device, the atlas as a PNG.
 vulkan-minimal: $(BUILD)/examples/vulkan_minimal

@@ -960,6 +960,7 @@ static void mlod__free(const mlod_allocator *a, void *p)
    nearest rounds down about half the time, at random: stepping up without
    a branch spares each merge two mispredicted branches (a merge of spheres
    and cones took 18 % less time). */
+/* GLSL twin: float_up */
 static float mlod__float_up(double x)
 {
     float f = (float)x;
@@ -1004,8 +1005,10 @@ static inline void mlod__box_of(const float *base, size_t stride, uint32_t count
     hi[2] = z1;
 }
 
+/* GLSL twin: dot3 */
 static double mlod__dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+/* GLSL twin: cross_d */
 static void mlod__cross3(const double *a, const double *b, double *out)
 {
     double x = a[1] * b[2] - a[2] * b[1];
@@ -1016,9 +1019,11 @@ static void mlod__cross3(const double *a, const double *b, double *out)
     out[2] = z;
 }
 
+/* GLSL twin: length_d */
 static double mlod__length3(const double *a) { return sqrt(mlod__dot3(a, a)); }
 
 /* Distance between two float points, in double. */
+/* GLSL twin: distance_f */
 static double mlod__distance_f(const float *a, const float *b)
 {
     double dx = (double)a[0] - b[0], dy = (double)a[1] - b[1], dz = (double)a[2] - b[2];
@@ -1037,6 +1042,7 @@ static double mlod__distance_f(const float *a, const float *b)
    highest i first, and 1 / (4i + 1) and 1 / (4i + 3) for i = 5 .. 0 (atan,
    its even and odd powers of u^2): the same decimal literals, so the same
    doubles, in shaders/common.glsl. */
+/* GLSL twin: COS_EVEN (and the five arrays after it) */
 static const double mlod__cos_even[6] = {4.110317623312165e-19, 4.779477332387385e-14, 2.08767569878681e-09,
                                          2.48015873015873e-05,  0.041666666666666664, 1.0};
 static const double mlod__cos_odd[6] = {8.896791392450574e-22, 1.5619206968586225e-16, 1.1470745597729725e-11,
@@ -1050,6 +1056,7 @@ static const double mlod__atan_even[6] = {0.047619047619047616, 0.05882352941176
 static const double mlod__atan_odd[6] = {0.043478260869565216, 0.05263157894736842, 0.06666666666666667,
                                          0.09090909090909091,  0.14285714285714285, 0.3333333333333333};
 
+/* GLSL twin: sin_cos */
 static inline void mlod__sin_cos(double a, double *sin_a, double *cos_a)
 {
     double x = a - 1.57079632679489661923, y = x * x, z = y * y;
@@ -1073,6 +1080,7 @@ static inline void mlod__sin_cos(double a, double *sin_a, double *cos_a)
    length.  Its one use, the cone merge, allows 2^-22 rad of error.
    Written out the same way in shaders/common.glsl (atan2_d), so that the
    CPU and the Vulkan refit compute the same bits. */
+/* GLSL twin: atan2_d */
 static double mlod__atan2(double y, double x)
 {
     double ax = fabs(x), t, u, u2, w, even, odd, base = 0.0, a;
@@ -1099,6 +1107,7 @@ static double mlod__atan2(double y, double x)
 
 /* Angle between two (not necessarily unit) directions, within 1e-11 rad
    everywhere (mlod__atan2). */
+/* GLSL twin: angle_d */
 static double mlod__angle(const double *a, const double *b)
 {
     double c[3];
@@ -1117,6 +1126,7 @@ static double mlod__angle(const double *a, const double *b)
    (x, y, z, r), rounded to floats so that it contains both exactly, with
    the relative slack of the tree, into out[l] (which may alias a[l] or
    b[l]). */
+/* GLSL twin: sphere_enclose */
 static void mlod__sphere_enclose(const float *const *a, const float *const *b, float *const *out, uint32_t n)
 {
     double d[MLOD__LANES];
@@ -1145,6 +1155,7 @@ static void mlod__sphere_enclose(const float *const *a, const float *const *b, f
     }
 }
 
+/* GLSL twin: cone_full */
 static void mlod__cone_full(const float *axis, float *out)
 {
     out[0] = axis[0];
@@ -1173,6 +1184,7 @@ static void mlod__cone_full(const float *axis, float *out)
    alpha; the axis as stored (float) is within MLOD__CONE_ROUNDING of X, so
    alpha plus that bound contains both cones without measuring the stored
    axis again (but for nearly opposite axes, see MLOD__CONE_OPPOSITE). */
+/* GLSL twin: cone_enclose */
 static void mlod__cone_enclose(const float *const *a, const float *const *b, float *const *out, uint32_t n)
 {
     enum { DONE, AXIS, ROTATE }; /* per lane: written; X and alpha known; X to rotate */
@@ -1278,6 +1290,7 @@ static void mlod__cone_from_normal(const double *n, float *out)
 
 /* ------------------------------------------------------- tree shape ---- */
 
+/* GLSL twin: depth_of */
 static uint32_t mlod__depth_of(uint64_t node)
 {
 #if defined(__GNUC__) || defined(__clang__)
@@ -1294,6 +1307,7 @@ static uint32_t mlod__depth_of(uint64_t node)
 }
 
 /* Number of leaves below node i in the implicit tree of n leaves. */
+/* GLSL twin: leaves_below */
 static uint32_t mlod__leaves_below(uint32_t i, uint32_t n)
 {
     uint64_t last = 2 * (uint64_t)n - 2;
@@ -2462,6 +2476,7 @@ MLOD__PUBLIC mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *p
 
 /* ---------------------------------------------- exact plane predicate -- */
 
+/* GLSL twin: two_sum */
 static void mlod__two_sum(double a, double b, double *sum, double *err)
 {
     double s = a + b, bv = s - a, av = s - bv;
@@ -2469,6 +2484,7 @@ static void mlod__two_sum(double a, double b, double *sum, double *err)
     *sum = s;
 }
 
+/* GLSL twin: split_double */
 static void mlod__split(double a, double *hi, double *lo)
 {
     double c = 134217729.0 * a, big = c - a;
@@ -2476,6 +2492,7 @@ static void mlod__split(double a, double *hi, double *lo)
     *lo = a - *hi;
 }
 
+/* GLSL twin: two_product */
 static void mlod__two_product(double a, double b, double *product, double *err)
 {
     double p = a * b, ah, al, bh, bl;
@@ -2487,6 +2504,7 @@ static void mlod__two_product(double a, double b, double *product, double *err)
 
 /* Sign of the exact sum of count doubles (an expansion grown term by term,
    as in Shewchuk's robust predicates). */
+/* GLSL twin: exact_sign9 */
 static int mlod__exact_sign(const double *terms, int count)
 {
     double e[24];
@@ -2534,6 +2552,7 @@ static int mlod__outside_exact(const mlod__plane *p, const float *sphere)
 /* Is the sphere wholly outside the half-space: n.c + l r < k, exactly?
    The rounded sum decides unless it lies within its error bound of 0 (the
    criterion's hot path: kept small enough to inline). */
+/* GLSL twin: plane_outside */
 static inline int mlod__outside(const mlod__plane *p, const float *sphere)
 {
     double t0 = p->n[0] * sphere[0], t1 = p->n[1] * sphere[1], t2 = p->n[2] * sphere[2], t3 = p->l * sphere[3];
@@ -2740,6 +2759,7 @@ MLOD__PUBLIC mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_fra
    trigonometry.  An orthographic eye is at -w with b = 0: (t, r) = (1, 0)
    turns the same two tests into cos a > 0 and axis.(-w) / |axis| < -sin a,
    bit for bit. */
+/* GLSL twin: backfacing */
 static int mlod__backfacing(const mlod__pview *pv, const double *x, double d2, double r, double tangent,
                             const float *cone)
 {
@@ -2776,6 +2796,7 @@ static int mlod__backfacing(const mlod__pview *pv, const double *x, double d2, d
 
 /* Diameter of the paraboloid image of a sphere, in projection units, for
    the hemisphere whose axis has component xw along x (+inf if unbounded). */
+/* GLSL twin: paraboloid_diameter */
 static double mlod__paraboloid_diameter(double r, double xw, double tangent)
 {
     double den = xw + tangent;
@@ -2783,6 +2804,7 @@ static double mlod__paraboloid_diameter(double r, double xw, double tangent)
 }
 
 /* c(node, view) of the documentation; *culled = 1 when culled. */
+/* GLSL twin: evaluate */
 static double mlod__evaluate(const mlod__pview *pv, const float *sphere, const float *cone, int *culled)
 {
     double x[3], d2, r = sphere[3], r2, t2, tangent, xw;
@@ -2915,8 +2937,10 @@ struct mlod_cut {
     size_t bytes;
 };
 
+/* GLSL twin: status_valid */
 static int mlod__is_valid(uint8_t status) { return status == MLOD_STATUS_DRAWN || status == MLOD_STATUS_CULLED; }
 
+/* GLSL twin: classify */
 static uint8_t mlod__classify(const mlod__pview *pv, const mlod_tree *tree, uint32_t node, double epsilon)
 {
     int culled;
@@ -3740,6 +3764,7 @@ typedef struct mlod__disc {
 /* The images of n <= MLOD__LANES spheres at once, step by step across them
    (each lane computes what it would alone): bounded[l] says whether out[l]
    was written (0: the image is unbounded).  Returns bounded[0]. */
+/* GLSL twin: image_disc */
 static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], const double *r, int half,
                              mlod__disc *out, int *bounded, uint32_t n)
 {

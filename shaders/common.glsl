@@ -1,11 +1,13 @@
 // shaders/common.glsl - the criterion, culling and image disc of manylods.h,
 // for the compute shaders of manylods_vk.h.
 //
-// Each function here is the twin of the C function named beside it in
-// manylods.h, operation for operation, in double precision, every temporary
-// `precise` (no fused multiply-add): on a device whose double arithmetic is
-// IEEE (lavapipe; most desktop GPUs) the two compute the same bits, and the
-// CPU and Vulkan cuts are equal node for node.  Change one, change both.
+// Each function here is the twin of the C function its "C twin:" line names
+// in manylods.h, which names it back ("GLSL twin:"), in the same order
+// (tests/check_twins.sh checks both), operation for operation, in double
+// precision, every temporary `precise` (no fused multiply-add): on a
+// device whose double arithmetic is IEEE (lavapipe; most desktop GPUs) the
+// two compute the same bits, and the CPU and Vulkan cuts are equal node for
+// node.  Change one, change both.
 //
 // The includer declares, before including this file:
 //   vec4 spheres[]  (x, y, z, r per node)   in a buffer named tree_spheres
@@ -51,9 +53,231 @@ int view_kind(uint view) { return int(vd(view, V_KIND)); }
 
 #endif // MLOD_NO_VIEWS
 
+// ---------------------------- helpers and merges (refit needs them too) --
+
+// C twin: mlod__float_up
+// The smallest float >= x (x >= 0)
+float float_up(double x)
+{
+    float f = float(x);
+    if (double(f) < x) f = uintBitsToFloat(floatBitsToUint(f) + 1u);
+    return f;
+}
+
+// C twin: mlod__dot3
+double dot3(dvec3 a, dvec3 b)
+{
+    precise double s = a.x * b.x + a.y * b.y + a.z * b.z;
+    return s;
+}
+
+// C twin: mlod__cross3
+dvec3 cross_d(dvec3 a, dvec3 b)
+{
+    precise double x = a.y * b.z - a.z * b.y;
+    precise double y = a.z * b.x - a.x * b.z;
+    precise double z = a.x * b.y - a.y * b.x;
+    return dvec3(x, y, z);
+}
+
+// C twin: mlod__length3
+double length_d(dvec3 a) { return sqrt(dot3(a, a)); }
+
+// C twin: mlod__distance_f
+double distance_f(vec3 a, vec3 b)
+{
+    precise double dx = double(a.x) - double(b.x);
+    precise double dy = double(a.y) - double(b.y);
+    precise double dz = double(a.z) - double(b.z);
+    precise double d = sqrt(dx * dx + dy * dy + dz * dz);
+    return d;
+}
+
+// C twin: mlod__cos_even
+// (and the five arrays after it: the same literals)
+const double COS_EVEN[6] = double[](
+    4.110317623312165e-19LF, 4.779477332387385e-14LF, 2.08767569878681e-09LF, 2.48015873015873e-05LF,
+    0.041666666666666664LF, 1.0LF);
+
+const double COS_ODD[6] = double[](
+    8.896791392450574e-22LF, 1.5619206968586225e-16LF, 1.1470745597729725e-11LF, 2.755731922398589e-07LF,
+    0.001388888888888889LF, 0.5LF);
+
+const double SIN_EVEN[6] = double[](
+    1.9572941063391263e-20LF, 2.8114572543455206e-15LF, 1.6059043836821613e-10LF, 2.7557319223985893e-06LF,
+    0.008333333333333333LF, 1.0LF);
+
+const double SIN_ODD[5] = double[](
+    8.22063524662433e-18LF, 7.647163731819816e-13LF, 2.505210838544172e-08LF, 0.0001984126984126984LF,
+    0.16666666666666666LF);
+
+const double ATAN_EVEN[6] = double[](
+    0.047619047619047616LF, 0.058823529411764705LF, 0.07692307692307693LF, 0.1111111111111111LF, 0.2LF, 1.0LF);
+
+const double ATAN_ODD[6] = double[](
+    0.043478260869565216LF, 0.05263157894736842LF, 0.06666666666666667LF, 0.09090909090909091LF,
+    0.14285714285714285LF, 0.3333333333333333LF);
+
+// C twin: mlod__sin_cos
+void sin_cos(double a, out double sin_a, out double cos_a)
+{
+    precise double x = a - 1.57079632679489661923LF;
+    precise double y = x * x;
+    precise double z = y * y;
+    precise double ce = COS_EVEN[0];
+    precise double co = COS_ODD[0];
+    precise double se = SIN_EVEN[0];
+    precise double so = SIN_ODD[0];
+    [[unroll]] for (int k = 1; k < 6; k++) {
+        ce = COS_EVEN[k] + z * ce;
+        co = COS_ODD[k] + z * co;
+        se = SIN_EVEN[k] + z * se;
+    }
+    [[unroll]] for (int k = 1; k < 5; k++) so = SIN_ODD[k] + z * so;
+    sin_a = ce - y * co;
+    precise double sine = se - y * so;
+    cos_a = -x * sine;
+}
+
+// C twin: mlod__atan2
+// (y >= 0)
+double atan2_d(double y, double x)
+{
+    precise double ax = abs(x);
+    bool swap = y > ax;
+    if (!(y > 0.0LF) && !(ax > 0.0LF)) return x < 0.0LF ? MLOD_PI : 0.0LF;
+    precise double t = swap ? ax / y : y / ax;
+    precise double u = t;
+    precise double base = 0.0LF;
+    if (t > 0.41421356237309504880LF) {
+        u = (t - 1.0LF) / (t + 1.0LF);
+        base = 0.78539816339744830962LF;
+    }
+    precise double u2 = u * u;
+    precise double w = u2 * u2;
+    precise double even = ATAN_EVEN[0];
+    precise double odd = ATAN_ODD[0];
+    [[unroll]] for (int k = 1; k < 6; k++) {
+        even = ATAN_EVEN[k] + w * even;
+        odd = ATAN_ODD[k] + w * odd;
+    }
+    precise double a = base + u * (even - u2 * odd);
+    if (swap) a = 1.57079632679489661923LF - a;
+    precise double result = x < 0.0LF ? MLOD_PI - a : a;
+    return result;
+}
+
+// C twin: mlod__angle
+double angle_d(dvec3 a, dvec3 b) { return atan2_d(length_d(cross_d(a, b)), dot3(a, b)); }
+
+// C twin: mlod__sphere_enclose
+vec4 sphere_enclose(vec4 a, vec4 b)
+{
+    precise double d = distance_f(a.xyz, b.xyz);
+    double ra = double(a.w), rb = double(b.w);
+    vec3 c;
+    if (d + rb <= ra) {
+        c = a.xyz;
+    } else if (d + ra <= rb) {
+        c = b.xyz;
+    } else {
+        precise double t = ((d + ra + rb) * 0.5LF - ra) / d;
+        precise double cx = double(a.x) + (double(b.x) - double(a.x)) * t;
+        precise double cy = double(a.y) + (double(b.y) - double(a.y)) * t;
+        precise double cz = double(a.z) + (double(b.z) - double(a.z)) * t;
+        c = vec3(float(cx), float(cy), float(cz));
+    }
+    precise double need_a = distance_f(c, a.xyz) + ra;
+    precise double need_b = distance_f(c, b.xyz) + rb;
+    precise double need = (need_a > need_b ? need_a : need_b) * (1.0LF + 1.0LF / 1048576.0LF) *
+                          (1.0LF + 1.0LF / 1125899906842624.0LF);
+    return vec4(c, float_up(need));
+}
+
+// C twin: mlod__cone_full
+vec4 cone_full(vec3 axis) { return vec4(axis, float_up(MLOD_PI)); }
+
+// C twin: mlod__cone_enclose
+// (the stored axis is within MLOD__CONE_ROUNDING, 2^-22
+// rad, of the merged one; nearly opposite axes, closer than
+// MLOD__CONE_OPPOSITE, measure the stored axis against both cones)
+vec4 cone_enclose(vec4 a, vec4 b)
+{
+    if (double(a.w) >= MLOD_PI || double(b.w) >= MLOD_PI) return cone_full(a.xyz);
+    dvec3 A = dvec3(a.xyz), B = dvec3(b.xyz), X;
+    precise double theta = angle_d(A, B);
+    precise double alpha;
+    bool measure = false;
+    if (theta + double(b.w) <= double(a.w)) {
+        X = A;
+        alpha = double(a.w);
+    } else if (theta + double(a.w) <= double(b.w)) {
+        X = B;
+        alpha = double(b.w);
+    } else {
+        alpha = (theta + double(a.w) + double(b.w)) * 0.5LF;
+        if (alpha >= MLOD_PI) return cone_full(a.xyz);
+        precise double phi = alpha - double(a.w);
+        double sin_phi, cos_phi;
+        sin_cos(phi, sin_phi, cos_phi);
+        precise double la = length_d(A);
+        precise dvec3 An = dvec3(A.x / la, A.y / la, A.z / la);
+        precise double ab = dot3(An, B);
+        precise dvec3 t = dvec3(B.x - An.x * ab, B.y - An.y * ab, B.z - An.z * ab);
+        precise double len = length_d(t);
+        measure = !(len >= 1.0LF / 1024.0LF) && !(ab > 0.0LF);
+        if (!(len > 0.0LF)) {
+            dvec3 helper = dvec3(0.0LF);
+            if (abs(An.x) < 0.5LF) helper.x = 1.0LF; else helper.y = 1.0LF;
+            t = cross_d(An, helper);
+            len = length_d(t);
+        }
+        precise dvec3 Xr = dvec3(An.x * cos_phi + t.x / len * sin_phi, An.y * cos_phi + t.y / len * sin_phi,
+                                 An.z * cos_phi + t.z / len * sin_phi);
+        X = Xr;
+    }
+    precise double lx = length_d(X);
+    vec3 axis = vec3(float(X.x / lx), float(X.y / lx), float(X.z / lx));
+    // +0 for a zero component however it was reached: the compiler may fold
+    // away the terms that decide the sign of a zero (x + 0 -> x), the CPU
+    // does not; the test on the bits cannot be folded
+    [[unroll]] for (int k = 0; k < 3; k++)
+        if (floatBitsToUint(axis[k]) == 0x80000000u) axis[k] = 0.0;
+    if (measure) {
+        dvec3 S = dvec3(axis);
+        precise double need_a = angle_d(S, A) + double(a.w);
+        precise double need_b = angle_d(S, B) + double(b.w);
+        alpha = need_a > need_b ? need_a : need_b;
+    }
+    precise double stored = alpha + 1.0LF / 4194304.0LF + 1.0LF / 1048576.0LF;
+    if (stored >= MLOD_PI) return cone_full(axis);
+    return vec4(axis, float_up(stored));
+}
+
+// C twin: mlod__depth_of
+uint depth_of(uint64_t node)
+{
+    uint64_t x = node + 1UL;
+    uint hi = uint(x >> 32);
+    return hi != 0u ? 32u + uint(findMSB(hi)) : uint(findMSB(uint(x)));
+}
+
+// C twin: mlod__leaves_below
+// Leaves under node i of the tree of n leaves
+uint leaves_below(uint i, uint n)
+{
+    uint64_t last = 2UL * uint64_t(n) - 2UL;
+    uint k = depth_of(uint64_t(i)), deepest = depth_of(last);
+    uint span = deepest - k;
+    uint64_t lo = ((uint64_t(i) + 1UL) << span) - 1UL, hi = ((uint64_t(i) + 2UL) << span) - 2UL;
+    uint64_t at_deepest = lo > last ? 0UL : (hi < last ? hi : last) - lo + 1UL;
+    uint64_t nodes = ((1UL << span) - 1UL) + at_deepest;
+    return uint((nodes + 1UL) / 2UL);
+}
+
 // ------------------------------------------------ exact plane predicate --
 
-// mlod__two_sum
+// C twin: mlod__two_sum
 void two_sum(double a, double b, out double s, out double err)
 {
     precise double sum = a + b;
@@ -64,7 +288,7 @@ void two_sum(double a, double b, out double s, out double err)
     err = e;
 }
 
-// mlod__split
+// C twin: mlod__split
 void split_double(double a, out double hi, out double lo)
 {
     precise double c = 134217729.0LF * a;
@@ -75,7 +299,7 @@ void split_double(double a, out double hi, out double lo)
     lo = l;
 }
 
-// mlod__two_product
+// C twin: mlod__two_product
 void two_product(double a, double b, out double p, out double err)
 {
     precise double prod = a * b;
@@ -87,8 +311,9 @@ void two_product(double a, double b, out double p, out double err)
     err = e;
 }
 
-// mlod__exact_sign, for the 9 terms of plane_outside: the same exact sign
-// by the same expansion growth, without its zero elimination so that every
+// C twin: mlod__exact_sign
+// For the 9 terms of plane_outside: the same exact sign by the same
+// expansion growth, without its zero elimination so that every
 // index is a constant once the loops unroll (lavapipe then keeps the
 // expansion in registers; the dynamic version costs every evaluation a
 // factor of two even though it rarely runs).
@@ -110,7 +335,8 @@ int exact_sign9(double t[9])
 }
 
 #ifndef MLOD_NO_VIEWS
-// mlod__outside: is the sphere wholly outside the half-space at views[base]
+// C twin: mlod__outside
+// Is the sphere wholly outside the half-space at views[base]
 // (n.c + l r < k, exactly)?
 bool plane_outside(uint base, vec4 sphere)
 {
@@ -136,60 +362,9 @@ bool plane_outside(uint base, vec4 sphere)
     return exact_sign9(t) < 0;
 }
 
-#endif // MLOD_NO_VIEWS
-
 // ------------------------------------------------------------ criterion --
 
-// mlod__dot3
-double dot3(dvec3 a, dvec3 b)
-{
-    precise double s = a.x * b.x + a.y * b.y + a.z * b.z;
-    return s;
-}
-
-// mlod__cos_even, mlod__cos_odd, mlod__sin_even, mlod__sin_odd, mlod__atan_even,
-// mlod__atan_odd (the same literals)
-const double COS_EVEN[6] = double[](
-    4.110317623312165e-19LF, 4.779477332387385e-14LF, 2.08767569878681e-09LF, 2.48015873015873e-05LF,
-    0.041666666666666664LF, 1.0LF);
-const double COS_ODD[6] = double[](
-    8.896791392450574e-22LF, 1.5619206968586225e-16LF, 1.1470745597729725e-11LF, 2.755731922398589e-07LF,
-    0.001388888888888889LF, 0.5LF);
-const double SIN_EVEN[6] = double[](
-    1.9572941063391263e-20LF, 2.8114572543455206e-15LF, 1.6059043836821613e-10LF, 2.7557319223985893e-06LF,
-    0.008333333333333333LF, 1.0LF);
-const double SIN_ODD[5] = double[](
-    8.22063524662433e-18LF, 7.647163731819816e-13LF, 2.505210838544172e-08LF, 0.0001984126984126984LF,
-    0.16666666666666666LF);
-const double ATAN_EVEN[6] = double[](
-    0.047619047619047616LF, 0.058823529411764705LF, 0.07692307692307693LF, 0.1111111111111111LF, 0.2LF, 1.0LF);
-const double ATAN_ODD[6] = double[](
-    0.043478260869565216LF, 0.05263157894736842LF, 0.06666666666666667LF, 0.09090909090909091LF,
-    0.14285714285714285LF, 0.3333333333333333LF);
-
-// mlod__sin_cos
-void sin_cos(double a, out double sin_a, out double cos_a)
-{
-    precise double x = a - 1.57079632679489661923LF;
-    precise double y = x * x;
-    precise double z = y * y;
-    precise double ce = COS_EVEN[0];
-    precise double co = COS_ODD[0];
-    precise double se = SIN_EVEN[0];
-    precise double so = SIN_ODD[0];
-    [[unroll]] for (int k = 1; k < 6; k++) {
-        ce = COS_EVEN[k] + z * ce;
-        co = COS_ODD[k] + z * co;
-        se = SIN_EVEN[k] + z * se;
-    }
-    [[unroll]] for (int k = 1; k < 5; k++) so = SIN_ODD[k] + z * so;
-    sin_a = ce - y * co;
-    precise double sine = se - y * so;
-    cos_a = -x * sine;
-}
-
-#ifndef MLOD_NO_VIEWS
-// mlod__backfacing
+// C twin: mlod__backfacing
 bool backfacing(uint view, dvec3 x, double d2, double r, vec4 cone)
 {
     double c0 = double(cone.x), c1 = double(cone.y), c2 = double(cone.z);
@@ -215,9 +390,10 @@ bool backfacing(uint view, dvec3 x, double d2, double r, vec4 cone)
     precise double along = away / len;
     return lhs > 0.0LF && along < rhs;
 }
+
 #endif // MLOD_NO_VIEWS
 
-// mlod__paraboloid_diameter
+// C twin: mlod__paraboloid_diameter
 double paraboloid_diameter(double r, double xw, double tangent)
 {
     precise double den = xw + tangent;
@@ -225,9 +401,9 @@ double paraboloid_diameter(double r, double xw, double tangent)
     return den > 0.0LF ? c : 1.0LF / 0.0LF;
 }
 
-
 #ifndef MLOD_NO_VIEWS
-// mlod__evaluate: c(node, view) in pixels; culled set when culled.
+// C twin: mlod__evaluate
+// c(node, view) in pixels; culled set when culled.
 double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
 {
     culled = false;
@@ -277,7 +453,10 @@ double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culle
     return c;
 }
 
-// mlod__classify
+// C twin: mlod__is_valid
+bool status_valid(uint s) { return s == STATUS_DRAWN || s == STATUS_CULLED; }
+
+// C twin: mlod__classify
 uint classify(uint view, uint node, double epsilon, uint leaf_count)
 {
     bool culled;
@@ -288,11 +467,10 @@ uint classify(uint view, uint node, double epsilon, uint leaf_count)
     return node >= leaf_count - 1u ? STATUS_OVERSIZE : STATUS_COARSE;
 }
 
-bool status_valid(uint s) { return s == STATUS_DRAWN || s == STATUS_CULLED; }
+// ----------------------------------------------------------- image disc --
 
-// ---------------------------------------------------------- image disc --
-
-// mlod__image_disc: the disc around the image of sphere (centre, r) in the
+// C twin: mlod__image_discs (one of its lanes)
+// The disc around the image of sphere (centre, r) in the
 // view's tile (pixels), and the depth of its centre; half: the back
 // hemisphere of a dual paraboloid.  Returns false when unbounded.
 bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 disc)
@@ -353,168 +531,3 @@ bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 di
 }
 
 #endif // MLOD_NO_VIEWS
-
-// ------------------------------------------------- refit: merge helpers --
-
-// mlod__cross3
-dvec3 cross_d(dvec3 a, dvec3 b)
-{
-    precise double x = a.y * b.z - a.z * b.y;
-    precise double y = a.z * b.x - a.x * b.z;
-    precise double z = a.x * b.y - a.y * b.x;
-    return dvec3(x, y, z);
-}
-
-// mlod__length3
-double length_d(dvec3 a) { return sqrt(dot3(a, a)); }
-
-// mlod__float_up: the smallest float >= x (x >= 0)
-float float_up(double x)
-{
-    float f = float(x);
-    if (double(f) < x) f = uintBitsToFloat(floatBitsToUint(f) + 1u);
-    return f;
-}
-
-// mlod__atan2 (y >= 0)
-double atan2_d(double y, double x)
-{
-    precise double ax = abs(x);
-    bool swap = y > ax;
-    if (!(y > 0.0LF) && !(ax > 0.0LF)) return x < 0.0LF ? MLOD_PI : 0.0LF;
-    precise double t = swap ? ax / y : y / ax;
-    precise double u = t;
-    precise double base = 0.0LF;
-    if (t > 0.41421356237309504880LF) {
-        u = (t - 1.0LF) / (t + 1.0LF);
-        base = 0.78539816339744830962LF;
-    }
-    precise double u2 = u * u;
-    precise double w = u2 * u2;
-    precise double even = ATAN_EVEN[0];
-    precise double odd = ATAN_ODD[0];
-    [[unroll]] for (int k = 1; k < 6; k++) {
-        even = ATAN_EVEN[k] + w * even;
-        odd = ATAN_ODD[k] + w * odd;
-    }
-    precise double a = base + u * (even - u2 * odd);
-    if (swap) a = 1.57079632679489661923LF - a;
-    precise double result = x < 0.0LF ? MLOD_PI - a : a;
-    return result;
-}
-
-// mlod__angle
-double angle_d(dvec3 a, dvec3 b) { return atan2_d(length_d(cross_d(a, b)), dot3(a, b)); }
-
-// mlod__distance_f
-double distance_f(vec3 a, vec3 b)
-{
-    precise double dx = double(a.x) - double(b.x);
-    precise double dy = double(a.y) - double(b.y);
-    precise double dz = double(a.z) - double(b.z);
-    precise double d = sqrt(dx * dx + dy * dy + dz * dz);
-    return d;
-}
-
-// mlod__sphere_enclose
-vec4 sphere_enclose(vec4 a, vec4 b)
-{
-    precise double d = distance_f(a.xyz, b.xyz);
-    double ra = double(a.w), rb = double(b.w);
-    vec3 c;
-    if (d + rb <= ra) {
-        c = a.xyz;
-    } else if (d + ra <= rb) {
-        c = b.xyz;
-    } else {
-        precise double t = ((d + ra + rb) * 0.5LF - ra) / d;
-        precise double cx = double(a.x) + (double(b.x) - double(a.x)) * t;
-        precise double cy = double(a.y) + (double(b.y) - double(a.y)) * t;
-        precise double cz = double(a.z) + (double(b.z) - double(a.z)) * t;
-        c = vec3(float(cx), float(cy), float(cz));
-    }
-    precise double need_a = distance_f(c, a.xyz) + ra;
-    precise double need_b = distance_f(c, b.xyz) + rb;
-    precise double need = (need_a > need_b ? need_a : need_b) * (1.0LF + 1.0LF / 1048576.0LF) *
-                          (1.0LF + 1.0LF / 1125899906842624.0LF);
-    return vec4(c, float_up(need));
-}
-
-// mlod__cone_full
-vec4 cone_full(vec3 axis) { return vec4(axis, float_up(MLOD_PI)); }
-
-// mlod__cone_enclose (the stored axis is within MLOD__CONE_ROUNDING, 2^-22
-// rad, of the merged one; nearly opposite axes, closer than
-// MLOD__CONE_OPPOSITE, measure the stored axis against both cones)
-vec4 cone_enclose(vec4 a, vec4 b)
-{
-    if (double(a.w) >= MLOD_PI || double(b.w) >= MLOD_PI) return cone_full(a.xyz);
-    dvec3 A = dvec3(a.xyz), B = dvec3(b.xyz), X;
-    precise double theta = angle_d(A, B);
-    precise double alpha;
-    bool measure = false;
-    if (theta + double(b.w) <= double(a.w)) {
-        X = A;
-        alpha = double(a.w);
-    } else if (theta + double(a.w) <= double(b.w)) {
-        X = B;
-        alpha = double(b.w);
-    } else {
-        alpha = (theta + double(a.w) + double(b.w)) * 0.5LF;
-        if (alpha >= MLOD_PI) return cone_full(a.xyz);
-        precise double phi = alpha - double(a.w);
-        double sin_phi, cos_phi;
-        sin_cos(phi, sin_phi, cos_phi);
-        precise double la = length_d(A);
-        precise dvec3 An = dvec3(A.x / la, A.y / la, A.z / la);
-        precise double ab = dot3(An, B);
-        precise dvec3 t = dvec3(B.x - An.x * ab, B.y - An.y * ab, B.z - An.z * ab);
-        precise double len = length_d(t);
-        measure = !(len >= 1.0LF / 1024.0LF) && !(ab > 0.0LF);
-        if (!(len > 0.0LF)) {
-            dvec3 helper = dvec3(0.0LF);
-            if (abs(An.x) < 0.5LF) helper.x = 1.0LF; else helper.y = 1.0LF;
-            t = cross_d(An, helper);
-            len = length_d(t);
-        }
-        precise dvec3 Xr = dvec3(An.x * cos_phi + t.x / len * sin_phi, An.y * cos_phi + t.y / len * sin_phi,
-                                 An.z * cos_phi + t.z / len * sin_phi);
-        X = Xr;
-    }
-    precise double lx = length_d(X);
-    vec3 axis = vec3(float(X.x / lx), float(X.y / lx), float(X.z / lx));
-    // +0 for a zero component however it was reached: the compiler may fold
-    // away the terms that decide the sign of a zero (x + 0 -> x), the CPU
-    // does not; the test on the bits cannot be folded
-    [[unroll]] for (int k = 0; k < 3; k++)
-        if (floatBitsToUint(axis[k]) == 0x80000000u) axis[k] = 0.0;
-    if (measure) {
-        dvec3 S = dvec3(axis);
-        precise double need_a = angle_d(S, A) + double(a.w);
-        precise double need_b = angle_d(S, B) + double(b.w);
-        alpha = need_a > need_b ? need_a : need_b;
-    }
-    precise double stored = alpha + 1.0LF / 4194304.0LF + 1.0LF / 1048576.0LF;
-    if (stored >= MLOD_PI) return cone_full(axis);
-    return vec4(axis, float_up(stored));
-}
-
-// mlod__depth_of
-uint depth_of(uint64_t node)
-{
-    uint64_t x = node + 1UL;
-    uint hi = uint(x >> 32);
-    return hi != 0u ? 32u + uint(findMSB(hi)) : uint(findMSB(uint(x)));
-}
-
-// mlod__leaves_below: leaves under node i of the tree of n leaves
-uint leaves_below(uint i, uint n)
-{
-    uint64_t last = 2UL * uint64_t(n) - 2UL;
-    uint k = depth_of(uint64_t(i)), deepest = depth_of(last);
-    uint span = deepest - k;
-    uint64_t lo = ((uint64_t(i) + 1UL) << span) - 1UL, hi = ((uint64_t(i) + 2UL) << span) - 2UL;
-    uint64_t at_deepest = lo > last ? 0UL : (hi < last ? hi : last) - lo + 1UL;
-    uint64_t nodes = ((1UL << span) - 1UL) + at_deepest;
-    return uint((nodes + 1UL) / 2UL);
-}
