@@ -8,6 +8,16 @@
      Many-View Level-of-Detail Selection for Real-Time Global Illumination",
      EGSR 2011;  and  T. Kol et al.: "MegaViews", Computer Graphics Forum 2018.
 
+   This comment is the manual and the one home of the definitions the code
+   honours (the tree, the criterion, the cut, the splat); README.md gives an
+   overview and the benchmark figures, and points here.
+
+   CONTENTS
+     USAGE, QUICK EXAMPLE, CONFIGURATION, FLOATING POINT, PIPELINE,
+     TREE LAYOUT, SAMPLING, BUILD, VIEWS AND THE CRITERION, THE CUT,
+     SPLATTING, THREADS, ERRORS, MEMORY; then the declarations, each
+     documented where it stands, and the implementation.
+
    USAGE
      In exactly one C or C++ file:
          #define MANYLODS_IMPLEMENTATION
@@ -17,6 +27,18 @@
      (private copies in several files).  Define MANYLODS_PTHREADS with the
      implementation to get the built-in thread pool (mlod_pool_*), then link
      with -pthread; the default build needs no thread library.
+
+   QUICK EXAMPLE (examples/minimal.c is the same, complete)
+     mlod_mesh mesh = {.positions = xyz, .vertex_count = nv,
+                       .indices = tris, .index_count = 3 * nt};
+     mlod_build_desc desc = {.sample_count = 100000, .seed = 1};
+     mlod_cut_params params = {.mode = MLOD_CUT_BASIC, .epsilon = 1.0f};
+     mlod_tree *tree; mlod_cut *cut; mlod_error err;
+     if (mlod_build_mesh(&mesh, &desc, &tree, &err) == MLOD_OK &&
+         mlod_cut_create(view_count, NULL, &cut, &err) == MLOD_OK &&
+         mlod_cut_update(cut, tree, views, &params, &err) == MLOD_OK)
+         draw(mlod_cut_get(cut, 0));   // .nodes[0 .. .count), .status[]
+     else fprintf(stderr, "manylods: %s\n", err.message);
 
    CONFIGURATION (define before the implementation)
      MANYLODS_MALLOC(size, user) / MANYLODS_FREE(ptr, user)
@@ -188,13 +210,8 @@
      drawn node's radius, up to epsilon / 2 pixels, so occluders (and their
      shadows) come out wider than they are.  mlod_atlas_desc.disc_scale
      draws smaller discs, sampled at pixel centres only; the holes left are
-     filled by mlod_atlas_fill_holes.  On the instant radiosity example
-     (epsilon 1, 32 x 32 paraboloid maps), disc_scale 0.5 with the fill cut
-     the indirect light's error against exact visibility from 7.2 % to
-     2.7 % (ISM at equal time: 4.4-4.9 %; ray-cast maps: 2.0 %), and on
-     the benchmark's object (N = 1.3 M) the shadow tests that differ from
-     ray-cast maps' from 14.8 % to 7.3 %, in less time than whole discs
-     (fewer pixels, then the fill).  mlod_splat_ism() is the Imperfect
+     filled by mlod_atlas_fill_holes (README.md, "Choosing the disc
+     scale", measures what that buys).  mlod_splat_ism() is the Imperfect
      Shadow Maps baseline (a fixed random subset of leaves per view) and
      mlod_atlas_fill_holes() the pull-push hole filling for either.
      mlod_suggest_sample_count() gives the smallest N whose leaves are at
