@@ -81,10 +81,11 @@
      loss, destroy and start over.
 
    SHADERS
-     The SPIR-V below, between the GENERATED markers, is compiled from
-     the shaders/ sources (.comp) by `make shaders` (shaders/embed.sh, glslangValidator of
-     Debian's glslang-tools); tests/test_vulkan.c fails when the embedded
-     words differ from a fresh compile.
+     The SPIR-V at the end of this file, between the GENERATED markers, is
+     compiled from the shaders/ sources (.comp) by `make shaders`
+     (shaders/embed.sh, glslangValidator of Debian's glslang-tools);
+     tests/check_shaders.sh fails when the embedded words differ from a
+     fresh compile.
 */
 #ifndef MANYLODS_VK_H
 #define MANYLODS_VK_H
@@ -381,6 +382,1898 @@ MANYLODS_VK_DEF mlodvk_atlas_buffers mlodvk_atlas_get_buffers(const mlodvk_atlas
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
+
+
+#define MLODVK__GROUP 256u
+#define MLODVK__VIEW_DOUBLES 64u
+#define MLODVK__CONTROL_BYTES 104u
+#define MLODVK__CUT_BINDINGS 11u
+#define MLODVK__SPLAT_BINDINGS 12u
+#define MLODVK__REFIT_BINDINGS 11u
+
+enum { MLODVK__CUT_INIT, MLODVK__CUT_STEP, MLODVK__CUT_SCAN, MLODVK__CUT_WRITE, MLODVK__CUT_FINISH,
+       MLODVK__SPLAT_CLEAR, MLODVK__SPLAT_DRAW, MLODVK__SPLAT_RESOLVE, MLODVK__REFIT_CHECK, MLODVK__REFIT_LEAVES,
+       MLODVK__REFIT_MERGE, MLODVK__PIPELINES };
+enum { MLODVK__LAYOUT_CUT, MLODVK__LAYOUT_SPLAT, MLODVK__LAYOUT_REFIT, MLODVK__LAYOUTS };
+
+/* The SPIR-V of pipeline MLODVK__CUT_INIT .. MLODVK__REFIT_MERGE: its words
+   and their size in bytes.  Defined at the end of the implementation, after
+   the words `make shaders` generates from shaders/. */
+static const uint32_t *mlodvk__spirv(int pipeline, size_t *bytes);
+
+/* The control block of shaders/cut_layout.glsl (std430). */
+typedef struct mlodvk__control {
+    uint32_t args[3][4];
+    uint32_t count[2];
+    uint32_t changed, overflow, done, rounds, input_is_b, needed, current, pad;
+    uint64_t evaluated, steps;
+} mlodvk__control;
+
+typedef struct mlodvk__cut_push {
+    float epsilon;
+    uint32_t leaf_count, view_count, has_cones, trust, merge, slot, capacity, max_groups_x;
+} mlodvk__cut_push;
+
+typedef struct mlodvk__splat_push {
+    uint32_t atlas_width, pixel_count, has_cones, want_normal, want_color, max_groups_x;
+    float disc_scale;
+} mlodvk__splat_push;
+
+/* shaders/refit_layout.glsl's push constants (48 bytes) and findings. */
+typedef struct mlodvk__refit_push {
+    double area_unit;
+    float radius_scale;
+    uint32_t leaf_count, count, first, position_stride, normal_stride, color_stride, has_cones, has_colors,
+        max_groups_x;
+} mlodvk__refit_push;
+
+typedef struct mlodvk__findings {
+    uint32_t flags, first_vertex;
+    uint64_t growth_bits;
+} mlodvk__findings;
+
+typedef struct mlodvk__buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    VkDeviceSize size;  /* bytes asked for */
+    VkDeviceSize bytes; /* bytes of the allocation */
+    void *mapped;       /* host-visible buffers only */
+} mlodvk__buffer;
+
+struct mlodvk_context {
+    mlodvk_functions vk;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    VkQueue queue;
+    const VkAllocationCallbacks *vk_allocator;
+    mlod_allocator allocator;
+    VkPhysicalDeviceMemoryProperties memory;
+    VkPhysicalDeviceProperties properties;
+    VkDescriptorSetLayout set_layouts[MLODVK__LAYOUTS];
+    VkPipelineLayout layouts[MLODVK__LAYOUTS];
+    VkPipeline pipelines[MLODVK__PIPELINES];
+    VkCommandPool pool;
+    VkCommandBuffer commands;
+    VkFence fence;
+    uint64_t device_bytes;
+    uint64_t generations; /* tree uploads so far: each tree's identity for the cuts */
+    int recording;
+};
+
+struct mlodvk_tree {
+    mlodvk__buffer spheres, cones, colors;
+    uint32_t node_count, leaf_count, has_cones, has_colors;
+    uint64_t generation; /* changes with every upload: cuts start over on a new tree */
+    /* refit (mlodvk_tree_upload_refit) */
+    int refit_ready;
+    mlodvk__buffer leaf_sources, barycentrics, triangle_areas, indices, findings;
+    mlodvk__buffer host_positions, host_normals, host_colors; /* mlodvk_refit_mesh_host */
+    uint32_t triangle_count, vertex_count;
+    double area_unit;
+    float radius_scale;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+};
+
+struct mlodvk_cut {
+    uint32_t view_count, capacity, has_views;
+    mlodvk__buffer list[2], status[2], acts, block_sums, control, offsets, views;
+    VkDescriptorPool pool;
+    VkDescriptorSet sets[2]; /* 0: A -> B, 1: B -> A */
+    const mlodvk_tree *tree; /* of the last update, and its generation */
+    uint64_t tree_generation;
+    mlodvk_cut_info info;
+    /* downloaded */
+    uint32_t *host_nodes, *host_offsets;
+    uint8_t *host_status;
+    uint32_t host_entries, host_capacity;
+    mlod_cut_view *host_views;
+};
+
+struct mlodvk_atlas {
+    uint32_t width, height, view_count, channels;
+    float disc_scale;
+    uint32_t *host_tiles; /* the layout's tiles: x, y, width, height per view */
+    mlodvk__buffer keys, depth, normal, color, tiles;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+};
+
+/* ------------------------------------------------------------ errors -- */
+
+static mlod_result mlodvk__fail(mlod_error *error, mlod_result code, const char *format, ...)
+{
+    if (error) {
+        va_list args;
+        va_start(args, format);
+        vsnprintf(error->message, sizeof error->message, format, args);
+        va_end(args);
+        error->code = code;
+    }
+    return code;
+}
+
+static mlod_result mlodvk__ok(mlod_error *error)
+{
+    if (error) {
+        error->code = MLOD_OK;
+        error->message[0] = '\0';
+    }
+    return MLOD_OK;
+}
+
+static mlod_result mlodvk__vk_fail(mlod_error *error, VkResult result, const char *call)
+{
+    mlod_result code = result == VK_ERROR_OUT_OF_HOST_MEMORY || result == VK_ERROR_OUT_OF_DEVICE_MEMORY
+                           ? MLOD_ERROR_OUT_OF_MEMORY
+                           : MLOD_ERROR_DEVICE;
+    return mlodvk__fail(error, code, "%s failed: VkResult %d%s", call, (int)result,
+                        result == VK_ERROR_DEVICE_LOST ? " (device lost)" : "");
+}
+
+#define MLODVK__CHECK(call, what)                                                                                 \
+    do {                                                                                                          \
+        VkResult mlodvk__r = (call);                                                                              \
+        if (mlodvk__r != VK_SUCCESS) return mlodvk__vk_fail(error, mlodvk__r, what);                             \
+    } while (0)
+
+/* --------------------------------------------------------- host memory -- */
+
+static void *mlodvk__alloc(const mlod_allocator *a, size_t count, size_t size)
+{
+    if (size && count > (size_t)-1 / size) return NULL;
+    return a->alloc(a->user, count * size != 0 ? count * size : 1);
+}
+
+static void mlodvk__free(const mlod_allocator *a, void *p)
+{
+    if (p) a->free(a->user, p);
+}
+
+/* ---------------------------------------------------------- buffers ---- */
+
+static void mlodvk__buffer_destroy(mlodvk_context *ctx, mlodvk__buffer *b)
+{
+    if (b->mapped) ctx->vk.UnmapMemory(ctx->device, b->memory);
+    if (b->buffer) ctx->vk.DestroyBuffer(ctx->device, b->buffer, ctx->vk_allocator);
+    if (b->memory) {
+        ctx->vk.FreeMemory(ctx->device, b->memory, ctx->vk_allocator);
+        ctx->device_bytes -= b->bytes;
+    }
+    memset(b, 0, sizeof *b);
+}
+
+static int mlodvk__memory_type(const mlodvk_context *ctx, uint32_t bits, VkMemoryPropertyFlags want)
+{
+    uint32_t i;
+    for (i = 0; i < ctx->memory.memoryTypeCount; i++)
+        if ((bits & (1u << i)) && (ctx->memory.memoryTypes[i].propertyFlags & want) == want) return (int)i;
+    return -1;
+}
+
+/* A storage buffer of size bytes (> 0); host_visible: mapped, coherent. */
+static mlod_result mlodvk__buffer_create(mlodvk_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                                         int host_visible, mlodvk__buffer *b, mlod_error *error)
+{
+    VkBufferCreateInfo info;
+    VkMemoryRequirements req;
+    VkMemoryAllocateInfo alloc;
+    int type;
+    memset(b, 0, sizeof *b);
+    if (size == 0) size = 16;
+    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > ctx->properties.limits.maxStorageBufferRange)
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE,
+                            "a buffer of %.0f bytes exceeds the device's maxStorageBufferRange (%u bytes)", (double)size,
+                            ctx->properties.limits.maxStorageBufferRange);
+    memset(&info, 0, sizeof info);
+    info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+    info.size = size;
+    info.usage = usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    MLODVK__CHECK(ctx->vk.CreateBuffer(ctx->device, &info, ctx->vk_allocator, &b->buffer), "vkCreateBuffer");
+    ctx->vk.GetBufferMemoryRequirements(ctx->device, b->buffer, &req);
+    type = host_visible ? mlodvk__memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                                            VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
+                                                                            VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
+                        : mlodvk__memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    if (type < 0)
+        type = host_visible ? mlodvk__memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                                                VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
+                            : mlodvk__memory_type(ctx, req.memoryTypeBits, 0);
+    if (type < 0) {
+        mlodvk__buffer_destroy(ctx, b);
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "no memory type for a %s buffer",
+                            host_visible ? "host-visible" : "device");
+    }
+    memset(&alloc, 0, sizeof alloc);
+    alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = (uint32_t)type;
+    {
+        VkResult r = ctx->vk.AllocateMemory(ctx->device, &alloc, ctx->vk_allocator, &b->memory);
+        if (r != VK_SUCCESS) {
+            b->memory = VK_NULL_HANDLE;
+            mlodvk__buffer_destroy(ctx, b);
+            return mlodvk__vk_fail(error, r, "vkAllocateMemory");
+        }
+    }
+    b->bytes = req.size;
+    ctx->device_bytes += req.size;
+    {
+        VkResult r = ctx->vk.BindBufferMemory(ctx->device, b->buffer, b->memory, 0);
+        if (r == VK_SUCCESS && host_visible) r = ctx->vk.MapMemory(ctx->device, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped);
+        if (r != VK_SUCCESS) {
+            b->mapped = NULL;
+            mlodvk__buffer_destroy(ctx, b);
+            return mlodvk__vk_fail(error, r, host_visible ? "vkBindBufferMemory / vkMapMemory" : "vkBindBufferMemory");
+        }
+    }
+    b->size = size;
+    return MLOD_OK;
+}
+
+/* --------------------------------------------------------- commands ---- */
+
+static mlod_result mlodvk__begin(mlodvk_context *ctx, mlod_error *error)
+{
+    VkCommandBufferBeginInfo begin;
+    MLODVK__CHECK(ctx->vk.ResetCommandPool(ctx->device, ctx->pool, 0), "vkResetCommandPool");
+    memset(&begin, 0, sizeof begin);
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    MLODVK__CHECK(ctx->vk.BeginCommandBuffer(ctx->commands, &begin), "vkBeginCommandBuffer");
+    ctx->recording = 1;
+    return MLOD_OK;
+}
+
+/* Every earlier shader or transfer write visible to every later read (shader,
+   indirect arguments, transfer, host). */
+static void mlodvk__barrier(mlodvk_context *ctx)
+{
+    VkMemoryBarrier mb;
+    memset(&mb, 0, sizeof mb);
+    mb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT;
+    mb.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
+                       VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT;
+    ctx->vk.CmdPipelineBarrier(ctx->commands,
+                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                                   VK_PIPELINE_STAGE_HOST_BIT,
+                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
+                                   VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                               0, 1, &mb, 0, NULL, 0, NULL);
+}
+
+/* End, submit, wait. */
+static mlod_result mlodvk__submit(mlodvk_context *ctx, mlod_error *error)
+{
+    VkSubmitInfo submit;
+    VkResult r;
+    ctx->recording = 0;
+    MLODVK__CHECK(ctx->vk.EndCommandBuffer(ctx->commands), "vkEndCommandBuffer");
+    memset(&submit, 0, sizeof submit);
+    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &ctx->commands;
+    MLODVK__CHECK(ctx->vk.QueueSubmit(ctx->queue, 1, &submit, ctx->fence), "vkQueueSubmit");
+    r = ctx->vk.WaitForFences(ctx->device, 1, &ctx->fence, VK_TRUE, UINT64_MAX);
+    if (r != VK_SUCCESS) return mlodvk__vk_fail(error, r, "vkWaitForFences");
+    MLODVK__CHECK(ctx->vk.ResetFences(ctx->device, 1, &ctx->fence), "vkResetFences");
+    return MLOD_OK;
+}
+
+/* A recording that failed midway: end it so that the pool can be reset. */
+static void mlodvk__abandon(mlodvk_context *ctx)
+{
+    if (ctx->recording) {
+        ctx->vk.EndCommandBuffer(ctx->commands);
+        ctx->recording = 0;
+    }
+}
+
+/* Work groups for n items, as (x, y) within the device's limits. */
+static void mlodvk__groups(const mlodvk_context *ctx, uint32_t n, uint32_t *x, uint32_t *y)
+{
+    uint32_t groups = (uint32_t)(((uint64_t)n + MLODVK__GROUP - 1) / MLODVK__GROUP);
+    uint32_t max_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
+    if (groups == 0) {
+        *x = 0;
+        *y = 1;
+        return;
+    }
+    *x = groups < max_x ? groups : max_x;
+    *y = (groups + *x - 1) / *x;
+}
+
+static void mlodvk__dispatch(mlodvk_context *ctx, int pipeline, VkPipelineLayout layout, VkDescriptorSet set,
+                             const void *push, uint32_t push_size, uint32_t items)
+{
+    uint32_t x, y;
+    mlodvk__groups(ctx, items, &x, &y);
+    ctx->vk.CmdBindPipeline(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[pipeline]);
+    ctx->vk.CmdBindDescriptorSets(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, NULL);
+    ctx->vk.CmdPushConstants(ctx->commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
+    if (x) ctx->vk.CmdDispatch(ctx->commands, x, y, 1);
+}
+
+static void mlodvk__dispatch_indirect(mlodvk_context *ctx, int pipeline, VkPipelineLayout layout,
+                                      VkDescriptorSet set, const void *push, uint32_t push_size, VkBuffer args,
+                                      VkDeviceSize offset)
+{
+    ctx->vk.CmdBindPipeline(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[pipeline]);
+    ctx->vk.CmdBindDescriptorSets(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, NULL);
+    ctx->vk.CmdPushConstants(ctx->commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
+    ctx->vk.CmdDispatchIndirect(ctx->commands, args, offset);
+}
+
+/* Copy host bytes into a device buffer through a temporary staging buffer
+   (one submission). */
+static mlod_result mlodvk__upload(mlodvk_context *ctx, const mlodvk__buffer *dst, const void *data, VkDeviceSize size,
+                                  mlod_error *error)
+{
+    mlodvk__buffer staging;
+    VkBufferCopy copy;
+    mlod_result res;
+    if (size == 0) return MLOD_OK;
+    res = mlodvk__buffer_create(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 1, &staging, error);
+    if (res != MLOD_OK) return res;
+    memcpy(staging.mapped, data, (size_t)size);
+    res = mlodvk__begin(ctx, error);
+    if (res == MLOD_OK) {
+        copy.srcOffset = 0;
+        copy.dstOffset = 0;
+        copy.size = size;
+        ctx->vk.CmdCopyBuffer(ctx->commands, staging.buffer, dst->buffer, 1, &copy);
+        mlodvk__barrier(ctx);
+        res = mlodvk__submit(ctx, error);
+    }
+    mlodvk__abandon(ctx);
+    mlodvk__buffer_destroy(ctx, &staging);
+    return res;
+}
+
+/* Copy count ranges of device buffers to host memory (one submission). */
+typedef struct mlodvk__download_range {
+    const mlodvk__buffer *src;
+    VkDeviceSize size;
+    void *dst;
+} mlodvk__download_range;
+
+static mlod_result mlodvk__download(mlodvk_context *ctx, const mlodvk__download_range *ranges, int count,
+                                    mlod_error *error)
+{
+    mlodvk__buffer staging;
+    VkDeviceSize total = 0, at = 0;
+    mlod_result res;
+    int i;
+    for (i = 0; i < count; i++) total += (ranges[i].size + 15) & ~(VkDeviceSize)15;
+    if (total == 0) return MLOD_OK;
+    res = mlodvk__buffer_create(ctx, total, VK_BUFFER_USAGE_TRANSFER_DST_BIT, 1, &staging, error);
+    if (res != MLOD_OK) return res;
+    res = mlodvk__begin(ctx, error);
+    if (res == MLOD_OK) {
+        mlodvk__barrier(ctx);
+        for (i = 0; i < count; i++) {
+            VkBufferCopy copy;
+            copy.srcOffset = 0;
+            copy.dstOffset = at;
+            copy.size = ranges[i].size;
+            if (copy.size) ctx->vk.CmdCopyBuffer(ctx->commands, ranges[i].src->buffer, staging.buffer, 1, &copy);
+            at += (ranges[i].size + 15) & ~(VkDeviceSize)15;
+        }
+        mlodvk__barrier(ctx);
+        res = mlodvk__submit(ctx, error);
+    }
+    mlodvk__abandon(ctx);
+    if (res == MLOD_OK)
+        for (i = 0, at = 0; i < count; i++) {
+            memcpy(ranges[i].dst, (const char *)staging.mapped + at, (size_t)ranges[i].size);
+            at += (ranges[i].size + 15) & ~(VkDeviceSize)15;
+        }
+    mlodvk__buffer_destroy(ctx, &staging);
+    return res;
+}
+
+/* Descriptor sets: a pool, its sets, their storage buffers in binding order. */
+static void mlodvk__write_set(mlodvk_context *ctx, VkDescriptorSet set, const VkBuffer *buffers, uint32_t count)
+{
+    VkDescriptorBufferInfo info[16];
+    VkWriteDescriptorSet write[16];
+    uint32_t i;
+    for (i = 0; i < count; i++) {
+        info[i].buffer = buffers[i];
+        info[i].offset = 0;
+        info[i].range = VK_WHOLE_SIZE;
+        memset(&write[i], 0, sizeof write[i]);
+        write[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        write[i].dstSet = set;
+        write[i].dstBinding = i;
+        write[i].descriptorCount = 1;
+        write[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        write[i].pBufferInfo = &info[i];
+    }
+    ctx->vk.UpdateDescriptorSets(ctx->device, count, write, 0, NULL);
+}
+
+static mlod_result mlodvk__pool(mlodvk_context *ctx, uint32_t sets, uint32_t buffers, VkDescriptorPool *out,
+                                mlod_error *error)
+{
+    VkDescriptorPoolSize size;
+    VkDescriptorPoolCreateInfo info;
+    size.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    size.descriptorCount = buffers;
+    memset(&info, 0, sizeof info);
+    info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    info.maxSets = sets;
+    info.poolSizeCount = 1;
+    info.pPoolSizes = &size;
+    MLODVK__CHECK(ctx->vk.CreateDescriptorPool(ctx->device, &info, ctx->vk_allocator, out), "vkCreateDescriptorPool");
+    return MLOD_OK;
+}
+
+static mlod_result mlodvk__sets(mlodvk_context *ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
+                                uint32_t count, VkDescriptorSet *out, mlod_error *error)
+{
+    VkDescriptorSetLayout layouts[2];
+    VkDescriptorSetAllocateInfo info;
+    uint32_t i;
+    for (i = 0; i < count; i++) layouts[i] = layout;
+    memset(&info, 0, sizeof info);
+    info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    info.descriptorPool = pool;
+    info.descriptorSetCount = count;
+    info.pSetLayouts = layouts;
+    MLODVK__CHECK(ctx->vk.AllocateDescriptorSets(ctx->device, &info, out), "vkAllocateDescriptorSets");
+    return MLOD_OK;
+}
+
+/* ---------------------------------------------------------- context ---- */
+
+static mlod_result mlodvk__load(mlodvk_context *ctx, const mlodvk_context_desc *desc, mlod_error *error)
+{
+    PFN_vkGetInstanceProcAddr gipa = desc->get_instance_proc_addr;
+    PFN_vkGetDeviceProcAddr gdpa;
+    mlodvk_functions *f = &ctx->vk;
+    if (desc->functions) {
+        *f = *desc->functions;
+        return MLOD_OK;
+    }
+    if (!gipa) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "get_instance_proc_addr and functions are both NULL");
+    gdpa = (PFN_vkGetDeviceProcAddr)gipa(desc->instance, "vkGetDeviceProcAddr");
+    if (!gdpa) return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vkGetDeviceProcAddr not found");
+#define MLODVK__INSTANCE(name)                                                                                    \
+    if (!(f->name = (PFN_vk##name)gipa(desc->instance, "vk" #name)))                                            \
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vk" #name " not found");
+#define MLODVK__DEVICE(name)                                                                                      \
+    if (!(f->name = (PFN_vk##name)gdpa(desc->device, "vk" #name)))                                              \
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vk" #name " not found");
+    MLODVK__INSTANCE(GetPhysicalDeviceProperties)
+    MLODVK__INSTANCE(GetPhysicalDeviceMemoryProperties)
+    MLODVK__INSTANCE(GetPhysicalDeviceFeatures2)
+    MLODVK__INSTANCE(GetPhysicalDeviceProperties2)
+    MLODVK__DEVICE(CreateBuffer)
+    MLODVK__DEVICE(DestroyBuffer)
+    MLODVK__DEVICE(GetBufferMemoryRequirements)
+    MLODVK__DEVICE(AllocateMemory)
+    MLODVK__DEVICE(FreeMemory)
+    MLODVK__DEVICE(BindBufferMemory)
+    MLODVK__DEVICE(MapMemory)
+    MLODVK__DEVICE(UnmapMemory)
+    MLODVK__DEVICE(CreateShaderModule)
+    MLODVK__DEVICE(DestroyShaderModule)
+    MLODVK__DEVICE(CreateDescriptorSetLayout)
+    MLODVK__DEVICE(DestroyDescriptorSetLayout)
+    MLODVK__DEVICE(CreatePipelineLayout)
+    MLODVK__DEVICE(DestroyPipelineLayout)
+    MLODVK__DEVICE(CreateComputePipelines)
+    MLODVK__DEVICE(DestroyPipeline)
+    MLODVK__DEVICE(CreateDescriptorPool)
+    MLODVK__DEVICE(DestroyDescriptorPool)
+    MLODVK__DEVICE(AllocateDescriptorSets)
+    MLODVK__DEVICE(UpdateDescriptorSets)
+    MLODVK__DEVICE(CreateCommandPool)
+    MLODVK__DEVICE(DestroyCommandPool)
+    MLODVK__DEVICE(ResetCommandPool)
+    MLODVK__DEVICE(AllocateCommandBuffers)
+    MLODVK__DEVICE(BeginCommandBuffer)
+    MLODVK__DEVICE(EndCommandBuffer)
+    MLODVK__DEVICE(CmdBindPipeline)
+    MLODVK__DEVICE(CmdBindDescriptorSets)
+    MLODVK__DEVICE(CmdPushConstants)
+    MLODVK__DEVICE(CmdDispatch)
+    MLODVK__DEVICE(CmdDispatchIndirect)
+    MLODVK__DEVICE(CmdPipelineBarrier)
+    MLODVK__DEVICE(CmdCopyBuffer)
+    MLODVK__DEVICE(QueueSubmit)
+    MLODVK__DEVICE(CreateFence)
+    MLODVK__DEVICE(DestroyFence)
+    MLODVK__DEVICE(WaitForFences)
+    MLODVK__DEVICE(ResetFences)
+#undef MLODVK__INSTANCE
+#undef MLODVK__DEVICE
+    return MLOD_OK;
+}
+
+/* Subgroup basic and arithmetic operations in compute shaders (the cut's
+   prefix sums). */
+static int mlodvk__subgroups_ok(VkPhysicalDevice physical, PFN_vkGetPhysicalDeviceProperties2 properties2)
+{
+    VkPhysicalDeviceSubgroupProperties subgroups;
+    VkPhysicalDeviceProperties2 properties;
+    memset(&subgroups, 0, sizeof subgroups);
+    subgroups.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
+    memset(&properties, 0, sizeof properties);
+    properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+    properties.pNext = &subgroups;
+    properties2(physical, &properties);
+    return (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+           (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_BASIC_BIT) &&
+           (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
+}
+
+static mlod_result mlodvk__check_features(mlodvk_context *ctx, mlod_error *error)
+{
+    VkPhysicalDeviceShaderAtomicInt64Features atomics;
+    VkPhysicalDeviceFeatures2 features;
+    memset(&atomics, 0, sizeof atomics);
+    atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES;
+    memset(&features, 0, sizeof features);
+    features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    features.pNext = &atomics;
+    ctx->vk.GetPhysicalDeviceFeatures2(ctx->physical_device, &features);
+    if (ctx->properties.apiVersion < VK_API_VERSION_1_1)
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "%s supports Vulkan %u.%u; 1.1 is needed", ctx->properties.deviceName,
+                            VK_VERSION_MAJOR(ctx->properties.apiVersion), VK_VERSION_MINOR(ctx->properties.apiVersion));
+    if (!features.features.shaderFloat64 || !features.features.shaderInt64 || !atomics.shaderBufferInt64Atomics)
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "%s lacks%s%s%s", ctx->properties.deviceName,
+                            features.features.shaderFloat64 ? "" : " shaderFloat64",
+                            features.features.shaderInt64 ? "" : " shaderInt64",
+                            atomics.shaderBufferInt64Atomics ? "" : " shaderBufferInt64Atomics");
+    if (!mlodvk__subgroups_ok(ctx->physical_device, ctx->vk.GetPhysicalDeviceProperties2))
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "%s lacks subgroup arithmetic in compute shaders",
+                            ctx->properties.deviceName);
+    return MLOD_OK;
+}
+
+typedef struct mlodvk__shader {
+    const uint32_t *words;
+    size_t bytes;
+    int layout; /* MLODVK__LAYOUT_* */
+} mlodvk__shader;
+
+static mlod_result mlodvk__set_layout(mlodvk_context *ctx, uint32_t bindings, VkDescriptorSetLayout *out,
+                                      mlod_error *error)
+{
+    VkDescriptorSetLayoutBinding b[16];
+    VkDescriptorSetLayoutCreateInfo info;
+    uint32_t i;
+    memset(b, 0, sizeof b);
+    for (i = 0; i < bindings; i++) {
+        b[i].binding = i;
+        b[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        b[i].descriptorCount = 1;
+        b[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    memset(&info, 0, sizeof info);
+    info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    info.bindingCount = bindings;
+    info.pBindings = b;
+    MLODVK__CHECK(ctx->vk.CreateDescriptorSetLayout(ctx->device, &info, ctx->vk_allocator, out),
+                  "vkCreateDescriptorSetLayout");
+    return MLOD_OK;
+}
+
+static mlod_result mlodvk__pipeline_layout(mlodvk_context *ctx, VkDescriptorSetLayout set, uint32_t push_bytes,
+                                           VkPipelineLayout *out, mlod_error *error)
+{
+    VkPushConstantRange range;
+    VkPipelineLayoutCreateInfo info;
+    range.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    range.offset = 0;
+    range.size = push_bytes;
+    memset(&info, 0, sizeof info);
+    info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    info.setLayoutCount = 1;
+    info.pSetLayouts = &set;
+    info.pushConstantRangeCount = 1;
+    info.pPushConstantRanges = &range;
+    MLODVK__CHECK(ctx->vk.CreatePipelineLayout(ctx->device, &info, ctx->vk_allocator, out), "vkCreatePipelineLayout");
+    return MLOD_OK;
+}
+
+static mlod_result mlodvk__pipeline(mlodvk_context *ctx, const mlodvk__shader *shader, VkPipeline *out,
+                                    mlod_error *error)
+{
+    VkShaderModuleCreateInfo module_info;
+    VkComputePipelineCreateInfo info;
+    VkShaderModule module;
+    VkResult r;
+    memset(&module_info, 0, sizeof module_info);
+    module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+    module_info.codeSize = shader->bytes;
+    module_info.pCode = shader->words;
+    MLODVK__CHECK(ctx->vk.CreateShaderModule(ctx->device, &module_info, ctx->vk_allocator, &module),
+                  "vkCreateShaderModule");
+    memset(&info, 0, sizeof info);
+    info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.layout = ctx->layouts[shader->layout];
+    r = ctx->vk.CreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, ctx->vk_allocator, out);
+    ctx->vk.DestroyShaderModule(ctx->device, module, ctx->vk_allocator);
+    if (r != VK_SUCCESS) {
+        *out = VK_NULL_HANDLE;
+        return mlodvk__vk_fail(error, r, "vkCreateComputePipelines");
+    }
+    return MLOD_OK;
+}
+
+MANYLODS_VK_DEF void mlodvk_context_destroy(mlodvk_context *ctx)
+{
+    int i;
+    if (!ctx) return;
+    if (ctx->device) {
+        if (ctx->fence) ctx->vk.DestroyFence(ctx->device, ctx->fence, ctx->vk_allocator);
+        if (ctx->pool) ctx->vk.DestroyCommandPool(ctx->device, ctx->pool, ctx->vk_allocator);
+        for (i = 0; i < MLODVK__PIPELINES; i++)
+            if (ctx->pipelines[i]) ctx->vk.DestroyPipeline(ctx->device, ctx->pipelines[i], ctx->vk_allocator);
+        for (i = 0; i < MLODVK__LAYOUTS; i++) {
+            if (ctx->layouts[i]) ctx->vk.DestroyPipelineLayout(ctx->device, ctx->layouts[i], ctx->vk_allocator);
+            if (ctx->set_layouts[i]) ctx->vk.DestroyDescriptorSetLayout(ctx->device, ctx->set_layouts[i], ctx->vk_allocator);
+        }
+    }
+    mlodvk__free(&ctx->allocator, ctx);
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_context_create(const mlodvk_context_desc *desc, mlodvk_context **out,
+                                                  mlod_error *error)
+{
+    /* the layout of each pipeline, in MLODVK__CUT_INIT .. order */
+    static const int layouts[MLODVK__PIPELINES] = {
+        MLODVK__LAYOUT_CUT,   MLODVK__LAYOUT_CUT,   MLODVK__LAYOUT_CUT,   MLODVK__LAYOUT_CUT,
+        MLODVK__LAYOUT_CUT,   MLODVK__LAYOUT_SPLAT, MLODVK__LAYOUT_SPLAT, MLODVK__LAYOUT_SPLAT,
+        MLODVK__LAYOUT_REFIT, MLODVK__LAYOUT_REFIT, MLODVK__LAYOUT_REFIT};
+    static const uint32_t bindings[MLODVK__LAYOUTS] = {MLODVK__CUT_BINDINGS, MLODVK__SPLAT_BINDINGS,
+                                                       MLODVK__REFIT_BINDINGS};
+    static const uint32_t push_bytes[MLODVK__LAYOUTS] = {sizeof(mlodvk__cut_push), sizeof(mlodvk__splat_push),
+                                                         sizeof(mlodvk__refit_push)};
+    mlod_allocator a;
+    mlodvk_context *ctx;
+    mlod_result res;
+    int i;
+    if (out) *out = NULL;
+    if (!desc || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "desc and out must not be NULL");
+    if (!desc->instance || !desc->physical_device || !desc->device || !desc->queue)
+        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "instance, physical_device, device and queue are needed");
+    if (desc->allocator && (desc->allocator->alloc == NULL) != (desc->allocator->free == NULL))
+        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "allocator: alloc and free go together");
+    /* no allocator: manylods.h's default, MANYLODS_MALLOC/FREE where defined */
+    a = desc->allocator && desc->allocator->alloc ? *desc->allocator : mlod_default_allocator();
+    ctx = (mlodvk_context *)mlodvk__alloc(&a, 1, sizeof *ctx);
+    if (!ctx) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the context");
+    memset(ctx, 0, sizeof *ctx);
+    ctx->allocator = a;
+    ctx->physical_device = desc->physical_device;
+    ctx->queue = desc->queue;
+    ctx->vk_allocator = desc->vk_allocator;
+    res = mlodvk__load(ctx, desc, error);
+    if (res != MLOD_OK) {
+        mlodvk__free(&a, ctx);
+        return res;
+    }
+    ctx->device = desc->device;
+    ctx->vk.GetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
+    ctx->vk.GetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory);
+    res = mlodvk__check_features(ctx, error);
+    for (i = 0; i < MLODVK__LAYOUTS && res == MLOD_OK; i++) {
+        res = mlodvk__set_layout(ctx, bindings[i], &ctx->set_layouts[i], error);
+        if (res == MLOD_OK) res = mlodvk__pipeline_layout(ctx, ctx->set_layouts[i], push_bytes[i], &ctx->layouts[i], error);
+    }
+    for (i = 0; i < MLODVK__PIPELINES && res == MLOD_OK; i++) {
+        mlodvk__shader shader;
+        shader.words = mlodvk__spirv(i, &shader.bytes);
+        shader.layout = layouts[i];
+        res = mlodvk__pipeline(ctx, &shader, &ctx->pipelines[i], error);
+    }
+    if (res == MLOD_OK) {
+        VkCommandPoolCreateInfo pool;
+        VkCommandBufferAllocateInfo alloc;
+        VkFenceCreateInfo fence;
+        VkResult r;
+        memset(&pool, 0, sizeof pool);
+        pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+        pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+        pool.queueFamilyIndex = desc->queue_family;
+        r = ctx->vk.CreateCommandPool(ctx->device, &pool, ctx->vk_allocator, &ctx->pool);
+        if (r != VK_SUCCESS) {
+            ctx->pool = VK_NULL_HANDLE;
+            res = mlodvk__vk_fail(error, r, "vkCreateCommandPool");
+        }
+        if (res == MLOD_OK) {
+            memset(&alloc, 0, sizeof alloc);
+            alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+            alloc.commandPool = ctx->pool;
+            alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+            alloc.commandBufferCount = 1;
+            r = ctx->vk.AllocateCommandBuffers(ctx->device, &alloc, &ctx->commands);
+            if (r != VK_SUCCESS) res = mlodvk__vk_fail(error, r, "vkAllocateCommandBuffers");
+        }
+        if (res == MLOD_OK) {
+            memset(&fence, 0, sizeof fence);
+            fence.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+            r = ctx->vk.CreateFence(ctx->device, &fence, ctx->vk_allocator, &ctx->fence);
+            if (r != VK_SUCCESS) {
+                ctx->fence = VK_NULL_HANDLE;
+                res = mlodvk__vk_fail(error, r, "vkCreateFence");
+            }
+        }
+    }
+    if (res != MLOD_OK) {
+        mlodvk_context_destroy(ctx);
+        return res;
+    }
+    *out = ctx;
+    return mlodvk__ok(error);
+}
+
+MANYLODS_VK_DEF const char *mlodvk_context_device_name(const mlodvk_context *ctx)
+{
+    return ctx ? ctx->properties.deviceName : "";
+}
+
+MANYLODS_VK_DEF uint64_t mlodvk_context_device_bytes(const mlodvk_context *ctx) { return ctx ? ctx->device_bytes : 0; }
+
+/* ---------------------------------------------------- headless device -- */
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL mlodvk__debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                            VkDebugUtilsMessageTypeFlagsEXT types,
+                                                            const VkDebugUtilsMessengerCallbackDataEXT *data,
+                                                            void *user)
+{
+    mlodvk_device *d = (mlodvk_device *)user;
+    (void)types;
+    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        d->validation_messages++;
+        snprintf(d->last_message, sizeof d->last_message, "%s", data && data->pMessage ? data->pMessage : "(no text)");
+    }
+    return VK_FALSE;
+}
+
+MANYLODS_VK_DEF void mlodvk_device_destroy(mlodvk_device *d)
+{
+    PFN_vkGetInstanceProcAddr gipa;
+    if (!d || !d->instance) return;
+    gipa = d->get_instance_proc_addr;
+    if (d->device) {
+        PFN_vkDestroyDevice destroy_device = (PFN_vkDestroyDevice)gipa(d->instance, "vkDestroyDevice");
+        PFN_vkDeviceWaitIdle wait = (PFN_vkDeviceWaitIdle)gipa(d->instance, "vkDeviceWaitIdle");
+        if (wait) wait(d->device);
+        if (destroy_device) destroy_device(d->device, d->vk_allocator);
+    }
+    if (d->messenger) {
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy =
+            (PFN_vkDestroyDebugUtilsMessengerEXT)gipa(d->instance, "vkDestroyDebugUtilsMessengerEXT");
+        if (destroy) destroy(d->instance, d->messenger, d->vk_allocator);
+    }
+    {
+        PFN_vkDestroyInstance destroy_instance = (PFN_vkDestroyInstance)gipa(d->instance, "vkDestroyInstance");
+        if (destroy_instance) destroy_instance(d->instance, d->vk_allocator);
+    }
+    d->instance = VK_NULL_HANDLE;
+    d->device = VK_NULL_HANDLE;
+}
+
+/* Rank of a device type: lower is preferred. */
+static int mlodvk__type_rank(VkPhysicalDeviceType type, int prefer_cpu)
+{
+    if (prefer_cpu && type == VK_PHYSICAL_DEVICE_TYPE_CPU) return 0;
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 5;
+    default: return 4;
+    }
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_device_create(const mlodvk_device_desc *desc, mlodvk_device *d, mlod_error *error)
+{
+    PFN_vkGetInstanceProcAddr gipa;
+    PFN_vkCreateInstance create_instance;
+    PFN_vkEnumeratePhysicalDevices enumerate;
+    PFN_vkGetPhysicalDeviceProperties properties;
+    PFN_vkGetPhysicalDeviceFeatures2 features2;
+    PFN_vkGetPhysicalDeviceProperties2 properties2;
+    PFN_vkGetPhysicalDeviceQueueFamilyProperties families;
+    PFN_vkCreateDevice create_device;
+    PFN_vkGetDeviceQueue get_queue;
+    VkApplicationInfo app;
+    VkInstanceCreateInfo info;
+    VkDebugUtilsMessengerCreateInfoEXT messenger;
+    VkPhysicalDevice physical[16];
+    uint32_t count = 16, i, best = UINT32_MAX, best_family = 0;
+    int best_rank = 1 << 30;
+    const char *layer = "VK_LAYER_KHRONOS_validation";
+    const char *debug_extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    VkResult r;
+    if (!desc || !d || !desc->get_instance_proc_addr)
+        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "desc, its get_instance_proc_addr and out are needed");
+    memset(d, 0, sizeof *d);
+    gipa = desc->get_instance_proc_addr;
+    d->get_instance_proc_addr = gipa;
+    d->vk_allocator = desc->vk_allocator;
+    create_instance = (PFN_vkCreateInstance)gipa(VK_NULL_HANDLE, "vkCreateInstance");
+    if (!create_instance) return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vkCreateInstance not found");
+    memset(&app, 0, sizeof app);
+    app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
+    app.pApplicationName = "manylods";
+    app.pEngineName = "manylods";
+    app.apiVersion = VK_API_VERSION_1_2;
+    memset(&messenger, 0, sizeof messenger);
+    messenger.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
+    messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messenger.pfnUserCallback = mlodvk__debug_message;
+    messenger.pUserData = d;
+    memset(&info, 0, sizeof info);
+    info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+    info.pApplicationInfo = &app;
+    if (desc->validation) {
+        info.enabledLayerCount = 1;
+        info.ppEnabledLayerNames = &layer;
+        info.enabledExtensionCount = 1;
+        info.ppEnabledExtensionNames = &debug_extension;
+        info.pNext = &messenger;
+    }
+    r = create_instance(&info, desc->vk_allocator, &d->instance);
+    if (r != VK_SUCCESS) {
+        d->instance = VK_NULL_HANDLE;
+        if (desc->validation && r == VK_ERROR_LAYER_NOT_PRESENT)
+            return mlodvk__fail(error, MLOD_ERROR_DEVICE, "VK_LAYER_KHRONOS_validation is not installed");
+        return mlodvk__vk_fail(error, r, "vkCreateInstance");
+    }
+    if (desc->validation) {
+        PFN_vkCreateDebugUtilsMessengerEXT create =
+            (PFN_vkCreateDebugUtilsMessengerEXT)gipa(d->instance, "vkCreateDebugUtilsMessengerEXT");
+        if (!create || create(d->instance, &messenger, desc->vk_allocator, &d->messenger) != VK_SUCCESS) {
+            d->messenger = VK_NULL_HANDLE;
+            mlodvk_device_destroy(d);
+            return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vkCreateDebugUtilsMessengerEXT failed");
+        }
+    }
+    enumerate = (PFN_vkEnumeratePhysicalDevices)gipa(d->instance, "vkEnumeratePhysicalDevices");
+    properties = (PFN_vkGetPhysicalDeviceProperties)gipa(d->instance, "vkGetPhysicalDeviceProperties");
+    features2 = (PFN_vkGetPhysicalDeviceFeatures2)gipa(d->instance, "vkGetPhysicalDeviceFeatures2");
+    properties2 = (PFN_vkGetPhysicalDeviceProperties2)gipa(d->instance, "vkGetPhysicalDeviceProperties2");
+    families = (PFN_vkGetPhysicalDeviceQueueFamilyProperties)gipa(d->instance, "vkGetPhysicalDeviceQueueFamilyProperties");
+    create_device = (PFN_vkCreateDevice)gipa(d->instance, "vkCreateDevice");
+    get_queue = (PFN_vkGetDeviceQueue)gipa(d->instance, "vkGetDeviceQueue");
+    if (!enumerate || !properties || !features2 || !properties2 || !families || !create_device || !get_queue) {
+        mlodvk_device_destroy(d);
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "a Vulkan 1.1 instance function is missing");
+    }
+    r = enumerate(d->instance, &count, physical);
+    if (r != VK_SUCCESS && r != VK_INCOMPLETE) {
+        mlodvk_device_destroy(d);
+        return mlodvk__vk_fail(error, r, "vkEnumeratePhysicalDevices");
+    }
+    for (i = 0; i < count; i++) {
+        VkPhysicalDeviceProperties p;
+        VkPhysicalDeviceShaderAtomicInt64Features atomics;
+        VkPhysicalDeviceFeatures2 f;
+        VkQueueFamilyProperties q[16];
+        uint32_t qn = 16, j;
+        int rank;
+        properties(physical[i], &p);
+        memset(&atomics, 0, sizeof atomics);
+        atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES;
+        memset(&f, 0, sizeof f);
+        f.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+        f.pNext = &atomics;
+        features2(physical[i], &f);
+        if (p.apiVersion < VK_API_VERSION_1_1 || !f.features.shaderFloat64 || !f.features.shaderInt64 ||
+            !atomics.shaderBufferInt64Atomics || !mlodvk__subgroups_ok(physical[i], properties2))
+            continue;
+        families(physical[i], &qn, q);
+        for (j = 0; j < qn && !(q[j].queueFlags & VK_QUEUE_COMPUTE_BIT); j++) {
+        }
+        if (j == qn) continue;
+        rank = mlodvk__type_rank(p.deviceType, desc->prefer_cpu);
+        if (rank < best_rank) {
+            best_rank = rank;
+            best = i;
+            best_family = j;
+            d->type = p.deviceType;
+            memcpy(d->name, p.deviceName, sizeof d->name);
+        }
+    }
+    if (best == UINT32_MAX) {
+        mlodvk_device_destroy(d);
+        return mlodvk__fail(error, MLOD_ERROR_DEVICE,
+                            "none of %u Vulkan devices has a compute queue and shaderFloat64, shaderInt64, "
+                            "shaderBufferInt64Atomics and subgroup arithmetic",
+                            count);
+    }
+    {
+        float priority = 1.0f;
+        VkDeviceQueueCreateInfo queue;
+        VkDeviceCreateInfo device;
+        VkPhysicalDeviceShaderAtomicInt64Features atomics;
+        VkPhysicalDeviceFeatures2 f;
+        memset(&queue, 0, sizeof queue);
+        queue.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+        queue.queueFamilyIndex = best_family;
+        queue.queueCount = 1;
+        queue.pQueuePriorities = &priority;
+        memset(&atomics, 0, sizeof atomics);
+        atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES;
+        atomics.shaderBufferInt64Atomics = VK_TRUE;
+        memset(&f, 0, sizeof f);
+        f.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+        f.pNext = &atomics;
+        f.features.shaderFloat64 = VK_TRUE;
+        f.features.shaderInt64 = VK_TRUE;
+        memset(&device, 0, sizeof device);
+        device.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+        device.pNext = &f;
+        device.queueCreateInfoCount = 1;
+        device.pQueueCreateInfos = &queue;
+        r = create_device(physical[best], &device, desc->vk_allocator, &d->device);
+        if (r != VK_SUCCESS) {
+            d->device = VK_NULL_HANDLE;
+            mlodvk_device_destroy(d);
+            return mlodvk__vk_fail(error, r, "vkCreateDevice");
+        }
+    }
+    d->physical_device = physical[best];
+    d->queue_family = best_family;
+    get_queue(d->device, best_family, 0, &d->queue);
+    return mlodvk__ok(error);
+}
+
+MANYLODS_VK_DEF mlodvk_context_desc mlodvk_device_context_desc(const mlodvk_device *d)
+{
+    mlodvk_context_desc desc;
+    memset(&desc, 0, sizeof desc);
+    desc.get_instance_proc_addr = d->get_instance_proc_addr;
+    desc.instance = d->instance;
+    desc.physical_device = d->physical_device;
+    desc.device = d->device;
+    desc.queue_family = d->queue_family;
+    desc.queue = d->queue;
+    desc.vk_allocator = d->vk_allocator;
+    return desc;
+}
+
+/* ------------------------------------------------------------- tree ---- */
+
+MANYLODS_VK_DEF void mlodvk_tree_destroy(mlodvk_context *ctx, mlodvk_tree *t)
+{
+    if (!ctx || !t) return;
+    mlodvk__buffer_destroy(ctx, &t->spheres);
+    mlodvk__buffer_destroy(ctx, &t->cones);
+    mlodvk__buffer_destroy(ctx, &t->colors);
+    mlodvk__buffer_destroy(ctx, &t->leaf_sources);
+    mlodvk__buffer_destroy(ctx, &t->barycentrics);
+    mlodvk__buffer_destroy(ctx, &t->triangle_areas);
+    mlodvk__buffer_destroy(ctx, &t->indices);
+    mlodvk__buffer_destroy(ctx, &t->findings);
+    mlodvk__buffer_destroy(ctx, &t->host_positions);
+    mlodvk__buffer_destroy(ctx, &t->host_normals);
+    mlodvk__buffer_destroy(ctx, &t->host_colors);
+    if (t->pool) ctx->vk.DestroyDescriptorPool(ctx->device, t->pool, ctx->vk_allocator);
+    mlodvk__free(&ctx->allocator, t);
+}
+
+static mlod_result mlodvk__tree_fill(mlodvk_context *ctx, mlodvk_tree *t, const mlod_tree *tree, mlod_error *error)
+{
+    size_t n = tree->node_count;
+    mlod_result res = mlodvk__upload(ctx, &t->spheres, tree->spheres, 16 * (VkDeviceSize)n, error);
+    if (res == MLOD_OK && t->has_cones) res = mlodvk__upload(ctx, &t->cones, tree->cones, 16 * (VkDeviceSize)n, error);
+    if (res == MLOD_OK && t->has_colors) res = mlodvk__upload(ctx, &t->colors, tree->colors, 12 * (VkDeviceSize)n, error);
+    return res;
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_tree_upload(mlodvk_context *ctx, const mlod_tree *tree, mlodvk_tree **out,
+                                               mlod_error *error)
+{
+    mlodvk_tree *t;
+    mlod_result res;
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    if (out) *out = NULL;
+    if (!ctx || !tree || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, tree and out are needed");
+    t = (mlodvk_tree *)mlodvk__alloc(&ctx->allocator, 1, sizeof *t);
+    if (!t) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device tree");
+    memset(t, 0, sizeof *t);
+    t->node_count = tree->node_count;
+    t->leaf_count = tree->leaf_count;
+    t->has_cones = tree->cones != NULL;
+    t->has_colors = tree->colors != NULL;
+    res = mlodvk__buffer_create(ctx, 16 * (VkDeviceSize)tree->node_count, usage, 0, &t->spheres, error);
+    if (res == MLOD_OK)
+        res = mlodvk__buffer_create(ctx, t->has_cones ? 16 * (VkDeviceSize)tree->node_count : 16, usage, 0, &t->cones, error);
+    if (res == MLOD_OK)
+        res = mlodvk__buffer_create(ctx, t->has_colors ? 12 * (VkDeviceSize)tree->node_count : 16, usage, 0, &t->colors, error);
+    if (res == MLOD_OK) res = mlodvk__tree_fill(ctx, t, tree, error);
+    t->generation = ++ctx->generations;
+    if (res != MLOD_OK) {
+        mlodvk_tree_destroy(ctx, t);
+        return res;
+    }
+    *out = t;
+    return mlodvk__ok(error);
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_tree_update(mlodvk_context *ctx, mlodvk_tree *t, const mlod_tree *tree,
+                                               mlod_error *error)
+{
+    mlod_result res;
+    if (!ctx || !t || !tree) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and tree are needed");
+    if (tree->node_count != t->node_count || (tree->cones != NULL) != (t->has_cones != 0) ||
+        (tree->colors != NULL) != (t->has_colors != 0))
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree's node count or attributes differ from the upload's");
+    /* bounds change, the structure does not: cuts stay incremental (the
+       generation stays) */
+    res = mlodvk__tree_fill(ctx, t, tree, error);
+    return res == MLOD_OK ? mlodvk__ok(error) : res;
+}
+
+MANYLODS_VK_DEF mlodvk_tree_buffers mlodvk_tree_get_buffers(const mlodvk_tree *t)
+{
+    mlodvk_tree_buffers b;
+    memset(&b, 0, sizeof b);
+    if (!t) return b;
+    b.spheres = t->spheres.buffer;
+    b.cones = t->has_cones ? t->cones.buffer : VK_NULL_HANDLE;
+    b.colors = t->has_colors ? t->colors.buffer : VK_NULL_HANDLE;
+    b.node_count = t->node_count;
+    return b;
+}
+
+/* ------------------------------------------------------------ refit ---- */
+
+MANYLODS_VK_DEF mlod_result mlodvk_tree_upload_refit(mlodvk_context *ctx, mlodvk_tree *t, const mlod_tree *tree,
+                                                     const uint32_t *indices, uint32_t index_count, mlod_error *error)
+{
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    mlod_result res;
+    uint32_t i;
+    if (!ctx || !t || !tree || !indices)
+        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree, tree and indices are needed");
+    if (tree->node_count != t->node_count)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree has %u nodes, the device tree %u", tree->node_count,
+                            t->node_count);
+    if (!tree->leaf_sources || !tree->leaf_barycentrics || !tree->triangle_areas)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree was not built from a mesh with MLOD_ATTR_REFIT");
+    if ((uint64_t)index_count != 3 * (uint64_t)tree->triangle_count)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "%u indices, the tree was built from %u triangles", index_count,
+                            tree->triangle_count);
+    for (i = 0; i < index_count; i++)
+        if (indices[i] >= tree->vertex_count)
+            return mlodvk__fail(error, MLOD_ERROR_INDEX_OUT_OF_RANGE, "indices[%u] = %u is not below vertex_count %u", i,
+                                indices[i], tree->vertex_count);
+    t->refit_ready = 0;
+    mlodvk__buffer_destroy(ctx, &t->leaf_sources);
+    mlodvk__buffer_destroy(ctx, &t->barycentrics);
+    mlodvk__buffer_destroy(ctx, &t->triangle_areas);
+    mlodvk__buffer_destroy(ctx, &t->indices);
+    mlodvk__buffer_destroy(ctx, &t->findings);
+    res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)tree->leaf_count, usage, 0, &t->leaf_sources, error);
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 8 * (VkDeviceSize)tree->leaf_count, usage, 0, &t->barycentrics, error);
+    if (res == MLOD_OK)
+        res = mlodvk__buffer_create(ctx, 8 * (VkDeviceSize)tree->triangle_count, usage, 0, &t->triangle_areas, error);
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)index_count, usage, 0, &t->indices, error);
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, sizeof(mlodvk__findings), usage, 1, &t->findings, error);
+    if (res == MLOD_OK) res = mlodvk__upload(ctx, &t->leaf_sources, tree->leaf_sources, 4 * (VkDeviceSize)tree->leaf_count, error);
+    if (res == MLOD_OK)
+        res = mlodvk__upload(ctx, &t->barycentrics, tree->leaf_barycentrics, 8 * (VkDeviceSize)tree->leaf_count, error);
+    if (res == MLOD_OK)
+        res = mlodvk__upload(ctx, &t->triangle_areas, tree->triangle_areas, 8 * (VkDeviceSize)tree->triangle_count, error);
+    if (res == MLOD_OK) res = mlodvk__upload(ctx, &t->indices, indices, 4 * (VkDeviceSize)index_count, error);
+    if (res == MLOD_OK && !t->pool) {
+        res = mlodvk__pool(ctx, 1, MLODVK__REFIT_BINDINGS, &t->pool, error);
+        if (res == MLOD_OK) res = mlodvk__sets(ctx, t->pool, ctx->set_layouts[MLODVK__LAYOUT_REFIT], 1, &t->set, error);
+    }
+    if (res != MLOD_OK) return res;
+    t->triangle_count = tree->triangle_count;
+    t->vertex_count = tree->vertex_count;
+    t->area_unit = tree->area_unit;
+    t->radius_scale = tree->radius_scale;
+    t->refit_ready = 1;
+    return mlodvk__ok(error);
+}
+
+static int mlodvk__aligned(const mlodvk_context *ctx, VkDeviceSize offset)
+{
+    VkDeviceSize a = ctx->properties.limits.minStorageBufferOffsetAlignment;
+    return a == 0 || offset % a == 0;
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *t, const mlodvk_mesh_buffers *mesh,
+                                              mlod_error *error)
+{
+    VkDescriptorBufferInfo info[MLODVK__REFIT_BINDINGS];
+    VkWriteDescriptorSet write[MLODVK__REFIT_BINDINGS];
+    mlodvk__refit_push push;
+    mlodvk__findings *found;
+    mlod_result res;
+    uint32_t i, depth, items;
+    VkBuffer buffers[MLODVK__REFIT_BINDINGS];
+    VkDeviceSize offsets[MLODVK__REFIT_BINDINGS];
+    if (!ctx || !t || !mesh) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and mesh are needed");
+    if (!t->refit_ready) return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "call mlodvk_tree_upload_refit first");
+    if (!mesh->positions) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "mesh positions are VK_NULL_HANDLE");
+    if (t->has_colors && !mesh->colors)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree has colours and the mesh has none");
+    if ((mesh->position_stride && mesh->position_stride < 3) || (mesh->normal_stride && mesh->normal_stride < 3) ||
+        (mesh->color_stride && mesh->color_stride < 3))
+        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "strides are 0 or at least 3 floats");
+    if (!mlodvk__aligned(ctx, mesh->position_offset) || !mlodvk__aligned(ctx, mesh->normal_offset) ||
+        !mlodvk__aligned(ctx, mesh->color_offset))
+        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT,
+                            "buffer offsets must be multiples of minStorageBufferOffsetAlignment (%llu)",
+                            (unsigned long long)ctx->properties.limits.minStorageBufferOffsetAlignment);
+    buffers[0] = t->spheres.buffer;
+    buffers[1] = t->cones.buffer;
+    buffers[2] = t->colors.buffer;
+    buffers[3] = t->leaf_sources.buffer;
+    buffers[4] = t->barycentrics.buffer;
+    buffers[5] = t->triangle_areas.buffer;
+    buffers[6] = t->indices.buffer;
+    buffers[7] = mesh->positions;
+    buffers[8] = mesh->normals ? mesh->normals : t->findings.buffer; /* unread without normals */
+    buffers[9] = mesh->colors && t->has_colors ? mesh->colors : t->findings.buffer;
+    buffers[10] = t->findings.buffer;
+    memset(offsets, 0, sizeof offsets);
+    offsets[7] = mesh->position_offset;
+    offsets[8] = mesh->normals ? mesh->normal_offset : 0;
+    offsets[9] = mesh->colors && t->has_colors ? mesh->color_offset : 0;
+    for (i = 0; i < MLODVK__REFIT_BINDINGS; i++) {
+        info[i].buffer = buffers[i];
+        info[i].offset = offsets[i];
+        info[i].range = VK_WHOLE_SIZE;
+        memset(&write[i], 0, sizeof write[i]);
+        write[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        write[i].dstSet = t->set;
+        write[i].dstBinding = i;
+        write[i].descriptorCount = 1;
+        write[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        write[i].pBufferInfo = &info[i];
+    }
+    ctx->vk.UpdateDescriptorSets(ctx->device, MLODVK__REFIT_BINDINGS, write, 0, NULL);
+    memset(&push, 0, sizeof push);
+    push.area_unit = t->area_unit;
+    push.radius_scale = t->radius_scale;
+    push.leaf_count = t->leaf_count;
+    push.position_stride = mesh->position_stride ? mesh->position_stride : 3;
+    push.normal_stride = mesh->normals ? (mesh->normal_stride ? mesh->normal_stride : 3) : 0;
+    push.color_stride = mesh->colors && t->has_colors ? (mesh->color_stride ? mesh->color_stride : 3) : 0;
+    push.has_cones = t->has_cones;
+    push.has_colors = t->has_colors;
+    push.max_groups_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
+    /* 1: the checks of mlod_refit_mesh, before anything is written */
+    found = (mlodvk__findings *)t->findings.mapped;
+    found->flags = 0;
+    found->first_vertex = UINT32_MAX;
+    found->growth_bits = 0;
+    push.count = t->vertex_count;
+    push.first = t->triangle_count;
+    items = t->vertex_count > t->triangle_count ? t->vertex_count : t->triangle_count;
+    res = mlodvk__begin(ctx, error);
+    if (res == MLOD_OK) {
+        mlodvk__barrier(ctx);
+        mlodvk__dispatch(ctx, MLODVK__REFIT_CHECK, ctx->layouts[MLODVK__LAYOUT_REFIT], t->set, &push, sizeof push, items);
+        mlodvk__barrier(ctx);
+        res = mlodvk__submit(ctx, error);
+    }
+    mlodvk__abandon(ctx);
+    if (res != MLOD_OK) return res;
+    if (found->flags & 1u)
+        return mlodvk__fail(error, MLOD_ERROR_NON_FINITE, "position %u is not finite", found->first_vertex);
+    if (found->flags & 2u)
+        return mlodvk__fail(error, MLOD_ERROR_RANGE, "position %u has a coordinate beyond 1e36", found->first_vertex);
+    if (found->flags & 4u) return mlodvk__fail(error, MLOD_ERROR_NON_FINITE, "normal %u is not finite", found->first_vertex);
+    if (found->flags & 8u) return mlodvk__fail(error, MLOD_ERROR_NON_FINITE, "colour %u is not finite", found->first_vertex);
+    {
+        double growth;
+        memcpy(&growth, &found->growth_bits, sizeof growth);
+        res = mlod_refit_check_growth(t->radius_scale, t->area_unit, t->leaf_count, growth, error);
+        if (res != MLOD_OK) return res;
+    }
+    /* 2: the leaves, then one depth at a time, deepest first */
+    res = mlodvk__begin(ctx, error);
+    if (res == MLOD_OK) {
+        mlodvk__barrier(ctx);
+        push.count = t->leaf_count;
+        push.first = 0;
+        mlodvk__dispatch(ctx, MLODVK__REFIT_LEAVES, ctx->layouts[MLODVK__LAYOUT_REFIT], t->set, &push, sizeof push,
+                         t->leaf_count);
+        mlodvk__barrier(ctx);
+        for (depth = 32; depth-- > 0;) {
+            uint32_t first, last;
+            if (!mlod_tree_depth_nodes(t->leaf_count, depth, &first, &last)) continue;
+            push.first = first;
+            push.count = last - first + 1;
+            mlodvk__dispatch(ctx, MLODVK__REFIT_MERGE, ctx->layouts[MLODVK__LAYOUT_REFIT], t->set, &push, sizeof push,
+                             push.count);
+            mlodvk__barrier(ctx);
+        }
+        res = mlodvk__submit(ctx, error);
+    }
+    mlodvk__abandon(ctx);
+    return res == MLOD_OK ? mlodvk__ok(error) : res;
+}
+
+/* Copy count vertices' 3 floats (stride floats apart, 0: 3) into a host-
+   visible buffer of the tree, growing it as needed. */
+static mlod_result mlodvk__host_vertices(mlodvk_context *ctx, mlodvk__buffer *b, const float *data, size_t stride,
+                                         uint32_t count, mlod_error *error)
+{
+    VkDeviceSize size = 12 * (VkDeviceSize)count;
+    uint32_t i;
+    if (b->size < size) {
+        mlod_result res;
+        mlodvk__buffer_destroy(ctx, b);
+        res = mlodvk__buffer_create(ctx, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, b, error);
+        if (res != MLOD_OK) return res;
+    }
+    for (i = 0; i < count; i++)
+        memcpy((float *)b->mapped + 3 * (size_t)i, (const char *)data + (size_t)i * (stride ? stride : 3 * sizeof(float)),
+               3 * sizeof(float));
+    return MLOD_OK;
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh_host(mlodvk_context *ctx, mlodvk_tree *t, const mlod_mesh *mesh,
+                                                   mlod_error *error)
+{
+    mlodvk_mesh_buffers b;
+    mlod_result res;
+    if (!ctx || !t || !mesh || !mesh->positions)
+        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and mesh positions are needed");
+    if (!t->refit_ready) return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "call mlodvk_tree_upload_refit first");
+    if (mesh->vertex_count != t->vertex_count || mesh->index_count / 3 != t->triangle_count)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH,
+                            "the mesh has %u triangles and %u vertices, the tree was built from %u and %u",
+                            mesh->index_count / 3, mesh->vertex_count, t->triangle_count, t->vertex_count);
+    memset(&b, 0, sizeof b);
+    res = mlodvk__host_vertices(ctx, &t->host_positions, mesh->positions, mesh->position_stride, mesh->vertex_count, error);
+    b.positions = t->host_positions.buffer;
+    if (res == MLOD_OK && mesh->normals) {
+        res = mlodvk__host_vertices(ctx, &t->host_normals, mesh->normals, mesh->normal_stride, mesh->vertex_count, error);
+        b.normals = t->host_normals.buffer;
+    }
+    if (res == MLOD_OK && mesh->colors && t->has_colors) {
+        res = mlodvk__host_vertices(ctx, &t->host_colors, mesh->colors, mesh->color_stride, mesh->vertex_count, error);
+        b.colors = t->host_colors.buffer;
+    }
+    return res == MLOD_OK ? mlodvk_refit_mesh(ctx, t, &b, error) : res;
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_tree_download(mlodvk_context *ctx, const mlodvk_tree *t, mlod_tree *tree,
+                                                 mlod_error *error)
+{
+    mlodvk__download_range ranges[3];
+    int n = 0;
+    mlod_result res;
+    if (!ctx || !t || !tree) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and tree are needed");
+    if (tree->node_count != t->node_count || (tree->cones != NULL) != (t->has_cones != 0) ||
+        (tree->colors != NULL) != (t->has_colors != 0))
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree's node count or attributes differ from the device tree's");
+    ranges[n].src = &t->spheres;
+    ranges[n].size = 16 * (VkDeviceSize)t->node_count;
+    ranges[n++].dst = tree->spheres;
+    if (t->has_cones) {
+        ranges[n].src = &t->cones;
+        ranges[n].size = 16 * (VkDeviceSize)t->node_count;
+        ranges[n++].dst = tree->cones;
+    }
+    if (t->has_colors) {
+        ranges[n].src = &t->colors;
+        ranges[n].size = 12 * (VkDeviceSize)t->node_count;
+        ranges[n++].dst = tree->colors;
+    }
+    res = mlodvk__download(ctx, ranges, n, error);
+    return res == MLOD_OK ? mlodvk__ok(error) : res;
+}
+
+/* -------------------------------------------------------------- cut ---- */
+
+static void mlodvk__cut_free_lists(mlodvk_context *ctx, mlodvk_cut *c)
+{
+    int i;
+    for (i = 0; i < 2; i++) {
+        mlodvk__buffer_destroy(ctx, &c->list[i]);
+        mlodvk__buffer_destroy(ctx, &c->status[i]);
+    }
+    mlodvk__buffer_destroy(ctx, &c->acts);
+    mlodvk__buffer_destroy(ctx, &c->block_sums);
+}
+
+MANYLODS_VK_DEF void mlodvk_cut_destroy(mlodvk_context *ctx, mlodvk_cut *c)
+{
+    if (!ctx || !c) return;
+    mlodvk__cut_free_lists(ctx, c);
+    mlodvk__buffer_destroy(ctx, &c->control);
+    mlodvk__buffer_destroy(ctx, &c->offsets);
+    mlodvk__buffer_destroy(ctx, &c->views);
+    if (c->pool) ctx->vk.DestroyDescriptorPool(ctx->device, c->pool, ctx->vk_allocator);
+    mlodvk__free(&ctx->allocator, c->host_nodes);
+    mlodvk__free(&ctx->allocator, c->host_status);
+    mlodvk__free(&ctx->allocator, c->host_offsets);
+    mlodvk__free(&ctx->allocator, c->host_views);
+    mlodvk__free(&ctx->allocator, c);
+}
+
+/* List buffers of `capacity` entries (all four, the acts and block sums). */
+static mlod_result mlodvk__cut_lists(mlodvk_context *ctx, mlodvk_cut *c, uint32_t capacity, mlod_error *error)
+{
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    mlod_result res = MLOD_OK;
+    int i;
+    for (i = 0; i < 2 && res == MLOD_OK; i++) {
+        res = mlodvk__buffer_create(ctx, 8 * (VkDeviceSize)capacity, usage, 0, &c->list[i], error);
+        if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)capacity, usage, 0, &c->status[i], error);
+    }
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)capacity, usage, 0, &c->acts, error);
+    if (res == MLOD_OK)
+        res = mlodvk__buffer_create(ctx, 4 * ((VkDeviceSize)capacity / MLODVK__GROUP + 2), usage, 0, &c->block_sums, error);
+    if (res == MLOD_OK) c->capacity = capacity;
+    return res;
+}
+
+
+/* Point the cut's two descriptor sets at the tree and the current buffers. */
+static void mlodvk__cut_sets(mlodvk_context *ctx, mlodvk_cut *c, const mlodvk_tree *t)
+{
+    int s;
+    for (s = 0; s < 2; s++) {
+        VkBuffer b[MLODVK__CUT_BINDINGS];
+        b[0] = t->spheres.buffer;
+        b[1] = t->cones.buffer;
+        b[2] = c->views.buffer;
+        b[3] = c->list[s].buffer;
+        b[4] = c->list[1 - s].buffer;
+        b[5] = c->status[s].buffer;
+        b[6] = c->status[1 - s].buffer;
+        b[7] = c->acts.buffer;
+        b[8] = c->block_sums.buffer;
+        b[9] = c->control.buffer;
+        b[10] = c->offsets.buffer;
+        mlodvk__write_set(ctx, c->sets[s], b, MLODVK__CUT_BINDINGS);
+    }
+}
+
+
+
+MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view_count, uint32_t initial_capacity,
+                                              mlodvk_cut **out, mlod_error *error)
+{
+    mlodvk_cut *c;
+    mlod_result res;
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    uint64_t capacity = initial_capacity ? initial_capacity : 16 * (uint64_t)view_count + 65536;
+    if (out) *out = NULL;
+    if (!ctx || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context and out are needed");
+    if (view_count == 0) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count must be >= 1");
+    if (capacity < view_count) capacity = view_count;
+    if (capacity > 0x7fffffffu || (uint64_t)view_count * MLODVK__VIEW_DOUBLES * 8 > (uint64_t)1 << 40)
+        return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "%u views need more list entries than a uint32_t counts", view_count);
+    c = (mlodvk_cut *)mlodvk__alloc(&ctx->allocator, 1, sizeof *c);
+    if (!c) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device cut");
+    memset(c, 0, sizeof *c);
+    c->view_count = view_count;
+    res = mlodvk__cut_lists(ctx, c, (uint32_t)capacity, error);
+    if (res == MLOD_OK)
+        res = mlodvk__buffer_create(ctx, MLODVK__CONTROL_BYTES, usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, 1,
+                                    &c->control, error);
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * ((VkDeviceSize)view_count + 1), usage, 0, &c->offsets, error);
+    if (res == MLOD_OK)
+        res = mlodvk__buffer_create(ctx, 8 * MLODVK__VIEW_DOUBLES * (VkDeviceSize)view_count, usage, 1, &c->views, error);
+    if (res == MLOD_OK) res = mlodvk__pool(ctx, 2, 2 * MLODVK__CUT_BINDINGS, &c->pool, error);
+    if (res == MLOD_OK) res = mlodvk__sets(ctx, c->pool, ctx->set_layouts[MLODVK__LAYOUT_CUT], 2, c->sets, error);
+    if (res == MLOD_OK) {
+        c->host_views = (mlod_cut_view *)mlodvk__alloc(&ctx->allocator, view_count, sizeof(mlod_cut_view));
+        c->host_offsets = (uint32_t *)mlodvk__alloc(&ctx->allocator, (size_t)view_count + 1, sizeof(uint32_t));
+        if (!c->host_views || !c->host_offsets)
+            res = mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for %u views", view_count);
+        else
+            memset(c->host_views, 0, sizeof(mlod_cut_view) * view_count);
+    }
+    if (res != MLOD_OK) {
+        mlodvk_cut_destroy(ctx, c);
+        return res;
+    }
+    c->info.capacity = c->capacity;
+    *out = c;
+    return mlodvk__ok(error);
+}
+
+/* Grow the lists to hold `needed` entries, keeping the current list (in A
+   after cut_finish) and its statuses. */
+static mlod_result mlodvk__cut_grow(mlodvk_context *ctx, mlodvk_cut *c, uint32_t entries, uint64_t needed,
+                                    mlod_error *error)
+{
+    mlodvk_cut old = *c;
+    uint64_t capacity = 2 * needed + 1024; /* lists double as a cut deepens: leave room for the next rounds */
+    mlod_result res;
+    if (capacity > 0x7fffffffu) capacity = 0x7fffffffu;
+    if (needed > capacity) return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "a cut list of %.0f entries", (double)needed);
+    memset(c->list, 0, sizeof c->list);
+    memset(c->status, 0, sizeof c->status);
+    memset(&c->acts, 0, sizeof c->acts);
+    memset(&c->block_sums, 0, sizeof c->block_sums);
+    res = mlodvk__cut_lists(ctx, c, (uint32_t)capacity, error);
+    if (res == MLOD_OK) res = mlodvk__begin(ctx, error);
+    if (res == MLOD_OK) {
+        VkBufferCopy copy;
+        copy.srcOffset = 0;
+        copy.dstOffset = 0;
+        mlodvk__barrier(ctx);
+        copy.size = 8 * (VkDeviceSize)entries;
+        if (copy.size) ctx->vk.CmdCopyBuffer(ctx->commands, old.list[0].buffer, c->list[0].buffer, 1, &copy);
+        copy.size = 4 * (VkDeviceSize)entries;
+        if (copy.size) ctx->vk.CmdCopyBuffer(ctx->commands, old.status[0].buffer, c->status[0].buffer, 1, &copy);
+        mlodvk__barrier(ctx);
+        res = mlodvk__submit(ctx, error);
+    }
+    mlodvk__abandon(ctx);
+    if (res != MLOD_OK) { /* keep the old lists: the cut stays usable */
+        mlodvk__cut_free_lists(ctx, c);
+        memcpy(c->list, old.list, sizeof c->list);
+        memcpy(c->status, old.status, sizeof c->status);
+        c->acts = old.acts;
+        c->block_sums = old.block_sums;
+        c->capacity = old.capacity;
+        return res;
+    }
+    mlodvk__cut_free_lists(ctx, &old);
+    c->info.grows++;
+    c->info.capacity = c->capacity;
+    return MLOD_OK;
+}
+
+/* Check every view as mlod_cut_update does, with its message: a refused
+   update must not touch the views buffer, which the kept cut's next splat
+   reads. */
+static mlod_result mlodvk__check_views(const mlodvk_cut *c, const mlod_view *views, mlod_error *error)
+{
+    uint32_t v;
+    for (v = 0; v < c->view_count; v++) {
+        mlod_error detail;
+        mlod_result res = mlod_view_check(&views[v], &detail);
+        if (res != MLOD_OK) return mlodvk__fail(error, res, "view %u: %.160s", v, detail.message);
+    }
+    return MLOD_OK;
+}
+
+/* Write the views' frames into the host-visible views buffer; the views
+   passed mlodvk__check_views. */
+static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, mlod_error *error)
+{
+    double *out = (double *)c->views.mapped;
+    uint32_t v;
+    for (v = 0; v < c->view_count; v++) {
+        mlod_view_frame f;
+        mlod_error detail;
+        double *d = out + (size_t)v * MLODVK__VIEW_DOUBLES;
+        int k, j;
+        mlod_result res = mlod_view_frame_of(&views[v], &f, &detail);
+        if (res != MLOD_OK) return mlodvk__fail(error, res, "view %u: %.160s", v, detail.message);
+        memset(d, 0, 8 * MLODVK__VIEW_DOUBLES);
+        for (k = 0; k < 3; k++) {
+            d[0 + k] = f.eye[k];
+            d[3 + k] = f.right[k];
+            d[6 + k] = f.up[k];
+            d[9 + k] = f.forward[k];
+        }
+        d[12] = f.scale;
+        d[13] = f.width;
+        d[14] = f.height;
+        d[15] = f.scale_x;
+        d[16] = f.scale_y;
+        d[17] = f.kind;
+        d[18] = f.plane_count;
+        d[19] = f.cull_backfaces;
+        for (j = 0; j < 6; j++)
+            for (k = 0; k < 5; k++) d[20 + 5 * j + k] = f.planes[j][k];
+        for (j = 0; j < 2; j++)
+            for (k = 0; k < 5; k++) d[50 + 5 * j + k] = f.halves[j][k];
+    }
+    return MLOD_OK;
+}
+
+static void mlodvk__arm(mlodvk__control *ctl, const mlodvk_context *ctx, uint32_t entries)
+{
+    uint32_t x, y;
+    memset(ctl, 0, sizeof *ctl);
+    mlodvk__groups(ctx, entries, &x, &y);
+    ctl->args[0][0] = x;
+    ctl->args[0][1] = y;
+    ctl->args[0][2] = 1;
+    ctl->args[1][1] = ctl->args[1][2] = 1;
+    ctl->args[2][0] = x; /* cut_finish, if no round runs */
+    ctl->args[2][1] = y;
+    ctl->args[2][2] = 1;
+    ctl->count[0] = entries;
+    ctl->current = entries;
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c, const mlodvk_tree *t,
+                                              const mlod_view *views, const mlod_cut_params *params,
+                                              mlod_error *error)
+{
+    mlodvk__control *ctl;
+    mlodvk__cut_push push;
+    mlod_result res;
+    int from_root, lazy, first = 1;
+    uint32_t depth = 0, rounds_left, entries;
+    uint64_t evaluated = 0, steps = 0;
+    if (!ctx || !c || !t || !views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, cut, tree and views are needed");
+    /* every check before the first change: a refusal keeps the last cut and its views */
+    if ((res = mlod_cut_params_check(params, error)) != MLOD_OK) return res;
+    if ((res = mlodvk__check_views(c, views, error)) != MLOD_OK) return res;
+    if ((res = mlodvk__upload_views(c, views, error)) != MLOD_OK) return res;
+    while (((uint64_t)1 << depth) < (uint64_t)t->node_count + 1) depth++;
+    from_root = params->mode == MLOD_CUT_BASIC || !c->has_views || c->tree != t || c->tree_generation != t->generation ||
+                c->info.entries == 0;
+    lazy = params->mode == MLOD_CUT_LAZY;
+    rounds_left = lazy ? params->lazy_steps : UINT32_MAX;
+    entries = from_root ? c->view_count : c->info.entries;
+    c->info.rounds = 0;
+    c->info.submissions = 0;
+    c->has_views = 0; /* until this update succeeds */
+    ctl = (mlodvk__control *)c->control.mapped;
+    memset(&push, 0, sizeof push);
+    push.epsilon = params->epsilon;
+    push.leaf_count = t->leaf_count;
+    push.view_count = c->view_count;
+    push.has_cones = t->has_cones;
+    push.merge = params->mode != MLOD_CUT_BASIC;
+    push.max_groups_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
+    for (;;) {
+        /* one submission: [init], up to `batch` rounds, finish */
+        uint32_t batch = lazy ? rounds_left : 2 * depth + 4, j;
+        mlodvk__arm(ctl, ctx, entries);
+        mlodvk__cut_sets(ctx, c, t);
+        res = mlodvk__begin(ctx, error);
+        if (res != MLOD_OK) break;
+        mlodvk__barrier(ctx);
+        if (first && from_root) {
+            push.capacity = c->capacity;
+            mlodvk__dispatch(ctx, MLODVK__CUT_INIT, ctx->layouts[MLODVK__LAYOUT_CUT], c->sets[0], &push, sizeof push, c->view_count);
+            mlodvk__barrier(ctx);
+        }
+        push.capacity = c->capacity;
+        for (j = 0; j < batch; j++) {
+            VkDescriptorSet set = c->sets[j & 1];
+            push.slot = j & 1;
+            push.trust = !(first && j == 0);
+            mlodvk__dispatch_indirect(ctx, MLODVK__CUT_STEP, ctx->layouts[MLODVK__LAYOUT_CUT], set, &push, sizeof push,
+                                      c->control.buffer, 16 * (VkDeviceSize)push.slot);
+            mlodvk__barrier(ctx);
+            mlodvk__dispatch(ctx, MLODVK__CUT_SCAN, ctx->layouts[MLODVK__LAYOUT_CUT], set, &push, sizeof push, 1);
+            mlodvk__barrier(ctx);
+            mlodvk__dispatch_indirect(ctx, MLODVK__CUT_WRITE, ctx->layouts[MLODVK__LAYOUT_CUT], set, &push, sizeof push,
+                                      c->control.buffer, 16 * (VkDeviceSize)push.slot);
+            mlodvk__barrier(ctx);
+        }
+        mlodvk__dispatch_indirect(ctx, MLODVK__CUT_FINISH, ctx->layouts[MLODVK__LAYOUT_CUT], c->sets[0], &push, sizeof push,
+                                  c->control.buffer, 32);
+        mlodvk__barrier(ctx);
+        res = mlodvk__submit(ctx, error);
+        mlodvk__abandon(ctx);
+        if (res != MLOD_OK) break;
+        c->info.submissions++;
+        first = 0;
+        entries = ctl->current;
+        evaluated += ctl->evaluated;
+        steps += ctl->steps;
+        c->info.rounds += ctl->rounds;
+        if (lazy) rounds_left -= ctl->rounds < rounds_left ? ctl->rounds : rounds_left;
+        if (ctl->overflow) {
+            res = mlodvk__cut_grow(ctx, c, entries, ctl->needed, error);
+            if (res != MLOD_OK) break;
+            continue; /* resume from the round that overflowed */
+        }
+        if (ctl->done || (lazy && rounds_left == 0)) break;
+        if (lazy && ctl->rounds == 0) break;
+    }
+    if (res != MLOD_OK) {
+        c->info.entries = 0; /* the next update starts from the root */
+        return res;
+    }
+    c->info.entries = entries;
+    c->info.evaluated = evaluated;
+    c->info.steps = steps;
+    c->info.device_bytes = c->list[0].size * 2 + c->status[0].size * 2 + c->acts.size + c->block_sums.size +
+                           c->control.size + c->offsets.size + c->views.size;
+    c->tree = t;
+    c->tree_generation = t->generation;
+    c->has_views = 1;
+    return mlodvk__ok(error);
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_cut_download(mlodvk_context *ctx, mlodvk_cut *c, mlod_error *error)
+{
+    mlodvk__download_range ranges[3];
+    uint32_t *status32, v, i;
+    mlod_result res;
+    if (!ctx || !c) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context and cut are needed");
+    if (!c->has_views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the cut has no successful update");
+    if (c->info.entries > c->host_capacity) {
+        uint32_t *nodes = (uint32_t *)mlodvk__alloc(&ctx->allocator, c->info.entries, sizeof(uint32_t));
+        uint8_t *status = (uint8_t *)mlodvk__alloc(&ctx->allocator, c->info.entries, 1);
+        if (!nodes || !status) {
+            mlodvk__free(&ctx->allocator, nodes);
+            mlodvk__free(&ctx->allocator, status);
+            return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for %u cut entries", c->info.entries);
+        }
+        mlodvk__free(&ctx->allocator, c->host_nodes);
+        mlodvk__free(&ctx->allocator, c->host_status);
+        c->host_nodes = nodes;
+        c->host_status = status;
+        c->host_capacity = c->info.entries;
+    }
+    {
+        /* one scratch block: entries (node, view) pairs, then the statuses */
+        uint32_t *pairs = (uint32_t *)mlodvk__alloc(&ctx->allocator, 3 * (size_t)c->info.entries + 1, sizeof(uint32_t));
+        if (!pairs) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for %u cut entries", c->info.entries);
+        status32 = pairs + 2 * (size_t)c->info.entries;
+        ranges[0].src = &c->list[0];
+        ranges[0].size = 8 * (VkDeviceSize)c->info.entries;
+        ranges[0].dst = pairs;
+        ranges[1].src = &c->status[0];
+        ranges[1].size = 4 * (VkDeviceSize)c->info.entries;
+        ranges[1].dst = status32;
+        ranges[2].src = &c->offsets;
+        ranges[2].size = 4 * ((VkDeviceSize)c->view_count + 1);
+        ranges[2].dst = c->host_offsets;
+        res = mlodvk__download(ctx, ranges, 3, error);
+        if (res == MLOD_OK)
+            for (i = 0; i < c->info.entries; i++) {
+                c->host_nodes[i] = pairs[2 * (size_t)i];
+                c->host_status[i] = (uint8_t)status32[i];
+            }
+        mlodvk__free(&ctx->allocator, pairs);
+        if (res != MLOD_OK) return res;
+    }
+    c->host_entries = c->info.entries;
+    for (v = 0; v < c->view_count; v++) {
+        mlod_cut_view *cv = &c->host_views[v];
+        uint32_t begin = c->host_offsets[v], end = c->host_offsets[v + 1];
+        memset(cv, 0, sizeof *cv);
+        if (begin > end || end > c->host_entries)
+            return mlodvk__fail(error, MLOD_ERROR_DEVICE, "view %u's offsets %u..%u are not in the list of %u", v, begin,
+                                end, c->host_entries);
+        cv->nodes = c->host_nodes + begin;
+        cv->status = c->host_status + begin;
+        cv->count = end - begin;
+        for (i = 0; i < cv->count; i++) switch (cv->status[i]) {
+            case MLOD_STATUS_DRAWN: cv->drawn++; break;
+            case MLOD_STATUS_CULLED: cv->culled++; break;
+            case MLOD_STATUS_OVERSIZE: cv->oversize++; break;
+            default: cv->coarse++; break;
+            }
+    }
+    return mlodvk__ok(error);
+}
+
+MANYLODS_VK_DEF mlod_cut_view mlodvk_cut_get(const mlodvk_cut *c, uint32_t view)
+{
+    mlod_cut_view empty;
+    if (c && view < c->view_count) return c->host_views[view];
+    memset(&empty, 0, sizeof empty);
+    return empty;
+}
+
+MANYLODS_VK_DEF mlodvk_cut_info mlodvk_cut_get_info(const mlodvk_cut *c)
+{
+    mlodvk_cut_info none;
+    if (c) return c->info;
+    memset(&none, 0, sizeof none);
+    return none;
+}
+
+MANYLODS_VK_DEF mlodvk_cut_buffers mlodvk_cut_get_buffers(const mlodvk_cut *c)
+{
+    mlodvk_cut_buffers b;
+    memset(&b, 0, sizeof b);
+    if (!c) return b;
+    b.list = c->list[0].buffer;
+    b.status = c->status[0].buffer;
+    b.offsets = c->offsets.buffer;
+    b.views = c->views.buffer;
+    b.entries = c->info.entries;
+    return b;
+}
+
+/* ------------------------------------------------------------ splat ---- */
+
+MANYLODS_VK_DEF void mlodvk_atlas_destroy(mlodvk_context *ctx, mlodvk_atlas *a)
+{
+    if (!ctx || !a) return;
+    mlodvk__buffer_destroy(ctx, &a->keys);
+    mlodvk__buffer_destroy(ctx, &a->depth);
+    mlodvk__buffer_destroy(ctx, &a->normal);
+    mlodvk__buffer_destroy(ctx, &a->color);
+    mlodvk__buffer_destroy(ctx, &a->tiles);
+    if (a->pool) ctx->vk.DestroyDescriptorPool(ctx->device, a->pool, ctx->vk_allocator);
+    mlodvk__free(&ctx->allocator, a->host_tiles);
+    mlodvk__free(&ctx->allocator, a);
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_atlas_create(mlodvk_context *ctx, const mlod_atlas *layout, mlodvk_atlas **out,
+                                                mlod_error *error)
+{
+    mlodvk_atlas *a;
+    mlod_result res;
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    uint64_t pixels;
+    if (out) *out = NULL;
+    if (!ctx || !layout || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, layout and out are needed");
+    pixels = (uint64_t)layout->width * layout->height;
+    if (pixels == 0 || pixels >= (uint64_t)1 << 32)
+        return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %ux%u pixels: 1 to 2^32 - 1 are supported", layout->width,
+                            layout->height);
+    a = (mlodvk_atlas *)mlodvk__alloc(&ctx->allocator, 1, sizeof *a);
+    if (!a) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device atlas");
+    memset(a, 0, sizeof *a);
+    a->width = layout->width;
+    a->height = layout->height;
+    a->view_count = layout->view_count;
+    a->channels = layout->channels;
+    a->disc_scale = layout->disc_scale == 0.0f ? 1.0f : layout->disc_scale;
+    a->host_tiles = (uint32_t *)mlodvk__alloc(&ctx->allocator, 4 * (size_t)layout->view_count, sizeof(uint32_t));
+    if (!a->host_tiles) {
+        mlodvk_atlas_destroy(ctx, a);
+        return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the tiles of %u views", layout->view_count);
+    }
+    memcpy(a->host_tiles, layout->tiles, 4 * sizeof(uint32_t) * (size_t)layout->view_count);
+    res = mlodvk__buffer_create(ctx, 8 * pixels, usage, 0, &a->keys, error);
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * pixels, usage, 0, &a->depth, error);
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, layout->normal ? 12 * pixels : 16, usage, 0, &a->normal, error);
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, layout->color ? 12 * pixels : 16, usage, 0, &a->color, error);
+    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 16 * (VkDeviceSize)layout->view_count, usage, 0, &a->tiles, error);
+    if (res == MLOD_OK) res = mlodvk__upload(ctx, &a->tiles, layout->tiles, 16 * (VkDeviceSize)layout->view_count, error);
+    if (res == MLOD_OK) res = mlodvk__pool(ctx, 1, MLODVK__SPLAT_BINDINGS, &a->pool, error);
+    if (res == MLOD_OK) res = mlodvk__sets(ctx, a->pool, ctx->set_layouts[MLODVK__LAYOUT_SPLAT], 1, &a->set, error);
+    if (res != MLOD_OK) {
+        mlodvk_atlas_destroy(ctx, a);
+        return res;
+    }
+    a->channels = (layout->normal ? 1u : 0u) | (layout->color ? 2u : 0u);
+    *out = a;
+    return mlodvk__ok(error);
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, const mlodvk_tree *t,
+                                         const mlodvk_cut *c, mlod_error *error)
+{
+    mlodvk__splat_push push;
+    VkBuffer b[MLODVK__SPLAT_BINDINGS];
+    mlod_result res;
+    uint32_t v;
+    if (!ctx || !a || !t || !c) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, atlas, tree and cut are needed");
+    if (!c->has_views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the cut has no successful update");
+    if (c->tree != t || c->tree_generation != t->generation)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the cut was last updated with another tree");
+    if (c->view_count != a->view_count)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the cut has %u views, the atlas %u", c->view_count, a->view_count);
+    if ((a->channels & 1u) && !t->has_cones)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has normals and the tree no cones");
+    if ((a->channels & 2u) && !t->has_colors)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the tree none");
+    for (v = 0; v < c->view_count; v++) { /* as mlod_splat: the views' tiles are the atlas's */
+        const double *d = (const double *)c->views.mapped + (size_t)v * MLODVK__VIEW_DOUBLES;
+        const uint32_t *tile = a->host_tiles + 4 * (size_t)v;
+        if (d[13] != (double)tile[2] || d[14] != (double)tile[3])
+            return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "view %u has a %ux%u tile, the atlas was made for %ux%u", v,
+                                (uint32_t)d[13], (uint32_t)d[14], tile[2], tile[3]);
+    }
+    b[0] = t->spheres.buffer;
+    b[1] = t->cones.buffer;
+    b[2] = c->views.buffer;
+    b[3] = c->list[0].buffer;
+    b[4] = c->status[0].buffer;
+    b[5] = t->colors.buffer;
+    b[6] = a->tiles.buffer;
+    b[7] = a->keys.buffer;
+    b[8] = a->depth.buffer;
+    b[9] = a->normal.buffer;
+    b[10] = a->color.buffer;
+    b[11] = c->control.buffer;
+    mlodvk__write_set(ctx, a->set, b, MLODVK__SPLAT_BINDINGS);
+    memset(&push, 0, sizeof push);
+    push.atlas_width = a->width;
+    push.pixel_count = a->width * a->height;
+    push.has_cones = t->has_cones;
+    push.want_normal = (a->channels & 1u) != 0;
+    push.want_color = (a->channels & 2u) != 0;
+    push.max_groups_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
+    push.disc_scale = a->disc_scale;
+    res = mlodvk__begin(ctx, error);
+    if (res == MLOD_OK) {
+        mlodvk__barrier(ctx);
+        mlodvk__dispatch(ctx, MLODVK__SPLAT_CLEAR, ctx->layouts[MLODVK__LAYOUT_SPLAT], a->set, &push, sizeof push, push.pixel_count);
+        mlodvk__barrier(ctx);
+        /* cut_finish's arguments cover the cut's entries */
+        mlodvk__dispatch_indirect(ctx, MLODVK__SPLAT_DRAW, ctx->layouts[MLODVK__LAYOUT_SPLAT], a->set, &push, sizeof push,
+                                  c->control.buffer, 32);
+        mlodvk__barrier(ctx);
+        mlodvk__dispatch(ctx, MLODVK__SPLAT_RESOLVE, ctx->layouts[MLODVK__LAYOUT_SPLAT], a->set, &push, sizeof push, push.pixel_count);
+        mlodvk__barrier(ctx);
+        res = mlodvk__submit(ctx, error);
+    }
+    mlodvk__abandon(ctx);
+    return res == MLOD_OK ? mlodvk__ok(error) : res;
+}
+
+MANYLODS_VK_DEF mlod_result mlodvk_atlas_download(mlodvk_context *ctx, const mlodvk_atlas *a, mlod_atlas *atlas,
+                                                  mlod_error *error)
+{
+    mlodvk__download_range ranges[3];
+    int n = 0;
+    uint64_t pixels;
+    mlod_result res;
+    if (!ctx || !a || !atlas) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device atlas and atlas are needed");
+    if (atlas->width != a->width || atlas->height != a->height || atlas->view_count != a->view_count)
+        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas is %ux%u for %u views, the device atlas %ux%u for %u",
+                            atlas->width, atlas->height, atlas->view_count, a->width, a->height, a->view_count);
+    pixels = (uint64_t)a->width * a->height;
+    ranges[n].src = &a->depth;
+    ranges[n].size = 4 * pixels;
+    ranges[n++].dst = atlas->depth;
+    if (atlas->normal && (a->channels & 1u)) {
+        ranges[n].src = &a->normal;
+        ranges[n].size = 12 * pixels;
+        ranges[n++].dst = atlas->normal;
+    }
+    if (atlas->color && (a->channels & 2u)) {
+        ranges[n].src = &a->color;
+        ranges[n].size = 12 * pixels;
+        ranges[n++].dst = atlas->color;
+    }
+    res = mlodvk__download(ctx, ranges, n, error);
+    return res == MLOD_OK ? mlodvk__ok(error) : res;
+}
+
+MANYLODS_VK_DEF mlodvk_atlas_buffers mlodvk_atlas_get_buffers(const mlodvk_atlas *a)
+{
+    mlodvk_atlas_buffers b;
+    memset(&b, 0, sizeof b);
+    if (!a) return b;
+    b.depth = a->depth.buffer;
+    b.normal = (a->channels & 1u) ? a->normal.buffer : VK_NULL_HANDLE;
+    b.color = (a->channels & 2u) ? a->color.buffer : VK_NULL_HANDLE;
+    b.width = a->width;
+    b.height = a->height;
+    return b;
+}
+
+/* ================================================ the compiled shaders === */
 
 /* BEGIN GENERATED SPIR-V (make shaders) */
 /* compiler: Glslang Version: 11:12.0.0 */
@@ -7057,1892 +8950,25 @@ static const uint32_t mlodvk__spv_refit_merge[] = {
 };
 /* END GENERATED SPIR-V */
 
-#define MLODVK__GROUP 256u
-#define MLODVK__VIEW_DOUBLES 64u
-#define MLODVK__CONTROL_BYTES 104u
-#define MLODVK__CUT_BINDINGS 11u
-#define MLODVK__SPLAT_BINDINGS 12u
-#define MLODVK__REFIT_BINDINGS 11u
-
-enum { MLODVK__CUT_INIT, MLODVK__CUT_STEP, MLODVK__CUT_SCAN, MLODVK__CUT_WRITE, MLODVK__CUT_FINISH,
-       MLODVK__SPLAT_CLEAR, MLODVK__SPLAT_DRAW, MLODVK__SPLAT_RESOLVE, MLODVK__REFIT_CHECK, MLODVK__REFIT_LEAVES,
-       MLODVK__REFIT_MERGE, MLODVK__PIPELINES };
-enum { MLODVK__LAYOUT_CUT, MLODVK__LAYOUT_SPLAT, MLODVK__LAYOUT_REFIT, MLODVK__LAYOUTS };
-
-/* The control block of shaders/cut_layout.glsl (std430). */
-typedef struct mlodvk__control {
-    uint32_t args[3][4];
-    uint32_t count[2];
-    uint32_t changed, overflow, done, rounds, input_is_b, needed, current, pad;
-    uint64_t evaluated, steps;
-} mlodvk__control;
-
-typedef struct mlodvk__cut_push {
-    float epsilon;
-    uint32_t leaf_count, view_count, has_cones, trust, merge, slot, capacity, max_groups_x;
-} mlodvk__cut_push;
-
-typedef struct mlodvk__splat_push {
-    uint32_t atlas_width, pixel_count, has_cones, want_normal, want_color, max_groups_x;
-    float disc_scale;
-} mlodvk__splat_push;
-
-/* shaders/refit_layout.glsl's push constants (48 bytes) and findings. */
-typedef struct mlodvk__refit_push {
-    double area_unit;
-    float radius_scale;
-    uint32_t leaf_count, count, first, position_stride, normal_stride, color_stride, has_cones, has_colors,
-        max_groups_x;
-} mlodvk__refit_push;
-
-typedef struct mlodvk__findings {
-    uint32_t flags, first_vertex;
-    uint64_t growth_bits;
-} mlodvk__findings;
-
-typedef struct mlodvk__buffer {
-    VkBuffer buffer;
-    VkDeviceMemory memory;
-    VkDeviceSize size;  /* bytes asked for */
-    VkDeviceSize bytes; /* bytes of the allocation */
-    void *mapped;       /* host-visible buffers only */
-} mlodvk__buffer;
-
-struct mlodvk_context {
-    mlodvk_functions vk;
-    VkPhysicalDevice physical_device;
-    VkDevice device;
-    VkQueue queue;
-    const VkAllocationCallbacks *vk_allocator;
-    mlod_allocator allocator;
-    VkPhysicalDeviceMemoryProperties memory;
-    VkPhysicalDeviceProperties properties;
-    VkDescriptorSetLayout set_layouts[MLODVK__LAYOUTS];
-    VkPipelineLayout layouts[MLODVK__LAYOUTS];
-    VkPipeline pipelines[MLODVK__PIPELINES];
-    VkCommandPool pool;
-    VkCommandBuffer commands;
-    VkFence fence;
-    uint64_t device_bytes;
-    uint64_t generations; /* tree uploads so far: each tree's identity for the cuts */
-    int recording;
-};
-
-struct mlodvk_tree {
-    mlodvk__buffer spheres, cones, colors;
-    uint32_t node_count, leaf_count, has_cones, has_colors;
-    uint64_t generation; /* changes with every upload: cuts start over on a new tree */
-    /* refit (mlodvk_tree_upload_refit) */
-    int refit_ready;
-    mlodvk__buffer leaf_sources, barycentrics, triangle_areas, indices, findings;
-    mlodvk__buffer host_positions, host_normals, host_colors; /* mlodvk_refit_mesh_host */
-    uint32_t triangle_count, vertex_count;
-    double area_unit;
-    float radius_scale;
-    VkDescriptorPool pool;
-    VkDescriptorSet set;
-};
-
-struct mlodvk_cut {
-    uint32_t view_count, capacity, has_views;
-    mlodvk__buffer list[2], status[2], acts, block_sums, control, offsets, views;
-    VkDescriptorPool pool;
-    VkDescriptorSet sets[2]; /* 0: A -> B, 1: B -> A */
-    const mlodvk_tree *tree; /* of the last update, and its generation */
-    uint64_t tree_generation;
-    mlodvk_cut_info info;
-    /* downloaded */
-    uint32_t *host_nodes, *host_offsets;
-    uint8_t *host_status;
-    uint32_t host_entries, host_capacity;
-    mlod_cut_view *host_views;
-};
-
-struct mlodvk_atlas {
-    uint32_t width, height, view_count, channels;
-    float disc_scale;
-    uint32_t *host_tiles; /* the layout's tiles: x, y, width, height per view */
-    mlodvk__buffer keys, depth, normal, color, tiles;
-    VkDescriptorPool pool;
-    VkDescriptorSet set;
-};
-
-/* ------------------------------------------------------------ errors -- */
-
-static mlod_result mlodvk__fail(mlod_error *error, mlod_result code, const char *format, ...)
-{
-    if (error) {
-        va_list args;
-        va_start(args, format);
-        vsnprintf(error->message, sizeof error->message, format, args);
-        va_end(args);
-        error->code = code;
-    }
-    return code;
-}
-
-static mlod_result mlodvk__ok(mlod_error *error)
-{
-    if (error) {
-        error->code = MLOD_OK;
-        error->message[0] = '\0';
-    }
-    return MLOD_OK;
-}
-
-static mlod_result mlodvk__vk_fail(mlod_error *error, VkResult result, const char *call)
-{
-    mlod_result code = result == VK_ERROR_OUT_OF_HOST_MEMORY || result == VK_ERROR_OUT_OF_DEVICE_MEMORY
-                           ? MLOD_ERROR_OUT_OF_MEMORY
-                           : MLOD_ERROR_DEVICE;
-    return mlodvk__fail(error, code, "%s failed: VkResult %d%s", call, (int)result,
-                        result == VK_ERROR_DEVICE_LOST ? " (device lost)" : "");
-}
-
-#define MLODVK__CHECK(call, what)                                                                                 \
-    do {                                                                                                          \
-        VkResult mlodvk__r = (call);                                                                              \
-        if (mlodvk__r != VK_SUCCESS) return mlodvk__vk_fail(error, mlodvk__r, what);                             \
-    } while (0)
-
-/* --------------------------------------------------------- host memory -- */
-
-static void *mlodvk__alloc(const mlod_allocator *a, size_t count, size_t size)
-{
-    if (size && count > (size_t)-1 / size) return NULL;
-    return a->alloc(a->user, count * size != 0 ? count * size : 1);
-}
-
-static void mlodvk__free(const mlod_allocator *a, void *p)
-{
-    if (p) a->free(a->user, p);
-}
-
-/* ---------------------------------------------------------- buffers ---- */
-
-static void mlodvk__buffer_destroy(mlodvk_context *ctx, mlodvk__buffer *b)
-{
-    if (b->mapped) ctx->vk.UnmapMemory(ctx->device, b->memory);
-    if (b->buffer) ctx->vk.DestroyBuffer(ctx->device, b->buffer, ctx->vk_allocator);
-    if (b->memory) {
-        ctx->vk.FreeMemory(ctx->device, b->memory, ctx->vk_allocator);
-        ctx->device_bytes -= b->bytes;
-    }
-    memset(b, 0, sizeof *b);
-}
-
-static int mlodvk__memory_type(const mlodvk_context *ctx, uint32_t bits, VkMemoryPropertyFlags want)
-{
-    uint32_t i;
-    for (i = 0; i < ctx->memory.memoryTypeCount; i++)
-        if ((bits & (1u << i)) && (ctx->memory.memoryTypes[i].propertyFlags & want) == want) return (int)i;
-    return -1;
-}
-
-/* A storage buffer of size bytes (> 0); host_visible: mapped, coherent. */
-static mlod_result mlodvk__buffer_create(mlodvk_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
-                                         int host_visible, mlodvk__buffer *b, mlod_error *error)
-{
-    VkBufferCreateInfo info;
-    VkMemoryRequirements req;
-    VkMemoryAllocateInfo alloc;
-    int type;
-    memset(b, 0, sizeof *b);
-    if (size == 0) size = 16;
-    if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > ctx->properties.limits.maxStorageBufferRange)
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE,
-                            "a buffer of %.0f bytes exceeds the device's maxStorageBufferRange (%u bytes)", (double)size,
-                            ctx->properties.limits.maxStorageBufferRange);
-    memset(&info, 0, sizeof info);
-    info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-    info.size = size;
-    info.usage = usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    MLODVK__CHECK(ctx->vk.CreateBuffer(ctx->device, &info, ctx->vk_allocator, &b->buffer), "vkCreateBuffer");
-    ctx->vk.GetBufferMemoryRequirements(ctx->device, b->buffer, &req);
-    type = host_visible ? mlodvk__memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                                            VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
-                                                                            VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
-                        : mlodvk__memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    if (type < 0)
-        type = host_visible ? mlodvk__memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                                                VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
-                            : mlodvk__memory_type(ctx, req.memoryTypeBits, 0);
-    if (type < 0) {
-        mlodvk__buffer_destroy(ctx, b);
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "no memory type for a %s buffer",
-                            host_visible ? "host-visible" : "device");
-    }
-    memset(&alloc, 0, sizeof alloc);
-    alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    alloc.allocationSize = req.size;
-    alloc.memoryTypeIndex = (uint32_t)type;
-    {
-        VkResult r = ctx->vk.AllocateMemory(ctx->device, &alloc, ctx->vk_allocator, &b->memory);
-        if (r != VK_SUCCESS) {
-            b->memory = VK_NULL_HANDLE;
-            mlodvk__buffer_destroy(ctx, b);
-            return mlodvk__vk_fail(error, r, "vkAllocateMemory");
-        }
-    }
-    b->bytes = req.size;
-    ctx->device_bytes += req.size;
-    {
-        VkResult r = ctx->vk.BindBufferMemory(ctx->device, b->buffer, b->memory, 0);
-        if (r == VK_SUCCESS && host_visible) r = ctx->vk.MapMemory(ctx->device, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped);
-        if (r != VK_SUCCESS) {
-            b->mapped = NULL;
-            mlodvk__buffer_destroy(ctx, b);
-            return mlodvk__vk_fail(error, r, host_visible ? "vkBindBufferMemory / vkMapMemory" : "vkBindBufferMemory");
-        }
-    }
-    b->size = size;
-    return MLOD_OK;
-}
-
-/* --------------------------------------------------------- commands ---- */
-
-static mlod_result mlodvk__begin(mlodvk_context *ctx, mlod_error *error)
-{
-    VkCommandBufferBeginInfo begin;
-    MLODVK__CHECK(ctx->vk.ResetCommandPool(ctx->device, ctx->pool, 0), "vkResetCommandPool");
-    memset(&begin, 0, sizeof begin);
-    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    MLODVK__CHECK(ctx->vk.BeginCommandBuffer(ctx->commands, &begin), "vkBeginCommandBuffer");
-    ctx->recording = 1;
-    return MLOD_OK;
-}
-
-/* Every earlier shader or transfer write visible to every later read (shader,
-   indirect arguments, transfer, host). */
-static void mlodvk__barrier(mlodvk_context *ctx)
-{
-    VkMemoryBarrier mb;
-    memset(&mb, 0, sizeof mb);
-    mb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_WRITE_BIT;
-    mb.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
-                       VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT;
-    ctx->vk.CmdPipelineBarrier(ctx->commands,
-                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                                   VK_PIPELINE_STAGE_HOST_BIT,
-                               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
-                                   VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
-                               0, 1, &mb, 0, NULL, 0, NULL);
-}
-
-/* End, submit, wait. */
-static mlod_result mlodvk__submit(mlodvk_context *ctx, mlod_error *error)
-{
-    VkSubmitInfo submit;
-    VkResult r;
-    ctx->recording = 0;
-    MLODVK__CHECK(ctx->vk.EndCommandBuffer(ctx->commands), "vkEndCommandBuffer");
-    memset(&submit, 0, sizeof submit);
-    submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &ctx->commands;
-    MLODVK__CHECK(ctx->vk.QueueSubmit(ctx->queue, 1, &submit, ctx->fence), "vkQueueSubmit");
-    r = ctx->vk.WaitForFences(ctx->device, 1, &ctx->fence, VK_TRUE, UINT64_MAX);
-    if (r != VK_SUCCESS) return mlodvk__vk_fail(error, r, "vkWaitForFences");
-    MLODVK__CHECK(ctx->vk.ResetFences(ctx->device, 1, &ctx->fence), "vkResetFences");
-    return MLOD_OK;
-}
-
-/* A recording that failed midway: end it so that the pool can be reset. */
-static void mlodvk__abandon(mlodvk_context *ctx)
-{
-    if (ctx->recording) {
-        ctx->vk.EndCommandBuffer(ctx->commands);
-        ctx->recording = 0;
-    }
-}
-
-/* Work groups for n items, as (x, y) within the device's limits. */
-static void mlodvk__groups(const mlodvk_context *ctx, uint32_t n, uint32_t *x, uint32_t *y)
-{
-    uint32_t groups = (uint32_t)(((uint64_t)n + MLODVK__GROUP - 1) / MLODVK__GROUP);
-    uint32_t max_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
-    if (groups == 0) {
-        *x = 0;
-        *y = 1;
-        return;
-    }
-    *x = groups < max_x ? groups : max_x;
-    *y = (groups + *x - 1) / *x;
-}
-
-static void mlodvk__dispatch(mlodvk_context *ctx, int pipeline, VkPipelineLayout layout, VkDescriptorSet set,
-                             const void *push, uint32_t push_size, uint32_t items)
-{
-    uint32_t x, y;
-    mlodvk__groups(ctx, items, &x, &y);
-    ctx->vk.CmdBindPipeline(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[pipeline]);
-    ctx->vk.CmdBindDescriptorSets(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, NULL);
-    ctx->vk.CmdPushConstants(ctx->commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
-    if (x) ctx->vk.CmdDispatch(ctx->commands, x, y, 1);
-}
-
-static void mlodvk__dispatch_indirect(mlodvk_context *ctx, int pipeline, VkPipelineLayout layout,
-                                      VkDescriptorSet set, const void *push, uint32_t push_size, VkBuffer args,
-                                      VkDeviceSize offset)
-{
-    ctx->vk.CmdBindPipeline(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, ctx->pipelines[pipeline]);
-    ctx->vk.CmdBindDescriptorSets(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, NULL);
-    ctx->vk.CmdPushConstants(ctx->commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
-    ctx->vk.CmdDispatchIndirect(ctx->commands, args, offset);
-}
-
-/* Copy host bytes into a device buffer through a temporary staging buffer
-   (one submission). */
-static mlod_result mlodvk__upload(mlodvk_context *ctx, const mlodvk__buffer *dst, const void *data, VkDeviceSize size,
-                                  mlod_error *error)
-{
-    mlodvk__buffer staging;
-    VkBufferCopy copy;
-    mlod_result res;
-    if (size == 0) return MLOD_OK;
-    res = mlodvk__buffer_create(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 1, &staging, error);
-    if (res != MLOD_OK) return res;
-    memcpy(staging.mapped, data, (size_t)size);
-    res = mlodvk__begin(ctx, error);
-    if (res == MLOD_OK) {
-        copy.srcOffset = 0;
-        copy.dstOffset = 0;
-        copy.size = size;
-        ctx->vk.CmdCopyBuffer(ctx->commands, staging.buffer, dst->buffer, 1, &copy);
-        mlodvk__barrier(ctx);
-        res = mlodvk__submit(ctx, error);
-    }
-    mlodvk__abandon(ctx);
-    mlodvk__buffer_destroy(ctx, &staging);
-    return res;
-}
-
-/* Copy count ranges of device buffers to host memory (one submission). */
-typedef struct mlodvk__download_range {
-    const mlodvk__buffer *src;
-    VkDeviceSize size;
-    void *dst;
-} mlodvk__download_range;
-
-static mlod_result mlodvk__download(mlodvk_context *ctx, const mlodvk__download_range *ranges, int count,
-                                    mlod_error *error)
-{
-    mlodvk__buffer staging;
-    VkDeviceSize total = 0, at = 0;
-    mlod_result res;
-    int i;
-    for (i = 0; i < count; i++) total += (ranges[i].size + 15) & ~(VkDeviceSize)15;
-    if (total == 0) return MLOD_OK;
-    res = mlodvk__buffer_create(ctx, total, VK_BUFFER_USAGE_TRANSFER_DST_BIT, 1, &staging, error);
-    if (res != MLOD_OK) return res;
-    res = mlodvk__begin(ctx, error);
-    if (res == MLOD_OK) {
-        mlodvk__barrier(ctx);
-        for (i = 0; i < count; i++) {
-            VkBufferCopy copy;
-            copy.srcOffset = 0;
-            copy.dstOffset = at;
-            copy.size = ranges[i].size;
-            if (copy.size) ctx->vk.CmdCopyBuffer(ctx->commands, ranges[i].src->buffer, staging.buffer, 1, &copy);
-            at += (ranges[i].size + 15) & ~(VkDeviceSize)15;
-        }
-        mlodvk__barrier(ctx);
-        res = mlodvk__submit(ctx, error);
-    }
-    mlodvk__abandon(ctx);
-    if (res == MLOD_OK)
-        for (i = 0, at = 0; i < count; i++) {
-            memcpy(ranges[i].dst, (const char *)staging.mapped + at, (size_t)ranges[i].size);
-            at += (ranges[i].size + 15) & ~(VkDeviceSize)15;
-        }
-    mlodvk__buffer_destroy(ctx, &staging);
-    return res;
-}
-
-/* Descriptor sets: a pool, its sets, their storage buffers in binding order. */
-static void mlodvk__write_set(mlodvk_context *ctx, VkDescriptorSet set, const VkBuffer *buffers, uint32_t count)
-{
-    VkDescriptorBufferInfo info[16];
-    VkWriteDescriptorSet write[16];
-    uint32_t i;
-    for (i = 0; i < count; i++) {
-        info[i].buffer = buffers[i];
-        info[i].offset = 0;
-        info[i].range = VK_WHOLE_SIZE;
-        memset(&write[i], 0, sizeof write[i]);
-        write[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-        write[i].dstSet = set;
-        write[i].dstBinding = i;
-        write[i].descriptorCount = 1;
-        write[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        write[i].pBufferInfo = &info[i];
-    }
-    ctx->vk.UpdateDescriptorSets(ctx->device, count, write, 0, NULL);
-}
-
-static mlod_result mlodvk__pool(mlodvk_context *ctx, uint32_t sets, uint32_t buffers, VkDescriptorPool *out,
-                                mlod_error *error)
-{
-    VkDescriptorPoolSize size;
-    VkDescriptorPoolCreateInfo info;
-    size.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    size.descriptorCount = buffers;
-    memset(&info, 0, sizeof info);
-    info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-    info.maxSets = sets;
-    info.poolSizeCount = 1;
-    info.pPoolSizes = &size;
-    MLODVK__CHECK(ctx->vk.CreateDescriptorPool(ctx->device, &info, ctx->vk_allocator, out), "vkCreateDescriptorPool");
-    return MLOD_OK;
-}
-
-static mlod_result mlodvk__sets(mlodvk_context *ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
-                                uint32_t count, VkDescriptorSet *out, mlod_error *error)
-{
-    VkDescriptorSetLayout layouts[2];
-    VkDescriptorSetAllocateInfo info;
-    uint32_t i;
-    for (i = 0; i < count; i++) layouts[i] = layout;
-    memset(&info, 0, sizeof info);
-    info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-    info.descriptorPool = pool;
-    info.descriptorSetCount = count;
-    info.pSetLayouts = layouts;
-    MLODVK__CHECK(ctx->vk.AllocateDescriptorSets(ctx->device, &info, out), "vkAllocateDescriptorSets");
-    return MLOD_OK;
-}
-
-/* ---------------------------------------------------------- context ---- */
-
-static mlod_result mlodvk__load(mlodvk_context *ctx, const mlodvk_context_desc *desc, mlod_error *error)
-{
-    PFN_vkGetInstanceProcAddr gipa = desc->get_instance_proc_addr;
-    PFN_vkGetDeviceProcAddr gdpa;
-    mlodvk_functions *f = &ctx->vk;
-    if (desc->functions) {
-        *f = *desc->functions;
-        return MLOD_OK;
-    }
-    if (!gipa) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "get_instance_proc_addr and functions are both NULL");
-    gdpa = (PFN_vkGetDeviceProcAddr)gipa(desc->instance, "vkGetDeviceProcAddr");
-    if (!gdpa) return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vkGetDeviceProcAddr not found");
-#define MLODVK__INSTANCE(name)                                                                                    \
-    if (!(f->name = (PFN_vk##name)gipa(desc->instance, "vk" #name)))                                            \
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vk" #name " not found");
-#define MLODVK__DEVICE(name)                                                                                      \
-    if (!(f->name = (PFN_vk##name)gdpa(desc->device, "vk" #name)))                                              \
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vk" #name " not found");
-    MLODVK__INSTANCE(GetPhysicalDeviceProperties)
-    MLODVK__INSTANCE(GetPhysicalDeviceMemoryProperties)
-    MLODVK__INSTANCE(GetPhysicalDeviceFeatures2)
-    MLODVK__INSTANCE(GetPhysicalDeviceProperties2)
-    MLODVK__DEVICE(CreateBuffer)
-    MLODVK__DEVICE(DestroyBuffer)
-    MLODVK__DEVICE(GetBufferMemoryRequirements)
-    MLODVK__DEVICE(AllocateMemory)
-    MLODVK__DEVICE(FreeMemory)
-    MLODVK__DEVICE(BindBufferMemory)
-    MLODVK__DEVICE(MapMemory)
-    MLODVK__DEVICE(UnmapMemory)
-    MLODVK__DEVICE(CreateShaderModule)
-    MLODVK__DEVICE(DestroyShaderModule)
-    MLODVK__DEVICE(CreateDescriptorSetLayout)
-    MLODVK__DEVICE(DestroyDescriptorSetLayout)
-    MLODVK__DEVICE(CreatePipelineLayout)
-    MLODVK__DEVICE(DestroyPipelineLayout)
-    MLODVK__DEVICE(CreateComputePipelines)
-    MLODVK__DEVICE(DestroyPipeline)
-    MLODVK__DEVICE(CreateDescriptorPool)
-    MLODVK__DEVICE(DestroyDescriptorPool)
-    MLODVK__DEVICE(AllocateDescriptorSets)
-    MLODVK__DEVICE(UpdateDescriptorSets)
-    MLODVK__DEVICE(CreateCommandPool)
-    MLODVK__DEVICE(DestroyCommandPool)
-    MLODVK__DEVICE(ResetCommandPool)
-    MLODVK__DEVICE(AllocateCommandBuffers)
-    MLODVK__DEVICE(BeginCommandBuffer)
-    MLODVK__DEVICE(EndCommandBuffer)
-    MLODVK__DEVICE(CmdBindPipeline)
-    MLODVK__DEVICE(CmdBindDescriptorSets)
-    MLODVK__DEVICE(CmdPushConstants)
-    MLODVK__DEVICE(CmdDispatch)
-    MLODVK__DEVICE(CmdDispatchIndirect)
-    MLODVK__DEVICE(CmdPipelineBarrier)
-    MLODVK__DEVICE(CmdCopyBuffer)
-    MLODVK__DEVICE(QueueSubmit)
-    MLODVK__DEVICE(CreateFence)
-    MLODVK__DEVICE(DestroyFence)
-    MLODVK__DEVICE(WaitForFences)
-    MLODVK__DEVICE(ResetFences)
-#undef MLODVK__INSTANCE
-#undef MLODVK__DEVICE
-    return MLOD_OK;
-}
-
-/* Subgroup basic and arithmetic operations in compute shaders (the cut's
-   prefix sums). */
-static int mlodvk__subgroups_ok(VkPhysicalDevice physical, PFN_vkGetPhysicalDeviceProperties2 properties2)
-{
-    VkPhysicalDeviceSubgroupProperties subgroups;
-    VkPhysicalDeviceProperties2 properties;
-    memset(&subgroups, 0, sizeof subgroups);
-    subgroups.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES;
-    memset(&properties, 0, sizeof properties);
-    properties.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
-    properties.pNext = &subgroups;
-    properties2(physical, &properties);
-    return (subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
-           (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_BASIC_BIT) &&
-           (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
-}
-
-static mlod_result mlodvk__check_features(mlodvk_context *ctx, mlod_error *error)
-{
-    VkPhysicalDeviceShaderAtomicInt64Features atomics;
-    VkPhysicalDeviceFeatures2 features;
-    memset(&atomics, 0, sizeof atomics);
-    atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES;
-    memset(&features, 0, sizeof features);
-    features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
-    features.pNext = &atomics;
-    ctx->vk.GetPhysicalDeviceFeatures2(ctx->physical_device, &features);
-    if (ctx->properties.apiVersion < VK_API_VERSION_1_1)
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "%s supports Vulkan %u.%u; 1.1 is needed", ctx->properties.deviceName,
-                            VK_VERSION_MAJOR(ctx->properties.apiVersion), VK_VERSION_MINOR(ctx->properties.apiVersion));
-    if (!features.features.shaderFloat64 || !features.features.shaderInt64 || !atomics.shaderBufferInt64Atomics)
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "%s lacks%s%s%s", ctx->properties.deviceName,
-                            features.features.shaderFloat64 ? "" : " shaderFloat64",
-                            features.features.shaderInt64 ? "" : " shaderInt64",
-                            atomics.shaderBufferInt64Atomics ? "" : " shaderBufferInt64Atomics");
-    if (!mlodvk__subgroups_ok(ctx->physical_device, ctx->vk.GetPhysicalDeviceProperties2))
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "%s lacks subgroup arithmetic in compute shaders",
-                            ctx->properties.deviceName);
-    return MLOD_OK;
-}
-
-typedef struct mlodvk__shader {
-    const uint32_t *words;
-    size_t bytes;
-    int layout; /* MLODVK__LAYOUT_* */
-} mlodvk__shader;
-
-static mlod_result mlodvk__set_layout(mlodvk_context *ctx, uint32_t bindings, VkDescriptorSetLayout *out,
-                                      mlod_error *error)
-{
-    VkDescriptorSetLayoutBinding b[16];
-    VkDescriptorSetLayoutCreateInfo info;
-    uint32_t i;
-    memset(b, 0, sizeof b);
-    for (i = 0; i < bindings; i++) {
-        b[i].binding = i;
-        b[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        b[i].descriptorCount = 1;
-        b[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-    }
-    memset(&info, 0, sizeof info);
-    info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-    info.bindingCount = bindings;
-    info.pBindings = b;
-    MLODVK__CHECK(ctx->vk.CreateDescriptorSetLayout(ctx->device, &info, ctx->vk_allocator, out),
-                  "vkCreateDescriptorSetLayout");
-    return MLOD_OK;
-}
-
-static mlod_result mlodvk__pipeline_layout(mlodvk_context *ctx, VkDescriptorSetLayout set, uint32_t push_bytes,
-                                           VkPipelineLayout *out, mlod_error *error)
-{
-    VkPushConstantRange range;
-    VkPipelineLayoutCreateInfo info;
-    range.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-    range.offset = 0;
-    range.size = push_bytes;
-    memset(&info, 0, sizeof info);
-    info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-    info.setLayoutCount = 1;
-    info.pSetLayouts = &set;
-    info.pushConstantRangeCount = 1;
-    info.pPushConstantRanges = &range;
-    MLODVK__CHECK(ctx->vk.CreatePipelineLayout(ctx->device, &info, ctx->vk_allocator, out), "vkCreatePipelineLayout");
-    return MLOD_OK;
-}
-
-static mlod_result mlodvk__pipeline(mlodvk_context *ctx, const mlodvk__shader *shader, VkPipeline *out,
-                                    mlod_error *error)
-{
-    VkShaderModuleCreateInfo module_info;
-    VkComputePipelineCreateInfo info;
-    VkShaderModule module;
-    VkResult r;
-    memset(&module_info, 0, sizeof module_info);
-    module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-    module_info.codeSize = shader->bytes;
-    module_info.pCode = shader->words;
-    MLODVK__CHECK(ctx->vk.CreateShaderModule(ctx->device, &module_info, ctx->vk_allocator, &module),
-                  "vkCreateShaderModule");
-    memset(&info, 0, sizeof info);
-    info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
-    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module;
-    info.stage.pName = "main";
-    info.layout = ctx->layouts[shader->layout];
-    r = ctx->vk.CreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, ctx->vk_allocator, out);
-    ctx->vk.DestroyShaderModule(ctx->device, module, ctx->vk_allocator);
-    if (r != VK_SUCCESS) {
-        *out = VK_NULL_HANDLE;
-        return mlodvk__vk_fail(error, r, "vkCreateComputePipelines");
-    }
-    return MLOD_OK;
-}
-
-MANYLODS_VK_DEF void mlodvk_context_destroy(mlodvk_context *ctx)
-{
-    int i;
-    if (!ctx) return;
-    if (ctx->device) {
-        if (ctx->fence) ctx->vk.DestroyFence(ctx->device, ctx->fence, ctx->vk_allocator);
-        if (ctx->pool) ctx->vk.DestroyCommandPool(ctx->device, ctx->pool, ctx->vk_allocator);
-        for (i = 0; i < MLODVK__PIPELINES; i++)
-            if (ctx->pipelines[i]) ctx->vk.DestroyPipeline(ctx->device, ctx->pipelines[i], ctx->vk_allocator);
-        for (i = 0; i < MLODVK__LAYOUTS; i++) {
-            if (ctx->layouts[i]) ctx->vk.DestroyPipelineLayout(ctx->device, ctx->layouts[i], ctx->vk_allocator);
-            if (ctx->set_layouts[i]) ctx->vk.DestroyDescriptorSetLayout(ctx->device, ctx->set_layouts[i], ctx->vk_allocator);
-        }
-    }
-    mlodvk__free(&ctx->allocator, ctx);
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_context_create(const mlodvk_context_desc *desc, mlodvk_context **out,
-                                                  mlod_error *error)
-{
-    const mlodvk__shader shaders[MLODVK__PIPELINES] = {
-        {mlodvk__spv_cut_init, sizeof mlodvk__spv_cut_init, MLODVK__LAYOUT_CUT},
-        {mlodvk__spv_cut_step, sizeof mlodvk__spv_cut_step, MLODVK__LAYOUT_CUT},
-        {mlodvk__spv_cut_scan, sizeof mlodvk__spv_cut_scan, MLODVK__LAYOUT_CUT},
-        {mlodvk__spv_cut_write, sizeof mlodvk__spv_cut_write, MLODVK__LAYOUT_CUT},
-        {mlodvk__spv_cut_finish, sizeof mlodvk__spv_cut_finish, MLODVK__LAYOUT_CUT},
-        {mlodvk__spv_splat_clear, sizeof mlodvk__spv_splat_clear, MLODVK__LAYOUT_SPLAT},
-        {mlodvk__spv_splat_draw, sizeof mlodvk__spv_splat_draw, MLODVK__LAYOUT_SPLAT},
-        {mlodvk__spv_splat_resolve, sizeof mlodvk__spv_splat_resolve, MLODVK__LAYOUT_SPLAT},
-        {mlodvk__spv_refit_check, sizeof mlodvk__spv_refit_check, MLODVK__LAYOUT_REFIT},
-        {mlodvk__spv_refit_leaves, sizeof mlodvk__spv_refit_leaves, MLODVK__LAYOUT_REFIT},
-        {mlodvk__spv_refit_merge, sizeof mlodvk__spv_refit_merge, MLODVK__LAYOUT_REFIT}};
-    static const uint32_t bindings[MLODVK__LAYOUTS] = {MLODVK__CUT_BINDINGS, MLODVK__SPLAT_BINDINGS,
-                                                       MLODVK__REFIT_BINDINGS};
-    static const uint32_t push_bytes[MLODVK__LAYOUTS] = {sizeof(mlodvk__cut_push), sizeof(mlodvk__splat_push),
-                                                         sizeof(mlodvk__refit_push)};
-    mlod_allocator a;
-    mlodvk_context *ctx;
-    mlod_result res;
-    int i;
-    if (out) *out = NULL;
-    if (!desc || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "desc and out must not be NULL");
-    if (!desc->instance || !desc->physical_device || !desc->device || !desc->queue)
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "instance, physical_device, device and queue are needed");
-    if (desc->allocator && (desc->allocator->alloc == NULL) != (desc->allocator->free == NULL))
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "allocator: alloc and free go together");
-    /* no allocator: manylods.h's default, MANYLODS_MALLOC/FREE where defined */
-    a = desc->allocator && desc->allocator->alloc ? *desc->allocator : mlod_default_allocator();
-    ctx = (mlodvk_context *)mlodvk__alloc(&a, 1, sizeof *ctx);
-    if (!ctx) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the context");
-    memset(ctx, 0, sizeof *ctx);
-    ctx->allocator = a;
-    ctx->physical_device = desc->physical_device;
-    ctx->queue = desc->queue;
-    ctx->vk_allocator = desc->vk_allocator;
-    res = mlodvk__load(ctx, desc, error);
-    if (res != MLOD_OK) {
-        mlodvk__free(&a, ctx);
-        return res;
-    }
-    ctx->device = desc->device;
-    ctx->vk.GetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
-    ctx->vk.GetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory);
-    res = mlodvk__check_features(ctx, error);
-    for (i = 0; i < MLODVK__LAYOUTS && res == MLOD_OK; i++) {
-        res = mlodvk__set_layout(ctx, bindings[i], &ctx->set_layouts[i], error);
-        if (res == MLOD_OK) res = mlodvk__pipeline_layout(ctx, ctx->set_layouts[i], push_bytes[i], &ctx->layouts[i], error);
-    }
-    for (i = 0; i < MLODVK__PIPELINES && res == MLOD_OK; i++) res = mlodvk__pipeline(ctx, &shaders[i], &ctx->pipelines[i], error);
-    if (res == MLOD_OK) {
-        VkCommandPoolCreateInfo pool;
-        VkCommandBufferAllocateInfo alloc;
-        VkFenceCreateInfo fence;
-        VkResult r;
-        memset(&pool, 0, sizeof pool);
-        pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-        pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-        pool.queueFamilyIndex = desc->queue_family;
-        r = ctx->vk.CreateCommandPool(ctx->device, &pool, ctx->vk_allocator, &ctx->pool);
-        if (r != VK_SUCCESS) {
-            ctx->pool = VK_NULL_HANDLE;
-            res = mlodvk__vk_fail(error, r, "vkCreateCommandPool");
-        }
-        if (res == MLOD_OK) {
-            memset(&alloc, 0, sizeof alloc);
-            alloc.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-            alloc.commandPool = ctx->pool;
-            alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-            alloc.commandBufferCount = 1;
-            r = ctx->vk.AllocateCommandBuffers(ctx->device, &alloc, &ctx->commands);
-            if (r != VK_SUCCESS) res = mlodvk__vk_fail(error, r, "vkAllocateCommandBuffers");
-        }
-        if (res == MLOD_OK) {
-            memset(&fence, 0, sizeof fence);
-            fence.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-            r = ctx->vk.CreateFence(ctx->device, &fence, ctx->vk_allocator, &ctx->fence);
-            if (r != VK_SUCCESS) {
-                ctx->fence = VK_NULL_HANDLE;
-                res = mlodvk__vk_fail(error, r, "vkCreateFence");
-            }
-        }
-    }
-    if (res != MLOD_OK) {
-        mlodvk_context_destroy(ctx);
-        return res;
-    }
-    *out = ctx;
-    return mlodvk__ok(error);
-}
-
-MANYLODS_VK_DEF const char *mlodvk_context_device_name(const mlodvk_context *ctx)
-{
-    return ctx ? ctx->properties.deviceName : "";
-}
-
-MANYLODS_VK_DEF uint64_t mlodvk_context_device_bytes(const mlodvk_context *ctx) { return ctx ? ctx->device_bytes : 0; }
-
-/* ---------------------------------------------------- headless device -- */
-
-static VKAPI_ATTR VkBool32 VKAPI_CALL mlodvk__debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                            VkDebugUtilsMessageTypeFlagsEXT types,
-                                                            const VkDebugUtilsMessengerCallbackDataEXT *data,
-                                                            void *user)
-{
-    mlodvk_device *d = (mlodvk_device *)user;
-    (void)types;
-    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
-        d->validation_messages++;
-        snprintf(d->last_message, sizeof d->last_message, "%s", data && data->pMessage ? data->pMessage : "(no text)");
-    }
-    return VK_FALSE;
-}
-
-MANYLODS_VK_DEF void mlodvk_device_destroy(mlodvk_device *d)
-{
-    PFN_vkGetInstanceProcAddr gipa;
-    if (!d || !d->instance) return;
-    gipa = d->get_instance_proc_addr;
-    if (d->device) {
-        PFN_vkDestroyDevice destroy_device = (PFN_vkDestroyDevice)gipa(d->instance, "vkDestroyDevice");
-        PFN_vkDeviceWaitIdle wait = (PFN_vkDeviceWaitIdle)gipa(d->instance, "vkDeviceWaitIdle");
-        if (wait) wait(d->device);
-        if (destroy_device) destroy_device(d->device, d->vk_allocator);
-    }
-    if (d->messenger) {
-        PFN_vkDestroyDebugUtilsMessengerEXT destroy =
-            (PFN_vkDestroyDebugUtilsMessengerEXT)gipa(d->instance, "vkDestroyDebugUtilsMessengerEXT");
-        if (destroy) destroy(d->instance, d->messenger, d->vk_allocator);
-    }
-    {
-        PFN_vkDestroyInstance destroy_instance = (PFN_vkDestroyInstance)gipa(d->instance, "vkDestroyInstance");
-        if (destroy_instance) destroy_instance(d->instance, d->vk_allocator);
-    }
-    d->instance = VK_NULL_HANDLE;
-    d->device = VK_NULL_HANDLE;
-}
-
-/* Rank of a device type: lower is preferred. */
-static int mlodvk__type_rank(VkPhysicalDeviceType type, int prefer_cpu)
-{
-    if (prefer_cpu && type == VK_PHYSICAL_DEVICE_TYPE_CPU) return 0;
-    switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 5;
-    default: return 4;
-    }
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_device_create(const mlodvk_device_desc *desc, mlodvk_device *d, mlod_error *error)
-{
-    PFN_vkGetInstanceProcAddr gipa;
-    PFN_vkCreateInstance create_instance;
-    PFN_vkEnumeratePhysicalDevices enumerate;
-    PFN_vkGetPhysicalDeviceProperties properties;
-    PFN_vkGetPhysicalDeviceFeatures2 features2;
-    PFN_vkGetPhysicalDeviceProperties2 properties2;
-    PFN_vkGetPhysicalDeviceQueueFamilyProperties families;
-    PFN_vkCreateDevice create_device;
-    PFN_vkGetDeviceQueue get_queue;
-    VkApplicationInfo app;
-    VkInstanceCreateInfo info;
-    VkDebugUtilsMessengerCreateInfoEXT messenger;
-    VkPhysicalDevice physical[16];
-    uint32_t count = 16, i, best = UINT32_MAX, best_family = 0;
-    int best_rank = 1 << 30;
-    const char *layer = "VK_LAYER_KHRONOS_validation";
-    const char *debug_extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-    VkResult r;
-    if (!desc || !d || !desc->get_instance_proc_addr)
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "desc, its get_instance_proc_addr and out are needed");
-    memset(d, 0, sizeof *d);
-    gipa = desc->get_instance_proc_addr;
-    d->get_instance_proc_addr = gipa;
-    d->vk_allocator = desc->vk_allocator;
-    create_instance = (PFN_vkCreateInstance)gipa(VK_NULL_HANDLE, "vkCreateInstance");
-    if (!create_instance) return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vkCreateInstance not found");
-    memset(&app, 0, sizeof app);
-    app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
-    app.pApplicationName = "manylods";
-    app.pEngineName = "manylods";
-    app.apiVersion = VK_API_VERSION_1_2;
-    memset(&messenger, 0, sizeof messenger);
-    messenger.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
-    messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    messenger.pfnUserCallback = mlodvk__debug_message;
-    messenger.pUserData = d;
-    memset(&info, 0, sizeof info);
-    info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-    info.pApplicationInfo = &app;
-    if (desc->validation) {
-        info.enabledLayerCount = 1;
-        info.ppEnabledLayerNames = &layer;
-        info.enabledExtensionCount = 1;
-        info.ppEnabledExtensionNames = &debug_extension;
-        info.pNext = &messenger;
-    }
-    r = create_instance(&info, desc->vk_allocator, &d->instance);
-    if (r != VK_SUCCESS) {
-        d->instance = VK_NULL_HANDLE;
-        if (desc->validation && r == VK_ERROR_LAYER_NOT_PRESENT)
-            return mlodvk__fail(error, MLOD_ERROR_DEVICE, "VK_LAYER_KHRONOS_validation is not installed");
-        return mlodvk__vk_fail(error, r, "vkCreateInstance");
-    }
-    if (desc->validation) {
-        PFN_vkCreateDebugUtilsMessengerEXT create =
-            (PFN_vkCreateDebugUtilsMessengerEXT)gipa(d->instance, "vkCreateDebugUtilsMessengerEXT");
-        if (!create || create(d->instance, &messenger, desc->vk_allocator, &d->messenger) != VK_SUCCESS) {
-            d->messenger = VK_NULL_HANDLE;
-            mlodvk_device_destroy(d);
-            return mlodvk__fail(error, MLOD_ERROR_DEVICE, "vkCreateDebugUtilsMessengerEXT failed");
-        }
-    }
-    enumerate = (PFN_vkEnumeratePhysicalDevices)gipa(d->instance, "vkEnumeratePhysicalDevices");
-    properties = (PFN_vkGetPhysicalDeviceProperties)gipa(d->instance, "vkGetPhysicalDeviceProperties");
-    features2 = (PFN_vkGetPhysicalDeviceFeatures2)gipa(d->instance, "vkGetPhysicalDeviceFeatures2");
-    properties2 = (PFN_vkGetPhysicalDeviceProperties2)gipa(d->instance, "vkGetPhysicalDeviceProperties2");
-    families = (PFN_vkGetPhysicalDeviceQueueFamilyProperties)gipa(d->instance, "vkGetPhysicalDeviceQueueFamilyProperties");
-    create_device = (PFN_vkCreateDevice)gipa(d->instance, "vkCreateDevice");
-    get_queue = (PFN_vkGetDeviceQueue)gipa(d->instance, "vkGetDeviceQueue");
-    if (!enumerate || !properties || !features2 || !properties2 || !families || !create_device || !get_queue) {
-        mlodvk_device_destroy(d);
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE, "a Vulkan 1.1 instance function is missing");
-    }
-    r = enumerate(d->instance, &count, physical);
-    if (r != VK_SUCCESS && r != VK_INCOMPLETE) {
-        mlodvk_device_destroy(d);
-        return mlodvk__vk_fail(error, r, "vkEnumeratePhysicalDevices");
-    }
-    for (i = 0; i < count; i++) {
-        VkPhysicalDeviceProperties p;
-        VkPhysicalDeviceShaderAtomicInt64Features atomics;
-        VkPhysicalDeviceFeatures2 f;
-        VkQueueFamilyProperties q[16];
-        uint32_t qn = 16, j;
-        int rank;
-        properties(physical[i], &p);
-        memset(&atomics, 0, sizeof atomics);
-        atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES;
-        memset(&f, 0, sizeof f);
-        f.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
-        f.pNext = &atomics;
-        features2(physical[i], &f);
-        if (p.apiVersion < VK_API_VERSION_1_1 || !f.features.shaderFloat64 || !f.features.shaderInt64 ||
-            !atomics.shaderBufferInt64Atomics || !mlodvk__subgroups_ok(physical[i], properties2))
-            continue;
-        families(physical[i], &qn, q);
-        for (j = 0; j < qn && !(q[j].queueFlags & VK_QUEUE_COMPUTE_BIT); j++) {
-        }
-        if (j == qn) continue;
-        rank = mlodvk__type_rank(p.deviceType, desc->prefer_cpu);
-        if (rank < best_rank) {
-            best_rank = rank;
-            best = i;
-            best_family = j;
-            d->type = p.deviceType;
-            memcpy(d->name, p.deviceName, sizeof d->name);
-        }
-    }
-    if (best == UINT32_MAX) {
-        mlodvk_device_destroy(d);
-        return mlodvk__fail(error, MLOD_ERROR_DEVICE,
-                            "none of %u Vulkan devices has a compute queue and shaderFloat64, shaderInt64, "
-                            "shaderBufferInt64Atomics and subgroup arithmetic",
-                            count);
-    }
-    {
-        float priority = 1.0f;
-        VkDeviceQueueCreateInfo queue;
-        VkDeviceCreateInfo device;
-        VkPhysicalDeviceShaderAtomicInt64Features atomics;
-        VkPhysicalDeviceFeatures2 f;
-        memset(&queue, 0, sizeof queue);
-        queue.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
-        queue.queueFamilyIndex = best_family;
-        queue.queueCount = 1;
-        queue.pQueuePriorities = &priority;
-        memset(&atomics, 0, sizeof atomics);
-        atomics.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_INT64_FEATURES;
-        atomics.shaderBufferInt64Atomics = VK_TRUE;
-        memset(&f, 0, sizeof f);
-        f.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
-        f.pNext = &atomics;
-        f.features.shaderFloat64 = VK_TRUE;
-        f.features.shaderInt64 = VK_TRUE;
-        memset(&device, 0, sizeof device);
-        device.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-        device.pNext = &f;
-        device.queueCreateInfoCount = 1;
-        device.pQueueCreateInfos = &queue;
-        r = create_device(physical[best], &device, desc->vk_allocator, &d->device);
-        if (r != VK_SUCCESS) {
-            d->device = VK_NULL_HANDLE;
-            mlodvk_device_destroy(d);
-            return mlodvk__vk_fail(error, r, "vkCreateDevice");
-        }
-    }
-    d->physical_device = physical[best];
-    d->queue_family = best_family;
-    get_queue(d->device, best_family, 0, &d->queue);
-    return mlodvk__ok(error);
-}
-
-MANYLODS_VK_DEF mlodvk_context_desc mlodvk_device_context_desc(const mlodvk_device *d)
-{
-    mlodvk_context_desc desc;
-    memset(&desc, 0, sizeof desc);
-    desc.get_instance_proc_addr = d->get_instance_proc_addr;
-    desc.instance = d->instance;
-    desc.physical_device = d->physical_device;
-    desc.device = d->device;
-    desc.queue_family = d->queue_family;
-    desc.queue = d->queue;
-    desc.vk_allocator = d->vk_allocator;
-    return desc;
-}
-
-/* ------------------------------------------------------------- tree ---- */
-
-MANYLODS_VK_DEF void mlodvk_tree_destroy(mlodvk_context *ctx, mlodvk_tree *t)
-{
-    if (!ctx || !t) return;
-    mlodvk__buffer_destroy(ctx, &t->spheres);
-    mlodvk__buffer_destroy(ctx, &t->cones);
-    mlodvk__buffer_destroy(ctx, &t->colors);
-    mlodvk__buffer_destroy(ctx, &t->leaf_sources);
-    mlodvk__buffer_destroy(ctx, &t->barycentrics);
-    mlodvk__buffer_destroy(ctx, &t->triangle_areas);
-    mlodvk__buffer_destroy(ctx, &t->indices);
-    mlodvk__buffer_destroy(ctx, &t->findings);
-    mlodvk__buffer_destroy(ctx, &t->host_positions);
-    mlodvk__buffer_destroy(ctx, &t->host_normals);
-    mlodvk__buffer_destroy(ctx, &t->host_colors);
-    if (t->pool) ctx->vk.DestroyDescriptorPool(ctx->device, t->pool, ctx->vk_allocator);
-    mlodvk__free(&ctx->allocator, t);
-}
-
-static mlod_result mlodvk__tree_fill(mlodvk_context *ctx, mlodvk_tree *t, const mlod_tree *tree, mlod_error *error)
-{
-    size_t n = tree->node_count;
-    mlod_result res = mlodvk__upload(ctx, &t->spheres, tree->spheres, 16 * (VkDeviceSize)n, error);
-    if (res == MLOD_OK && t->has_cones) res = mlodvk__upload(ctx, &t->cones, tree->cones, 16 * (VkDeviceSize)n, error);
-    if (res == MLOD_OK && t->has_colors) res = mlodvk__upload(ctx, &t->colors, tree->colors, 12 * (VkDeviceSize)n, error);
-    return res;
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_tree_upload(mlodvk_context *ctx, const mlod_tree *tree, mlodvk_tree **out,
-                                               mlod_error *error)
-{
-    mlodvk_tree *t;
-    mlod_result res;
-    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    if (out) *out = NULL;
-    if (!ctx || !tree || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, tree and out are needed");
-    t = (mlodvk_tree *)mlodvk__alloc(&ctx->allocator, 1, sizeof *t);
-    if (!t) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device tree");
-    memset(t, 0, sizeof *t);
-    t->node_count = tree->node_count;
-    t->leaf_count = tree->leaf_count;
-    t->has_cones = tree->cones != NULL;
-    t->has_colors = tree->colors != NULL;
-    res = mlodvk__buffer_create(ctx, 16 * (VkDeviceSize)tree->node_count, usage, 0, &t->spheres, error);
-    if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, t->has_cones ? 16 * (VkDeviceSize)tree->node_count : 16, usage, 0, &t->cones, error);
-    if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, t->has_colors ? 12 * (VkDeviceSize)tree->node_count : 16, usage, 0, &t->colors, error);
-    if (res == MLOD_OK) res = mlodvk__tree_fill(ctx, t, tree, error);
-    t->generation = ++ctx->generations;
-    if (res != MLOD_OK) {
-        mlodvk_tree_destroy(ctx, t);
-        return res;
-    }
-    *out = t;
-    return mlodvk__ok(error);
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_tree_update(mlodvk_context *ctx, mlodvk_tree *t, const mlod_tree *tree,
-                                               mlod_error *error)
-{
-    mlod_result res;
-    if (!ctx || !t || !tree) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and tree are needed");
-    if (tree->node_count != t->node_count || (tree->cones != NULL) != (t->has_cones != 0) ||
-        (tree->colors != NULL) != (t->has_colors != 0))
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree's node count or attributes differ from the upload's");
-    /* bounds change, the structure does not: cuts stay incremental (the
-       generation stays) */
-    res = mlodvk__tree_fill(ctx, t, tree, error);
-    return res == MLOD_OK ? mlodvk__ok(error) : res;
-}
-
-MANYLODS_VK_DEF mlodvk_tree_buffers mlodvk_tree_get_buffers(const mlodvk_tree *t)
-{
-    mlodvk_tree_buffers b;
-    memset(&b, 0, sizeof b);
-    if (!t) return b;
-    b.spheres = t->spheres.buffer;
-    b.cones = t->has_cones ? t->cones.buffer : VK_NULL_HANDLE;
-    b.colors = t->has_colors ? t->colors.buffer : VK_NULL_HANDLE;
-    b.node_count = t->node_count;
-    return b;
-}
-
-/* ------------------------------------------------------------ refit ---- */
-
-MANYLODS_VK_DEF mlod_result mlodvk_tree_upload_refit(mlodvk_context *ctx, mlodvk_tree *t, const mlod_tree *tree,
-                                                     const uint32_t *indices, uint32_t index_count, mlod_error *error)
-{
-    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    mlod_result res;
-    uint32_t i;
-    if (!ctx || !t || !tree || !indices)
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree, tree and indices are needed");
-    if (tree->node_count != t->node_count)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree has %u nodes, the device tree %u", tree->node_count,
-                            t->node_count);
-    if (!tree->leaf_sources || !tree->leaf_barycentrics || !tree->triangle_areas)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree was not built from a mesh with MLOD_ATTR_REFIT");
-    if ((uint64_t)index_count != 3 * (uint64_t)tree->triangle_count)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "%u indices, the tree was built from %u triangles", index_count,
-                            tree->triangle_count);
-    for (i = 0; i < index_count; i++)
-        if (indices[i] >= tree->vertex_count)
-            return mlodvk__fail(error, MLOD_ERROR_INDEX_OUT_OF_RANGE, "indices[%u] = %u is not below vertex_count %u", i,
-                                indices[i], tree->vertex_count);
-    t->refit_ready = 0;
-    mlodvk__buffer_destroy(ctx, &t->leaf_sources);
-    mlodvk__buffer_destroy(ctx, &t->barycentrics);
-    mlodvk__buffer_destroy(ctx, &t->triangle_areas);
-    mlodvk__buffer_destroy(ctx, &t->indices);
-    mlodvk__buffer_destroy(ctx, &t->findings);
-    res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)tree->leaf_count, usage, 0, &t->leaf_sources, error);
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 8 * (VkDeviceSize)tree->leaf_count, usage, 0, &t->barycentrics, error);
-    if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, 8 * (VkDeviceSize)tree->triangle_count, usage, 0, &t->triangle_areas, error);
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)index_count, usage, 0, &t->indices, error);
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, sizeof(mlodvk__findings), usage, 1, &t->findings, error);
-    if (res == MLOD_OK) res = mlodvk__upload(ctx, &t->leaf_sources, tree->leaf_sources, 4 * (VkDeviceSize)tree->leaf_count, error);
-    if (res == MLOD_OK)
-        res = mlodvk__upload(ctx, &t->barycentrics, tree->leaf_barycentrics, 8 * (VkDeviceSize)tree->leaf_count, error);
-    if (res == MLOD_OK)
-        res = mlodvk__upload(ctx, &t->triangle_areas, tree->triangle_areas, 8 * (VkDeviceSize)tree->triangle_count, error);
-    if (res == MLOD_OK) res = mlodvk__upload(ctx, &t->indices, indices, 4 * (VkDeviceSize)index_count, error);
-    if (res == MLOD_OK && !t->pool) {
-        res = mlodvk__pool(ctx, 1, MLODVK__REFIT_BINDINGS, &t->pool, error);
-        if (res == MLOD_OK) res = mlodvk__sets(ctx, t->pool, ctx->set_layouts[MLODVK__LAYOUT_REFIT], 1, &t->set, error);
-    }
-    if (res != MLOD_OK) return res;
-    t->triangle_count = tree->triangle_count;
-    t->vertex_count = tree->vertex_count;
-    t->area_unit = tree->area_unit;
-    t->radius_scale = tree->radius_scale;
-    t->refit_ready = 1;
-    return mlodvk__ok(error);
-}
-
-static int mlodvk__aligned(const mlodvk_context *ctx, VkDeviceSize offset)
-{
-    VkDeviceSize a = ctx->properties.limits.minStorageBufferOffsetAlignment;
-    return a == 0 || offset % a == 0;
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *t, const mlodvk_mesh_buffers *mesh,
-                                              mlod_error *error)
-{
-    VkDescriptorBufferInfo info[MLODVK__REFIT_BINDINGS];
-    VkWriteDescriptorSet write[MLODVK__REFIT_BINDINGS];
-    mlodvk__refit_push push;
-    mlodvk__findings *found;
-    mlod_result res;
-    uint32_t i, depth, items;
-    VkBuffer buffers[MLODVK__REFIT_BINDINGS];
-    VkDeviceSize offsets[MLODVK__REFIT_BINDINGS];
-    if (!ctx || !t || !mesh) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and mesh are needed");
-    if (!t->refit_ready) return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "call mlodvk_tree_upload_refit first");
-    if (!mesh->positions) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "mesh positions are VK_NULL_HANDLE");
-    if (t->has_colors && !mesh->colors)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree has colours and the mesh has none");
-    if ((mesh->position_stride && mesh->position_stride < 3) || (mesh->normal_stride && mesh->normal_stride < 3) ||
-        (mesh->color_stride && mesh->color_stride < 3))
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "strides are 0 or at least 3 floats");
-    if (!mlodvk__aligned(ctx, mesh->position_offset) || !mlodvk__aligned(ctx, mesh->normal_offset) ||
-        !mlodvk__aligned(ctx, mesh->color_offset))
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT,
-                            "buffer offsets must be multiples of minStorageBufferOffsetAlignment (%llu)",
-                            (unsigned long long)ctx->properties.limits.minStorageBufferOffsetAlignment);
-    buffers[0] = t->spheres.buffer;
-    buffers[1] = t->cones.buffer;
-    buffers[2] = t->colors.buffer;
-    buffers[3] = t->leaf_sources.buffer;
-    buffers[4] = t->barycentrics.buffer;
-    buffers[5] = t->triangle_areas.buffer;
-    buffers[6] = t->indices.buffer;
-    buffers[7] = mesh->positions;
-    buffers[8] = mesh->normals ? mesh->normals : t->findings.buffer; /* unread without normals */
-    buffers[9] = mesh->colors && t->has_colors ? mesh->colors : t->findings.buffer;
-    buffers[10] = t->findings.buffer;
-    memset(offsets, 0, sizeof offsets);
-    offsets[7] = mesh->position_offset;
-    offsets[8] = mesh->normals ? mesh->normal_offset : 0;
-    offsets[9] = mesh->colors && t->has_colors ? mesh->color_offset : 0;
-    for (i = 0; i < MLODVK__REFIT_BINDINGS; i++) {
-        info[i].buffer = buffers[i];
-        info[i].offset = offsets[i];
-        info[i].range = VK_WHOLE_SIZE;
-        memset(&write[i], 0, sizeof write[i]);
-        write[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-        write[i].dstSet = t->set;
-        write[i].dstBinding = i;
-        write[i].descriptorCount = 1;
-        write[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        write[i].pBufferInfo = &info[i];
-    }
-    ctx->vk.UpdateDescriptorSets(ctx->device, MLODVK__REFIT_BINDINGS, write, 0, NULL);
-    memset(&push, 0, sizeof push);
-    push.area_unit = t->area_unit;
-    push.radius_scale = t->radius_scale;
-    push.leaf_count = t->leaf_count;
-    push.position_stride = mesh->position_stride ? mesh->position_stride : 3;
-    push.normal_stride = mesh->normals ? (mesh->normal_stride ? mesh->normal_stride : 3) : 0;
-    push.color_stride = mesh->colors && t->has_colors ? (mesh->color_stride ? mesh->color_stride : 3) : 0;
-    push.has_cones = t->has_cones;
-    push.has_colors = t->has_colors;
-    push.max_groups_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
-    /* 1: the checks of mlod_refit_mesh, before anything is written */
-    found = (mlodvk__findings *)t->findings.mapped;
-    found->flags = 0;
-    found->first_vertex = UINT32_MAX;
-    found->growth_bits = 0;
-    push.count = t->vertex_count;
-    push.first = t->triangle_count;
-    items = t->vertex_count > t->triangle_count ? t->vertex_count : t->triangle_count;
-    res = mlodvk__begin(ctx, error);
-    if (res == MLOD_OK) {
-        mlodvk__barrier(ctx);
-        mlodvk__dispatch(ctx, MLODVK__REFIT_CHECK, ctx->layouts[MLODVK__LAYOUT_REFIT], t->set, &push, sizeof push, items);
-        mlodvk__barrier(ctx);
-        res = mlodvk__submit(ctx, error);
-    }
-    mlodvk__abandon(ctx);
-    if (res != MLOD_OK) return res;
-    if (found->flags & 1u)
-        return mlodvk__fail(error, MLOD_ERROR_NON_FINITE, "position %u is not finite", found->first_vertex);
-    if (found->flags & 2u)
-        return mlodvk__fail(error, MLOD_ERROR_RANGE, "position %u has a coordinate beyond 1e36", found->first_vertex);
-    if (found->flags & 4u) return mlodvk__fail(error, MLOD_ERROR_NON_FINITE, "normal %u is not finite", found->first_vertex);
-    if (found->flags & 8u) return mlodvk__fail(error, MLOD_ERROR_NON_FINITE, "colour %u is not finite", found->first_vertex);
-    {
-        double growth;
-        memcpy(&growth, &found->growth_bits, sizeof growth);
-        res = mlod_refit_check_growth(t->radius_scale, t->area_unit, t->leaf_count, growth, error);
-        if (res != MLOD_OK) return res;
-    }
-    /* 2: the leaves, then one depth at a time, deepest first */
-    res = mlodvk__begin(ctx, error);
-    if (res == MLOD_OK) {
-        mlodvk__barrier(ctx);
-        push.count = t->leaf_count;
-        push.first = 0;
-        mlodvk__dispatch(ctx, MLODVK__REFIT_LEAVES, ctx->layouts[MLODVK__LAYOUT_REFIT], t->set, &push, sizeof push,
-                         t->leaf_count);
-        mlodvk__barrier(ctx);
-        for (depth = 32; depth-- > 0;) {
-            uint32_t first, last;
-            if (!mlod_tree_depth_nodes(t->leaf_count, depth, &first, &last)) continue;
-            push.first = first;
-            push.count = last - first + 1;
-            mlodvk__dispatch(ctx, MLODVK__REFIT_MERGE, ctx->layouts[MLODVK__LAYOUT_REFIT], t->set, &push, sizeof push,
-                             push.count);
-            mlodvk__barrier(ctx);
-        }
-        res = mlodvk__submit(ctx, error);
-    }
-    mlodvk__abandon(ctx);
-    return res == MLOD_OK ? mlodvk__ok(error) : res;
-}
-
-/* Copy count vertices' 3 floats (stride floats apart, 0: 3) into a host-
-   visible buffer of the tree, growing it as needed. */
-static mlod_result mlodvk__host_vertices(mlodvk_context *ctx, mlodvk__buffer *b, const float *data, size_t stride,
-                                         uint32_t count, mlod_error *error)
-{
-    VkDeviceSize size = 12 * (VkDeviceSize)count;
-    uint32_t i;
-    if (b->size < size) {
-        mlod_result res;
-        mlodvk__buffer_destroy(ctx, b);
-        res = mlodvk__buffer_create(ctx, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, b, error);
-        if (res != MLOD_OK) return res;
-    }
-    for (i = 0; i < count; i++)
-        memcpy((float *)b->mapped + 3 * (size_t)i, (const char *)data + (size_t)i * (stride ? stride : 3 * sizeof(float)),
-               3 * sizeof(float));
-    return MLOD_OK;
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh_host(mlodvk_context *ctx, mlodvk_tree *t, const mlod_mesh *mesh,
-                                                   mlod_error *error)
-{
-    mlodvk_mesh_buffers b;
-    mlod_result res;
-    if (!ctx || !t || !mesh || !mesh->positions)
-        return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and mesh positions are needed");
-    if (!t->refit_ready) return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "call mlodvk_tree_upload_refit first");
-    if (mesh->vertex_count != t->vertex_count || mesh->index_count / 3 != t->triangle_count)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH,
-                            "the mesh has %u triangles and %u vertices, the tree was built from %u and %u",
-                            mesh->index_count / 3, mesh->vertex_count, t->triangle_count, t->vertex_count);
-    memset(&b, 0, sizeof b);
-    res = mlodvk__host_vertices(ctx, &t->host_positions, mesh->positions, mesh->position_stride, mesh->vertex_count, error);
-    b.positions = t->host_positions.buffer;
-    if (res == MLOD_OK && mesh->normals) {
-        res = mlodvk__host_vertices(ctx, &t->host_normals, mesh->normals, mesh->normal_stride, mesh->vertex_count, error);
-        b.normals = t->host_normals.buffer;
-    }
-    if (res == MLOD_OK && mesh->colors && t->has_colors) {
-        res = mlodvk__host_vertices(ctx, &t->host_colors, mesh->colors, mesh->color_stride, mesh->vertex_count, error);
-        b.colors = t->host_colors.buffer;
-    }
-    return res == MLOD_OK ? mlodvk_refit_mesh(ctx, t, &b, error) : res;
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_tree_download(mlodvk_context *ctx, const mlodvk_tree *t, mlod_tree *tree,
-                                                 mlod_error *error)
-{
-    mlodvk__download_range ranges[3];
-    int n = 0;
-    mlod_result res;
-    if (!ctx || !t || !tree) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and tree are needed");
-    if (tree->node_count != t->node_count || (tree->cones != NULL) != (t->has_cones != 0) ||
-        (tree->colors != NULL) != (t->has_colors != 0))
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the tree's node count or attributes differ from the device tree's");
-    ranges[n].src = &t->spheres;
-    ranges[n].size = 16 * (VkDeviceSize)t->node_count;
-    ranges[n++].dst = tree->spheres;
-    if (t->has_cones) {
-        ranges[n].src = &t->cones;
-        ranges[n].size = 16 * (VkDeviceSize)t->node_count;
-        ranges[n++].dst = tree->cones;
-    }
-    if (t->has_colors) {
-        ranges[n].src = &t->colors;
-        ranges[n].size = 12 * (VkDeviceSize)t->node_count;
-        ranges[n++].dst = tree->colors;
-    }
-    res = mlodvk__download(ctx, ranges, n, error);
-    return res == MLOD_OK ? mlodvk__ok(error) : res;
-}
-
-/* -------------------------------------------------------------- cut ---- */
-
-static void mlodvk__cut_free_lists(mlodvk_context *ctx, mlodvk_cut *c)
-{
-    int i;
-    for (i = 0; i < 2; i++) {
-        mlodvk__buffer_destroy(ctx, &c->list[i]);
-        mlodvk__buffer_destroy(ctx, &c->status[i]);
-    }
-    mlodvk__buffer_destroy(ctx, &c->acts);
-    mlodvk__buffer_destroy(ctx, &c->block_sums);
-}
-
-MANYLODS_VK_DEF void mlodvk_cut_destroy(mlodvk_context *ctx, mlodvk_cut *c)
-{
-    if (!ctx || !c) return;
-    mlodvk__cut_free_lists(ctx, c);
-    mlodvk__buffer_destroy(ctx, &c->control);
-    mlodvk__buffer_destroy(ctx, &c->offsets);
-    mlodvk__buffer_destroy(ctx, &c->views);
-    if (c->pool) ctx->vk.DestroyDescriptorPool(ctx->device, c->pool, ctx->vk_allocator);
-    mlodvk__free(&ctx->allocator, c->host_nodes);
-    mlodvk__free(&ctx->allocator, c->host_status);
-    mlodvk__free(&ctx->allocator, c->host_offsets);
-    mlodvk__free(&ctx->allocator, c->host_views);
-    mlodvk__free(&ctx->allocator, c);
-}
-
-/* List buffers of `capacity` entries (all four, the acts and block sums). */
-static mlod_result mlodvk__cut_lists(mlodvk_context *ctx, mlodvk_cut *c, uint32_t capacity, mlod_error *error)
-{
-    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    mlod_result res = MLOD_OK;
-    int i;
-    for (i = 0; i < 2 && res == MLOD_OK; i++) {
-        res = mlodvk__buffer_create(ctx, 8 * (VkDeviceSize)capacity, usage, 0, &c->list[i], error);
-        if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)capacity, usage, 0, &c->status[i], error);
-    }
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)capacity, usage, 0, &c->acts, error);
-    if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, 4 * ((VkDeviceSize)capacity / MLODVK__GROUP + 2), usage, 0, &c->block_sums, error);
-    if (res == MLOD_OK) c->capacity = capacity;
-    return res;
-}
-
-
-/* Point the cut's two descriptor sets at the tree and the current buffers. */
-static void mlodvk__cut_sets(mlodvk_context *ctx, mlodvk_cut *c, const mlodvk_tree *t)
-{
-    int s;
-    for (s = 0; s < 2; s++) {
-        VkBuffer b[MLODVK__CUT_BINDINGS];
-        b[0] = t->spheres.buffer;
-        b[1] = t->cones.buffer;
-        b[2] = c->views.buffer;
-        b[3] = c->list[s].buffer;
-        b[4] = c->list[1 - s].buffer;
-        b[5] = c->status[s].buffer;
-        b[6] = c->status[1 - s].buffer;
-        b[7] = c->acts.buffer;
-        b[8] = c->block_sums.buffer;
-        b[9] = c->control.buffer;
-        b[10] = c->offsets.buffer;
-        mlodvk__write_set(ctx, c->sets[s], b, MLODVK__CUT_BINDINGS);
-    }
-}
-
-
-
-MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view_count, uint32_t initial_capacity,
-                                              mlodvk_cut **out, mlod_error *error)
-{
-    mlodvk_cut *c;
-    mlod_result res;
-    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    uint64_t capacity = initial_capacity ? initial_capacity : 16 * (uint64_t)view_count + 65536;
-    if (out) *out = NULL;
-    if (!ctx || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context and out are needed");
-    if (view_count == 0) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count must be >= 1");
-    if (capacity < view_count) capacity = view_count;
-    if (capacity > 0x7fffffffu || (uint64_t)view_count * MLODVK__VIEW_DOUBLES * 8 > (uint64_t)1 << 40)
-        return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "%u views need more list entries than a uint32_t counts", view_count);
-    c = (mlodvk_cut *)mlodvk__alloc(&ctx->allocator, 1, sizeof *c);
-    if (!c) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device cut");
-    memset(c, 0, sizeof *c);
-    c->view_count = view_count;
-    res = mlodvk__cut_lists(ctx, c, (uint32_t)capacity, error);
-    if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, MLODVK__CONTROL_BYTES, usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, 1,
-                                    &c->control, error);
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * ((VkDeviceSize)view_count + 1), usage, 0, &c->offsets, error);
-    if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, 8 * MLODVK__VIEW_DOUBLES * (VkDeviceSize)view_count, usage, 1, &c->views, error);
-    if (res == MLOD_OK) res = mlodvk__pool(ctx, 2, 2 * MLODVK__CUT_BINDINGS, &c->pool, error);
-    if (res == MLOD_OK) res = mlodvk__sets(ctx, c->pool, ctx->set_layouts[MLODVK__LAYOUT_CUT], 2, c->sets, error);
-    if (res == MLOD_OK) {
-        c->host_views = (mlod_cut_view *)mlodvk__alloc(&ctx->allocator, view_count, sizeof(mlod_cut_view));
-        c->host_offsets = (uint32_t *)mlodvk__alloc(&ctx->allocator, (size_t)view_count + 1, sizeof(uint32_t));
-        if (!c->host_views || !c->host_offsets)
-            res = mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for %u views", view_count);
-        else
-            memset(c->host_views, 0, sizeof(mlod_cut_view) * view_count);
-    }
-    if (res != MLOD_OK) {
-        mlodvk_cut_destroy(ctx, c);
-        return res;
-    }
-    c->info.capacity = c->capacity;
-    *out = c;
-    return mlodvk__ok(error);
-}
-
-/* Grow the lists to hold `needed` entries, keeping the current list (in A
-   after cut_finish) and its statuses. */
-static mlod_result mlodvk__cut_grow(mlodvk_context *ctx, mlodvk_cut *c, uint32_t entries, uint64_t needed,
-                                    mlod_error *error)
-{
-    mlodvk_cut old = *c;
-    uint64_t capacity = 2 * needed + 1024; /* lists double as a cut deepens: leave room for the next rounds */
-    mlod_result res;
-    if (capacity > 0x7fffffffu) capacity = 0x7fffffffu;
-    if (needed > capacity) return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "a cut list of %.0f entries", (double)needed);
-    memset(c->list, 0, sizeof c->list);
-    memset(c->status, 0, sizeof c->status);
-    memset(&c->acts, 0, sizeof c->acts);
-    memset(&c->block_sums, 0, sizeof c->block_sums);
-    res = mlodvk__cut_lists(ctx, c, (uint32_t)capacity, error);
-    if (res == MLOD_OK) res = mlodvk__begin(ctx, error);
-    if (res == MLOD_OK) {
-        VkBufferCopy copy;
-        copy.srcOffset = 0;
-        copy.dstOffset = 0;
-        mlodvk__barrier(ctx);
-        copy.size = 8 * (VkDeviceSize)entries;
-        if (copy.size) ctx->vk.CmdCopyBuffer(ctx->commands, old.list[0].buffer, c->list[0].buffer, 1, &copy);
-        copy.size = 4 * (VkDeviceSize)entries;
-        if (copy.size) ctx->vk.CmdCopyBuffer(ctx->commands, old.status[0].buffer, c->status[0].buffer, 1, &copy);
-        mlodvk__barrier(ctx);
-        res = mlodvk__submit(ctx, error);
-    }
-    mlodvk__abandon(ctx);
-    if (res != MLOD_OK) { /* keep the old lists: the cut stays usable */
-        mlodvk__cut_free_lists(ctx, c);
-        memcpy(c->list, old.list, sizeof c->list);
-        memcpy(c->status, old.status, sizeof c->status);
-        c->acts = old.acts;
-        c->block_sums = old.block_sums;
-        c->capacity = old.capacity;
-        return res;
-    }
-    mlodvk__cut_free_lists(ctx, &old);
-    c->info.grows++;
-    c->info.capacity = c->capacity;
-    return MLOD_OK;
-}
-
-/* Check every view as mlod_cut_update does, with its message: a refused
-   update must not touch the views buffer, which the kept cut's next splat
-   reads. */
-static mlod_result mlodvk__check_views(const mlodvk_cut *c, const mlod_view *views, mlod_error *error)
-{
-    uint32_t v;
-    for (v = 0; v < c->view_count; v++) {
-        mlod_error detail;
-        mlod_result res = mlod_view_check(&views[v], &detail);
-        if (res != MLOD_OK) return mlodvk__fail(error, res, "view %u: %.160s", v, detail.message);
-    }
-    return MLOD_OK;
-}
-
-/* Write the views' frames into the host-visible views buffer; the views
-   passed mlodvk__check_views. */
-static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, mlod_error *error)
-{
-    double *out = (double *)c->views.mapped;
-    uint32_t v;
-    for (v = 0; v < c->view_count; v++) {
-        mlod_view_frame f;
-        mlod_error detail;
-        double *d = out + (size_t)v * MLODVK__VIEW_DOUBLES;
-        int k, j;
-        mlod_result res = mlod_view_frame_of(&views[v], &f, &detail);
-        if (res != MLOD_OK) return mlodvk__fail(error, res, "view %u: %.160s", v, detail.message);
-        memset(d, 0, 8 * MLODVK__VIEW_DOUBLES);
-        for (k = 0; k < 3; k++) {
-            d[0 + k] = f.eye[k];
-            d[3 + k] = f.right[k];
-            d[6 + k] = f.up[k];
-            d[9 + k] = f.forward[k];
-        }
-        d[12] = f.scale;
-        d[13] = f.width;
-        d[14] = f.height;
-        d[15] = f.scale_x;
-        d[16] = f.scale_y;
-        d[17] = f.kind;
-        d[18] = f.plane_count;
-        d[19] = f.cull_backfaces;
-        for (j = 0; j < 6; j++)
-            for (k = 0; k < 5; k++) d[20 + 5 * j + k] = f.planes[j][k];
-        for (j = 0; j < 2; j++)
-            for (k = 0; k < 5; k++) d[50 + 5 * j + k] = f.halves[j][k];
-    }
-    return MLOD_OK;
-}
-
-static void mlodvk__arm(mlodvk__control *ctl, const mlodvk_context *ctx, uint32_t entries)
-{
-    uint32_t x, y;
-    memset(ctl, 0, sizeof *ctl);
-    mlodvk__groups(ctx, entries, &x, &y);
-    ctl->args[0][0] = x;
-    ctl->args[0][1] = y;
-    ctl->args[0][2] = 1;
-    ctl->args[1][1] = ctl->args[1][2] = 1;
-    ctl->args[2][0] = x; /* cut_finish, if no round runs */
-    ctl->args[2][1] = y;
-    ctl->args[2][2] = 1;
-    ctl->count[0] = entries;
-    ctl->current = entries;
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c, const mlodvk_tree *t,
-                                              const mlod_view *views, const mlod_cut_params *params,
-                                              mlod_error *error)
-{
-    mlodvk__control *ctl;
-    mlodvk__cut_push push;
-    mlod_result res;
-    int from_root, lazy, first = 1;
-    uint32_t depth = 0, rounds_left, entries;
-    uint64_t evaluated = 0, steps = 0;
-    if (!ctx || !c || !t || !views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, cut, tree and views are needed");
-    /* every check before the first change: a refusal keeps the last cut and its views */
-    if ((res = mlod_cut_params_check(params, error)) != MLOD_OK) return res;
-    if ((res = mlodvk__check_views(c, views, error)) != MLOD_OK) return res;
-    if ((res = mlodvk__upload_views(c, views, error)) != MLOD_OK) return res;
-    while (((uint64_t)1 << depth) < (uint64_t)t->node_count + 1) depth++;
-    from_root = params->mode == MLOD_CUT_BASIC || !c->has_views || c->tree != t || c->tree_generation != t->generation ||
-                c->info.entries == 0;
-    lazy = params->mode == MLOD_CUT_LAZY;
-    rounds_left = lazy ? params->lazy_steps : UINT32_MAX;
-    entries = from_root ? c->view_count : c->info.entries;
-    c->info.rounds = 0;
-    c->info.submissions = 0;
-    c->has_views = 0; /* until this update succeeds */
-    ctl = (mlodvk__control *)c->control.mapped;
-    memset(&push, 0, sizeof push);
-    push.epsilon = params->epsilon;
-    push.leaf_count = t->leaf_count;
-    push.view_count = c->view_count;
-    push.has_cones = t->has_cones;
-    push.merge = params->mode != MLOD_CUT_BASIC;
-    push.max_groups_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
-    for (;;) {
-        /* one submission: [init], up to `batch` rounds, finish */
-        uint32_t batch = lazy ? rounds_left : 2 * depth + 4, j;
-        mlodvk__arm(ctl, ctx, entries);
-        mlodvk__cut_sets(ctx, c, t);
-        res = mlodvk__begin(ctx, error);
-        if (res != MLOD_OK) break;
-        mlodvk__barrier(ctx);
-        if (first && from_root) {
-            push.capacity = c->capacity;
-            mlodvk__dispatch(ctx, MLODVK__CUT_INIT, ctx->layouts[MLODVK__LAYOUT_CUT], c->sets[0], &push, sizeof push, c->view_count);
-            mlodvk__barrier(ctx);
-        }
-        push.capacity = c->capacity;
-        for (j = 0; j < batch; j++) {
-            VkDescriptorSet set = c->sets[j & 1];
-            push.slot = j & 1;
-            push.trust = !(first && j == 0);
-            mlodvk__dispatch_indirect(ctx, MLODVK__CUT_STEP, ctx->layouts[MLODVK__LAYOUT_CUT], set, &push, sizeof push,
-                                      c->control.buffer, 16 * (VkDeviceSize)push.slot);
-            mlodvk__barrier(ctx);
-            mlodvk__dispatch(ctx, MLODVK__CUT_SCAN, ctx->layouts[MLODVK__LAYOUT_CUT], set, &push, sizeof push, 1);
-            mlodvk__barrier(ctx);
-            mlodvk__dispatch_indirect(ctx, MLODVK__CUT_WRITE, ctx->layouts[MLODVK__LAYOUT_CUT], set, &push, sizeof push,
-                                      c->control.buffer, 16 * (VkDeviceSize)push.slot);
-            mlodvk__barrier(ctx);
-        }
-        mlodvk__dispatch_indirect(ctx, MLODVK__CUT_FINISH, ctx->layouts[MLODVK__LAYOUT_CUT], c->sets[0], &push, sizeof push,
-                                  c->control.buffer, 32);
-        mlodvk__barrier(ctx);
-        res = mlodvk__submit(ctx, error);
-        mlodvk__abandon(ctx);
-        if (res != MLOD_OK) break;
-        c->info.submissions++;
-        first = 0;
-        entries = ctl->current;
-        evaluated += ctl->evaluated;
-        steps += ctl->steps;
-        c->info.rounds += ctl->rounds;
-        if (lazy) rounds_left -= ctl->rounds < rounds_left ? ctl->rounds : rounds_left;
-        if (ctl->overflow) {
-            res = mlodvk__cut_grow(ctx, c, entries, ctl->needed, error);
-            if (res != MLOD_OK) break;
-            continue; /* resume from the round that overflowed */
-        }
-        if (ctl->done || (lazy && rounds_left == 0)) break;
-        if (lazy && ctl->rounds == 0) break;
-    }
-    if (res != MLOD_OK) {
-        c->info.entries = 0; /* the next update starts from the root */
-        return res;
-    }
-    c->info.entries = entries;
-    c->info.evaluated = evaluated;
-    c->info.steps = steps;
-    c->info.device_bytes = c->list[0].size * 2 + c->status[0].size * 2 + c->acts.size + c->block_sums.size +
-                           c->control.size + c->offsets.size + c->views.size;
-    c->tree = t;
-    c->tree_generation = t->generation;
-    c->has_views = 1;
-    return mlodvk__ok(error);
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_cut_download(mlodvk_context *ctx, mlodvk_cut *c, mlod_error *error)
-{
-    mlodvk__download_range ranges[3];
-    uint32_t *status32, v, i;
-    mlod_result res;
-    if (!ctx || !c) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context and cut are needed");
-    if (!c->has_views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the cut has no successful update");
-    if (c->info.entries > c->host_capacity) {
-        uint32_t *nodes = (uint32_t *)mlodvk__alloc(&ctx->allocator, c->info.entries, sizeof(uint32_t));
-        uint8_t *status = (uint8_t *)mlodvk__alloc(&ctx->allocator, c->info.entries, 1);
-        if (!nodes || !status) {
-            mlodvk__free(&ctx->allocator, nodes);
-            mlodvk__free(&ctx->allocator, status);
-            return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for %u cut entries", c->info.entries);
-        }
-        mlodvk__free(&ctx->allocator, c->host_nodes);
-        mlodvk__free(&ctx->allocator, c->host_status);
-        c->host_nodes = nodes;
-        c->host_status = status;
-        c->host_capacity = c->info.entries;
-    }
-    {
-        /* one scratch block: entries (node, view) pairs, then the statuses */
-        uint32_t *pairs = (uint32_t *)mlodvk__alloc(&ctx->allocator, 3 * (size_t)c->info.entries + 1, sizeof(uint32_t));
-        if (!pairs) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for %u cut entries", c->info.entries);
-        status32 = pairs + 2 * (size_t)c->info.entries;
-        ranges[0].src = &c->list[0];
-        ranges[0].size = 8 * (VkDeviceSize)c->info.entries;
-        ranges[0].dst = pairs;
-        ranges[1].src = &c->status[0];
-        ranges[1].size = 4 * (VkDeviceSize)c->info.entries;
-        ranges[1].dst = status32;
-        ranges[2].src = &c->offsets;
-        ranges[2].size = 4 * ((VkDeviceSize)c->view_count + 1);
-        ranges[2].dst = c->host_offsets;
-        res = mlodvk__download(ctx, ranges, 3, error);
-        if (res == MLOD_OK)
-            for (i = 0; i < c->info.entries; i++) {
-                c->host_nodes[i] = pairs[2 * (size_t)i];
-                c->host_status[i] = (uint8_t)status32[i];
-            }
-        mlodvk__free(&ctx->allocator, pairs);
-        if (res != MLOD_OK) return res;
-    }
-    c->host_entries = c->info.entries;
-    for (v = 0; v < c->view_count; v++) {
-        mlod_cut_view *cv = &c->host_views[v];
-        uint32_t begin = c->host_offsets[v], end = c->host_offsets[v + 1];
-        memset(cv, 0, sizeof *cv);
-        if (begin > end || end > c->host_entries)
-            return mlodvk__fail(error, MLOD_ERROR_DEVICE, "view %u's offsets %u..%u are not in the list of %u", v, begin,
-                                end, c->host_entries);
-        cv->nodes = c->host_nodes + begin;
-        cv->status = c->host_status + begin;
-        cv->count = end - begin;
-        for (i = 0; i < cv->count; i++) switch (cv->status[i]) {
-            case MLOD_STATUS_DRAWN: cv->drawn++; break;
-            case MLOD_STATUS_CULLED: cv->culled++; break;
-            case MLOD_STATUS_OVERSIZE: cv->oversize++; break;
-            default: cv->coarse++; break;
-            }
-    }
-    return mlodvk__ok(error);
-}
-
-MANYLODS_VK_DEF mlod_cut_view mlodvk_cut_get(const mlodvk_cut *c, uint32_t view)
-{
-    mlod_cut_view empty;
-    if (c && view < c->view_count) return c->host_views[view];
-    memset(&empty, 0, sizeof empty);
-    return empty;
-}
-
-MANYLODS_VK_DEF mlodvk_cut_info mlodvk_cut_get_info(const mlodvk_cut *c)
-{
-    mlodvk_cut_info none;
-    if (c) return c->info;
-    memset(&none, 0, sizeof none);
-    return none;
-}
-
-MANYLODS_VK_DEF mlodvk_cut_buffers mlodvk_cut_get_buffers(const mlodvk_cut *c)
-{
-    mlodvk_cut_buffers b;
-    memset(&b, 0, sizeof b);
-    if (!c) return b;
-    b.list = c->list[0].buffer;
-    b.status = c->status[0].buffer;
-    b.offsets = c->offsets.buffer;
-    b.views = c->views.buffer;
-    b.entries = c->info.entries;
-    return b;
-}
-
-/* ------------------------------------------------------------ splat ---- */
-
-MANYLODS_VK_DEF void mlodvk_atlas_destroy(mlodvk_context *ctx, mlodvk_atlas *a)
-{
-    if (!ctx || !a) return;
-    mlodvk__buffer_destroy(ctx, &a->keys);
-    mlodvk__buffer_destroy(ctx, &a->depth);
-    mlodvk__buffer_destroy(ctx, &a->normal);
-    mlodvk__buffer_destroy(ctx, &a->color);
-    mlodvk__buffer_destroy(ctx, &a->tiles);
-    if (a->pool) ctx->vk.DestroyDescriptorPool(ctx->device, a->pool, ctx->vk_allocator);
-    mlodvk__free(&ctx->allocator, a->host_tiles);
-    mlodvk__free(&ctx->allocator, a);
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_atlas_create(mlodvk_context *ctx, const mlod_atlas *layout, mlodvk_atlas **out,
-                                                mlod_error *error)
-{
-    mlodvk_atlas *a;
-    mlod_result res;
-    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    uint64_t pixels;
-    if (out) *out = NULL;
-    if (!ctx || !layout || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, layout and out are needed");
-    pixels = (uint64_t)layout->width * layout->height;
-    if (pixels == 0 || pixels >= (uint64_t)1 << 32)
-        return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %ux%u pixels: 1 to 2^32 - 1 are supported", layout->width,
-                            layout->height);
-    a = (mlodvk_atlas *)mlodvk__alloc(&ctx->allocator, 1, sizeof *a);
-    if (!a) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device atlas");
-    memset(a, 0, sizeof *a);
-    a->width = layout->width;
-    a->height = layout->height;
-    a->view_count = layout->view_count;
-    a->channels = layout->channels;
-    a->disc_scale = layout->disc_scale == 0.0f ? 1.0f : layout->disc_scale;
-    a->host_tiles = (uint32_t *)mlodvk__alloc(&ctx->allocator, 4 * (size_t)layout->view_count, sizeof(uint32_t));
-    if (!a->host_tiles) {
-        mlodvk_atlas_destroy(ctx, a);
-        return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the tiles of %u views", layout->view_count);
-    }
-    memcpy(a->host_tiles, layout->tiles, 4 * sizeof(uint32_t) * (size_t)layout->view_count);
-    res = mlodvk__buffer_create(ctx, 8 * pixels, usage, 0, &a->keys, error);
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * pixels, usage, 0, &a->depth, error);
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, layout->normal ? 12 * pixels : 16, usage, 0, &a->normal, error);
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, layout->color ? 12 * pixels : 16, usage, 0, &a->color, error);
-    if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 16 * (VkDeviceSize)layout->view_count, usage, 0, &a->tiles, error);
-    if (res == MLOD_OK) res = mlodvk__upload(ctx, &a->tiles, layout->tiles, 16 * (VkDeviceSize)layout->view_count, error);
-    if (res == MLOD_OK) res = mlodvk__pool(ctx, 1, MLODVK__SPLAT_BINDINGS, &a->pool, error);
-    if (res == MLOD_OK) res = mlodvk__sets(ctx, a->pool, ctx->set_layouts[MLODVK__LAYOUT_SPLAT], 1, &a->set, error);
-    if (res != MLOD_OK) {
-        mlodvk_atlas_destroy(ctx, a);
-        return res;
-    }
-    a->channels = (layout->normal ? 1u : 0u) | (layout->color ? 2u : 0u);
-    *out = a;
-    return mlodvk__ok(error);
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, const mlodvk_tree *t,
-                                         const mlodvk_cut *c, mlod_error *error)
-{
-    mlodvk__splat_push push;
-    VkBuffer b[MLODVK__SPLAT_BINDINGS];
-    mlod_result res;
-    uint32_t v;
-    if (!ctx || !a || !t || !c) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, atlas, tree and cut are needed");
-    if (!c->has_views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the cut has no successful update");
-    if (c->tree != t || c->tree_generation != t->generation)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the cut was last updated with another tree");
-    if (c->view_count != a->view_count)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the cut has %u views, the atlas %u", c->view_count, a->view_count);
-    if ((a->channels & 1u) && !t->has_cones)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has normals and the tree no cones");
-    if ((a->channels & 2u) && !t->has_colors)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the tree none");
-    for (v = 0; v < c->view_count; v++) { /* as mlod_splat: the views' tiles are the atlas's */
-        const double *d = (const double *)c->views.mapped + (size_t)v * MLODVK__VIEW_DOUBLES;
-        const uint32_t *tile = a->host_tiles + 4 * (size_t)v;
-        if (d[13] != (double)tile[2] || d[14] != (double)tile[3])
-            return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "view %u has a %ux%u tile, the atlas was made for %ux%u", v,
-                                (uint32_t)d[13], (uint32_t)d[14], tile[2], tile[3]);
-    }
-    b[0] = t->spheres.buffer;
-    b[1] = t->cones.buffer;
-    b[2] = c->views.buffer;
-    b[3] = c->list[0].buffer;
-    b[4] = c->status[0].buffer;
-    b[5] = t->colors.buffer;
-    b[6] = a->tiles.buffer;
-    b[7] = a->keys.buffer;
-    b[8] = a->depth.buffer;
-    b[9] = a->normal.buffer;
-    b[10] = a->color.buffer;
-    b[11] = c->control.buffer;
-    mlodvk__write_set(ctx, a->set, b, MLODVK__SPLAT_BINDINGS);
-    memset(&push, 0, sizeof push);
-    push.atlas_width = a->width;
-    push.pixel_count = a->width * a->height;
-    push.has_cones = t->has_cones;
-    push.want_normal = (a->channels & 1u) != 0;
-    push.want_color = (a->channels & 2u) != 0;
-    push.max_groups_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
-    push.disc_scale = a->disc_scale;
-    res = mlodvk__begin(ctx, error);
-    if (res == MLOD_OK) {
-        mlodvk__barrier(ctx);
-        mlodvk__dispatch(ctx, MLODVK__SPLAT_CLEAR, ctx->layouts[MLODVK__LAYOUT_SPLAT], a->set, &push, sizeof push, push.pixel_count);
-        mlodvk__barrier(ctx);
-        /* cut_finish's arguments cover the cut's entries */
-        mlodvk__dispatch_indirect(ctx, MLODVK__SPLAT_DRAW, ctx->layouts[MLODVK__LAYOUT_SPLAT], a->set, &push, sizeof push,
-                                  c->control.buffer, 32);
-        mlodvk__barrier(ctx);
-        mlodvk__dispatch(ctx, MLODVK__SPLAT_RESOLVE, ctx->layouts[MLODVK__LAYOUT_SPLAT], a->set, &push, sizeof push, push.pixel_count);
-        mlodvk__barrier(ctx);
-        res = mlodvk__submit(ctx, error);
-    }
-    mlodvk__abandon(ctx);
-    return res == MLOD_OK ? mlodvk__ok(error) : res;
-}
-
-MANYLODS_VK_DEF mlod_result mlodvk_atlas_download(mlodvk_context *ctx, const mlodvk_atlas *a, mlod_atlas *atlas,
-                                                  mlod_error *error)
-{
-    mlodvk__download_range ranges[3];
-    int n = 0;
-    uint64_t pixels;
-    mlod_result res;
-    if (!ctx || !a || !atlas) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device atlas and atlas are needed");
-    if (atlas->width != a->width || atlas->height != a->height || atlas->view_count != a->view_count)
-        return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas is %ux%u for %u views, the device atlas %ux%u for %u",
-                            atlas->width, atlas->height, atlas->view_count, a->width, a->height, a->view_count);
-    pixels = (uint64_t)a->width * a->height;
-    ranges[n].src = &a->depth;
-    ranges[n].size = 4 * pixels;
-    ranges[n++].dst = atlas->depth;
-    if (atlas->normal && (a->channels & 1u)) {
-        ranges[n].src = &a->normal;
-        ranges[n].size = 12 * pixels;
-        ranges[n++].dst = atlas->normal;
-    }
-    if (atlas->color && (a->channels & 2u)) {
-        ranges[n].src = &a->color;
-        ranges[n].size = 12 * pixels;
-        ranges[n++].dst = atlas->color;
-    }
-    res = mlodvk__download(ctx, ranges, n, error);
-    return res == MLOD_OK ? mlodvk__ok(error) : res;
-}
-
-MANYLODS_VK_DEF mlodvk_atlas_buffers mlodvk_atlas_get_buffers(const mlodvk_atlas *a)
-{
-    mlodvk_atlas_buffers b;
-    memset(&b, 0, sizeof b);
-    if (!a) return b;
-    b.depth = a->depth.buffer;
-    b.normal = (a->channels & 1u) ? a->normal.buffer : VK_NULL_HANDLE;
-    b.color = (a->channels & 2u) ? a->color.buffer : VK_NULL_HANDLE;
-    b.width = a->width;
-    b.height = a->height;
-    return b;
+static const uint32_t *mlodvk__spirv(int pipeline, size_t *bytes)
+{
+    static const struct {
+        const uint32_t *words;
+        size_t bytes;
+    } code[MLODVK__PIPELINES] = {{mlodvk__spv_cut_init, sizeof mlodvk__spv_cut_init},
+                                 {mlodvk__spv_cut_step, sizeof mlodvk__spv_cut_step},
+                                 {mlodvk__spv_cut_scan, sizeof mlodvk__spv_cut_scan},
+                                 {mlodvk__spv_cut_write, sizeof mlodvk__spv_cut_write},
+                                 {mlodvk__spv_cut_finish, sizeof mlodvk__spv_cut_finish},
+                                 {mlodvk__spv_splat_clear, sizeof mlodvk__spv_splat_clear},
+                                 {mlodvk__spv_splat_draw, sizeof mlodvk__spv_splat_draw},
+                                 {mlodvk__spv_splat_resolve, sizeof mlodvk__spv_splat_resolve},
+                                 {mlodvk__spv_refit_check, sizeof mlodvk__spv_refit_check},
+                                 {mlodvk__spv_refit_leaves, sizeof mlodvk__spv_refit_leaves},
+                                 {mlodvk__spv_refit_merge, sizeof mlodvk__spv_refit_merge}};
+    *bytes = code[pipeline].bytes;
+    return code[pipeline].words;
 }
-
 #endif /* MANYLODS_VK_IMPLEMENTATION_DONE */
 #endif /* MANYLODS_VK_IMPLEMENTATION */
 
