@@ -384,12 +384,201 @@ MANYLODS_VK_DEF mlodvk_atlas_buffers mlodvk_atlas_get_buffers(const mlodvk_atlas
 #include <string.h>
 
 
-#define MLODVK__GROUP 256u
-#define MLODVK__VIEW_DOUBLES 64u
-#define MLODVK__CONTROL_BYTES 104u
-#define MLODVK__CUT_BINDINGS 11u
-#define MLODVK__SPLAT_BINDINGS 12u
-#define MLODVK__REFIT_BINDINGS 11u
+/* The interface with the shaders: shaders/interface.h, copied here by
+   `make shaders` (tests/check_shaders.sh fails when the copy is stale). */
+typedef uint32_t mlodvk__uvec4[4];
+/* BEGIN INTERFACE (shaders/interface.h, make shaders) */
+/* shaders/interface.h - the binary interface between manylods_vk.h and its
+   compute shaders, written once in the subset of C99 and GLSL that both
+   read: the layout of a view in the views buffer, the kind and status
+   codes, the binding of every buffer, the members of every push-constant
+   block and of the cut's control block.  The shaders' layout files include
+   it; shaders/embed.sh copies it into manylods_vk.h (between its INTERFACE
+   markers), whose C side checks every size that crosses to the device
+   (tests/check_shaders.sh fails when the copy differs).
+
+   The member lists are X-macros: MEMBER(type, name) for one member,
+   ARRAY(type, name, count) for an array, in std430 order.  The types are
+   MLOD_IF_U32, MLOD_IF_UVEC4 (uint / uvec4 in GLSL, uint32_t / four of
+   them in C), float, double and uint64_t.  Defined by the includer: in C,
+   mlodvk__uvec4 (uint32_t[4]) before this file. */
+#ifndef MLOD_IF_INTERFACE_H
+#define MLOD_IF_INTERFACE_H
+
+#if defined(VULKAN) || defined(GL_SPIRV) /* GLSL for SPIR-V (glslangValidator -V or -G) */
+#define MLOD_IF_U32 uint
+#define MLOD_IF_UVEC4 uvec4
+#else
+#define MLOD_IF_U32 uint32_t
+#define MLOD_IF_UVEC4 mlodvk__uvec4
+#endif
+
+/* One view in the views buffer: MLOD_IF_VIEW_STRIDE doubles holding the
+   fields of mlod_view_frame (manylods.h), at these offsets. */
+#define MLOD_IF_VIEW_STRIDE 64
+#define MLOD_IF_V_EYE 0         /* 3 */
+#define MLOD_IF_V_RIGHT 3       /* 3 */
+#define MLOD_IF_V_UP 6          /* 3 */
+#define MLOD_IF_V_FORWARD 9     /* 3 */
+#define MLOD_IF_V_SCALE 12
+#define MLOD_IF_V_WIDTH 13
+#define MLOD_IF_V_HEIGHT 14
+#define MLOD_IF_V_SCALE_X 15
+#define MLOD_IF_V_SCALE_Y 16
+#define MLOD_IF_V_KIND 17
+#define MLOD_IF_V_PLANE_COUNT 18
+#define MLOD_IF_V_BACKFACES 19
+#define MLOD_IF_V_PLANES 20     /* 6 planes of 5: n, k, l */
+#define MLOD_IF_V_HALVES 50     /* 2 half-spaces of 5 */
+#define MLOD_IF_V_END 60        /* the rest of the stride is zero */
+
+/* mlod_view_kind and the statuses of a cut entry (MLOD_STATUS_*; 0: not
+   yet classified). */
+#define MLOD_IF_KIND_PERSPECTIVE 0
+#define MLOD_IF_KIND_PARABOLOID 1
+#define MLOD_IF_KIND_DUAL_PARABOLOID 2
+#define MLOD_IF_KIND_ORTHOGRAPHIC 3
+#define MLOD_IF_STATUS_PENDING 0u
+#define MLOD_IF_STATUS_DRAWN 1u
+#define MLOD_IF_STATUS_CULLED 2u
+#define MLOD_IF_STATUS_OVERSIZE 3u
+#define MLOD_IF_STATUS_COARSE 4u
+
+/* Threads per workgroup of every shader. */
+#define MLOD_IF_GROUP 256u
+
+/* The cut's descriptor set (shaders/cut_layout.glsl). */
+#define MLOD_IF_CUT_SPHERES 0
+#define MLOD_IF_CUT_CONES 1
+#define MLOD_IF_CUT_VIEWS 2
+#define MLOD_IF_CUT_LIST_IN 3
+#define MLOD_IF_CUT_LIST_OUT 4
+#define MLOD_IF_CUT_STATUS_IN 5
+#define MLOD_IF_CUT_STATUS_OUT 6
+#define MLOD_IF_CUT_ACTS 7
+#define MLOD_IF_CUT_BLOCK_SUMS 8
+#define MLOD_IF_CUT_CONTROL 9
+#define MLOD_IF_CUT_VIEW_OFFSETS 10
+#define MLOD_IF_CUT_BINDINGS 11
+
+/* The splat's descriptor set (shaders/splat_layout.glsl). */
+#define MLOD_IF_SPLAT_SPHERES 0
+#define MLOD_IF_SPLAT_CONES 1
+#define MLOD_IF_SPLAT_VIEWS 2
+#define MLOD_IF_SPLAT_LIST 3
+#define MLOD_IF_SPLAT_STATUS 4
+#define MLOD_IF_SPLAT_COLORS 5
+#define MLOD_IF_SPLAT_TILES 6
+#define MLOD_IF_SPLAT_KEYS 7
+#define MLOD_IF_SPLAT_DEPTH 8
+#define MLOD_IF_SPLAT_NORMAL 9
+#define MLOD_IF_SPLAT_COLOR 10
+#define MLOD_IF_SPLAT_CONTROL 11
+#define MLOD_IF_SPLAT_BINDINGS 12
+
+/* The refit's descriptor set (shaders/refit_layout.glsl). */
+#define MLOD_IF_REFIT_SPHERES 0
+#define MLOD_IF_REFIT_CONES 1
+#define MLOD_IF_REFIT_COLORS 2
+#define MLOD_IF_REFIT_LEAF_SOURCES 3
+#define MLOD_IF_REFIT_BARYCENTRICS 4
+#define MLOD_IF_REFIT_TRIANGLE_AREAS 5
+#define MLOD_IF_REFIT_INDICES 6
+#define MLOD_IF_REFIT_POSITIONS 7
+#define MLOD_IF_REFIT_NORMALS 8
+#define MLOD_IF_REFIT_VERTEX_COLORS 9
+#define MLOD_IF_REFIT_FINDINGS 10
+#define MLOD_IF_REFIT_BINDINGS 11
+
+/* The cut's control block (std430): indirect dispatch arguments (a slot
+   per round parity, then cut_finish's), the entries each slot's round
+   reads, the splits and merges of the running round, whether the last
+   round needed more than capacity entries, converged, rounds that changed
+   the list, whether the current list is in buffer B, the entries the
+   overflowing round needed, the entries of the current list, padding, and
+   the criterion evaluations and the steps of the call. */
+#define MLOD_IF_CONTROL(MEMBER, ARRAY)                                                                                 \
+    ARRAY(MLOD_IF_UVEC4, args, 3)                                                                                      \
+    ARRAY(MLOD_IF_U32, count, 2)                                                                                       \
+    MEMBER(MLOD_IF_U32, changed)                                                                                       \
+    MEMBER(MLOD_IF_U32, overflow)                                                                                      \
+    MEMBER(MLOD_IF_U32, done)                                                                                          \
+    MEMBER(MLOD_IF_U32, rounds)                                                                                        \
+    MEMBER(MLOD_IF_U32, input_is_b)                                                                                    \
+    MEMBER(MLOD_IF_U32, needed)                                                                                        \
+    MEMBER(MLOD_IF_U32, current)                                                                                       \
+    MEMBER(MLOD_IF_U32, pad)                                                                                           \
+    MEMBER(uint64_t, evaluated)                                                                                        \
+    MEMBER(uint64_t, steps)
+#define MLOD_IF_CONTROL_BYTES 104
+
+/* The cut shaders' push constants: epsilon (pixels), the tree's leaves,
+   the views, whether the tree has cones, whether the input's statuses are
+   current (not a call's first round), whether to look for sibling pairs
+   to merge, the round parity (args[slot], count[slot]), the entries the
+   output list holds, the device's maxComputeWorkGroupCount[0]. */
+#define MLOD_IF_CUT_PUSH(MEMBER)                                                                                       \
+    MEMBER(float, epsilon)                                                                                             \
+    MEMBER(MLOD_IF_U32, leaf_count)                                                                                    \
+    MEMBER(MLOD_IF_U32, view_count)                                                                                    \
+    MEMBER(MLOD_IF_U32, has_cones)                                                                                     \
+    MEMBER(MLOD_IF_U32, trust)                                                                                         \
+    MEMBER(MLOD_IF_U32, merge)                                                                                         \
+    MEMBER(MLOD_IF_U32, slot)                                                                                          \
+    MEMBER(MLOD_IF_U32, capacity)                                                                                      \
+    MEMBER(MLOD_IF_U32, max_groups_x)
+#define MLOD_IF_CUT_PUSH_BYTES 36
+
+/* The splat shaders' push constants: the atlas's width and pixels, whether
+   the tree has cones, whether the atlas has normals and colours, the
+   device's maxComputeWorkGroupCount[0], the drawn radius over the image
+   radius (in (0, 1]; below 1, no pixel-holding-the-centre fallback). */
+#define MLOD_IF_SPLAT_PUSH(MEMBER)                                                                                     \
+    MEMBER(MLOD_IF_U32, atlas_width)                                                                                   \
+    MEMBER(MLOD_IF_U32, pixel_count)                                                                                   \
+    MEMBER(MLOD_IF_U32, has_cones)                                                                                     \
+    MEMBER(MLOD_IF_U32, want_normal)                                                                                   \
+    MEMBER(MLOD_IF_U32, want_color)                                                                                    \
+    MEMBER(MLOD_IF_U32, max_groups_x)                                                                                  \
+    MEMBER(float, disc_scale)
+#define MLOD_IF_SPLAT_PUSH_BYTES 28
+
+/* The refit shaders' push constants: the tree's area_unit and
+   radius_scale, its leaves, the items of this dispatch (vertices for the
+   check, leaves, or the nodes of one depth), the depth's first node (merge)
+   or the triangles (check), the floats between consecutive vertices'
+   positions, normals (0: none) and colours (0: none), whether the tree has
+   cones and colours, the device's maxComputeWorkGroupCount[0]. */
+#define MLOD_IF_REFIT_PUSH(MEMBER)                                                                                     \
+    MEMBER(double, area_unit)                                                                                          \
+    MEMBER(float, radius_scale)                                                                                        \
+    MEMBER(MLOD_IF_U32, leaf_count)                                                                                    \
+    MEMBER(MLOD_IF_U32, count)                                                                                         \
+    MEMBER(MLOD_IF_U32, first)                                                                                         \
+    MEMBER(MLOD_IF_U32, position_stride)                                                                               \
+    MEMBER(MLOD_IF_U32, normal_stride)                                                                                 \
+    MEMBER(MLOD_IF_U32, color_stride)                                                                                  \
+    MEMBER(MLOD_IF_U32, has_cones)                                                                                     \
+    MEMBER(MLOD_IF_U32, has_colors)                                                                                    \
+    MEMBER(MLOD_IF_U32, max_groups_x)
+#define MLOD_IF_REFIT_PUSH_BYTES 48
+
+/* The refit check's findings: flags (1 a non-finite position, 2 a position
+   beyond 1e36, 4 a non-finite normal, 8 a non-finite colour), the first
+   vertex flagged (atomicMin), the largest growth of a triangle's area (a
+   positive double, its bits ordered as a uint64). */
+#define MLOD_IF_FINDINGS(MEMBER)                                                                                       \
+    MEMBER(MLOD_IF_U32, flags)                                                                                         \
+    MEMBER(MLOD_IF_U32, first_vertex)                                                                                  \
+    MEMBER(uint64_t, growth_bits)
+#define MLOD_IF_FINDINGS_BYTES 16
+
+/* Spelling a member list out as declarations, in either language. */
+#define MLOD_IF_DECLARE(type, name) type name;
+#define MLOD_IF_DECLARE_ARRAY(type, name, count) type name[count];
+
+#endif
+/* END INTERFACE */
 
 enum { MLODVK__CUT_INIT, MLODVK__CUT_STEP, MLODVK__CUT_SCAN, MLODVK__CUT_WRITE, MLODVK__CUT_FINISH,
        MLODVK__SPLAT_CLEAR, MLODVK__SPLAT_DRAW, MLODVK__SPLAT_RESOLVE, MLODVK__REFIT_CHECK, MLODVK__REFIT_LEAVES,
@@ -401,36 +590,35 @@ enum { MLODVK__LAYOUT_CUT, MLODVK__LAYOUT_SPLAT, MLODVK__LAYOUT_REFIT, MLODVK__L
    the words `make shaders` generates from shaders/. */
 static const uint32_t *mlodvk__spirv(int pipeline, size_t *bytes);
 
-/* The control block of shaders/cut_layout.glsl (std430). */
+/* The blocks shared with the shaders, from interface.h's member lists;
+   their std430 sizes are checked at compile time. */
 typedef struct mlodvk__control {
-    uint32_t args[3][4];
-    uint32_t count[2];
-    uint32_t changed, overflow, done, rounds, input_is_b, needed, current, pad;
-    uint64_t evaluated, steps;
+    MLOD_IF_CONTROL(MLOD_IF_DECLARE, MLOD_IF_DECLARE_ARRAY)
 } mlodvk__control;
-
 typedef struct mlodvk__cut_push {
-    float epsilon;
-    uint32_t leaf_count, view_count, has_cones, trust, merge, slot, capacity, max_groups_x;
+    MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE)
 } mlodvk__cut_push;
-
 typedef struct mlodvk__splat_push {
-    uint32_t atlas_width, pixel_count, has_cones, want_normal, want_color, max_groups_x;
-    float disc_scale;
+    MLOD_IF_SPLAT_PUSH(MLOD_IF_DECLARE)
 } mlodvk__splat_push;
-
-/* shaders/refit_layout.glsl's push constants (48 bytes) and findings. */
 typedef struct mlodvk__refit_push {
-    double area_unit;
-    float radius_scale;
-    uint32_t leaf_count, count, first, position_stride, normal_stride, color_stride, has_cones, has_colors,
-        max_groups_x;
+    MLOD_IF_REFIT_PUSH(MLOD_IF_DECLARE)
 } mlodvk__refit_push;
-
 typedef struct mlodvk__findings {
-    uint32_t flags, first_vertex;
-    uint64_t growth_bits;
+    MLOD_IF_FINDINGS(MLOD_IF_DECLARE)
 } mlodvk__findings;
+#define MLODVK__STATIC_CHECK(name, condition) typedef char mlodvk__check_##name[(condition) ? 1 : -1]
+MLODVK__STATIC_CHECK(control, sizeof(mlodvk__control) == MLOD_IF_CONTROL_BYTES);
+MLODVK__STATIC_CHECK(cut_push, sizeof(mlodvk__cut_push) == MLOD_IF_CUT_PUSH_BYTES);
+MLODVK__STATIC_CHECK(splat_push, sizeof(mlodvk__splat_push) == MLOD_IF_SPLAT_PUSH_BYTES);
+MLODVK__STATIC_CHECK(refit_push, sizeof(mlodvk__refit_push) == MLOD_IF_REFIT_PUSH_BYTES);
+MLODVK__STATIC_CHECK(findings, sizeof(mlodvk__findings) == MLOD_IF_FINDINGS_BYTES);
+MLODVK__STATIC_CHECK(view_frame, MLOD_IF_V_END <= MLOD_IF_VIEW_STRIDE && MLOD_IF_V_HALVES + 10 == MLOD_IF_V_END);
+MLODVK__STATIC_CHECK(kinds, MLOD_IF_KIND_PERSPECTIVE == MLOD_VIEW_PERSPECTIVE && MLOD_IF_KIND_PARABOLOID == MLOD_VIEW_PARABOLOID &&
+                         MLOD_IF_KIND_DUAL_PARABOLOID == MLOD_VIEW_DUAL_PARABOLOID &&
+                         MLOD_IF_KIND_ORTHOGRAPHIC == MLOD_VIEW_ORTHOGRAPHIC);
+MLODVK__STATIC_CHECK(statuses, MLOD_IF_STATUS_DRAWN == MLOD_STATUS_DRAWN && MLOD_IF_STATUS_CULLED == MLOD_STATUS_CULLED &&
+                            MLOD_IF_STATUS_OVERSIZE == MLOD_STATUS_OVERSIZE && MLOD_IF_STATUS_COARSE == MLOD_STATUS_COARSE);
 
 typedef struct mlodvk__buffer {
     VkBuffer buffer;
@@ -694,7 +882,7 @@ static void mlodvk__abandon(mlodvk_context *ctx)
 /* Work groups for n items, as (x, y) within the device's limits. */
 static void mlodvk__groups(const mlodvk_context *ctx, uint32_t n, uint32_t *x, uint32_t *y)
 {
-    uint32_t groups = (uint32_t)(((uint64_t)n + MLODVK__GROUP - 1) / MLODVK__GROUP);
+    uint32_t groups = (uint32_t)(((uint64_t)n + MLOD_IF_GROUP - 1) / MLOD_IF_GROUP);
     uint32_t max_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
     if (groups == 0) {
         *x = 0;
@@ -1055,8 +1243,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_context_create(const mlodvk_context_desc *des
         MLODVK__LAYOUT_CUT,   MLODVK__LAYOUT_CUT,   MLODVK__LAYOUT_CUT,   MLODVK__LAYOUT_CUT,
         MLODVK__LAYOUT_CUT,   MLODVK__LAYOUT_SPLAT, MLODVK__LAYOUT_SPLAT, MLODVK__LAYOUT_SPLAT,
         MLODVK__LAYOUT_REFIT, MLODVK__LAYOUT_REFIT, MLODVK__LAYOUT_REFIT};
-    static const uint32_t bindings[MLODVK__LAYOUTS] = {MLODVK__CUT_BINDINGS, MLODVK__SPLAT_BINDINGS,
-                                                       MLODVK__REFIT_BINDINGS};
+    static const uint32_t bindings[MLODVK__LAYOUTS] = {MLOD_IF_CUT_BINDINGS, MLOD_IF_SPLAT_BINDINGS,
+                                                       MLOD_IF_REFIT_BINDINGS};
     static const uint32_t push_bytes[MLODVK__LAYOUTS] = {sizeof(mlodvk__cut_push), sizeof(mlodvk__splat_push),
                                                          sizeof(mlodvk__refit_push)};
     mlod_allocator a;
@@ -1494,7 +1682,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_tree_upload_refit(mlodvk_context *ctx, mlodvk
         res = mlodvk__upload(ctx, &t->triangle_areas, tree->triangle_areas, 8 * (VkDeviceSize)tree->triangle_count, error);
     if (res == MLOD_OK) res = mlodvk__upload(ctx, &t->indices, indices, 4 * (VkDeviceSize)index_count, error);
     if (res == MLOD_OK && !t->pool) {
-        res = mlodvk__pool(ctx, 1, MLODVK__REFIT_BINDINGS, &t->pool, error);
+        res = mlodvk__pool(ctx, 1, MLOD_IF_REFIT_BINDINGS, &t->pool, error);
         if (res == MLOD_OK) res = mlodvk__sets(ctx, t->pool, ctx->set_layouts[MLODVK__LAYOUT_REFIT], 1, &t->set, error);
     }
     if (res != MLOD_OK) return res;
@@ -1515,14 +1703,14 @@ static int mlodvk__aligned(const mlodvk_context *ctx, VkDeviceSize offset)
 MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *t, const mlodvk_mesh_buffers *mesh,
                                               mlod_error *error)
 {
-    VkDescriptorBufferInfo info[MLODVK__REFIT_BINDINGS];
-    VkWriteDescriptorSet write[MLODVK__REFIT_BINDINGS];
+    VkDescriptorBufferInfo info[MLOD_IF_REFIT_BINDINGS];
+    VkWriteDescriptorSet write[MLOD_IF_REFIT_BINDINGS];
     mlodvk__refit_push push;
     mlodvk__findings *found;
     mlod_result res;
     uint32_t i, depth, items;
-    VkBuffer buffers[MLODVK__REFIT_BINDINGS];
-    VkDeviceSize offsets[MLODVK__REFIT_BINDINGS];
+    VkBuffer buffers[MLOD_IF_REFIT_BINDINGS];
+    VkDeviceSize offsets[MLOD_IF_REFIT_BINDINGS];
     if (!ctx || !t || !mesh) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, device tree and mesh are needed");
     if (!t->refit_ready) return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "call mlodvk_tree_upload_refit first");
     if (!mesh->positions) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "mesh positions are VK_NULL_HANDLE");
@@ -1536,22 +1724,22 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *
         return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT,
                             "buffer offsets must be multiples of minStorageBufferOffsetAlignment (%llu)",
                             (unsigned long long)ctx->properties.limits.minStorageBufferOffsetAlignment);
-    buffers[0] = t->spheres.buffer;
-    buffers[1] = t->cones.buffer;
-    buffers[2] = t->colors.buffer;
-    buffers[3] = t->leaf_sources.buffer;
-    buffers[4] = t->barycentrics.buffer;
-    buffers[5] = t->triangle_areas.buffer;
-    buffers[6] = t->indices.buffer;
-    buffers[7] = mesh->positions;
-    buffers[8] = mesh->normals ? mesh->normals : t->findings.buffer; /* unread without normals */
-    buffers[9] = mesh->colors && t->has_colors ? mesh->colors : t->findings.buffer;
-    buffers[10] = t->findings.buffer;
+    buffers[MLOD_IF_REFIT_SPHERES] = t->spheres.buffer;
+    buffers[MLOD_IF_REFIT_CONES] = t->cones.buffer;
+    buffers[MLOD_IF_REFIT_COLORS] = t->colors.buffer;
+    buffers[MLOD_IF_REFIT_LEAF_SOURCES] = t->leaf_sources.buffer;
+    buffers[MLOD_IF_REFIT_BARYCENTRICS] = t->barycentrics.buffer;
+    buffers[MLOD_IF_REFIT_TRIANGLE_AREAS] = t->triangle_areas.buffer;
+    buffers[MLOD_IF_REFIT_INDICES] = t->indices.buffer;
+    buffers[MLOD_IF_REFIT_POSITIONS] = mesh->positions;
+    buffers[MLOD_IF_REFIT_NORMALS] = mesh->normals ? mesh->normals : t->findings.buffer; /* unread without normals */
+    buffers[MLOD_IF_REFIT_VERTEX_COLORS] = mesh->colors && t->has_colors ? mesh->colors : t->findings.buffer;
+    buffers[MLOD_IF_REFIT_FINDINGS] = t->findings.buffer;
     memset(offsets, 0, sizeof offsets);
-    offsets[7] = mesh->position_offset;
-    offsets[8] = mesh->normals ? mesh->normal_offset : 0;
-    offsets[9] = mesh->colors && t->has_colors ? mesh->color_offset : 0;
-    for (i = 0; i < MLODVK__REFIT_BINDINGS; i++) {
+    offsets[MLOD_IF_REFIT_POSITIONS] = mesh->position_offset;
+    offsets[MLOD_IF_REFIT_NORMALS] = mesh->normals ? mesh->normal_offset : 0;
+    offsets[MLOD_IF_REFIT_VERTEX_COLORS] = mesh->colors && t->has_colors ? mesh->color_offset : 0;
+    for (i = 0; i < MLOD_IF_REFIT_BINDINGS; i++) {
         info[i].buffer = buffers[i];
         info[i].offset = offsets[i];
         info[i].range = VK_WHOLE_SIZE;
@@ -1563,7 +1751,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *
         write[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         write[i].pBufferInfo = &info[i];
     }
-    ctx->vk.UpdateDescriptorSets(ctx->device, MLODVK__REFIT_BINDINGS, write, 0, NULL);
+    ctx->vk.UpdateDescriptorSets(ctx->device, MLOD_IF_REFIT_BINDINGS, write, 0, NULL);
     memset(&push, 0, sizeof push);
     push.area_unit = t->area_unit;
     push.radius_scale = t->radius_scale;
@@ -1739,7 +1927,7 @@ static mlod_result mlodvk__cut_lists(mlodvk_context *ctx, mlodvk_cut *c, uint32_
     }
     if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)capacity, usage, 0, &c->acts, error);
     if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, 4 * ((VkDeviceSize)capacity / MLODVK__GROUP + 2), usage, 0, &c->block_sums, error);
+        res = mlodvk__buffer_create(ctx, 4 * ((VkDeviceSize)capacity / MLOD_IF_GROUP + 2), usage, 0, &c->block_sums, error);
     if (res == MLOD_OK) c->capacity = capacity;
     return res;
 }
@@ -1750,19 +1938,19 @@ static void mlodvk__cut_sets(mlodvk_context *ctx, mlodvk_cut *c, const mlodvk_tr
 {
     int s;
     for (s = 0; s < 2; s++) {
-        VkBuffer b[MLODVK__CUT_BINDINGS];
-        b[0] = t->spheres.buffer;
-        b[1] = t->cones.buffer;
-        b[2] = c->views.buffer;
-        b[3] = c->list[s].buffer;
-        b[4] = c->list[1 - s].buffer;
-        b[5] = c->status[s].buffer;
-        b[6] = c->status[1 - s].buffer;
-        b[7] = c->acts.buffer;
-        b[8] = c->block_sums.buffer;
-        b[9] = c->control.buffer;
-        b[10] = c->offsets.buffer;
-        mlodvk__write_set(ctx, c->sets[s], b, MLODVK__CUT_BINDINGS);
+        VkBuffer b[MLOD_IF_CUT_BINDINGS];
+        b[MLOD_IF_CUT_SPHERES] = t->spheres.buffer;
+        b[MLOD_IF_CUT_CONES] = t->cones.buffer;
+        b[MLOD_IF_CUT_VIEWS] = c->views.buffer;
+        b[MLOD_IF_CUT_LIST_IN] = c->list[s].buffer;
+        b[MLOD_IF_CUT_LIST_OUT] = c->list[1 - s].buffer;
+        b[MLOD_IF_CUT_STATUS_IN] = c->status[s].buffer;
+        b[MLOD_IF_CUT_STATUS_OUT] = c->status[1 - s].buffer;
+        b[MLOD_IF_CUT_ACTS] = c->acts.buffer;
+        b[MLOD_IF_CUT_BLOCK_SUMS] = c->block_sums.buffer;
+        b[MLOD_IF_CUT_CONTROL] = c->control.buffer;
+        b[MLOD_IF_CUT_VIEW_OFFSETS] = c->offsets.buffer;
+        mlodvk__write_set(ctx, c->sets[s], b, MLOD_IF_CUT_BINDINGS);
     }
 }
 
@@ -1779,7 +1967,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view
     if (!ctx || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context and out are needed");
     if (view_count == 0) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count must be >= 1");
     if (capacity < view_count) capacity = view_count;
-    if (capacity > 0x7fffffffu || (uint64_t)view_count * MLODVK__VIEW_DOUBLES * 8 > (uint64_t)1 << 40)
+    if (capacity > 0x7fffffffu || (uint64_t)view_count * MLOD_IF_VIEW_STRIDE * 8 > (uint64_t)1 << 40)
         return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "%u views need more list entries than a uint32_t counts", view_count);
     c = (mlodvk_cut *)mlodvk__alloc(&ctx->allocator, 1, sizeof *c);
     if (!c) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device cut");
@@ -1787,12 +1975,12 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view
     c->view_count = view_count;
     res = mlodvk__cut_lists(ctx, c, (uint32_t)capacity, error);
     if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, MLODVK__CONTROL_BYTES, usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, 1,
+        res = mlodvk__buffer_create(ctx, MLOD_IF_CONTROL_BYTES, usage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, 1,
                                     &c->control, error);
     if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 4 * ((VkDeviceSize)view_count + 1), usage, 0, &c->offsets, error);
     if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, 8 * MLODVK__VIEW_DOUBLES * (VkDeviceSize)view_count, usage, 1, &c->views, error);
-    if (res == MLOD_OK) res = mlodvk__pool(ctx, 2, 2 * MLODVK__CUT_BINDINGS, &c->pool, error);
+        res = mlodvk__buffer_create(ctx, 8 * MLOD_IF_VIEW_STRIDE * (VkDeviceSize)view_count, usage, 1, &c->views, error);
+    if (res == MLOD_OK) res = mlodvk__pool(ctx, 2, 2 * MLOD_IF_CUT_BINDINGS, &c->pool, error);
     if (res == MLOD_OK) res = mlodvk__sets(ctx, c->pool, ctx->set_layouts[MLODVK__LAYOUT_CUT], 2, c->sets, error);
     if (res == MLOD_OK) {
         c->host_views = (mlod_cut_view *)mlodvk__alloc(&ctx->allocator, view_count, sizeof(mlod_cut_view));
@@ -1878,29 +2066,29 @@ static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, m
     for (v = 0; v < c->view_count; v++) {
         mlod_view_frame f;
         mlod_error detail;
-        double *d = out + (size_t)v * MLODVK__VIEW_DOUBLES;
+        double *d = out + (size_t)v * MLOD_IF_VIEW_STRIDE;
         int k, j;
         mlod_result res = mlod_view_frame_of(&views[v], &f, &detail);
         if (res != MLOD_OK) return mlodvk__fail(error, res, "view %u: %.160s", v, detail.message);
-        memset(d, 0, 8 * MLODVK__VIEW_DOUBLES);
+        memset(d, 0, 8 * MLOD_IF_VIEW_STRIDE);
         for (k = 0; k < 3; k++) {
-            d[0 + k] = f.eye[k];
-            d[3 + k] = f.right[k];
-            d[6 + k] = f.up[k];
-            d[9 + k] = f.forward[k];
+            d[MLOD_IF_V_EYE + k] = f.eye[k];
+            d[MLOD_IF_V_RIGHT + k] = f.right[k];
+            d[MLOD_IF_V_UP + k] = f.up[k];
+            d[MLOD_IF_V_FORWARD + k] = f.forward[k];
         }
-        d[12] = f.scale;
-        d[13] = f.width;
-        d[14] = f.height;
-        d[15] = f.scale_x;
-        d[16] = f.scale_y;
-        d[17] = f.kind;
-        d[18] = f.plane_count;
-        d[19] = f.cull_backfaces;
+        d[MLOD_IF_V_SCALE] = f.scale;
+        d[MLOD_IF_V_WIDTH] = f.width;
+        d[MLOD_IF_V_HEIGHT] = f.height;
+        d[MLOD_IF_V_SCALE_X] = f.scale_x;
+        d[MLOD_IF_V_SCALE_Y] = f.scale_y;
+        d[MLOD_IF_V_KIND] = f.kind;
+        d[MLOD_IF_V_PLANE_COUNT] = f.plane_count;
+        d[MLOD_IF_V_BACKFACES] = f.cull_backfaces;
         for (j = 0; j < 6; j++)
-            for (k = 0; k < 5; k++) d[20 + 5 * j + k] = f.planes[j][k];
+            for (k = 0; k < 5; k++) d[MLOD_IF_V_PLANES + 5 * j + k] = f.planes[j][k];
         for (j = 0; j < 2; j++)
-            for (k = 0; k < 5; k++) d[50 + 5 * j + k] = f.halves[j][k];
+            for (k = 0; k < 5; k++) d[MLOD_IF_V_HALVES + 5 * j + k] = f.halves[j][k];
     }
     return MLOD_OK;
 }
@@ -2158,7 +2346,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_atlas_create(mlodvk_context *ctx, const mlod_
     if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, layout->color ? 12 * pixels : 16, usage, 0, &a->color, error);
     if (res == MLOD_OK) res = mlodvk__buffer_create(ctx, 16 * (VkDeviceSize)layout->view_count, usage, 0, &a->tiles, error);
     if (res == MLOD_OK) res = mlodvk__upload(ctx, &a->tiles, layout->tiles, 16 * (VkDeviceSize)layout->view_count, error);
-    if (res == MLOD_OK) res = mlodvk__pool(ctx, 1, MLODVK__SPLAT_BINDINGS, &a->pool, error);
+    if (res == MLOD_OK) res = mlodvk__pool(ctx, 1, MLOD_IF_SPLAT_BINDINGS, &a->pool, error);
     if (res == MLOD_OK) res = mlodvk__sets(ctx, a->pool, ctx->set_layouts[MLODVK__LAYOUT_SPLAT], 1, &a->set, error);
     if (res != MLOD_OK) {
         mlodvk_atlas_destroy(ctx, a);
@@ -2173,7 +2361,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, c
                                          const mlodvk_cut *c, mlod_error *error)
 {
     mlodvk__splat_push push;
-    VkBuffer b[MLODVK__SPLAT_BINDINGS];
+    VkBuffer b[MLOD_IF_SPLAT_BINDINGS];
     mlod_result res;
     uint32_t v;
     if (!ctx || !a || !t || !c) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context, atlas, tree and cut are needed");
@@ -2187,25 +2375,25 @@ MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, c
     if ((a->channels & 2u) && !t->has_colors)
         return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the tree none");
     for (v = 0; v < c->view_count; v++) { /* as mlod_splat: the views' tiles are the atlas's */
-        const double *d = (const double *)c->views.mapped + (size_t)v * MLODVK__VIEW_DOUBLES;
+        const double *d = (const double *)c->views.mapped + (size_t)v * MLOD_IF_VIEW_STRIDE;
         const uint32_t *tile = a->host_tiles + 4 * (size_t)v;
-        if (d[13] != (double)tile[2] || d[14] != (double)tile[3])
+        if (d[MLOD_IF_V_WIDTH] != (double)tile[2] || d[MLOD_IF_V_HEIGHT] != (double)tile[3])
             return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "view %u has a %ux%u tile, the atlas was made for %ux%u", v,
-                                (uint32_t)d[13], (uint32_t)d[14], tile[2], tile[3]);
+                                (uint32_t)d[MLOD_IF_V_WIDTH], (uint32_t)d[MLOD_IF_V_HEIGHT], tile[2], tile[3]);
     }
-    b[0] = t->spheres.buffer;
-    b[1] = t->cones.buffer;
-    b[2] = c->views.buffer;
-    b[3] = c->list[0].buffer;
-    b[4] = c->status[0].buffer;
-    b[5] = t->colors.buffer;
-    b[6] = a->tiles.buffer;
-    b[7] = a->keys.buffer;
-    b[8] = a->depth.buffer;
-    b[9] = a->normal.buffer;
-    b[10] = a->color.buffer;
-    b[11] = c->control.buffer;
-    mlodvk__write_set(ctx, a->set, b, MLODVK__SPLAT_BINDINGS);
+    b[MLOD_IF_SPLAT_SPHERES] = t->spheres.buffer;
+    b[MLOD_IF_SPLAT_CONES] = t->cones.buffer;
+    b[MLOD_IF_SPLAT_VIEWS] = c->views.buffer;
+    b[MLOD_IF_SPLAT_LIST] = c->list[0].buffer;
+    b[MLOD_IF_SPLAT_STATUS] = c->status[0].buffer;
+    b[MLOD_IF_SPLAT_COLORS] = t->colors.buffer;
+    b[MLOD_IF_SPLAT_TILES] = a->tiles.buffer;
+    b[MLOD_IF_SPLAT_KEYS] = a->keys.buffer;
+    b[MLOD_IF_SPLAT_DEPTH] = a->depth.buffer;
+    b[MLOD_IF_SPLAT_NORMAL] = a->normal.buffer;
+    b[MLOD_IF_SPLAT_COLOR] = a->color.buffer;
+    b[MLOD_IF_SPLAT_CONTROL] = c->control.buffer;
+    mlodvk__write_set(ctx, a->set, b, MLOD_IF_SPLAT_BINDINGS);
     memset(&push, 0, sizeof push);
     push.atlas_width = a->width;
     push.pixel_count = a->width * a->height;

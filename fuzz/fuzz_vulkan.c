@@ -261,7 +261,7 @@ static void download_views(mlodvk_cut *cut, uint32_t view_count, unsigned char *
     memset(&src, 0, sizeof src);
     src.buffer = mlodvk_cut_get_buffers(cut).views;
     range.src = &src;
-    range.size = 8 * MLODVK__VIEW_DOUBLES * (VkDeviceSize)view_count;
+    range.size = 8 * MLOD_IF_VIEW_STRIDE * (VkDeviceSize)view_count;
     range.dst = bytes;
     FZ_REQUIRE(mlodvk__download(fz_context, &range, 1, &e) == MLOD_OK, "downloading the views buffer: %s", e.message);
 }
@@ -293,7 +293,7 @@ typedef struct fz_run {
     mlodvk_atlas *vatlas;
     mlod_view kept[FZ_MAX_VIEWS]; /* the views of the last accepted update */
     int accepted, splat_kept;     /* an update was accepted; kept_atlas holds its splat */
-    unsigned char kept_views[8 * MLODVK__VIEW_DOUBLES * FZ_MAX_VIEWS], views_now[8 * MLODVK__VIEW_DOUBLES * FZ_MAX_VIEWS];
+    unsigned char kept_views[8 * MLOD_IF_VIEW_STRIDE * FZ_MAX_VIEWS], views_now[8 * MLOD_IF_VIEW_STRIDE * FZ_MAX_VIEWS];
 } fz_run;
 
 /* The CPU layout, the CPU atlases and the device atlas for these views'
@@ -320,7 +320,7 @@ static void run_update(fz_run *run, const mlod_view *views, const mlod_cut_param
     mlod_error ce, ge;
     mlod_result want, got;
     char what[64];
-    size_t view_bytes = 8 * MLODVK__VIEW_DOUBLES * (size_t)run->view_count;
+    size_t view_bytes = 8 * MLOD_IF_VIEW_STRIDE * (size_t)run->view_count;
     snprintf(what, sizeof what, "frame %d", frame);
     want = mlod_cut_update(run->cpu, fz_tree, views, params, &ce);
     got = mlodvk_cut_update(fz_context, run->gpu, fz_vtree, views, params, &ge);

@@ -12,44 +12,19 @@
 // The includer declares, before including this file:
 //   vec4 spheres[]  (x, y, z, r per node)   in a buffer named tree_spheres
 //   vec4 cones[]    (axis, half-angle)      in a buffer named tree_cones
-//   double views[]  (MLOD_VIEW_STRIDE doubles per view, laid out below)
+//   double views[]  (MLOD_IF_VIEW_STRIDE doubles per view: interface.h)
 // and a macro MLOD_HAS_CONES (a bool expression) - or defines MLOD_NO_VIEWS
 // (the refit shaders) and gets only the functions that need no view.
 
 #define MLOD_PI 3.14159265358979323846LF
 
-// One view in views[]: the fields of mlod_view_frame (manylods.h).
-#define MLOD_VIEW_STRIDE 64
-#define V_EYE 0
-#define V_RIGHT 3
-#define V_UP 6
-#define V_FORWARD 9
-#define V_SCALE 12
-#define V_WIDTH 13
-#define V_HEIGHT 14
-#define V_SCALE_X 15
-#define V_SCALE_Y 16
-#define V_KIND 17
-#define V_PLANE_COUNT 18
-#define V_BACKFACES 19
-#define V_PLANES 20 // 6 planes of 5: n, k, l
-#define V_HALVES 50 // 2 of 5
-
-#define KIND_PERSPECTIVE 0
-#define KIND_PARABOLOID 1
-#define KIND_DUAL_PARABOLOID 2
-#define KIND_ORTHOGRAPHIC 3
-
-#define STATUS_PENDING 0u
-#define STATUS_DRAWN 1u
-#define STATUS_CULLED 2u
-#define STATUS_OVERSIZE 3u
-#define STATUS_COARSE 4u
+// The view layout (MLOD_IF_V_*), kind and status codes come from
+// interface.h, which the layout files include first.
 
 #ifndef MLOD_NO_VIEWS
-double vd(uint view, uint field) { return views[view * MLOD_VIEW_STRIDE + field]; }
+double vd(uint view, uint field) { return views[view * MLOD_IF_VIEW_STRIDE + field]; }
 dvec3 vd3(uint view, uint field) { return dvec3(vd(view, field), vd(view, field + 1), vd(view, field + 2)); }
-int view_kind(uint view) { return int(vd(view, V_KIND)); }
+int view_kind(uint view) { return int(vd(view, MLOD_IF_V_KIND)); }
 
 #endif // MLOD_NO_VIEWS
 
@@ -370,8 +345,8 @@ bool backfacing(uint view, dvec3 x, double d2, double r, vec4 cone)
     double c0 = double(cone.x), c1 = double(cone.y), c2 = double(cone.z);
     if (!(double(cone.w) < 0.5LF * MLOD_PI)) return false;
     double sa, ca;
-    if (view_kind(view) == KIND_ORTHOGRAPHIC) {
-        dvec3 w = vd3(view, V_FORWARD);
+    if (view_kind(view) == MLOD_IF_KIND_ORTHOGRAPHIC) {
+        dvec3 w = vd3(view, MLOD_IF_V_FORWARD);
         precise double away = -(c0 * w.x + c1 * w.y + c2 * w.z);
         if (!(away < 0.0LF)) return false;
         precise double len = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
@@ -407,40 +382,40 @@ double paraboloid_diameter(double r, double xw, double tangent)
 double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
 {
     culled = false;
-    uint planes = uint(vd(view, V_PLANE_COUNT));
+    uint planes = uint(vd(view, MLOD_IF_V_PLANE_COUNT));
     for (uint k = 0u; k < planes; k++)
-        if (plane_outside(view * MLOD_VIEW_STRIDE + V_PLANES + 5u * k, sphere)) {
+        if (plane_outside(view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_PLANES + 5u * k, sphere)) {
             culled = true;
             return 0.0LF;
         }
-    dvec3 e = vd3(view, V_EYE);
+    dvec3 e = vd3(view, MLOD_IF_V_EYE);
     precise dvec3 x = dvec3(double(sphere.x) - e.x, double(sphere.y) - e.y, double(sphere.z) - e.z);
     precise double d2 = dot3(x, x);
     precise double r = double(sphere.w);
     precise double r2 = r * r;
-    if (use_cone && vd(view, V_BACKFACES) != 0.0LF && backfacing(view, x, d2, r, cone)) {
+    if (use_cone && vd(view, MLOD_IF_V_BACKFACES) != 0.0LF && backfacing(view, x, d2, r, cone)) {
         culled = true;
         return 0.0LF;
     }
-    precise double xw = dot3(x, vd3(view, V_FORWARD));
-    double scale = vd(view, V_SCALE);
+    precise double xw = dot3(x, vd3(view, MLOD_IF_V_FORWARD));
+    double scale = vd(view, MLOD_IF_V_SCALE);
     int kind = view_kind(view);
-    if (kind == KIND_PERSPECTIVE) {
+    if (kind == MLOD_IF_KIND_PERSPECTIVE) {
         precise double t2 = d2 - r2;
         if (xw <= r) return 1.0LF / 0.0LF;
         precise double c = scale * 2.0LF * r * sqrt(t2 > 0.0LF ? t2 : 0.0LF) / ((xw - r) * (xw + r));
         return c;
     }
-    if (kind == KIND_PARABOLOID) {
+    if (kind == MLOD_IF_KIND_PARABOLOID) {
         if (d2 <= r2) return 1.0LF / 0.0LF;
         precise double c = scale * paraboloid_diameter(r, xw, sqrt(d2 - r2));
         return c;
     }
-    if (kind == KIND_DUAL_PARABOLOID) {
+    if (kind == MLOD_IF_KIND_DUAL_PARABOLOID) {
         if (d2 <= r2) return 1.0LF / 0.0LF;
         precise double tangent = sqrt(d2 - r2);
         precise double c = 0.0LF;
-        uint halves = view * MLOD_VIEW_STRIDE + V_HALVES;
+        uint halves = view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_HALVES;
         if (!plane_outside(halves, sphere)) c = paraboloid_diameter(r, xw, tangent);
         if (!plane_outside(halves + 5u, sphere)) {
             precise double back = paraboloid_diameter(r, -xw, tangent);
@@ -454,7 +429,7 @@ double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culle
 }
 
 // C twin: mlod__is_valid
-bool status_valid(uint s) { return s == STATUS_DRAWN || s == STATUS_CULLED; }
+bool status_valid(uint s) { return s == MLOD_IF_STATUS_DRAWN || s == MLOD_IF_STATUS_CULLED; }
 
 // C twin: mlod__classify
 uint classify(uint view, uint node, double epsilon, uint leaf_count)
@@ -462,9 +437,9 @@ uint classify(uint view, uint node, double epsilon, uint leaf_count)
     bool culled;
     vec4 cone = MLOD_HAS_CONES ? cones[node] : vec4(0.0);
     double c = evaluate(view, spheres[node], MLOD_HAS_CONES, cone, culled);
-    if (culled) return STATUS_CULLED;
-    if (c <= epsilon) return STATUS_DRAWN;
-    return node >= leaf_count - 1u ? STATUS_OVERSIZE : STATUS_COARSE;
+    if (culled) return MLOD_IF_STATUS_CULLED;
+    if (c <= epsilon) return MLOD_IF_STATUS_DRAWN;
+    return node >= leaf_count - 1u ? MLOD_IF_STATUS_OVERSIZE : MLOD_IF_STATUS_COARSE;
 }
 
 // ----------------------------------------------------------- image disc --
@@ -476,13 +451,13 @@ uint classify(uint view, uint node, double epsilon, uint leaf_count)
 bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 disc)
 {
     disc = dvec4(0.0LF);
-    dvec3 e = vd3(view, V_EYE), u = vd3(view, V_RIGHT), v = vd3(view, V_UP), w = vd3(view, V_FORWARD);
+    dvec3 e = vd3(view, MLOD_IF_V_EYE), u = vd3(view, MLOD_IF_V_RIGHT), v = vd3(view, MLOD_IF_V_UP), w = vd3(view, MLOD_IF_V_FORWARD);
     precise dvec3 x = dvec3(centre.x - e.x, centre.y - e.y, centre.z - e.z);
-    double scale = vd(view, V_SCALE), width = vd(view, V_WIDTH), height = vd(view, V_HEIGHT);
+    double scale = vd(view, MLOD_IF_V_SCALE), width = vd(view, MLOD_IF_V_WIDTH), height = vd(view, MLOD_IF_V_HEIGHT);
     int kind = view_kind(view);
-    if (kind == KIND_ORTHOGRAPHIC) {
-        precise double px = 0.5LF * width + vd(view, V_SCALE_X) * dot3(x, u);
-        precise double py = 0.5LF * height - vd(view, V_SCALE_Y) * dot3(x, v);
+    if (kind == MLOD_IF_KIND_ORTHOGRAPHIC) {
+        precise double px = 0.5LF * width + vd(view, MLOD_IF_V_SCALE_X) * dot3(x, u);
+        precise double py = 0.5LF * height - vd(view, MLOD_IF_V_SCALE_Y) * dot3(x, v);
         precise double radius = r * scale;
         disc = dvec4(px, py, radius, dot3(x, w));
         return true;
@@ -509,7 +484,7 @@ bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 di
     precise double s_lo = sin_t * cos_b - cos_t * sin_b;
     precise double c_lo = cos_t * cos_b + sin_t * sin_b;
     precise double hi, lo, px, py, depth;
-    if (kind == KIND_PERSPECTIVE) {
+    if (kind == MLOD_IF_KIND_PERSPECTIVE) {
         if (!(c_hi > 0.0LF)) return false;
         hi = s_hi / c_hi;
         lo = s_lo / c_lo;
@@ -517,7 +492,7 @@ bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 di
         py = 0.5LF * height - scale * 0.5LF * (hi + lo) * dir_y;
         depth = dot3(x, w);
     } else {
-        double tile_width = kind == KIND_DUAL_PARABOLOID ? 0.5LF * width : width;
+        double tile_width = kind == MLOD_IF_KIND_DUAL_PARABOLOID ? 0.5LF * width : width;
         if (!(1.0LF + c_hi > 0.0LF)) return false;
         hi = s_hi / (1.0LF + c_hi);
         lo = s_lo / (1.0LF + c_lo);

@@ -8,24 +8,25 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "cut_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
 
-shared uint sum_evaluated[GROUP];
+shared uint sum_evaluated[MLOD_IF_GROUP];
 
 void main()
 {
     uint n = ctl.current;
     bool in_b = ctl.input_is_b != 0u;
-    uint i = group_index() * GROUP + gl_LocalInvocationID.x;
+    uint i = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     uint evaluated = 0u;
     if (i < n) {
         uvec2 e = in_b ? list_out[i] : list_in[i];
         uint s = (in_b ? status_out[i] : status_in[i]) & 7u;
         uint previous_view = i == 0u ? 0xffffffffu : (in_b ? list_out[i - 1u].y : list_in[i - 1u].y);
-        if (s == STATUS_PENDING) {
+        if (s == MLOD_IF_STATUS_PENDING) {
             s = classify(e.y, e.x, double(pc.epsilon), pc.leaf_count);
             evaluated = 1u;
         }
@@ -36,7 +37,7 @@ void main()
     }
     sum_evaluated[gl_LocalInvocationID.x] = evaluated;
     barrier();
-    for (uint stride = GROUP / 2u; stride > 0u; stride >>= 1) {
+    for (uint stride = MLOD_IF_GROUP / 2u; stride > 0u; stride >>= 1) {
         if (gl_LocalInvocationID.x < stride) sum_evaluated[gl_LocalInvocationID.x] += sum_evaluated[gl_LocalInvocationID.x + stride];
         barrier();
     }

@@ -9,51 +9,25 @@
 // control block records where the current list lives, and cut_finish moves
 // it back to A: between calls the cut is list A, status A, ctl.current
 // entries, grouped by view in view order, each view's left to right.
-// Control block (std430, 104 bytes): args[3] at 0, count[2] at 48, changed
-// 56, overflow 60, done 64, rounds 68, input_is_b 72, needed 76, current 80,
-// evaluated 88, steps 96.
+// The bindings, the control block and the push constants: interface.h.
 
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
+#include "interface.h"
 
-#define GROUP 256u
+layout(std430, set = 0, binding = MLOD_IF_CUT_SPHERES) readonly buffer tree_spheres { vec4 spheres[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_CONES) readonly buffer tree_cones { vec4 cones[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_VIEWS) readonly buffer view_frames { double views[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_LIST_IN) buffer list_in_buffer { uvec2 list_in[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_LIST_OUT) buffer list_out_buffer { uvec2 list_out[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_STATUS_IN) buffer status_in_buffer { uint status_in[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_STATUS_OUT) buffer status_out_buffer { uint status_out[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_ACTS) buffer acts_buffer { uint acts[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_BLOCK_SUMS) buffer block_sums_buffer { uint block_sums[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_CONTROL) coherent buffer control_block { MLOD_IF_CONTROL(MLOD_IF_DECLARE, MLOD_IF_DECLARE_ARRAY) } ctl;
+layout(std430, set = 0, binding = MLOD_IF_CUT_VIEW_OFFSETS) buffer view_offsets_buffer { uint view_offsets[]; };
 
-layout(std430, set = 0, binding = 0) readonly buffer tree_spheres { vec4 spheres[]; };
-layout(std430, set = 0, binding = 1) readonly buffer tree_cones { vec4 cones[]; };
-layout(std430, set = 0, binding = 2) readonly buffer view_frames { double views[]; };
-layout(std430, set = 0, binding = 3) buffer list_in_buffer { uvec2 list_in[]; };
-layout(std430, set = 0, binding = 4) buffer list_out_buffer { uvec2 list_out[]; };
-layout(std430, set = 0, binding = 5) buffer status_in_buffer { uint status_in[]; };
-layout(std430, set = 0, binding = 6) buffer status_out_buffer { uint status_out[]; };
-layout(std430, set = 0, binding = 7) buffer acts_buffer { uint acts[]; };
-layout(std430, set = 0, binding = 8) buffer block_sums_buffer { uint block_sums[]; };
-layout(std430, set = 0, binding = 9) coherent buffer control_block {
-    uvec4 args[3];      // indirect dispatch arguments: a slot per round parity, then cut_finish's
-    uint count[2];      // entries of the list each slot's round reads
-    uint changed;       // splits and merges of the running round
-    uint overflow;      // the last round needed more than capacity entries
-    uint done;          // converged: no round changed anything
-    uint rounds;        // rounds that changed the list
-    uint input_is_b;    // the current list is in buffer B
-    uint needed;        // entries the overflowing round needed
-    uint current;       // entries of the current list
-    uint pad;
-    uint64_t evaluated; // criterion evaluations
-    uint64_t steps;     // splits and merges
-} ctl;
-layout(std430, set = 0, binding = 10) buffer view_offsets_buffer { uint view_offsets[]; };
-
-layout(push_constant) uniform push_block {
-    float epsilon;
-    uint leaf_count;
-    uint view_count;
-    uint has_cones;
-    uint trust;        // statuses of the input are current (not the first round of a call)
-    uint merge;        // look for sibling pairs to merge (incremental, lazy)
-    uint slot;         // round parity: args[slot], count[slot]
-    uint capacity;     // entries the output list holds
-    uint max_groups_x; // the device's maxComputeWorkGroupCount[0]
-} pc;
+layout(push_constant) uniform push_block { MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE) } pc;
 
 #define ACT_KEEP 0u
 #define ACT_SPLIT 1u

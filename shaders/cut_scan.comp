@@ -9,17 +9,18 @@
 // next round's dispatch arguments and count are armed.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "cut_layout.glsl"
 
-shared uint chunk_sum[GROUP];
+shared uint chunk_sum[MLOD_IF_GROUP];
 
 void main()
 {
     if (ctl.done != 0u || ctl.overflow != 0u) return; // the loop has ended
     uint n = ctl.count[pc.slot];
-    uint blocks = (n + GROUP - 1u) / GROUP;
-    uint per = (blocks + GROUP - 1u) / GROUP;
+    uint blocks = (n + MLOD_IF_GROUP - 1u) / MLOD_IF_GROUP;
+    uint per = (blocks + MLOD_IF_GROUP - 1u) / MLOD_IF_GROUP;
     uint t = gl_LocalInvocationID.x;
     uint begin = min(t * per, blocks), end = min(begin + per, blocks);
     uint s = 0u;
@@ -27,7 +28,7 @@ void main()
     chunk_sum[t] = s;
     barrier();
     // inclusive scan of the chunk sums (Hillis-Steele)
-    for (uint stride = 1u; stride < GROUP; stride <<= 1) {
+    for (uint stride = 1u; stride < MLOD_IF_GROUP; stride <<= 1) {
         uint add = t >= stride ? chunk_sum[t - stride] : 0u;
         barrier();
         chunk_sum[t] += add;
@@ -40,7 +41,7 @@ void main()
         running += v;
     }
     if (t == 0u) {
-        uint total = chunk_sum[GROUP - 1u];
+        uint total = chunk_sum[MLOD_IF_GROUP - 1u];
         uint next = pc.slot ^ 1u;
         ctl.current = n;
         if (ctl.changed == 0u) {
@@ -55,11 +56,11 @@ void main()
         } else {
             ctl.current = total;
             ctl.count[next] = total;
-            ctl.args[next] = dispatch_of((total + GROUP - 1u) / GROUP);
+            ctl.args[next] = dispatch_of((total + MLOD_IF_GROUP - 1u) / MLOD_IF_GROUP);
             ctl.input_is_b ^= 1u;
             ctl.rounds += 1u;
         }
         ctl.changed = 0u;
-        ctl.args[2] = dispatch_of((ctl.current + GROUP - 1u) / GROUP);
+        ctl.args[2] = dispatch_of((ctl.current + MLOD_IF_GROUP - 1u) / MLOD_IF_GROUP);
     }
 }

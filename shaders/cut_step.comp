@@ -10,32 +10,33 @@
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "cut_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
 
-shared uint sum_count[GROUP];
-shared uint sum_evaluated[GROUP];
-shared uint sum_steps[GROUP];
+shared uint sum_count[MLOD_IF_GROUP];
+shared uint sum_evaluated[MLOD_IF_GROUP];
+shared uint sum_steps[MLOD_IF_GROUP];
 
 void main()
 {
     uint n = ctl.count[pc.slot];
     uint group = group_index();
-    uint i = group * GROUP + gl_LocalInvocationID.x;
+    uint i = group * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     uint out_count = 0u, evaluated = 0u, steps = 0u;
     double epsilon = double(pc.epsilon);
     if (i < n) {
         uvec2 e = list_in[i];
         uint node = e.x, view = e.y, raw = status_in[i], s = raw & 7u, act;
-        if (s == STATUS_PENDING || pc.trust == 0u) {
+        if (s == MLOD_IF_STATUS_PENDING || pc.trust == 0u) {
             s = classify(view, node, epsilon, pc.leaf_count);
             evaluated++;
             raw = s;
         }
         act = (ACT_KEEP << 2) | 1u | (raw << 4);
-        if (s == STATUS_COARSE) {
+        if (s == MLOD_IF_STATUS_COARSE) {
             act = (ACT_SPLIT << 2) | 2u;
             steps++;
         } else if (pc.merge != 0u && status_valid(s) && node > 0u && (raw & 8u) == 0u) {
@@ -72,7 +73,7 @@ void main()
             sum_evaluated[0] += sum_evaluated[k];
             sum_steps[0] += sum_steps[k];
         }
-    if (gl_LocalInvocationID.x == 0u && group * GROUP < n) {
+    if (gl_LocalInvocationID.x == 0u && group * MLOD_IF_GROUP < n) {
         block_sums[group] = sum_count[0];
         if (sum_evaluated[0] != 0u) atomicAdd(ctl.evaluated, uint64_t(sum_evaluated[0]));
         if (sum_steps[0] != 0u) {

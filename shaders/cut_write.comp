@@ -6,17 +6,18 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "cut_layout.glsl"
 
-shared uint prefix[GROUP];
+shared uint prefix[MLOD_IF_GROUP];
 
 void main()
 {
     uint n = ctl.count[pc.slot];
     uint group = group_index();
     uint t = gl_LocalInvocationID.x;
-    uint i = group * GROUP + t;
+    uint i = group * MLOD_IF_GROUP + t;
     uint act = i < n ? acts[i] : 0u;
     // the entry's rank among the workgroup's outputs: within its subgroup,
     // plus the outputs of the subgroups before it

@@ -1,7 +1,8 @@
 #!/bin/sh
 # shaders/embed.sh - compile every compute shader of shaders/ to SPIR-V and
-# embed the words in manylods_vk.h between its GENERATED markers (what
-# `make shaders` runs).  Usage: shaders/embed.sh [header] (default
+# embed the words in manylods_vk.h between its GENERATED markers, and copy
+# shaders/interface.h between its INTERFACE markers (what `make shaders`
+# runs).  Usage: shaders/embed.sh [header] (default
 # manylods_vk.h, rewritten in place).  GLSLANG overrides the compiler;
 # the pinned one is Debian 12's glslang-tools (the version is recorded in
 # the block, and tests/test_vulkan.c compares it).
@@ -25,10 +26,18 @@ trap 'rm -rf "$tmp"' EXIT
     done
     echo "/* END GENERATED SPIR-V */"
 } >"$tmp/block"
-awk -v block="$tmp/block" '
+{
+    echo "/* BEGIN INTERFACE (shaders/interface.h, make shaders) */"
+    cat shaders/interface.h
+    echo "/* END INTERFACE */"
+} >"$tmp/interface"
+awk -v block="$tmp/block" -v interface="$tmp/interface" '
     /^\/\* BEGIN GENERATED SPIR-V/ { while ((getline line < block) > 0) print line; skip = 1; next }
     /^\/\* END GENERATED SPIR-V/ { skip = 0; next }
+    /^\/\* BEGIN INTERFACE/ { while ((getline line < interface) > 0) print line; skip = 1; next }
+    /^\/\* END INTERFACE/ { skip = 0; next }
     !skip { print }
 ' "$header" >"$tmp/header"
 if ! grep -q "BEGIN GENERATED SPIR-V" "$tmp/header"; then echo "embed.sh: no GENERATED markers in $header" >&2; exit 1; fi
+if ! grep -q "BEGIN INTERFACE" "$tmp/header"; then echo "embed.sh: no INTERFACE markers in $header" >&2; exit 1; fi
 cat "$tmp/header" >"$header"

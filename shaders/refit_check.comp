@@ -8,8 +8,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
 #define MLOD_NO_VIEWS
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "refit_layout.glsl"
 #include "common.glsl"
 #include "refit_mesh.glsl"
@@ -18,7 +19,7 @@ bool finite3(dvec3 v) { return !any(isinf(v)) && !any(isnan(v)); }
 
 void main()
 {
-    uint i = group_index() * GROUP + gl_LocalInvocationID.x;
+    uint i = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (i < pc.count) {
         uint flags = 0u;
         dvec3 p = vertex_attribute(0u, i);

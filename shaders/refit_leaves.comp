@@ -5,8 +5,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
 #define MLOD_NO_VIEWS
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "refit_layout.glsl"
 #include "common.glsl"
 #include "refit_mesh.glsl"
@@ -23,7 +24,7 @@ dvec3 interpolate(uint which, uint tri, double s, double t)
 
 void main()
 {
-    uint j = group_index() * GROUP + gl_LocalInvocationID.x;
+    uint j = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (j >= pc.count) return;
     uint node = pc.leaf_count - 1u + j, tri = leaf_sources[j];
     double s = double(barycentrics[j].x), t = double(barycentrics[j].y);

@@ -5,15 +5,16 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
 #define MLOD_NO_VIEWS
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "refit_layout.glsl"
 #include "common.glsl"
 #include "refit_mesh.glsl"
 
 void main()
 {
-    uint k = group_index() * GROUP + gl_LocalInvocationID.x;
+    uint k = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (k >= pc.count) return;
     uint i = pc.first + k, l = 2u * i + 1u, r = 2u * i + 2u;
     spheres[i] = sphere_enclose(spheres[l], spheres[r]);

@@ -8,7 +8,8 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "splat_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
@@ -61,21 +62,21 @@ void raster_disc(uint view, dvec4 disc, uint64_t entry, uint col_begin, uint col
 
 void main()
 {
-    uint i = group_index() * GROUP + gl_LocalInvocationID.x;
+    uint i = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (i >= ctl.current) return;
     uvec2 e = list[i];
-    if (status[i] == STATUS_CULLED) return;
+    if (status[i] == MLOD_IF_STATUS_CULLED) return;
     uint view = e.y, node = e.x, tile_w = tiles[4u * view + 2u];
     vec4 s = spheres[node];
     dvec3 c = dvec3(s.xyz);
     dvec4 disc;
-    if (view_kind(view) != KIND_DUAL_PARABOLOID) {
+    if (view_kind(view) != MLOD_IF_KIND_DUAL_PARABOLOID) {
         if (image_disc(view, c, double(s.w), 0u, disc)) raster_disc(view, disc, uint64_t(i), 0u, tile_w);
         return;
     }
     uint w = tile_w / 2u;
     for (uint half_index = 0u; half_index < 2u; half_index++) {
-        if (plane_outside(view * MLOD_VIEW_STRIDE + V_HALVES + 5u * half_index, s)) continue;
+        if (plane_outside(view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_HALVES + 5u * half_index, s)) continue;
         if (image_disc(view, c, double(s.w), half_index, disc))
             raster_disc(view, disc, uint64_t(i), half_index != 0u ? w : 0u, half_index != 0u ? tile_w : w);
     }

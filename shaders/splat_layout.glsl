@@ -8,36 +8,22 @@
 
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
+#include "interface.h"
 
-#define GROUP 256u
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_SPHERES) readonly buffer tree_spheres { vec4 spheres[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_CONES) readonly buffer tree_cones { vec4 cones[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_VIEWS) readonly buffer view_frames { double views[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_LIST) readonly buffer cut_list { uvec2 list[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_STATUS) readonly buffer cut_status { uint status[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_COLORS) readonly buffer tree_colors { float colors[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_TILES) readonly buffer atlas_tiles { uint tiles[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_KEYS) buffer atlas_keys { uint64_t keys[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_DEPTH) writeonly buffer atlas_depth { float depth_out[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_NORMAL) writeonly buffer atlas_normal { float normal_out[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_COLOR) writeonly buffer atlas_color { float color_out[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_CONTROL) readonly buffer control_block { MLOD_IF_CONTROL(MLOD_IF_DECLARE, MLOD_IF_DECLARE_ARRAY) } ctl;
 
-layout(std430, set = 0, binding = 0) readonly buffer tree_spheres { vec4 spheres[]; };
-layout(std430, set = 0, binding = 1) readonly buffer tree_cones { vec4 cones[]; };
-layout(std430, set = 0, binding = 2) readonly buffer view_frames { double views[]; };
-layout(std430, set = 0, binding = 3) readonly buffer cut_list { uvec2 list[]; };
-layout(std430, set = 0, binding = 4) readonly buffer cut_status { uint status[]; };
-layout(std430, set = 0, binding = 5) readonly buffer tree_colors { float colors[]; };
-layout(std430, set = 0, binding = 6) readonly buffer atlas_tiles { uint tiles[]; };
-layout(std430, set = 0, binding = 7) buffer atlas_keys { uint64_t keys[]; };
-layout(std430, set = 0, binding = 8) writeonly buffer atlas_depth { float depth_out[]; };
-layout(std430, set = 0, binding = 9) writeonly buffer atlas_normal { float normal_out[]; };
-layout(std430, set = 0, binding = 10) writeonly buffer atlas_color { float color_out[]; };
-layout(std430, set = 0, binding = 11) readonly buffer control_block {
-    uvec4 args[3];
-    uint count[2];
-    uint changed, overflow, done, rounds, input_is_b, needed, current, pad;
-    uint64_t evaluated, steps;
-} ctl;
-
-layout(push_constant) uniform push_block {
-    uint atlas_width;
-    uint pixel_count;
-    uint has_cones;
-    uint want_normal; // the atlas has normals (the tree has cones)
-    uint want_color;  // the atlas has colours (the tree has colours)
-    uint max_groups_x;
-    float disc_scale; // drawn radius / image radius, in (0, 1]; below 1, no pixel-holding-the-centre fallback
-} pc;
+layout(push_constant) uniform push_block { MLOD_IF_SPLAT_PUSH(MLOD_IF_DECLARE) } pc;
 
 uint group_index() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
 

@@ -4,12 +4,13 @@
 // normal (its cone's axis) and colour (0 where nothing was drawn).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
-layout(local_size_x = 256) in;
+#include "interface.h"
+layout(local_size_x = MLOD_IF_GROUP) in;
 #include "splat_layout.glsl"
 
 void main()
 {
-    uint p = group_index() * GROUP + gl_LocalInvocationID.x;
+    uint p = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (p >= pc.pixel_count) return;
     uint64_t key = keys[p];
     if (key == EMPTY_KEY) {

@@ -503,7 +503,7 @@ static void test_refit_parity(void)
 /* ------------------------------------------------------- refusals -- */
 
 /* The device views buffer of a cut (mlodvk_cut_get_buffers().views),
-   downloaded into bytes (8 * MLODVK__VIEW_DOUBLES per view). */
+   downloaded into bytes (8 * MLOD_IF_VIEW_STRIDE per view). */
 static int download_views(mlodvk_cut *cut, uint32_t view_count, unsigned char *bytes)
 {
     mlodvk__buffer src;
@@ -512,7 +512,7 @@ static int download_views(mlodvk_cut *cut, uint32_t view_count, unsigned char *b
     memset(&src, 0, sizeof src);
     src.buffer = mlodvk_cut_get_buffers(cut).views;
     range.src = &src;
-    range.size = 8 * MLODVK__VIEW_DOUBLES * (VkDeviceSize)view_count;
+    range.size = 8 * MLOD_IF_VIEW_STRIDE * (VkDeviceSize)view_count;
     range.dst = bytes;
     return mlodvk__download(context, &range, 1, &e) == MLOD_OK;
 }
@@ -559,7 +559,7 @@ static void test_refusals(void)
     mlod_cut_params p;
     mlod_error e;
     double c[3], R;
-    unsigned char views_before[8 * MLODVK__VIEW_DOUBLES * VIEWS], views_after[8 * MLODVK__VIEW_DOUBLES * VIEWS];
+    unsigned char views_before[8 * MLOD_IF_VIEW_STRIDE * VIEWS], views_after[8 * MLOD_IF_VIEW_STRIDE * VIEWS];
     int k, ready = 1;
     uint32_t v;
     if (!scene_uv_sphere(&s, 1.0f, 12, 24)) {

@@ -1,0 +1,190 @@
+/* shaders/interface.h - the binary interface between manylods_vk.h and its
+   compute shaders, written once in the subset of C99 and GLSL that both
+   read: the layout of a view in the views buffer, the kind and status
+   codes, the binding of every buffer, the members of every push-constant
+   block and of the cut's control block.  The shaders' layout files include
+   it; shaders/embed.sh copies it into manylods_vk.h (between its INTERFACE
+   markers), whose C side checks every size that crosses to the device
+   (tests/check_shaders.sh fails when the copy differs).
+
+   The member lists are X-macros: MEMBER(type, name) for one member,
+   ARRAY(type, name, count) for an array, in std430 order.  The types are
+   MLOD_IF_U32, MLOD_IF_UVEC4 (uint / uvec4 in GLSL, uint32_t / four of
+   them in C), float, double and uint64_t.  Defined by the includer: in C,
+   mlodvk__uvec4 (uint32_t[4]) before this file. */
+#ifndef MLOD_IF_INTERFACE_H
+#define MLOD_IF_INTERFACE_H
+
+#if defined(VULKAN) || defined(GL_SPIRV) /* GLSL for SPIR-V (glslangValidator -V or -G) */
+#define MLOD_IF_U32 uint
+#define MLOD_IF_UVEC4 uvec4
+#else
+#define MLOD_IF_U32 uint32_t
+#define MLOD_IF_UVEC4 mlodvk__uvec4
+#endif
+
+/* One view in the views buffer: MLOD_IF_VIEW_STRIDE doubles holding the
+   fields of mlod_view_frame (manylods.h), at these offsets. */
+#define MLOD_IF_VIEW_STRIDE 64
+#define MLOD_IF_V_EYE 0         /* 3 */
+#define MLOD_IF_V_RIGHT 3       /* 3 */
+#define MLOD_IF_V_UP 6          /* 3 */
+#define MLOD_IF_V_FORWARD 9     /* 3 */
+#define MLOD_IF_V_SCALE 12
+#define MLOD_IF_V_WIDTH 13
+#define MLOD_IF_V_HEIGHT 14
+#define MLOD_IF_V_SCALE_X 15
+#define MLOD_IF_V_SCALE_Y 16
+#define MLOD_IF_V_KIND 17
+#define MLOD_IF_V_PLANE_COUNT 18
+#define MLOD_IF_V_BACKFACES 19
+#define MLOD_IF_V_PLANES 20     /* 6 planes of 5: n, k, l */
+#define MLOD_IF_V_HALVES 50     /* 2 half-spaces of 5 */
+#define MLOD_IF_V_END 60        /* the rest of the stride is zero */
+
+/* mlod_view_kind and the statuses of a cut entry (MLOD_STATUS_*; 0: not
+   yet classified). */
+#define MLOD_IF_KIND_PERSPECTIVE 0
+#define MLOD_IF_KIND_PARABOLOID 1
+#define MLOD_IF_KIND_DUAL_PARABOLOID 2
+#define MLOD_IF_KIND_ORTHOGRAPHIC 3
+#define MLOD_IF_STATUS_PENDING 0u
+#define MLOD_IF_STATUS_DRAWN 1u
+#define MLOD_IF_STATUS_CULLED 2u
+#define MLOD_IF_STATUS_OVERSIZE 3u
+#define MLOD_IF_STATUS_COARSE 4u
+
+/* Threads per workgroup of every shader. */
+#define MLOD_IF_GROUP 256u
+
+/* The cut's descriptor set (shaders/cut_layout.glsl). */
+#define MLOD_IF_CUT_SPHERES 0
+#define MLOD_IF_CUT_CONES 1
+#define MLOD_IF_CUT_VIEWS 2
+#define MLOD_IF_CUT_LIST_IN 3
+#define MLOD_IF_CUT_LIST_OUT 4
+#define MLOD_IF_CUT_STATUS_IN 5
+#define MLOD_IF_CUT_STATUS_OUT 6
+#define MLOD_IF_CUT_ACTS 7
+#define MLOD_IF_CUT_BLOCK_SUMS 8
+#define MLOD_IF_CUT_CONTROL 9
+#define MLOD_IF_CUT_VIEW_OFFSETS 10
+#define MLOD_IF_CUT_BINDINGS 11
+
+/* The splat's descriptor set (shaders/splat_layout.glsl). */
+#define MLOD_IF_SPLAT_SPHERES 0
+#define MLOD_IF_SPLAT_CONES 1
+#define MLOD_IF_SPLAT_VIEWS 2
+#define MLOD_IF_SPLAT_LIST 3
+#define MLOD_IF_SPLAT_STATUS 4
+#define MLOD_IF_SPLAT_COLORS 5
+#define MLOD_IF_SPLAT_TILES 6
+#define MLOD_IF_SPLAT_KEYS 7
+#define MLOD_IF_SPLAT_DEPTH 8
+#define MLOD_IF_SPLAT_NORMAL 9
+#define MLOD_IF_SPLAT_COLOR 10
+#define MLOD_IF_SPLAT_CONTROL 11
+#define MLOD_IF_SPLAT_BINDINGS 12
+
+/* The refit's descriptor set (shaders/refit_layout.glsl). */
+#define MLOD_IF_REFIT_SPHERES 0
+#define MLOD_IF_REFIT_CONES 1
+#define MLOD_IF_REFIT_COLORS 2
+#define MLOD_IF_REFIT_LEAF_SOURCES 3
+#define MLOD_IF_REFIT_BARYCENTRICS 4
+#define MLOD_IF_REFIT_TRIANGLE_AREAS 5
+#define MLOD_IF_REFIT_INDICES 6
+#define MLOD_IF_REFIT_POSITIONS 7
+#define MLOD_IF_REFIT_NORMALS 8
+#define MLOD_IF_REFIT_VERTEX_COLORS 9
+#define MLOD_IF_REFIT_FINDINGS 10
+#define MLOD_IF_REFIT_BINDINGS 11
+
+/* The cut's control block (std430): indirect dispatch arguments (a slot
+   per round parity, then cut_finish's), the entries each slot's round
+   reads, the splits and merges of the running round, whether the last
+   round needed more than capacity entries, converged, rounds that changed
+   the list, whether the current list is in buffer B, the entries the
+   overflowing round needed, the entries of the current list, padding, and
+   the criterion evaluations and the steps of the call. */
+#define MLOD_IF_CONTROL(MEMBER, ARRAY)                                                                                 \
+    ARRAY(MLOD_IF_UVEC4, args, 3)                                                                                      \
+    ARRAY(MLOD_IF_U32, count, 2)                                                                                       \
+    MEMBER(MLOD_IF_U32, changed)                                                                                       \
+    MEMBER(MLOD_IF_U32, overflow)                                                                                      \
+    MEMBER(MLOD_IF_U32, done)                                                                                          \
+    MEMBER(MLOD_IF_U32, rounds)                                                                                        \
+    MEMBER(MLOD_IF_U32, input_is_b)                                                                                    \
+    MEMBER(MLOD_IF_U32, needed)                                                                                        \
+    MEMBER(MLOD_IF_U32, current)                                                                                       \
+    MEMBER(MLOD_IF_U32, pad)                                                                                           \
+    MEMBER(uint64_t, evaluated)                                                                                        \
+    MEMBER(uint64_t, steps)
+#define MLOD_IF_CONTROL_BYTES 104
+
+/* The cut shaders' push constants: epsilon (pixels), the tree's leaves,
+   the views, whether the tree has cones, whether the input's statuses are
+   current (not a call's first round), whether to look for sibling pairs
+   to merge, the round parity (args[slot], count[slot]), the entries the
+   output list holds, the device's maxComputeWorkGroupCount[0]. */
+#define MLOD_IF_CUT_PUSH(MEMBER)                                                                                       \
+    MEMBER(float, epsilon)                                                                                             \
+    MEMBER(MLOD_IF_U32, leaf_count)                                                                                    \
+    MEMBER(MLOD_IF_U32, view_count)                                                                                    \
+    MEMBER(MLOD_IF_U32, has_cones)                                                                                     \
+    MEMBER(MLOD_IF_U32, trust)                                                                                         \
+    MEMBER(MLOD_IF_U32, merge)                                                                                         \
+    MEMBER(MLOD_IF_U32, slot)                                                                                          \
+    MEMBER(MLOD_IF_U32, capacity)                                                                                      \
+    MEMBER(MLOD_IF_U32, max_groups_x)
+#define MLOD_IF_CUT_PUSH_BYTES 36
+
+/* The splat shaders' push constants: the atlas's width and pixels, whether
+   the tree has cones, whether the atlas has normals and colours, the
+   device's maxComputeWorkGroupCount[0], the drawn radius over the image
+   radius (in (0, 1]; below 1, no pixel-holding-the-centre fallback). */
+#define MLOD_IF_SPLAT_PUSH(MEMBER)                                                                                     \
+    MEMBER(MLOD_IF_U32, atlas_width)                                                                                   \
+    MEMBER(MLOD_IF_U32, pixel_count)                                                                                   \
+    MEMBER(MLOD_IF_U32, has_cones)                                                                                     \
+    MEMBER(MLOD_IF_U32, want_normal)                                                                                   \
+    MEMBER(MLOD_IF_U32, want_color)                                                                                    \
+    MEMBER(MLOD_IF_U32, max_groups_x)                                                                                  \
+    MEMBER(float, disc_scale)
+#define MLOD_IF_SPLAT_PUSH_BYTES 28
+
+/* The refit shaders' push constants: the tree's area_unit and
+   radius_scale, its leaves, the items of this dispatch (vertices for the
+   check, leaves, or the nodes of one depth), the depth's first node (merge)
+   or the triangles (check), the floats between consecutive vertices'
+   positions, normals (0: none) and colours (0: none), whether the tree has
+   cones and colours, the device's maxComputeWorkGroupCount[0]. */
+#define MLOD_IF_REFIT_PUSH(MEMBER)                                                                                     \
+    MEMBER(double, area_unit)                                                                                          \
+    MEMBER(float, radius_scale)                                                                                        \
+    MEMBER(MLOD_IF_U32, leaf_count)                                                                                    \
+    MEMBER(MLOD_IF_U32, count)                                                                                         \
+    MEMBER(MLOD_IF_U32, first)                                                                                         \
+    MEMBER(MLOD_IF_U32, position_stride)                                                                               \
+    MEMBER(MLOD_IF_U32, normal_stride)                                                                                 \
+    MEMBER(MLOD_IF_U32, color_stride)                                                                                  \
+    MEMBER(MLOD_IF_U32, has_cones)                                                                                     \
+    MEMBER(MLOD_IF_U32, has_colors)                                                                                    \
+    MEMBER(MLOD_IF_U32, max_groups_x)
+#define MLOD_IF_REFIT_PUSH_BYTES 48
+
+/* The refit check's findings: flags (1 a non-finite position, 2 a position
+   beyond 1e36, 4 a non-finite normal, 8 a non-finite colour), the first
+   vertex flagged (atomicMin), the largest growth of a triangle's area (a
+   positive double, its bits ordered as a uint64). */
+#define MLOD_IF_FINDINGS(MEMBER)                                                                                       \
+    MEMBER(MLOD_IF_U32, flags)                                                                                         \
+    MEMBER(MLOD_IF_U32, first_vertex)                                                                                  \
+    MEMBER(uint64_t, growth_bits)
+#define MLOD_IF_FINDINGS_BYTES 16
+
+/* Spelling a member list out as declarations, in either language. */
+#define MLOD_IF_DECLARE(type, name) type name;
+#define MLOD_IF_DECLARE_ARRAY(type, name, count) type name[count];
+
+#endif
