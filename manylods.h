@@ -560,13 +560,18 @@ MANYLODS_DEF mlod_result mlod_view_check(const mlod_view *view, mlod_error *erro
    of scale_x, scale_y, pixels per world unit along u and v).  A sphere
    (c, r) is culled when, for one of the plane_count planes (n, k, l),
    n.c + l r < k exactly; halves: a dual paraboloid's front (0) and back (1)
-   half-spaces in the same form. */
+   half-spaces in the same form.  Unused planes, halves and the reserved
+   tail are 0.  One representation serves the CPU's criterion and splat and
+   is the device's: 64 doubles, which manylods_vk.h uploads as they are
+   (kind, plane_count and cull_backfaces are small integers, stored as
+   doubles for that reason). */
 typedef struct mlod_view_frame {
     double eye[3], right[3], up[3], forward[3];
     double scale, width, height, scale_x, scale_y;
+    double kind, plane_count, cull_backfaces;
     double planes[6][5];
     double halves[2][5];
-    uint32_t kind, plane_count, cull_backfaces;
+    double reserved[4];
 } mlod_view_frame;
 
 /* Fill *frame from a view; MLOD_OK, or the error of mlod_view_check.
@@ -2541,28 +2546,25 @@ static int mlod__exact_sign(const double *terms, int count)
     return 0;
 }
 
-/* A half-space {x : n.x >= k}; l >= |n|. */
-typedef struct mlod__plane {
-    double n[3], k, l;
-} mlod__plane;
-
-static void mlod__plane_set(mlod__plane *p, const double *n, const double *point, double offset)
+/* A half-space {x : n.x >= k}, l >= |n}: five doubles n0 n1 n2 k l (a row
+   of mlod_view_frame.planes). */
+static void mlod__plane_set(double *p, const double *n, const double *point, double offset)
 {
     int j;
-    for (j = 0; j < 3; j++) p->n[j] = n[j];
-    p->k = mlod__dot3(n, point) + offset;
-    p->l = mlod__length3(n) * (1.0 + 1.0 / 1125899906842624.0);
+    for (j = 0; j < 3; j++) p[j] = n[j];
+    p[3] = mlod__dot3(n, point) + offset;
+    p[4] = mlod__length3(n) * (1.0 + 1.0 / 1125899906842624.0);
 }
 
 /* mlod__outside when rounding leaves the sign in doubt: the sign of
    n.c + l r - k from exact products and an exact sum. */
-static int mlod__outside_exact(const mlod__plane *p, const float *sphere)
+static int mlod__outside_exact(const double *p, const float *sphere)
 {
     double t[9];
     int j;
-    for (j = 0; j < 3; j++) mlod__two_product(p->n[j], sphere[j], &t[2 * j], &t[2 * j + 1]);
-    mlod__two_product(p->l, sphere[3], &t[6], &t[7]);
-    t[8] = -p->k;
+    for (j = 0; j < 3; j++) mlod__two_product(p[j], sphere[j], &t[2 * j], &t[2 * j + 1]);
+    mlod__two_product(p[4], sphere[3], &t[6], &t[7]);
+    t[8] = -p[3];
     return mlod__exact_sign(t, 9) < 0;
 }
 
@@ -2570,11 +2572,11 @@ static int mlod__outside_exact(const mlod__plane *p, const float *sphere)
    The rounded sum decides unless it lies within its error bound of 0 (the
    criterion's hot path: kept small enough to inline). */
 /* GLSL twin: plane_outside */
-static inline int mlod__outside(const mlod__plane *p, const float *sphere)
+static inline int mlod__outside(const double *p, const float *sphere)
 {
-    double t0 = p->n[0] * sphere[0], t1 = p->n[1] * sphere[1], t2 = p->n[2] * sphere[2], t3 = p->l * sphere[3];
-    double s = t0 + t1 + t2 + t3 - p->k;
-    double bound = (fabs(t0) + fabs(t1) + fabs(t2) + fabs(t3) + fabs(p->k)) * (1.0 / 281474976710656.0);
+    double t0 = p[0] * sphere[0], t1 = p[1] * sphere[1], t2 = p[2] * sphere[2], t3 = p[4] * sphere[3];
+    double s = t0 + t1 + t2 + t3 - p[3];
+    double bound = (fabs(t0) + fabs(t1) + fabs(t2) + fabs(t3) + fabs(p[3])) * (1.0 / 281474976710656.0);
     if (s < -bound) return 1;
     if (s > bound) return 0;
     return mlod__outside_exact(p, sphere);
@@ -2582,16 +2584,14 @@ static inline int mlod__outside(const mlod__plane *p, const float *sphere)
 
 /* --------------------------------------------------------------- views -- */
 
+/* A prepared view: its frame (the one representation, see mlod_view_frame)
+   and, for the hot paths, its kind, plane count and back-face flag as
+   integers. */
 typedef struct mlod__pview {
+    mlod_view_frame f;
     mlod_view_kind kind;
     int backfaces;
-    double e[3], u[3], v[3], w[3];
-    double scale;           /* pixels per unit of the projection */
-    double width, height;   /* tile */
-    double sx, sy;          /* orthographic: pixels per world unit along u, v */
     int plane_count;
-    mlod__plane planes[6];  /* culling half-spaces */
-    mlod__plane halves[2];  /* dual paraboloid: front and back half-spaces */
 } mlod__pview;
 
 static int mlod__finite_positive(float x) { return isfinite(x) && x > 0.0f; }
@@ -2627,7 +2627,7 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown view flags 0x%x", view->flags);
     memset(pv, 0, sizeof *pv);
     for (k = 0; k < 3; k++) {
-        pv->e[k] = view->position[k];
+        pv->f.eye[k] = view->position[k];
         f[k] = view->forward[k];
         up[k] = view->up[k];
     }
@@ -2636,18 +2636,18 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
     if (!(len_f > 0.0) || !(len_up > 0.0))
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "the view's forward or up vector has zero length");
     for (k = 0; k < 3; k++) {
-        pv->w[k] = f[k] / len_f;
+        pv->f.forward[k] = f[k] / len_f;
         up[k] /= len_up;
     }
-    mlod__cross3(pv->w, up, pv->u);
-    right_len = mlod__length3(pv->u);
+    mlod__cross3(pv->f.forward, up, pv->f.right);
+    right_len = mlod__length3(pv->f.right);
     if (!(right_len > 1e-6))
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "the view's forward and up vectors are parallel");
-    for (k = 0; k < 3; k++) pv->u[k] /= right_len;
-    mlod__cross3(pv->u, pv->w, pv->v);
+    for (k = 0; k < 3; k++) pv->f.right[k] /= right_len;
+    mlod__cross3(pv->f.right, pv->f.forward, pv->f.up);
     pv->kind = view->kind;
-    pv->width = view->width;
-    pv->height = view->height;
+    pv->f.width = view->width;
+    pv->f.height = view->height;
     pv->backfaces = (view->flags & MLOD_VIEW_CULL_BACKFACES) != 0;
     switch (view->kind) {
     case MLOD_VIEW_PERSPECTIVE: {
@@ -2661,33 +2661,33 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
             return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "far_plane %g must be > near_plane %g", view->far_plane,
                               view->near_plane);
         ty = tan(0.5 * view->fov_y);
-        pv->scale = 0.5 * view->height / ty;
-        tx = 0.5 * view->width / pv->scale;
-        mlod__plane_set(&pv->planes[pv->plane_count++], pv->w, pv->e, view->near_plane);
+        pv->f.scale = 0.5 * view->height / ty;
+        tx = 0.5 * view->width / pv->f.scale;
+        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.forward, pv->f.eye, view->near_plane);
         if (isfinite(view->far_plane)) {
-            for (k = 0; k < 3; k++) n[k] = -pv->w[k];
-            mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, -(double)view->far_plane);
+            for (k = 0; k < 3; k++) n[k] = -pv->f.forward[k];
+            mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, -(double)view->far_plane);
         }
-        for (k = 0; k < 3; k++) n[k] = tx * pv->w[k] - pv->u[k];
-        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, 0.0);
-        for (k = 0; k < 3; k++) n[k] = tx * pv->w[k] + pv->u[k];
-        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, 0.0);
-        for (k = 0; k < 3; k++) n[k] = ty * pv->w[k] - pv->v[k];
-        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, 0.0);
-        for (k = 0; k < 3; k++) n[k] = ty * pv->w[k] + pv->v[k];
-        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, 0.0);
+        for (k = 0; k < 3; k++) n[k] = tx * pv->f.forward[k] - pv->f.right[k];
+        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, 0.0);
+        for (k = 0; k < 3; k++) n[k] = tx * pv->f.forward[k] + pv->f.right[k];
+        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, 0.0);
+        for (k = 0; k < 3; k++) n[k] = ty * pv->f.forward[k] - pv->f.up[k];
+        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, 0.0);
+        for (k = 0; k < 3; k++) n[k] = ty * pv->f.forward[k] + pv->f.up[k];
+        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, 0.0);
         break;
     }
     case MLOD_VIEW_PARABOLOID:
-        pv->scale = 0.5 * (view->width > view->height ? view->width : view->height);
-        mlod__plane_set(&pv->planes[pv->plane_count++], pv->w, pv->e, 0.0);
+        pv->f.scale = 0.5 * (view->width > view->height ? view->width : view->height);
+        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.forward, pv->f.eye, 0.0);
         break;
     case MLOD_VIEW_DUAL_PARABOLOID: {
         double half = 0.5 * view->width, n[3];
-        pv->scale = 0.5 * (half > view->height ? half : (double)view->height);
-        mlod__plane_set(&pv->halves[0], pv->w, pv->e, 0.0);
-        for (k = 0; k < 3; k++) n[k] = -pv->w[k];
-        mlod__plane_set(&pv->halves[1], n, pv->e, 0.0);
+        pv->f.scale = 0.5 * (half > view->height ? half : (double)view->height);
+        mlod__plane_set(pv->f.halves[0], pv->f.forward, pv->f.eye, 0.0);
+        for (k = 0; k < 3; k++) n[k] = -pv->f.forward[k];
+        mlod__plane_set(pv->f.halves[1], n, pv->f.eye, 0.0);
         break;
     }
     case MLOD_VIEW_ORTHOGRAPHIC: {
@@ -2700,23 +2700,26 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
                               view->near_plane, view->far_plane);
         sx = view->width / (2.0 * view->half_width);
         sy = view->height / (2.0 * view->half_height);
-        pv->scale = sx > sy ? sx : sy;
-        pv->sx = sx;
-        pv->sy = sy;
-        mlod__plane_set(&pv->planes[pv->plane_count++], pv->w, pv->e, view->near_plane);
+        pv->f.scale = sx > sy ? sx : sy;
+        pv->f.scale_x = sx;
+        pv->f.scale_y = sy;
+        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.forward, pv->f.eye, view->near_plane);
         if (isfinite(view->far_plane)) {
-            for (k = 0; k < 3; k++) n[k] = -pv->w[k];
-            mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, -(double)view->far_plane);
+            for (k = 0; k < 3; k++) n[k] = -pv->f.forward[k];
+            mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, -(double)view->far_plane);
         }
-        mlod__plane_set(&pv->planes[pv->plane_count++], pv->u, pv->e, -(double)view->half_width);
-        for (k = 0; k < 3; k++) n[k] = -pv->u[k];
-        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, -(double)view->half_width);
-        mlod__plane_set(&pv->planes[pv->plane_count++], pv->v, pv->e, -(double)view->half_height);
-        for (k = 0; k < 3; k++) n[k] = -pv->v[k];
-        mlod__plane_set(&pv->planes[pv->plane_count++], n, pv->e, -(double)view->half_height);
+        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.right, pv->f.eye, -(double)view->half_width);
+        for (k = 0; k < 3; k++) n[k] = -pv->f.right[k];
+        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, -(double)view->half_width);
+        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.up, pv->f.eye, -(double)view->half_height);
+        for (k = 0; k < 3; k++) n[k] = -pv->f.up[k];
+        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, -(double)view->half_height);
         break;
     }
     }
+    pv->f.kind = pv->kind;
+    pv->f.plane_count = pv->plane_count;
+    pv->f.cull_backfaces = pv->backfaces;
     return MLOD_OK;
 }
 
@@ -2731,38 +2734,10 @@ MLOD__PUBLIC mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_fra
 {
     mlod__pview pv;
     mlod_result res;
-    int k, j;
     if (!frame) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "frame is NULL");
     res = mlod__view_prepare(view, &pv, error);
     if (res != MLOD_OK) return res;
-    memset(frame, 0, sizeof *frame);
-    for (k = 0; k < 3; k++) {
-        frame->eye[k] = pv.e[k];
-        frame->right[k] = pv.u[k];
-        frame->up[k] = pv.v[k];
-        frame->forward[k] = pv.w[k];
-    }
-    frame->scale = pv.scale;
-    frame->width = pv.width;
-    frame->height = pv.height;
-    frame->scale_x = pv.sx;
-    frame->scale_y = pv.sy;
-    for (j = 0; j < 6; j++) {
-        const mlod__plane *pl = j < pv.plane_count ? &pv.planes[j] : NULL;
-        for (k = 0; k < 3 && pl; k++) frame->planes[j][k] = pl->n[k];
-        if (pl) {
-            frame->planes[j][3] = pl->k;
-            frame->planes[j][4] = pl->l;
-        }
-    }
-    for (j = 0; j < 2; j++) {
-        for (k = 0; k < 3; k++) frame->halves[j][k] = pv.halves[j].n[k];
-        frame->halves[j][3] = pv.halves[j].k;
-        frame->halves[j][4] = pv.halves[j].l;
-    }
-    frame->kind = (uint32_t)pv.kind;
-    frame->plane_count = (uint32_t)pv.plane_count;
-    frame->cull_backfaces = (uint32_t)pv.backfaces;
+    *frame = pv.f;
     return mlod__succeed(error);
 }
 
@@ -2786,7 +2761,7 @@ static int mlod__backfacing(const mlod__pview *pv, const double *x, double d2, d
        square root and the series (half the nodes of a closed surface) */
     if (!(a < 0.5 * MLOD__PI)) return 0;
     if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) {
-        away = -(cone[0] * pv->w[0] + cone[1] * pv->w[1] + cone[2] * pv->w[2]);
+        away = -(cone[0] * pv->f.forward[0] + cone[1] * pv->f.forward[1] + cone[2] * pv->f.forward[2]);
         t = 1.0;
         s = 0.0;
     } else {
@@ -2828,11 +2803,11 @@ static double mlod__evaluate(const mlod__pview *pv, const float *sphere, const f
     int k;
     *culled = 0;
     for (k = 0; k < pv->plane_count; k++)
-        if (mlod__outside(&pv->planes[k], sphere)) {
+        if (mlod__outside(pv->f.planes[k], sphere)) {
             *culled = 1;
             return 0.0;
         }
-    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->e[k];
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
     d2 = mlod__dot3(x, x);
     r2 = r * r;
     t2 = d2 - r2; /* > 0 exactly when d2 > r2 */
@@ -2841,26 +2816,26 @@ static double mlod__evaluate(const mlod__pview *pv, const float *sphere, const f
         *culled = 1;
         return 0.0;
     }
-    xw = mlod__dot3(x, pv->w);
+    xw = mlod__dot3(x, pv->f.forward);
     switch (pv->kind) {
     case MLOD_VIEW_PERSPECTIVE:
         if (xw <= r) return INFINITY;
-        return pv->scale * 2.0 * r * tangent / ((xw - r) * (xw + r));
+        return pv->f.scale * 2.0 * r * tangent / ((xw - r) * (xw + r));
     case MLOD_VIEW_PARABOLOID:
         if (d2 <= r2) return INFINITY;
-        return pv->scale * mlod__paraboloid_diameter(r, xw, tangent);
+        return pv->f.scale * mlod__paraboloid_diameter(r, xw, tangent);
     case MLOD_VIEW_DUAL_PARABOLOID: {
         double c = 0.0;
         if (d2 <= r2) return INFINITY;
-        if (!mlod__outside(&pv->halves[0], sphere)) c = mlod__paraboloid_diameter(r, xw, tangent);
-        if (!mlod__outside(&pv->halves[1], sphere)) {
+        if (!mlod__outside(pv->f.halves[0], sphere)) c = mlod__paraboloid_diameter(r, xw, tangent);
+        if (!mlod__outside(pv->f.halves[1], sphere)) {
             double back = mlod__paraboloid_diameter(r, -xw, tangent);
             if (back > c) c = back;
         }
-        return pv->scale * c;
+        return pv->f.scale * c;
     }
     case MLOD_VIEW_ORTHOGRAPHIC:
-        return pv->scale * 2.0 * r;
+        return pv->f.scale * 2.0 * r;
     }
     return INFINITY;
 }
@@ -3790,13 +3765,13 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
     uint32_t l;
     int k;
     for (l = 0; l < n; l++)
-        for (k = 0; k < 3; k++) x[l][k] = centre[l][k] - pv->e[k];
+        for (k = 0; k < 3; k++) x[l][k] = centre[l][k] - pv->f.eye[k];
     if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) {
         for (l = 0; l < n; l++) {
-            out[l].x = 0.5 * pv->width + pv->sx * mlod__dot3(x[l], pv->u);
-            out[l].y = 0.5 * pv->height - pv->sy * mlod__dot3(x[l], pv->v);
-            out[l].radius = r[l] * pv->scale;
-            out[l].depth = mlod__dot3(x[l], pv->w);
+            out[l].x = 0.5 * pv->f.width + pv->f.scale_x * mlod__dot3(x[l], pv->f.right);
+            out[l].y = 0.5 * pv->f.height - pv->f.scale_y * mlod__dot3(x[l], pv->f.up);
+            out[l].radius = r[l] * pv->f.scale;
+            out[l].depth = mlod__dot3(x[l], pv->f.forward);
             bounded[l] = 1;
         }
         return bounded[0];
@@ -3807,9 +3782,9 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
     }
     for (l = 0; l < n; l++) {
         if (!bounded[l]) continue;
-        a[l] = mlod__dot3(x[l], pv->u) / d[l];
-        b[l] = mlod__dot3(x[l], pv->v) / d[l];
-        cos_t[l] = mlod__dot3(x[l], pv->w) / d[l];
+        a[l] = mlod__dot3(x[l], pv->f.right) / d[l];
+        b[l] = mlod__dot3(x[l], pv->f.up) / d[l];
+        cos_t[l] = mlod__dot3(x[l], pv->f.forward) / d[l];
         if (half) { /* the back hemisphere, seen along -w with u mirrored */
             a[l] = -a[l];
             cos_t[l] = -cos_t[l];
@@ -3843,11 +3818,11 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
             /* y as a sum with -dir_y (the same bits as the difference):
                gcc 12 fuses an add beside a subtract into one vector
                multiply-add-subtract even with -ffp-contract=off */
-            out[l].x = 0.5 * pv->width + pv->scale * 0.5 * (hi + lo) * dir_x;
-            out[l].y = 0.5 * pv->height + pv->scale * 0.5 * (hi + lo) * -dir_y;
-            out[l].depth = mlod__dot3(x[l], pv->w);
+            out[l].x = 0.5 * pv->f.width + pv->f.scale * 0.5 * (hi + lo) * dir_x;
+            out[l].y = 0.5 * pv->f.height + pv->f.scale * 0.5 * (hi + lo) * -dir_y;
+            out[l].depth = mlod__dot3(x[l], pv->f.forward);
         } else {
-            double tile_width = pv->kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv->width : pv->width;
+            double tile_width = pv->kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv->f.width : pv->f.width;
             if (!(1.0 + c_hi > 0.0)) {
                 bounded[l] = 0;
                 continue;
@@ -3855,10 +3830,10 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
             hi = s_hi / (1.0 + c_hi); /* tan((t + b) / 2) */
             lo = s_lo / (1.0 + c_lo);
             out[l].x = half * tile_width + 0.5 * tile_width * (1.0 + 0.5 * (hi + lo) * dir_x);
-            out[l].y = 0.5 * pv->height * (1.0 - 0.5 * (hi + lo) * dir_y);
+            out[l].y = 0.5 * pv->f.height * (1.0 - 0.5 * (hi + lo) * dir_y);
             out[l].depth = d[l];
         }
-        out[l].radius = pv->scale * 0.5 * (hi - lo);
+        out[l].radius = pv->f.scale * 0.5 * (hi - lo);
     }
     return bounded[0];
 }
@@ -3878,7 +3853,7 @@ static int mlod__point_inside(const mlod__pview *pv, const float *point)
     for (k = 0; k < 3; k++) sphere[k] = point[k];
     sphere[3] = 0.0f;
     for (k = 0; k < pv->plane_count; k++)
-        if (mlod__outside(&pv->planes[k], sphere)) return 0;
+        if (mlod__outside(pv->f.planes[k], sphere)) return 0;
     return 1;
 }
 
@@ -3892,8 +3867,8 @@ MLOD__PUBLIC int mlod_view_project(const mlod_view *view, const float point[3], 
     for (k = 0; k < 3; k++) p[k] = point[k];
     if (pv.kind == MLOD_VIEW_DUAL_PARABOLOID) {
         double x[3];
-        for (k = 0; k < 3; k++) x[k] = p[k] - pv.e[k];
-        half = mlod__dot3(x, pv.w) < 0.0;
+        for (k = 0; k < 3; k++) x[k] = p[k] - pv.f.eye[k];
+        half = mlod__dot3(x, pv.f.forward) < 0.0;
     }
     if (!mlod__image_disc(&pv, p, 0.0, half, &disc)) return 0;
     if (pixel) {
@@ -3911,29 +3886,29 @@ MLOD__PUBLIC int mlod_view_pixel_ray(const mlod_view *view, float x, float y, fl
     int k;
     if (mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
     if (!(x >= 0.0f && x < (float)view->width && y >= 0.0f && y < (float)view->height)) return 0;
-    for (k = 0; k < 3; k++) o[k] = pv.e[k];
+    for (k = 0; k < 3; k++) o[k] = pv.f.eye[k];
     if (pv.kind == MLOD_VIEW_PERSPECTIVE) {
-        double px = (x - 0.5 * pv.width) / pv.scale, py = (0.5 * pv.height - y) / pv.scale;
-        for (k = 0; k < 3; k++) dir[k] = pv.w[k] + px * pv.u[k] + py * pv.v[k];
+        double px = (x - 0.5 * pv.f.width) / pv.f.scale, py = (0.5 * pv.f.height - y) / pv.f.scale;
+        for (k = 0; k < 3; k++) dir[k] = pv.f.forward[k] + px * pv.f.right[k] + py * pv.f.up[k];
     } else if (pv.kind == MLOD_VIEW_ORTHOGRAPHIC) {
-        double px = (x - 0.5 * pv.width) / pv.sx, py = (0.5 * pv.height - y) / pv.sy;
+        double px = (x - 0.5 * pv.f.width) / pv.f.scale_x, py = (0.5 * pv.f.height - y) / pv.f.scale_y;
         for (k = 0; k < 3; k++) {
-            o[k] += px * pv.u[k] + py * pv.v[k];
-            dir[k] = pv.w[k];
+            o[k] += px * pv.f.right[k] + py * pv.f.up[k];
+            dir[k] = pv.f.forward[k];
         }
     } else {
-        double tile_width = pv.kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv.width : pv.width, px, py, q, side = 1.0;
+        double tile_width = pv.kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv.f.width : pv.f.width, px, py, q, side = 1.0;
         double local = x;
         if (pv.kind == MLOD_VIEW_DUAL_PARABOLOID && x >= tile_width) {
             local = x - tile_width;
             side = -1.0;
         }
         px = 2.0 * local / tile_width - 1.0;
-        py = 1.0 - 2.0 * y / pv.height;
+        py = 1.0 - 2.0 * y / pv.f.height;
         q = px * px + py * py;
         if (q > 1.0) return 0;
         /* inverse stereographic projection; the back half mirrors u and w */
-        for (k = 0; k < 3; k++) dir[k] = side * 2.0 * px * pv.u[k] + 2.0 * py * pv.v[k] + side * (1.0 - q) * pv.w[k];
+        for (k = 0; k < 3; k++) dir[k] = side * 2.0 * px * pv.f.right[k] + 2.0 * py * pv.f.up[k] + side * (1.0 - q) * pv.f.forward[k];
     }
     len = mlod__length3(dir);
     for (k = 0; k < 3; k++) {
@@ -4174,7 +4149,7 @@ static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, cons
     for (l = 0; l < n; l++)
         for (half = 0; half < 2; half++) {
             uint32_t w = band->tile[2] / 2;
-            if (mlod__outside(&pv->halves[half], band->tree->spheres + 4 * (size_t)nodes[l])) continue;
+            if (mlod__outside(pv->f.halves[half], band->tree->spheres + 4 * (size_t)nodes[l])) continue;
             if (mlod__image_disc(pv, c[l], r[l], half, &disc[0]))
                 mlod__raster_disc(band, &disc[0], nodes[l], half ? w : 0, half ? band->tile[2] : w);
         }
@@ -4447,13 +4422,13 @@ static double mlod__largest_leaf_radius(const mlod__pview *pv, double epsilon, d
 {
     double side[3], lo = 0.0, hi = closest, theta0, len;
     int k, step;
-    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) return epsilon / (2.0 * pv->scale);
+    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) return epsilon / (2.0 * pv->f.scale);
     if (pv->kind == MLOD_VIEW_PERSPECTIVE) {
-        double tx = 0.5 * pv->width / pv->scale, ty = 0.5 * pv->height / pv->scale;
-        for (k = 0; k < 3; k++) side[k] = tx * pv->u[k] + ty * pv->v[k];
+        double tx = 0.5 * pv->f.width / pv->f.scale, ty = 0.5 * pv->f.height / pv->f.scale;
+        for (k = 0; k < 3; k++) side[k] = tx * pv->f.right[k] + ty * pv->f.up[k];
         theta0 = atan(sqrt(tx * tx + ty * ty));
     } else {
-        for (k = 0; k < 3; k++) side[k] = pv->u[k];
+        for (k = 0; k < 3; k++) side[k] = pv->f.right[k];
         theta0 = 0.5 * MLOD__PI;
     }
     len = mlod__length3(side);
@@ -4462,7 +4437,7 @@ static double mlod__largest_leaf_radius(const mlod__pview *pv, double epsilon, d
         float sphere[4];
         int culled;
         for (k = 0; k < 3; k++)
-            sphere[k] = (float)(pv->e[k] + closest * (cos(theta) * pv->w[k] + sin(theta) * side[k] / len));
+            sphere[k] = (float)(pv->f.eye[k] + closest * (cos(theta) * pv->f.forward[k] + sin(theta) * side[k] / len));
         sphere[3] = (float)r;
         c = mlod__evaluate(pv, sphere, NULL, &culled);
         if (c <= epsilon)

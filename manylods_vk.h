@@ -380,6 +380,7 @@ MANYLODS_VK_DEF mlodvk_atlas_buffers mlodvk_atlas_get_buffers(const mlodvk_atlas
 
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -413,8 +414,9 @@ typedef uint32_t mlodvk__uvec4[4];
 #define MLOD_IF_UVEC4 mlodvk__uvec4
 #endif
 
-/* One view in the views buffer: MLOD_IF_VIEW_STRIDE doubles holding the
-   fields of mlod_view_frame (manylods.h), at these offsets. */
+/* One view in the views buffer: MLOD_IF_VIEW_STRIDE doubles, laid out as
+   mlod_view_frame (manylods.h), which the host writes as it is: its fields
+   are at these offsets (manylods_vk.h checks them at compile time). */
 #define MLOD_IF_VIEW_STRIDE 64
 #define MLOD_IF_V_EYE 0         /* 3 */
 #define MLOD_IF_V_RIGHT 3       /* 3 */
@@ -430,7 +432,7 @@ typedef uint32_t mlodvk__uvec4[4];
 #define MLOD_IF_V_BACKFACES 19
 #define MLOD_IF_V_PLANES 20     /* 6 planes of 5: n, k, l */
 #define MLOD_IF_V_HALVES 50     /* 2 half-spaces of 5 */
-#define MLOD_IF_V_END 60        /* the rest of the stride is zero */
+#define MLOD_IF_V_END 60        /* mlod_view_frame.reserved: zero */
 
 /* mlod_view_kind and the statuses of a cut entry (MLOD_STATUS_*; 0: not
    yet classified). */
@@ -613,7 +615,23 @@ MLODVK__STATIC_CHECK(cut_push, sizeof(mlodvk__cut_push) == MLOD_IF_CUT_PUSH_BYTE
 MLODVK__STATIC_CHECK(splat_push, sizeof(mlodvk__splat_push) == MLOD_IF_SPLAT_PUSH_BYTES);
 MLODVK__STATIC_CHECK(refit_push, sizeof(mlodvk__refit_push) == MLOD_IF_REFIT_PUSH_BYTES);
 MLODVK__STATIC_CHECK(findings, sizeof(mlodvk__findings) == MLOD_IF_FINDINGS_BYTES);
-MLODVK__STATIC_CHECK(view_frame, MLOD_IF_V_END <= MLOD_IF_VIEW_STRIDE && MLOD_IF_V_HALVES + 10 == MLOD_IF_V_END);
+/* mlod_view_frame is a view of the views buffer, field for field */
+MLODVK__STATIC_CHECK(view_frame, sizeof(mlod_view_frame) == 8 * MLOD_IF_VIEW_STRIDE &&
+                                     offsetof(mlod_view_frame, eye) == 8 * MLOD_IF_V_EYE &&
+                                     offsetof(mlod_view_frame, right) == 8 * MLOD_IF_V_RIGHT &&
+                                     offsetof(mlod_view_frame, up) == 8 * MLOD_IF_V_UP &&
+                                     offsetof(mlod_view_frame, forward) == 8 * MLOD_IF_V_FORWARD &&
+                                     offsetof(mlod_view_frame, scale) == 8 * MLOD_IF_V_SCALE &&
+                                     offsetof(mlod_view_frame, width) == 8 * MLOD_IF_V_WIDTH &&
+                                     offsetof(mlod_view_frame, height) == 8 * MLOD_IF_V_HEIGHT &&
+                                     offsetof(mlod_view_frame, scale_x) == 8 * MLOD_IF_V_SCALE_X &&
+                                     offsetof(mlod_view_frame, scale_y) == 8 * MLOD_IF_V_SCALE_Y &&
+                                     offsetof(mlod_view_frame, kind) == 8 * MLOD_IF_V_KIND &&
+                                     offsetof(mlod_view_frame, plane_count) == 8 * MLOD_IF_V_PLANE_COUNT &&
+                                     offsetof(mlod_view_frame, cull_backfaces) == 8 * MLOD_IF_V_BACKFACES &&
+                                     offsetof(mlod_view_frame, planes) == 8 * MLOD_IF_V_PLANES &&
+                                     offsetof(mlod_view_frame, halves) == 8 * MLOD_IF_V_HALVES &&
+                                     offsetof(mlod_view_frame, reserved) == 8 * MLOD_IF_V_END);
 MLODVK__STATIC_CHECK(kinds, MLOD_IF_KIND_PERSPECTIVE == MLOD_VIEW_PERSPECTIVE && MLOD_IF_KIND_PARABOLOID == MLOD_VIEW_PARABOLOID &&
                          MLOD_IF_KIND_DUAL_PARABOLOID == MLOD_VIEW_DUAL_PARABOLOID &&
                          MLOD_IF_KIND_ORTHOGRAPHIC == MLOD_VIEW_ORTHOGRAPHIC);
@@ -2057,38 +2075,17 @@ static mlod_result mlodvk__check_views(const mlodvk_cut *c, const mlod_view *vie
     return MLOD_OK;
 }
 
-/* Write the views' frames into the host-visible views buffer; the views
-   passed mlodvk__check_views. */
+/* Write the views' frames into the host-visible views buffer, as they are:
+   mlod_view_frame is the buffer's layout (checked below); the views passed
+   mlodvk__check_views. */
 static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, mlod_error *error)
 {
-    double *out = (double *)c->views.mapped;
+    mlod_view_frame *out = (mlod_view_frame *)c->views.mapped;
     uint32_t v;
     for (v = 0; v < c->view_count; v++) {
-        mlod_view_frame f;
         mlod_error detail;
-        double *d = out + (size_t)v * MLOD_IF_VIEW_STRIDE;
-        int k, j;
-        mlod_result res = mlod_view_frame_of(&views[v], &f, &detail);
+        mlod_result res = mlod_view_frame_of(&views[v], &out[v], &detail);
         if (res != MLOD_OK) return mlodvk__fail(error, res, "view %u: %.160s", v, detail.message);
-        memset(d, 0, 8 * MLOD_IF_VIEW_STRIDE);
-        for (k = 0; k < 3; k++) {
-            d[MLOD_IF_V_EYE + k] = f.eye[k];
-            d[MLOD_IF_V_RIGHT + k] = f.right[k];
-            d[MLOD_IF_V_UP + k] = f.up[k];
-            d[MLOD_IF_V_FORWARD + k] = f.forward[k];
-        }
-        d[MLOD_IF_V_SCALE] = f.scale;
-        d[MLOD_IF_V_WIDTH] = f.width;
-        d[MLOD_IF_V_HEIGHT] = f.height;
-        d[MLOD_IF_V_SCALE_X] = f.scale_x;
-        d[MLOD_IF_V_SCALE_Y] = f.scale_y;
-        d[MLOD_IF_V_KIND] = f.kind;
-        d[MLOD_IF_V_PLANE_COUNT] = f.plane_count;
-        d[MLOD_IF_V_BACKFACES] = f.cull_backfaces;
-        for (j = 0; j < 6; j++)
-            for (k = 0; k < 5; k++) d[MLOD_IF_V_PLANES + 5 * j + k] = f.planes[j][k];
-        for (j = 0; j < 2; j++)
-            for (k = 0; k < 5; k++) d[MLOD_IF_V_HALVES + 5 * j + k] = f.halves[j][k];
     }
     return MLOD_OK;
 }

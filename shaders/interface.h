@@ -23,8 +23,9 @@
 #define MLOD_IF_UVEC4 mlodvk__uvec4
 #endif
 
-/* One view in the views buffer: MLOD_IF_VIEW_STRIDE doubles holding the
-   fields of mlod_view_frame (manylods.h), at these offsets. */
+/* One view in the views buffer: MLOD_IF_VIEW_STRIDE doubles, laid out as
+   mlod_view_frame (manylods.h), which the host writes as it is: its fields
+   are at these offsets (manylods_vk.h checks them at compile time). */
 #define MLOD_IF_VIEW_STRIDE 64
 #define MLOD_IF_V_EYE 0         /* 3 */
 #define MLOD_IF_V_RIGHT 3       /* 3 */
@@ -40,7 +41,7 @@
 #define MLOD_IF_V_BACKFACES 19
 #define MLOD_IF_V_PLANES 20     /* 6 planes of 5: n, k, l */
 #define MLOD_IF_V_HALVES 50     /* 2 half-spaces of 5 */
-#define MLOD_IF_V_END 60        /* the rest of the stride is zero */
+#define MLOD_IF_V_END 60        /* mlod_view_frame.reserved: zero */
 
 /* mlod_view_kind and the statuses of a cut entry (MLOD_STATUS_*; 0: not
    yet classified). */
