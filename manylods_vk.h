@@ -582,6 +582,11 @@ typedef uint32_t mlodvk__uvec4[4];
 #endif
 /* END INTERFACE */
 
+/* ---------------------------------------- pipelines and shared blocks -- */
+
+/* The compute pipelines, in the order of mlodvk__spirv's table and of the
+   context's pipelines[], and the three descriptor set layouts they use:
+   one per family (cut, splat, refit), each with its own push constants. */
 enum { MLODVK__CUT_INIT, MLODVK__CUT_STEP, MLODVK__CUT_SCAN, MLODVK__CUT_WRITE, MLODVK__CUT_FINISH,
        MLODVK__SPLAT_CLEAR, MLODVK__SPLAT_DRAW, MLODVK__SPLAT_RESOLVE, MLODVK__REFIT_CHECK, MLODVK__REFIT_LEAVES,
        MLODVK__REFIT_MERGE, MLODVK__PIPELINES };
@@ -609,6 +614,8 @@ typedef struct mlodvk__refit_push {
 typedef struct mlodvk__findings {
     MLOD_IF_FINDINGS(MLOD_IF_DECLARE)
 } mlodvk__findings;
+/* A negative array size stops the build where C and GLSL would disagree:
+   on a block's std430 size or on a constant that both sides name. */
 #define MLODVK__STATIC_CHECK(name, condition) typedef char mlodvk__check_##name[(condition) ? 1 : -1]
 MLODVK__STATIC_CHECK(control, sizeof(mlodvk__control) == MLOD_IF_CONTROL_BYTES);
 MLODVK__STATIC_CHECK(cut_push, sizeof(mlodvk__cut_push) == MLOD_IF_CUT_PUSH_BYTES);
@@ -638,6 +645,11 @@ MLODVK__STATIC_CHECK(kinds, MLOD_IF_KIND_PERSPECTIVE == MLOD_VIEW_PERSPECTIVE &&
 MLODVK__STATIC_CHECK(statuses, MLOD_IF_STATUS_DRAWN == MLOD_STATUS_DRAWN && MLOD_IF_STATUS_CULLED == MLOD_STATUS_CULLED &&
                             MLOD_IF_STATUS_OVERSIZE == MLOD_STATUS_OVERSIZE && MLOD_IF_STATUS_COARSE == MLOD_STATUS_COARSE);
 
+/* ------------------------------------------------------------ objects -- */
+
+/* One VkBuffer with an allocation of its own (the library makes few, large
+   buffers: no sub-allocation).  All zero means none, and destroys as a
+   no-op, which the create paths rely on when they clean up. */
 typedef struct mlodvk__buffer {
     VkBuffer buffer;
     VkDeviceMemory memory;
@@ -646,6 +658,9 @@ typedef struct mlodvk__buffer {
     void *mapped;       /* host-visible buffers only */
 } mlodvk__buffer;
 
+/* The context borrows the caller's device and queue and owns the rest.
+   One command buffer and one fence suffice: every call records, submits and
+   waits before it returns, so nothing is ever in flight between calls. */
 struct mlodvk_context {
     mlodvk_functions vk;
     VkPhysicalDevice physical_device;
@@ -666,6 +681,10 @@ struct mlodvk_context {
     int recording;
 };
 
+/* The node arrays in mlod_tree's layout (spheres and cones 16 bytes a node,
+   colours 12).  A tree without cones or colours gets a 16-byte placeholder
+   instead, so that every binding of every set has a buffer.  The refit
+   inputs exist once mlodvk_tree_upload_refit has succeeded. */
 struct mlodvk_tree {
     mlodvk__buffer spheres, cones, colors;
     uint32_t node_count, leaf_count, has_cones, has_colors;
@@ -681,6 +700,12 @@ struct mlodvk_tree {
     VkDescriptorSet set;
 };
 
+/* The rounds ping-pong between two lists with their statuses, A (index 0)
+   and B (1).  Between calls the current list is always in A: that is what
+   the splat reads and mlodvk_cut_get_buffers hands out.  `control` is
+   host-visible: the host arms it before a submission and reads the outcome
+   after the fence; in between the shaders steer their own dispatches by it.
+   `views` is host-visible too, written by the host at each update. */
 struct mlodvk_cut {
     uint32_t view_count, capacity, has_views;
     mlodvk__buffer list[2], status[2], acts, block_sums, control, offsets, views;
@@ -696,6 +721,9 @@ struct mlodvk_cut {
     mlod_cut_view *host_views;
 };
 
+/* keys: 64 bits a pixel, the depth's ordered bits above the cut entry's
+   index, so that one atomicMin keeps the nearest disc and breaks ties the
+   same way every time; splat_resolve turns the keys into the images. */
 struct mlodvk_atlas {
     uint32_t width, height, view_count, channels;
     float disc_scale;
@@ -707,6 +735,8 @@ struct mlodvk_atlas {
 
 /* ------------------------------------------------------------ errors -- */
 
+/* Every failure goes through here: the message into *error when there is
+   one, and the code returned either way. */
 static mlod_result mlodvk__fail(mlod_error *error, mlod_result code, const char *format, ...)
 {
     if (error) {
@@ -719,6 +749,7 @@ static mlod_result mlodvk__fail(mlod_error *error, mlod_result code, const char 
     return code;
 }
 
+/* Success clears an earlier message: callers reuse one mlod_error. */
 static mlod_result mlodvk__ok(mlod_error *error)
 {
     if (error) {
@@ -728,6 +759,10 @@ static mlod_result mlodvk__ok(mlod_error *error)
     return MLOD_OK;
 }
 
+/* A failed Vulkan call as a result: exhausted memory, host or device, is
+   MLOD_ERROR_OUT_OF_MEMORY (the caller may free something and retry); the
+   rest, device loss included, is MLOD_ERROR_DEVICE.  The message names the
+   call. */
 static mlod_result mlodvk__vk_fail(mlod_error *error, VkResult result, const char *call)
 {
     mlod_result code = result == VK_ERROR_OUT_OF_HOST_MEMORY || result == VK_ERROR_OUT_OF_DEVICE_MEMORY
@@ -737,6 +772,8 @@ static mlod_result mlodvk__vk_fail(mlod_error *error, VkResult result, const cha
                         result == VK_ERROR_DEVICE_LOST ? " (device lost)" : "");
 }
 
+/* Return from the enclosing function, which has an `error`, when call
+   fails; only where an early return leaves nothing held. */
 #define MLODVK__CHECK(call, what)                                                                                 \
     do {                                                                                                          \
         VkResult mlodvk__r = (call);                                                                              \
@@ -745,12 +782,16 @@ static mlod_result mlodvk__vk_fail(mlod_error *error, VkResult result, const cha
 
 /* --------------------------------------------------------- host memory -- */
 
+/* count * size bytes from the caller's allocator, or NULL, also when the
+   product overflows.  Zero bytes still ask for one, so that NULL always
+   means failure. */
 static void *mlodvk__alloc(const mlod_allocator *a, size_t count, size_t size)
 {
     if (size && count > (size_t)-1 / size) return NULL;
     return a->alloc(a->user, count * size != 0 ? count * size : 1);
 }
 
+/* NULL is fine, as with free(): the destroy paths free whatever was made. */
 static void mlodvk__free(const mlod_allocator *a, void *p)
 {
     if (p) a->free(a->user, p);
@@ -758,6 +799,8 @@ static void mlodvk__free(const mlod_allocator *a, void *p)
 
 /* ---------------------------------------------------------- buffers ---- */
 
+/* Unmap, destroy, free, uncount and zero; fine on a zeroed or partly made
+   buffer. */
 static void mlodvk__buffer_destroy(mlodvk_context *ctx, mlodvk__buffer *b)
 {
     if (b->mapped) ctx->vk.UnmapMemory(ctx->device, b->memory);
@@ -769,6 +812,7 @@ static void mlodvk__buffer_destroy(mlodvk_context *ctx, mlodvk__buffer *b)
     memset(b, 0, sizeof *b);
 }
 
+/* The first memory type that bits allows and that has all of want, or -1. */
 static int mlodvk__memory_type(const mlodvk_context *ctx, uint32_t bits, VkMemoryPropertyFlags want)
 {
     uint32_t i;
@@ -777,7 +821,11 @@ static int mlodvk__memory_type(const mlodvk_context *ctx, uint32_t bits, VkMemor
     return -1;
 }
 
-/* A storage buffer of size bytes (> 0); host_visible: mapped, coherent. */
+/* A buffer of size bytes (0 becomes 16, so that a binding never lacks a
+   buffer) for usage and transfers both ways.  host_visible: mapped for its
+   life, coherent, and cached where offered since the host reads these back;
+   otherwise device-local where offered.  device_bytes counts it.  On failure
+   nothing is held and *b is zero. */
 static mlod_result mlodvk__buffer_create(mlodvk_context *ctx, VkDeviceSize size, VkBufferUsageFlags usage,
                                          int host_visible, mlodvk__buffer *b, mlod_error *error)
 {
@@ -787,6 +835,8 @@ static mlod_result mlodvk__buffer_create(mlodvk_context *ctx, VkDeviceSize size,
     int type;
     memset(b, 0, sizeof *b);
     if (size == 0) size = 16;
+    /* binding more than maxStorageBufferRange is invalid usage that a driver
+       need not report: refuse it here, with the sizes */
     if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > ctx->properties.limits.maxStorageBufferRange)
         return mlodvk__fail(error, MLOD_ERROR_DEVICE,
                             "a buffer of %.0f bytes exceeds the device's maxStorageBufferRange (%u bytes)", (double)size,
@@ -802,6 +852,7 @@ static mlod_result mlodvk__buffer_create(mlodvk_context *ctx, VkDeviceSize size,
                                                                             VK_MEMORY_PROPERTY_HOST_COHERENT_BIT |
                                                                             VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
                         : mlodvk__memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    /* else any host-visible coherent type, or any type at all */
     if (type < 0)
         type = host_visible ? mlodvk__memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
                                                                                 VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
@@ -840,6 +891,8 @@ static mlod_result mlodvk__buffer_create(mlodvk_context *ctx, VkDeviceSize size,
 
 /* --------------------------------------------------------- commands ---- */
 
+/* Start recording into the context's command buffer.  Resetting the pool
+   is safe: the previous submission was waited for. */
 static mlod_result mlodvk__begin(mlodvk_context *ctx, mlod_error *error)
 {
     VkCommandBufferBeginInfo begin;
@@ -853,7 +906,9 @@ static mlod_result mlodvk__begin(mlodvk_context *ctx, mlod_error *error)
 }
 
 /* Every earlier shader or transfer write visible to every later read (shader,
-   indirect arguments, transfer, host). */
+   indirect arguments, transfer, host).  The steps of a submission each read
+   what the one before wrote, buffers or dispatch arguments, so a finer
+   barrier would seldom let anything overlap; one kind fits every place. */
 static void mlodvk__barrier(mlodvk_context *ctx)
 {
     VkMemoryBarrier mb;
@@ -870,7 +925,10 @@ static void mlodvk__barrier(mlodvk_context *ctx)
                                0, 1, &mb, 0, NULL, 0, NULL);
 }
 
-/* End, submit, wait. */
+/* End, submit, wait for the fence and reset it.  Waiting in every call is
+   the design: host-visible results (the control block, the findings, the
+   staging copies) are readable at once, and no buffer is in use when the
+   next call rewrites or frees it. */
 static mlod_result mlodvk__submit(mlodvk_context *ctx, mlod_error *error)
 {
     VkSubmitInfo submit;
@@ -897,7 +955,9 @@ static void mlodvk__abandon(mlodvk_context *ctx)
     }
 }
 
-/* Work groups for n items, as (x, y) within the device's limits. */
+/* Work groups for n items, as (x, y) within the device's limits: past
+   maxComputeWorkGroupCount[0] groups the dispatch folds into rows, and the
+   shaders rebuild the flat index (group_index in the layout files). */
 static void mlodvk__groups(const mlodvk_context *ctx, uint32_t n, uint32_t *x, uint32_t *y)
 {
     uint32_t groups = (uint32_t)(((uint64_t)n + MLOD_IF_GROUP - 1) / MLOD_IF_GROUP);
@@ -911,6 +971,8 @@ static void mlodvk__groups(const mlodvk_context *ctx, uint32_t n, uint32_t *x, u
     *y = (groups + *x - 1) / *x;
 }
 
+/* Record pipeline, set and push constants, then enough groups for `items`
+   threads (none for 0 items). */
 static void mlodvk__dispatch(mlodvk_context *ctx, int pipeline, VkPipelineLayout layout, VkDescriptorSet set,
                              const void *push, uint32_t push_size, uint32_t items)
 {
@@ -922,6 +984,9 @@ static void mlodvk__dispatch(mlodvk_context *ctx, int pipeline, VkPipelineLayout
     if (x) ctx->vk.CmdDispatch(ctx->commands, x, y, 1);
 }
 
+/* The same with the group counts that the device reads from args at offset,
+   a uvec4 of the control block the shaders wrote: the sizes of the cut's
+   rounds never travel to the host. */
 static void mlodvk__dispatch_indirect(mlodvk_context *ctx, int pipeline, VkPipelineLayout layout,
                                       VkDescriptorSet set, const void *push, uint32_t push_size, VkBuffer args,
                                       VkDeviceSize offset)
@@ -933,7 +998,7 @@ static void mlodvk__dispatch_indirect(mlodvk_context *ctx, int pipeline, VkPipel
 }
 
 /* Copy host bytes into a device buffer through a temporary staging buffer
-   (one submission). */
+   (one submission), which is freed before the return, failure or not. */
 static mlod_result mlodvk__upload(mlodvk_context *ctx, const mlodvk__buffer *dst, const void *data, VkDeviceSize size,
                                   mlod_error *error)
 {
@@ -965,6 +1030,10 @@ typedef struct mlodvk__download_range {
     void *dst;
 } mlodvk__download_range;
 
+/* The ranges share one staging buffer, each at a 16-byte aligned place.
+   The leading barrier orders the copies after the writes of the earlier
+   submissions; the host copies out only after the fence, so on failure no
+   destination is written. */
 static mlod_result mlodvk__download(mlodvk_context *ctx, const mlodvk__download_range *ranges, int count,
                                     mlod_error *error)
 {
@@ -1000,7 +1069,10 @@ static mlod_result mlodvk__download(mlodvk_context *ctx, const mlodvk__download_
     return res;
 }
 
-/* Descriptor sets: a pool, its sets, their storage buffers in binding order. */
+/* ---------------------------------------------------- descriptor sets -- */
+
+/* Point bindings 0 .. count - 1 (count <= 16) of set at whole buffers, in
+   order.  Sets are rewritten only between submissions, never in use. */
 static void mlodvk__write_set(mlodvk_context *ctx, VkDescriptorSet set, const VkBuffer *buffers, uint32_t count)
 {
     VkDescriptorBufferInfo info[16];
@@ -1021,6 +1093,8 @@ static void mlodvk__write_set(mlodvk_context *ctx, VkDescriptorSet set, const Vk
     ctx->vk.UpdateDescriptorSets(ctx->device, count, write, 0, NULL);
 }
 
+/* A pool for `sets` sets holding `buffers` storage-buffer descriptors in
+   all.  Each object owns its pool: destroying the pool frees its sets. */
 static mlod_result mlodvk__pool(mlodvk_context *ctx, uint32_t sets, uint32_t buffers, VkDescriptorPool *out,
                                 mlod_error *error)
 {
@@ -1037,6 +1111,7 @@ static mlod_result mlodvk__pool(mlodvk_context *ctx, uint32_t sets, uint32_t buf
     return MLOD_OK;
 }
 
+/* count (1 or 2) sets of one layout from pool. */
 static mlod_result mlodvk__sets(mlodvk_context *ctx, VkDescriptorPool pool, VkDescriptorSetLayout layout,
                                 uint32_t count, VkDescriptorSet *out, mlod_error *error)
 {
@@ -1055,6 +1130,10 @@ static mlod_result mlodvk__sets(mlodvk_context *ctx, VkDescriptorPool pool, VkDe
 
 /* ---------------------------------------------------------- context ---- */
 
+/* The entry points the library calls: the caller's table as given, or
+   looked up through get_instance_proc_addr, device functions through
+   vkGetDeviceProcAddr (no loader trampoline).  The library calls no Vulkan
+   symbol directly, so a program links it without the loader. */
 static mlod_result mlodvk__load(mlodvk_context *ctx, const mlodvk_context_desc *desc, mlod_error *error)
 {
     PFN_vkGetInstanceProcAddr gipa = desc->get_instance_proc_addr;
@@ -1137,6 +1216,10 @@ static int mlodvk__subgroups_ok(VkPhysicalDevice physical, PFN_vkGetPhysicalDevi
            (subgroups.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
 }
 
+/* Refuse a device the shaders cannot run on, naming what it lacks: Vulkan
+   1.1 (subgroups), float64 and int64 (the criterion in double, as on the
+   CPU), 64-bit buffer atomics (the counters, the splat's keys, the refit's
+   growth). */
 static mlod_result mlodvk__check_features(mlodvk_context *ctx, mlod_error *error)
 {
     VkPhysicalDeviceShaderAtomicInt64Features atomics;
@@ -1161,12 +1244,17 @@ static mlod_result mlodvk__check_features(mlodvk_context *ctx, mlod_error *error
     return MLOD_OK;
 }
 
+/* ---------------------------------------------------------- pipelines -- */
+
+/* One pipeline's SPIR-V and the layout it binds with. */
 typedef struct mlodvk__shader {
     const uint32_t *words;
     size_t bytes;
     int layout; /* MLODVK__LAYOUT_* */
 } mlodvk__shader;
 
+/* `bindings` storage buffers at bindings 0 .. bindings - 1 (at most 16),
+   the only kind of descriptor the shaders use. */
 static mlod_result mlodvk__set_layout(mlodvk_context *ctx, uint32_t bindings, VkDescriptorSetLayout *out,
                                       mlod_error *error)
 {
@@ -1189,6 +1277,7 @@ static mlod_result mlodvk__set_layout(mlodvk_context *ctx, uint32_t bindings, Vk
     return MLOD_OK;
 }
 
+/* One set and push_bytes of push constants at offset 0. */
 static mlod_result mlodvk__pipeline_layout(mlodvk_context *ctx, VkDescriptorSetLayout set, uint32_t push_bytes,
                                            VkPipelineLayout *out, mlod_error *error)
 {
@@ -1207,6 +1296,8 @@ static mlod_result mlodvk__pipeline_layout(mlodvk_context *ctx, VkDescriptorSetL
     return MLOD_OK;
 }
 
+/* A compute pipeline, entry point "main"; the shader module is needed only
+   while the pipeline is created. */
 static mlod_result mlodvk__pipeline(mlodvk_context *ctx, const mlodvk__shader *shader, VkPipeline *out,
                                     mlod_error *error)
 {
@@ -1236,6 +1327,8 @@ static mlod_result mlodvk__pipeline(mlodvk_context *ctx, const mlodvk__shader *s
     return MLOD_OK;
 }
 
+/* Also the cleanup of a failed mlodvk_context_create: any handle may still
+   be null. */
 MANYLODS_VK_DEF void mlodvk_context_destroy(mlodvk_context *ctx)
 {
     int i;
@@ -1289,10 +1382,14 @@ MANYLODS_VK_DEF mlod_result mlodvk_context_create(const mlodvk_context_desc *des
         mlodvk__free(&a, ctx);
         return res;
     }
+    /* only now: mlodvk_context_destroy calls into a device it has a handle of,
+       and until here the functions to do so may be missing */
     ctx->device = desc->device;
     ctx->vk.GetPhysicalDeviceProperties(ctx->physical_device, &ctx->properties);
     ctx->vk.GetPhysicalDeviceMemoryProperties(ctx->physical_device, &ctx->memory);
     res = mlodvk__check_features(ctx, error);
+    /* each step runs while all before it succeeded; on failure
+       mlodvk_context_destroy releases what was made */
     for (i = 0; i < MLODVK__LAYOUTS && res == MLOD_OK; i++) {
         res = mlodvk__set_layout(ctx, bindings[i], &ctx->set_layouts[i], error);
         if (res == MLOD_OK) res = mlodvk__pipeline_layout(ctx, ctx->set_layouts[i], push_bytes[i], &ctx->layouts[i], error);
@@ -1310,6 +1407,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_context_create(const mlodvk_context_desc *des
         VkResult r;
         memset(&pool, 0, sizeof pool);
         pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+        /* transient: one recording per call, reset by mlodvk__begin */
         pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
         pool.queueFamilyIndex = desc->queue_family;
         r = ctx->vk.CreateCommandPool(ctx->device, &pool, ctx->vk_allocator, &ctx->pool);
@@ -1353,6 +1451,9 @@ MANYLODS_VK_DEF uint64_t mlodvk_context_device_bytes(const mlodvk_context *ctx) 
 
 /* ---------------------------------------------------- headless device -- */
 
+/* Validation callback: counts warnings and errors and keeps the last text
+   for the caller (the tests assert none came).  user is the mlodvk_device,
+   hence its documented rule not to move.  VK_FALSE: never abort the call. */
 static VKAPI_ATTR VkBool32 VKAPI_CALL mlodvk__debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                             VkDebugUtilsMessageTypeFlagsEXT types,
                                                             const VkDebugUtilsMessengerCallbackDataEXT *data,
@@ -1367,6 +1468,8 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL mlodvk__debug_message(VkDebugUtilsMessageS
     return VK_FALSE;
 }
 
+/* Also the cleanup of a partly made device.  The functions are looked up
+   here: mlodvk_device keeps none but vkGetInstanceProcAddr. */
 MANYLODS_VK_DEF void mlodvk_device_destroy(mlodvk_device *d)
 {
     PFN_vkGetInstanceProcAddr gipa;
@@ -1391,7 +1494,8 @@ MANYLODS_VK_DEF void mlodvk_device_destroy(mlodvk_device *d)
     d->device = VK_NULL_HANDLE;
 }
 
-/* Rank of a device type: lower is preferred. */
+/* Rank of a device type, lower preferred: as the header promises, a CPU
+   device (lavapipe) last unless prefer_cpu puts it first. */
 static int mlodvk__type_rank(VkPhysicalDeviceType type, int prefer_cpu)
 {
     if (prefer_cpu && type == VK_PHYSICAL_DEVICE_TYPE_CPU) return 0;
@@ -1437,6 +1541,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_device_create(const mlodvk_device_desc *desc,
     app.pApplicationName = "manylods";
     app.pEngineName = "manylods";
     app.apiVersion = VK_API_VERSION_1_2;
+    /* with validation the messenger also rides on the instance's pNext, so
+       that vkCreateInstance's own messages are counted */
     memset(&messenger, 0, sizeof messenger);
     messenger.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
     messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
@@ -1481,6 +1587,10 @@ MANYLODS_VK_DEF mlod_result mlodvk_device_create(const mlodvk_device_desc *desc,
         mlodvk_device_destroy(d);
         return mlodvk__fail(error, MLOD_ERROR_DEVICE, "a Vulkan 1.1 instance function is missing");
     }
+    /* at most 16 devices are considered (VK_INCOMPLETE is fine).  A device
+       must pass what mlodvk__check_features asks, so that the context made
+       from it cannot refuse it; the first family with compute is used, and
+       the first device of the best rank wins. */
     r = enumerate(d->instance, &count, physical);
     if (r != VK_SUCCESS && r != VK_INCOMPLETE) {
         mlodvk_device_destroy(d);
@@ -1524,6 +1634,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_device_create(const mlodvk_device_desc *desc,
                             count);
     }
     {
+        /* enable exactly the features the shaders declare */
         float priority = 1.0f;
         VkDeviceQueueCreateInfo queue;
         VkDeviceCreateInfo device;
@@ -1594,6 +1705,8 @@ MANYLODS_VK_DEF void mlodvk_tree_destroy(mlodvk_context *ctx, mlodvk_tree *t)
     mlodvk__free(&ctx->allocator, t);
 }
 
+/* Copy tree's node arrays into t's buffers, whose sizes and attributes
+   match; a submission per array. */
 static mlod_result mlodvk__tree_fill(mlodvk_context *ctx, mlodvk_tree *t, const mlod_tree *tree, mlod_error *error)
 {
     size_t n = tree->node_count;
@@ -1624,6 +1737,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_tree_upload(mlodvk_context *ctx, const mlod_t
     if (res == MLOD_OK)
         res = mlodvk__buffer_create(ctx, t->has_colors ? 12 * (VkDeviceSize)tree->node_count : 16, usage, 0, &t->colors, error);
     if (res == MLOD_OK) res = mlodvk__tree_fill(ctx, t, tree, error);
+    /* a fresh identity: a cut of an earlier tree at this address restarts */
     t->generation = ++ctx->generations;
     if (res != MLOD_OK) {
         mlodvk_tree_destroy(ctx, t);
@@ -1681,6 +1795,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_tree_upload_refit(mlodvk_context *ctx, mlodvk
         if (indices[i] >= tree->vertex_count)
             return mlodvk__fail(error, MLOD_ERROR_INDEX_OUT_OF_RANGE, "indices[%u] = %u is not below vertex_count %u", i,
                                 indices[i], tree->vertex_count);
+    /* from here a failure leaves no refit inputs (refit_ready 0) rather than
+       a mixture; the node buffers are not touched */
     t->refit_ready = 0;
     mlodvk__buffer_destroy(ctx, &t->leaf_sources);
     mlodvk__buffer_destroy(ctx, &t->barycentrics);
@@ -1699,6 +1815,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_tree_upload_refit(mlodvk_context *ctx, mlodvk
     if (res == MLOD_OK)
         res = mlodvk__upload(ctx, &t->triangle_areas, tree->triangle_areas, 8 * (VkDeviceSize)tree->triangle_count, error);
     if (res == MLOD_OK) res = mlodvk__upload(ctx, &t->indices, indices, 4 * (VkDeviceSize)index_count, error);
+    /* one set, kept: mlodvk_refit_mesh points it at the caller's buffers */
     if (res == MLOD_OK && !t->pool) {
         res = mlodvk__pool(ctx, 1, MLOD_IF_REFIT_BINDINGS, &t->pool, error);
         if (res == MLOD_OK) res = mlodvk__sets(ctx, t->pool, ctx->set_layouts[MLODVK__LAYOUT_REFIT], 1, &t->set, error);
@@ -1712,6 +1829,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_tree_upload_refit(mlodvk_context *ctx, mlodvk
     return mlodvk__ok(error);
 }
 
+/* Whether a buffer offset can be bound: descriptors need multiples of
+   minStorageBufferOffsetAlignment. */
 static int mlodvk__aligned(const mlodvk_context *ctx, VkDeviceSize offset)
 {
     VkDeviceSize a = ctx->properties.limits.minStorageBufferOffsetAlignment;
@@ -1742,6 +1861,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *
         return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT,
                             "buffer offsets must be multiples of minStorageBufferOffsetAlignment (%llu)",
                             (unsigned long long)ctx->properties.limits.minStorageBufferOffsetAlignment);
+    /* the set is rewritten every call: the mesh buffers are the caller's and
+       may differ from the last call's */
     buffers[MLOD_IF_REFIT_SPHERES] = t->spheres.buffer;
     buffers[MLOD_IF_REFIT_CONES] = t->cones.buffer;
     buffers[MLOD_IF_REFIT_COLORS] = t->colors.buffer;
@@ -1780,7 +1901,10 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *
     push.has_cones = t->has_cones;
     push.has_colors = t->has_colors;
     push.max_groups_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
-    /* 1: the checks of mlod_refit_mesh, before anything is written */
+    /* 1: the checks of mlod_refit_mesh, in a submission of their own: a
+       refused refit must leave the tree as it was.  The findings start
+       neutral for the atomics (growth_bits: the maximum of non-negative
+       doubles' bits, ordered as the doubles); push.first: the triangles. */
     found = (mlodvk__findings *)t->findings.mapped;
     found->flags = 0;
     found->first_vertex = UINT32_MAX;
@@ -1809,7 +1933,9 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *
         res = mlod_refit_check_growth(t->radius_scale, t->area_unit, t->leaf_count, growth, error);
         if (res != MLOD_OK) return res;
     }
-    /* 2: the leaves, then one depth at a time, deepest first */
+    /* 2: the leaves, then one depth at a time, deepest first, in one
+       submission: each depth reads the one below, hence a barrier after
+       every dispatch */
     res = mlodvk__begin(ctx, error);
     if (res == MLOD_OK) {
         mlodvk__barrier(ctx);
@@ -1833,8 +1959,9 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *ctx, mlodvk_tree *
     return res == MLOD_OK ? mlodvk__ok(error) : res;
 }
 
-/* Copy count vertices' 3 floats (stride floats apart, 0: 3) into a host-
-   visible buffer of the tree, growing it as needed. */
+/* Copy count vertices' 3 floats (stride bytes apart, 0: packed) into a
+   host-visible buffer of the tree, which is kept between calls and
+   replaced only when it must grow. */
 static mlod_result mlodvk__host_vertices(mlodvk_context *ctx, mlodvk__buffer *b, const float *data, size_t stride,
                                          uint32_t count, mlod_error *error)
 {
@@ -1907,6 +2034,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_tree_download(mlodvk_context *ctx, const mlod
 
 /* -------------------------------------------------------------- cut ---- */
 
+/* The buffers whose size follows the capacity; control, offsets and views
+   follow the view count and stay. */
 static void mlodvk__cut_free_lists(mlodvk_context *ctx, mlodvk_cut *c)
 {
     int i;
@@ -1933,7 +2062,9 @@ MANYLODS_VK_DEF void mlodvk_cut_destroy(mlodvk_context *ctx, mlodvk_cut *c)
     mlodvk__free(&ctx->allocator, c);
 }
 
-/* List buffers of `capacity` entries (all four, the acts and block sums). */
+/* List buffers of `capacity` entries (all four, the acts and block sums):
+   8 bytes an entry (node, view), 4 a status or an action, one block sum per
+   workgroup.  On failure what was made stays in c for the caller to free. */
 static mlod_result mlodvk__cut_lists(mlodvk_context *ctx, mlodvk_cut *c, uint32_t capacity, mlod_error *error)
 {
     VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -1951,7 +2082,9 @@ static mlod_result mlodvk__cut_lists(mlodvk_context *ctx, mlodvk_cut *c, uint32_
 }
 
 
-/* Point the cut's two descriptor sets at the tree and the current buffers. */
+/* Point the cut's two descriptor sets at the tree and the current buffers:
+   set 0 reads A and writes B, set 1 the reverse.  Redone before every
+   submission, since a growth replaces the lists. */
 static void mlodvk__cut_sets(mlodvk_context *ctx, mlodvk_cut *c, const mlodvk_tree *t)
 {
     int s;
@@ -1985,6 +2118,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view
     if (!ctx || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context and out are needed");
     if (view_count == 0) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count must be >= 1");
     if (capacity < view_count) capacity = view_count;
+    /* the shaders count entries and their sums in uint32_t */
     if (capacity > 0x7fffffffu || (uint64_t)view_count * MLOD_IF_VIEW_STRIDE * 8 > (uint64_t)1 << 40)
         return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "%u views need more list entries than a uint32_t counts", view_count);
     c = (mlodvk_cut *)mlodvk__alloc(&ctx->allocator, 1, sizeof *c);
@@ -2001,6 +2135,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view
     if (res == MLOD_OK) res = mlodvk__pool(ctx, 2, 2 * MLOD_IF_CUT_BINDINGS, &c->pool, error);
     if (res == MLOD_OK) res = mlodvk__sets(ctx, c->pool, ctx->set_layouts[MLODVK__LAYOUT_CUT], 2, c->sets, error);
     if (res == MLOD_OK) {
+        /* the per-view host arrays now: downloads only grow the per-entry ones */
         c->host_views = (mlod_cut_view *)mlodvk__alloc(&ctx->allocator, view_count, sizeof(mlod_cut_view));
         c->host_offsets = (uint32_t *)mlodvk__alloc(&ctx->allocator, (size_t)view_count + 1, sizeof(uint32_t));
         if (!c->host_views || !c->host_offsets)
@@ -2018,7 +2153,9 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view
 }
 
 /* Grow the lists to hold `needed` entries, keeping the current list (in A
-   after cut_finish) and its statuses. */
+   after cut_finish) and its statuses; B, the actions and the block sums
+   hold nothing that outlives a round.  On failure the old buffers are put
+   back and the cut stays usable. */
 static mlod_result mlodvk__cut_grow(mlodvk_context *ctx, mlodvk_cut *c, uint32_t entries, uint64_t needed,
                                     mlod_error *error)
 {
@@ -2076,8 +2213,9 @@ static mlod_result mlodvk__check_views(const mlodvk_cut *c, const mlod_view *vie
 }
 
 /* Write the views' frames into the host-visible views buffer, as they are:
-   mlod_view_frame is the buffer's layout (checked below); the views passed
-   mlodvk__check_views. */
+   mlod_view_frame is the buffer's layout (checked with the shared blocks);
+   the views passed mlodvk__check_views.  No submission is in flight, so
+   the host may write. */
 static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, mlod_error *error)
 {
     mlod_view_frame *out = (mlod_view_frame *)c->views.mapped;
@@ -2090,6 +2228,10 @@ static mlod_result mlodvk__upload_views(mlodvk_cut *c, const mlod_view *views, m
     return MLOD_OK;
 }
 
+/* Arm the control block for a submission whose first round reads `entries`
+   entries of list A: slot 0's dispatch covers them, slot 1's stays empty
+   until cut_scan arms it, and cut_finish's covers them in case no round
+   runs.  Counters and flags start at zero: the host sums per submission. */
 static void mlodvk__arm(mlodvk__control *ctl, const mlodvk_context *ctx, uint32_t entries)
 {
     uint32_t x, y;
@@ -2121,7 +2263,10 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
     if ((res = mlod_cut_params_check(params, error)) != MLOD_OK) return res;
     if ((res = mlodvk__check_views(c, views, error)) != MLOD_OK) return res;
     if ((res = mlodvk__upload_views(c, views, error)) != MLOD_OK) return res;
+    /* the tree's levels, which size a batch of rounds below */
     while (((uint64_t)1 << depth) < (uint64_t)t->node_count + 1) depth++;
+    /* incremental only from a cut of this very tree (same object, same
+       upload) whose last update succeeded; otherwise from the roots */
     from_root = params->mode == MLOD_CUT_BASIC || !c->has_views || c->tree != t || c->tree_generation != t->generation ||
                 c->info.entries == 0;
     lazy = params->mode == MLOD_CUT_LAZY;
@@ -2129,7 +2274,10 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
     entries = from_root ? c->view_count : c->info.entries;
     c->info.rounds = 0;
     c->info.submissions = 0;
-    c->has_views = 0; /* until this update succeeds */
+    /* the views buffer holds this call's views now, and a failure below
+       would leave lists that match neither these nor the last ones: the
+       splat and the download refuse until an update succeeds */
+    c->has_views = 0;
     ctl = (mlodvk__control *)c->control.mapped;
     memset(&push, 0, sizeof push);
     push.epsilon = params->epsilon;
@@ -2139,7 +2287,13 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
     push.merge = params->mode != MLOD_CUT_BASIC;
     push.max_groups_x = ctx->properties.limits.maxComputeWorkGroupCount[0];
     for (;;) {
-        /* one submission: [init], up to `batch` rounds, finish */
+        /* One submission: [init], up to `batch` rounds, finish.  No read-back
+           between rounds: each round's size comes from the control block by
+           indirect dispatch, and cut_scan arms the next round or, once the cut
+           converged or a round would overflow, empties the rest, so surplus
+           rounds cost empty dispatches rather than a round trip.  A batch of
+           2 depth + 4 rounds lets most updates finish in one submission;
+           the rest take another. */
         uint32_t batch = lazy ? rounds_left : 2 * depth + 4, j;
         mlodvk__arm(ctl, ctx, entries);
         mlodvk__cut_sets(ctx, c, t);
@@ -2148,6 +2302,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
         mlodvk__barrier(ctx);
         if (first && from_root) {
             push.capacity = c->capacity;
+            /* a cut from the roots: entry v is (root, view v), pending */
             mlodvk__dispatch(ctx, MLODVK__CUT_INIT, ctx->layouts[MLODVK__LAYOUT_CUT], c->sets[0], &push, sizeof push, c->view_count);
             mlodvk__barrier(ctx);
         }
@@ -2155,6 +2310,10 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
         for (j = 0; j < batch; j++) {
             VkDescriptorSet set = c->sets[j & 1];
             push.slot = j & 1;
+            /* even rounds read A and write B (set 0, slot 0), odd ones the
+               reverse.  The call's first round classifies every entry anew,
+               since the views changed; later rounds trust the statuses and
+               evaluate only new entries */
             push.trust = !(first && j == 0);
             mlodvk__dispatch_indirect(ctx, MLODVK__CUT_STEP, ctx->layouts[MLODVK__LAYOUT_CUT], set, &push, sizeof push,
                                       c->control.buffer, 16 * (VkDeviceSize)push.slot);
@@ -2165,6 +2324,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
                                       c->control.buffer, 16 * (VkDeviceSize)push.slot);
             mlodvk__barrier(ctx);
         }
+        /* args[2]: moves the list back to A, classifies entries left pending,
+           writes the view offsets */
         mlodvk__dispatch_indirect(ctx, MLODVK__CUT_FINISH, ctx->layouts[MLODVK__LAYOUT_CUT], c->sets[0], &push, sizeof push,
                                   c->control.buffer, 32);
         mlodvk__barrier(ctx);
@@ -2173,6 +2334,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
         if (res != MLOD_OK) break;
         c->info.submissions++;
         first = 0;
+        /* the fence has passed: the mapped control block holds the outcome */
         entries = ctl->current;
         evaluated += ctl->evaluated;
         steps += ctl->steps;
@@ -2181,9 +2343,11 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_update(mlodvk_context *ctx, mlodvk_cut *c
         if (ctl->overflow) {
             res = mlodvk__cut_grow(ctx, c, entries, ctl->needed, error);
             if (res != MLOD_OK) break;
-            continue; /* resume from the round that overflowed */
+            continue; /* resume from the round that overflowed: it wrote nothing,
+                         and cut_finish moved its input to A */
         }
         if (ctl->done || (lazy && rounds_left == 0)) break;
+        /* a guard: a lazy batch that changed nothing ends the call */
         if (lazy && ctl->rounds == 0) break;
     }
     if (res != MLOD_OK) {
@@ -2208,6 +2372,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_download(mlodvk_context *ctx, mlodvk_cut 
     mlod_result res;
     if (!ctx || !c) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context and cut are needed");
     if (!c->has_views) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the cut has no successful update");
+    /* the host arrays only grow: downloads of similar cuts do not allocate */
     if (c->info.entries > c->host_capacity) {
         uint32_t *nodes = (uint32_t *)mlodvk__alloc(&ctx->allocator, c->info.entries, sizeof(uint32_t));
         uint8_t *status = (uint8_t *)mlodvk__alloc(&ctx->allocator, c->info.entries, 1);
@@ -2250,6 +2415,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_download(mlodvk_context *ctx, mlodvk_cut 
         mlod_cut_view *cv = &c->host_views[v];
         uint32_t begin = c->host_offsets[v], end = c->host_offsets[v + 1];
         memset(cv, 0, sizeof *cv);
+        /* device data, checked before it indexes host arrays */
         if (begin > end || end > c->host_entries)
             return mlodvk__fail(error, MLOD_ERROR_DEVICE, "view %u's offsets %u..%u are not in the list of %u", v, begin,
                                 end, c->host_entries);
@@ -2349,6 +2515,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_atlas_create(mlodvk_context *ctx, const mlod_
         mlodvk_atlas_destroy(ctx, a);
         return res;
     }
+    /* from here on the channels the atlas was made with: 1 normals, 2 colours */
     a->channels = (layout->normal ? 1u : 0u) | (layout->color ? 2u : 0u);
     *out = a;
     return mlodvk__ok(error);
@@ -2378,6 +2545,9 @@ MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, c
             return mlodvk__fail(error, MLOD_ERROR_MISMATCH, "view %u has a %ux%u tile, the atlas was made for %ux%u", v,
                                 (uint32_t)d[MLOD_IF_V_WIDTH], (uint32_t)d[MLOD_IF_V_HEIGHT], tile[2], tile[3]);
     }
+    /* rewritten every call: a growth replaces the cut's buffers, and one atlas
+       may splat other cuts and trees.  The views are the cut's last
+       successful update's, which a refused update leaves alone */
     b[MLOD_IF_SPLAT_SPHERES] = t->spheres.buffer;
     b[MLOD_IF_SPLAT_CONES] = t->cones.buffer;
     b[MLOD_IF_SPLAT_VIEWS] = c->views.buffer;
@@ -2404,7 +2574,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_splat(mlodvk_context *ctx, mlodvk_atlas *a, c
         mlodvk__barrier(ctx);
         mlodvk__dispatch(ctx, MLODVK__SPLAT_CLEAR, ctx->layouts[MLODVK__LAYOUT_SPLAT], a->set, &push, sizeof push, push.pixel_count);
         mlodvk__barrier(ctx);
-        /* cut_finish's arguments cover the cut's entries */
+        /* cut_finish's arguments (args[2]) cover the cut's entries: their
+           count is never read back */
         mlodvk__dispatch_indirect(ctx, MLODVK__SPLAT_DRAW, ctx->layouts[MLODVK__LAYOUT_SPLAT], a->set, &push, sizeof push,
                                   c->control.buffer, 32);
         mlodvk__barrier(ctx);
