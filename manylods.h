@@ -2145,7 +2145,9 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
     if (tree->triangle_areas) {
         double smallest = INFINITY;
         for (i = 0; i < triangles; i++) {
-            double area = cumulative[i + 1] - cumulative[i];
+            /* its own area, as refit will compute it: a difference of the
+               running sums loses a triangle far smaller than the total */
+            double area = mlod__triangle_area(mesh, i);
             tree->triangle_areas[i] = area;
             if (area > 0.0 && area < smallest) smallest = area;
         }
