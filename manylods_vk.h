@@ -2118,9 +2118,11 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view
     if (!ctx || !out) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "context and out are needed");
     if (view_count == 0) return mlodvk__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view_count must be >= 1");
     if (capacity < view_count) capacity = view_count;
-    /* the shaders count entries and their sums in uint32_t */
-    if (capacity > 0x7fffffffu || (uint64_t)view_count * MLOD_IF_VIEW_STRIDE * 8 > (uint64_t)1 << 40)
-        return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "%u views need more list entries than a uint32_t counts", view_count);
+    /* the shaders count entries and their sums in uint32_t (and capacity >=
+       view_count keeps the views' frames under 1 TiB) */
+    if (capacity > 0x7fffffffu)
+        return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "a cut of %u entries (%u views) is more than the shaders count",
+                            capacity, view_count);
     c = (mlodvk_cut *)mlodvk__alloc(&ctx->allocator, 1, sizeof *c);
     if (!c) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device cut");
     memset(c, 0, sizeof *c);

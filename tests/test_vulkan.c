@@ -1091,6 +1091,14 @@ static void test_arguments(void)
           "an empty context description is refused");
     CHECK(mlodvk_cut_create(context, 0, 0, &cut, &e) == MLOD_ERROR_INVALID_ARGUMENT && cut == NULL,
           "a cut of 0 views is refused");
+    /* the shaders count entries in uint32_t: past 2^31 - 1 the cut is refused
+       before anything is allocated, with a message that says so */
+    CHECK(mlodvk_cut_create(context, 1, 0x80000000u, &cut, &e) == MLOD_ERROR_OVERFLOW && cut == NULL &&
+              strstr(e.message, "2147483648 entries") != NULL,
+          "a cut of 2^31 entries: %s (%s)", mlod_result_name(e.code), e.message);
+    CHECK(mlodvk_cut_create(context, 0x80000000u, 0, &cut, &e) == MLOD_ERROR_OVERFLOW && cut == NULL &&
+              strstr(e.message, "2147483648 views") != NULL,
+          "a cut of 2^31 views: %s (%s)", mlod_result_name(e.code), e.message);
     CHECK(strcmp(mlod_result_name(MLOD_ERROR_DEVICE), "MLOD_ERROR_DEVICE") == 0, "the name of MLOD_ERROR_DEVICE");
 }
 
