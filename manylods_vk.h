@@ -2121,8 +2121,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_cut_create(mlodvk_context *ctx, uint32_t view
     /* the shaders count entries and their sums in uint32_t (and capacity >=
        view_count keeps the views' frames under 1 TiB) */
     if (capacity > 0x7fffffffu)
-        return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "a cut of %u entries (%u views) is more than the shaders count",
-                            capacity, view_count);
+        return mlodvk__fail(error, MLOD_ERROR_OVERFLOW, "a cut of %llu entries (%u views) is more than the shaders count",
+                            (unsigned long long)capacity, view_count);
     c = (mlodvk_cut *)mlodvk__alloc(&ctx->allocator, 1, sizeof *c);
     if (!c) return mlodvk__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the device cut");
     memset(c, 0, sizeof *c);
