@@ -911,6 +911,13 @@ MLOD__PUBLIC const char *mlod_result_name(mlod_result result)
     return "MLOD_ERROR_UNKNOWN";
 }
 
+/* printf-style arguments checked where the compiler can */
+#if defined(__GNUC__) || defined(__clang__)
+#define MLOD__PRINTF(format_index) __attribute__((format(printf, format_index, format_index + 1)))
+#else
+#define MLOD__PRINTF(format_index)
+#endif
+static mlod_result mlod__fail(mlod_error *error, mlod_result code, const char *format, ...) MLOD__PRINTF(3);
 static mlod_result mlod__fail(mlod_error *error, mlod_result code, const char *format, ...)
 {
     if (error) {

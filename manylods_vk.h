@@ -737,6 +737,10 @@ struct mlodvk_atlas {
 
 /* Every failure goes through here: the message into *error when there is
    one, and the code returned either way. */
+#if defined(__GNUC__) || defined(__clang__)
+static mlod_result mlodvk__fail(mlod_error *error, mlod_result code, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+#endif
 static mlod_result mlodvk__fail(mlod_error *error, mlod_result code, const char *format, ...)
 {
     if (error) {
