@@ -93,6 +93,7 @@
 #include "fuzz.h"
 #include "reader.h"
 #include "../tests/exact.h"
+#include "../bench/shapes.h"
 
 #include <float.h>
 #include <math.h>
@@ -363,7 +364,7 @@ static void parse_scene(fz_reader *r, fz_scene *s, uint8_t flags, int sane, int 
     scene_bounds(s);
 }
 
-static mlod_mesh scene_mesh(const fz_scene *s, const float *positions)
+static mlod_mesh fz_mesh_of(const fz_scene *s, const float *positions)
 {
     mlod_mesh m;
     memset(&m, 0, sizeof m);
@@ -1160,7 +1161,7 @@ static void check_projection(fz_reader *r, const mlod_tree *t, const fz_scene *s
                                   t->radius_scale, s->radius * ldexp(1.0, -(int)(rd_u8(r) % 20)));
     FZ_REQUIRE(n <= MANYLODS_MAX_LEAVES, "mlod_suggest_sample_count gave %u", n);
     if (!s->points) {
-        mlod_mesh mesh = scene_mesh(s, s->positions);
+        mlod_mesh mesh = fz_mesh_of(s, s->positions);
         double area = mlod_mesh_area(&mesh);
         FZ_REQUIRE(area >= 0.0 && !isnan(area), "mlod_mesh_area gave %g", area);
     }
@@ -1382,27 +1383,14 @@ static void check_growth(fz_reader *r, const mlod_tree *t)
    positions and new ones (triangles of zero area at build: none); the
    build keeps each triangle's own area, however small against the total
    (fuzz/crashes/pipeline/refit-growth-of-a-triangle-lost-in-the-area-sum). */
-static double triangle_area2(const float *pos, const uint32_t *tri)
-{
-    const float *a = pos + 3 * (size_t)tri[0], *b = pos + 3 * (size_t)tri[1], *c = pos + 3 * (size_t)tri[2];
-    double e1[3], e2[3], n[3];
-    int k;
-    for (k = 0; k < 3; k++) {
-        e1[k] = (double)b[k] - a[k];
-        e2[k] = (double)c[k] - a[k];
-    }
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    return sqrt(dot3(n, n));
-}
 
 static double largest_growth(const fz_scene *s, const float *moved)
 {
     double g = 0.0;
     uint32_t i;
     for (i = 0; i + 3 <= s->index_count; i += 3) {
-        double before = triangle_area2(s->positions, s->indices + i), after = triangle_area2(moved, s->indices + i);
+        double n[3], before = shape_triangle_area(s->positions, s->indices, i / 3, n);
+        double after = shape_triangle_area(moved, s->indices, i / 3, n);
         if (before > 0.0 && after / before > g) g = after / before;
     }
     return g;
@@ -1536,7 +1524,7 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
             }
             res = mlod_refit_points(t, &points, c->parallel, &e);
         } else {
-            mesh = scene_mesh(s, moved);
+            mesh = fz_mesh_of(s, moved);
             if (r->chaos && other < 4) { /* another mesh */
                 if (other & 1)
                     mesh.vertex_count += 1;
@@ -1639,7 +1627,7 @@ static void check_same_as_packed(const mlod_tree *t, const fz_scene *s, const fz
         mlod_points points = scene_points(s, s->positions);
         res = mlod_build_points(&points, &desc, &packed, &e);
     } else {
-        mlod_mesh mesh = scene_mesh(s, s->positions);
+        mlod_mesh mesh = fz_mesh_of(s, s->positions);
         res = mlod_build_mesh(&mesh, &desc, &packed, &e);
     }
     FZ_REQUIRE(res == MLOD_OK, "the packed build failed (%s) where the strided one succeeded", mlod_result_name(res));
@@ -1713,7 +1701,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             must_fail = stride_points_bad(&points, &c.strides);
             res = mlod_build_points(&points, &b.desc, &t, &e);
         } else {
-            mlod_mesh mesh = scene_mesh(&scene, scene.positions);
+            mlod_mesh mesh = fz_mesh_of(&scene, scene.positions);
             stride_mesh(&mesh, &c.strides);
             must_fail = stride_mesh_bad(&mesh, &c.strides);
             res = mlod_build_mesh(&mesh, &b.desc, &t, &e);

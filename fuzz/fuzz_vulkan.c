@@ -47,6 +47,7 @@
 #include "reader.h"
 #define MANYLODS_VK_IMPLEMENTATION
 #include "../manylods_vk.h"
+#include "../tests/vkutil.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -253,17 +254,12 @@ static void require_same_cut(mlodvk_cut *gpu, const mlod_cut *cpu, uint32_t view
     }
 }
 
+/* vk_download_views, which must succeed. */
 static void download_views(mlodvk_cut *cut, uint32_t view_count, unsigned char *bytes)
 {
-    mlodvk__buffer src;
-    mlodvk__download_range range;
     mlod_error e;
-    memset(&src, 0, sizeof src);
-    src.buffer = mlodvk_cut_get_buffers(cut).views;
-    range.src = &src;
-    range.size = 8 * MLOD_IF_VIEW_STRIDE * (VkDeviceSize)view_count;
-    range.dst = bytes;
-    FZ_REQUIRE(mlodvk__download(fz_context, &range, 1, &e) == MLOD_OK, "downloading the views buffer: %s", e.message);
+    FZ_REQUIRE(vk_download_views(fz_context, cut, view_count, bytes, &e) == MLOD_OK, "downloading the views buffer: %s",
+               e.message);
 }
 
 static int same_atlas(const mlod_atlas *a, const mlod_atlas *b)

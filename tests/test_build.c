@@ -562,37 +562,22 @@ static void check_precision(const scene_mesh *rest, double offset, float scale, 
 static void test_triangle_areas(void)
 {
     /* a unit square, then slivers of area 1e-16 .. 1e-12 after it */
-    static const float positions[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0, 0, 2.0f + 1e-6f, 0, 0, 2, 2e-10f, 0,
-                                      3, 0, 0, 3.0f + 1e-4f, 0, 0, 3, 2e-8f, 0, 4, 0, 0, 4.001f, 0, 0, 4, 2e-9f, 0};
-    static const uint32_t indices[] = {0, 1, 2, 0, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
-    mlod_mesh m;
-    mlod_build_desc d;
-    mlod_tree *t = NULL;
+    static float positions[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0, 0, 2.0f + 1e-6f, 0, 0, 2, 2e-10f, 0,
+                                3, 0, 0, 3.0f + 1e-4f, 0, 0, 3, 2e-8f, 0, 4, 0, 0, 4.001f, 0, 0, 4, 2e-9f, 0};
+    static uint32_t indices[] = {0, 1, 2, 0, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+    scene_mesh s;
+    mlod_tree *t;
     uint32_t i;
-    memset(&m, 0, sizeof m);
-    memset(&d, 0, sizeof d);
-    m.positions = positions;
-    m.vertex_count = 13;
-    m.indices = indices;
-    m.index_count = 15;
-    d.sample_count = 500;
-    d.seed = 3;
-    d.attributes = MLOD_ATTR_REFIT;
-    CHECK(mlod_build_mesh(&m, &d, &t, NULL) == MLOD_OK && t && t->triangle_areas, "triangle areas: build");
+    memset(&s, 0, sizeof s);
+    s.positions = positions;
+    s.vertex_count = 13;
+    s.indices = indices;
+    s.index_count = 15;
+    t = tu_build(&s, 500, 3, MLOD_ATTR_REFIT);
+    CHECK(t && t->triangle_areas, "triangle areas: build");
     if (!t || !t->triangle_areas) return;
     for (i = 0; i < 5; i++) {
-        const float *a = positions + 3 * indices[3 * i], *b = positions + 3 * indices[3 * i + 1],
-                    *c = positions + 3 * indices[3 * i + 2];
-        double e1[3], e2[3], n[3], area;
-        int k;
-        for (k = 0; k < 3; k++) {
-            e1[k] = (double)b[k] - a[k];
-            e2[k] = (double)c[k] - a[k];
-        }
-        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double area = tu_triangle_area(&s, i);
         CHECK(fabs(t->triangle_areas[i] - area) <= 1e-12 * area,
               "triangle areas: triangle %u of area %.17g is kept as %.17g", i, area, t->triangle_areas[i]);
     }

@@ -38,6 +38,7 @@ static void counted_free(void *p)
 #include "../manylods_vk.h"
 
 #include "testutil.h"
+#include "vkutil.h"
 
 #include <time.h>
 
@@ -502,20 +503,6 @@ static void test_refit_parity(void)
 
 /* ------------------------------------------------------- refusals -- */
 
-/* The device views buffer of a cut (mlodvk_cut_get_buffers().views),
-   downloaded into bytes (8 * MLOD_IF_VIEW_STRIDE per view). */
-static int download_views(mlodvk_cut *cut, uint32_t view_count, unsigned char *bytes)
-{
-    mlodvk__buffer src;
-    mlodvk__download_range range;
-    mlod_error e;
-    memset(&src, 0, sizeof src);
-    src.buffer = mlodvk_cut_get_buffers(cut).views;
-    range.src = &src;
-    range.size = 8 * MLOD_IF_VIEW_STRIDE * (VkDeviceSize)view_count;
-    range.dst = bytes;
-    return mlodvk__download(context, &range, 1, &e) == MLOD_OK;
-}
 
 /* The depth, normal and colour of a device splat of the cut, downloaded. */
 static int splat_bytes(mlodvk_atlas *vatlas, mlodvk_tree *vtree, mlodvk_cut *cut, mlod_atlas *into)
@@ -591,7 +578,7 @@ static void test_refusals(void)
         mlod_error ce;
         /* each case from the same accepted update */
         if (mlod_cut_update(cpu, tree, views, &p, &e) != MLOD_OK || mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK ||
-            !splat_bytes(vatlas, vtree, gpu, before) || !download_views(gpu, VIEWS, views_before)) {
+            !splat_bytes(vatlas, vtree, gpu, before) || vk_download_views(context, gpu, VIEWS, views_before, &e) != MLOD_OK) {
             CHECK(0, "refusals, %s: the accepted update before it failed: %s", names[k], e.message);
             ready = 0;
             break;
@@ -616,7 +603,7 @@ static void test_refusals(void)
         got = mlodvk_cut_update(context, gpu, vtree, vp, qp, &e);
         CHECK(want != MLOD_OK && got == want, "refusals, %s: the device returned %s, the CPU %s", names[k],
               mlod_result_name(got), mlod_result_name(want));
-        CHECK(download_views(gpu, VIEWS, views_after) && memcmp(views_before, views_after, sizeof views_before) == 0,
+        CHECK(vk_download_views(context, gpu, VIEWS, views_after, &e) == MLOD_OK && memcmp(views_before, views_after, sizeof views_before) == 0,
               "refusals, %s: the device views buffer changed", names[k]);
         CHECK(splat_bytes(vatlas, vtree, gpu, after) && same_atlas(before, after),
               "refusals, %s: the next splat differs from the splat before the refusal", names[k]);
