@@ -127,48 +127,72 @@
      stable partitions, as Wald and Havran build kd-trees: O(N log N) total.
 
    VIEWS AND THE CRITERION
+     A view is one to six SUB-PROJECTIONS, each a plain projection
+     (perspective, paraboloid or orthographic) with its own frame (u, v, w)
+     = (right, up, forward), its sub-tile (a rectangle of the view's tile)
+     and its culling half-spaces; the view's kind only says how its
+     sub-projections are made (mlod_view_frame_of shows them):
+       PERSPECTIVE, PARABOLOID, ORTHOGRAPHIC  one sub-projection, the whole
+                                   tile, the view's own frame;
+       DUAL_PARABOLOID             two paraboloids: the front (+w) in the
+                                   left half of the tile, W/2 x H, and the
+                                   back (-w, frame (-u, v, -w)) in the right;
+       CUBE                        six 90-degree perspective faces of s x s
+                                   pixels in a 3s x 2s tile (see CUBE MAPS).
+     A sphere REACHES a sub-projection when it lies in all of that
+     sub-projection's culling half-spaces (tested exactly).
      c(node, view) = diameter, in pixels of the view's tile, of the image of
-     the node's bounding sphere under the view's projection: the exact
-     diameter of that image, which bounds the node's projected size from
-     above.  Culling is decided first: c = 0 when the node is culled (the
-     frustum, box or hemisphere planes, then back faces), even when the eye
-     is inside its sphere; a sphere of radius 0 also has c = 0, and the
-     cut's status tells the two apart.  Otherwise c = +inf exactly where
-     the image is unbounded: perspective when x.w <= r (the sphere reaches
-     the eye's plane, the eye inside or on it included); paraboloids when
-     d <= r (the eye inside or on the sphere) or x.w + sqrt(d^2 - r^2) <= 0;
-     a dual paraboloid when d <= r or a half it reaches is unbounded;
-     orthographic views are never +inf.  Notation: e eye, (u, v, w)
-     the view frame (right, up, forward), x = centre - e, d = |x|, r radius.
+     the node's bounding sphere: the largest, over the sub-projections the
+     sphere reaches, of the exact diameter of its image there, which bounds
+     the node's projected size from above.  Culling is decided first: c = 0
+     when the node is culled (it reaches no sub-projection, or it faces
+     away, see BACK-FACE CULLING), even when the eye is inside its sphere; a
+     sphere of radius 0 also has c = 0, and the cut's status tells the two
+     apart.  A sub-projection's diameter is +inf exactly where the image is
+     unbounded: perspective when x.w <= r (the sphere reaches the eye's
+     plane, the eye inside or on it included); paraboloid when d <= r (the
+     eye inside or on the sphere) or x.w + sqrt(d^2 - r^2) <= 0;
+     orthographic never.  Notation: e eye, (u, v, w) the sub-projection's
+     frame, x = centre - e, d = |x|, r radius, W x H its sub-tile.
 
-     PERSPECTIVE (pinhole, vertical field of view fov_y, tile W x H, square
-       pixels, focal length f = (H/2) / tan(fov_y/2) pixels):
+     PERSPECTIVE (pinhole, vertical field of view fov_y, square pixels,
+       focal length f = (H/2) / tan(fov_y/2) pixels):
          c = f * 2 r sqrt(d^2 - r^2) / ((x.w)^2 - r^2)      if x.w > r
        (the major axis of the image ellipse: f (tan(t+b) - tan(t-b)) with t
        the angle of the centre off the axis and b = asin(r/d)), +inf if
-       x.w <= r.  Culled when the sphere lies wholly outside one of the six
-       frustum planes (near, far, and the four sides through the eye).
+       x.w <= r.  Culling half-spaces: the six frustum planes (near, far,
+       and the four sides through the eye).
      PARABOLOID (hemispherical, a virtual point light at e with normal w;
        direction y maps to (y.u, y.v) / (1 + y.w) in [-1,1]^2, which is a
        stereographic projection, so spheres map to circles):
          c = (max(W,H)/2) * 2 r / (x.w + sqrt(d^2 - r^2))    (+inf if <= 0)
-       Culled when the sphere lies wholly behind the plane (x.w + r < 0).
-     DUAL_PARABOLOID (omnidirectional: the front hemisphere (+w) in the left
-       half of the tile, the back one (-w, seen with u mirrored) in the right
-       half, each W/2 x H): c = the larger of the two paraboloid diameters
-       over the halves the sphere reaches, with max(W/2,H)/2 pixels per unit.
-       No frustum culling (back-face culling still applies).
+       Culling half-space: the front of the plane (x.w + r >= 0).  A dual
+       paraboloid's two halves are two of these, so together they cull
+       nothing.
      ORTHOGRAPHIC (a directional light: box of half-extents half_width
        x half_height around e, depth range [near_plane, far_plane] along w):
          c = 2 r * max(W / (2 half_width), H / (2 half_height))
-       Culled when the sphere lies wholly outside the box.
+       Culling half-spaces: the six faces of the box.
+     CUBE MAPS (kind MLOD_VIEW_CUBE, the reflection-probe format): six
+       perspective faces with fov 90 degrees (f = s/2), near_plane and
+       far_plane, in the order and orientation of Vulkan's and OpenGL's
+       cube maps (layer i = face i) over the axes X = u, Y = v, Z = -w (so a
+       view with forward (0,0,-1) and up (0,1,0) is the world-axis cube):
+         face  0 +X  1 -X  2 +Y  3 -Y  4 +Z  5 -Z
+         w     u     -u    v     -v    -w    w      (the face's axis)
+         u     w     -w    u     u     u     -u     (its pixel x, rightwards)
+         v     v     v     w     -w    v     v      (its pixel y, upwards)
+       Face i is the s x s square at (s (i mod 3), s (i div 3)) of the
+       3s x 2s tile.  A direction's face is the one whose axis it is
+       closest to (on a tie, the lower face).
      BACK-FACE CULLING (view flag MLOD_VIEW_CULL_BACKFACES, trees with cones):
        a node is also culled when every point of its sphere with every normal
        of its cone faces away from the eye: angle(axis, e - centre) >
        pi/2 + alpha + asin(r/d) (for orthographic views the direction to the
        eye is -w and the asin term is 0).
      Monotone: a child inside its parent has c(child) <= c(parent) for every
-     view, culling included.  The plane tests are evaluated exactly (a
+     view, culling included (it reaches no sub-projection its parent does
+     not, and each diameter is monotone).  The plane tests are evaluated exactly (a
      floating-point filter with an exact expansion-arithmetic fallback); the
      diameters are computed in double precision, whose error the tree's
      slack of 2^-20 dominates.
@@ -198,14 +222,16 @@
      tile of one atlas (mlod_atlas: a grid of tiles, depth plus optional
      normal and colour channels).  A node becomes a disc: the disc around the
      exact image of its bounding sphere, centred on the image's centre, of
-     diameter c(node, view) (paraboloids: at the larger of their two pixel
-     scales), so it covers the node's whole image.  The disc holds one depth,
-     that of the sphere's centre; nearest depth wins.  Depth means
-       perspective, orthographic:  z = (p - eye) . forward (along the axis);
-       paraboloid, dual paraboloid: |p - eye| (Euclidean distance).
+     its diameter there (paraboloids: at the larger of their two pixel
+     scales), so it covers the node's whole image, in every sub-projection
+     the sphere reaches, clipped to that sub-projection's sub-tile.  The
+     disc holds one depth, that of the sphere's centre; nearest depth wins.
+     Depth means, in the sub-projection's frame:
+       perspective (cube faces too), orthographic:  z = (p - eye) . w;
+       paraboloid (dual paraboloid halves too):     |p - eye|.
      Pixel (i, j) of a tile covers [i, i+1) x [j, j+1), x to the right
-     (forward x up), y downwards; mlod_view_project and mlod_view_pixel_ray
-     are the projection and its inverse.
+     (along u), y downwards; mlod_view_project and mlod_view_pixel_ray are
+     the projection and its inverse.
      The whole image is conservative: every silhouette grows by up to the
      drawn node's radius, up to epsilon / 2 pixels, so occluders (and their
      shadows) come out wider than they are.  mlod_atlas_desc.disc_scale
@@ -517,10 +543,14 @@ typedef enum mlod_view_kind {
     MLOD_VIEW_PERSPECTIVE = 0,
     MLOD_VIEW_PARABOLOID = 1,
     MLOD_VIEW_DUAL_PARABOLOID = 2,
-    MLOD_VIEW_ORTHOGRAPHIC = 3
+    MLOD_VIEW_ORTHOGRAPHIC = 3,
+    MLOD_VIEW_CUBE = 4
 } mlod_view_kind;
 
 enum { MLOD_VIEW_CULL_BACKFACES = 1u << 0 };
+
+/* The most sub-projections a view has (a cube map's six faces). */
+#define MLOD_VIEW_MAX_SUBS 6
 
 /* One view.  World units; angles in radians.  forward and up need not be
    unit length but must not be parallel: the sine of their angle must
@@ -534,11 +564,11 @@ typedef struct mlod_view {
     float position[3];   /* eye; orthographic: a point on the box's axis, depth 0 */
     float forward[3];    /* viewing direction; paraboloids: the hemisphere axis */
     float up[3];
-    uint32_t width;      /* tile size in pixels, >= 1 each */
+    uint32_t width;      /* tile size in pixels, >= 1 each; cube: 3s x 2s */
     uint32_t height;
     float fov_y;         /* perspective: vertical field of view, (0, pi) */
-    float near_plane;    /* perspective: > 0; orthographic: any finite value */
-    float far_plane;     /* perspective, orthographic: > near, may be +inf */
+    float near_plane;    /* perspective, cube: > 0; orthographic: any finite value */
+    float far_plane;     /* perspective, cube, orthographic: > near, may be +inf */
     float half_width;    /* orthographic: half-extents of the box, > 0 */
     float half_height;
     uint32_t flags;      /* MLOD_VIEW_* */
@@ -552,26 +582,38 @@ MANYLODS_DEF double mlod_criterion(const mlod_tree *tree, uint32_t node, const m
 /* Check a view: MLOD_OK or MLOD_ERROR_BAD_VIEW / NON_FINITE with a message. */
 MANYLODS_DEF mlod_result mlod_view_check(const mlod_view *view, mlod_error *error);
 
+/* One sub-projection of a view, in double (see VIEWS AND THE CRITERION).
+   right, up, forward: its unit frame (u, v, w); kind: MLOD_VIEW_PERSPECTIVE,
+   _PARABOLOID or _ORTHOGRAPHIC; scale: pixels per unit of the projection
+   (perspective: the focal length f; paraboloid: half the larger side of
+   its sub-tile; orthographic: the larger of scale_x, scale_y, pixels per
+   world unit along u and v); x, y, width, height: its sub-tile within the
+   view's tile (pixels from the tile's top-left corner; it draws columns
+   floor(x) .. floor(x + width) - 1 and the rows likewise).  A sphere (c, r)
+   reaches it unless, for one of its plane_count planes (n, k, l),
+   n.c + l r < k exactly.  Unused planes are 0. */
+typedef struct mlod_view_sub {
+    double right[3], up[3], forward[3];
+    double kind, scale, scale_x, scale_y;
+    double x, y, width, height;
+    double plane_count;
+    double planes[6][5];
+} mlod_view_sub;
+
 /* What the criterion and the splat derive from a view, in double: for
    other backends of the same formulas (manylods_vk.h uploads it) and for
-   tools.  right, up, forward: the unit frame (u, v, w); scale: pixels per
-   unit of the projection (perspective: the focal length f; paraboloids:
-   half the larger tile side, or of a half-tile; orthographic: the larger
-   of scale_x, scale_y, pixels per world unit along u and v).  A sphere
-   (c, r) is culled when, for one of the plane_count planes (n, k, l),
-   n.c + l r < k exactly; halves: a dual paraboloid's front (0) and back (1)
-   half-spaces in the same form.  Unused planes, halves and the reserved
-   tail are 0.  One representation serves the CPU's criterion and splat and
-   is the device's: 64 doubles, which manylods_vk.h uploads as they are
-   (kind, plane_count and cull_backfaces are small integers, stored as
-   doubles for that reason). */
+   tools.  eye: the view's position, which all its sub-projections share
+   (an orthographic one looks along its forward from the box's plane
+   through it); width, height: the tile; kind: the mlod_view_kind;
+   sub_count: 1 to MLOD_VIEW_MAX_SUBS sub-projections in subs (unused ones
+   are 0); cull_backfaces: 1 when MLOD_VIEW_CULL_BACKFACES is set.  One
+   representation serves the CPU's criterion and splat and is the
+   device's: 296 doubles, which manylods_vk.h uploads as they are (the
+   small integers are stored as doubles for that reason). */
 typedef struct mlod_view_frame {
-    double eye[3], right[3], up[3], forward[3];
-    double scale, width, height, scale_x, scale_y;
-    double kind, plane_count, cull_backfaces;
-    double planes[6][5];
-    double halves[2][5];
-    double reserved[4];
+    double eye[3], width, height;
+    double kind, sub_count, cull_backfaces;
+    mlod_view_sub subs[MLOD_VIEW_MAX_SUBS];
 } mlod_view_frame;
 
 /* Fill *frame from a view; MLOD_OK, or the error of mlod_view_check.
@@ -672,24 +714,30 @@ MANYLODS_DEF void mlod_cut_destroy(mlod_cut *cut);
 
 /* ------------------------------------------------------------ projection */
 
-/* Where a world point lands in a view's tile.  pixel[0] grows to the right
-   (along forward x up), pixel[1] downwards; pixel (i, j) covers [i, i+1) x
-   [j, j+1).  depth: perspective and orthographic, the distance along the
-   view axis (z = (p - eye).forward); paraboloids, the Euclidean distance
-   |p - eye|.  Returns 1 when the point is inside the view (frustum, box,
-   front hemisphere; for dual paraboloids always), else 0 with the outputs
-   still written where the projection is defined.  Pure, thread-safe; views
-   are checked (0 for an invalid view). */
+/* Where a world point lands in a view's tile.  pixel[0] grows to the right,
+   pixel[1] downwards; pixel (i, j) covers [i, i+1) x [j, j+1).  The point
+   is projected by the sub-projection whose axis w is closest to its
+   direction (the largest (p - eye).w; on a tie the first: a dual
+   paraboloid's front, a cube's lower face); depth as in SPLATTING:
+   perspective, cube faces and orthographic, z = (p - eye).w along that
+   axis; paraboloids, |p - eye|.  Returns 1 when the point is inside the
+   view (it reaches a sub-projection: in the frustum, box, front
+   hemisphere; for dual paraboloids always; for cube maps outside the near
+   cube and inside the far one), else 0 with the outputs still written
+   where the projection is defined.  Pure, thread-safe; views are checked
+   (0 for an invalid view). */
 MANYLODS_DEF int mlod_view_project(const mlod_view *view, const float point[3], float pixel[2], float *depth);
 
 /* The ray through pixel position (x, y) of the tile (continuous, pixel
-   centres at i + 0.5): origin and unit direction in world units.  Returns 0
-   when the position has no ray (outside a paraboloid's disc, or outside the
-   tile).  The origin is the eye (perspective, paraboloids) or the point of
+   centres at i + 0.5): origin and unit direction in world units, through
+   the sub-projection whose sub-tile holds the position.  Returns 0 when the
+   position has no ray (outside a paraboloid's disc, or outside the tile).
+   The origin is the eye (perspective, cube, paraboloids) or the point of
    depth 0 on the pixel's line (orthographic; not the near plane).  The
    depth (as in mlod_view_project) of origin + t direction is
-   t * (direction . forward) + (origin - eye) . forward for perspective and
-   orthographic views, and t for paraboloids. Pure, thread-safe. */
+   t * (direction . w) + (origin - eye) . w for perspective, cube and
+   orthographic views, w the axis of the sub-projection, and t for
+   paraboloids.  Pure, thread-safe. */
 MANYLODS_DEF int mlod_view_pixel_ray(const mlod_view *view, float x, float y, float origin[3], float direction[3]);
 
 /* ----------------------------------------------------------------- atlas */
@@ -2594,38 +2642,148 @@ static inline int mlod__outside(const double *p, const float *sphere)
 /* --------------------------------------------------------------- views -- */
 
 /* A prepared view: its frame (the one representation, see mlod_view_frame)
-   and, for the hot paths, its kind, plane count and back-face flag as
-   integers. */
+   and, for the hot paths, the sub-projection count, the back-face flag and
+   each sub-projection's kind and plane count as integers. */
 typedef struct mlod__pview {
+    int sub_count, backfaces;
+    int kind[MLOD_VIEW_MAX_SUBS];
+    int plane_count[MLOD_VIEW_MAX_SUBS];
+    uint32_t columns[MLOD_VIEW_MAX_SUBS][2], rows[MLOD_VIEW_MAX_SUBS][2]; /* each sub-tile's pixels, [begin, end) */
     mlod_view_frame f;
-    mlod_view_kind kind;
-    int backfaces;
-    int plane_count;
 } mlod__pview;
 
 static int mlod__finite_positive(float x) { return isfinite(x) && x > 0.0f; }
 
-/* Validate a view and derive its frame, planes and scale. */
-static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, mlod_error *error)
+/* Append a sub-projection of this kind, frame (u, v, w) and sub-tile to the
+   view; its scale and planes are the caller's. */
+static mlod_view_sub *mlod__sub_add(mlod__pview *pv, mlod_view_kind kind, const double *u, const double *v,
+                                    const double *w, double x, double y, double width, double height)
 {
-    double f[3], up[3], len_f, len_up, right_len;
+    int s = pv->sub_count++, k;
+    mlod_view_sub *sub = &pv->f.subs[s];
+    for (k = 0; k < 3; k++) {
+        sub->right[k] = u[k];
+        sub->up[k] = v[k];
+        sub->forward[k] = w[k];
+    }
+    pv->kind[s] = (int)kind;
+    sub->kind = kind;
+    sub->x = x;
+    sub->y = y;
+    sub->width = width;
+    sub->height = height;
+    return sub;
+}
+
+/* Append the half-space n.p >= n.eye + offset to the last sub-projection. */
+static void mlod__sub_plane(mlod__pview *pv, const double *n, double offset)
+{
+    int s = pv->sub_count - 1;
+    mlod__plane_set(pv->f.subs[s].planes[pv->plane_count[s]++], n, pv->f.eye, offset);
+}
+
+/* The same half-space with -n and -offset. */
+static void mlod__sub_plane_neg(mlod__pview *pv, const double *n, double offset)
+{
+    double m[3];
     int k;
-    if (!view) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view is NULL");
-    if ((unsigned)view->kind > (unsigned)MLOD_VIEW_ORTHOGRAPHIC)
-        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown view kind %d", (int)view->kind);
+    for (k = 0; k < 3; k++) m[k] = -n[k];
+    mlod__sub_plane(pv, m, -offset);
+}
+
+/* A perspective sub-projection: tan of its half vertical field of view ty,
+   depth range [near_plane, far_plane]; culled outside its frustum. */
+static void mlod__perspective_sub(mlod__pview *pv, const double *u, const double *v, const double *w, double x,
+                                  double y, double width, double height, double ty, float near_plane, float far_plane)
+{
+    mlod_view_sub *sub = mlod__sub_add(pv, MLOD_VIEW_PERSPECTIVE, u, v, w, x, y, width, height);
+    double tx, n[3];
+    int k;
+    sub->scale = 0.5 * height / ty;
+    tx = 0.5 * width / sub->scale;
+    mlod__sub_plane(pv, w, near_plane);
+    if (isfinite(far_plane)) mlod__sub_plane_neg(pv, w, far_plane);
+    for (k = 0; k < 3; k++) n[k] = tx * w[k] - u[k];
+    mlod__sub_plane(pv, n, 0.0);
+    for (k = 0; k < 3; k++) n[k] = tx * w[k] + u[k];
+    mlod__sub_plane(pv, n, 0.0);
+    for (k = 0; k < 3; k++) n[k] = ty * w[k] - v[k];
+    mlod__sub_plane(pv, n, 0.0);
+    for (k = 0; k < 3; k++) n[k] = ty * w[k] + v[k];
+    mlod__sub_plane(pv, n, 0.0);
+}
+
+/* A paraboloid sub-projection: the hemisphere around w; culled behind it. */
+static void mlod__paraboloid_sub(mlod__pview *pv, const double *u, const double *v, const double *w, double x,
+                                 double y, double width, double height)
+{
+    mlod_view_sub *sub = mlod__sub_add(pv, MLOD_VIEW_PARABOLOID, u, v, w, x, y, width, height);
+    sub->scale = 0.5 * (width > height ? width : height);
+    mlod__sub_plane(pv, w, 0.0);
+}
+
+/* An orthographic sub-projection of the view's box over the whole tile;
+   culled outside the box. */
+static void mlod__orthographic_sub(mlod__pview *pv, const mlod_view *view, const double *u, const double *v,
+                                   const double *w)
+{
+    mlod_view_sub *sub = mlod__sub_add(pv, MLOD_VIEW_ORTHOGRAPHIC, u, v, w, 0.0, 0.0, view->width, view->height);
+    double sx = view->width / (2.0 * view->half_width), sy = view->height / (2.0 * view->half_height);
+    sub->scale = sx > sy ? sx : sy;
+    sub->scale_x = sx;
+    sub->scale_y = sy;
+    mlod__sub_plane(pv, w, view->near_plane);
+    if (isfinite(view->far_plane)) mlod__sub_plane_neg(pv, w, view->far_plane);
+    mlod__sub_plane(pv, u, -(double)view->half_width);
+    mlod__sub_plane_neg(pv, u, view->half_width);
+    mlod__sub_plane(pv, v, -(double)view->half_height);
+    mlod__sub_plane_neg(pv, v, view->half_height);
+}
+
+/* The six faces of a cube map in the frame (u, v, w) of its view, in the
+   order and orientation of Vulkan's cube maps over X = u, Y = v, Z = -w:
+   for each face, its axis, its pixel x and its pixel y (upwards), each as
+   +-1 times u, v or w (1, 2, 3). */
+static const signed char mlod__cube_faces[6][3] = {
+    {1, 3, 2}, {-1, -3, 2}, {2, 1, 3}, {-2, 1, -3}, {-3, 1, 2}, {3, -1, 2}};
+
+/* The cube map's faces: perspective sub-projections of 90 degrees. */
+static void mlod__cube_subs(mlod__pview *pv, const mlod_view *view, const double *const axes[3])
+{
+    double side = view->height / 2, frame[3][3];
+    int face, j, k;
+    for (face = 0; face < 6; face++) {
+        for (j = 0; j < 3; j++) {
+            int a = mlod__cube_faces[face][j];
+            for (k = 0; k < 3; k++) frame[j][k] = a < 0 ? -axes[-a - 1][k] : axes[a - 1][k];
+        }
+        mlod__perspective_sub(pv, frame[1], frame[2], frame[0], side * (face % 3), side * (face / 3), side, side, 1.0,
+                              view->near_plane, view->far_plane);
+    }
+}
+
+/* Check that the fields the view's kind reads hold numbers where they must
+   (see mlod_view), and the kind, tile and flags. */
+static mlod_result mlod__view_fields_check(const mlod_view *view, mlod_error *error)
+{
+    mlod_view_kind kind = view->kind;
+    if ((unsigned)kind > (unsigned)MLOD_VIEW_CUBE)
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown view kind %d", (int)kind);
     if (!mlod__finite3(view->position) || !mlod__finite3(view->forward) || !mlod__finite3(view->up))
         return mlod__fail(error, MLOD_ERROR_NON_FINITE, "the view's position, forward or up is not finite");
     if (view->width == 0 || view->height == 0)
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "tile size %ux%u: both must be >= 1", view->width, view->height);
-    /* Only the fields a kind reads are checked (see mlod_view): a paraboloid
-       accepts anything, NaN included, in fov_y, near_plane, far_plane,
-       half_width and half_height. */
-    if (view->kind == MLOD_VIEW_PERSPECTIVE &&
+    /* a paraboloid accepts anything, NaN included, in fov_y, near_plane,
+       far_plane, half_width and half_height */
+    if (kind == MLOD_VIEW_PERSPECTIVE &&
         (!isfinite(view->fov_y) || !isfinite(view->near_plane) || isnan(view->far_plane)))
         return mlod__fail(error, MLOD_ERROR_NON_FINITE,
                           "perspective fov_y %g and near_plane %g must be finite, far_plane %g not NaN", view->fov_y,
                           view->near_plane, view->far_plane);
-    if (view->kind == MLOD_VIEW_ORTHOGRAPHIC &&
+    if (kind == MLOD_VIEW_CUBE && (!isfinite(view->near_plane) || isnan(view->far_plane)))
+        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "cube map near_plane %g must be finite, far_plane %g not NaN",
+                          view->near_plane, view->far_plane);
+    if (kind == MLOD_VIEW_ORTHOGRAPHIC &&
         (!isfinite(view->near_plane) || !isfinite(view->half_width) || !isfinite(view->half_height) ||
          isnan(view->far_plane)))
         return mlod__fail(error, MLOD_ERROR_NON_FINITE,
@@ -2634,6 +2792,49 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
                           view->near_plane, view->half_width, view->half_height, view->far_plane);
     if (view->flags & ~(uint32_t)MLOD_VIEW_CULL_BACKFACES)
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown view flags 0x%x", view->flags);
+    return MLOD_OK;
+}
+
+/* Check the ranges of the fields the view's kind reads, once they are
+   known to be numbers. */
+static mlod_result mlod__view_ranges_check(const mlod_view *view, mlod_error *error)
+{
+    mlod_view_kind kind = view->kind;
+    if (kind == MLOD_VIEW_PERSPECTIVE && !(view->fov_y > 0.0f && view->fov_y < MLOD__PI))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "fov_y %g is not in (0, pi)", view->fov_y);
+    if ((kind == MLOD_VIEW_PERSPECTIVE || kind == MLOD_VIEW_CUBE) && !(view->near_plane > 0.0f))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "%s near_plane %g must be finite and > 0",
+                          kind == MLOD_VIEW_CUBE ? "cube map" : "perspective", view->near_plane);
+    if ((kind == MLOD_VIEW_PERSPECTIVE || kind == MLOD_VIEW_CUBE) && !(view->far_plane > view->near_plane))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "far_plane %g must be > near_plane %g", view->far_plane,
+                          view->near_plane);
+    if (kind == MLOD_VIEW_CUBE && (view->height % 2 != 0 || view->width != view->height / 2 * 3))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW,
+                          "cube map tile %ux%u: must be 3s x 2s pixels, six s x s faces (for example %ux%u)",
+                          view->width, view->height, view->height / 2 ? view->height / 2 * 3 : 3u,
+                          view->height / 2 ? view->height / 2 * 2 : 2u);
+    if (kind == MLOD_VIEW_ORTHOGRAPHIC && (!mlod__finite_positive(view->half_width) ||
+                                           !mlod__finite_positive(view->half_height)))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "orthographic half_width %g and half_height %g must be > 0",
+                          view->half_width, view->half_height);
+    if (kind == MLOD_VIEW_ORTHOGRAPHIC && !(view->far_plane > view->near_plane))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "orthographic near_plane %g must be finite and < far_plane %g",
+                          view->near_plane, view->far_plane);
+    return MLOD_OK;
+}
+
+/* Validate a view and derive its frame: the unit frame (u, v, w), then its
+   sub-projections, each with its scale, sub-tile and planes.  A view kind
+   is this function's case and nothing else. */
+static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, mlod_error *error)
+{
+    double f[3], up[3], u[3], v[3], w[3], back_u[3], back_w[3], len_f, len_up, right_len;
+    const double *axes[3];
+    mlod_result res;
+    int k;
+    if (!view) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "view is NULL");
+    res = mlod__view_fields_check(view, error);
+    if (res != MLOD_OK) return res;
     memset(pv, 0, sizeof *pv);
     for (k = 0; k < 3; k++) {
         pv->f.eye[k] = view->position[k];
@@ -2645,89 +2846,56 @@ static mlod_result mlod__view_prepare(const mlod_view *view, mlod__pview *pv, ml
     if (!(len_f > 0.0) || !(len_up > 0.0))
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "the view's forward or up vector has zero length");
     for (k = 0; k < 3; k++) {
-        pv->f.forward[k] = f[k] / len_f;
+        w[k] = f[k] / len_f;
         up[k] /= len_up;
     }
-    mlod__cross3(pv->f.forward, up, pv->f.right);
-    right_len = mlod__length3(pv->f.right);
+    mlod__cross3(w, up, u);
+    right_len = mlod__length3(u);
     if (!(right_len > 1e-6))
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "the view's forward and up vectors are parallel");
-    for (k = 0; k < 3; k++) pv->f.right[k] /= right_len;
-    mlod__cross3(pv->f.right, pv->f.forward, pv->f.up);
-    pv->kind = view->kind;
+    for (k = 0; k < 3; k++) u[k] /= right_len;
+    mlod__cross3(u, w, v);
+    res = mlod__view_ranges_check(view, error);
+    if (res != MLOD_OK) return res;
     pv->f.width = view->width;
     pv->f.height = view->height;
+    pv->f.kind = view->kind;
     pv->backfaces = (view->flags & MLOD_VIEW_CULL_BACKFACES) != 0;
     switch (view->kind) {
-    case MLOD_VIEW_PERSPECTIVE: {
-        double ty, tx, n[3];
-        if (!(isfinite(view->fov_y) && view->fov_y > 0.0f && view->fov_y < MLOD__PI))
-            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "fov_y %g is not in (0, pi)", view->fov_y);
-        if (!mlod__finite_positive(view->near_plane))
-            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "perspective near_plane %g must be finite and > 0",
-                              view->near_plane);
-        if (!(view->far_plane > view->near_plane))
-            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "far_plane %g must be > near_plane %g", view->far_plane,
-                              view->near_plane);
-        ty = tan(0.5 * view->fov_y);
-        pv->f.scale = 0.5 * view->height / ty;
-        tx = 0.5 * view->width / pv->f.scale;
-        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.forward, pv->f.eye, view->near_plane);
-        if (isfinite(view->far_plane)) {
-            for (k = 0; k < 3; k++) n[k] = -pv->f.forward[k];
-            mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, -(double)view->far_plane);
-        }
-        for (k = 0; k < 3; k++) n[k] = tx * pv->f.forward[k] - pv->f.right[k];
-        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, 0.0);
-        for (k = 0; k < 3; k++) n[k] = tx * pv->f.forward[k] + pv->f.right[k];
-        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, 0.0);
-        for (k = 0; k < 3; k++) n[k] = ty * pv->f.forward[k] - pv->f.up[k];
-        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, 0.0);
-        for (k = 0; k < 3; k++) n[k] = ty * pv->f.forward[k] + pv->f.up[k];
-        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, 0.0);
-        break;
-    }
-    case MLOD_VIEW_PARABOLOID:
-        pv->f.scale = 0.5 * (view->width > view->height ? view->width : view->height);
-        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.forward, pv->f.eye, 0.0);
-        break;
-    case MLOD_VIEW_DUAL_PARABOLOID: {
-        double half = 0.5 * view->width, n[3];
-        pv->f.scale = 0.5 * (half > view->height ? half : (double)view->height);
-        mlod__plane_set(pv->f.halves[0], pv->f.forward, pv->f.eye, 0.0);
-        for (k = 0; k < 3; k++) n[k] = -pv->f.forward[k];
-        mlod__plane_set(pv->f.halves[1], n, pv->f.eye, 0.0);
-        break;
-    }
-    case MLOD_VIEW_ORTHOGRAPHIC: {
-        double n[3], sx, sy;
-        if (!mlod__finite_positive(view->half_width) || !mlod__finite_positive(view->half_height))
-            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "orthographic half_width %g and half_height %g must be > 0",
-                              view->half_width, view->half_height);
-        if (!isfinite(view->near_plane) || !(view->far_plane > view->near_plane))
-            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "orthographic near_plane %g must be finite and < far_plane %g",
+    case MLOD_VIEW_PERSPECTIVE:
+        mlod__perspective_sub(pv, u, v, w, 0.0, 0.0, view->width, view->height, tan(0.5 * view->fov_y),
                               view->near_plane, view->far_plane);
-        sx = view->width / (2.0 * view->half_width);
-        sy = view->height / (2.0 * view->half_height);
-        pv->f.scale = sx > sy ? sx : sy;
-        pv->f.scale_x = sx;
-        pv->f.scale_y = sy;
-        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.forward, pv->f.eye, view->near_plane);
-        if (isfinite(view->far_plane)) {
-            for (k = 0; k < 3; k++) n[k] = -pv->f.forward[k];
-            mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, -(double)view->far_plane);
+        break;
+    case MLOD_VIEW_PARABOLOID:
+        mlod__paraboloid_sub(pv, u, v, w, 0.0, 0.0, view->width, view->height);
+        break;
+    case MLOD_VIEW_DUAL_PARABOLOID:
+        for (k = 0; k < 3; k++) {
+            back_u[k] = -u[k];
+            back_w[k] = -w[k];
         }
-        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.right, pv->f.eye, -(double)view->half_width);
-        for (k = 0; k < 3; k++) n[k] = -pv->f.right[k];
-        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, -(double)view->half_width);
-        mlod__plane_set(pv->f.planes[pv->plane_count++], pv->f.up, pv->f.eye, -(double)view->half_height);
-        for (k = 0; k < 3; k++) n[k] = -pv->f.up[k];
-        mlod__plane_set(pv->f.planes[pv->plane_count++], n, pv->f.eye, -(double)view->half_height);
+        mlod__paraboloid_sub(pv, u, v, w, 0.0, 0.0, 0.5 * view->width, view->height);
+        mlod__paraboloid_sub(pv, back_u, v, back_w, 0.5 * view->width, 0.0, 0.5 * view->width, view->height);
+        break;
+    case MLOD_VIEW_ORTHOGRAPHIC:
+        mlod__orthographic_sub(pv, view, u, v, w);
+        break;
+    case MLOD_VIEW_CUBE:
+        axes[0] = u;
+        axes[1] = v;
+        axes[2] = w;
+        mlod__cube_subs(pv, view, axes);
         break;
     }
+    pv->f.sub_count = pv->sub_count;
+    for (k = 0; k < pv->sub_count; k++) {
+        const mlod_view_sub *sub = &pv->f.subs[k];
+        pv->f.subs[k].plane_count = pv->plane_count[k];
+        pv->columns[k][0] = (uint32_t)sub->x;
+        pv->columns[k][1] = (uint32_t)(sub->x + sub->width);
+        pv->rows[k][0] = (uint32_t)sub->y;
+        pv->rows[k][1] = (uint32_t)(sub->y + sub->height);
     }
-    pv->f.kind = pv->kind;
-    pv->f.plane_count = pv->plane_count;
     pv->f.cull_backfaces = pv->backfaces;
     return MLOD_OK;
 }
@@ -2757,7 +2925,8 @@ MLOD__PUBLIC mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_fra
    radius, culled when g > pi/2 + a + b (< pi), i.e. cos g < -sin(a + b):
    axis.(e - c) / |axis| < -(sin a t + cos a r), and cos(a + b) > 0, i.e.
    cos a t - sin a r > 0, with (t, r) = (sqrt(d^2 - r^2), r); no inverse
-   trigonometry.  An orthographic eye is at -w with b = 0: (t, r) = (1, 0)
+   trigonometry.  An orthographic eye (a view's sub-projections share their
+   eye, so the first one tells) is at -w with b = 0: (t, r) = (1, 0)
    turns the same two tests into cos a > 0 and axis.(-w) / |axis| < -sin a,
    bit for bit. */
 /* GLSL twin: backfacing */
@@ -2769,8 +2938,9 @@ static int mlod__backfacing(const mlod__pview *pv, const double *x, double d2, d
        (g <= pi/2), always has a normal facing it: those return before the
        square root and the series (half the nodes of a closed surface) */
     if (!(a < 0.5 * MLOD__PI)) return 0;
-    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) {
-        away = -(cone[0] * pv->f.forward[0] + cone[1] * pv->f.forward[1] + cone[2] * pv->f.forward[2]);
+    if (pv->kind[0] == MLOD_VIEW_ORTHOGRAPHIC) {
+        const double *w = pv->f.subs[0].forward;
+        away = -(cone[0] * w[0] + cone[1] * w[1] + cone[2] * w[2]);
         t = 1.0;
         s = 0.0;
     } else {
@@ -2804,49 +2974,69 @@ static double mlod__paraboloid_diameter(double r, double xw, double tangent)
     return den > 0.0 ? 2.0 * r / den : (double)INFINITY;
 }
 
+/* The diameter of the sphere's image in one sub-projection, in pixels:
+   x = centre - eye, d2 = |x|^2, tangent = sqrt(max(d2 - r^2, 0)) (0 for
+   orthographic views). */
+/* GLSL twin: sub_diameter */
+static inline double mlod__sub_diameter(const mlod_view_sub *sub, int kind, const double *x, double d2, double r,
+                                 double tangent)
+{
+    double xw = mlod__dot3(x, sub->forward);
+    switch (kind) {
+    case MLOD_VIEW_PERSPECTIVE:
+        if (xw <= r) return INFINITY;
+        return sub->scale * 2.0 * r * tangent / ((xw - r) * (xw + r));
+    case MLOD_VIEW_PARABOLOID:
+        if (d2 <= r * r) return INFINITY;
+        return sub->scale * mlod__paraboloid_diameter(r, xw, tangent);
+    }
+    return sub->scale * 2.0 * r;
+}
+
+/* Which sub-projections the sphere reaches: bit s for sub-projection s. */
+/* GLSL twin: reached_subs */
+static unsigned mlod__reached(const mlod__pview *pv, const float *sphere)
+{
+    unsigned reached = 0;
+    int s, k;
+    for (s = 0; s < pv->sub_count; s++) {
+        for (k = 0; k < pv->plane_count[s]; k++)
+            if (mlod__outside(pv->f.subs[s].planes[k], sphere)) break;
+        if (k == pv->plane_count[s]) reached |= 1u << s;
+    }
+    return reached;
+}
+
 /* c(node, view) of the documentation; *culled = 1 when culled. */
 /* GLSL twin: evaluate */
 static double mlod__evaluate(const mlod__pview *pv, const float *sphere, const float *cone, int *culled)
 {
-    double x[3], d2, r = sphere[3], r2, t2, tangent, xw;
+    double x[3], d2, r = sphere[3], t2, tangent, c = 0.0;
+    unsigned reached = 1;
     int k;
+    *culled = 1;
+    if (pv->sub_count == 1) { /* the hot path (most views): mlod__reached inline */
+        for (k = 0; k < pv->plane_count[0]; k++)
+            if (mlod__outside(pv->f.subs[0].planes[k], sphere)) return 0.0;
+    } else if (!(reached = mlod__reached(pv, sphere))) {
+        return 0.0;
+    }
     *culled = 0;
-    for (k = 0; k < pv->plane_count; k++)
-        if (mlod__outside(pv->f.planes[k], sphere)) {
-            *culled = 1;
-            return 0.0;
-        }
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
     d2 = mlod__dot3(x, x);
-    r2 = r * r;
-    t2 = d2 - r2; /* > 0 exactly when d2 > r2 */
-    tangent = pv->kind == MLOD_VIEW_ORTHOGRAPHIC ? 0.0 : sqrt(t2 > 0.0 ? t2 : 0.0);
+    t2 = d2 - r * r; /* > 0 exactly when d2 > r^2 */
+    tangent = pv->kind[0] == MLOD_VIEW_ORTHOGRAPHIC ? 0.0 : sqrt(t2 > 0.0 ? t2 : 0.0);
     if (pv->backfaces && cone && mlod__backfacing(pv, x, d2, r, tangent, cone)) {
         *culled = 1;
         return 0.0;
     }
-    xw = mlod__dot3(x, pv->f.forward);
-    switch (pv->kind) {
-    case MLOD_VIEW_PERSPECTIVE:
-        if (xw <= r) return INFINITY;
-        return pv->f.scale * 2.0 * r * tangent / ((xw - r) * (xw + r));
-    case MLOD_VIEW_PARABOLOID:
-        if (d2 <= r2) return INFINITY;
-        return pv->f.scale * mlod__paraboloid_diameter(r, xw, tangent);
-    case MLOD_VIEW_DUAL_PARABOLOID: {
-        double c = 0.0;
-        if (d2 <= r2) return INFINITY;
-        if (!mlod__outside(pv->f.halves[0], sphere)) c = mlod__paraboloid_diameter(r, xw, tangent);
-        if (!mlod__outside(pv->f.halves[1], sphere)) {
-            double back = mlod__paraboloid_diameter(r, -xw, tangent);
-            if (back > c) c = back;
+    if (pv->sub_count == 1) return mlod__sub_diameter(&pv->f.subs[0], pv->kind[0], x, d2, r, tangent);
+    for (k = 0; k < pv->sub_count; k++)
+        if (reached >> k & 1u) {
+            double sub = mlod__sub_diameter(&pv->f.subs[k], pv->kind[k], x, d2, r, tangent);
+            if (sub > c) c = sub;
         }
-        return pv->f.scale * c;
-    }
-    case MLOD_VIEW_ORTHOGRAPHIC:
-        return pv->f.scale * 2.0 * r;
-    }
-    return INFINITY;
+    return c;
 }
 
 static const float *mlod__cone_of(const mlod_tree *tree, uint32_t node)
@@ -3754,33 +3944,35 @@ out_of_memory:
 
 /* ---------------------------------------------------------- projection -- */
 
-/* The image of a sphere (centre, radius r) in one projection of a view: the
-   disc around it (centre and radius in tile pixels) and the depth of its
-   centre.  half: the dual paraboloid hemisphere (0 front, 1 back), else 0.
-   A point is a sphere of radius 0. */
+/* The image of a sphere (centre, radius r) in one sub-projection of a view:
+   the disc around it (centre and radius in tile pixels) and the depth of
+   its centre.  A point is a sphere of radius 0. */
 typedef struct mlod__disc {
     double x, y, radius, depth;
 } mlod__disc;
 
-/* The images of n <= MLOD__LANES spheres at once, step by step across them
-   (each lane computes what it would alone): bounded[l] says whether out[l]
-   was written (0: the image is unbounded).  Returns bounded[0]. */
+/* The images of n <= MLOD__LANES spheres at once in sub-projection s, step
+   by step across them (each lane computes what it would alone):
+   bounded[l] says whether out[l] was written (0: the image is unbounded).
+   Returns bounded[0]. */
 /* GLSL twin: image_disc */
-static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], const double *r, int half,
+static int mlod__image_discs(const mlod__pview *pv, int s, const double (*centre)[3], const double *r,
                              mlod__disc *out, int *bounded, uint32_t n)
 {
+    const mlod_view_sub *sub = &pv->f.subs[s];
     double x[MLOD__LANES][3], d[MLOD__LANES], a[MLOD__LANES], b[MLOD__LANES], cos_t[MLOD__LANES];
     double sin_t[MLOD__LANES], sin_b[MLOD__LANES], cos_b[MLOD__LANES];
+    double mid_x = sub->x + 0.5 * sub->width, mid_y = sub->y + 0.5 * sub->height;
     uint32_t l;
     int k;
     for (l = 0; l < n; l++)
         for (k = 0; k < 3; k++) x[l][k] = centre[l][k] - pv->f.eye[k];
-    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) {
+    if (pv->kind[s] == MLOD_VIEW_ORTHOGRAPHIC) {
         for (l = 0; l < n; l++) {
-            out[l].x = 0.5 * pv->f.width + pv->f.scale_x * mlod__dot3(x[l], pv->f.right);
-            out[l].y = 0.5 * pv->f.height - pv->f.scale_y * mlod__dot3(x[l], pv->f.up);
-            out[l].radius = r[l] * pv->f.scale;
-            out[l].depth = mlod__dot3(x[l], pv->f.forward);
+            out[l].x = mid_x + sub->scale_x * mlod__dot3(x[l], sub->right);
+            out[l].y = mid_y - sub->scale_y * mlod__dot3(x[l], sub->up);
+            out[l].radius = r[l] * sub->scale;
+            out[l].depth = mlod__dot3(x[l], sub->forward);
             bounded[l] = 1;
         }
         return bounded[0];
@@ -3791,13 +3983,9 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
     }
     for (l = 0; l < n; l++) {
         if (!bounded[l]) continue;
-        a[l] = mlod__dot3(x[l], pv->f.right) / d[l];
-        b[l] = mlod__dot3(x[l], pv->f.up) / d[l];
-        cos_t[l] = mlod__dot3(x[l], pv->f.forward) / d[l];
-        if (half) { /* the back hemisphere, seen along -w with u mirrored */
-            a[l] = -a[l];
-            cos_t[l] = -cos_t[l];
-        }
+        a[l] = mlod__dot3(x[l], sub->right) / d[l];
+        b[l] = mlod__dot3(x[l], sub->up) / d[l];
+        cos_t[l] = mlod__dot3(x[l], sub->forward) / d[l];
         sin_b[l] = r[l] / d[l];
     }
     for (l = 0; l < n; l++) {
@@ -3817,7 +4005,7 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
         c_hi = cos_t[l] * cos_b[l] - sin_t[l] * sin_b[l];
         s_lo = sin_t[l] * cos_b[l] - cos_t[l] * sin_b[l];
         c_lo = cos_t[l] * cos_b[l] + sin_t[l] * sin_b[l];
-        if (pv->kind == MLOD_VIEW_PERSPECTIVE) {
+        if (pv->kind[s] == MLOD_VIEW_PERSPECTIVE) {
             if (!(c_hi > 0.0)) {
                 bounded[l] = 0;
                 continue;
@@ -3827,43 +4015,58 @@ static int mlod__image_discs(const mlod__pview *pv, const double (*centre)[3], c
             /* y as a sum with -dir_y (the same bits as the difference):
                gcc 12 fuses an add beside a subtract into one vector
                multiply-add-subtract even with -ffp-contract=off */
-            out[l].x = 0.5 * pv->f.width + pv->f.scale * 0.5 * (hi + lo) * dir_x;
-            out[l].y = 0.5 * pv->f.height + pv->f.scale * 0.5 * (hi + lo) * -dir_y;
-            out[l].depth = mlod__dot3(x[l], pv->f.forward);
+            out[l].x = mid_x + sub->scale * 0.5 * (hi + lo) * dir_x;
+            out[l].y = mid_y + sub->scale * 0.5 * (hi + lo) * -dir_y;
+            out[l].depth = mlod__dot3(x[l], sub->forward);
         } else {
-            double tile_width = pv->kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv->f.width : pv->f.width;
             if (!(1.0 + c_hi > 0.0)) {
                 bounded[l] = 0;
                 continue;
             }
             hi = s_hi / (1.0 + c_hi); /* tan((t + b) / 2) */
             lo = s_lo / (1.0 + c_lo);
-            out[l].x = half * tile_width + 0.5 * tile_width * (1.0 + 0.5 * (hi + lo) * dir_x);
-            out[l].y = 0.5 * pv->f.height * (1.0 - 0.5 * (hi + lo) * dir_y);
+            out[l].x = sub->x + 0.5 * sub->width * (1.0 + 0.5 * (hi + lo) * dir_x);
+            out[l].y = sub->y + 0.5 * sub->height * (1.0 - 0.5 * (hi + lo) * dir_y);
             out[l].depth = d[l];
         }
-        out[l].radius = pv->f.scale * 0.5 * (hi - lo);
+        out[l].radius = sub->scale * 0.5 * (hi - lo);
     }
     return bounded[0];
 }
 
 /* One sphere: mlod__image_discs with one lane; 0 when unbounded. */
-static int mlod__image_disc(const mlod__pview *pv, const double *centre, double r, int half, mlod__disc *out)
+static int mlod__image_disc(const mlod__pview *pv, int s, const double *centre, double r, mlod__disc *out)
 {
     int bounded;
-    return mlod__image_discs(pv, (const double (*)[3])centre, &r, half, out, &bounded, 1);
+    return mlod__image_discs(pv, s, (const double (*)[3])centre, &r, out, &bounded, 1);
 }
 
-/* Inside the view: in every culling half-space. */
-static int mlod__point_inside(const mlod__pview *pv, const float *point)
+/* The sub-projection whose axis is closest to the direction of p from the
+   eye: the largest (p - eye).w, the first on a tie. */
+static int mlod__nearest_sub(const mlod__pview *pv, const double *p)
 {
-    float sphere[4];
-    int k;
-    for (k = 0; k < 3; k++) sphere[k] = point[k];
-    sphere[3] = 0.0f;
-    for (k = 0; k < pv->plane_count; k++)
-        if (mlod__outside(pv->f.planes[k], sphere)) return 0;
-    return 1;
+    double x[3], best = 0.0;
+    int s, k, found = 0;
+    for (k = 0; k < 3; k++) x[k] = p[k] - pv->f.eye[k];
+    for (s = 0; s < pv->sub_count; s++) {
+        double xw = mlod__dot3(x, pv->f.subs[s].forward);
+        if (s == 0 || xw > best) {
+            best = xw;
+            found = s;
+        }
+    }
+    return found;
+}
+
+/* The sub-projection whose sub-tile holds tile position (x, y), or -1. */
+static int mlod__sub_at(const mlod__pview *pv, double x, double y)
+{
+    int s;
+    for (s = 0; s < pv->sub_count; s++) {
+        const mlod_view_sub *sub = &pv->f.subs[s];
+        if (x >= sub->x && x < sub->x + sub->width && y >= sub->y && y < sub->y + sub->height) return s;
+    }
+    return -1;
 }
 
 MLOD__PUBLIC int mlod_view_project(const mlod_view *view, const float point[3], float pixel[2], float *depth)
@@ -3871,53 +4074,52 @@ MLOD__PUBLIC int mlod_view_project(const mlod_view *view, const float point[3], 
     mlod__pview pv;
     mlod__disc disc;
     double p[3];
-    int k, half = 0;
+    float sphere[4];
+    int k;
     if (!point || mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
-    for (k = 0; k < 3; k++) p[k] = point[k];
-    if (pv.kind == MLOD_VIEW_DUAL_PARABOLOID) {
-        double x[3];
-        for (k = 0; k < 3; k++) x[k] = p[k] - pv.f.eye[k];
-        half = mlod__dot3(x, pv.f.forward) < 0.0;
+    for (k = 0; k < 3; k++) {
+        p[k] = point[k];
+        sphere[k] = point[k];
     }
-    if (!mlod__image_disc(&pv, p, 0.0, half, &disc)) return 0;
+    sphere[3] = 0.0f;
+    if (!mlod__image_disc(&pv, mlod__nearest_sub(&pv, p), p, 0.0, &disc)) return 0;
     if (pixel) {
         pixel[0] = (float)disc.x;
         pixel[1] = (float)disc.y;
     }
     if (depth) *depth = (float)disc.depth;
-    return mlod__point_inside(&pv, point);
+    return mlod__reached(&pv, sphere) != 0;
 }
 
 MLOD__PUBLIC int mlod_view_pixel_ray(const mlod_view *view, float x, float y, float origin[3], float direction[3])
 {
     mlod__pview pv;
+    const mlod_view_sub *sub;
     double o[3], dir[3], len;
-    int k;
+    int k, s;
     if (mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
     if (!(x >= 0.0f && x < (float)view->width && y >= 0.0f && y < (float)view->height)) return 0;
+    s = mlod__sub_at(&pv, x, y);
+    if (s < 0) return 0;
+    sub = &pv.f.subs[s];
     for (k = 0; k < 3; k++) o[k] = pv.f.eye[k];
-    if (pv.kind == MLOD_VIEW_PERSPECTIVE) {
-        double px = (x - 0.5 * pv.f.width) / pv.f.scale, py = (0.5 * pv.f.height - y) / pv.f.scale;
-        for (k = 0; k < 3; k++) dir[k] = pv.f.forward[k] + px * pv.f.right[k] + py * pv.f.up[k];
-    } else if (pv.kind == MLOD_VIEW_ORTHOGRAPHIC) {
-        double px = (x - 0.5 * pv.f.width) / pv.f.scale_x, py = (0.5 * pv.f.height - y) / pv.f.scale_y;
+    if (pv.kind[s] == MLOD_VIEW_PERSPECTIVE) {
+        double px = (x - (sub->x + 0.5 * sub->width)) / sub->scale;
+        double py = ((sub->y + 0.5 * sub->height) - y) / sub->scale;
+        for (k = 0; k < 3; k++) dir[k] = sub->forward[k] + px * sub->right[k] + py * sub->up[k];
+    } else if (pv.kind[s] == MLOD_VIEW_ORTHOGRAPHIC) {
+        double px = (x - (sub->x + 0.5 * sub->width)) / sub->scale_x;
+        double py = ((sub->y + 0.5 * sub->height) - y) / sub->scale_y;
         for (k = 0; k < 3; k++) {
-            o[k] += px * pv.f.right[k] + py * pv.f.up[k];
-            dir[k] = pv.f.forward[k];
+            o[k] += px * sub->right[k] + py * sub->up[k];
+            dir[k] = sub->forward[k];
         }
     } else {
-        double tile_width = pv.kind == MLOD_VIEW_DUAL_PARABOLOID ? 0.5 * pv.f.width : pv.f.width, px, py, q, side = 1.0;
-        double local = x;
-        if (pv.kind == MLOD_VIEW_DUAL_PARABOLOID && x >= tile_width) {
-            local = x - tile_width;
-            side = -1.0;
-        }
-        px = 2.0 * local / tile_width - 1.0;
-        py = 1.0 - 2.0 * y / pv.f.height;
-        q = px * px + py * py;
+        double px = 2.0 * (x - sub->x) / sub->width - 1.0, py = 1.0 - 2.0 * (y - sub->y) / sub->height;
+        double q = px * px + py * py;
         if (q > 1.0) return 0;
-        /* inverse stereographic projection; the back half mirrors u and w */
-        for (k = 0; k < 3; k++) dir[k] = side * 2.0 * px * pv.f.right[k] + 2.0 * py * pv.f.up[k] + side * (1.0 - q) * pv.f.forward[k];
+        /* the inverse stereographic projection */
+        for (k = 0; k < 3; k++) dir[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
     }
     len = mlod__length3(dir);
     for (k = 0; k < 3; k++) {
@@ -4102,20 +4304,24 @@ static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float
     for (k = 0; k < 3 && atlas->color; k++) atlas->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
 }
 
-/* Draw the disc into the band, clipped to tile columns [col_begin, col_end). */
-static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, uint32_t node, uint32_t col_begin,
-                              uint32_t col_end)
+/* Draw the disc into the band, clipped to tile columns [columns[0],
+   columns[1]) and rows [rows[0], rows[1]) (a sub-tile, see mlod_view_sub). */
+static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, uint32_t node, const uint32_t *columns,
+                              const uint32_t *rows)
 {
     const mlod_atlas *atlas = band->atlas;
     double radius = disc->radius * (double)atlas->disc_scale, r2 = radius * radius;
     double y0 = floor(disc->y - radius), y1 = ceil(disc->y + radius);
     double x0 = floor(disc->x - radius), x1 = ceil(disc->x + radius);
-    uint32_t row, col, rb, re, cb, ce;
+    uint32_t row, col, rb, re, cb, ce, col_begin = columns[0], col_end = columns[1];
+    uint32_t row_begin = rows[0] < band->row_begin ? band->row_begin : rows[0];
+    uint32_t row_end = rows[1] > band->row_end ? band->row_end : rows[1];
     float depth = (float)disc->depth;
     int hit = 0;
     if (!(disc->radius < 1e9) || !isfinite(disc->x) || !isfinite(disc->y)) return;
-    rb = y0 < band->row_begin ? band->row_begin : (y0 >= band->row_end ? band->row_end : (uint32_t)y0);
-    re = y1 > band->row_end ? band->row_end : (y1 <= band->row_begin ? band->row_begin : (uint32_t)y1);
+    if (row_begin >= row_end) return;
+    rb = y0 < row_begin ? row_begin : (y0 >= row_end ? row_end : (uint32_t)y0);
+    re = y1 > row_end ? row_end : (y1 <= row_begin ? row_begin : (uint32_t)y1);
     cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);
     ce = x1 > col_end ? col_end : (x1 <= col_begin ? col_begin : (uint32_t)x1);
     for (row = rb; row < re; row++) {
@@ -4129,39 +4335,37 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
         }
     }
     /* no pixel centre in the disc: at disc_scale 1, the pixel holding its centre */
-    if (!hit && atlas->disc_scale >= 1.0f && disc->x >= col_begin && disc->x < col_end && disc->y >= band->row_begin &&
-        disc->y < band->row_end)
+    if (!hit && atlas->disc_scale >= 1.0f && disc->x >= col_begin && disc->x < col_end && disc->y >= row_begin &&
+        disc->y < row_end)
         mlod__plot(band, (uint32_t)floor(disc->y), (uint32_t)floor(disc->x), depth, node);
 }
 
-/* Draw n <= MLOD__LANES nodes into the band, in order: each hemisphere its
-   sphere reaches for dual paraboloids, else the one projection (the
-   images of all n at once). */
+/* Draw n <= MLOD__LANES nodes into the band, in order, in each
+   sub-projection their spheres reach (the images of a sub-projection's
+   nodes at once).  A view of one sub-projection draws them all: each
+   drawn node of its cut reaches it. */
+/* GLSL twin: draw_entry */
 static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, const uint32_t *nodes, uint32_t n)
 {
     double c[MLOD__LANES][3], r[MLOD__LANES] = {0.0};
     mlod__disc disc[MLOD__LANES];
-    int bounded[MLOD__LANES], k, half;
-    uint32_t l;
-    if (n == 0) return;
-    for (l = 0; l < n; l++) {
-        const float *s = band->tree->spheres + 4 * (size_t)nodes[l];
-        for (k = 0; k < 3; k++) c[l][k] = s[k];
-        r[l] = s[3];
-    }
-    if (pv->kind != MLOD_VIEW_DUAL_PARABOLOID) {
-        mlod__image_discs(pv, (const double (*)[3])c, r, 0, disc, bounded, n);
-        for (l = 0; l < n; l++)
-            if (bounded[l]) mlod__raster_disc(band, &disc[l], nodes[l], 0, band->tile[2]);
-        return;
-    }
-    for (l = 0; l < n; l++)
-        for (half = 0; half < 2; half++) {
-            uint32_t w = band->tile[2] / 2;
-            if (mlod__outside(pv->f.halves[half], band->tree->spheres + 4 * (size_t)nodes[l])) continue;
-            if (mlod__image_disc(pv, c[l], r[l], half, &disc[0]))
-                mlod__raster_disc(band, &disc[0], nodes[l], half ? w : 0, half ? band->tile[2] : w);
+    int bounded[MLOD__LANES], k, s;
+    unsigned reached[MLOD__LANES];
+    uint32_t l, m, lane[MLOD__LANES];
+    for (s = 0; s < pv->sub_count; s++) {
+        for (l = m = 0; l < n; l++) { /* the nodes reaching s, in order */
+            const float *sphere = band->tree->spheres + 4 * (size_t)nodes[l];
+            if (s == 0) reached[l] = pv->sub_count == 1 ? 1u : mlod__reached(pv, sphere);
+            if (!(reached[l] >> s & 1u)) continue;
+            for (k = 0; k < 3; k++) c[m][k] = sphere[k];
+            r[m] = sphere[3];
+            lane[m++] = l;
         }
+        if (m == 0) continue;
+        mlod__image_discs(pv, s, (const double (*)[3])c, r, disc, bounded, m);
+        for (l = 0; l < m; l++)
+            if (bounded[l]) mlod__raster_disc(band, &disc[l], nodes[lane[l]], pv->columns[s], pv->rows[s]);
+    }
 }
 
 /* Which view and rows a band task covers; clears those rows. */
@@ -4422,22 +4626,32 @@ MLOD__PUBLIC double mlod_mesh_area(const mlod_mesh *mesh)
     return total;
 }
 
-/* The largest leaf radius whose image in the view is at most epsilon pixels
-   across at distance `closest` (from the eye to the leaf's centre), where
-   the view magnifies most: a leaf just touching the tile's border from
-   outside, beyond the corner of a perspective tile or behind the rim of a
-   paraboloid (its centre at angle theta0 + asin(r / closest) off the axis). */
-static double mlod__largest_leaf_radius(const mlod__pview *pv, double epsilon, double closest)
+/* The largest leaf radius whose image in sub-projection s of the view is
+   at most epsilon pixels across at distance `closest` (from the eye to the
+   leaf's centre), where it magnifies most: a leaf just touching the
+   sub-tile's border from outside, beyond the corner of a perspective
+   sub-tile or behind the rim of a paraboloid (its centre at angle
+   theta0 + asin(r / closest) off the axis), measured in that
+   sub-projection alone with no culling (at the border it would be culled,
+   or measured in a neighbour whose image is smaller). */
+static double mlod__largest_leaf_radius(const mlod__pview *pv, int s, double epsilon, double closest)
 {
+    const mlod_view_sub *sub = &pv->f.subs[s];
+    mlod__pview one;
     double side[3], lo = 0.0, hi = closest, theta0, len;
     int k, step;
-    if (pv->kind == MLOD_VIEW_ORTHOGRAPHIC) return epsilon / (2.0 * pv->f.scale);
-    if (pv->kind == MLOD_VIEW_PERSPECTIVE) {
-        double tx = 0.5 * pv->f.width / pv->f.scale, ty = 0.5 * pv->f.height / pv->f.scale;
-        for (k = 0; k < 3; k++) side[k] = tx * pv->f.right[k] + ty * pv->f.up[k];
+    if (pv->kind[s] == MLOD_VIEW_ORTHOGRAPHIC) return epsilon / (2.0 * sub->scale);
+    memset(&one, 0, sizeof one);
+    for (k = 0; k < 3; k++) one.f.eye[k] = pv->f.eye[k];
+    one.f.subs[0] = *sub;
+    one.kind[0] = pv->kind[s];
+    one.sub_count = 1;
+    if (pv->kind[s] == MLOD_VIEW_PERSPECTIVE) {
+        double tx = 0.5 * sub->width / sub->scale, ty = 0.5 * sub->height / sub->scale;
+        for (k = 0; k < 3; k++) side[k] = tx * sub->right[k] + ty * sub->up[k];
         theta0 = atan(sqrt(tx * tx + ty * ty));
     } else {
-        for (k = 0; k < 3; k++) side[k] = pv->f.right[k];
+        for (k = 0; k < 3; k++) side[k] = sub->right[k];
         theta0 = 0.5 * MLOD__PI;
     }
     len = mlod__length3(side);
@@ -4446,9 +4660,9 @@ static double mlod__largest_leaf_radius(const mlod__pview *pv, double epsilon, d
         float sphere[4];
         int culled;
         for (k = 0; k < 3; k++)
-            sphere[k] = (float)(pv->f.eye[k] + closest * (cos(theta) * pv->f.forward[k] + sin(theta) * side[k] / len));
+            sphere[k] = (float)(pv->f.eye[k] + closest * (cos(theta) * sub->forward[k] + sin(theta) * side[k] / len));
         sphere[3] = (float)r;
-        c = mlod__evaluate(pv, sphere, NULL, &culled);
+        c = mlod__evaluate(&one, sphere, NULL, &culled);
         if (c <= epsilon)
             lo = r;
         else
@@ -4469,14 +4683,12 @@ MLOD__PUBLIC uint32_t mlod_suggest_sample_count(double surface_area, const mlod_
     for (v = 0; v < view_count; v++) {
         mlod__pview pv;
         double r;
+        int s;
         if (mlod__view_prepare(&views[v], &pv, NULL) != MLOD_OK) return 0;
-        /* the probe touches the tile's border from outside: no culling
-           there, and a dual paraboloid's probe is measured in the half it
-           just reaches (at the tangency that half's image is the larger) */
-        pv.plane_count = 0;
-        if (pv.kind == MLOD_VIEW_DUAL_PARABOLOID) pv.kind = MLOD_VIEW_PARABOLOID;
-        r = mlod__largest_leaf_radius(&pv, epsilon, closest);
-        if (r < radius) radius = r;
+        for (s = 0; s < pv.sub_count; s++) {
+            r = mlod__largest_leaf_radius(&pv, s, epsilon, closest);
+            if (r < radius) radius = r;
+        }
     }
     if (!(radius > 0.0)) return MANYLODS_MAX_LEAVES;
     n = ceil(surface_area * (radius_scale / radius) * (radius_scale / radius));

@@ -779,9 +779,9 @@ static inline int app_paraboloid_of(const mlod_view *view, app_paraboloid *out)
     if (view->kind != MLOD_VIEW_PARABOLOID || mlod_view_frame_of(view, &f, NULL) != MLOD_OK) return 0;
     for (k = 0; k < 3; k++) {
         out->eye[k] = (float)f.eye[k];
-        out->u[k] = (float)f.right[k];
-        out->v[k] = (float)f.up[k];
-        out->w[k] = (float)f.forward[k];
+        out->u[k] = (float)f.subs[0].right[k];
+        out->v[k] = (float)f.subs[0].up[k];
+        out->w[k] = (float)f.subs[0].forward[k];
     }
     out->half_width = 0.5f * (float)f.width;
     out->half_height = 0.5f * (float)f.height;

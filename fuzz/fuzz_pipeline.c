@@ -1276,10 +1276,11 @@ static void check_params(fz_ctx *c, fz_reader *r, mlod_cut *cut, const mlod_tree
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* mlod_view_frame_of agrees with mlod_view_check on every view, valid or
-   not; a frame it gives is the view's (eye, kind, tile, flags), its
-   forward along the view's, right, up, forward orthonormal with right =
-   forward x up, and a node that some culling plane puts clearly outside
-   has criterion 0. */
+   not; a frame it gives is the view's (eye, kind, tile, flags), with 1 to
+   6 sub-projections, each with a positive scale, a sub-tile inside the
+   tile and an orthonormal frame, the first one along the view's forward
+   and up (a cube map's +X face: its right and up); a node that a plane
+   of every sub-projection puts clearly outside has criterion 0. */
 static void check_frames(fz_reader *r, const mlod_tree *t, const fz_views *vs)
 {
     uint32_t v, i;
@@ -1292,7 +1293,7 @@ static void check_frames(fz_reader *r, const mlod_tree *t, const fz_views *vs)
     for (v = 0; v < vs->count; v++) {
         const mlod_view *view = &vs->views[v];
         double fw[3], vu[3], x[3], len;
-        int k, j;
+        int k, j, s;
         memset(&f, 0, sizeof f);
         r1 = mlod_view_frame_of(view, &f, &e1);
         FZ_REQUIRE(r1 == mlod_view_check(view, &e2), "view %u: mlod_view_frame_of gave %s, mlod_view_check %s", v,
@@ -1310,38 +1311,60 @@ static void check_frames(fz_reader *r, const mlod_tree *t, const fz_views *vs)
             vu[k] = view->up[k];
         }
         FZ_REQUIRE(f.kind == (uint32_t)view->kind && f.cull_backfaces == (view->flags & 1u) &&
-                       f.width == (double)view->width && f.height == (double)view->height && f.plane_count <= 6,
-                   "view %u: frame kind %u, culling %u, tile %g x %g, %u planes", v, f.kind, f.cull_backfaces, f.width,
-                   f.height, f.plane_count);
-        FZ_REQUIRE(isfinite(f.scale) && f.scale > 0.0, "view %u: frame scale %g", v, f.scale);
+                       f.width == (double)view->width && f.height == (double)view->height && f.sub_count >= 1 &&
+                       f.sub_count <= MLOD_VIEW_MAX_SUBS,
+                   "view %u: frame kind %g, culling %g, tile %g x %g, %g sub-projections", v, f.kind, f.cull_backfaces,
+                   f.width, f.height, f.sub_count);
         len = sqrt(dot3(fw, fw));
-        FZ_REQUIRE(fabs(dot3(f.forward, f.forward) - 1.0) < 1e-9 && fabs(dot3(f.right, f.right) - 1.0) < 1e-9 &&
-                       fabs(dot3(f.up, f.up) - 1.0) < 1e-9,
-                   "view %u: frame axes not unit", v);
-        FZ_REQUIRE(dot3(f.forward, fw) >= len * (1.0 - 1e-9), "view %u: frame forward not along the view's", v);
-        FZ_REQUIRE(fabs(dot3(f.forward, f.up)) < 1e-9 && fabs(dot3(f.forward, f.right)) < 1e-9 &&
-                       fabs(dot3(f.up, f.right)) < 1e-9 && dot3(f.up, vu) > 0.0,
-                   "view %u: frame axes not orthogonal, or up against the view's", v);
-        x[0] = f.forward[1] * f.up[2] - f.forward[2] * f.up[1];
-        x[1] = f.forward[2] * f.up[0] - f.forward[0] * f.up[2];
-        x[2] = f.forward[0] * f.up[1] - f.forward[1] * f.up[0];
-        FZ_REQUIRE(fabs(x[0] - f.right[0]) < 1e-9 && fabs(x[1] - f.right[1]) < 1e-9 && fabs(x[2] - f.right[2]) < 1e-9,
-                   "view %u: frame right is not forward x up", v);
-        for (j = 0; j < (int)f.plane_count; j++)
-            for (k = 0; k < 5; k++) FZ_REQUIRE(!isnan(f.planes[j][k]), "view %u: plane %d is NaN", v, j);
+        for (s = 0; s < (int)f.sub_count; s++) {
+            const mlod_view_sub *sub = &f.subs[s];
+            FZ_REQUIRE(isfinite(sub->scale) && sub->scale > 0.0 && sub->plane_count <= 6,
+                       "view %u sub %d: scale %g, %g planes", v, s, sub->scale, sub->plane_count);
+            FZ_REQUIRE(sub->x >= 0.0 && sub->y >= 0.0 && sub->width > 0.0 && sub->height > 0.0 &&
+                           sub->x + sub->width <= f.width && sub->y + sub->height <= f.height,
+                       "view %u sub %d: sub-tile %g,%g %gx%g outside the tile", v, s, sub->x, sub->y, sub->width,
+                       sub->height);
+            FZ_REQUIRE(fabs(dot3(sub->forward, sub->forward) - 1.0) < 1e-9 &&
+                           fabs(dot3(sub->right, sub->right) - 1.0) < 1e-9 && fabs(dot3(sub->up, sub->up) - 1.0) < 1e-9,
+                       "view %u sub %d: frame axes not unit", v, s);
+            FZ_REQUIRE(fabs(dot3(sub->forward, sub->up)) < 1e-9 && fabs(dot3(sub->forward, sub->right)) < 1e-9 &&
+                           fabs(dot3(sub->up, sub->right)) < 1e-9,
+                       "view %u sub %d: frame axes not orthogonal", v, s);
+            for (j = 0; j < (int)sub->plane_count; j++)
+                for (k = 0; k < 5; k++) FZ_REQUIRE(!isnan(sub->planes[j][k]), "view %u sub %d: plane %d is NaN", v, s, j);
+        }
+        /* the first sub-projection looks along the view (a cube map's +X
+           face along its right) with right = forward x up */
+        {
+            const mlod_view_sub *sub = &f.subs[0];
+            const double *axis = view->kind == MLOD_VIEW_CUBE ? sub->right : sub->forward;
+            FZ_REQUIRE(dot3(axis, fw) >= len * (1.0 - 1e-9), "view %u: frame forward not along the view's", v);
+            FZ_REQUIRE(dot3(sub->up, vu) > 0.0, "view %u: frame up against the view's", v);
+            x[0] = fw[1] * vu[2] - fw[2] * vu[1];
+            x[1] = fw[2] * vu[0] - fw[0] * vu[2];
+            x[2] = fw[0] * vu[1] - fw[1] * vu[0];
+            if (view->kind != MLOD_VIEW_CUBE)
+                FZ_REQUIRE(dot3(x, sub->right) > 0.0, "view %u: frame right is not along forward x up", v);
+        }
+        /* a node that some sub-projection's plane puts clearly outside, in
+           every sub-projection, has criterion 0 */
         for (i = 0; i < 4 && t->node_count; i++) {
-            uint32_t n = rng_below_reader(r, t->node_count);
+            uint32_t n = rng_below_reader(r, t->node_count), outside = 0;
             const float *sp = t->spheres + 4 * (size_t)n;
-            for (j = 0; j < (int)f.plane_count; j++) {
-                const double *pl = f.planes[j];
-                double nc = pl[0] * sp[0] + pl[1] * sp[1] + pl[2] * sp[2], lr = pl[4] * sp[3];
-                double slack = 1e-6 * (fabs(pl[0] * sp[0]) + fabs(pl[1] * sp[1]) + fabs(pl[2] * sp[2]) + fabs(lr) + fabs(pl[3]));
-                if (isfinite(pl[3]) && nc + lr < pl[3] - slack) {
-                    double crit = mlod_criterion(t, n, view);
-                    FZ_REQUIRE(crit == 0.0, "view %u: node %u is outside plane %d (%.17g < %.17g) but c = %g", v, n, j,
-                               nc + lr, pl[3], crit);
-                    break;
+            for (s = 0; s < (int)f.sub_count; s++)
+                for (j = 0; j < (int)f.subs[s].plane_count; j++) {
+                    const double *pl = f.subs[s].planes[j];
+                    double nc = pl[0] * sp[0] + pl[1] * sp[1] + pl[2] * sp[2], lr = pl[4] * sp[3];
+                    double slack = 1e-6 * (fabs(pl[0] * sp[0]) + fabs(pl[1] * sp[1]) + fabs(pl[2] * sp[2]) + fabs(lr) +
+                                           fabs(pl[3]));
+                    if (isfinite(pl[3]) && nc + lr < pl[3] - slack) {
+                        outside++;
+                        break;
+                    }
                 }
+            if (outside == (uint32_t)f.sub_count) {
+                double crit = mlod_criterion(t, n, view);
+                FZ_REQUIRE(crit == 0.0, "view %u: node %u is outside every sub-projection but c = %g", v, n, crit);
             }
         }
     }

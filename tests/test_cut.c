@@ -784,7 +784,7 @@ static void test_backface_boundary(void)
                     (long double)t->cones[2] * t->cones[2]);
         if (ortho) {
             away = 0;
-            for (k = 0; k < 3; k++) away -= (long double)t->cones[k] * (long double)f.forward[k];
+            for (k = 0; k < 3; k++) away -= (long double)t->cones[k] * (long double)f.subs[0].forward[k];
             tt = 1;
             ss = 0;
         } else {
