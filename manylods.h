@@ -4343,8 +4343,7 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
 /* Draw n <= MLOD__LANES nodes into the band, in order, in each
    sub-projection their spheres reach (the images of a sub-projection's
    nodes at once).  A view of one sub-projection draws them all: each
-   drawn node of its cut reaches it. */
-/* GLSL twin: draw_entry */
+   drawn node of its cut reaches it (shaders/splat_draw.comp does the same). */
 static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, const uint32_t *nodes, uint32_t n)
 {
     double c[MLOD__LANES][3], r[MLOD__LANES] = {0.0};

@@ -158,7 +158,7 @@ static mlod_view parse_view(fz_reader *r)
     int k;
     r->chaos = rd_hostile(r) ? 64 : 0;
     memset(&v, 0, sizeof v);
-    v.kind = (mlod_view_kind)(rd_u8(r) % 4);
+    v.kind = (mlod_view_kind)(rd_u8(r) % 5);
     if (rd_hostile(r)) v.kind = (mlod_view_kind)rd_u8(r);
     for (k = 0; k < 3; k++) {
         d[k] = rd_signed(r);
@@ -173,6 +173,10 @@ static mlod_view parse_view(fz_reader *r)
     }
     v.width = 1 + rd_u8(r) % FZ_SPLAT_TILE;
     v.height = 1 + rd_u8(r) % FZ_SPLAT_TILE;
+    if (v.kind == MLOD_VIEW_CUBE) { /* six s x s faces in 3s x 2s */
+        v.height = 2 * (1 + v.height / 4);
+        v.width = v.height / 2 * 3;
+    }
     if (rd_hostile(r)) v.width = rd_u8(r) & 1 ? 0 : rd_u32(r);
     if (rd_hostile(r)) v.height = rd_u8(r) & 1 ? 0 : rd_u32(r);
     v.fov_y = rd_maybe_raw(r, 0.2 + 2.6 * rd_unit(r));

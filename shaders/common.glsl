@@ -22,9 +22,15 @@
 // interface.h, which the layout files include first.
 
 #ifndef MLOD_NO_VIEWS
+// A view's field (MLOD_IF_V_*), and the first double of its sub-projection
+// s, whose fields (MLOD_IF_S_*) sd and sd3 read.
 double vd(uint view, uint field) { return views[view * MLOD_IF_VIEW_STRIDE + field]; }
 dvec3 vd3(uint view, uint field) { return dvec3(vd(view, field), vd(view, field + 1), vd(view, field + 2)); }
-int view_kind(uint view) { return int(vd(view, MLOD_IF_V_KIND)); }
+uint sub_count(uint view) { return uint(vd(view, MLOD_IF_V_SUB_COUNT)); }
+uint sub_base(uint view, uint s) { return view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_SUBS + s * MLOD_IF_SUB_STRIDE; }
+double sd(uint sub, uint field) { return views[sub + field]; }
+dvec3 sd3(uint sub, uint field) { return dvec3(sd(sub, field), sd(sub, field + 1), sd(sub, field + 2)); }
+int sub_kind(uint sub) { return int(sd(sub, MLOD_IF_S_KIND)); }
 
 #endif // MLOD_NO_VIEWS
 
@@ -345,8 +351,8 @@ bool backfacing(uint view, dvec3 x, double d2, double r, vec4 cone)
     double c0 = double(cone.x), c1 = double(cone.y), c2 = double(cone.z);
     if (!(double(cone.w) < 0.5LF * MLOD_PI)) return false;
     double sa, ca;
-    if (view_kind(view) == MLOD_IF_KIND_ORTHOGRAPHIC) {
-        dvec3 w = vd3(view, MLOD_IF_V_FORWARD);
+    if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) {
+        dvec3 w = sd3(sub_base(view, 0u), MLOD_IF_S_FORWARD);
         precise double away = -(c0 * w.x + c1 * w.y + c2 * w.z);
         if (!(away < 0.0LF)) return false;
         precise double len = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
@@ -377,54 +383,68 @@ double paraboloid_diameter(double r, double xw, double tangent)
 }
 
 #ifndef MLOD_NO_VIEWS
+// C twin: mlod__sub_diameter
+// The diameter of the sphere's image in the sub-projection at views[sub],
+// in pixels (tangent: 0 for orthographic views).
+double sub_diameter(uint sub, dvec3 x, double d2, double r, double tangent)
+{
+    precise double xw = dot3(x, sd3(sub, MLOD_IF_S_FORWARD));
+    double scale = sd(sub, MLOD_IF_S_SCALE);
+    int kind = sub_kind(sub);
+    if (kind == MLOD_IF_KIND_PERSPECTIVE) {
+        if (xw <= r) return 1.0LF / 0.0LF;
+        precise double c = scale * 2.0LF * r * tangent / ((xw - r) * (xw + r));
+        return c;
+    }
+    if (kind == MLOD_IF_KIND_PARABOLOID) {
+        if (d2 <= r * r) return 1.0LF / 0.0LF;
+        precise double c = scale * paraboloid_diameter(r, xw, tangent);
+        return c;
+    }
+    precise double c = scale * 2.0LF * r;
+    return c;
+}
+
+// C twin: mlod__reached
+// Which sub-projections the sphere reaches: bit s for sub-projection s.
+uint reached_subs(uint view, vec4 sphere)
+{
+    uint reached = 0u, count = sub_count(view);
+    for (uint s = 0u; s < count; s++) {
+        uint sub = sub_base(view, s), planes = uint(sd(sub, MLOD_IF_S_PLANE_COUNT));
+        bool inside = true;
+        for (uint k = 0u; k < planes && inside; k++)
+            if (plane_outside(sub + MLOD_IF_S_PLANES + 5u * k, sphere)) inside = false;
+        if (inside) reached |= 1u << s;
+    }
+    return reached;
+}
+
 // C twin: mlod__evaluate
 // c(node, view) in pixels; culled set when culled.
 double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
 {
-    culled = false;
-    uint planes = uint(vd(view, MLOD_IF_V_PLANE_COUNT));
-    for (uint k = 0u; k < planes; k++)
-        if (plane_outside(view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_PLANES + 5u * k, sphere)) {
-            culled = true;
-            return 0.0LF;
-        }
+    uint reached = reached_subs(view, sphere);
+    culled = reached == 0u;
+    if (culled) return 0.0LF;
     dvec3 e = vd3(view, MLOD_IF_V_EYE);
     precise dvec3 x = dvec3(double(sphere.x) - e.x, double(sphere.y) - e.y, double(sphere.z) - e.z);
     precise double d2 = dot3(x, x);
     precise double r = double(sphere.w);
-    precise double r2 = r * r;
+    precise double t2 = d2 - r * r;
+    precise double tangent = sqrt(t2 > 0.0LF ? t2 : 0.0LF);
+    if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) tangent = 0.0LF;
     if (use_cone && vd(view, MLOD_IF_V_BACKFACES) != 0.0LF && backfacing(view, x, d2, r, cone)) {
         culled = true;
         return 0.0LF;
     }
-    precise double xw = dot3(x, vd3(view, MLOD_IF_V_FORWARD));
-    double scale = vd(view, MLOD_IF_V_SCALE);
-    int kind = view_kind(view);
-    if (kind == MLOD_IF_KIND_PERSPECTIVE) {
-        precise double t2 = d2 - r2;
-        if (xw <= r) return 1.0LF / 0.0LF;
-        precise double c = scale * 2.0LF * r * sqrt(t2 > 0.0LF ? t2 : 0.0LF) / ((xw - r) * (xw + r));
-        return c;
-    }
-    if (kind == MLOD_IF_KIND_PARABOLOID) {
-        if (d2 <= r2) return 1.0LF / 0.0LF;
-        precise double c = scale * paraboloid_diameter(r, xw, sqrt(d2 - r2));
-        return c;
-    }
-    if (kind == MLOD_IF_KIND_DUAL_PARABOLOID) {
-        if (d2 <= r2) return 1.0LF / 0.0LF;
-        precise double tangent = sqrt(d2 - r2);
-        precise double c = 0.0LF;
-        uint halves = view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_HALVES;
-        if (!plane_outside(halves, sphere)) c = paraboloid_diameter(r, xw, tangent);
-        if (!plane_outside(halves + 5u, sphere)) {
-            precise double back = paraboloid_diameter(r, -xw, tangent);
-            if (back > c) c = back;
+    double c = 0.0LF;
+    uint count = sub_count(view);
+    for (uint s = 0u; s < count; s++)
+        if (((reached >> s) & 1u) != 0u) {
+            double d = sub_diameter(sub_base(view, s), x, d2, r, tangent);
+            if (d > c) c = d;
         }
-        precise double cs = scale * c;
-        return cs;
-    }
-    precise double c = scale * 2.0LF * r;
     return c;
 }
 
@@ -445,19 +465,24 @@ uint classify(uint view, uint node, double epsilon, uint leaf_count)
 // ----------------------------------------------------------- image disc --
 
 // C twin: mlod__image_discs (one of its lanes)
-// The disc around the image of sphere (centre, r) in the
-// view's tile (pixels), and the depth of its centre; half: the back
-// hemisphere of a dual paraboloid.  Returns false when unbounded.
-bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 disc)
+// The disc around the image of sphere (centre, r) in sub-projection s of
+// the view's tile (pixels), and the depth of its centre.  Returns false
+// when unbounded.
+bool image_disc(uint view, uint s, dvec3 centre, double r, out dvec4 disc)
 {
     disc = dvec4(0.0LF);
-    dvec3 e = vd3(view, MLOD_IF_V_EYE), u = vd3(view, MLOD_IF_V_RIGHT), v = vd3(view, MLOD_IF_V_UP), w = vd3(view, MLOD_IF_V_FORWARD);
+    uint sub = sub_base(view, s);
+    dvec3 e = vd3(view, MLOD_IF_V_EYE), u = sd3(sub, MLOD_IF_S_RIGHT), v = sd3(sub, MLOD_IF_S_UP);
+    dvec3 w = sd3(sub, MLOD_IF_S_FORWARD);
     precise dvec3 x = dvec3(centre.x - e.x, centre.y - e.y, centre.z - e.z);
-    double scale = vd(view, MLOD_IF_V_SCALE), width = vd(view, MLOD_IF_V_WIDTH), height = vd(view, MLOD_IF_V_HEIGHT);
-    int kind = view_kind(view);
+    double scale = sd(sub, MLOD_IF_S_SCALE), left = sd(sub, MLOD_IF_S_X), top = sd(sub, MLOD_IF_S_Y);
+    double width = sd(sub, MLOD_IF_S_WIDTH), height = sd(sub, MLOD_IF_S_HEIGHT);
+    precise double mid_x = left + 0.5LF * width;
+    precise double mid_y = top + 0.5LF * height;
+    int kind = sub_kind(sub);
     if (kind == MLOD_IF_KIND_ORTHOGRAPHIC) {
-        precise double px = 0.5LF * width + vd(view, MLOD_IF_V_SCALE_X) * dot3(x, u);
-        precise double py = 0.5LF * height - vd(view, MLOD_IF_V_SCALE_Y) * dot3(x, v);
+        precise double px = mid_x + sd(sub, MLOD_IF_S_SCALE_X) * dot3(x, u);
+        precise double py = mid_y - sd(sub, MLOD_IF_S_SCALE_Y) * dot3(x, v);
         precise double radius = r * scale;
         disc = dvec4(px, py, radius, dot3(x, w));
         return true;
@@ -467,10 +492,6 @@ bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 di
     precise double a = dot3(x, u) / d;
     precise double b = dot3(x, v) / d;
     precise double cos_t = dot3(x, w) / d;
-    if (half_index != 0u) {
-        a = -a;
-        cos_t = -cos_t;
-    }
     precise double sin_t = sqrt(a * a + b * b);
     precise double sin_b = r / d;
     precise double cos_b = sqrt(1.0LF - sin_b * sin_b);
@@ -488,16 +509,15 @@ bool image_disc(uint view, dvec3 centre, double r, uint half_index, out dvec4 di
         if (!(c_hi > 0.0LF)) return false;
         hi = s_hi / c_hi;
         lo = s_lo / c_lo;
-        px = 0.5LF * width + scale * 0.5LF * (hi + lo) * dir_x;
-        py = 0.5LF * height - scale * 0.5LF * (hi + lo) * dir_y;
+        px = mid_x + scale * 0.5LF * (hi + lo) * dir_x;
+        py = mid_y - scale * 0.5LF * (hi + lo) * dir_y;
         depth = dot3(x, w);
     } else {
-        double tile_width = kind == MLOD_IF_KIND_DUAL_PARABOLOID ? 0.5LF * width : width;
         if (!(1.0LF + c_hi > 0.0LF)) return false;
         hi = s_hi / (1.0LF + c_hi);
         lo = s_lo / (1.0LF + c_lo);
-        px = double(half_index) * tile_width + 0.5LF * tile_width * (1.0LF + 0.5LF * (hi + lo) * dir_x);
-        py = 0.5LF * height * (1.0LF - 0.5LF * (hi + lo) * dir_y);
+        px = left + 0.5LF * width * (1.0LF + 0.5LF * (hi + lo) * dir_x);
+        py = top + 0.5LF * height * (1.0LF - 0.5LF * (hi + lo) * dir_y);
         depth = d;
     }
     precise double radius = scale * 0.5LF * (hi - lo);

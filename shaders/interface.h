@@ -24,24 +24,35 @@
 #endif
 
 /* One view in the views buffer: MLOD_IF_VIEW_STRIDE doubles, laid out as
-   mlod_view_frame (manylods.h), which the host writes as it is: its fields
-   are at these offsets (manylods_vk.h checks them at compile time). */
-#define MLOD_IF_VIEW_STRIDE 64
+   mlod_view_frame (manylods.h), which the host writes as it is: a head of
+   MLOD_IF_V_SUBS doubles, then MLOD_IF_MAX_SUBS sub-projections of
+   MLOD_IF_SUB_STRIDE doubles each (mlod_view_sub), the first sub_count of
+   them used.  Fields are at these offsets, from the view's first double
+   (V_) or from its sub-projection's (S_); manylods_vk.h checks them at
+   compile time. */
+#define MLOD_IF_MAX_SUBS 6
+#define MLOD_IF_SUB_STRIDE 48
+#define MLOD_IF_VIEW_STRIDE 296 /* MLOD_IF_V_SUBS + MLOD_IF_MAX_SUBS * MLOD_IF_SUB_STRIDE */
 #define MLOD_IF_V_EYE 0         /* 3 */
-#define MLOD_IF_V_RIGHT 3       /* 3 */
-#define MLOD_IF_V_UP 6          /* 3 */
-#define MLOD_IF_V_FORWARD 9     /* 3 */
-#define MLOD_IF_V_SCALE 12
-#define MLOD_IF_V_WIDTH 13
-#define MLOD_IF_V_HEIGHT 14
-#define MLOD_IF_V_SCALE_X 15
-#define MLOD_IF_V_SCALE_Y 16
-#define MLOD_IF_V_KIND 17
-#define MLOD_IF_V_PLANE_COUNT 18
-#define MLOD_IF_V_BACKFACES 19
-#define MLOD_IF_V_PLANES 20     /* 6 planes of 5: n, k, l */
-#define MLOD_IF_V_HALVES 50     /* 2 half-spaces of 5 */
-#define MLOD_IF_V_END 60        /* mlod_view_frame.reserved: zero */
+#define MLOD_IF_V_WIDTH 3
+#define MLOD_IF_V_HEIGHT 4
+#define MLOD_IF_V_KIND 5
+#define MLOD_IF_V_SUB_COUNT 6
+#define MLOD_IF_V_BACKFACES 7
+#define MLOD_IF_V_SUBS 8
+#define MLOD_IF_S_RIGHT 0       /* 3 */
+#define MLOD_IF_S_UP 3          /* 3 */
+#define MLOD_IF_S_FORWARD 6     /* 3 */
+#define MLOD_IF_S_KIND 9
+#define MLOD_IF_S_SCALE 10
+#define MLOD_IF_S_SCALE_X 11
+#define MLOD_IF_S_SCALE_Y 12
+#define MLOD_IF_S_X 13
+#define MLOD_IF_S_Y 14
+#define MLOD_IF_S_WIDTH 15
+#define MLOD_IF_S_HEIGHT 16
+#define MLOD_IF_S_PLANE_COUNT 17
+#define MLOD_IF_S_PLANES 18     /* 6 planes of 5: n, k, l */
 
 /* mlod_view_kind and the statuses of a cut entry (MLOD_STATUS_*; 0: not
    yet classified). */
@@ -49,6 +60,7 @@
 #define MLOD_IF_KIND_PARABOLOID 1
 #define MLOD_IF_KIND_DUAL_PARABOLOID 2
 #define MLOD_IF_KIND_ORTHOGRAPHIC 3
+#define MLOD_IF_KIND_CUBE 4
 #define MLOD_IF_STATUS_PENDING 0u
 #define MLOD_IF_STATUS_DRAWN 1u
 #define MLOD_IF_STATUS_CULLED 2u

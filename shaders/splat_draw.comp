@@ -1,7 +1,8 @@
 #version 450
 // shaders/splat_draw.comp - one thread per cut entry (ctl.current, args[2]):
 // a drawn entry (status DRAWN, OVERSIZE or COARSE) becomes the disc around
-// its sphere's image, its radius times pc.disc_scale, in its view's tile, as
+// its sphere's image, its radius times pc.disc_scale, in each sub-tile of its
+// view that it reaches, as
 // mlod__draw_nodes and mlod__raster_disc in manylods.h: pixels whose centre
 // lies in the disc, or, at disc_scale 1, when none of the 64-row band
 // holding the disc's centre does, the pixel holding the centre.
@@ -29,8 +30,15 @@ void plot(uint view, uint row, uint col, uint64_t key)
     atomicMin(keys[y * pc.atlas_width + x], key);
 }
 
-void raster_disc(uint view, dvec4 disc, uint64_t entry, uint col_begin, uint col_end)
+// Clipped to the sub-tile of the view's sub-projection s (whole pixels:
+// columns floor(x) .. floor(x + width) - 1, rows likewise).
+void raster_disc(uint view, uint s, dvec4 disc, uint64_t entry)
 {
+    uint sub = sub_base(view, s);
+    precise double sub_right = sd(sub, MLOD_IF_S_X) + sd(sub, MLOD_IF_S_WIDTH);
+    precise double sub_bottom = sd(sub, MLOD_IF_S_Y) + sd(sub, MLOD_IF_S_HEIGHT);
+    uint col_begin = uint(sd(sub, MLOD_IF_S_X)), col_end = uint(sub_right);
+    uint row_begin = uint(sd(sub, MLOD_IF_S_Y)), row_end = uint(sub_bottom);
     double tile_h = double(tiles[4u * view + 3u]);
     precise double radius = disc.z * double(pc.disc_scale);
     precise double r2 = radius * radius;
@@ -38,12 +46,13 @@ void raster_disc(uint view, dvec4 disc, uint64_t entry, uint col_begin, uint col
     uint64_t key = (uint64_t(ordered_bits(float(disc.w))) << 32) | entry;
     precise double y0 = floor(disc.y - radius), y1 = ceil(disc.y + radius);
     precise double x0 = floor(disc.x - radius), x1 = ceil(disc.x + radius);
-    uint rb = y0 < 0.0LF ? 0u : (y0 >= tile_h ? uint(tile_h) : uint(y0));
-    uint re = y1 > tile_h ? uint(tile_h) : (y1 <= 0.0LF ? 0u : uint(y1));
+    uint rb = y0 < double(row_begin) ? row_begin : (y0 >= double(row_end) ? row_end : uint(y0));
+    uint re = y1 > double(row_end) ? row_end : (y1 <= double(row_begin) ? row_begin : uint(y1));
     uint cb = x0 < double(col_begin) ? col_begin : (x0 >= double(col_end) ? col_end : uint(x0));
     uint ce = x1 > double(col_end) ? col_end : (x1 <= double(col_begin) ? col_begin : uint(x1));
     // the band of mlod_splat's tasks that holds the disc's centre
-    bool centre_inside = disc.x >= double(col_begin) && disc.x < double(col_end) && disc.y >= 0.0LF && disc.y < tile_h;
+    bool centre_inside = disc.x >= double(col_begin) && disc.x < double(col_end) && disc.y >= double(row_begin) &&
+                         disc.y < double(row_end);
     double band_begin = centre_inside ? floor(disc.y / BAND_ROWS) * BAND_ROWS : 0.0LF;
     double band_end = min(band_begin + BAND_ROWS, tile_h);
     bool hit_in_band = false;
@@ -60,24 +69,19 @@ void raster_disc(uint view, dvec4 disc, uint64_t entry, uint col_begin, uint col
     if (!hit_in_band && centre_inside && pc.disc_scale >= 1.0) plot(view, uint(floor(disc.y)), uint(floor(disc.x)), key);
 }
 
+// As mlod__draw_nodes: in every sub-projection the sphere reaches (a view
+// of one sub-projection: its drawn entries all reach it).
 void main()
 {
     uint i = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (i >= ctl.current) return;
     uvec2 e = list[i];
     if (status[i] == MLOD_IF_STATUS_CULLED) return;
-    uint view = e.y, node = e.x, tile_w = tiles[4u * view + 2u];
+    uint view = e.y, node = e.x, count = sub_count(view);
     vec4 s = spheres[node];
     dvec3 c = dvec3(s.xyz);
     dvec4 disc;
-    if (view_kind(view) != MLOD_IF_KIND_DUAL_PARABOLOID) {
-        if (image_disc(view, c, double(s.w), 0u, disc)) raster_disc(view, disc, uint64_t(i), 0u, tile_w);
-        return;
-    }
-    uint w = tile_w / 2u;
-    for (uint half_index = 0u; half_index < 2u; half_index++) {
-        if (plane_outside(view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_HALVES + 5u * half_index, s)) continue;
-        if (image_disc(view, c, double(s.w), half_index, disc))
-            raster_disc(view, disc, uint64_t(i), half_index != 0u ? w : 0u, half_index != 0u ? tile_w : w);
-    }
+    uint reached = count == 1u ? 1u : reached_subs(view, s);
+    for (uint k = 0u; k < count; k++)
+        if (((reached >> k) & 1u) != 0u && image_disc(view, k, c, double(s.w), disc)) raster_disc(view, k, disc, uint64_t(i));
 }

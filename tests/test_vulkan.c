@@ -61,15 +61,30 @@ static void check_validation(const char *what)
 
 /* Views of one kind (or of all kinds in turn when kind < 0) around the
    scene, as the CPU tests draw them. */
+#define VIEW_KINDS 5 /* perspective .. cube map */
+
+/* A cube map's tile of about the view's size: 3s x 2s. */
+static void fit_tile(mlod_view *v)
+{
+    uint32_t side;
+    if (v->kind != MLOD_VIEW_CUBE) return;
+    side = v->height / 2 ? v->height / 2 : 1;
+    v->width = 3 * side;
+    v->height = 2 * side;
+}
+
 static void make_views(uint64_t seed, int kind, const double *c, double R, mlod_view *views, uint32_t count)
 {
     uint64_t rng = seed;
     uint32_t v;
     for (v = 0; v < count; v++) {
-        mlod_view_kind k = kind < 0 ? (mlod_view_kind)(v % 4) : (mlod_view_kind)kind;
-        views[v] = tu_random_view(&rng, k, c, R);
+        mlod_view_kind k = kind < 0 ? (mlod_view_kind)(v % VIEW_KINDS) : (mlod_view_kind)kind;
+        /* a cube map is drawn as a perspective view (near, far) made a cube */
+        views[v] = tu_random_view(&rng, k == MLOD_VIEW_CUBE ? MLOD_VIEW_PERSPECTIVE : k, c, R);
+        views[v].kind = k;
         views[v].width = 8 + views[v].width / 4; /* small tiles: deep cuts stay cheap */
         views[v].height = 8 + views[v].height / 4;
+        fit_tile(&views[v]);
     }
 }
 
@@ -157,7 +172,8 @@ static uint64_t run_mode(const mlod_tree *tree, mlodvk_tree *vtree, mlod_view *v
 
 static void test_cut_parity(void)
 {
-    static const char *kinds[5] = {"perspective", "paraboloid", "dual paraboloid", "orthographic", "mixed"};
+    static const char *kinds[VIEW_KINDS + 1] = {"perspective", "paraboloid", "dual paraboloid", "orthographic",
+                                                "cube map", "mixed"};
     static const char *modes[4] = {"basic", "incremental", "lazy q=1", "lazy q=3"};
     static const float epsilons[2] = {1.0f, 4.0f};
     scene_mesh s;
@@ -179,19 +195,20 @@ static void test_cut_parity(void)
         scene_free(&s);
         return;
     }
-    for (kind = 0; kind < 5; kind++)
+    for (kind = 0; kind <= VIEW_KINDS; kind++)
         for (m = 0; m < 4; m++)
             for (ei = 0; ei < 2; ei++) {
                 mlod_view views[24];
                 char name[120];
                 static const mlod_cut_mode mode_of[4] = {MLOD_CUT_BASIC, MLOD_CUT_INCREMENTAL, MLOD_CUT_LAZY, MLOD_CUT_LAZY};
-                make_views(1000u * (uint64_t)kind + 17u * (uint64_t)m + (uint64_t)ei, kind == 4 ? -1 : kind, c, R, views, 24);
+                make_views(1000u * (uint64_t)kind + 17u * (uint64_t)m + (uint64_t)ei, kind == VIEW_KINDS ? -1 : kind, c, R,
+                           views, 24);
                 snprintf(name, sizeof name, "%s, %s, eps %g", kinds[kind], modes[m], (double)epsilons[ei]);
                 compared += run_mode(tree, vtree, views, 24, mode_of[m], m == 3 ? 3u : 1u, epsilons[ei], 0, name, NULL);
                 check_validation(name);
             }
-    printf("  cut parity: %llu cut entries compared over 5 view sets x 4 modes x 2 epsilons x 4 frames\n",
-           (unsigned long long)compared);
+    printf("  cut parity: %llu cut entries compared over %d view sets x 4 modes x 2 epsilons x 4 frames\n",
+           (unsigned long long)compared, VIEW_KINDS + 1);
     /* a list that outgrows its buffers: start with room for one entry per
        view; the loop stops, grows and resumes, with the same cuts */
     {
@@ -271,8 +288,8 @@ static void test_splat_parity(void)
         scene_free(&s);
         return;
     }
-    for (round = 0; round < 10; round++) {
-        float disc_scale = round < 5 ? 0.0f : 0.5f;
+    for (round = 0; round < 2 * (VIEW_KINDS + 1); round++) {
+        float disc_scale = round <= VIEW_KINDS ? 0.0f : 0.5f;
         mlod_view views[16];
         mlod_atlas_desc ad;
         mlod_atlas *cpu_atlas = NULL, *gpu_atlas = NULL;
@@ -282,14 +299,15 @@ static void test_splat_parity(void)
         mlod_cut_params p;
         uint32_t v;
         size_t pixels, i, depth_diff = 0, normal_diff = 0, color_diff = 0, drawn = 0;
-        kind = round % 5;
+        kind = round % (VIEW_KINDS + 1);
         memset(&p, 0, sizeof p);
         p.mode = MLOD_CUT_BASIC;
-        p.epsilon = kind == 4 ? 3.0f : 1.0f;
-        make_views(500u + (uint64_t)kind, kind == 4 ? -1 : kind, c, R, views, 16);
+        p.epsilon = kind == VIEW_KINDS ? 3.0f : 1.0f;
+        make_views(500u + (uint64_t)kind, kind == VIEW_KINDS ? -1 : kind, c, R, views, 16);
         for (v = 0; v < 16; v++) { /* larger tiles than the cut tests */
             views[v].width = 16 + (views[v].width * 3) % 48;
             views[v].height = 16 + (views[v].height * 5) % 48;
+            fit_tile(&views[v]);
         }
         memset(&ad, 0, sizeof ad);
         ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
