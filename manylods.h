@@ -4351,10 +4351,11 @@ static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, cons
     int bounded[MLOD__LANES], k, s;
     unsigned reached[MLOD__LANES];
     uint32_t l, m, lane[MLOD__LANES];
+    for (l = 0; l < n; l++)
+        reached[l] = pv->sub_count == 1 ? 1u : mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
     for (s = 0; s < pv->sub_count; s++) {
         for (l = m = 0; l < n; l++) { /* the nodes reaching s, in order */
             const float *sphere = band->tree->spheres + 4 * (size_t)nodes[l];
-            if (s == 0) reached[l] = pv->sub_count == 1 ? 1u : mlod__reached(pv, sphere);
             if (!(reached[l] >> s & 1u)) continue;
             for (k = 0; k < 3; k++) c[m][k] = sphere[k];
             r[m] = sphere[3];

@@ -27,7 +27,7 @@
 #define FP_GRID 17u
 #define FP_VERTICES (FP_GRID * FP_GRID)
 #define FP_TRIANGLES (2u * (FP_GRID - 1) * (FP_GRID - 1))
-#define FP_VIEWS 6u
+#define FP_VIEWS 8u
 
 static uint64_t fp_hash_bytes(uint64_t hash, const void *data, size_t bytes)
 {
@@ -64,15 +64,15 @@ static void fp_sheet(uint32_t pose, float positions[3 * FP_VERTICES], float colo
         }
 }
 
-/* Views of every kind around and above the sheet, from short binary
-   fractions as well. */
+/* Views of every kind around and above the sheet (the last two cube
+   maps), from short binary fractions as well. */
 static void fp_views(uint32_t frame, mlod_view views[FP_VIEWS])
 {
     uint32_t v;
     memset(views, 0, FP_VIEWS * sizeof *views);
     for (v = 0; v < FP_VIEWS; v++) {
         mlod_view *view = views + v;
-        view->kind = (mlod_view_kind)(v % 4);
+        view->kind = v < 6 ? (mlod_view_kind)(v % 4) : MLOD_VIEW_CUBE;
         view->position[0] = (float)((int)(v % 3) - 1) * 1.5f + (float)frame / 4.0f;
         view->position[1] = 0.75f + (float)v / 4.0f;
         view->position[2] = v & 1u ? 2.5f : -2.25f;
@@ -80,8 +80,8 @@ static void fp_views(uint32_t frame, mlod_view views[FP_VIEWS])
         view->forward[1] = -view->position[1];
         view->forward[2] = -view->position[2];
         view->up[1] = 1.0f;
-        view->width = 24 + 4 * v;
-        view->height = 20 + 2 * v;
+        view->width = view->kind == MLOD_VIEW_CUBE ? 18 + 6 * v : 24 + 4 * v; /* cube: 3s x 2s */
+        view->height = view->kind == MLOD_VIEW_CUBE ? 12 + 4 * v : 20 + 2 * v;
         view->fov_y = 1.25f;
         view->near_plane = view->kind == MLOD_VIEW_ORTHOGRAPHIC ? -5.0f : 0.0625f;
         view->far_plane = 50.0f;
