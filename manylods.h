@@ -794,19 +794,20 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
 MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
 
 /* Clear every tile, then draw every drawn node (status DRAWN, OVERSIZE or
-   COARSE) of every view's cut into its tile as a disc: the disc around the
-   exact image of the node's sphere (the image's diameter c(node, view),
-   centred on the image's centre; paraboloid halves use the larger of their
-   two pixel scales) with its radius times the atlas's disc_scale, holding
-   the depth of the sphere's centre (as in mlod_view_project).  Nearest
+   COARSE) of every view's cut into its tile as a disc, in each
+   sub-projection the node's sphere reaches, clipped to that
+   sub-projection's sub-tile: the disc around the exact image of the
+   sphere there (the image's diameter, centred on the image's centre;
+   paraboloids use the larger of their two pixel scales) with its radius
+   times the atlas's disc_scale, holding the depth of the sphere's centre
+   (as in mlod_view_project).  Nearest
    depth wins; equal depths keep the node drawn first.  A pixel is drawn
    when its centre lies in the disc.  At disc_scale 1 a disc covering no
    pixel centre still sets the pixel holding its centre, so a cut leaves no
    holes where its surface is; below 1 it draws nothing, and the holes are
-   mlod_atlas_fill_holes' to fill (see SPLATTING in the manual).  Nodes
-   whose image is unbounded are not drawn (for a dual paraboloid: not in the
-   half where it is unbounded).  The views must be
-   those of the cut's last update.  Parallel over tiles and row bands;
+   mlod_atlas_fill_holes' to fill (see SPLATTING in the manual).  A node
+   is not drawn in a sub-projection where its image is unbounded.  The
+   views must be those of the cut's last update.  Parallel over tiles and row bands;
    results are identical for any thread count. */
 MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
                                     const mlod_view *views, const mlod_parallel *parallel, mlod_error *error);
@@ -836,7 +837,8 @@ MANYLODS_DEF double mlod_mesh_area(const mlod_mesh *mesh);
 
 /* The smallest N (samples) whose leaves, of radius radius_scale * sqrt(A/N),
    are at most epsilon pixels across in every view wherever they appear in
-   its tile, for surface at least `closest` world units from the eye
+   its tile (in every sub-projection: a cube map's face, a dual
+   paraboloid's half), for surface at least `closest` world units from the eye
    (orthographic views: at any depth).  Sample only what the views can
    resolve.  radius_scale <= 0 means 1, as in mlod_build_desc.  Returns 0
    for invalid input (A <= 0, epsilon <= 0, closest <= 0,
@@ -3007,33 +3009,42 @@ static unsigned mlod__reached(const mlod__pview *pv, const float *sphere)
     return reached;
 }
 
+/* What every sub-projection's diameter needs: x = centre - eye, d2 = |x|^2
+   and the tangent length (0 for an orthographic eye); 1 when back-face
+   culling culls the sphere. */
+static inline int mlod__sphere_setup(const mlod__pview *pv, const float *sphere, const float *cone, double *x,
+                                     double *d2, double *tangent)
+{
+    double r = sphere[3], t2;
+    int k;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+    *d2 = mlod__dot3(x, x);
+    t2 = *d2 - r * r; /* > 0 exactly when d2 > r^2 */
+    *tangent = pv->kind[0] == MLOD_VIEW_ORTHOGRAPHIC ? 0.0 : sqrt(t2 > 0.0 ? t2 : 0.0);
+    return pv->backfaces && cone && mlod__backfacing(pv, x, *d2, r, *tangent, cone);
+}
+
 /* c(node, view) of the documentation; *culled = 1 when culled. */
 /* GLSL twin: evaluate */
 static double mlod__evaluate(const mlod__pview *pv, const float *sphere, const float *cone, int *culled)
 {
-    double x[3], d2, r = sphere[3], t2, tangent, c = 0.0;
-    unsigned reached = 1;
+    double x[3], d2, tangent, c = 0.0;
+    unsigned reached;
     int k;
     *culled = 1;
     if (pv->sub_count == 1) { /* the hot path (most views): mlod__reached inline */
         for (k = 0; k < pv->plane_count[0]; k++)
             if (mlod__outside(pv->f.subs[0].planes[k], sphere)) return 0.0;
-    } else if (!(reached = mlod__reached(pv, sphere))) {
-        return 0.0;
+        if (mlod__sphere_setup(pv, sphere, cone, x, &d2, &tangent)) return 0.0;
+        *culled = 0;
+        return mlod__sub_diameter(&pv->f.subs[0], pv->kind[0], x, d2, sphere[3], tangent);
     }
+    reached = mlod__reached(pv, sphere);
+    if (!reached || mlod__sphere_setup(pv, sphere, cone, x, &d2, &tangent)) return 0.0;
     *culled = 0;
-    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
-    d2 = mlod__dot3(x, x);
-    t2 = d2 - r * r; /* > 0 exactly when d2 > r^2 */
-    tangent = pv->kind[0] == MLOD_VIEW_ORTHOGRAPHIC ? 0.0 : sqrt(t2 > 0.0 ? t2 : 0.0);
-    if (pv->backfaces && cone && mlod__backfacing(pv, x, d2, r, tangent, cone)) {
-        *culled = 1;
-        return 0.0;
-    }
-    if (pv->sub_count == 1) return mlod__sub_diameter(&pv->f.subs[0], pv->kind[0], x, d2, r, tangent);
     for (k = 0; k < pv->sub_count; k++)
         if (reached >> k & 1u) {
-            double sub = mlod__sub_diameter(&pv->f.subs[k], pv->kind[k], x, d2, r, tangent);
+            double sub = mlod__sub_diameter(&pv->f.subs[k], pv->kind[k], x, d2, sphere[3], tangent);
             if (sub > c) c = sub;
         }
     return c;
@@ -4349,14 +4360,14 @@ static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, cons
     double c[MLOD__LANES][3], r[MLOD__LANES] = {0.0};
     mlod__disc disc[MLOD__LANES];
     int bounded[MLOD__LANES], k, s;
-    unsigned reached[MLOD__LANES];
+    unsigned reached[MLOD__LANES] = {0u};
     uint32_t l, m, lane[MLOD__LANES];
-    for (l = 0; l < n; l++)
-        reached[l] = pv->sub_count == 1 ? 1u : mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
+    for (l = 0; l < n && pv->sub_count > 1; l++)
+        reached[l] = mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
     for (s = 0; s < pv->sub_count; s++) {
         for (l = m = 0; l < n; l++) { /* the nodes reaching s, in order */
             const float *sphere = band->tree->spheres + 4 * (size_t)nodes[l];
-            if (!(reached[l] >> s & 1u)) continue;
+            if (pv->sub_count > 1 && !(reached[l] >> s & 1u)) continue;
             for (k = 0; k < 3; k++) c[m][k] = sphere[k];
             r[m] = sphere[3];
             lane[m++] = l;
