@@ -1,5 +1,6 @@
 /* examples/reflections.c - hundreds of small mirror spheres, each with its
-   own dual-paraboloid environment map from one manylods atlas.
+   own dual-paraboloid environment map (or, with --cube, cube map) from one
+   manylods atlas.
 
    The room (examples/app.h) is sampled into points lit by the spot light
    (exact shadow rays, plus a little ambient light): a point cloud carrying
@@ -17,8 +18,11 @@
      reflections_maps.png     the first 64 environment maps
 
    The spheres are not in the maps (a map sees the room, not the other
-   spheres), in the image and the reference alike.  Run with --help for the
-   options. */
+   spheres), in the image and the reference alike.  With --cube each sphere
+   has a cube map view instead (MLOD_VIEW_CUBE, the world-axis cube: six
+   90-degree faces of PX/2 pixels in a 3/2 PX x PX tile) and the lookup
+   clamps to the face the reflected direction falls in; the files written
+   are the same.  Run with --help for the options. */
 #define _POSIX_C_SOURCE 200809L
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
@@ -31,6 +35,7 @@ static const char usage[] =
     "  --eps PX           the cut's threshold epsilon in pixels (default 1)\n"
     "  --views N          mirror spheres, at most (default 400: a 20 x 20 grid, less those in the way)\n"
     "  --tile PX          height of each map, 2 PX x PX (default 32)\n"
+    "  --cube             cube maps (six faces of PX/2 px, 3/2 PX x PX) in place of dual paraboloids\n"
     "  --samples N        points of the point cloud (default 100000)\n"
     "  --size WxH         the image (default 256x192)\n"
     "  --threads N        threads (default 2)\n"
@@ -45,6 +50,17 @@ static const char usage[] =
 typedef struct sphere {
     float centre[3], radius;
 } sphere;
+
+/* The face of a world-axis cube map (forward (0,0,-1), up (0,1,0): X, Y, Z
+   are the world's axes) that direction d falls in, in Vulkan's order +X -X
+   +Y -Y +Z -Z: that of its largest component (ties to the lower face). */
+static int cube_face(const float d[3])
+{
+    float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]);
+    if (ax >= ay && ax >= az) return d[0] >= 0.0f ? 0 : 1;
+    if (ay >= az) return d[1] >= 0.0f ? 2 : 3;
+    return d[2] >= 0.0f ? 4 : 5;
+}
 
 /* Nearest hit of the ray with any sphere, t in (0, tmax); returns its index
    or -1. */
@@ -111,6 +127,7 @@ typedef struct render_job {
     uint32_t sphere_count;
     app_image *image, *reference;
     uint8_t *mirror; /* per pixel: 1 where a sphere is seen */
+    int cube;        /* the maps are cube maps */
 } render_job;
 
 /* Radiance leaving the room's surface hit by the ray (direct + ambient), or
@@ -149,7 +166,7 @@ static void render_row(void *context, uint32_t y)
             const mlod_view *v = &job->views[s];
             const uint32_t *tile = job->atlas->tiles + 4 * (size_t)s;
             float p[3], n[3], r[3], far_point[3], pixel[2], depth, dn;
-            int px, py;
+            int px, py, x0 = 0, y0 = 0, x1 = (int)tile[2] - 1, y1 = (int)tile[3] - 1;
             for (k = 0; k < 3; k++) {
                 p[k] = o[k] + t_sphere * d[k];
                 n[k] = (p[k] - sp->centre[k]) / sp->radius;
@@ -162,12 +179,19 @@ static void render_row(void *context, uint32_t y)
             }
             /* manylods: the reflected direction looked up in the sphere's map (from its centre) */
             mlod_view_project(v, far_point, pixel, &depth);
+            if (job->cube) { /* within the direction's face: its edge pixels do not spill into the next face */
+                int side = (int)tile[3] / 2, face = cube_face(r);
+                x0 = side * (face % 3);
+                y0 = side * (face / 3);
+                x1 = x0 + side - 1;
+                y1 = y0 + side - 1;
+            }
             px = (int)floorf(pixel[0]);
             py = (int)floorf(pixel[1]);
-            if (px < 0) px = 0;
-            if (py < 0) py = 0;
-            if (px >= (int)tile[2]) px = (int)tile[2] - 1;
-            if (py >= (int)tile[3]) py = (int)tile[3] - 1;
+            if (px < x0) px = x0;
+            if (py < y0) py = y0;
+            if (px > x1) px = x1;
+            if (py > y1) py = y1;
             for (k = 0; k < 3; k++)
                 out[k] = MIRROR * job->atlas->color[3 * ((size_t)(tile[1] + (uint32_t)py) * job->atlas->width + tile[0] +
                                                          (uint32_t)px) + (size_t)k];
@@ -202,8 +226,20 @@ int main(int argc, char **argv)
     mlod_allocator bake_allocator = app_counting(&bake_memory);
     size_t bake_bound, atlas_bound = 0;
     uint32_t count, k;
-    int status = 1, parsed;
+    int status = 1, parsed, cube = 0, i, n;
 
+    /* --cube is this example's own option (app_options has no field for
+       it): taken out of argv before app_parse_options reads the rest */
+    if (argc > 1) {
+        for (i = n = 1; i < argc; i++) {
+            if (strcmp(argv[i], "--cube") == 0)
+                cube = 1;
+            else
+                argv[n++] = argv[i];
+        }
+        argv[n] = NULL;
+        argc = n;
+    }
     parsed = app_parse_options(argc, argv, usage, &normal, &tiny, &o);
     if (parsed <= 0) return parsed < 0 ? 0 : 2;
     memset(&error, 0, sizeof error);
@@ -225,7 +261,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s: no sphere fits in the room\n", program);
         goto done;
     }
-    for (k = 0; k < count; k++) { /* a dual paraboloid at each sphere's centre */
+    for (k = 0; k < count; k++) { /* a dual paraboloid (or a cube map) at each sphere's centre */
         mlod_view *v = &views[k];
         v->kind = MLOD_VIEW_DUAL_PARABOLOID;
         memcpy(v->position, spheres[k].centre, sizeof v->position);
@@ -234,6 +270,14 @@ int main(int argc, char **argv)
         v->width = 2 * o.tile;
         v->height = o.tile;
         v->flags = MLOD_VIEW_CULL_BACKFACES;
+        if (cube) { /* the world-axis cube; nothing nearer than the mirror's surface shows in it */
+            v->kind = MLOD_VIEW_CUBE;
+            app_set(v->forward, 0, 0, -1);
+            v->width = 3 * (o.tile / 2);
+            v->height = 2 * (o.tile / 2);
+            v->near_plane = spheres[k].radius;
+            v->far_plane = INFINITY;
+        }
     }
 
     /* size before you allocate: refuse a --samples this machine cannot bake */
@@ -283,6 +327,7 @@ int main(int argc, char **argv)
         job.image = &image;
         job.reference = &reference;
         job.mirror = mirror;
+        job.cube = cube;
         app_parallel_for(&threads, o.height, render_row, &job);
         for (i = 0; i < n; i++) {
             int c;
@@ -305,8 +350,15 @@ int main(int argc, char **argv)
            app_mib((double)bake_memory.peak), app_mib((double)bake_bound), app_mib((double)mlod_cut_bytes(cut)),
            app_mib((double)mlod_cut_bound(count, (uint32_t)((nodes + count - 1) / count))), app_mib((double)atlas->bytes),
            app_mib((double)atlas_bound));
-    printf("mirrors  %u spheres of radius %.3f, each a dual-paraboloid map %ux%u px; epsilon %g px; image %ux%u\n\n",
-           count, (double)spheres[0].radius, 2 * o.tile, o.tile, (double)o.epsilon, o.width, o.height);
+    if (cube)
+        printf("mirrors  %u spheres of radius %.3f, each a cube map %ux%u px (six faces of %u px); epsilon %g px; "
+               "image %ux%u\n\n",
+               count, (double)spheres[0].radius, views[0].width, views[0].height, views[0].height / 2,
+               (double)o.epsilon, o.width, o.height);
+    else
+        printf("mirrors  %u spheres of radius %.3f, each a dual-paraboloid map %ux%u px; epsilon %g px; "
+               "image %ux%u\n\n",
+               count, (double)spheres[0].radius, 2 * o.tile, o.tile, (double)o.epsilon, o.width, o.height);
     printf("step          ms  what\n");
     printf("bake    %8.1f  sample the surface, light every point, build the point tree\n", bake_ms);
     printf("cut     %8.1f  %.0f nodes per map (%.0f drawn)\n", cut_ms, (double)nodes / count, (double)drawn / count);
@@ -343,8 +395,8 @@ int main(int argc, char **argv)
         free(full);
         if (!wrote) goto done;
         printf("\nwrote %s/: reflections.png (the image), reflections_compare.png (manylods | ray traced),\n"
-               "  reflections_maps.png (the first environment maps, front and back halves)\n",
-               o.out_dir);
+               "  reflections_maps.png (the first environment maps, %s)\n",
+               o.out_dir, cube ? "six faces each: +X -X +Y over -Y +Z -Z" : "front and back halves");
     }
     status = 0;
     goto done;

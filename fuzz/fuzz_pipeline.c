@@ -44,11 +44,15 @@
      is the same with and without a parallel-for hook;
    - the atlas is empty when made, keeps the disc_scale given (0: 1) and
      holds no NaN after splat, ISM and hole filling; projections and pixel
-     rays give no NaN;
+     rays give no NaN; on cube maps they follow the Vulkan specification's
+     face selection table (face, pixel, depth z along the face's axis,
+     inside between the near and far planes; a pixel's ray);
    - the helpers: mlod_view_frame_of agrees with mlod_view_check on every
-     view, valid or not, and its frame is orthonormal, the view's, and culls
-     only nodes whose criterion is 0; mlod_cut_params_check follows the
-     documented rules and mlod_cut_update accepts exactly what it accepts;
+     view, valid or not, and its frame is orthonormal, the view's (a cube
+     map's six faces: the Vulkan table's frames and the 3s x 2s layout),
+     and culls only nodes whose criterion is 0; mlod_cut_params_check
+     follows the documented rules and mlod_cut_update accepts exactly what
+     it accepts;
      mlod_tree_depth_nodes tiles the internal nodes depth by depth in the
      heap layout, for this tree, hostile leaf counts and any depth;
      mlod_refit_check_growth is monotone, within float range, refuses NaN,
@@ -86,8 +90,8 @@
      bit 7  the incremental cut is reserved first (mlod_cut_reserve, two
             bytes: the mean cut size, below 2^14)
    then the scene (parse_scene), the build options (parse_build), the views
-   (parse_views), the rest in the order run_views reads them, and the
-   helpers' arguments.  fuzz/make_corpus.c writes the seeds. */
+   (parse_views: every kind, cube maps for kind bytes 0xc0 .. 0xff), the
+   rest in the order run_views reads them, and the helpers' arguments.  fuzz/make_corpus.c writes the seeds. */
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
 #include "fuzz.h"
@@ -534,7 +538,15 @@ static float finite_float(double x)
     return isfinite(f) ? f : (x < 0 ? -FLT_MAX : FLT_MAX);
 }
 
-/* One sane view around the scene, then (with chaos) hostile fields. */
+/* One sane view around the scene, then (with chaos) hostile fields.  The
+   kind byte: 0xc0 .. 0xff a cube map (a quarter of the views), below that
+   kind % 4, so that inputs written before cube maps keep the kinds of their
+   other views.  A cube map's tile is 3s x 2s, and its fov_y, half_width
+   and half_height, which it never reads, are sometimes hostile even in
+   sane views; with chaos, bits 1-3 of the flags byte break one rule of a
+   cube map in 3 of 8: 7 keeps the arbitrary tile the other kinds get
+   (mostly not 3s x 2s), 6 puts the near plane at or behind the eye, 5
+   the far plane on the near one. */
 static void parse_view(fz_reader *r, mlod_view *v, const fz_scene *s, int sane, int large)
 {
     static const double z[3] = {0.0, 0.0, 1.0}, x[3] = {1.0, 0.0, 0.0};
@@ -542,7 +554,7 @@ static void parse_view(fz_reader *r, mlod_view *v, const fz_scene *s, int sane, 
     uint8_t kind = rd_u8(r), place = rd_u8(r), tile_w = rd_u8(r), tile_h = rd_u8(r), flags = rd_u8(r);
     int k;
     memset(v, 0, sizeof *v);
-    v->kind = (mlod_view_kind)(kind % 4);
+    v->kind = kind >= 0xc0 ? MLOD_VIEW_CUBE : (mlod_view_kind)(kind % 4);
     for (k = 0; k < 3; k++) dir[k] = rd_signed(r);
     unit3(dir, z);
     /* eye from inside the scene (place < 16) to 256 scene radii away */
@@ -577,6 +589,11 @@ static void parse_view(fz_reader *r, mlod_view *v, const fz_scene *s, int sane, 
         v->width = sane || tile_w ? 1u + tile_w % FZ_MAX_TILE : 0u;
         v->height = sane || tile_h ? 1u + tile_h % FZ_MAX_TILE : 0u;
     }
+    if (v->kind == MLOD_VIEW_CUBE && !(!sane && r->chaos && (flags >> 1 & 7) == 7)) {
+        uint32_t side = 1u + v->width % ((large ? FZ_LARGE_TILE : FZ_MAX_TILE) / 3u); /* 3s stays within the cap */
+        v->width = 3u * side;
+        v->height = 2u * side;
+    }
     v->fov_y = rd_maybe_raw(r, 0.01 + 3.1 * rd_unit(r));
     if (v->kind == MLOD_VIEW_ORTHOGRAPHIC) {
         double near = -R * rd_unit(r) * 4.0;
@@ -596,6 +613,14 @@ static void parse_view(fz_reader *r, mlod_view *v, const fz_scene *s, int sane, 
         if (sane && !(v->far_plane > v->near_plane)) v->far_plane = INFINITY;
         v->half_width = rd_maybe_raw(r, 1.0);
         v->half_height = rd_maybe_raw(r, 1.0);
+        if (v->kind == MLOD_VIEW_CUBE && (flags & 0x10)) { /* fields a cube map never reads */
+            v->fov_y = rd_raw_float(r);
+            v->half_width = rd_raw_float(r);
+            v->half_height = rd_raw_float(r);
+        }
+        if (v->kind == MLOD_VIEW_CUBE && !sane && r->chaos && (flags >> 1 & 7) == 6)
+            v->near_plane = flags & 0x10 ? -v->near_plane : 0.0f;
+        if (v->kind == MLOD_VIEW_CUBE && !sane && r->chaos && (flags >> 1 & 7) == 5) v->far_plane = v->near_plane;
     }
     v->flags = flags & 1u;
     if (!sane && r->chaos) {
@@ -610,7 +635,7 @@ static int vec_finite(const float *v) { return isfinite(v[0]) && isfinite(v[1]) 
 static int view_invalid(const mlod_view *v)
 {
     double f2, u2;
-    if ((unsigned)v->kind > 3u || !v->width || !v->height || (v->flags & ~1u)) return 1;
+    if ((unsigned)v->kind > 4u || !v->width || !v->height || (v->flags & ~1u)) return 1;
     if (!vec_finite(v->position) || !vec_finite(v->forward) || !vec_finite(v->up)) return 1;
     /* only the fields a kind reads count (NaN fails their comparisons below) */
     f2 = (double)v->forward[0] * v->forward[0] + (double)v->forward[1] * v->forward[1] +
@@ -623,28 +648,56 @@ static int view_invalid(const mlod_view *v)
     if (v->kind == MLOD_VIEW_ORTHOGRAPHIC)
         return !(v->half_width > 0.0f) || !(v->half_height > 0.0f) || isinf(v->half_width) ||
                isinf(v->half_height) || !isfinite(v->near_plane) || !(v->far_plane > v->near_plane);
+    /* a cube map: six s x s faces side by side, three wide and two high;
+       its near plane finite and > 0, its far plane beyond (+inf allowed) */
+    if (v->kind == MLOD_VIEW_CUBE)
+        return v->width % 3 != 0 || v->height % 2 != 0 || v->width / 3 != v->height / 2 || !(v->near_plane > 0.0f) ||
+               isinf(v->near_plane) || !(v->far_plane > v->near_plane);
     return 0;
 }
 
-/* Tiles shrink (halving) until the splat work stays bounded. */
+/* Whether any of the views is invalid. */
+static int views_invalid(const fz_views *vs)
+{
+    uint32_t v;
+    for (v = 0; v < vs->count; v++)
+        if (view_invalid(&vs->views[v])) return 1;
+    return 0;
+}
+
+/* Tiles shrink (halving) until the splat work stays bounded; a cube map's
+   3s x 2s tile halves its face side s, down to 3 x 2, and stays a cube
+   map's.  Halving may make another tile valid (7 x 4 becomes 3 x 2):
+   must_fail is worked out again. */
 static void bound_tiles(fz_views *vs, uint32_t leaves, uint64_t atlas_pixels)
 {
     for (;;) {
         uint64_t sum = 0, cell_w = 1, cell_h = 1, columns;
         uint32_t v;
+        int shrunk = 0;
         for (v = 0; v < vs->count; v++) {
             sum += (uint64_t)vs->views[v].width * vs->views[v].height;
             if (vs->views[v].width > cell_w) cell_w = vs->views[v].width;
             if (vs->views[v].height > cell_h) cell_h = vs->views[v].height;
         }
         columns = (uint64_t)ceil(sqrt((double)vs->count));
-        if (sum * leaves <= FZ_SPLAT_BUDGET && cell_w * cell_h * columns * columns <= atlas_pixels) return;
+        if (sum * leaves <= FZ_SPLAT_BUDGET && cell_w * cell_h * columns * columns <= atlas_pixels) break;
         for (v = 0; v < vs->count; v++) {
-            if (vs->views[v].width > 1) vs->views[v].width /= 2;
-            if (vs->views[v].height > 1) vs->views[v].height /= 2;
+            mlod_view *view = &vs->views[v];
+            uint32_t w = view->width, h = view->height;
+            if (view->kind == MLOD_VIEW_CUBE && h % 2 == 0 && w == h / 2 * 3) {
+                uint32_t side = h / 2 > 1 ? h / 4 : 1;
+                view->width = 3 * side;
+                view->height = 2 * side;
+            } else {
+                if (view->width > 1) view->width /= 2;
+                if (view->height > 1) view->height /= 2;
+            }
+            shrunk |= view->width != w || view->height != h;
         }
-        if (cell_w == 1 && cell_h == 1) return;
+        if (!shrunk) break;
     }
+    vs->must_fail = views_invalid(vs);
 }
 
 static void parse_views(fz_reader *r, fz_views *vs, const fz_scene *s, int sane, int large, uint32_t leaves)
@@ -656,6 +709,17 @@ static void parse_views(fz_reader *r, fz_views *vs, const fz_scene *s, int sane,
     for (v = 0; v < vs->count; v++) {
         parse_view(r, &vs->views[v], s, sane, large);
         if (view_invalid(&vs->views[v])) vs->must_fail = 1;
+    }
+    if (fz_verbose()) {
+        uint32_t kinds[6] = {0, 0, 0, 0, 0, 0}, cubes_valid = 0;
+        for (v = 0; v < vs->count; v++) {
+            const mlod_view *view = &vs->views[v];
+            kinds[(unsigned)view->kind < 5u ? (unsigned)view->kind : 5u]++;
+            if (view->kind == MLOD_VIEW_CUBE && !view_invalid(view)) cubes_valid++;
+        }
+        FZ_NOTE("fuzz: %u views: %u perspective, %u paraboloid, %u dual paraboloid, %u orthographic, "
+                "%u cube (%u valid), %u unknown\n",
+                vs->count, kinds[0], kinds[1], kinds[2], kinds[3], kinds[4], cubes_valid, kinds[5]);
     }
 }
 
@@ -1139,8 +1203,137 @@ static void perturb(fz_reader *r, const fz_scene *s, float *out, int sane)
         }
 }
 
+/* ------------------------------------------------------- cube maps */
+
+/* The Vulkan specification's cube map face selection ("Cube Map Face
+   Selection"): the layer of a direction (rx, ry, rz) is that of its
+   major axis, and within it sc and tc are these components, each times a
+   sign; the face coordinates are s = (sc / |rc| + 1) / 2 and
+   t = (tc / |rc| + 1) / 2, t growing downwards.  The view's cube is that
+   table over X = u, Y = v, Z = -w of its frame (manylods.h, CUBE MAPS),
+   face i the s x s square at (s (i mod 3), s (i div 3)) of its tile.
+   Written from the specification, not from the library's table. */
+typedef struct fz_cube_face {
+    int axis, sign;       /* major axis (0 x, 1 y, 2 z) and its sign */
+    int sc_axis, sc_sign; /* sc = sc_sign * r[sc_axis] */
+    int tc_axis, tc_sign; /* tc = tc_sign * r[tc_axis] */
+} fz_cube_face;
+
+static const fz_cube_face fz_cube[6] = {
+    {0, +1, 2, -1, 1, -1}, /* +X: sc = -rz, tc = -ry */
+    {0, -1, 2, +1, 1, -1}, /* -X: sc = +rz, tc = -ry */
+    {1, +1, 0, +1, 2, +1}, /* +Y: sc = +rx, tc = +rz */
+    {1, -1, 0, +1, 2, -1}, /* -Y: sc = +rx, tc = -rz */
+    {2, +1, 0, +1, 1, -1}, /* +Z: sc = +rx, tc = -ry */
+    {2, -1, 0, -1, 1, -1}, /* -Z: sc = -rx, tc = -ry */
+};
+
+/* v / |v| for any v != 0 of float components (in double their squares
+   neither overflow nor underflow; unit3's threshold is for sane views). */
+static void normalize3(double *v)
+{
+    double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    int k;
+    for (k = 0; k < 3; k++) v[k] /= len;
+}
+
+/* The view's frame as the documentation defines it, in double: w along
+   forward, u = forward x up, v = u x w, all unit; then the cube's world
+   axes X = u, Y = v, Z = -w.  (Valid views only: forward and up not
+   zero, nor parallel.) */
+static void cube_axes(const mlod_view *view, double axes[3][3])
+{
+    double w[3], up[3], u[3], v[3];
+    int k;
+    for (k = 0; k < 3; k++) {
+        w[k] = view->forward[k];
+        up[k] = view->up[k];
+    }
+    normalize3(w);
+    normalize3(up);
+    u[0] = w[1] * up[2] - w[2] * up[1];
+    u[1] = w[2] * up[0] - w[0] * up[2];
+    u[2] = w[0] * up[1] - w[1] * up[0];
+    normalize3(u);
+    v[0] = u[1] * w[2] - u[2] * w[1];
+    v[1] = u[2] * w[0] - u[0] * w[2];
+    v[2] = u[0] * w[1] - u[1] * w[0];
+    for (k = 0; k < 3; k++) {
+        axes[0][k] = u[k];
+        axes[1][k] = v[k];
+        axes[2][k] = -w[k];
+    }
+}
+
+/* A valid cube map: mlod_view_project of a point whose major axis is clear
+   lands where the specification puts it, with depth |rc| (z along the
+   face's axis), and answers 1 exactly when near <= |rc| <= far (away from
+   those planes); mlod_view_pixel_ray from the eye at a position inside a
+   face (away from its edges) goes along the specification's direction of
+   that face position. */
+static void check_cube(uint32_t index, const mlod_view *view, const float *point, float x, float y)
+{
+    double axes[3][3], d[3], rr[3], side = view->height / 2, scale, size = 0.0;
+    float pixel[2], depth, origin[3], dir[3];
+    int k, a, i, inside;
+    cube_axes(view, axes);
+    for (k = 0; k < 3; k++) {
+        d[k] = (double)point[k] - view->position[k];
+        size += fabs((double)point[k]) + fabs((double)view->position[k]);
+    }
+    for (a = 0; a < 3; a++) rr[a] = axes[a][0] * d[0] + axes[a][1] * d[1] + axes[a][2] * d[2];
+    a = fabs(rr[0]) >= fabs(rr[1]) && fabs(rr[0]) >= fabs(rr[2]) ? 0 : fabs(rr[1]) >= fabs(rr[2]) ? 1 : 2;
+    inside = mlod_view_project(view, point, pixel, &depth);
+    if (fabs(rr[a]) > (1.0 + 1e-6) * fabs(rr[(a + 1) % 3]) && fabs(rr[a]) > (1.0 + 1e-6) * fabs(rr[(a + 2) % 3])) {
+        double ma = fabs(rr[a]), sc, tc, want[2], tol = 1e-5 * view->width + 1e-4, near = view->near_plane;
+        for (i = 0; i < 6; i++)
+            if (fz_cube[i].axis == a && fz_cube[i].sign == (rr[a] > 0.0 ? 1 : -1)) break;
+        sc = fz_cube[i].sc_sign * rr[fz_cube[i].sc_axis];
+        tc = fz_cube[i].tc_sign * rr[fz_cube[i].tc_axis];
+        want[0] = side * (i % 3) + side * 0.5 * (sc / ma + 1.0);
+        want[1] = side * (i / 3) + side * 0.5 * (tc / ma + 1.0);
+        FZ_REQUIRE(fabs(pixel[0] - want[0]) <= tol && fabs(pixel[1] - want[1]) <= tol && fabs(depth - ma) <= 1e-6 * ma,
+                   "cube view %u (face side %g): mlod_view_project(%.9g %.9g %.9g) gave pixel (%.9g, %.9g) depth %.9g; "
+                   "the Vulkan table: face %d, pixel (%.9g, %.9g), depth %.9g",
+                   index, side, point[0], point[1], point[2], pixel[0], pixel[1], depth, i, want[0], want[1], ma);
+        scale = 1e-6 * (size + near);
+        if (fabs(ma - near) > scale && (!isfinite(view->far_plane) || fabs(ma - view->far_plane) > scale + 1e-6 * ma)) {
+            int want_inside = ma > near && ma < view->far_plane;
+            FZ_REQUIRE(inside == want_inside,
+                       "cube view %u: mlod_view_project gave %d for depth %.9g, near %.9g, far %.9g", index, inside, ma,
+                       near, (double)view->far_plane);
+        }
+    }
+    if (x < (float)view->width && y < (float)view->height) {
+        double fx = floor(x / side), fy = floor(y / side), sc, tc, r3[3], want[3], len = 0.0, edge = 1e-4 * side;
+        int face = (int)fx + 3 * (int)fy;
+        FZ_REQUIRE(mlod_view_pixel_ray(view, x, y, origin, dir) == 1,
+                   "cube view %u: no ray at (%.9g, %.9g) in the tile", index, x, y);
+        FZ_REQUIRE(origin[0] == view->position[0] && origin[1] == view->position[1] && origin[2] == view->position[2],
+                   "cube view %u: the ray at (%.9g, %.9g) starts at (%.9g %.9g %.9g), not at the eye", index, x, y,
+                   origin[0], origin[1], origin[2]);
+        if (x - fx * side > edge && (fx + 1) * side - x > edge && y - fy * side > edge && (fy + 1) * side - y > edge) {
+            sc = 2.0 * (x - fx * side) / side - 1.0;
+            tc = 2.0 * (y - fy * side) / side - 1.0;
+            r3[fz_cube[face].axis] = fz_cube[face].sign;
+            r3[fz_cube[face].sc_axis] = fz_cube[face].sc_sign * sc;
+            r3[fz_cube[face].tc_axis] = fz_cube[face].tc_sign * tc;
+            for (k = 0; k < 3; k++) {
+                want[k] = r3[0] * axes[0][k] + r3[1] * axes[1][k] + r3[2] * axes[2][k];
+                len += want[k] * want[k];
+            }
+            len = sqrt(len);
+            for (k = 0; k < 3; k++)
+                FZ_REQUIRE(fabs(dir[k] - want[k] / len) <= 1e-5,
+                           "cube view %u: the ray at (%.9g, %.9g) (face %d) goes along (%.9g %.9g %.9g), the Vulkan "
+                           "table says (%.9g %.9g %.9g)",
+                           index, x, y, face, dir[0], dir[1], dir[2], want[0] / len, want[1] / len, want[2] / len);
+        }
+    }
+}
+
 /* Projection, pixel rays and the suggested N on valid views: no NaN where
-   they answer, N within range. */
+   they answer, N within range; a cube map's against the Vulkan table. */
 static void check_projection(fz_reader *r, const mlod_tree *t, const fz_scene *s, const fz_views *vs, float eps)
 {
     uint32_t v, n;
@@ -1156,6 +1349,7 @@ static void check_projection(fz_reader *r, const mlod_tree *t, const fz_scene *s
                        "view %u: mlod_view_pixel_ray(%g, %g): origin (%g %g %g), |direction| %g", v, x, y, origin[0],
                        origin[1], origin[2], len);
         }
+        if (view->kind == MLOD_VIEW_CUBE) check_cube(v, view, p, x, y);
     }
     n = mlod_suggest_sample_count(ldexp(s->radius * s->radius, (int)(rd_u8(r) % 9) - 4), vs->views, vs->count, eps,
                                   t->radius_scale, s->radius * ldexp(1.0, -(int)(rd_u8(r) % 20)));
@@ -1345,6 +1539,38 @@ static void check_frames(fz_reader *r, const mlod_tree *t, const fz_views *vs)
             x[2] = fw[0] * vu[1] - fw[1] * vu[0];
             if (view->kind != MLOD_VIEW_CUBE)
                 FZ_REQUIRE(dot3(x, sub->right) > 0.0, "view %u: frame right is not along forward x up", v);
+        }
+        /* a cube map: six sub-projections, face i in the s x s square at
+           (s (i mod 3), s (i div 3)), looking along the Vulkan table's major
+           axis, its pixel x along sc, its pixel y (upwards) against tc */
+        if (view->kind == MLOD_VIEW_CUBE) {
+            double axes[3][3], side = view->height / 2;
+            cube_axes(view, axes);
+            FZ_REQUIRE(f.sub_count == 6, "cube view %u: %g sub-projections", v, f.sub_count);
+            for (s = 0; s < 6; s++) {
+                const mlod_view_sub *sub = &f.subs[s];
+                const fz_cube_face *c = &fz_cube[s];
+                FZ_REQUIRE(sub->kind == MLOD_VIEW_PERSPECTIVE && sub->x == side * (s % 3) && sub->y == side * (s / 3) &&
+                               sub->width == side && sub->height == side && sub->scale == 0.5 * side,
+                           "cube view %u face %d: kind %g, sub-tile %g,%g %gx%g, scale %g; expected a perspective "
+                           "%gx%g at %g,%g with focal length %g",
+                           v, s, sub->kind, sub->x, sub->y, sub->width, sub->height, sub->scale, side, side,
+                           side * (s % 3), side * (s / 3), 0.5 * side);
+                for (k = 0; k < 3; k++)
+                    FZ_REQUIRE(fabs(sub->forward[k] - c->sign * axes[c->axis][k]) < 1e-9 &&
+                                   fabs(sub->right[k] - c->sc_sign * axes[c->sc_axis][k]) < 1e-9 &&
+                                   fabs(sub->up[k] + c->tc_sign * axes[c->tc_axis][k]) < 1e-9,
+                               "cube view %u (forward %.9g %.9g %.9g, up %.9g %.9g %.9g) face %d: right, up, "
+                               "forward (%g %g %g) (%g %g %g) (%g %g %g), not the Vulkan table's (%g %g %g) "
+                               "(%g %g %g) (%g %g %g)",
+                               v, view->forward[0], view->forward[1], view->forward[2], view->up[0], view->up[1],
+                               view->up[2], s, sub->right[0], sub->right[1], sub->right[2], sub->up[0], sub->up[1],
+                               sub->up[2], sub->forward[0], sub->forward[1], sub->forward[2],
+                               c->sc_sign * axes[c->sc_axis][0], c->sc_sign * axes[c->sc_axis][1],
+                               c->sc_sign * axes[c->sc_axis][2], -c->tc_sign * axes[c->tc_axis][0],
+                               -c->tc_sign * axes[c->tc_axis][1], -c->tc_sign * axes[c->tc_axis][2],
+                               c->sign * axes[c->axis][0], c->sign * axes[c->axis][1], c->sign * axes[c->axis][2]);
+            }
         }
         /* a node that some sub-projection's plane puts clearly outside, in
            every sub-projection, has criterion 0 */

@@ -54,6 +54,14 @@ static const seed seeds[] = {
     {"mesh-everything", 0x6e, 0, 0, 0, 0x7f, 0x42, 60, 104, 3000},
     {"mesh-reserved-cut", 0x06, 0, 0, 0, 0x80, 0, 0, 105, 1500},
     {"mesh-reserved-cut-failing", 0x0e, 0, 0, 0, 0x84, 0x11, 8, 106, 1500},
+    /* cube maps (view kind bytes 0xc0 .. 0xff): tails picked for several
+       cube views each; the raw ones have invalid cube maps (two of three;
+       one of two, its tile 10 x 4) */
+    {"mesh-cube-maps", 0x06, 0, 0, 0, 0, 0, 0, 222, 1500},
+    {"mesh-normals-cube-maps", 0x66, 0, 0, 0, 0, 0, 0, 529, 3000},
+    {"points-raw-cube-maps", 0x03, 0, 0, 24, 0, 0, 0, 306, 1600},
+    {"mesh-low-chaos-cube-maps", 0x02, 0, 0, 4, 0, 0, 0, 604, 1500},
+    {"mesh-large-cube-maps", 0x06, 0, 0, 0, 0x78, 0, 0, 413, 1500},
 };
 
 static uint64_t next(uint64_t *state)

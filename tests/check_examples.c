@@ -3,9 +3,10 @@
    repository root) on its --tiny scene and reads what it wrote with the
    strict reader of tests/pngread.h.
 
-   - instant_radiosity, point_based_gi, reflections: exit status 0, a
-     "wrote" line, every PNG valid (chunks, CRCs, zlib stream, Adler-32,
-     filters), of the expected size, and not blank;
+   - instant_radiosity, point_based_gi, reflections (also with --cube,
+     its maps cube maps): exit status 0, a "wrote" line, every PNG valid
+     (chunks, CRCs, zlib stream, Adler-32, filters), of the expected size,
+     and not blank;
    - instant_radiosity's lit frame is the first panel of its comparison;
    - accuracy, instant radiosity at epsilon = 1 (--tiny: 64 VPLs of 32 x 32
      pixels, 100 000 samples, 80 x 60 pixels), ISM given twice as many
@@ -293,6 +294,9 @@ int main(void)
     check_instant_radiosity();
     check_point_based_gi("point_based_gi", "");
     check_reflections("reflections", "");
+    check_reflections("reflections-cube", "--cube");
+    CHECK(output_has("reflections-cube", "out", "each a cube map 48x32 px"),
+          "reflections --cube: its maps are cube maps of 3s x 2s pixels (--tile 32: faces of 16)");
     check_point_based_gi("point_based_gi-ply", "--mesh " OUT_DIR "/octahedron.ply");
     check_reflections("reflections-obj", "--mesh " OUT_DIR "/octahedron.obj");
     /* instant radiosity on a loaded mesh: both formats */
