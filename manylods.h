@@ -2810,10 +2810,11 @@ static mlod_result mlod__view_ranges_check(const mlod_view *view, mlod_error *er
     if ((kind == MLOD_VIEW_PERSPECTIVE || kind == MLOD_VIEW_CUBE) && !(view->far_plane > view->near_plane))
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "far_plane %g must be > near_plane %g", view->far_plane,
                           view->near_plane);
-    if (kind == MLOD_VIEW_CUBE && (view->height % 2 != 0 || view->width != view->height / 2 * 3))
+    /* 3s in 64 bits: it may pass 2^32 where 2s does not */
+    if (kind == MLOD_VIEW_CUBE && (view->height % 2 != 0 || view->width != (uint64_t)(view->height / 2) * 3))
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW,
-                          "cube map tile %ux%u: must be 3s x 2s pixels, six s x s faces (for example %ux%u)",
-                          view->width, view->height, view->height / 2 ? view->height / 2 * 3 : 3u,
+                          "cube map tile %ux%u: must be 3s x 2s pixels, six s x s faces (for example %llux%u)",
+                          view->width, view->height, 3ull * (view->height / 2 ? view->height / 2 : 1u),
                           view->height / 2 ? view->height / 2 * 2 : 2u);
     if (kind == MLOD_VIEW_ORTHOGRAPHIC && (!mlod__finite_positive(view->half_width) ||
                                            !mlod__finite_positive(view->half_height)))
