@@ -2,8 +2,9 @@
 
    - the cut against a brute-force reference straight from the definition
      (every node's mlod_criterion), as sets, statuses and left-to-right
-     order, for every view kind, with and without back-face culling, on
-     random trees and hand-made cases; the partition of the leaves;
+     order, for every view kind (cube maps included), with and without
+     back-face culling, on random trees and hand-made cases; the partition
+     of the leaves;
    - monotonicity c(child) <= c(parent) on random and adversarial views;
    - the criterion against an independent projection of points sampled on
      the sphere (upper bound, exact image diameter, culling) and against the
@@ -164,7 +165,7 @@ static void test_random_trees(void)
                 scene_free(&s);
                 continue;
             }
-            for (v = 0; v < nv; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 4), c, R);
+            for (v = 0; v < nv; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 5), c, R);
             tu_layout_init(&L, N);
             ws_init(&w, tree->node_count);
             mlod_cut_create(nv, NULL, &cut_b, NULL);
@@ -206,7 +207,8 @@ static void test_hand_made(void)
     scene_mesh s;
     mlod_tree *tree;
     mlod_cut *cut = NULL;
-    mlod_view views[8];
+    enum { KINDS = 5 }; /* views [0, KINDS) far away, [KINDS, 2 KINDS) inside the root */
+    mlod_view views[2 * KINDS];
     tu_layout L;
     workspace w;
     tally t;
@@ -220,11 +222,11 @@ static void test_hand_made(void)
     if (!tree) return;
     tu_layout_init(&L, tree->leaf_count);
     ws_init(&w, tree->node_count);
-    mlod_cut_create(8, NULL, &cut, NULL);
-    for (k = 0; k < 4; k++) {
+    mlod_cut_create(2 * KINDS, NULL, &cut, NULL);
+    for (k = 0; k < KINDS; k++) {
         double eye[3] = {0, 0, 1e5}, target[3] = {0, 0, 0};
         views[k] = tu_view((mlod_view_kind)k);
-        views[k + 4] = tu_view((mlod_view_kind)k);
+        views[k + KINDS] = tu_view((mlod_view_kind)k);
         views[k].far_plane = INFINITY;
         if (k == MLOD_VIEW_ORTHOGRAPHIC) {
             eye[2] = 10;
@@ -234,45 +236,45 @@ static void test_hand_made(void)
         /* an eye inside the root sphere, looking at the surface */
         eye[2] = 0.5;
         target[0] = 1;
-        tu_look(&rng, views + k + 4, eye, target);
-        views[k + 4].flags = MLOD_VIEW_CULL_BACKFACES;
+        tu_look(&rng, views + k + KINDS, eye, target);
+        views[k + KINDS].flags = MLOD_VIEW_CULL_BACKFACES;
     }
     p = params(MLOD_CUT_BASIC, 1.0f, 1, NULL);
     CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "far views: update");
-    for (v = 0; v < 4; v++) {
+    for (v = 0; v < KINDS; v++) {
         mlod_cut_view cv = mlod_cut_get(cut, v);
         if (!(cv.count == 1 && cv.nodes[0] == 0 && cv.status[0] == MLOD_STATUS_DRAWN && cv.drawn == 1)) bad_root++;
     }
-    CHECK(bad_root == 0, "far views: %u of 4 views do not see the root alone, drawn", bad_root);
+    CHECK(bad_root == 0, "far views: %u of %d views do not see the root alone, drawn", bad_root, KINDS);
     p.epsilon = INFINITY;
     CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "eps=inf: update");
-    for (v = 0; v < 8; v++) {
+    for (v = 0; v < 2 * KINDS; v++) {
         mlod_cut_view cv = mlod_cut_get(cut, v);
         double cr = mlod_criterion(tree, 0, views + v);
         if (!(cv.count == 1 && cv.nodes[0] == 0 && cv.status[0] == (cr == 0 ? MLOD_STATUS_CULLED : MLOD_STATUS_DRAWN)))
             bad_inf++;
     }
-    CHECK(bad_inf == 0, "eps=inf: %u of 8 views do not have the root alone", bad_inf);
+    CHECK(bad_inf == 0, "eps=inf: %u of %d views do not have the root alone", bad_inf, 2 * KINDS);
     memset(&t, 0, sizeof t);
-    check_against_reference(tree, &L, views, 0, 8, INFINITY, cut, &w, &t);
+    check_against_reference(tree, &L, views, 0, 2 * KINDS, INFINITY, cut, &w, &t);
     tally_report(&t, "eps=inf");
     p.epsilon = 1e-30f;
-    for (k = 0; k < 4; k++) views[k] = tu_random_view(&rng, (mlod_view_kind)k, c, 1.0);
+    for (k = 0; k < KINDS; k++) views[k] = tu_random_view(&rng, (mlod_view_kind)k, c, 1.0);
     CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "eps=1e-30: update");
-    for (v = 0; v < 8; v++) {
+    for (v = 0; v < 2 * KINDS; v++) {
         mlod_cut_view cv = mlod_cut_get(cut, v);
         for (k = 0; k < cv.count; k++)
             if (!(tu_is_leaf(&L, cv.nodes[k]) || cv.status[k] == MLOD_STATUS_CULLED)) bad_tiny++;
     }
     CHECK(bad_tiny == 0, "eps=1e-30: %u cut nodes are neither leaves nor culled", bad_tiny);
     memset(&t, 0, sizeof t);
-    check_against_reference(tree, &L, views, 0, 8, 1e-30f, cut, &w, &t);
+    check_against_reference(tree, &L, views, 0, 2 * KINDS, 1e-30f, cut, &w, &t);
     tally_report(&t, "eps=1e-30");
     /* the inside views, moderate eps */
     p.epsilon = 2.0f;
     CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "inside views: update");
     memset(&t, 0, sizeof t);
-    check_against_reference(tree, &L, views, 0, 8, 2.0f, cut, &w, &t);
+    check_against_reference(tree, &L, views, 0, 2 * KINDS, 2.0f, cut, &w, &t);
     tally_report(&t, "eyes inside the root, eps 2");
     mlod_cut_destroy(cut);
     ws_free(&w);
@@ -321,13 +323,46 @@ static void view_frame(const mlod_view *view, frame *F)
     ld_cross(F->v, F->u, F->w);
 }
 
-/* Pixel coordinates of point p in view (dual: half 0 front, 1 back).
-   Returns 0 when p has no image there. */
+/* A cube map's face i (Vulkan's order +X, -X, +Y, -Y, +Z, -Z over X = u,
+   Y = v, Z = -w): its axis a and two unit vectors p, q across it.  The
+   criterion only needs the axis (a diameter does not depend on how the
+   face's image is turned), so p and q are simply the other two axes. */
+static void cube_face_axes(const frame *F, int face, long double *a, long double *p, long double *q)
+{
+    const long double *X = F->u, *Y = F->v, *W = F->w;
+    long double sign = face % 2 ? -1.0L : 1.0L, zsign = face / 2 == 2 ? -1.0L : 1.0L; /* Z = -w */
+    const long double *axis = face / 2 == 0 ? X : face / 2 == 1 ? Y : W, *o1 = face / 2 == 0 ? Y : X,
+                      *o2 = face / 2 == 2 ? Y : W;
+    int k;
+    for (k = 0; k < 3; k++) {
+        a[k] = sign * zsign * axis[k];
+        p[k] = o1[k];
+        q[k] = o2[k];
+    }
+}
+
+/* Pixel coordinates of point p in view (dual: half 0 front, 1 back; cube:
+   half is the face, and only points inside that face's frustum, between
+   its near and far planes, have an image there: the face then surely
+   reaches the sphere).  Returns 0 when p has no image there. */
 static int project(const mlod_view *view, const frame *F, const long double *p, int half, long double *px)
 {
     long double y[3] = {p[0] - F->e[0], p[1] - F->e[1], p[2] - F->e[2]};
     long double yu = ld_dot(y, F->u), yv = ld_dot(y, F->v), yw = ld_dot(y, F->w), len, s, den;
     switch (view->kind) {
+    case MLOD_VIEW_CUBE: {
+        long double a[3], pa[3], qa[3], ya, yp, yq;
+        cube_face_axes(F, half, a, pa, qa);
+        ya = ld_dot(y, a);
+        yp = ld_dot(y, pa);
+        yq = ld_dot(y, qa);
+        if (!(ya > 0) || fabsl(yp) > ya || fabsl(yq) > ya || ya < view->near_plane || ya > (long double)view->far_plane)
+            return 0;
+        s = view->height / 4.0L; /* f = side / 2 for 90 degrees */
+        px[0] = s * yp / ya;
+        px[1] = s * yq / ya;
+        return 1;
+    }
     case MLOD_VIEW_PERSPECTIVE:
         if (yw <= 0) return 0;
         s = (view->height / 2.0L) / tanl(view->fov_y / 2.0L);
@@ -376,6 +411,12 @@ static int inside_volume(const mlod_view *view, const frame *F, const long doubl
                (fabsl(yu) - tx * yw) / sqrtl(1 + tx * tx) < -m && (fabsl(yv) - ty * yw) / sqrtl(1 + ty * ty) < -m;
     case MLOD_VIEW_PARABOLOID: return yw > m;
     case MLOD_VIEW_DUAL_PARABOLOID: return 1;
+    case MLOD_VIEW_CUBE: {
+        /* the six faces tile every direction: inside means between the
+           near and the far cube, by the largest of |X|, |Y|, |Z| */
+        long double big = fmaxl(fabsl(yu), fmaxl(fabsl(yv), fabsl(yw)));
+        return big > view->near_plane + m && big < (long double)view->far_plane - m;
+    }
     default:
         return fabsl(yu) < view->half_width - m && fabsl(yv) < view->half_height - m && yw > view->near_plane + m &&
                yw < (long double)view->far_plane - m;
@@ -390,6 +431,21 @@ typedef struct expectation {
     int cull, value_ok;
     long double value;
 } expectation;
+
+/* How far a sphere (x = centre - eye, radius r) lies outside a cube face's
+   frustum, by its worst culling plane (> 0: that face does not reach it):
+   the near and far planes along the face's axis, and its four side planes
+   at 45 degrees, |x.p| = x.a and |x.q| = x.a. */
+static long double cube_face_outside(const mlod_view *view, const frame *F, const long double *x, long double r,
+                                     int face)
+{
+    long double a[3], p[3], q[3], xa, g;
+    cube_face_axes(F, face, a, p, q);
+    xa = ld_dot(x, a);
+    g = fmaxl(view->near_plane - (xa + r), (xa - r) - (long double)view->far_plane);
+    g = fmaxl(g, (fabsl(ld_dot(x, p)) - xa) / sqrtl(2.0L) - r);
+    return fmaxl(g, (fabsl(ld_dot(x, q)) - xa) / sqrtl(2.0L) - r);
+}
 
 static expectation expect(const mlod_view *view, const frame *F, const float *sphere, const float *cone)
 {
@@ -412,6 +468,12 @@ static expectation expect(const mlod_view *view, const frame *F, const float *sp
         break;
     case MLOD_VIEW_PARABOLOID: g = -(xw + r); break;
     case MLOD_VIEW_DUAL_PARABOLOID: break;
+    case MLOD_VIEW_CUBE:
+        /* culled when every face culls it: g is the least of the faces' */
+        m += 1e-7L * (view->near_plane + (isfinite(view->far_plane) ? view->far_plane : 0));
+        g = INFINITY;
+        for (k = 0; k < 6; k++) g = fminl(g, cube_face_outside(view, F, x, r, k));
+        break;
     default:
         m += 1e-7L * (fabsl(view->near_plane) + (isfinite(view->far_plane) ? fabsl(view->far_plane) : 0) +
                       view->half_width + view->half_height);
@@ -479,6 +541,30 @@ static expectation expect(const mlod_view *view, const frame *F, const float *sp
         ex.value = best;
         break;
     }
+    case MLOD_VIEW_CUBE: {
+        /* the largest over the faces that reach the sphere of the face's
+           perspective diameter, f = s/2 (90 degrees); a face too close to
+           its culling boundary to tell leaves the value unknown unless it
+           cannot change the maximum */
+        long double best = 0, unsure = 0;
+        int face;
+        for (face = 0; face < 6; face++) {
+            long double a[3], p[3], q[3], xa, den, diam, gf = cube_face_outside(view, F, x, r, face);
+            int ok = 1;
+            if (gf > m) continue;
+            cube_face_axes(F, face, a, p, q);
+            xa = ld_dot(x, a);
+            den = xa * xa - r * r;
+            if (xa <= r * (1 - 1e-9L)) diam = INFINITY;
+            else if (xa > r && den > 1e-3L * xa * xa) diam = (H / 4) * 2 * r * sqrtl(d * d - r * r) / den;
+            else ok = 0, diam = INFINITY;
+            if (gf < -m && ok) best = fmaxl(best, diam);
+            else unsure = fmaxl(unsure, diam);
+        }
+        if (unsure > best * (1 - 1e-6L)) ex.value_ok = 0;
+        ex.value = best;
+        break;
+    }
     default: ex.value = 2 * r * fmaxl(W / (2.0L * view->half_width), H / (2.0L * view->half_height)); break;
     }
     return ex;
@@ -502,6 +588,10 @@ static mlod_view view_near_sphere(uint64_t *rng, const float *sphere, int kind)
     v.near_plane = (float)(dist * (0.01 + 0.8 * scene_rng_double(rng)));
     v.far_plane = scene_rng_double(rng) < 0.5 ? INFINITY : (float)(dist * (0.5 + 2 * scene_rng_double(rng)));
     if (v.far_plane <= v.near_plane) v.far_plane = v.near_plane * 2;
+    if (kind == MLOD_VIEW_CUBE) { /* 3s x 2s, s = 1 .. 128, from the width drawn */
+        v.height = 2 * (1 + (v.width - 1) / 2);
+        v.width = v.height / 2 * 3;
+    }
     if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
         double w[3] = {v.forward[0], v.forward[1], v.forward[2]}, z = (scene_rng_double(rng) - 0.3) * 3 * r;
         v.half_width = (float)(r * (0.3 + 3 * scene_rng_double(rng)));
@@ -581,9 +671,10 @@ static void test_criterion_reference(void)
     uint64_t rng = 99;
     uint32_t cases = 0, bad_lower = 0, bad_upper = 0, bad_cull_sample = 0, tight = 0, culled = 0, ti, i;
     uint32_t formula_cases = 0, bad_value = 0, bad_cull = 0, bad_nocull = 0, bad_nan = 0, compared = 0;
+    uint32_t cube_tight = 0, cube_culled = 0, cube_compared = 0, cube_compared_multi = 0;
     char first_lower[256] = "", first_upper[256] = "", first_cull[256] = "", first_value[300] = "", first_cull2[256] = "",
          first_nocull[256] = "";
-    static long double pts[NSIL + NSURF][3], px[2][NSIL + NSURF][2];
+    static long double pts[NSIL + NSURF][3], px[6][NSIL + NSURF][2];
     scene_uv_sphere(&s, 1.0f, 10, 20);
     trees[0] = random_points_tree(600, 3, 1e-3, 0.4);
     trees[1] = tu_build(&s, 2000, 4, MLOD_ATTR_CONE);
@@ -591,10 +682,10 @@ static void test_criterion_reference(void)
     if (!trees[0] || !trees[1]) return;
     for (ti = 0; ti < 2; ti++) {
         const mlod_tree *t = trees[ti];
-        for (i = 0; i < 600; i++) {
+        for (i = 0; i < 750; i++) {
             uint32_t node = (uint32_t)(scene_rng_double(&rng) * t->node_count);
             const float *sp = t->spheres + 4 * node, *cone = t->cones + 4 * node;
-            int kind = (int)(i % 4), half, n[2] = {0, 0}, j;
+            int kind = (int)(i % 5), half, halves, n[6] = {0, 0, 0, 0, 0, 0}, j, cube_inside = 0;
             mlod_view v = view_near_sphere(&rng, sp, kind);
             frame F;
             double c = mlod_criterion(t, node, &v);
@@ -609,7 +700,22 @@ static void test_criterion_reference(void)
                      v.flags, sp[3], (double)d, (double)xw, c);
             cases++;
             sample_sphere(&rng, &v, &F, sp, pts);
-            for (half = 0; half < (kind == MLOD_VIEW_DUAL_PARABOLOID ? 2 : 1); half++) {
+            halves = kind == MLOD_VIEW_DUAL_PARABOLOID ? 2 : kind == MLOD_VIEW_CUBE ? 6 : 1;
+            if (kind == MLOD_VIEW_CUBE) {
+                /* the sphere well inside one face's frustum: c is that face's
+                   diameter, which the silhouette's samples there span */
+                long double a[3], p[3], q[3], xa;
+                int face;
+                for (face = 0; face < 6; face++) {
+                    cube_face_axes(&F, face, a, p, q);
+                    xa = ld_dot(x, a);
+                    if ((xa - fabsl(ld_dot(x, p))) / sqrtl(2.0L) > 1.01L * sp[3] &&
+                        (xa - fabsl(ld_dot(x, q))) / sqrtl(2.0L) > 1.01L * sp[3] && xa > 1.5L * sp[3] &&
+                        xa - sp[3] > 1.01L * v.near_plane && xa + sp[3] < 0.99L * v.far_plane)
+                        cube_inside = 1;
+                }
+            }
+            for (half = 0; half < halves; half++) {
                 n[half] = 0;
                 for (j = 0; j < NSIL + NSURF; j++)
                     if (project(&v, &F, pts[j], half, px[half][n[half]])) n[half]++;
@@ -619,6 +725,7 @@ static void test_criterion_reference(void)
                 /* culled: no sampled point is inside the volume, unless every
                    normal of the cone at it faces away */
                 culled++;
+                cube_culled += kind == MLOD_VIEW_CUBE;
                 for (j = 0; j < NSIL + NSURF; j++) {
                     long double m = 1e-6L * (d + sp[3]);
                     int inside = inside_volume(&v, &F, pts[j], m), faces = 0, q;
@@ -648,18 +755,19 @@ static void test_criterion_reference(void)
                 if (sp[3] < 0.5 * d && ((kind == MLOD_VIEW_PERSPECTIVE && xw > 1.5L * sp[3]) ||
                                         (kind == MLOD_VIEW_PARABOLOID && xw > sp[3] * 1.01L) ||
                                         (kind == MLOD_VIEW_DUAL_PARABOLOID && fabsl(xw) > sp[3] * 1.01L) ||
-                                        kind == MLOD_VIEW_ORTHOGRAPHIC)) {
+                                        kind == MLOD_VIEW_ORTHOGRAPHIC || cube_inside)) {
                     tight++;
+                    cube_tight += kind == MLOD_VIEW_CUBE;
                     if (!(c <= 1.02L * maxd) && !bad_upper++)
                         snprintf(first_upper, sizeof first_upper, "%s > 1.02 x sampled diameter %.9Lg", desc, maxd);
                 }
             }
         }
         /* the documented formulas and culling rules, many more cases */
-        for (i = 0; i < 30000; i++) {
+        for (i = 0; i < 37500; i++) {
             uint32_t node = (uint32_t)(scene_rng_double(&rng) * t->node_count);
             const float *sp = t->spheres + 4 * node, *cone = t->cones + 4 * node;
-            mlod_view v = view_near_sphere(&rng, sp, (int)(i % 4));
+            mlod_view v = view_near_sphere(&rng, sp, (int)(i % 5));
             frame F;
             expectation ex;
             double c;
@@ -684,6 +792,14 @@ static void test_criterion_reference(void)
                 } else if (ex.value_ok) {
                     int ok = isinf(ex.value) ? isinf(c) : fabsl(c - ex.value) <= 1e-5L * ex.value;
                     compared++;
+                    if (v.kind == MLOD_VIEW_CUBE) {
+                        long double xc[3];
+                        int face, reached = 0;
+                        for (face = 0; face < 3; face++) xc[face] = (long double)sp[face] - F.e[face];
+                        for (face = 0; face < 6; face++) reached += cube_face_outside(&v, &F, xc, sp[3], face) < 0;
+                        cube_compared++;
+                        cube_compared_multi += reached > 1;
+                    }
                     if (!ok && !bad_value++)
                         snprintf(first_value, sizeof first_value,
                                  "tree %u node %u kind %d (W %u H %u fov %.6g hw %.6g hh %.6g): c %.12g, documented %.12Lg", ti,
@@ -699,14 +815,19 @@ static void test_criterion_reference(void)
     CHECK(bad_cull_sample == 0, "criterion: %u of %u culled spheres have a sampled point inside the view; first: %s",
           bad_cull_sample, culled, first_cull);
     CHECK(tight > 300 && culled > 100, "criterion: only %u tight and %u culled cases", tight, culled);
+    CHECK(cube_tight > 40 && cube_culled > 20 && cube_compared > 5000 && cube_compared_multi > 1000,
+          "criterion: only %u tight and %u culled sampled cube map cases, %u formula values compared (%u over several "
+          "faces)",
+          cube_tight, cube_culled, cube_compared, cube_compared_multi);
     CHECK(bad_nan == 0, "criterion: %u NaN for valid views", bad_nan);
     CHECK(bad_cull == 0, "criterion: %u of %u spheres wholly outside (or back-facing) not culled; first: %s", bad_cull,
           formula_cases, first_cull2);
     CHECK(bad_nocull == 0, "criterion: %u of %u visible spheres culled; first: %s", bad_nocull, formula_cases, first_nocull);
     CHECK(bad_value == 0, "criterion: %u of %u values differ from the documented formula by > 1e-5; first: %s", bad_value,
           compared, first_value);
-    printf("  criterion: %u sampled cases (%u tight, %u culled), %u formula cases (%u values compared)\n", cases, tight, culled,
-           formula_cases, compared);
+    printf("  criterion: %u sampled cases (%u tight, %u culled), %u formula cases (%u values compared; cube maps: %u "
+           "tight, %u culled, %u compared, %u over several faces)\n",
+           cases, tight, culled, formula_cases, compared, cube_tight, cube_culled, cube_compared, cube_compared_multi);
     mlod_tree_destroy(trees[0]);
     mlod_tree_destroy(trees[1]);
     scene_free(&s);
@@ -828,12 +949,14 @@ static const double deltas[] = {-1e-3, -1e-6, -1e-7, 0.0, 1e-7, 1e-6, 1e-3};
 static double pick_delta(uint64_t *rng) { return deltas[(int)(scene_rng_double(rng) * 7)]; }
 
 /* A view adversarial to sphere s (and cone): type 1 eye near the sphere,
-   2 perspective side plane tangent, 3 near/far plane tangent, 4 paraboloid
-   plane tangent, 5 orthographic box side tangent, 6 back-face boundary. */
+   2 perspective side plane tangent, 3 near/far plane tangent (perspective,
+   orthographic or a cube map's face), 4 paraboloid plane tangent, 5
+   orthographic box side tangent, 6 back-face boundary, 7 a cube map's
+   edge between two faces tangent. */
 static mlod_view adversarial_view(uint64_t *rng, int type, const float *s, const float *cone)
 {
     double C[3] = {s[0], s[1], s[2]}, r = s[3], xh[3], p[3], q[3], e[3], w[3], up[3], d, b, a, delta = pick_delta(rng);
-    int kind = (int)(scene_rng_double(rng) * 4), k, side = scene_rng_double(rng) < 0.5;
+    int kind = (int)(scene_rng_double(rng) * 5), k, side = scene_rng_double(rng) < 0.5;
     mlod_view v = tu_view(MLOD_VIEW_PERSPECTIVE);
     tu_random_unit(rng, xh);
     tu_random_perp(rng, xh, p);
@@ -878,7 +1001,8 @@ static mlod_view adversarial_view(uint64_t *rng, int type, const float *s, const
             w[k] = xh[k];
             up[k] = p[k];
         }
-        v.kind = scene_rng_double(rng) < 0.5 ? MLOD_VIEW_PERSPECTIVE : MLOD_VIEW_ORTHOGRAPHIC;
+        a = scene_rng_double(rng);
+        v.kind = a < 0.4 ? MLOD_VIEW_PERSPECTIVE : a < 0.8 ? MLOD_VIEW_ORTHOGRAPHIC : MLOD_VIEW_CUBE;
         if (v.kind == MLOD_VIEW_ORTHOGRAPHIC) {
             v.half_width = v.half_height = (float)(r * 2);
             v.near_plane = (float)(-10 * d);
@@ -908,6 +1032,19 @@ static mlod_view adversarial_view(uint64_t *rng, int type, const float *s, const
         }
         /* right = w x up = xh x (xh x p) = -p: put the sphere just past +-hw along p */
         for (k = 0; k < 3; k++) e[k] = C[k] - z * w[k] + (side ? 1 : -1) * (hw + r * (1 + delta)) * p[k];
+        break;
+    }
+    case 7: { /* the sphere r (1 + delta) from the plane between two cube faces, on either side */
+        double x_axis[3], y_axis[3];
+        v.kind = MLOD_VIEW_CUBE;
+        b = asin(r / d);
+        a = TU_PI / 4 + (side ? 1 : -1) * b * (1 + delta) + TU_PI / 2 * (int)(scene_rng_double(rng) * 4);
+        for (k = 0; k < 3; k++) { /* xh = cos(a) X + sin(a) Y */
+            x_axis[k] = cos(a) * xh[k] - sin(a) * p[k];
+            y_axis[k] = sin(a) * xh[k] + cos(a) * p[k];
+        }
+        tu_cross3(w, y_axis, x_axis); /* forward = -Z = Y x X, so that right = forward x up = X */
+        for (k = 0; k < 3; k++) up[k] = y_axis[k];
         break;
     }
     default: { /* back-face boundary */
@@ -940,6 +1077,10 @@ static mlod_view adversarial_view(uint64_t *rng, int type, const float *s, const
     tu_set3f(v.position, e);
     tu_set3f(v.forward, w);
     tu_set3f(v.up, up);
+    if (v.kind == MLOD_VIEW_CUBE) { /* 3s x 2s from the width drawn */
+        v.height = 2 * (1 + (v.width - 1) / 2);
+        v.width = v.height / 2 * 3;
+    }
     if (scene_rng_double(rng) < 0.5) v.flags |= MLOD_VIEW_CULL_BACKFACES;
     return v;
 }
@@ -948,7 +1089,7 @@ static uint32_t monotone_pairs; /* (child, parent, view) triples checked, all tr
 
 static void check_monotone(const mlod_tree *t, const char *what, uint64_t seed, uint32_t pairs, const double *centre, double R)
 {
-    uint32_t bad[8] = {0}, count[8] = {0}, nan_count = 0, skipped = 0, i, type;
+    uint32_t bad[8] = {0}, count[8] = {0}, kinds[5] = {0}, nan_count = 0, skipped = 0, i, type;
     char first[8][640];
     uint64_t rng = seed;
     if (t->node_count < 2) return;
@@ -959,10 +1100,10 @@ static void check_monotone(const mlod_tree *t, const char *what, uint64_t seed, 
         const uint32_t target = on_parent ? parent : child;
         mlod_view v;
         double cc, cp;
-        type = i % 7;
-        if (type == 0) v = tu_random_view(&rng, (mlod_view_kind)(scene_rng_double(&rng) * 4), centre, R);
+        type = i % 8;
+        if (type == 0) v = tu_random_view(&rng, (mlod_view_kind)(scene_rng_double(&rng) * 5), centre, R);
         else v = adversarial_view(&rng, (int)type, t->spheres + 4 * target, t->cones ? t->cones + 4 * target : NULL);
-        if (type == 6 && !t->cones) v = tu_random_view(&rng, (mlod_view_kind)(scene_rng_double(&rng) * 4), centre, R);
+        if (type == 6 && !t->cones) v = tu_random_view(&rng, (mlod_view_kind)(scene_rng_double(&rng) * 5), centre, R);
         if (mlod_view_check(&v, NULL) != MLOD_OK) {
             skipped++;
             continue;
@@ -970,6 +1111,7 @@ static void check_monotone(const mlod_tree *t, const char *what, uint64_t seed, 
         cc = mlod_criterion(t, child, &v);
         cp = mlod_criterion(t, parent, &v);
         count[type]++;
+        kinds[v.kind]++;
         monotone_pairs++;
         if (isnan(cc) || isnan(cp)) {
             nan_count++;
@@ -982,11 +1124,13 @@ static void check_monotone(const mlod_tree *t, const char *what, uint64_t seed, 
                      v.forward[1], v.forward[2], v.up[0], v.up[1], v.up[2], v.width, v.height, v.fov_y, v.near_plane,
                      v.far_plane, v.half_width, v.half_height);
     }
-    for (type = 0; type < 7; type++)
+    for (type = 0; type < 8; type++)
         CHECK(bad[type] == 0, "monotonicity %s, view type %u: %u of %u pairs with c(child) > c(parent); first: %s", what, type,
               bad[type], count[type], first[type]);
     CHECK(nan_count == 0, "monotonicity %s: %u NaN criteria for valid views", what, nan_count);
     CHECK(skipped < pairs / 20, "monotonicity %s: %u of %u generated views invalid", what, skipped, pairs);
+    CHECK(kinds[MLOD_VIEW_CUBE] > pairs / 6, "monotonicity %s: only %u of %u views are cube maps", what,
+          kinds[MLOD_VIEW_CUBE], pairs);
 }
 
 static void test_monotonicity(void)
@@ -1051,7 +1195,7 @@ static void moving_init(moving_views *m, uint64_t *rng, uint32_t count)
     uint32_t i;
     m->count = count;
     for (i = 0; i < count; i++) {
-        m->base[i] = tu_random_view(rng, (mlod_view_kind)(i % 4), c, 1.4);
+        m->base[i] = tu_random_view(rng, (mlod_view_kind)(i % 5), c, 1.4);
         tu_random_unit(rng, m->axis[i]);
         tu_random_unit(rng, m->orbit[i]);
     }
@@ -1251,7 +1395,7 @@ static void test_restart(void)
     scene_mesh s;
     mlod_tree *a, *b;
     mlod_cut *ci = NULL, *cb = NULL;
-    mlod_view views[4];
+    mlod_view views[5];
     uint64_t rng = 3;
     double c[3] = {0, 0, 0};
     uint32_t v, same = 0, k;
@@ -1259,21 +1403,21 @@ static void test_restart(void)
     scene_torus(&s, 1.0f, 0.3f, 16, 8);
     a = tu_build(&s, 1000, 1, 0);
     b = tu_build(&s, 1500, 1, 0);
-    mlod_cut_create(4, NULL, &ci, NULL);
-    mlod_cut_create(4, NULL, &cb, NULL);
-    CHECK(mlod_cut_view_count(ci) == 4, "cut: view count %u", mlod_cut_view_count(ci));
-    for (v = 0; v < 4; v++) CHECK(mlod_cut_get(ci, v).count == 0, "cut: view %u not empty before any update", v);
-    for (v = 0; v < 4; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)v, c, 1.3);
+    mlod_cut_create(5, NULL, &ci, NULL);
+    mlod_cut_create(5, NULL, &cb, NULL);
+    CHECK(mlod_cut_view_count(ci) == 5, "cut: view count %u", mlod_cut_view_count(ci));
+    for (v = 0; v < 5; v++) CHECK(mlod_cut_get(ci, v).count == 0, "cut: view %u not empty before any update", v);
+    for (v = 0; v < 5; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)v, c, 1.3);
     for (k = 0; k < 3; k++) {
         mlod_tree *t = k == 1 ? b : a;
         if (k == 2) mlod_cut_reset(ci);
         CHECK(mlod_cut_update(ci, t, views, &pi, NULL) == MLOD_OK && mlod_cut_update(cb, t, views, &pb, NULL) == MLOD_OK,
               "restart %u: updates", k);
-        for (v = 0, same = 0; v < 4; v++) {
+        for (v = 0, same = 0; v < 5; v++) {
             mlod_cut_view x = mlod_cut_get(ci, v), y = mlod_cut_get(cb, v);
             same += tu_same_cut(&x, &y);
         }
-        CHECK(same == 4, "restart %u (%s): incremental equals basic in %u of 4 views", k,
+        CHECK(same == 5, "restart %u (%s): incremental equals basic in %u of 5 views", k,
               k == 1 ? "another node count" : k == 2 ? "after reset" : "first update", same);
     }
     CHECK(mlod_cut_bytes(ci) > 0, "cut: mlod_cut_bytes is 0 after an update");
@@ -1341,11 +1485,12 @@ static void test_threads(void)
         double dir[3], eye[3];
         tu_random_unit(&rng, dir);
         for (k = 0; k < 3; k++) eye[k] = dir[k] * (3 + 5 * scene_rng_double(&rng));
-        base[v] = tu_view((mlod_view_kind)(v % 4));
+        base[v] = tu_view((mlod_view_kind)(v % 5));
         tu_look(&rng, base + v, eye, c);
         base[v].half_width = base[v].half_height = 1.2f;
         base[v].near_plane = base[v].kind == MLOD_VIEW_ORTHOGRAPHIC ? -20.0f : 0.01f;
-        base[v].width = base[v].height = 8;
+        base[v].width = base[v].kind == MLOD_VIEW_CUBE ? 12 : 8; /* a cube map: six 4 x 4 faces */
+        base[v].height = 8;
         base[v].flags = v % 3 == 0 ? MLOD_VIEW_CULL_BACKFACES : 0;
     }
     {

@@ -264,11 +264,12 @@ static void expect_valid_view(const mlod_view *v, const char *what, const mlod_t
 static void test_view_unused_fields(const mlod_tree *t)
 {
     static const float values[5] = {NAN, INFINITY, -INFINITY, -1e30f, 0.0f};
-    /* which kinds read each field: perspective 1, paraboloids 2 and 4, orthographic 8 */
-    static const unsigned readers[5] = {1u, 1u | 8u, 1u | 8u, 8u, 8u};
+    /* which kinds read each field: perspective 1, paraboloids 2 and 4,
+       orthographic 8, cube map 16 (near and far only) */
+    static const unsigned readers[5] = {1u, 1u | 8u | 16u, 1u | 8u | 16u, 8u, 8u};
     static const char *names[5] = {"fov_y", "near_plane", "far_plane", "half_width", "half_height"};
     int kind, field, k;
-    for (kind = 0; kind < 4; kind++)
+    for (kind = 0; kind < 5; kind++)
         for (field = 0; field < 5; field++)
             for (k = 0; k < 5; k++) {
                 mlod_view base = valid_view(kind), v = base;
@@ -320,7 +321,7 @@ static void test_view_errors(void)
     memset(&p, 0, sizeof p);
     p.epsilon = 2.0f;
     CHECK(mlod_cut_update(cut, t, views, &p, NULL) == MLOD_OK && mlod_cut_get(cut, 1).count > 1, "views: a first cut");
-    for (kind = 0; kind < 4; kind++) {
+    for (kind = 0; kind < 5; kind++) {
 #define VIEW_CASE(change, a, b, name)                                                                                  \
     do {                                                                                                               \
         v = valid_view(kind);                                                                                          \
@@ -360,16 +361,40 @@ static void test_view_errors(void)
             VIEW_CASE((v.near_plane = 3, v.far_plane = 1), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "far < near");
             VIEW_CASE(v.near_plane = NAN, MLOD_ERROR_NON_FINITE, MLOD_ERROR_NON_FINITE, "NaN near");
         }
+        if (kind == MLOD_VIEW_CUBE) {
+            /* six s x s faces: the tile must be exactly 3s x 2s */
+            VIEW_CASE(v.height = 63, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 96x63 (odd height)");
+            VIEW_CASE(v.width = 95, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 95x64");
+            VIEW_CASE(v.width = 97, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 97x64");
+            VIEW_CASE(v.width = 64, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 64x64 (square)");
+            VIEW_CASE((v.width = 64, v.height = 96), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 64x96 (2s x 3s)");
+            VIEW_CASE(v.width = 192, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 192x64 (6s x s)");
+            VIEW_CASE((v.width = 3, v.height = 1), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 3x1");
+            VIEW_CASE((v.width = 1, v.height = 1), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 1x1");
+            VIEW_CASE((v.width = 2, v.height = 2), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 2x2");
+            VIEW_CASE((v.width = 4, v.height = 2), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 4x2");
+            VIEW_CASE(v.near_plane = 0, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "near 0");
+            VIEW_CASE(v.near_plane = -0.0f, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "near -0");
+            VIEW_CASE(v.near_plane = -1, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "near -1");
+            VIEW_CASE(v.near_plane = NAN, MLOD_ERROR_NON_FINITE, MLOD_ERROR_NON_FINITE, "NaN near");
+            VIEW_CASE(v.near_plane = INFINITY, MLOD_ERROR_NON_FINITE, MLOD_ERROR_NON_FINITE, "near +inf");
+            VIEW_CASE(v.far_plane = v.near_plane, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "far == near");
+            VIEW_CASE(v.far_plane = v.near_plane / 2, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "far < near");
+            VIEW_CASE(v.far_plane = -INFINITY, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "far -inf");
+            VIEW_CASE(v.far_plane = NAN, MLOD_ERROR_NON_FINITE, MLOD_ERROR_NON_FINITE, "NaN far");
+        }
 #undef VIEW_CASE
-        /* valid: far = +inf, 1 x 1 tiles, unnormalised forward and up */
+        /* valid: far = +inf, 1 x 1 tiles (a cube map's smallest, 3 x 2),
+           unnormalised forward and up */
         v = valid_view(kind);
         v.far_plane = INFINITY;
-        v.width = v.height = 1;
+        v.width = kind == MLOD_VIEW_CUBE ? 3 : 1;
+        v.height = kind == MLOD_VIEW_CUBE ? 2 : 1;
         v.forward[2] = -1000;
         v.up[0] = 0.001f;
         v.up[1] = 0.002f;
         v.up[2] = 0.5f;
-        snprintf(what, sizeof what, "view kind %d: far +inf, 1x1, unnormalised frame", kind);
+        snprintf(what, sizeof what, "view kind %d: far +inf, smallest tile, unnormalised frame", kind);
         expect_valid_view(&v, what, t);
         if (kind == MLOD_VIEW_PARABOLOID || kind == MLOD_VIEW_DUAL_PARABOLOID) {
             /* fields the kind does not use do not matter */
@@ -387,6 +412,23 @@ static void test_view_errors(void)
             v.far_plane = -5;
             v.fov_y = 0;
             expect_valid_view(&v, "orthographic: near -10, far -5, fov 0", t);
+        }
+        if (kind == MLOD_VIEW_CUBE) {
+            /* a cube map reads neither fov_y nor the half-extents, nor the
+               tile's aspect beyond 3s x 2s */
+            v = valid_view(kind);
+            v.fov_y = NAN;
+            v.half_width = INFINITY;
+            v.half_height = -INFINITY;
+            expect_valid_view(&v, "cube map: fov NaN, half-extents +-inf (unread)", t);
+            v.width = 3 * 1000;
+            v.height = 2 * 1000;
+            v.near_plane = 1e-30f;
+            v.far_plane = 1e30f;
+            expect_valid_view(&v, "cube map: 3000x2000, near 1e-30, far 1e30", t);
+            v.width = 0xFFFFFFFFu; /* s = (2^32 - 1) / 3: the largest 3s x 2s tile */
+            v.height = 0xAAAAAAAAu;
+            expect_valid_view(&v, "cube map: tile 4294967295x2863311530", t);
         }
     }
     test_view_unused_fields(t);
@@ -550,7 +592,7 @@ static void test_counting(void)
     if (cut) {
         CHECK(mlod_cut_bytes(cut) == cc.live_bytes, "counting: new cut reports %zu bytes, holds %zu", mlod_cut_bytes(cut),
               cc.live_bytes);
-        for (v = 0; v < 6; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 4), c, 1.3);
+        for (v = 0; v < 6; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 5), c, 1.3);
         memset(&p, 0, sizeof p);
         p.lazy_steps = 2;
         for (mode = 0; mode < 6; mode++) {

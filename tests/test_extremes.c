@@ -239,7 +239,8 @@ done:
     return out;
 }
 
-/* Views of every kind around a centre at distance dist (world units). */
+/* Views of every kind around a centre at distance dist (world units); tile
+   x tile pixels, cube maps six faces of tile/2 (at least 1) in 3s x 2s. */
 static void views_around(mlod_view *views, uint32_t count, const double *centre, double dist, uint32_t tile)
 {
     uint32_t v;
@@ -247,11 +248,15 @@ static void views_around(mlod_view *views, uint32_t count, const double *centre,
     for (v = 0; v < count; v++) {
         double dir[3], eye[3];
         int k;
-        views[v] = tu_view((mlod_view_kind)(v % 4));
+        views[v] = tu_view((mlod_view_kind)(v % 5));
         tu_random_unit(&rng, dir);
         for (k = 0; k < 3; k++) eye[k] = centre[k] + dist * dir[k];
         tu_look(&rng, &views[v], eye, centre);
         views[v].width = views[v].height = tile;
+        if (views[v].kind == MLOD_VIEW_CUBE) {
+            views[v].width = 3 * (tile > 1 ? tile / 2 : 1);
+            views[v].height = 2 * (tile > 1 ? tile / 2 : 1);
+        }
         views[v].near_plane = views[v].kind == MLOD_VIEW_ORTHOGRAPHIC ? (float)(-3 * dist) : (float)(1e-3 * dist);
         views[v].far_plane = INFINITY;
         views[v].half_width = views[v].half_height = (float)dist;
@@ -517,7 +522,7 @@ static void test_views(void)
     /* near 1e-7, far 1e30; fov 1e-4 degrees and 179.9 degrees */
     views_around(views, 8, c, 3.0, 32);
     for (v = 0; v < 8; v++) {
-        views[v].kind = MLOD_VIEW_PERSPECTIVE;
+        if (views[v].kind != MLOD_VIEW_CUBE) views[v].kind = MLOD_VIEW_PERSPECTIVE; /* a cube map keeps its own */
         views[v].near_plane = 1e-7f;
         views[v].far_plane = 1e30f;
         views[v].fov_y = (float)((v & 1 ? 179.9 : 1e-4) * TU_PI / 180.0);
@@ -526,7 +531,10 @@ static void test_views(void)
     row("near 1e-7, far 1e30, fov 1e-4 and 179.9 degrees", "all invariants", r.detail);
     /* tiles of 1 x 1 and 4096 x 4096; coinciding views */
     views_around(views, 8, c, 3.0, 32);
-    for (v = 0; v < 4; v++) views[v].width = views[v].height = 1;
+    for (v = 0; v < 5; v++) { /* one of each kind; a cube map's smallest is six 1 x 1 faces */
+        views[v].width = views[v].kind == MLOD_VIEW_CUBE ? 3 : 1;
+        views[v].height = views[v].kind == MLOD_VIEW_CUBE ? 2 : 1;
+    }
     r = check_pipeline("1x1 tiles", t, views, 8, 1.0f);
     row("tiles of 1 x 1 pixel", "all invariants", r.detail);
     views_around(views, 1, c, 3.0, 4096);
@@ -587,7 +595,7 @@ static void test_million_views(void)
     CHECK(views != NULL && sphere_mesh(&m, 1.0, 1.0, 0.0), "memory");
     t = tu_build(&m, 64, 1, MLOD_ATTR_CONE);
     CHECK(t && tu_layout_init(&L, t->leaf_count), "build");
-    for (v = 0; v < count; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 4), c, 1.0);
+    for (v = 0; v < count; v++) views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 5), c, 1.0);
     memset(&params, 0, sizeof params);
     params.epsilon = 1.0f;
     params.lazy_steps = 1;
@@ -637,7 +645,11 @@ static void test_epsilon(void)
     views_around(views, 8, c, 3.0, 32);
     for (i = 0; i < 4; i++) {
         ext_result r = check_pipeline(names[i], t, views, 8, good[i]);
-        row(names[i], i < 2 ? "leaves (oversize) or culled nodes" : "the root alone (or culled)", r.detail);
+        row(names[i],
+            i < 2    ? "leaves (oversize) or culled nodes"
+            : i == 2 ? "the root alone (or culled; below it where c = +inf: a cube face the root reaches sideways)"
+                     : "the root alone (or culled)",
+            r.detail);
     }
     memset(&params, 0, sizeof params);
     params.mode = MLOD_CUT_BASIC;

@@ -4,11 +4,14 @@
    - mlod_view_project / mlod_view_pixel_ray against this file's own
      projections, written from the header's documentation (pinhole,
      stereographic paraboloid, dual paraboloid with the back half mirrored,
-     orthographic box), and against each other (the ray of a projected point
-     passes through it, at the documented depth);
+     orthographic box) and, for cube maps, from the Vulkan specification's
+     cube map face selection (major axis, sc, tc), on world-axis views too,
+     and against each other (the ray of a projected point passes through it,
+     at the documented depth);
    - a node splatted alone covers its exact image (ray-sphere tests at the
      pixel centres, ~2000 projected sphere points), stays within its
-     documented disc, holds its centre's depth; whole atlases against a
+     documented disc, holds its centre's depth, in every cube face it
+     reaches (both faces where it straddles an edge); whole atlases against a
      reference rasteriser of the documented discs (pixel-centre rule, the
      one-pixel rule, nearest depth, first drawn wins ties), culling, clearing;
    - identical atlases for any parallel hook and thread count; ISM draws the
@@ -36,7 +39,8 @@ typedef struct frame {
     mlod_view_kind kind;
     double e[3], u[3], v[3], w[3];
     double W, H;
-    double f;            /* perspective: (H/2) / tan(fov_y / 2) */
+    double f;            /* perspective: (H/2) / tan(fov_y / 2); cube: side / 2 (90 degrees) */
+    double side;         /* cube: the faces' side s, tile 3s x 2s */
     double half_w;       /* paraboloid: the width of one disc (W, or W/2 for dual) */
     double disc_scale;   /* pixels per unit of the disc radius (the larger scale) */
     double sx, sy;       /* orthographic: pixels per world unit */
@@ -84,7 +88,105 @@ static void frame_of(const mlod_view *view, frame *F)
         F->sy = F->H / (2.0 * F->hh);
         F->disc_scale = F->sx > F->sy ? F->sx : F->sy;
         break;
+    case MLOD_VIEW_CUBE:
+        F->side = 0.5 * F->H;
+        F->f = 0.5 * F->side;
+        F->disc_scale = F->f;
+        break;
     }
+}
+
+/* ------------------------------------------------ cube maps, Vulkan's way */
+
+/* The Vulkan specification's cube map face selection ("Cube Map Face
+   Selection", the table of major axis, sc and tc), transcribed as it
+   stands: for each layer (+X, -X, +Y, -Y, +Z, -Z), the major axis and its
+   sign, and the coordinate (0 X, 1 Y, 2 Z) and sign that give sc and tc:
+     +X: sc = -rz, tc = -ry    -X: sc = +rz, tc = -ry
+     +Y: sc = +rx, tc = +rz    -Y: sc = +rx, tc = -rz
+     +Z: sc = +rx, tc = -ry    -Z: sc = -rx, tc = -ry
+   then s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2, texel (s, t) of the
+   layer with t growing downwards (the first row at t = 0). */
+static const struct vk_face {
+    int axis, axis_sign, sc, sc_sign, tc, tc_sign;
+} vk_faces[6] = {{0, +1, 2, -1, 1, -1}, {0, -1, 2, +1, 1, -1}, {1, +1, 0, +1, 2, +1},
+                 {1, -1, 0, +1, 2, -1}, {2, +1, 0, +1, 1, -1}, {2, -1, 0, -1, 1, -1}};
+
+/* Face, s, t and |ma| of direction r = (rx, ry, rz); the largest |r_i| is the
+   major axis (a tie, which the caller avoids, goes to the first axis).
+   *margin: (|ma| - the next largest |r_i|) / sqrt 2, the distance to the
+   nearest plane where the face changes. */
+static int vk_cube(const double *r, double *s, double *t, double *ma, double *margin)
+{
+    int axis = 0, k, face;
+    double a[3] = {fabs(r[0]), fabs(r[1]), fabs(r[2])}, next = 0.0;
+    for (k = 1; k < 3; k++)
+        if (a[k] > a[axis]) axis = k;
+    for (k = 0; k < 3; k++)
+        if (k != axis && a[k] > next) next = a[k];
+    face = 2 * axis + (r[axis] < 0.0);
+    *ma = a[axis];
+    *s = 0.5 * (vk_faces[face].sc_sign * r[vk_faces[face].sc] / *ma + 1.0);
+    *t = 0.5 * (vk_faces[face].tc_sign * r[vk_faces[face].tc] / *ma + 1.0);
+    if (margin) *margin = (a[axis] - next) / sqrt(2.0);
+    return face;
+}
+
+/* The inverse: the direction (X, Y, Z) of layer face at (s, t), |ma| = 1. */
+static void vk_cube_direction(int face, double s, double t, double *r)
+{
+    r[vk_faces[face].axis] = vk_faces[face].axis_sign;
+    r[vk_faces[face].sc] = vk_faces[face].sc_sign * (2.0 * s - 1.0);
+    r[vk_faces[face].tc] = vk_faces[face].tc_sign * (2.0 * t - 1.0);
+}
+
+/* A cube view's axes: X = u, Y = v, Z = -w (the manual's CUBE MAPS). */
+static void cube_xyz_to_world(const frame *F, const double *r, double *out)
+{
+    int k;
+    for (k = 0; k < 3; k++) out[k] = r[0] * F->u[k] + r[1] * F->v[k] - r[2] * F->w[k];
+}
+
+static void cube_world_to_xyz(const frame *F, const double *x, double *r)
+{
+    r[0] = tu_dot3(x, F->u);
+    r[1] = tu_dot3(x, F->v);
+    r[2] = -tu_dot3(x, F->w);
+}
+
+/* Face i of a cube view as a plain perspective frame of s x s pixels (f =
+   s/2), from the Vulkan table: w its axis, u the way sc grows (pixel x),
+   v the way tc falls (pixel y upwards).  Its pixels lie at (ox, oy) in the
+   view's tile: (s (i mod 3), s (i div 3)). */
+static void cube_face_frame(const frame *F, int face, frame *out, double *ox, double *oy)
+{
+    double a[3] = {0, 0, 0}, b[3] = {0, 0, 0}, c[3] = {0, 0, 0};
+    a[vk_faces[face].axis] = vk_faces[face].axis_sign;
+    b[vk_faces[face].sc] = vk_faces[face].sc_sign;
+    c[vk_faces[face].tc] = -vk_faces[face].tc_sign;
+    *out = *F;
+    out->kind = MLOD_VIEW_PERSPECTIVE;
+    cube_xyz_to_world(F, a, out->w);
+    cube_xyz_to_world(F, b, out->u);
+    cube_xyz_to_world(F, c, out->v);
+    out->W = out->H = F->side;
+    out->f = out->disc_scale = 0.5 * F->side;
+    *ox = F->side * (face % 3);
+    *oy = F->side * (face / 3);
+}
+
+/* Does cube face i reach sphere (c, r)?  Its six culling half-spaces: the
+   near and far planes along its axis and its four sides at 45 degrees. */
+static int cube_face_reaches(const frame *F, int face, const double *c, double r)
+{
+    frame G;
+    double x[3], xa, ox, oy;
+    int k;
+    cube_face_frame(F, face, &G, &ox, &oy);
+    for (k = 0; k < 3; k++) x[k] = c[k] - F->e[k];
+    xa = tu_dot3(x, G.w);
+    if (xa + r < F->near_plane || xa - r > F->far_plane) return 0;
+    return (xa - fabs(tu_dot3(x, G.u))) / sqrt(2.0) + r >= 0.0 && (xa - fabs(tu_dot3(x, G.v))) / sqrt(2.0) + r >= 0.0;
 }
 
 static void sub3d(double *r, const double *a, const double *b)
@@ -98,10 +200,12 @@ static void sub3d(double *r, const double *a, const double *b)
    is defined but the point is outside the view, 2 inside.  *margin: the
    distance (world units, or pixels for the tile sides) to the nearest
    inside/outside boundary, so callers can skip points on a boundary. */
-static int my_project(const frame *F, const double *p, double *px, double *py, double *depth, double *margin)
+static int my_project_sub(const frame *F, const double *p, double *px, double *py, double *depth, double *margin,
+                          int *sub)
 {
     double x[3], a, b, c, d, m = HUGE_VAL;
     int inside = 1;
+    if (sub) *sub = 0;
     sub3d(x, p, F->e);
     a = tu_dot3(x, F->u);
     b = tu_dot3(x, F->v);
@@ -147,9 +251,29 @@ static int my_project(const frame *F, const double *p, double *px, double *py, d
         inside = c >= F->near_plane && c <= F->far_plane && fabs(a) <= F->hw && fabs(b) <= F->hh;
         m = fmin(fmin(fabs(c - F->near_plane), fabs(c - F->far_plane)), fmin(fabs(fabs(a) - F->hw), fabs(fabs(b) - F->hh)));
         break;
+    case MLOD_VIEW_CUBE: {
+        double r[3], s, t, ma, edge;
+        int face;
+        if (!(d > 0.0)) return 0;
+        cube_world_to_xyz(F, x, r);
+        face = vk_cube(r, &s, &t, &ma, &edge);
+        *px = F->side * (face % 3) + s * F->side;
+        *py = F->side * (face / 3) + t * F->side;
+        *depth = ma; /* z along the face's axis */
+        if (sub) *sub = face;
+        /* inside: outside the near cube and inside the far one */
+        inside = ma >= F->near_plane && ma <= F->far_plane;
+        m = fmin(fmin(fabs(ma - F->near_plane), fabs(ma - F->far_plane)), edge);
+        break;
+    }
     }
     if (margin) *margin = m;
     return inside ? 2 : 1;
+}
+
+static int my_project(const frame *F, const double *p, double *px, double *py, double *depth, double *margin)
+{
+    return my_project_sub(F, p, px, py, depth, margin, NULL);
 }
 
 /* The ray through tile position (x, y): origin and unit direction.
@@ -162,6 +286,13 @@ static int my_ray(const frame *F, double x, double y, double *o, double *dir)
     if (!(x >= 0.0 && x < F->W && y >= 0.0 && y < F->H)) return 0;
     memcpy(o, F->e, 3 * sizeof(double));
     switch (F->kind) {
+    case MLOD_VIEW_CUBE: {
+        int col = (int)floor(x / F->side), row = (int)floor(y / F->side), face = col + 3 * row;
+        double r[3];
+        vk_cube_direction(face, x / F->side - col, y / F->side - row, r);
+        cube_xyz_to_world(F, r, dir);
+        break;
+    }
     case MLOD_VIEW_PERSPECTIVE:
         a = (x - 0.5 * F->W) / F->f;
         b = (0.5 * F->H - y) / F->f;
@@ -270,6 +401,86 @@ static int reaches_half(const frame *F, const double *c, double r, int half)
     return half ? -z + r >= 0.0 : z + r >= 0.0;
 }
 
+/* ---------------------------------------------------- sub-projections */
+
+/* The documented parts of a view's tile: one for the plain kinds, a dual
+   paraboloid's two halves, a cube map's six faces. */
+static int sub_count(const frame *F)
+{
+    return F->kind == MLOD_VIEW_DUAL_PARABOLOID ? 2 : F->kind == MLOD_VIEW_CUBE ? 6 : 1;
+}
+
+/* Sub-projection s's pixels: columns [c0, c1), rows [r0, r1). */
+static void sub_rect(const frame *F, int s, uint32_t *c0, uint32_t *c1, uint32_t *r0, uint32_t *r1)
+{
+    uint32_t W = (uint32_t)F->W, H = (uint32_t)F->H, side = (uint32_t)F->side;
+    *c0 = 0;
+    *c1 = W;
+    *r0 = 0;
+    *r1 = H;
+    if (F->kind == MLOD_VIEW_DUAL_PARABOLOID) {
+        *c0 = s ? W / 2 : 0;
+        *c1 = s ? W : W / 2;
+    } else if (F->kind == MLOD_VIEW_CUBE) {
+        *c0 = side * (uint32_t)(s % 3);
+        *c1 = *c0 + side;
+        *r0 = side * (uint32_t)(s / 3);
+        *r1 = *r0 + side;
+    }
+}
+
+/* The sub-projection holding tile position (x, y). */
+static int sub_at(const frame *F, double x, double y)
+{
+    if (F->kind == MLOD_VIEW_DUAL_PARABOLOID) return x >= F->half_w;
+    if (F->kind == MLOD_VIEW_CUBE) return (int)floor(x / F->side) + 3 * (int)floor(y / F->side);
+    return 0;
+}
+
+/* Does sub-projection s reach the sphere?  (The plain kinds: the caller
+   knows from the cut whether the view culls it.) */
+static int sub_reaches(const frame *F, int s, const double *c, double r)
+{
+    if (F->kind == MLOD_VIEW_DUAL_PARABOLOID) return reaches_half(F, c, r, s);
+    if (F->kind == MLOD_VIEW_CUBE) return cube_face_reaches(F, s, c, r);
+    return 1;
+}
+
+/* The documented disc in sub-projection s, in the view's tile pixels;
+   0 when its image there is unbounded. */
+static int sub_disc(const frame *F, int s, const double *c, double r, disc *out)
+{
+    if (F->kind == MLOD_VIEW_CUBE) {
+        frame G;
+        double ox, oy;
+        cube_face_frame(F, s, &G, &ox, &oy);
+        if (!my_disc(&G, c, r, 0, out)) return 0;
+        out->x += ox;
+        out->y += oy;
+        return 1;
+    }
+    return my_disc(F, c, r, F->kind == MLOD_VIEW_DUAL_PARABOLOID ? s : 0, out);
+}
+
+/* The axis along which depth is measured at sub-projection s (perspective,
+   cube faces, orthographic; paraboloids measure |p - eye|). */
+static void sub_axis(const frame *F, int s, double *a)
+{
+    if (F->kind == MLOD_VIEW_CUBE) {
+        frame G;
+        double ox, oy;
+        cube_face_frame(F, s, &G, &ox, &oy);
+        memcpy(a, G.w, sizeof G.w);
+    } else {
+        memcpy(a, F->w, sizeof F->w);
+    }
+}
+
+static int depth_is_planar(const frame *F)
+{
+    return F->kind == MLOD_VIEW_PERSPECTIVE || F->kind == MLOD_VIEW_ORTHOGRAPHIC || F->kind == MLOD_VIEW_CUBE;
+}
+
 /* ============================================== reference rasteriser */
 
 /* One view's expected tile: depth (+inf empty), the node that set it (-1
@@ -316,10 +527,11 @@ static void expect_put(expect *x, uint32_t col, uint32_t row, double depth, int6
 }
 
 /* Draw a disc by the documented rule: every pixel whose centre lies in the
-   disc (its radius times disc_scale), clipped to columns [c0, c1); at
-   disc_scale 1, a disc covering no pixel centre sets the pixel holding its
-   centre. */
-static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, uint32_t c1)
+   disc (its radius times disc_scale), clipped to columns [c0, c1) and rows
+   [r0, r1) (its sub-projection's pixels); at disc_scale 1, a disc covering
+   no pixel centre sets the pixel holding its centre, if that is one of
+   them. */
+static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, uint32_t c1, uint32_t r0, uint32_t r1)
 {
     double radius = dc->radius * x->disc_scale, tol = 1e-7 * (1.0 + radius), lo_x, hi_x, lo_y, hi_y;
     int64_t i, j, i0, i1, j0, j1;
@@ -331,8 +543,8 @@ static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, ui
     hi_y = ceil(dc->y + radius + 1.0);
     i0 = lo_x < (double)c0 ? c0 : (int64_t)lo_x;
     i1 = hi_x > (double)c1 ? c1 : (int64_t)hi_x;
-    j0 = lo_y < 0.0 ? 0 : (int64_t)lo_y;
-    j1 = hi_y > (double)x->H ? x->H : (int64_t)hi_y;
+    j0 = lo_y < (double)r0 ? r0 : (int64_t)lo_y;
+    j1 = hi_y > (double)r1 ? r1 : (int64_t)hi_y;
     for (j = j0; j < j1; j++)
         for (i = i0; i < i1; i++) {
             double ex = i + 0.5 - dc->x, ey = j + 0.5 - dc->y, dist = sqrt(ex * ex + ey * ey);
@@ -344,7 +556,7 @@ static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, ui
                 x->unsure[(size_t)j * x->W + i] |= 1;
             }
         }
-    if (!any && x->disc_scale >= 1.0 && dc->x >= c0 && dc->x < c1 && dc->y >= 0.0 && dc->y < x->H) {
+    if (!any && x->disc_scale >= 1.0 && dc->x >= c0 && dc->x < c1 && dc->y >= r0 && dc->y < r1) {
         uint32_t ci = (uint32_t)floor(dc->x), cj = (uint32_t)floor(dc->y);
         double fx = dc->x - floor(dc->x), fy = dc->y - floor(dc->y);
         if (maybe || fx < 1e-9 || fx > 1 - 1e-9 || fy < 1e-9 || fy > 1 - 1e-9)
@@ -355,20 +567,18 @@ static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, ui
 }
 
 /* Draw one node (sphere) the documented way: its disc in the view, or in
-   each dual paraboloid half its sphere reaches; unbounded images not drawn. */
+   each dual paraboloid half or cube face its sphere reaches, clipped to
+   that part of the tile; unbounded images not drawn. */
 static void expect_node(expect *x, const frame *F, const float *sphere, int64_t node)
 {
     double c[3] = {sphere[0], sphere[1], sphere[2]}, r = sphere[3];
     disc dc;
-    int half;
-    if (F->kind != MLOD_VIEW_DUAL_PARABOLOID) {
-        if (my_disc(F, c, r, 0, &dc)) expect_disc(x, &dc, node, 0, x->W);
-        return;
-    }
-    for (half = 0; half < 2; half++) {
-        uint32_t hw = x->W / 2;
-        if (!reaches_half(F, c, r, half)) continue;
-        if (my_disc(F, c, r, half, &dc)) expect_disc(x, &dc, node, half ? hw : 0, half ? x->W : hw);
+    int s;
+    for (s = 0; s < sub_count(F); s++) {
+        uint32_t c0, c1, r0, r1;
+        if (!sub_reaches(F, s, c, r) || !sub_disc(F, s, c, r, &dc)) continue;
+        sub_rect(F, s, &c0, &c1, &r0, &r1);
+        expect_disc(x, &dc, node, c0, c1, r0, r1);
     }
 }
 
@@ -481,7 +691,7 @@ static void report_raster(const raster_diff *rd, const char *what)
 
 static const char *kind_name(mlod_view_kind k)
 {
-    static const char *names[4] = {"perspective", "paraboloid", "dual paraboloid", "orthographic"};
+    static const char *names[5] = {"perspective", "paraboloid", "dual paraboloid", "orthographic", "cube map"};
     return names[k];
 }
 
@@ -559,7 +769,7 @@ static mlod_view look_view(uint64_t *rng, mlod_view_kind kind, const double *eye
 
 typedef struct proj_tally {
     uint64_t points, inside_bad, pixel_bad, unwritten, undefined_bad;
-    uint64_t rays, ray_ret_bad, ray_dir_bad, ray_origin_bad, roundtrip_bad, depth_bad, through_bad;
+    uint64_t rays, ray_ret_bad, ray_dir_bad, ray_origin_bad, roundtrip_bad, depth_bad, through_bad, face_bad;
     double worst_pixel, worst_roundtrip;
 } proj_tally;
 
@@ -616,6 +826,10 @@ static void check_projection_view(const mlod_view *view, uint64_t *rng, double R
             double a = 2.0 * local / F.half_w - 1.0, b = 1.0 - 2.0 * y / F.H;
             if (fabs(a * a + b * b - 1.0) < 1e-5) continue; /* on the disc's rim */
         }
+        if (F.kind == MLOD_VIEW_CUBE) { /* on an edge between faces: which one holds it is rounding's choice */
+            double fx = x / F.side - floor(x / F.side), fy = y / F.side - floor(y / F.side);
+            if (fmin(fx, 1.0 - fx) * F.side < 1e-3 || fmin(fy, 1.0 - fy) * F.side < 1e-3) continue;
+        }
         got = mlod_view_pixel_ray(view, x, y, o, d);
         pt->rays++;
         if (got != mine) {
@@ -642,16 +856,18 @@ static void check_projection_view(const mlod_view *view, uint64_t *rng, double R
             for (j = 0; j < 3; j++) q[j] = (double)o[j] + t * (double)d[j];
             for (j = 0; j < 3; j++) qf[j] = (float)q[j];
             mlod_view_project(view, qf, pix, &dep); /* inside or not: the outputs are written */
-            if (F.kind == MLOD_VIEW_PERSPECTIVE || F.kind == MLOD_VIEW_ORTHOGRAPHIC) {
-                double oe[3], dd[3] = {d[0], d[1], d[2]}, of[3] = {o[0], o[1], o[2]};
+            if (depth_is_planar(&F)) { /* along the axis of the pixel's sub-projection */
+                double oe[3], dd[3] = {d[0], d[1], d[2]}, of[3] = {o[0], o[1], o[2]}, axis[3];
+                sub_axis(&F, sub_at(&F, x, y), axis);
                 sub3d(oe, of, F.e);
-                want = t * tu_dot3(dd, F.w) + tu_dot3(oe, F.w);
+                want = t * tu_dot3(dd, axis) + tu_dot3(oe, axis);
             } else {
                 want = t;
             }
             {
                 double e = fabs(pix[0] - x) + fabs(pix[1] - y), tol = 2e-3 * (1.0 + F.disc_scale / 32.0);
                 if (e > tol) pt->roundtrip_bad++;
+                if (F.kind == MLOD_VIEW_CUBE && sub_at(&F, pix[0], pix[1]) != sub_at(&F, x, y)) pt->face_bad++;
                 if (e / tol > pt->worst_roundtrip) pt->worst_roundtrip = e / tol;
                 if (fabs(dep - want) > 2e-6 * fabs(want) + 2e-6 * R) pt->depth_bad++;
             }
@@ -661,12 +877,13 @@ static void check_projection_view(const mlod_view *view, uint64_t *rng, double R
     for (i = 0; i < 200; i++) {
         double p[3], px, py, depth, margin, dir[3], dist = R * (0.05 + 3.0 * scene_rng_double(rng));
         float pf[3], pix[2], dep, o[3], d[3];
+        int sub;
         tu_random_unit(rng, dir);
         for (k = 0; k < 3; k++) dir[k] += 1.2 * F.w[k];
         tu_normalize3(dir);
         for (k = 0; k < 3; k++) pf[k] = (float)(F.e[k] + dist * dir[k]);
         for (k = 0; k < 3; k++) p[k] = pf[k];
-        if (my_project(&F, p, &px, &py, &depth, &margin) != 2 || margin < 1e-4 * (1.0 + dist)) continue;
+        if (my_project_sub(&F, p, &px, &py, &depth, &margin, &sub) != 2 || margin < 1e-4 * (1.0 + dist)) continue;
         if (!(px > 1e-3 && px < F.W - 1e-3 && py > 1e-3 && py < F.H - 1e-3)) continue;
         if (mlod_view_project(view, pf, pix, &dep) != 1) continue; /* counted above */
         if (!mlod_view_pixel_ray(view, pix[0], pix[1], o, d)) {
@@ -679,10 +896,11 @@ static void check_projection_view(const mlod_view *view, uint64_t *rng, double R
             sub3d(oq, p, of);
             t = tu_dot3(oq, dd);
             off2 = tu_dot3(oq, oq) - t * t;
-            if (F.kind == MLOD_VIEW_PERSPECTIVE || F.kind == MLOD_VIEW_ORTHOGRAPHIC) {
-                double oe[3];
+            if (depth_is_planar(&F)) {
+                double oe[3], axis[3];
+                sub_axis(&F, sub, axis);
                 sub3d(oe, of, F.e);
-                want = t * tu_dot3(dd, F.w) + tu_dot3(oe, F.w);
+                want = t * tu_dot3(dd, axis) + tu_dot3(oe, axis);
             } else {
                 want = t;
             }
@@ -698,7 +916,7 @@ static void test_projection(void)
     uint64_t rng = 12345;
     double c[3] = {0, 0, 0};
     int kind, n;
-    for (kind = 0; kind < 4; kind++) {
+    for (kind = 0; kind < 5; kind++) {
         proj_tally pt;
         char what[64];
         memset(&pt, 0, sizeof pt);
@@ -730,7 +948,106 @@ static void test_projection(void)
               what, (unsigned long long)pt.depth_bad);
         CHECK(pt.through_bad == 0, "%s: %llu projected points whose pixel's ray misses them or gives another depth", what,
               (unsigned long long)pt.through_bad);
+        CHECK(pt.face_bad == 0, "%s: %llu points along a pixel's ray project onto another face", what,
+              (unsigned long long)pt.face_bad);
     }
+}
+
+/* Cube maps on world-axis views (forward -Z, up +Y: X, Y, Z are the world's
+   axes, as the manual says), with no frame of this file's making in
+   between: mlod_view_project against Vulkan's face selection applied to the
+   world coordinates of p - eye; each face's centre; and the ray of every
+   pixel centre, which Vulkan's rule must send back to that pixel. */
+static void test_cube_world_axes(void)
+{
+    static const uint32_t sides[4] = {1, 7, 32, 64};
+    static const float lengths[2][2] = {{1.0f, 1.0f}, {3.0f, 0.5f}}; /* forward and up need not be unit */
+    uint64_t rng = 4321, points = 0, inside = 0, pixel_bad = 0, depth_bad = 0, inside_bad = 0, centre_bad = 0;
+    uint64_t rays = 0, ray_bad = 0;
+    double worst = 0.0;
+    char first[200] = "";
+    int si, li, i, k, face;
+    for (si = 0; si < 4; si++)
+        for (li = 0; li < 2; li++) {
+            mlod_view v = tu_view(MLOD_VIEW_CUBE);
+            double side = sides[si], e[3] = {0.25, -0.5, 1.0};
+            uint32_t x, y;
+            for (k = 0; k < 3; k++) v.position[k] = (float)e[k];
+            v.forward[2] = -lengths[li][0];
+            v.up[1] = lengths[li][1];
+            v.width = 3 * sides[si];
+            v.height = 2 * sides[si];
+            /* random points, in front of the near cube, between, beyond the far one */
+            for (i = 0; i < 3000; i++) {
+                double dir[3], r[3], dist = 0.003 * pow(1e6, scene_rng_double(&rng)), st[2], ma, edge, want[2];
+                float pf[3], pix[2], dep;
+                int got;
+                tu_random_unit(&rng, dir);
+                for (k = 0; k < 3; k++) pf[k] = (float)(e[k] + dist * dir[k]);
+                for (k = 0; k < 3; k++) r[k] = (double)pf[k] - e[k]; /* exact */
+                face = vk_cube(r, &st[0], &st[1], &ma, &edge);
+                if (edge < 1e-5 * ma || fabs(ma - v.near_plane) < 1e-5 * ma || fabs(ma - v.far_plane) < 1e-5 * ma)
+                    continue; /* rounding decides the face, or inside */
+                want[0] = side * (face % 3) + st[0] * side;
+                want[1] = side * (face / 3) + st[1] * side;
+                got = mlod_view_project(&v, pf, pix, &dep);
+                points++;
+                inside += ma >= v.near_plane && ma <= v.far_plane;
+                inside_bad += got != (ma >= v.near_plane && ma <= v.far_plane);
+                {
+                    double err = fabs(pix[0] - want[0]) + fabs(pix[1] - want[1]), tol = 1e-4 + 1e-6 * side;
+                    if (err > tol && !pixel_bad++)
+                        snprintf(first, sizeof first,
+                                 "side %g, p - eye (%.6g, %.6g, %.6g): pixel (%.6g, %.6g), Vulkan's layer %d "
+                                 "(%.6g, %.6g)",
+                                 side, r[0], r[1], r[2], pix[0], pix[1], face, want[0], want[1]);
+                    if (err / tol > worst) worst = err / tol;
+                }
+                depth_bad += !(fabs(dep - ma) <= 2e-6 * ma);
+            }
+            /* each layer's centre: the middle of its square, at the depth along its axis */
+            for (face = 0; face < 6; face++) {
+                double r[3];
+                float pf[3], pix[2], dep;
+                vk_cube_direction(face, 0.5, 0.5, r);
+                for (k = 0; k < 3; k++) pf[k] = (float)(e[k] + 2.0 * r[k]);
+                mlod_view_project(&v, pf, pix, &dep);
+                centre_bad += fabs(pix[0] - side * (face % 3 + 0.5)) > 1e-5 * side ||
+                              fabs(pix[1] - side * (face / 3 + 0.5)) > 1e-5 * side || fabs(dep - 2.0f) > 1e-6f;
+            }
+            /* every pixel centre's ray, read back by Vulkan's rule */
+            for (y = 0; y < v.height; y++)
+                for (x = 0; x < v.width; x++) {
+                    float o[3], d[3];
+                    double r[3], st[2], ma, edge;
+                    if (side > 16 && (x * 7 + y * 3) % 5 != 0) continue; /* a fifth of the large ones */
+                    rays++;
+                    if (!mlod_view_pixel_ray(&v, x + 0.5f, y + 0.5f, o, d)) {
+                        ray_bad++;
+                        continue;
+                    }
+                    for (k = 0; k < 3; k++) r[k] = d[k];
+                    face = vk_cube(r, &st[0], &st[1], &ma, &edge);
+                    ray_bad += face != (int)(x / sides[si]) + 3 * (int)(y / sides[si]) ||
+                               fabs(side * (face % 3) + st[0] * side - (x + 0.5)) > 1e-4 ||
+                               fabs(side * (face / 3) + st[1] * side - (y + 0.5)) > 1e-4 || o[0] != v.position[0] ||
+                               o[1] != v.position[1] || o[2] != v.position[2];
+                }
+        }
+    CHECK(points > 15000 && inside > 5000 && points - inside > 2500,
+          "cube, world axes: too few points (%llu, %llu inside)", (unsigned long long)points,
+          (unsigned long long)inside);
+    CHECK(pixel_bad == 0, "cube, world axes: %llu of %llu points land elsewhere than Vulkan's face selection puts them "
+          "(worst %.3g x tolerance); first: %s",
+          (unsigned long long)pixel_bad, (unsigned long long)points, worst, first);
+    CHECK(depth_bad == 0, "cube, world axes: %llu points whose depth is not |major axis|",
+          (unsigned long long)depth_bad);
+    CHECK(inside_bad == 0, "cube, world axes: %llu points inside the far cube and outside the near one, or not, "
+          "reported otherwise", (unsigned long long)inside_bad);
+    CHECK(centre_bad == 0, "cube, world axes: %llu of 48 layer centres not at the middle of their face's square",
+          (unsigned long long)centre_bad);
+    CHECK(rays > 5000 && ray_bad == 0, "cube, world axes: %llu of %llu pixel centres whose ray is not from the eye "
+          "through that pixel by Vulkan's rule", (unsigned long long)ray_bad, (unsigned long long)rays);
 }
 
 /* ====================================================== a node alone */
@@ -739,11 +1056,13 @@ typedef struct alone_tally {
     uint64_t cases, drawn_cases, culled_cases, unbounded_cases;
     uint64_t ray_pixels, ray_missed, sample_pixels, sample_pixels_all, sample_missed, sample_pixel_strict_missed;
     uint64_t drawn_pixels, far_pixels, depth_bad, culled_drawn, crit_bad, span_bad, samples_outside_disc, loose_disc;
+    uint64_t reach_bad, straddling, straddle_bad; /* several sub-projections: the cut's culling, both faces drawn */
     double worst_far, worst_crit;
     raster_diff rd, rd_ism;
 } alone_tally;
 
-/* Splat one sphere alone and check its image. */
+/* Splat one sphere alone and check its image, in each sub-projection (dual
+   paraboloid half, cube face) the sphere reaches. */
 static void check_alone(const mlod_view *view, const double *centre, double radius, alone_tally *at)
 {
     float pos[3] = {(float)centre[0], (float)centre[1], (float)centre[2]}, rad = (float)radius, nrm[3] = {0, 0, 1},
@@ -755,9 +1074,12 @@ static void check_alone(const mlod_view *view, const double *centre, double radi
     mlod_cut_view cv;
     frame F;
     double c[3], r, crit;
-    disc dc[2];
-    int has_disc[2] = {0, 0}, half, drawn;
-    uint32_t i, j, W = view->width, H = view->height, hw = W / 2;
+    disc dc[6];
+    int reached[6] = {0, 0, 0, 0, 0, 0}, has_disc[6] = {0, 0, 0, 0, 0, 0}, any_reached = 0, any_disc = 0, subs, sub,
+        drawn;
+    uint64_t hit_pixels[6] = {0, 0, 0, 0, 0, 0}, drawn_in[6] = {0, 0, 0, 0, 0, 0}, samples_in[6] = {0, 0, 0, 0, 0, 0},
+             samples_defined = 0;
+    uint32_t i, j, W = view->width, H = view->height;
     uint8_t *mask;
     if (!tree || !atlas || mlod_cut_create(1, NULL, &cut, NULL) != MLOD_OK || mlod_cut_update(cut, tree, view, &cp, NULL) != MLOD_OK ||
         mlod_splat(atlas, tree, cut, view, NULL, NULL) != MLOD_OK) {
@@ -765,6 +1087,7 @@ static void check_alone(const mlod_view *view, const double *centre, double radi
         goto done;
     }
     frame_of(view, &F);
+    subs = sub_count(&F);
     for (i = 0; i < 3; i++) c[i] = tree->spheres[i];
     r = tree->spheres[3];
     cv = mlod_cut_get(cut, 0);
@@ -776,11 +1099,14 @@ static void check_alone(const mlod_view *view, const double *centre, double radi
     else
         at->rd_ism.depth_bad++;
     drawn = cv.count == 1 && cv.status[0] != MLOD_STATUS_CULLED;
-    if (F.kind == MLOD_VIEW_DUAL_PARABOLOID) {
-        for (half = 0; half < 2; half++) has_disc[half] = reaches_half(&F, c, r, half) && my_disc(&F, c, r, half, &dc[half]);
-    } else {
-        has_disc[0] = my_disc(&F, c, r, 0, &dc[0]);
+    for (sub = 0; sub < subs; sub++) {
+        reached[sub] = sub_reaches(&F, sub, c, r);
+        has_disc[sub] = reached[sub] && sub_disc(&F, sub, c, r, &dc[sub]);
+        any_reached |= reached[sub];
+        any_disc |= has_disc[sub];
     }
+    /* with several sub-projections, the view culls exactly what none reaches */
+    if (subs > 1 && drawn != any_reached) at->reach_bad++;
     mask = (uint8_t *)calloc((size_t)W * H, 1);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) mask[(size_t)j * W + i] = atlas->depth[(size_t)j * atlas->width + i] != (float)INFINITY;
@@ -792,7 +1118,7 @@ static void check_alone(const mlod_view *view, const double *centre, double radi
         free(mask);
         goto done;
     }
-    if (!has_disc[0] && !has_disc[1]) { /* unbounded: not drawn */
+    if (!any_disc) { /* unbounded wherever it is seen: not drawn */
         uint64_t any = 0;
         at->unbounded_cases++;
         for (i = 0; i < W * H; i++) any += mask[i];
@@ -801,54 +1127,82 @@ static void check_alone(const mlod_view *view, const double *centre, double radi
         goto done;
     }
     at->drawn_cases++;
-    /* the criterion is the documented disc's diameter, which the angles confirm */
+    /* the criterion is the largest documented disc's diameter (+inf where a
+       sub-projection reaching the sphere has no bounded image), which the
+       angles confirm */
     crit = mlod_criterion(tree, 0, view);
     {
         double mine = 0.0;
-        for (half = 0; half < 2; half++)
-            if (has_disc[half] && 2.0 * dc[half].radius > mine) mine = 2.0 * dc[half].radius;
-        if (!(fabs(crit - mine) <= 1e-7 * mine + 1e-12)) at->crit_bad++;
-        if (fabs(crit - mine) / (mine + 1e-300) > at->worst_crit) at->worst_crit = fabs(crit - mine) / (mine + 1e-300);
-        for (half = 0; half < 2; half++)
-            if (has_disc[half] && fabs(dc[half].span - 2.0 * dc[half].radius) > 1e-9 * dc[half].span + 1e-12) at->span_bad++;
+        for (sub = 0; sub < subs; sub++) {
+            if (has_disc[sub] && 2.0 * dc[sub].radius > mine) mine = 2.0 * dc[sub].radius;
+            if (reached[sub] && !has_disc[sub]) mine = HUGE_VAL;
+        }
+        if (isinf(mine) ? !isinf(crit) : !(fabs(crit - mine) <= 1e-7 * mine + 1e-12)) at->crit_bad++;
+        if (isfinite(mine) && fabs(crit - mine) / (mine + 1e-300) > at->worst_crit)
+            at->worst_crit = fabs(crit - mine) / (mine + 1e-300);
+        for (sub = 0; sub < subs; sub++)
+            if (has_disc[sub] && fabs(dc[sub].span - 2.0 * dc[sub].radius) > 1e-9 * dc[sub].span + 1e-12)
+                at->span_bad++;
     }
-    /* every pixel whose centre's ray meets the sphere is drawn */
+    /* every pixel whose centre's ray meets the sphere is drawn, where its
+       sub-projection has the sphere's image */
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double o[3], d[3];
             if (!my_ray(&F, i + 0.5, j + 0.5, o, d)) continue;
             if (!ray_hits_sphere(&F, o, d, c, r * (1.0 - 1e-6))) continue;
+            sub = sub_at(&F, i + 0.5, j + 0.5);
+            if (!has_disc[sub]) continue;
             at->ray_pixels++;
+            hit_pixels[sub]++;
             at->ray_missed += !mask[(size_t)j * W + i];
+            drawn_in[sub] += mask[(size_t)j * W + i];
         }
+    /* a sphere whose image spans several cube faces is drawn in each */
+    {
+        int spans = 0, all = 1;
+        for (sub = 0; sub < subs; sub++)
+            if (hit_pixels[sub]) {
+                spans++;
+                all &= drawn_in[sub] > 0;
+            }
+        if (F.kind == MLOD_VIEW_CUBE && spans > 1) {
+            at->straddling++;
+            at->straddle_bad += !all;
+        }
+    }
     /* sample points of the sphere: the pixel holding each is drawn (or,
        where the disc's edge passes between the point and its pixel centre,
-       a neighbour is); each lies inside the documented disc */
+       a neighbour is); each lies inside the documented disc of the
+       sub-projection it projects into */
     {
-        double maxr[2] = {0, 0};
+        double maxr[6] = {0, 0, 0, 0, 0, 0};
         int isotropic = F.kind == MLOD_VIEW_PERSPECTIVE || (F.kind == MLOD_VIEW_PARABOLOID && F.W == F.H) ||
-                        (F.kind == MLOD_VIEW_ORTHOGRAPHIC && F.sx == F.sy);
+                        (F.kind == MLOD_VIEW_ORTHOGRAPHIC && F.sx == F.sy) || F.kind == MLOD_VIEW_CUBE;
         for (i = 0; i < 2000; i++) {
             double p[3], px, py, depth, margin, ex, ey;
             int defined;
             sphere_point(c, r, i, 2000, p);
-            defined = my_project(&F, p, &px, &py, &depth, &margin);
+            defined = my_project_sub(&F, p, &px, &py, &depth, &margin, &sub);
             if (!defined) continue;
-            half = F.kind == MLOD_VIEW_DUAL_PARABOLOID && px >= F.half_w;
-            if (has_disc[half]) {
-                ex = px - dc[half].x;
-                ey = py - dc[half].y;
-                if (sqrt(ex * ex + ey * ey) > dc[half].radius * (1.0 + 1e-7) + 1e-7) at->samples_outside_disc++;
-                if (sqrt(ex * ex + ey * ey) > maxr[half]) maxr[half] = sqrt(ex * ex + ey * ey);
-            }
+            if (F.kind == MLOD_VIEW_DUAL_PARABOLOID) sub = px >= F.half_w;
+            samples_defined++;
+            samples_in[sub]++;
+            if (!has_disc[sub]) continue; /* a cube face that does not reach the sphere, or sees it unbounded */
+            ex = px - dc[sub].x;
+            ey = py - dc[sub].y;
+            if (sqrt(ex * ex + ey * ey) > dc[sub].radius * (1.0 + 1e-7) + 1e-7) at->samples_outside_disc++;
+            if (sqrt(ex * ex + ey * ey) > maxr[sub]) maxr[sub] = sqrt(ex * ex + ey * ey);
             if (px >= 0.0 && px < W && py >= 0.0 && py < H) {
                 int64_t pi = (int64_t)floor(px), pj = (int64_t)floor(py), a, b, found = 0;
-                int64_t lo = half ? (int64_t)hw : 0, hi = F.kind == MLOD_VIEW_DUAL_PARABOLOID && !half ? (int64_t)hw : (int64_t)W;
+                uint32_t c0, c1, r0, r1;
+                sub_rect(&F, sub, &c0, &c1, &r0, &r1);
                 at->sample_pixels_all++;
                 at->sample_pixel_strict_missed += !mask[(size_t)pj * W + pi];
-                /* a sample pixel on the tile's (or half's) border may hold a
-                   sliver of the disc that covers no pixel centre */
-                if (pi - 1 < lo || pi + 1 >= hi || pj - 1 < 0 || pj + 1 >= (int64_t)H) continue;
+                /* a sample pixel on the border of the tile (or of its half or
+                   face) may hold a sliver of the disc that covers no pixel centre */
+                if (pi - 1 < (int64_t)c0 || pi + 1 >= (int64_t)c1 || pj - 1 < (int64_t)r0 || pj + 1 >= (int64_t)r1)
+                    continue;
                 at->sample_pixels++;
                 for (b = pj - 1; b <= pj + 1; b++)
                     for (a = pi - 1; a <= pi + 1; a++)
@@ -856,30 +1210,31 @@ static void check_alone(const mlod_view *view, const double *centre, double radi
                 at->sample_missed += !found;
             }
         }
-        /* the disc is tight for isotropic projections: samples reach its rim */
-        for (half = 0; half < 2; half++)
-            if (has_disc[half] && isotropic && maxr[half] < 0.98 * dc[half].radius)
+        /* the disc is tight for isotropic projections: samples reach its rim
+           (in a cube face only when the whole sphere projects into it) */
+        for (sub = 0; sub < subs; sub++)
+            if (has_disc[sub] && isotropic && samples_in[sub] == samples_defined && maxr[sub] < 0.98 * dc[sub].radius)
                 at->loose_disc++;
     }
-    /* every drawn pixel lies within 1.5 px of the documented disc and holds
-       the depth of the sphere's centre */
+    /* every drawn pixel lies within 1.5 px of its sub-projection's documented
+       disc and holds the depth of the sphere's centre there */
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double ex, ey, dist, want;
             float got = atlas->depth[(size_t)j * atlas->width + i];
             if (!mask[(size_t)j * W + i]) continue;
             at->drawn_pixels++;
-            half = F.kind == MLOD_VIEW_DUAL_PARABOLOID && i >= hw;
-            if (!has_disc[half]) {
+            sub = sub_at(&F, i + 0.5, j + 0.5);
+            if (!has_disc[sub]) {
                 at->far_pixels++;
                 continue;
             }
-            ex = i + 0.5 - dc[half].x;
-            ey = j + 0.5 - dc[half].y;
-            dist = sqrt(ex * ex + ey * ey) - dc[half].radius;
+            ex = i + 0.5 - dc[sub].x;
+            ey = j + 0.5 - dc[sub].y;
+            dist = sqrt(ex * ex + ey * ey) - dc[sub].radius;
             if (dist > 1.5) at->far_pixels++;
             if (dist > at->worst_far) at->worst_far = dist;
-            want = (float)dc[half].depth;
+            want = (float)dc[sub].depth;
             if (fabs(got - want) > 1e-6 * fabs(want)) at->depth_bad++;
         }
     free(mask);
@@ -894,7 +1249,7 @@ static void test_single_node(void)
     static const uint32_t sizes[3][2] = {{32, 32}, {40, 24}, {24, 40}};
     uint64_t rng = 777;
     int kind, s, n, k;
-    for (kind = 0; kind < 4; kind++) {
+    for (kind = 0; kind < 5; kind++) {
         alone_tally at;
         char what[80];
         memset(&at, 0, sizeof at);
@@ -903,6 +1258,7 @@ static void test_single_node(void)
             mlod_view view;
             frame F;
             uint32_t W = sizes[s][0] * (kind == MLOD_VIEW_DUAL_PARABOLOID ? 2u : 1u), H = sizes[s][1];
+            if (kind == MLOD_VIEW_CUBE) W = H / 2 * 3; /* faces of 16, 12 and 20 pixels */
             tu_random_unit(&rng, target);
             view = look_view(&rng, (mlod_view_kind)kind, eye, target, W, H);
             frame_of(&view, &F);
@@ -912,6 +1268,16 @@ static void test_single_node(void)
                     double x = (scene_rng_double(&rng) * 1.5 - 0.25) * W, y = (scene_rng_double(&rng) * 1.5 - 0.25) * H;
                     for (k = 0; k < 3; k++)
                         dir[k] = F.w[k] + (x - 0.5 * W) / F.f * F.u[k] + (0.5 * H - y) / F.f * F.v[k];
+                    tu_normalize3(dir);
+                } else if (kind == MLOD_VIEW_CUBE && n % 3 != 2) {
+                    /* near an edge between two faces (on X, Y, Z: two of
+                       +-1 and a little noise), or near a corner of three */
+                    double xyz[3] = {0, 0, 0}, noise[3];
+                    int skip = n % 3 == 0 ? (int)(scene_rng_double(&rng) * 3) : -1;
+                    tu_random_unit(&rng, noise);
+                    for (k = 0; k < 3; k++)
+                        xyz[k] = (k == skip ? 0.0 : scene_rng_double(&rng) < 0.5 ? -1.0 : 1.0) + 0.25 * noise[k];
+                    cube_xyz_to_world(&F, xyz, dir);
                     tu_normalize3(dir);
                 } else {
                     tu_random_unit(&rng, dir);
@@ -928,12 +1294,21 @@ static void test_single_node(void)
                     r = px_size * dist / (2.0 * F.disc_scale);
                     if (r > 0.6 * dist) r = 0.6 * dist;
                 }
+                if (kind == MLOD_VIEW_CUBE && n % 4 == 3) {
+                    /* near and far cubes through or around the sphere: faces
+                       that do not reach it, or none */
+                    mlod_view cut_view = view;
+                    cut_view.near_plane = (float)(dist * (0.3 + 0.9 * scene_rng_double(&rng)));
+                    cut_view.far_plane = (float)(cut_view.near_plane + dist * (0.1 + 0.5 * scene_rng_double(&rng)));
+                    check_alone(&cut_view, centre, r, &at);
+                    continue;
+                }
                 check_alone(&view, centre, r, &at);
             }
         }
         { /* images that are unbounded: nothing drawn */
             double eye[3] = {0, 0, 0}, target[3] = {0.3, -0.2, -1.0}, centre[3];
-            mlod_view view = look_view(&rng, (mlod_view_kind)kind, eye, target, 32, 32);
+            mlod_view view = look_view(&rng, (mlod_view_kind)kind, eye, target, kind == MLOD_VIEW_CUBE ? 48 : 32, 32);
             frame F;
             frame_of(&view, &F);
             for (k = 0; k < 3; k++) centre[k] = 0.02 * F.u[k] - 0.01 * F.w[k]; /* the eye inside */
@@ -945,6 +1320,13 @@ static void test_single_node(void)
             if (kind == MLOD_VIEW_PARABOLOID) { /* reaching the point behind the eye, not wholly behind */
                 for (k = 0; k < 3; k++) centre[k] = 1.2 * (-0.7 * F.w[k] + 0.71414284 * F.u[k]);
                 check_alone(&view, centre, 1.0, &at);
+            }
+            if (kind == MLOD_VIEW_CUBE) {
+                /* bounded in +X (X = 0.5 > r) but reaching +Y and +-Z across
+                   their eye planes: c = +inf, drawn in the faces where it is
+                   bounded only */
+                for (k = 0; k < 3; k++) centre[k] = 0.5 * F.u[k] + 0.3 * F.v[k];
+                check_alone(&view, centre, 0.4, &at);
             }
         }
         snprintf(what, sizeof what, "a node alone, %s", kind_name((mlod_view_kind)kind));
@@ -973,6 +1355,14 @@ static void test_single_node(void)
               (unsigned long long)at.samples_outside_disc);
         CHECK(at.loose_disc == 0, "%s: %llu discs larger than the image they should circumscribe", what,
               (unsigned long long)at.loose_disc);
+        CHECK(at.reach_bad == 0,
+              "%s: %llu spheres culled though a sub-projection reaches them, or drawn though none does", what,
+              (unsigned long long)at.reach_bad);
+        CHECK(at.straddle_bad == 0, "%s: %llu of %llu spheres whose image spans several faces are missing from one",
+              what, (unsigned long long)at.straddle_bad, (unsigned long long)at.straddling);
+        if (kind == MLOD_VIEW_CUBE)
+            CHECK(at.straddling >= 20, "%s: only %llu spheres straddle an edge between faces", what,
+                  (unsigned long long)at.straddling);
         report_raster(&at.rd, what);
         snprintf(what, sizeof what, "ISM of a one-leaf tree, %s", kind_name((mlod_view_kind)kind));
         report_raster(&at.rd_ism, what);
@@ -1209,9 +1599,11 @@ static void snap_free(snapshot *s)
 }
 
 /* Views of mixed kinds and tile sizes (tall ones take several row bands)
-   around a scene of centre c and radius R. */
+   around a scene of centre c and radius R: 12 of the four plain kinds, then
+   3 cube maps (one inside the scene's bounding sphere).  Room for 15. */
 static uint32_t mixed_views(uint64_t *rng, const double *c, double R, mlod_view *views)
 {
+    static const uint32_t cube_sides[3] = {16, 1, 50};
     static const uint32_t sizes[12][2] = {{32, 32}, {24, 150}, {150, 20}, {17, 9},  {40, 40}, {1, 1},
                                           {64, 32}, {33, 70},  {48, 48},  {32, 32}, {7, 130}, {64, 64}};
     uint32_t v;
@@ -1229,14 +1621,23 @@ static uint32_t mixed_views(uint64_t *rng, const double *c, double R, mlod_view 
         }
         if (v % 3 == 2) views[v].flags = MLOD_VIEW_CULL_BACKFACES;
     }
-    return 12;
+    for (v = 12; v < 15; v++) {
+        double dir[3], eye[3];
+        uint32_t side = cube_sides[v - 12];
+        int k;
+        tu_random_unit(rng, dir);
+        for (k = 0; k < 3; k++) eye[k] = c[k] + R * (v == 12 ? 0.6 : 1.4 + v * 0.1) * dir[k];
+        views[v] = look_view(rng, MLOD_VIEW_CUBE, eye, c, 3 * side, 2 * side);
+        if (v == 14) views[v].flags = MLOD_VIEW_CULL_BACKFACES;
+    }
+    return 15;
 }
 
 static void test_determinism(void)
 {
     scene_mesh s;
     mlod_tree *tree;
-    mlod_view views[12];
+    mlod_view views[15];
     mlod_cut *cut = NULL;
     mlod_atlas *atlas;
     mlod_cut_params cp = cut_params(1.0f);
@@ -1310,7 +1711,7 @@ static void test_disc_scale(void)
     static const float scales[4] = {1.0f, 0.75f, 0.5f, 0.25f};
     scene_mesh s;
     mlod_tree *tree;
-    mlod_view views[12];
+    mlod_view views[15];
     mlod_cut *cut = NULL;
     mlod_atlas *atlas[4] = {NULL, NULL, NULL, NULL};
     mlod_cut_params cp = cut_params(1.0f);
@@ -2589,6 +2990,7 @@ done:
 int main(void)
 {
     test_projection();
+    test_cube_world_axes();
     test_single_node();
     test_overlap();
     test_culling_and_clearing();

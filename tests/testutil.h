@@ -184,7 +184,8 @@ static inline void tu_random_perp(uint64_t *rng, const double *a, double *p)
     tu_normalize3(p);
 }
 
-/* A view with sensible defaults for every field. */
+/* A view with sensible defaults for every field (a cube map's tile is
+   3s x 2s: six 32 x 32 faces). */
 static inline mlod_view tu_view(mlod_view_kind kind)
 {
     mlod_view v;
@@ -192,7 +193,7 @@ static inline mlod_view tu_view(mlod_view_kind kind)
     v.kind = kind;
     v.forward[2] = -1.0f;
     v.up[1] = 1.0f;
-    v.width = 64;
+    v.width = kind == MLOD_VIEW_CUBE ? 96 : 64;
     v.height = 64;
     v.fov_y = 1.0f;
     v.near_plane = kind == MLOD_VIEW_ORTHOGRAPHIC ? 0.0f : 0.01f;
@@ -223,7 +224,9 @@ static inline void tu_look(uint64_t *rng, mlod_view *v, const double *eye, const
 
 /* A random view of kind around a scene of centre c and radius R: eye at
    0.2 .. 8 R from c, mostly looking at the scene, random tile and planes,
-   back-face culling on half of them. */
+   back-face culling on half of them.  Every kind draws the same random
+   numbers (a cube map makes its 3s x 2s tile, s = 1 .. 64, from the width
+   drawn), so adding a kind changes no other view's stream. */
 static inline mlod_view tu_random_view(uint64_t *rng, mlod_view_kind kind, const double *c, double R)
 {
     mlod_view v = tu_view(kind);
@@ -239,6 +242,11 @@ static inline mlod_view tu_random_view(uint64_t *rng, mlod_view_kind kind, const
     v.width = 1 + (uint32_t)(scene_rng_double(rng) * 128);
     v.height = 1 + (uint32_t)(scene_rng_double(rng) * 128);
     v.fov_y = (float)(0.3 + 2.5 * scene_rng_double(rng));
+    if (kind == MLOD_VIEW_CUBE) {
+        uint32_t side = 1 + (v.width - 1) / 2;
+        v.width = 3 * side;
+        v.height = 2 * side;
+    }
     if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
         v.near_plane = (float)(-R * scene_rng_double(rng));
         v.far_plane = (float)(v.near_plane + R * (0.5 + 4 * scene_rng_double(rng)));
