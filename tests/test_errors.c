@@ -373,6 +373,10 @@ static void test_view_errors(void)
             VIEW_CASE((v.width = 1, v.height = 1), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 1x1");
             VIEW_CASE((v.width = 2, v.height = 2), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 2x2");
             VIEW_CASE((v.width = 4, v.height = 2), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "tile 4x2");
+            VIEW_CASE((v.width = 2, v.height = 2863311532u), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW,
+                      "tile 2x2863311532 (3s wraps past 2^32)");
+            VIEW_CASE((v.width = 536870912u, v.height = 3221225472u), MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW,
+                      "tile 536870912x3221225472 (3s wraps past 2^32)");
             VIEW_CASE(v.near_plane = 0, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "near 0");
             VIEW_CASE(v.near_plane = -0.0f, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "near -0");
             VIEW_CASE(v.near_plane = -1, MLOD_ERROR_BAD_VIEW, MLOD_ERROR_BAD_VIEW, "near -1");
