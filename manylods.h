@@ -3210,6 +3210,7 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     const mlod_tree *tree = job->tree;
     mlod__emitter out;
     uint32_t k, stack[80];
+    uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
@@ -3219,11 +3220,11 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
         uint8_t st = in_status[k];
         if (st == MLOD__PENDING || !job->trust) {
             st = mlod__classify(pv, tree, node, job->epsilon);
-            seg->evaluated++;
+            evaluated++;
         }
         if (st != MLOD_STATUS_COARSE) {
             if (job->merge)
-                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, &seg->evaluated, &seg->steps);
+                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, &evaluated, &steps);
             mlod__emit(&out, node, st);
             continue;
         }
@@ -3231,16 +3232,16 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
             mlod__emit(&out, node, st); /* no room: split in the next round */
             continue;
         }
-        seg->steps++;
+        steps++;
         top = 0;
         stack[top++] = 2 * node + 2;
         stack[top++] = 2 * node + 1;
         while (top > 0) {
             uint32_t m = stack[--top];
             uint8_t ms = mlod__classify(pv, tree, m, job->epsilon);
-            seg->evaluated++;
+            evaluated++;
             if (ms == MLOD_STATUS_COARSE && out.count + top + 2 + remaining <= seg->out_capacity) {
-                seg->steps++;
+                steps++;
                 stack[top++] = 2 * m + 2;
                 stack[top++] = 2 * m + 1;
             } else {
@@ -3249,6 +3250,8 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
         }
     }
     seg->out_count = out.count;
+    seg->evaluated = evaluated;
+    seg->steps = steps;
 }
 
 /* Lazy rounds: at most one split or merge per entry. */
@@ -3258,6 +3261,7 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
     size_t view_begin = job->in->offset[seg->view], view_end = view_begin + job->in->count[seg->view];
     mlod__emitter out;
     uint32_t k;
+    uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
@@ -3269,13 +3273,13 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
         if (st == MLOD__PENDING || !job->trust) {
             st = mlod__classify(pv, tree, node, job->epsilon);
             raw = st;
-            seg->evaluated++;
+            evaluated++;
         }
         if (st == MLOD_STATUS_COARSE) {
             mlod__emit(&out, 2 * node + 1, mlod__classify(pv, tree, 2 * node + 1, job->epsilon));
             mlod__emit(&out, 2 * node + 2, mlod__classify(pv, tree, 2 * node + 2, job->epsilon));
-            seg->evaluated += 2;
-            seg->steps++;
+            evaluated += 2;
+            steps++;
             continue;
         }
         if (mlod__is_valid(st) && node > 0) {
@@ -3289,11 +3293,11 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
                      : (k == 0 && at > view_begin && job->in->nodes[at - 1] == node - 1 &&
                         !(job->trust && (job->in->status[at - 1] & MLOD__PARENT_INVALID)))) {
                 uint8_t ps = mlod__classify(pv, tree, parent, job->epsilon);
-                seg->evaluated++;
+                evaluated++;
                 if (mlod__is_valid(ps)) {
                     if (left) {
                         mlod__emit(&out, parent, ps);
-                        seg->steps++;
+                        steps++;
                         k++;
                     }
                     continue;
@@ -3304,6 +3308,8 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
         mlod__emit(&out, node, raw);
     }
     seg->out_count = out.count;
+    seg->evaluated = evaluated;
+    seg->steps = steps;
 }
 
 static void mlod__segment_task(void *context, uint32_t index)
@@ -3334,6 +3340,7 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     mlod__view_stats *stats = &cut->stats[1][view];
     uint32_t *nodes = job->out->nodes + job->out->offset[view], count = 0, s, i;
     uint8_t *status = job->out->status + job->out->offset[view];
+    uint64_t evaluated, steps;
     if (cut->view_done[view]) { /* nothing to split this round: copied as it is, its counts stand */
         count = job->in->count[view];
         memcpy(nodes, job->in->nodes + job->in->offset[view], count * sizeof(uint32_t));
@@ -3341,12 +3348,10 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
         job->out->count[view] = count;
         return;
     }
-    if (job->trust) {
-        /* later rounds add to the first round's counts */
-    } else {
-        stats->evaluated = 0;
-        stats->steps = 0;
-    }
+    /* later rounds add to the first round's counts; summed in locals, as
+       the neighbouring views' counts are other threads' */
+    evaluated = job->trust ? stats->evaluated : 0;
+    steps = job->trust ? stats->steps : 0;
     for (s = cut->view_segment[view]; s < cut->view_segment[view + 1]; s++) {
         const mlod__segment *seg = &cut->segments[s];
         const uint32_t *src = cut->scratch_nodes + seg->out_begin;
@@ -3355,7 +3360,7 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
         if (job->merge && count > 0) {
             for (; i < seg->out_count; i++) {
                 uint8_t xs = src_status[i];
-                uint32_t x = mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, &stats->evaluated, &stats->steps);
+                uint32_t x = mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, &evaluated, &steps);
                 nodes[count] = x;
                 status[count] = xs;
                 count++;
@@ -3368,9 +3373,11 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
         memcpy(nodes + count, src + i, (seg->out_count - i) * sizeof(uint32_t));
         memcpy(status + count, src_status + i, seg->out_count - i);
         count += seg->out_count - i;
-        stats->evaluated += seg->evaluated;
-        stats->steps += seg->steps;
+        evaluated += seg->evaluated;
+        steps += seg->steps;
     }
+    stats->evaluated = evaluated;
+    stats->steps = steps;
     job->out->count[view] = count;
     stats->drawn = stats->culled = stats->oversize = stats->coarse = 0;
     for (i = 0; i < count; i++) {
