@@ -2998,7 +2998,7 @@ static inline double mlod__sub_diameter(const mlod_view_sub *sub, int kind, cons
 
 /* Which sub-projections the sphere reaches: bit s for sub-projection s. */
 /* GLSL twin: reached_subs */
-static unsigned mlod__reached(const mlod__pview *pv, const float *sphere)
+static inline unsigned mlod__reached(const mlod__pview *pv, const float *sphere)
 {
     unsigned reached = 0;
     int s, k;
@@ -3040,8 +3040,12 @@ static double mlod__evaluate(const mlod__pview *pv, const float *sphere, const f
         *culled = 0;
         return mlod__sub_diameter(&pv->f.subs[0], pv->kind[0], x, d2, sphere[3], tangent);
     }
+    /* culled either way (the order changes no result): several
+       sub-projections cost more plane tests than the back-face test, and
+       seldom cull all together */
+    if (mlod__sphere_setup(pv, sphere, cone, x, &d2, &tangent)) return 0.0;
     reached = mlod__reached(pv, sphere);
-    if (!reached || mlod__sphere_setup(pv, sphere, cone, x, &d2, &tangent)) return 0.0;
+    if (!reached) return 0.0;
     *culled = 0;
     for (k = 0; k < pv->sub_count; k++)
         if (reached >> k & 1u) {
@@ -3144,7 +3148,7 @@ struct mlod_cut {
 static int mlod__is_valid(uint8_t status) { return status == MLOD_STATUS_DRAWN || status == MLOD_STATUS_CULLED; }
 
 /* GLSL twin: classify */
-static uint8_t mlod__classify(const mlod__pview *pv, const mlod_tree *tree, uint32_t node, double epsilon)
+static inline uint8_t mlod__classify(const mlod__pview *pv, const mlod_tree *tree, uint32_t node, double epsilon)
 {
     int culled;
     double c = mlod__evaluate(pv, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node), &culled);
