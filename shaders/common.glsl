@@ -424,9 +424,11 @@ uint reached_subs(uint view, vec4 sphere)
 // c(node, view) in pixels; culled set when culled.
 double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
 {
-    uint reached = reached_subs(view, sphere);
-    culled = reached == 0u;
-    if (culled) return 0.0LF;
+    // one sub-projection: its planes first; several: the back faces first
+    // (the C twin's order; either culls the same nodes)
+    uint count = sub_count(view), reached = 0u;
+    culled = true;
+    if (count == 1u && (reached = reached_subs(view, sphere)) == 0u) return 0.0LF;
     dvec3 e = vd3(view, MLOD_IF_V_EYE);
     precise dvec3 x = dvec3(double(sphere.x) - e.x, double(sphere.y) - e.y, double(sphere.z) - e.z);
     precise double d2 = dot3(x, x);
@@ -434,12 +436,10 @@ double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culle
     precise double t2 = d2 - r * r;
     precise double tangent = sqrt(t2 > 0.0LF ? t2 : 0.0LF);
     if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) tangent = 0.0LF;
-    if (use_cone && vd(view, MLOD_IF_V_BACKFACES) != 0.0LF && backfacing(view, x, d2, r, cone)) {
-        culled = true;
-        return 0.0LF;
-    }
+    if (use_cone && vd(view, MLOD_IF_V_BACKFACES) != 0.0LF && backfacing(view, x, d2, r, cone)) return 0.0LF;
+    if (count > 1u && (reached = reached_subs(view, sphere)) == 0u) return 0.0LF;
+    culled = false;
     double c = 0.0LF;
-    uint count = sub_count(view);
     for (uint s = 0u; s < count; s++)
         if (((reached >> s) & 1u) != 0u) {
             double d = sub_diameter(sub_base(view, s), x, d2, r, tangent);
