@@ -216,6 +216,20 @@
                            partition; may still hold nodes finer than needed
                            (drawn) or coarser (status MLOD_STATUS_COARSE);
                            converges to the basic cut when views stop.
+     Unchanged views are not evaluated, in any mode: an update keeps a
+     view's list, with evaluated = steps = 0, when the view (every byte of
+     its mlod_view), the tree (the same mlod_tree, with the same revision:
+     no mlod_refit_* since) and epsilon are those of the cut's previous
+     update and that update left the view's cut exact (the basic cut:
+     every basic and incremental update does; a lazy one when it made no
+     move for the view).  Every mode would compute that same list again
+     (a lazy step finds nothing to do on the basic cut), so results do not
+     change; one byte of the view, epsilon, a refit, another tree or
+     mlod_cut_reset recomputes the view as before.  A skipped view costs a
+     comparison of its bytes (about 4 ns), plus a copy of its list while
+     other views change.  A tree is known by its address and revision: use
+     mlod_cut_reset before a cut meets a tree created after the tree it
+     last used was destroyed (the new one may have the same address).
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
@@ -472,6 +486,10 @@ typedef struct mlod_tree {
     size_t bytes;                /* everything the tree allocated */
     size_t bytes_per_node;       /* bytes of the per-node arrays, per node */
     mlod_allocator allocator;
+    uint64_t revision;           /* 0 at build; every mlod_refit_* that succeeds adds 1.  A cut
+                                    knows an unchanged tree by its address and revision (THE
+                                    CUT): code that writes the arrays otherwise adds 1 itself
+                                    (after mlodvk_tree_download too) */
 } mlod_tree;
 
 /* Sizing, before a build: the peak bytes mlod_build_mesh takes from its
@@ -691,8 +709,11 @@ MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
    All views are checked before any work; on error the previous cuts stay,
    and so does the cut's memory: what the call grew is given back
    (mlod_cut_bytes and the allocator's live bytes as before the call).
-   Memory grows with the cut sizes, not with views x N; an update that
-   grows the cut holds the arrays it replaces until it returns. */
+   A view whose view, tree and epsilon did not change since the previous
+   update is not evaluated (THE CUT, above): an update where none changed
+   costs about 4 ns per view.  Memory grows with the cut sizes, not with
+   views x N; an update that grows the cut holds the arrays it replaces
+   until it returns. */
 MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                          const mlod_cut_params *params, mlod_error *error);
 
@@ -701,7 +722,8 @@ MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
    MLOD_ERROR_BAD_EPSILON with a message.  Pure. */
 MANYLODS_DEF mlod_result mlod_cut_params_check(const mlod_cut_params *params, mlod_error *error);
 
-/* Forget the previous cuts: the next update starts from the root. */
+/* Forget the previous cuts: the next update starts from the root and
+   evaluates every view. */
 MANYLODS_DEF void mlod_cut_reset(mlod_cut *cut);
 
 MANYLODS_DEF uint32_t mlod_cut_view_count(const mlod_cut *cut);
@@ -2486,6 +2508,7 @@ MLOD__PUBLIC mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
     mlod__run(parallel, (tree->leaf_count - 1) / MLOD__LEAF_CHUNK + 1, mlod__refit_mesh_task, &job);
     mlod__merge_all(tree, parallel);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
+    tree->revision++; /* cuts recompute every view: the spheres moved (or may have) */
     return mlod__succeed(error);
 }
 
@@ -2552,6 +2575,7 @@ MLOD__PUBLIC mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *p
     }
     mlod__merge_all(tree, parallel);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
+    tree->revision++; /* cuts recompute every view: the spheres moved (or may have) */
     return mlod__succeed(error);
 }
 
@@ -3137,12 +3161,30 @@ struct mlod_cut {
     uint32_t *tasks; /* first segment of each task, then the end */
     size_t task_capacity;
     uint32_t *view_segment; /* per view: first segment, then the end */
-    uint8_t *view_done;     /* per view: nothing to split this round (copied as it is) */
+    uint8_t *view_done;     /* per view: nothing to split this round (copied as it is), or
+                               MLOD__SKIPPED: not evaluated at all in this update */
     size_t *view_work;      /* planning, per view: entries to split, then its segments' scratch */
+    /* What the committed lists were computed for, to skip the views that
+       did not change (see mlod__skip_views).  Written only when an update
+       succeeds, so a failed one leaves them as they were. */
+    mlod_view *seen;            /* per view: the view of its committed list (when MLOD__SEEN) */
+    uint8_t *known;             /* per view: MLOD__SEEN, MLOD__EXACT */
+    const mlod_tree *seen_tree; /* the tree, by address, and the revision, arrays and epsilon it */
+    uint64_t seen_revision;     /* had then; seen_tree NULL: none (tree_nodes is its node count) */
+    const float *seen_spheres, *seen_cones;
+    float seen_epsilon;
     mlod__work_buffer kept[MLOD__WORK_COUNT]; /* during an update: what its growth replaced */
     uint8_t grown[MLOD__WORK_COUNT];          /* during an update: kept[i] holds buffer i's old arrays */
     size_t bytes;
 };
+
+/* cut->known[v]: seen[v] holds the view of the committed list (a view an
+   update accepted, so a valid one); the committed list is the basic cut
+   of seen[v] in seen_tree at seen_epsilon. */
+#define MLOD__SEEN 1u
+#define MLOD__EXACT 2u
+/* cut->view_done[v] for a view the update skips. */
+#define MLOD__SKIPPED 2u
 
 /* GLSL twin: status_valid */
 static int mlod__is_valid(uint8_t status) { return status == MLOD_STATUS_DRAWN || status == MLOD_STATUS_CULLED; }
@@ -3167,6 +3209,9 @@ typedef struct mlod__cut_job {
     int last;   /* the call's last round: clear MLOD__PARENT_INVALID */
     const mlod__list *in;
     mlod__list *out;
+    const mlod__list *done_in; /* where the views done this round are copied from: in, or in
+                                  the first round the committed list (skipped views: their
+                                  counts only, until mlod__copy_skipped_task) */
     mlod_cut *cut;
 } mlod__cut_job;
 
@@ -3346,9 +3391,12 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     uint8_t *status = job->out->status + job->out->offset[view];
     uint64_t evaluated, steps;
     if (cut->view_done[view]) { /* nothing to split this round: copied as it is, its counts stand */
-        count = job->in->count[view];
-        memcpy(nodes, job->in->nodes + job->in->offset[view], count * sizeof(uint32_t));
-        memcpy(status, job->in->status + job->in->offset[view], count);
+        const mlod__list *in = job->done_in;
+        count = in->count[view];
+        if (cut->view_done[view] != MLOD__SKIPPED) { /* a skipped view's list is copied once, at the end */
+            memcpy(nodes, in->nodes + in->offset[view], count * sizeof(uint32_t));
+            memcpy(status, in->status + in->offset[view], count);
+        }
         job->out->count[view] = count;
         return;
     }
@@ -3407,13 +3455,29 @@ static uint32_t mlod__view_chunk(const mlod_cut *cut, uint32_t index, uint32_t *
     return first;
 }
 
+/* After the last round: the skipped views' lists, from the committed list
+   (which no round writes) into the room every round kept for them. */
+static void mlod__copy_skipped_task(void *context, uint32_t index)
+{
+    const mlod__cut_job *job = (const mlod__cut_job *)context;
+    const mlod__list *from = job->done_in;
+    uint32_t end, v = mlod__view_chunk(job->cut, index, &end);
+    for (; v < end; v++) {
+        uint32_t count = job->out->count[v];
+        if (job->cut->view_done[v] != MLOD__SKIPPED) continue;
+        MANYLODS_ASSERT(count == from->count[v]); /* every round kept the room of its list */
+        memcpy(job->out->nodes + job->out->offset[v], from->nodes + from->offset[v], count * sizeof(uint32_t));
+        memcpy(job->out->status + job->out->offset[v], from->status + from->offset[v], count);
+    }
+}
+
 static void mlod__join_task(void *context, uint32_t index)
 {
     const mlod__cut_job *job = (const mlod__cut_job *)context;
     uint32_t end, v = mlod__view_chunk(job->cut, index, &end);
     mlod__pview pv;
     for (; v < end; v++) {
-        if (job->merge) mlod__view_prepare(&job->views[v], &pv, NULL);
+        if (job->merge && !job->cut->view_done[v]) mlod__view_prepare(&job->views[v], &pv, NULL);
         mlod__join_view(job, v, &pv);
     }
 }
@@ -3542,6 +3606,8 @@ MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
     mlod__free(&cut->allocator, cut->view_segment);
     mlod__free(&cut->allocator, cut->view_done);
     mlod__free(&cut->allocator, cut->view_work);
+    mlod__free(&cut->allocator, cut->seen);
+    mlod__free(&cut->allocator, cut->known);
     cut->allocator.free(cut->allocator.user, cut);
 }
 
@@ -3570,6 +3636,8 @@ MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
     ok = ok && (cut->view_segment = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &cut->bytes));
     ok = ok && (cut->view_done = (uint8_t *)mlod__alloc_array(&a, view_count, 1, &cut->bytes));
     ok = ok && (cut->view_work = (size_t *)mlod__alloc_array(&a, view_count, sizeof(size_t), &cut->bytes));
+    ok = ok && (cut->seen = (mlod_view *)mlod__alloc_array(&a, view_count, sizeof(mlod_view), &cut->bytes));
+    ok = ok && (cut->known = (uint8_t *)mlod__alloc_array(&a, view_count, 1, &cut->bytes));
     if (!ok) {
         mlod_cut_destroy(cut);
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating a cut for %u views", view_count);
@@ -3579,6 +3647,7 @@ MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
         memset(cut->lists[i].count, 0, view_count * sizeof(uint32_t));
     }
     memset(cut->stats[0], 0, view_count * sizeof(mlod__view_stats));
+    memset(cut->known, 0, view_count);
     *out_cut = cut;
     return mlod__succeed(error);
 }
@@ -3587,6 +3656,7 @@ MLOD__PUBLIC void mlod_cut_reset(mlod_cut *cut)
 {
     if (!cut) return;
     cut->tree_nodes = 0;
+    cut->seen_tree = NULL; /* nothing skipped: the views stay known to be valid */
     memset(cut->lists[cut->committed].count, 0, cut->view_count * sizeof(uint32_t));
     memset(cut->stats[0], 0, cut->view_count * sizeof(mlod__view_stats));
 }
@@ -3644,7 +3714,8 @@ static double mlod__cut_capacities(uint32_t view_count, uint32_t mean_cut_nodes,
     capacity[MLOD__WORK_SEGMENTS] = ceil(1.125 * segments);
     capacity[MLOD__WORK_TASKS] = capacity[MLOD__WORK_SEGMENTS] + 1.0;
     return (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
-           v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t));
+           v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t) +
+                sizeof(mlod_view) + 1);
 }
 
 MLOD__PUBLIC size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
@@ -3746,6 +3817,10 @@ static void mlod__plan_splits_task(void *context, uint32_t index)
     uint32_t end, v = mlod__view_chunk(cut, index, &end);
     for (; v < end; v++) {
         size_t at = job->in->offset[v], stop = at + job->in->count[v], view_splits = 0;
+        if (cut->view_done[v] == MLOD__SKIPPED) { /* in every round of the update */
+            cut->view_work[v] = 0;
+            continue;
+        }
         for (; at < stop; at++) view_splits += (size_t)mlod__to_split(job->in->status[at], job->lazy, job->trust);
         cut->view_work[v] = view_splits;
         /* later basic and incremental rounds leave finished views alone */
@@ -3848,14 +3923,15 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
 }
 
 /* Lay out the output list: each view gets room for all its segments'
-   output.  Returns 0 when out of memory. */
-static int mlod__place_output(mlod_cut *cut, const mlod__list *in, mlod__list *out)
+   output, a view done this round for its list in done_in.  Returns 0 when
+   out of memory. */
+static int mlod__place_output(mlod_cut *cut, const mlod__list *done_in, mlod__list *out)
 {
     size_t at = 0;
     uint32_t v, s;
     for (v = 0; v < cut->view_count; v++) {
         out->offset[v] = at;
-        if (cut->view_done[v]) at += in->count[v];
+        if (cut->view_done[v]) at += done_in->count[v];
         for (s = cut->view_segment[v]; s < cut->view_segment[v + 1]; s++) at += cut->segments[s].out_count;
     }
     return mlod__work_reserve(cut, (int)(out - cut->lists), at);
@@ -3873,7 +3949,10 @@ MLOD__PUBLIC mlod_result mlod_cut_params_check(const mlod_cut_params *params, ml
     return mlod__succeed(error);
 }
 
-static mlod_result mlod__check_cut_params(const mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+/* The checks of an update.  A view byte for byte equal to the one an
+   earlier update accepted for it (cut->seen) is valid: validity depends on
+   the bytes alone.  view_done[v] is left 1 for those views, else 0. */
+static mlod_result mlod__check_cut_params(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                           const mlod_cut_params *params, mlod_error *error)
 {
     uint32_t v;
@@ -3886,10 +3965,60 @@ static mlod_result mlod__check_cut_params(const mlod_cut *cut, const mlod_tree *
     for (v = 0; v < cut->view_count; v++) {
         mlod__pview pv;
         mlod_error detail;
-        mlod_result res = mlod__view_prepare(&views[v], &pv, &detail);
+        mlod_result res;
+        /* equal bytes are equal fields (padding, if any, can only make
+           equal views differ: they are then checked and computed) */
+        cut->view_done[v] =
+            (uint8_t)((cut->known[v] & MLOD__SEEN) && memcmp(&views[v], &cut->seen[v], sizeof(mlod_view)) == 0);
+        if (cut->view_done[v]) continue;
+        res = mlod__view_prepare(&views[v], &pv, &detail);
         if (res != MLOD_OK) return mlod__fail(error, res, "view %u: %.160s", v, detail.message);
     }
     return MLOD_OK;
+}
+
+/* Which views this update skips, after mlod__check_cut_params: those whose
+   view (every byte), tree (the same object, revision and arrays) and
+   epsilon are those of the committed list, when that list is exact (the
+   basic cut).  An update of such a view would give the same list: basic
+   and incremental updates give the basic cut, and a lazy update makes no
+   move on it (it is a partition of valid nodes and oversize leaves with
+   no sibling pair under a valid parent).  Sets view_done[v] to
+   MLOD__SKIPPED for them and 0 for the others; returns their count. */
+static uint32_t mlod__skip_views(mlod_cut *cut, const mlod_tree *tree, const mlod_cut_params *params)
+{
+    uint32_t v, skipped = 0;
+    int same = cut->seen_tree == tree && cut->tree_nodes == tree->node_count && cut->seen_revision == tree->revision &&
+               cut->seen_spheres == tree->spheres && cut->seen_cones == tree->cones &&
+               cut->seen_epsilon == params->epsilon;
+    for (v = 0; v < cut->view_count; v++) {
+        /* coarse == 0 follows from MLOD__EXACT; tested again, as the
+           rounds end only once no view holds a coarse entry */
+        int skip = same && cut->view_done[v] && (cut->known[v] & MLOD__EXACT) && cut->stats[0][v].coarse == 0;
+        cut->view_done[v] = (uint8_t)(skip ? MLOD__SKIPPED : 0);
+        skipped += (uint32_t)skip;
+    }
+    return skipped;
+}
+
+/* A successful update's record of what its lists were computed for. */
+static void mlod__remember_views(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+                                 const mlod_cut_params *params)
+{
+    uint32_t v;
+    memcpy(cut->seen, views, cut->view_count * sizeof(mlod_view));
+    for (v = 0; v < cut->view_count; v++) {
+        const mlod__view_stats *s = &cut->stats[0][v];
+        /* lazy: a view that made no move in this call (its first round
+           evaluated every entry and every pair's parent afresh) */
+        int exact = params->mode != MLOD_CUT_LAZY || (s->steps == 0 && s->coarse == 0);
+        cut->known[v] = (uint8_t)(MLOD__SEEN | (exact ? MLOD__EXACT : 0u));
+    }
+    cut->seen_tree = tree;
+    cut->seen_revision = tree->revision;
+    cut->seen_spheres = tree->spheres;
+    cut->seen_cones = tree->cones;
+    cut->seen_epsilon = params->epsilon;
 }
 
 MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
@@ -3897,12 +4026,18 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
 {
     mlod__cut_job job;
     mlod__list *in, *out;
-    uint32_t v, round, tasks;
+    uint32_t v, round, tasks, skipped;
     uint64_t round_steps = 0; /* steps up to the last round */
     int from_root, idle = 0;
     const uint32_t *hint;
     mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
     if (res != MLOD_OK) return res;
+    skipped = mlod__skip_views(cut, tree, params);
+    if (skipped == cut->view_count) {
+        /* nothing changed: the lists stand, and nothing was evaluated */
+        for (v = 0; v < cut->view_count; v++) cut->stats[0][v].evaluated = cut->stats[0][v].steps = 0;
+        return mlod__succeed(error);
+    }
     from_root = params->mode == MLOD_CUT_BASIC || cut->tree_nodes != tree->node_count;
     /* a basic cut's first round is sized by the previous cut of the tree */
     hint = params->mode == MLOD_CUT_BASIC && cut->tree_nodes == tree->node_count ? cut->lists[cut->committed].count : NULL;
@@ -3923,7 +4058,14 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
             in->count[v] = 1;
         }
     }
-    for (v = 0; v < cut->view_count; v++) cut->stats[1][v].coarse = 0;
+    for (v = 0; v < cut->view_count; v++) {
+        if (cut->view_done[v] == MLOD__SKIPPED) { /* its counts, with no work */
+            cut->stats[1][v] = cut->stats[0][v];
+            cut->stats[1][v].evaluated = cut->stats[1][v].steps = 0;
+        } else {
+            cut->stats[1][v].coarse = 0;
+        }
+    }
     for (round = 0;; round++) {
         uint32_t coarse = 0;
         uint64_t steps = 0;
@@ -3936,10 +4078,11 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         job.merge = params->mode == MLOD_CUT_INCREMENTAL && round == 0 && !from_root;
         job.in = in;
         job.out = out;
+        job.done_in = round == 0 ? &cut->lists[cut->committed] : in;
         if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, params->parallel, &tasks))
             goto out_of_memory;
         mlod__run(params->parallel, tasks, mlod__segment_task, &job);
-        if (!mlod__place_output(cut, in, out)) goto out_of_memory;
+        if (!mlod__place_output(cut, job.done_in, out)) goto out_of_memory;
         mlod__run(params->parallel, mlod__view_chunks(cut), mlod__join_task, &job);
         in = out;
         for (v = 0; v < cut->view_count; v++) {
@@ -3950,6 +4093,11 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         idle = steps == round_steps;
         round_steps = steps;
     }
+    if (skipped) {
+        job.done_in = &cut->lists[cut->committed];
+        job.out = in;
+        mlod__run(params->parallel, mlod__view_chunks(cut), mlod__copy_skipped_task, &job);
+    }
     {
         mlod__view_stats *t = cut->stats[0];
         cut->stats[0] = cut->stats[1];
@@ -3957,6 +4105,7 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     }
     cut->committed = (int)(in - cut->lists);
     cut->tree_nodes = tree->node_count;
+    mlod__remember_views(cut, tree, views, params);
     mlod__work_end(cut, 1);
     return mlod__succeed(error);
 out_of_memory:

@@ -11,7 +11,12 @@
      documented formulas in long double;
    - incremental == basic frame after frame on a deforming mesh; lazy is a
      partition, moves at most lazy_steps edges, and converges;
-   - identical results for any parallel hook and thread count. */
+   - identical results for any parallel hook and thread count;
+   - unchanged views are skipped: a view whose view bytes, tree (object and
+     revision) and epsilon did not change, and whose cut was exact, is not
+     evaluated and keeps its list (checked against the reference); any
+     change (one byte, epsilon, a refit, another tree, a reset) recomputes
+     it, and a lazy cut still converging is never skipped. */
 #define MANYLODS_IMPLEMENTATION
 #define MANYLODS_PTHREADS
 #include "../manylods.h"
@@ -1428,6 +1433,362 @@ static void test_restart(void)
     scene_free(&s);
 }
 
+/* ------------------------------------------ unchanged views are skipped */
+
+/* An update skips a view whose view (every byte), tree (the same object,
+   not refitted since) and epsilon are those of the previous update, when
+   that update left its cut exact; everything else is computed as before.
+   The results are checked against the brute-force reference, so a skip
+   that kept a stale list fails the reference as well as the counts. */
+#define SKIP_NV 10
+
+typedef struct skip_copy {
+    mlod_cut_view cv[SKIP_NV];
+    uint32_t *nodes[SKIP_NV];
+    uint8_t *status[SKIP_NV];
+} skip_copy;
+
+static void skip_copy_take(skip_copy *c, const mlod_cut *cut)
+{
+    uint32_t v;
+    for (v = 0; v < SKIP_NV; v++) {
+        c->cv[v] = mlod_cut_get(cut, v);
+        c->nodes[v] = (uint32_t *)realloc(c->nodes[v], sizeof(uint32_t) * (c->cv[v].count + 1));
+        c->status[v] = (uint8_t *)realloc(c->status[v], c->cv[v].count + 1);
+        if (c->cv[v].count) {
+            memcpy(c->nodes[v], c->cv[v].nodes, sizeof(uint32_t) * c->cv[v].count);
+            memcpy(c->status[v], c->cv[v].status, c->cv[v].count);
+        }
+        c->cv[v].nodes = c->nodes[v];
+        c->cv[v].status = c->status[v];
+    }
+}
+
+static void skip_copy_free(skip_copy *c)
+{
+    uint32_t v;
+    for (v = 0; v < SKIP_NV; v++) {
+        free(c->nodes[v]);
+        free(c->status[v]);
+    }
+}
+
+/* Views whose lists (or counts by status) differ from the copy's. */
+static uint32_t skip_copy_differs(const skip_copy *c, const mlod_cut *cut)
+{
+    uint32_t v, n = 0;
+    for (v = 0; v < SKIP_NV; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        n += !tu_same_cut(&cv, &c->cv[v]);
+    }
+    return n;
+}
+
+/* Bit v set: view v was evaluated (evaluated > 0) in the last update. */
+static uint32_t skip_evaluated(const mlod_cut *cut)
+{
+    uint32_t v, mask = 0;
+    for (v = 0; v < SKIP_NV; v++)
+        if (mlod_cut_get(cut, v).evaluated > 0) mask |= 1u << v;
+    return mask;
+}
+
+/* An update, then skip_evaluated; all bits set when the update fails. */
+static uint32_t skip_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views, const mlod_cut_params *p)
+{
+    return mlod_cut_update(cut, tree, views, p, NULL) == MLOD_OK ? skip_evaluated(cut) : ~0u;
+}
+
+static uint64_t skip_steps(const mlod_cut *cut)
+{
+    uint32_t v;
+    uint64_t steps = 0;
+    for (v = 0; v < SKIP_NV; v++) steps += mlod_cut_get(cut, v).steps;
+    return steps;
+}
+
+typedef struct skip_env {
+    mlod_tree *tree;
+    tu_layout L, L_other; /* of tree, and of a tree of other leaves */
+    workspace w;
+    uint32_t bound; /* lazy calls that suffice to converge */
+} skip_env;
+
+/* Update; in lazy mode go on until a call makes no move (at most
+   env->bound calls).  Returns the calls made, 0 on failure. */
+static uint32_t skip_settle(const skip_env *env, mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+                            mlod_cut_params p)
+{
+    uint32_t calls = 0;
+    do {
+        if (mlod_cut_update(cut, tree, views, &p, NULL) != MLOD_OK) return 0;
+        calls++;
+    } while (p.mode == MLOD_CUT_LAZY && skip_steps(cut) != 0 && calls < env->bound);
+    return calls;
+}
+
+/* Every view of the cut against the reference (basic cut of views at eps). */
+static void skip_reference(skip_env *env, const mlod_tree *tree, const mlod_view *views, float eps, const mlod_cut *cut,
+                           const char *what)
+{
+    tally t;
+    memset(&t, 0, sizeof t);
+    check_against_reference(tree, tree->leaf_count == env->L.leaves ? &env->L : &env->L_other, views, 0, SKIP_NV, eps,
+                            cut, &env->w, &t);
+    tally_report(&t, what);
+}
+
+static void skip_mode(skip_env *env, mlod_tree *twin, mlod_tree *other, const mlod_mesh *rest, const mlod_view *base,
+                      mlod_cut_mode mode, uint32_t lazy_steps)
+{
+    static const char *names[4] = {"basic", "incremental", "lazy q=1", "lazy q=3"};
+    const uint32_t all = (1u << SKIP_NV) - 1;
+    mlod_cut_params p = params(mode, 1.5f, lazy_steps, NULL);
+    mlod_view views[SKIP_NV], bad[SKIP_NV];
+    mlod_cut *cut = NULL;
+    skip_copy before;
+    uint64_t revision;
+    uint32_t v, mask;
+    char what[160];
+    const char *m = names[mode + (lazy_steps > 1)];
+    memset(&before, 0, sizeof before);
+    memcpy(views, base, sizeof views); /* the same bytes at another address */
+    CHECK(mlod_cut_create(SKIP_NV, NULL, &cut, NULL) == MLOD_OK, "skip %s: create", m);
+    if (!cut) return;
+    CHECK(skip_settle(env, cut, env->tree, base, p) > 0, "skip %s: first update", m);
+    skip_copy_take(&before, cut);
+
+    /* 1. the same views (a copy), tree and epsilon: nothing evaluated, the same lists */
+    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: second update", m);
+    CHECK(skip_evaluated(cut) == 0 && skip_steps(cut) == 0,
+          "skip %s: an update of unchanged views evaluated views 0x%x (%llu steps)", m, skip_evaluated(cut),
+          (unsigned long long)skip_steps(cut));
+    CHECK(skip_copy_differs(&before, cut) == 0, "skip %s: %u unchanged views' lists changed", m,
+          skip_copy_differs(&before, cut));
+    snprintf(what, sizeof what, "skip %s, unchanged views", m);
+    skip_reference(env, env->tree, views, p.epsilon, cut, what);
+
+    /* 2. one byte of one view, in a field its kind does not read: that view
+       alone is evaluated, and its cut is the same */
+    views[1].fov_y += 1.0f; /* view 1 is a paraboloid */
+    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: update", m);
+    mask = skip_evaluated(cut);
+    CHECK(mask == 1u << 1, "skip %s, one unread byte of view 1 changed: views 0x%x evaluated, expected 0x2", m, mask);
+    CHECK(skip_copy_differs(&before, cut) == 0, "skip %s, an unread byte changed: %u lists changed", m,
+          skip_copy_differs(&before, cut));
+
+    /* 3. one view moves: that view alone is evaluated; in lazy mode it
+       keeps converging while the others stay skipped */
+    views[2].position[0] += 0.05f;
+    views[2].position[2] -= 0.04f;
+    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: update", m);
+    mask = skip_evaluated(cut);
+    CHECK(mask == 1u << 2, "skip %s, view 2 moved: views 0x%x evaluated, expected 0x4", m, mask);
+    if (mode == MLOD_CUT_LAZY) {
+        uint32_t calls = 1, others = 0;
+        while (mlod_cut_get(cut, 2).steps != 0 && calls < env->bound) {
+            CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip lazy: update");
+            calls++;
+            mask = skip_evaluated(cut);
+            others |= mask & ~(1u << 2);
+            CHECK(mask & (1u << 2), "skip lazy: view 2 moved in the call before but was not evaluated (call %u)",
+                  calls);
+        }
+        CHECK(others == 0, "skip lazy, view 2 converging: views 0x%x evaluated, which did not change", others);
+        mask = skip_update(cut, env->tree, views, &p);
+        CHECK(mask == 0, "skip lazy: after view 2 converged (%u calls), views 0x%x still evaluated", calls, mask);
+    }
+    snprintf(what, sizeof what, "skip %s, view 2 moved", m);
+    skip_reference(env, env->tree, views, p.epsilon, cut, what);
+    for (v = 0; v < SKIP_NV; v++)
+        if (v != 2) {
+            mlod_cut_view cv = mlod_cut_get(cut, v);
+            CHECK(tu_same_cut(&cv, &before.cv[v]), "skip %s: view %u's list changed when only view 2 moved", m, v);
+        }
+    skip_copy_take(&before, cut);
+
+    /* 4. a refit to the same positions: a new revision, every view evaluated */
+    revision = env->tree->revision;
+    CHECK(mlod_refit_mesh(env->tree, rest, NULL, NULL) == MLOD_OK, "skip %s: refit", m);
+    CHECK(env->tree->revision == revision + 1, "skip %s: a refit took the revision from %llu to %llu", m,
+          (unsigned long long)revision, (unsigned long long)env->tree->revision);
+    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: update", m);
+    mask = skip_evaluated(cut);
+    CHECK(mask == all, "skip %s, after a refit to the same positions: views 0x%x evaluated, expected all", m, mask);
+    CHECK(skip_settle(env, cut, env->tree, views, p) > 0, "skip %s: update", m);
+    snprintf(what, sizeof what, "skip %s, after a refit to the same positions", m);
+    skip_reference(env, env->tree, views, p.epsilon, cut, what);
+
+    /* 5. another epsilon, then the same again */
+    p.epsilon = 2.5f;
+    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: update", m);
+    mask = skip_evaluated(cut);
+    CHECK(mask == all, "skip %s, epsilon 1.5 -> 2.5: views 0x%x evaluated, expected all", m, mask);
+    CHECK(skip_settle(env, cut, env->tree, views, p) > 0, "skip %s: update", m);
+    snprintf(what, sizeof what, "skip %s, epsilon 2.5", m);
+    skip_reference(env, env->tree, views, p.epsilon, cut, what);
+    mask = skip_update(cut, env->tree, views, &p);
+    CHECK(mask == 0, "skip %s, epsilon 2.5 twice: views 0x%x evaluated", m, mask);
+
+    /* 6. a failed update (a bad view) leaves what the cut knows as it was */
+    memcpy(bad, views, sizeof bad);
+    bad[4].up[0] = bad[4].forward[0], bad[4].up[1] = bad[4].forward[1], bad[4].up[2] = bad[4].forward[2];
+    CHECK(mlod_cut_update(cut, env->tree, bad, &p, NULL) == MLOD_ERROR_BAD_VIEW, "skip %s: a bad view is refused", m);
+    mask = skip_update(cut, env->tree, views, &p);
+    CHECK(mask == 0, "skip %s, after a failed update: views 0x%x evaluated", m, mask);
+
+    /* 7. mlod_cut_reset */
+    mlod_cut_reset(cut);
+    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: update", m);
+    mask = skip_evaluated(cut);
+    CHECK(mask == all, "skip %s, after mlod_cut_reset: views 0x%x evaluated, expected all", m, mask);
+    CHECK(skip_settle(env, cut, env->tree, views, p) > 0, "skip %s: update", m);
+
+    /* 8. another tree: the same content and revision in another object,
+       another node count, and back */
+    while (twin->revision < env->tree->revision) mlod_refit_mesh(twin, rest, NULL, NULL);
+    CHECK(twin->revision == env->tree->revision, "skip %s: the twin's revision %llu, the tree's %llu", m,
+          (unsigned long long)twin->revision, (unsigned long long)env->tree->revision);
+    {
+        mlod_tree *trees[3];
+        const char *tree_names[3] = {"an identical tree", "a tree of another node count", "the first tree again"};
+        int k;
+        trees[0] = twin;
+        trees[1] = other;
+        trees[2] = env->tree;
+        for (k = 0; k < 3; k++) {
+            CHECK(mlod_cut_update(cut, trees[k], views, &p, NULL) == MLOD_OK, "skip %s: update", m);
+            mask = skip_evaluated(cut);
+            CHECK(mask == all, "skip %s, %s: views 0x%x evaluated, expected all", m, tree_names[k], mask);
+            CHECK(skip_settle(env, cut, trees[k], views, p) > 0, "skip %s: update", m);
+            snprintf(what, sizeof what, "skip %s, %s", m, tree_names[k]);
+            skip_reference(env, trees[k], views, p.epsilon, cut, what);
+        }
+    }
+    skip_copy_free(&before);
+    mlod_cut_destroy(cut);
+}
+
+/* A lazy cut that has not converged is not skipped: from the root, call
+   after call with the same views, a view is evaluated exactly when it
+   moved in the call before. */
+static void skip_lazy_converging(skip_env *env, const mlod_view *views)
+{
+    mlod_cut_params p = params(MLOD_CUT_LAZY, 1.5f, 1, NULL);
+    mlod_cut *cut = NULL;
+    uint64_t moved[SKIP_NV];
+    uint32_t v, call, kept = 0, skipped = 0, wrong = 0, converged = 0;
+    char first[160] = "";
+    CHECK(mlod_cut_create(SKIP_NV, NULL, &cut, NULL) == MLOD_OK &&
+              mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK,
+          "skip lazy from the root: update");
+    if (!cut) return;
+    for (call = 2; call <= env->bound && !converged; call++) {
+        for (v = 0; v < SKIP_NV; v++) moved[v] = mlod_cut_get(cut, v).steps;
+        mlod_cut_update(cut, env->tree, views, &p, NULL);
+        for (v = 0; v < SKIP_NV; v++) {
+            int evaluated = mlod_cut_get(cut, v).evaluated > 0;
+            kept += moved[v] != 0;
+            skipped += moved[v] == 0;
+            if (evaluated != (moved[v] != 0) && !wrong++)
+                snprintf(first, sizeof first, "call %u, view %u: %llu moves in the call before, evaluated %llu", call,
+                         v, (unsigned long long)moved[v], (unsigned long long)mlod_cut_get(cut, v).evaluated);
+        }
+        if (skip_steps(cut) == 0) converged = call;
+    }
+    CHECK(wrong == 0,
+          "skip lazy from the root: %u view-calls evaluated where they should not or the reverse; first: %s", wrong,
+          first);
+    CHECK(converged != 0 && kept > SKIP_NV && skipped > SKIP_NV,
+          "skip lazy from the root: converged after %u calls, %u view-calls still moving, %u settled", converged, kept,
+          skipped);
+    skip_reference(env, env->tree, views, p.epsilon, cut, "skip lazy from the root, converged");
+    printf("  skip: lazy from the root converged after %u calls (%u view-calls moving, %u skipped)\n", converged, kept,
+           skipped);
+    mlod_cut_destroy(cut);
+}
+
+/* Skipping does not depend on the thread count or task order: a sequence of
+   updates in every mode, some views changing, gives the same lists and the
+   same evaluated and steps counts under every hook. */
+static void skip_threads(const skip_env *env, const mlod_view *base)
+{
+    mlod_pool *pools[3];
+    mlod_parallel hooks[6];
+    mlod_cut *cuts[6];
+    mlod_view views[SKIP_NV];
+    uint32_t h, k, v, mismatches[6] = {0, 0, 0, 0, 0, 0};
+    memset(hooks, 0, sizeof hooks);
+    tu_hooks(pools, hooks + 1);
+    for (h = 0; h < 6; h++) mlod_cut_create(SKIP_NV, NULL, &cuts[h], NULL);
+    memcpy(views, base, sizeof views);
+    for (k = 0; k < 9; k++) {
+        mlod_cut_mode mode = (mlod_cut_mode)(k / 3);
+        if (k % 3 == 1) views[k % SKIP_NV].position[1] += 0.03f; /* one view moves, the others stay */
+        for (h = 0; h < 6; h++) {
+            mlod_cut_params p = params(mode, 1.5f, 1, h == 0 ? NULL : &hooks[h]);
+            if (h > 0 && h < 4 && !pools[h - 1]) continue;
+            CHECK(mlod_cut_update(cuts[h], env->tree, views, &p, NULL) == MLOD_OK, "skip threads: update");
+            for (v = 0; h > 0 && v < SKIP_NV; v++) {
+                mlod_cut_view a = mlod_cut_get(cuts[0], v), b = mlod_cut_get(cuts[h], v);
+                mismatches[h] += !tu_same_cut(&a, &b) || a.evaluated != b.evaluated || a.steps != b.steps;
+            }
+        }
+    }
+    for (h = 1; h < 6; h++)
+        CHECK(mismatches[h] == 0, "skip threads: hook %u differs from no hook in %u view-updates", h, mismatches[h]);
+    for (h = 0; h < 6; h++) mlod_cut_destroy(cuts[h]);
+    for (h = 0; h < 3; h++) mlod_pool_destroy(pools[h]);
+}
+
+static void test_skip(void)
+{
+    scene_mesh s;
+    mlod_mesh rest;
+    mlod_tree *twin, *other;
+    mlod_view views[SKIP_NV];
+    skip_env env;
+    uint64_t rng = 404;
+    double c[3] = {0, 0, 0};
+    uint32_t v, mode;
+    scene_torus(&s, 1.0f, 0.35f, 24, 12);
+    rest = tu_mesh(&s);
+    env.tree = tu_build(&s, 3000, 9, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
+    twin = tu_build(&s, 3000, 9, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
+    other = tu_build(&s, 2000, 9, MLOD_ATTR_CONE);
+    CHECK(env.tree && twin && other, "skip: builds");
+    if (!env.tree || !twin || !other) return;
+    CHECK(env.tree->revision == 0, "skip: a new tree has revision %llu", (unsigned long long)env.tree->revision);
+    tu_layout_init(&env.L, env.tree->leaf_count);
+    tu_layout_init(&env.L_other, other->leaf_count);
+    ws_init(&env.w, env.tree->node_count);
+    env.bound = 2 * env.L.max_depth + 2;
+    for (v = 0; v < SKIP_NV; v++) {
+        views[v] = tu_random_view(&rng, (mlod_view_kind)(v % 5), c, 1.4);
+        views[v].width = views[v].kind == MLOD_VIEW_CUBE ? 48 : 32;
+        views[v].height = views[v].kind == MLOD_VIEW_CUBE ? 32 : 24;
+    }
+    {
+        /* a failed refit leaves the revision as it was */
+        mlod_mesh wrong = rest;
+        uint64_t revision = env.tree->revision;
+        wrong.index_count -= 3; /* one triangle fewer than at build */
+        CHECK(mlod_refit_mesh(env.tree, &wrong, NULL, NULL) == MLOD_ERROR_MISMATCH && env.tree->revision == revision,
+              "skip: a refused refit changed the revision to %llu", (unsigned long long)env.tree->revision);
+    }
+    for (mode = 0; mode < 4; mode++) /* basic, incremental, lazy with 1 and 3 steps */
+        skip_mode(&env, twin, other, &rest, views, (mlod_cut_mode)(mode < 3 ? mode : 2), mode < 3 ? 1 : 3);
+    skip_lazy_converging(&env, views);
+    skip_threads(&env, views);
+    ws_free(&env.w);
+    tu_layout_free(&env.L);
+    tu_layout_free(&env.L_other);
+    mlod_tree_destroy(env.tree);
+    mlod_tree_destroy(twin);
+    mlod_tree_destroy(other);
+    scene_free(&s);
+}
+
 /* --------------------------------------------------------------- threads */
 
 static pthread_t main_thread;
@@ -1590,6 +1951,7 @@ int main(void)
     TIMED(test_monotonicity());
     TIMED(test_motion());
     TIMED(test_threads());
+    TIMED(test_skip());
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
     return rc;
