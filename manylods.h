@@ -227,9 +227,9 @@
      change; one byte of the view, epsilon, a refit, another tree or
      mlod_cut_reset recomputes the view as before.  A skipped view costs a
      comparison of its bytes (about 4 ns), plus a copy of its list while
-     other views change.  A tree is known by its address and revision: use
-     mlod_cut_reset before a cut meets a tree created after the tree it
-     last used was destroyed (the new one may have the same address).
+     other views change.  A tree is known by its address and revision,
+     which starts at a number no earlier tree of the process had: a tree
+     built where a destroyed one stood is another tree to the cut.
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
@@ -486,10 +486,11 @@ typedef struct mlod_tree {
     size_t bytes;                /* everything the tree allocated */
     size_t bytes_per_node;       /* bytes of the per-node arrays, per node */
     mlod_allocator allocator;
-    uint64_t revision;           /* 0 at build; every mlod_refit_* that succeeds adds 1.  A cut
-                                    knows an unchanged tree by its address and revision (THE
-                                    CUT): code that writes the arrays otherwise adds 1 itself
-                                    (after mlodvk_tree_download too) */
+    uint64_t revision;           /* at build, a number no other tree of this process started
+                                    from (a multiple of 2^32); every mlod_refit_* that succeeds
+                                    and mlodvk_tree_download add 1.  A cut knows an unchanged tree
+                                    by its address and revision (THE CUT): code that writes the
+                                    arrays otherwise adds 1 itself */
 } mlod_tree;
 
 /* Sizing, before a build: the peak bytes mlod_build_mesh takes from its
@@ -1624,6 +1625,38 @@ static uint64_t mlod__tree_bytes(uint64_t leaves, uint32_t attributes, int mesh,
     return bytes;
 }
 
+/* A 64-bit mixing function (splitmix64's finaliser). */
+static uint64_t mlod__mix64(uint64_t x)
+{
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ull;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebull;
+    x ^= x >> 31;
+    return x;
+}
+
+/* Trees built so far by this copy of the implementation. */
+static uint64_t mlod__trees_built;
+
+/* A tree's first revision: (a serial number) x 2^32, unique among the trees
+   this process builds, so that a cut never takes a new tree for a
+   destroyed one at the same address; refits count up from it.  The serial
+   mixes the counter's own address in, so copies of the implementation
+   (MANYLODS_STATIC) number differently.  Without atomics, two builds at
+   the same instant may share a number; both trees are then alive at once,
+   so at different addresses, and the counter never goes back. */
+static uint64_t mlod__first_revision(void)
+{
+    uint64_t n;
+#if defined(__GNUC__) || defined(__clang__)
+    n = __atomic_add_fetch(&mlod__trees_built, 1, __ATOMIC_RELAXED);
+#else
+    n = ++mlod__trees_built;
+#endif
+    return (n + mlod__mix64((uint64_t)(uintptr_t)&mlod__trees_built)) << 32;
+}
+
 /* A tree with every array its attributes need; NULL when out of memory. */
 static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, uint32_t attributes, int mesh,
                                     uint32_t triangles)
@@ -1635,6 +1668,7 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
     memset(t, 0, sizeof *t);
     t->allocator = *a;
     t->bytes = sizeof *t;
+    t->revision = mlod__first_revision();
     t->leaf_count = leaves;
     t->node_count = (uint32_t)nodes;
     t->attributes = attributes;
@@ -1707,15 +1741,6 @@ static void mlod__merge_all(mlod_tree *tree, const mlod_parallel *parallel)
 
 /* ------------------------------------------------------------ sampling -- */
 
-static uint64_t mlod__mix64(uint64_t x)
-{
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9ull;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebull;
-    x ^= x >> 31;
-    return x;
-}
 
 /* A uniform number in [0, 1) from (seed, stream, index). */
 static double mlod__hash01(uint64_t seed, uint64_t stream, uint64_t index)

@@ -280,7 +280,8 @@ MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh(mlodvk_context *context, mlodvk_tr
 MANYLODS_VK_DEF mlod_result mlodvk_refit_mesh_host(mlodvk_context *context, mlodvk_tree *vtree, const mlod_mesh *mesh,
                                                    mlod_error *error);
 /* Copy the device tree's spheres, cones and colours back into a CPU tree of
-   the same shape (after mlodvk_refit_mesh, for tools and tests). */
+   the same shape (after mlodvk_refit_mesh, for tools and tests); adds 1 to
+   tree->revision, so that CPU cuts recompute every view. */
 MANYLODS_VK_DEF mlod_result mlodvk_tree_download(mlodvk_context *context, const mlodvk_tree *vtree, mlod_tree *tree,
                                                  mlod_error *error);
 
@@ -2046,6 +2047,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_tree_download(mlodvk_context *ctx, const mlod
         ranges[n++].dst = tree->colors;
     }
     res = mlodvk__download(ctx, ranges, n, error);
+    tree->revision++; /* its arrays changed (or may have, on failure): cuts recompute every view */
     return res == MLOD_OK ? mlodvk__ok(error) : res;
 }
 

@@ -1646,9 +1646,8 @@ static void skip_mode(skip_env *env, mlod_tree *twin, mlod_tree *other, const ml
 
     /* 8. another tree: the same content and revision in another object,
        another node count, and back */
-    while (twin->revision < env->tree->revision) mlod_refit_mesh(twin, rest, NULL, NULL);
-    CHECK(twin->revision == env->tree->revision, "skip %s: the twin's revision %llu, the tree's %llu", m,
-          (unsigned long long)twin->revision, (unsigned long long)env->tree->revision);
+    mlod_refit_mesh(twin, rest, NULL, NULL);
+    twin->revision = env->tree->revision; /* as if a user wrote it: only the address tells them apart */
     {
         mlod_tree *trees[3];
         const char *tree_names[3] = {"an identical tree", "a tree of another node count", "the first tree again"};
@@ -1741,6 +1740,42 @@ static void skip_threads(const skip_env *env, const mlod_view *base)
     for (h = 0; h < 3; h++) mlod_pool_destroy(pools[h]);
 }
 
+/* A tree destroyed and built again (malloc often hands back the same
+   address) is another tree to the cut: every view is evaluated. */
+static void skip_rebuilt(const scene_mesh *s, const mlod_view *views)
+{
+    mlod_cut_params p;
+    mlod_cut *cut = NULL;
+    mlod_tree *tree = tu_build(s, 2500, 3, MLOD_ATTR_CONE);
+    const void *first_address = tree;
+    uint64_t first_revision = tree ? tree->revision : 0;
+    int round;
+    memset(&p, 0, sizeof p);
+    p.mode = MLOD_CUT_INCREMENTAL;
+    p.epsilon = 2.0f;
+    CHECK(tree && mlod_cut_create(SKIP_NV, NULL, &cut, NULL) == MLOD_OK, "skip, rebuilt tree: set-up");
+    if (!tree || !cut) {
+        mlod_tree_destroy(tree);
+        return;
+    }
+    for (round = 0; round < 3; round++) { /* the same tree twice, then rebuilt */
+        uint32_t mask;
+        CHECK(mlod_cut_update(cut, tree, views, &p, NULL) == MLOD_OK, "skip, rebuilt tree: update");
+        mask = skip_evaluated(cut);
+        CHECK(mask == (round == 1 ? 0u : (1u << SKIP_NV) - 1), "skip, rebuilt tree, round %d (%s address): views 0x%x evaluated",
+              round, (const void *)tree == first_address ? "the same" : "another", mask);
+        if (round == 1) {
+            mlod_tree_destroy(tree);
+            tree = tu_build(s, 2500, 3, MLOD_ATTR_CONE);
+            if (!tree) break;
+            CHECK(tree->revision != first_revision, "skip, rebuilt tree: the revision %llx came back",
+                  (unsigned long long)first_revision);
+        }
+    }
+    mlod_cut_destroy(cut);
+    mlod_tree_destroy(tree);
+}
+
 static void test_skip(void)
 {
     scene_mesh s;
@@ -1758,7 +1793,12 @@ static void test_skip(void)
     other = tu_build(&s, 2000, 9, MLOD_ATTR_CONE);
     CHECK(env.tree && twin && other, "skip: builds");
     if (!env.tree || !twin || !other) return;
-    CHECK(env.tree->revision == 0, "skip: a new tree has revision %llu", (unsigned long long)env.tree->revision);
+    /* every tree starts from its own revision, a multiple of 2^32 */
+    CHECK(env.tree->revision % 4294967296u == 0 && twin->revision % 4294967296u == 0 &&
+              other->revision % 4294967296u == 0 && env.tree->revision != twin->revision &&
+              twin->revision != other->revision && env.tree->revision != other->revision,
+          "skip: new trees start from revisions %llx, %llx, %llx", (unsigned long long)env.tree->revision,
+          (unsigned long long)twin->revision, (unsigned long long)other->revision);
     tu_layout_init(&env.L, env.tree->leaf_count);
     tu_layout_init(&env.L_other, other->leaf_count);
     ws_init(&env.w, env.tree->node_count);
@@ -1780,6 +1820,7 @@ static void test_skip(void)
         skip_mode(&env, twin, other, &rest, views, (mlod_cut_mode)(mode < 3 ? mode : 2), mode < 3 ? 1 : 3);
     skip_lazy_converging(&env, views);
     skip_threads(&env, views);
+    skip_rebuilt(&s, views);
     ws_free(&env.w);
     tu_layout_free(&env.L);
     tu_layout_free(&env.L_other);
