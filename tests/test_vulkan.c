@@ -79,9 +79,7 @@ static void make_views(uint64_t seed, int kind, const double *c, double R, mlod_
     uint32_t v;
     for (v = 0; v < count; v++) {
         mlod_view_kind k = kind < 0 ? (mlod_view_kind)(v % VIEW_KINDS) : (mlod_view_kind)kind;
-        /* a cube map is drawn as a perspective view (near, far) made a cube */
-        views[v] = tu_random_view(&rng, k == MLOD_VIEW_CUBE ? MLOD_VIEW_PERSPECTIVE : k, c, R);
-        views[v].kind = k;
+        views[v] = tu_random_view(&rng, k, c, R);
         views[v].width = 8 + views[v].width / 4; /* small tiles: deep cuts stay cheap */
         views[v].height = 8 + views[v].height / 4;
         fit_tile(&views[v]);
