@@ -46,6 +46,8 @@
                      mlod_allocator struct overrides them.
      MANYLODS_ASSERT(x)   internal consistency checks (default: assert).
                      Never used on user input: bad input returns an error.
+     MANYLODS_NO_SIMD     no vector code (the cut's float filter runs on
+                     scalars); the same results either way.
      MANYLODS_DEF    what every public declaration and definition starts
                      with (default: extern, extern "C" in C++, or static
                      with MANYLODS_STATIC), e.g. to add a visibility or
@@ -63,8 +65,10 @@
        -ffp-contract=fast: the same results with gcc, and with clang on
          x86, where the implementation is compiled for its target without
          FMA instructions (and its public functions are never inlined into
-         the caller); clang on other targets (AArch64) fuses whatever a
-         pragma says and defines no macro to tell: do not use it there.
+         the caller), except the cut's vector filter, whose decisions are
+         exact fused or not (THE CUT); clang on other targets (AArch64)
+         fuses whatever a pragma says and defines no macro to tell: do not
+         use it there.
        -funsafe-math-optimizations, -fassociative-math, -freciprocal-math,
          -fno-signed-zeros: refused with an #error under gcc (which defines
          macros for them); harmless under clang (which does not), where the
@@ -230,6 +234,19 @@
      other views change.  A tree is known by its address and revision,
      which starts at a number no earlier tree of the process had: a tree
      built where a destroyed one stood is another tree to the cut.
+     Decisions are exact, and fast: each node-view first goes through a
+     float filter (the criterion in float, x = centre - eye subtracted in
+     double, with margins proven from its rounding errors: 2^-12 relative
+     on the diameter, 2^-20 of the terms' magnitudes on each plane; the
+     proof is beside mlod__fast_status) that decides valid, invalid or
+     culled only where its margin makes the exact path's answer certain,
+     and leaves the rest (about 0.2 % of node-views in tests/test_cut.c,
+     all of them at an epsilon on the node's own criterion) to the exact
+     double path.  The splitting search classifies up to four nodes'
+     children at once, in vector lanes where the build has them: 8 lanes
+     with AVX (-mavx, -mavx2, -march=native on such a processor), 4 with
+     SSE2 (every x86-64 build); MANYLODS_NO_SIMD turns them off.  Every
+     build gives the same cuts, bit for bit.
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
@@ -2692,15 +2709,36 @@ static inline int mlod__outside(const double *p, const float *sphere)
 
 /* --------------------------------------------------------------- views -- */
 
+/* The float filter's copy of one sub-projection (see mlod__fast_status):
+   the axis w, the planes as n0 n1 n2 l k' with k' = k - n.eye (so that
+   they apply to x = centre - eye) and err[] bounding the rounding of k'
+   (plus 2^-100 for float underflow), and the thresholds on the diameter in
+   projection units, S / epsilon times 1 + 2^-12 (valid) and 1 - 2^-12
+   (invalid). */
+typedef struct mlod__fsub {
+    float w[3], valid, invalid;
+    int kind, plane_count;
+    float planes[6][5], err[6];
+} mlod__fsub;
+
+typedef struct mlod__fview {
+    int ok; /* 0: every node-view takes the exact path */
+    int sub_count, backfaces, ortho;
+    double eye[3];
+    mlod__fsub subs[MLOD_VIEW_MAX_SUBS];
+} mlod__fview;
+
 /* A prepared view: its frame (the one representation, see mlod_view_frame)
    and, for the hot paths, the sub-projection count, the back-face flag and
-   each sub-projection's kind and plane count as integers. */
+   each sub-projection's kind and plane count as integers; the float
+   filter's copy when mlod__fast_prepare made one. */
 typedef struct mlod__pview {
     int sub_count, backfaces;
     int kind[MLOD_VIEW_MAX_SUBS];
     int plane_count[MLOD_VIEW_MAX_SUBS];
     uint32_t columns[MLOD_VIEW_MAX_SUBS][2], rows[MLOD_VIEW_MAX_SUBS][2]; /* each sub-tile's pixels, [begin, end) */
     mlod_view_frame f;
+    mlod__fview fast;
 } mlod__pview;
 
 static int mlod__finite_positive(float x) { return isfinite(x) && x > 0.0f; }
@@ -3118,6 +3156,416 @@ MLOD__PUBLIC double mlod_criterion(const mlod_tree *tree, uint32_t node, const m
 }
 
 
+/* ------------------------------------------------------- float filter -- */
+
+/* The cut's decisions in float, proven to agree with the exact path
+   (THE CUT, "Fast paths decide exactly").  mlod__fast_status gives the
+   status mlod__classify would give (MLOD_STATUS_COARSE standing for
+   "not valid"), or MLOD__UNSURE when it cannot prove it; only then does
+   the exact path run.  The proof, with u = 2^-24 (float rounding):
+
+   - x = centre - eye is subtracted in double and rounded to float, so
+     each component is within u |x_k| (the eye may be far from the origin
+     and x small).  Guards keep every float value normal and finite:
+     2^-40 <= |x|^2 <= 2^80, r = 0 or 2^-40 <= r <= 2^40, the thresholds
+     within [2^-40, 2^40] (else the view has no filter); whatever fails a
+     guard is UNSURE.  Then x.w errs by at most 4.01 u |x| (|w| = 1),
+     |x|^2 by 5.01 u |x|^2.
+   - Planes: s = n.x + l r - k' errs by at most 7.01 u M, M = |n0 x0| +
+     |n1 x1| + |n2 x2| + l r + |k'|, plus err (k' rounded in double; 2^-100
+     for the plane's components and k' rounded to float below 2^-126,
+     times |x_k| <= 2^40); |s| > 2^-20 M + err decides.
+   - Diameters, with t^2 = |x|^2 - r^2 >= |x|^2 / 4 (so t errs by at most
+     13.6 u t): perspective 2 r t S / ((x.w - r)(x.w + r)) with
+     (x.w - r)^2 >= |x|^2 / 256: each factor errs by at most 65.3 u, the
+     two sides of 2 r t (S / eps) <= (x.w - r)(x.w + r) by 17 u and 132 u;
+     paraboloid 2 r S / (x.w + t) with (x.w + t)^2 >= |x|^2 / 256: the
+     denominator errs by 283 u; orthographic 2 r S: 3 u.  The thresholds'
+     margin 2^-12 = 4096 u exceeds every sum by 3700 u, far above the
+     exact path's own rounding (about 2^-45 relative under these guards):
+     a decided side is the exact path's side.
+   - Back faces (mlod__backfacing): sin a and cos a by their Taylor
+     polynomials to a^5 and a^6, within a^7 / 5040 + 32 u for a < pi/2;
+     Z1 = cos a t - sin a r and Z2 = axis.(eye - centre) + |axis| (sin a t
+     + cos a r) then err by at most (a^7/5040 + 28 u)(t + r) and
+     |axis| times that ((t, r) = (1, 0) orthographic; |x| <= t + r);
+     culled when Z1 > 0 and Z2 < 0, decided past (a^7/5040 + 40 u)(t + r).
+   The tests compare every decision with the exact path, at thresholds
+   placed exactly on node-views' criteria (tests/test_cut.c). */
+#define MLOD__UNSURE 0u
+#define MLOD__FAST_U (1.0f / 16777216.0f)
+
+/* Round a non-negative double up to a float. */
+static float mlod__float_above(double x)
+{
+    float f = (float)x;
+    return (double)f >= x ? f : nextafterf(f, INFINITY);
+}
+
+/* Fill pv->fast for the cut's epsilon (pv from mlod__view_prepare): no
+   filter (ok = 0) where a value leaves the guarded range. */
+static void mlod__fast_prepare(mlod__pview *pv, double epsilon)
+{
+    mlod__fview *fv = &pv->fast;
+    const double lo = 1.0 / 1099511627776.0, hi = 1099511627776.0; /* 2^-40, 2^40 */
+    int s, k, j;
+    fv->ok = 0;
+    fv->sub_count = pv->sub_count;
+    fv->backfaces = pv->backfaces;
+    fv->ortho = pv->kind[0] == MLOD_VIEW_ORTHOGRAPHIC;
+    for (k = 0; k < 3; k++) {
+        fv->eye[k] = pv->f.eye[k];
+        if (!(fabs(fv->eye[k]) <= 18446744073709551616.0)) return; /* 2^64: centre - eye rounds into float range */
+    }
+    for (s = 0; s < pv->sub_count; s++) {
+        const mlod_view_sub *sub = &pv->f.subs[s];
+        mlod__fsub *fs = &fv->subs[s];
+        double inv = sub->scale / epsilon;
+        if (!(inv >= lo && inv <= hi)) return;
+        fs->kind = pv->kind[s];
+        fs->plane_count = pv->plane_count[s];
+        fs->valid = (float)(inv * (1.0 + 1.0 / 4096.0));
+        fs->invalid = (float)(inv * (1.0 - 1.0 / 4096.0));
+        for (k = 0; k < 3; k++) fs->w[k] = (float)sub->forward[k];
+        for (j = 0; j < fs->plane_count; j++) {
+            const double *p = sub->planes[j];
+            double ne = 0.0, mag = fabs(p[3]), kp;
+            for (k = 0; k < 3; k++) {
+                ne += p[k] * fv->eye[k];
+                mag += fabs(p[k]) * fabs(fv->eye[k]);
+            }
+            kp = p[3] - ne;
+            if (!(fabs(kp) <= 1e30 && mag <= 1e30 && p[4] <= 1e30)) return; /* l >= |n_k| */
+            for (k = 0; k < 3; k++) fs->planes[j][k] = (float)p[k];
+            fs->planes[j][3] = (float)p[4];
+            fs->planes[j][4] = (float)kp;
+            fs->err[j] = mlod__float_above(mag * (1.0 / 281474976710656.0)) + 7.88860905e-31f; /* 2^-48, 2^-100 */
+        }
+    }
+    fv->ok = 1;
+}
+
+/* The back-face test of mlod__backfacing in float: 1 culled, 0 not,
+   -1 unsure.  x = centre - eye (float), t the tangent length, r the radius
+   ((t, r) = (1, 0) and x unused for an orthographic view, w its axis). */
+static int mlod__fast_backfacing(const mlod__fview *fv, const float *x, float t, float r, const float *cone)
+{
+    float a = cone[3], a2, sa, ca, away, len, e, m1, z1, z2;
+    /* no float lies between pi/2 and its float rounding: the same test as
+       the double one */
+    if (!(a < (float)(0.5 * MLOD__PI))) return 0;
+    if (!(a >= 0.0f)) return -1;
+    if (fv->ortho) {
+        const float *w = fv->subs[0].w;
+        away = -(cone[0] * w[0] + cone[1] * w[1] + cone[2] * w[2]);
+    } else {
+        away = -(cone[0] * x[0] + cone[1] * x[1] + cone[2] * x[2]);
+    }
+    len = sqrtf(cone[0] * cone[0] + cone[1] * cone[1] + cone[2] * cone[2]);
+    a2 = a * a;
+    sa = a * (1.0f - a2 * (1.0f / 6.0f - a2 * (1.0f / 120.0f)));
+    ca = 1.0f - a2 * (0.5f - a2 * (1.0f / 24.0f - a2 * (1.0f / 720.0f)));
+    e = a2 * a2 * a2 * a * (1.0f / 5040.0f) + 40.0f * MLOD__FAST_U;
+    m1 = (t + r) * e;
+    z2 = away + len * (sa * t + ca * r);
+    if (z2 > len * m1) return 0;
+    z1 = ca * t - sa * r;
+    if (z1 < -m1) return 0;
+    if (z1 > m1 && z2 < -len * m1) return 1;
+    return -1;
+}
+
+/* The status of a node-view in float (see above): MLOD_STATUS_CULLED,
+   _DRAWN, _COARSE (not valid: the caller tells an oversize leaf) or
+   MLOD__UNSURE.  fv->ok must be set. */
+static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphere, const float *cone)
+{
+    float x[3], r = sphere[3], d2, t = 1.0f, twice = r + r;
+    unsigned reached = 0;
+    int s, j, all_valid = 1;
+    x[0] = (float)((double)sphere[0] - fv->eye[0]);
+    x[1] = (float)((double)sphere[1] - fv->eye[1]);
+    x[2] = (float)((double)sphere[2] - fv->eye[2]);
+    d2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+    if (!(d2 >= 9.09494702e-13f && d2 <= 1.20892582e24f)) return MLOD__UNSURE; /* 2^-40, 2^80 */
+    if (!(r == 0.0f || (r >= 9.09494702e-13f && r <= 1.09951163e12f))) return MLOD__UNSURE;
+    if (!fv->ortho) {
+        float t2 = d2 - r * r;
+        if (!(4.0f * t2 >= d2)) return MLOD__UNSURE;
+        t = sqrtf(t2);
+    }
+    for (s = 0; s < fv->sub_count; s++) {
+        const mlod__fsub *fs = &fv->subs[s];
+        for (j = 0; j < fs->plane_count; j++) {
+            const float *p = fs->planes[j];
+            float a0 = p[0] * x[0], a1 = p[1] * x[1], a2 = p[2] * x[2], a3 = p[3] * r;
+            float v = a0 + a1 + a2 + a3 - p[4];
+            float m = (fabsf(a0) + fabsf(a1) + fabsf(a2) + a3 + fabsf(p[4])) * (1.0f / 1048576.0f) + fs->err[j];
+            if (v < -m) break;
+            if (!(v > m)) return MLOD__UNSURE;
+        }
+        if (j == fs->plane_count) reached |= 1u << s;
+    }
+    if (!reached) return MLOD_STATUS_CULLED;
+    if (fv->backfaces && cone) {
+        int b = mlod__fast_backfacing(fv, x, t, fv->ortho ? 0.0f : r, cone);
+        if (b) return b > 0 ? (uint8_t)MLOD_STATUS_CULLED : (uint8_t)MLOD__UNSURE;
+    }
+    for (s = 0; s < fv->sub_count; s++) {
+        const mlod__fsub *fs = &fv->subs[s];
+        float xw, lhs, rhs;
+        if (!(reached >> s & 1u)) continue;
+        xw = x[0] * fs->w[0] + x[1] * fs->w[1] + x[2] * fs->w[2];
+        if (fs->kind == MLOD_VIEW_PERSPECTIVE) {
+            float near_side = xw - r;
+            if (!(near_side > 0.0f && 256.0f * near_side * near_side >= d2)) return MLOD__UNSURE;
+            lhs = twice * t;
+            rhs = near_side * (xw + r);
+        } else if (fs->kind == MLOD_VIEW_PARABOLOID) {
+            rhs = xw + t;
+            if (!(rhs > 0.0f && 256.0f * rhs * rhs >= d2)) return MLOD__UNSURE;
+            lhs = twice;
+        } else {
+            lhs = twice;
+            rhs = 1.0f;
+        }
+        if (lhs * fs->invalid > rhs) return MLOD_STATUS_COARSE;
+        if (!(lhs * fs->valid <= rhs)) all_valid = 0;
+    }
+    return all_valid ? (uint8_t)MLOD_STATUS_DRAWN : (uint8_t)MLOD__UNSURE;
+}
+
+/* ------------------------------------------------ vector float filter -- */
+
+/* mlod__fast_status on several node-views at once: lanes of 8 floats with
+   AVX (-mavx and later), 4 with SSE2 (every x86-64 compiler), none
+   otherwise or with MANYLODS_NO_SIMD defined.  Each lane proves its status
+   with the same bounds as mlod__fast_status, so a decided lane agrees
+   with the exact path; a lane that cannot prove it takes the exact path,
+   so every build gives the same cuts bit for bit (tests/test_cut.c
+   compares them). */
+#ifdef MLOD__NO_FMA_TARGET
+/* clang cannot inline an intrinsic into a function built for a target
+   without FMA: the vector filter keeps the caller's target, and may be
+   fused (its bounds hold for fused multiply-adds: each rounds less), its
+   decisions being exact either way */
+#pragma clang attribute pop
+#endif
+#if !defined(MANYLODS_NO_SIMD) && defined(__AVX__)
+#include <immintrin.h>
+#define MLOD__VLANES 8
+typedef __m256 mlod__vf;
+#define MLOD__VADD _mm256_add_ps
+#define MLOD__VSUB _mm256_sub_ps
+#define MLOD__VMUL _mm256_mul_ps
+#define MLOD__VAND _mm256_and_ps
+#define MLOD__VOR _mm256_or_ps
+#define MLOD__VANDNOT _mm256_andnot_ps /* (not a) and b */
+#define MLOD__VSET _mm256_set1_ps
+#define MLOD__VSQRT _mm256_sqrt_ps
+#define MLOD__VLT(a, b) _mm256_cmp_ps(a, b, _CMP_LT_OQ)
+#define MLOD__VLE(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
+#define MLOD__VGT(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
+#define MLOD__VGE(a, b) _mm256_cmp_ps(a, b, _CMP_GE_OQ)
+#define MLOD__VEQ(a, b) _mm256_cmp_ps(a, b, _CMP_EQ_OQ)
+#define MLOD__VBITS _mm256_movemask_ps
+/* lane l holds child l >> 2 of the group's parent l & 3 */
+#define MLOD__LANE_CHILD(l) (2 * ((l) & 3) + ((l) >> 2))
+
+/* The four parents' children: lane l gets x, y, z, w of row
+   4 (2 parents[l & 3] + 1 + (l >> 2)) of rows. */
+static void mlod__vload(const float *rows, const uint32_t *parents, mlod__vf *x, mlod__vf *y, mlod__vf *z,
+                        mlod__vf *w)
+{
+    __m256 a = _mm256_loadu_ps(rows + 8 * (size_t)parents[0] + 4), b = _mm256_loadu_ps(rows + 8 * (size_t)parents[1] + 4);
+    __m256 c = _mm256_loadu_ps(rows + 8 * (size_t)parents[2] + 4), d = _mm256_loadu_ps(rows + 8 * (size_t)parents[3] + 4);
+    __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
+    __m256 cd0 = _mm256_unpacklo_ps(c, d), cd1 = _mm256_unpackhi_ps(c, d);
+    *x = _mm256_shuffle_ps(ab0, cd0, 0x44);
+    *y = _mm256_shuffle_ps(ab0, cd0, 0xEE);
+    *z = _mm256_shuffle_ps(ab1, cd1, 0x44);
+    *w = _mm256_shuffle_ps(ab1, cd1, 0xEE);
+}
+
+/* v - e in double, rounded to float. */
+static mlod__vf mlod__vrelative(mlod__vf v, double e)
+{
+    __m256d de = _mm256_set1_pd(e);
+    __m128 lo = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(v)), de));
+    __m128 hi = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(v, 1)), de));
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+}
+#elif !defined(MANYLODS_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#include <emmintrin.h>
+#define MLOD__VLANES 4
+typedef __m128 mlod__vf;
+#define MLOD__VADD _mm_add_ps
+#define MLOD__VSUB _mm_sub_ps
+#define MLOD__VMUL _mm_mul_ps
+#define MLOD__VAND _mm_and_ps
+#define MLOD__VOR _mm_or_ps
+#define MLOD__VANDNOT _mm_andnot_ps
+#define MLOD__VSET _mm_set1_ps
+#define MLOD__VSQRT _mm_sqrt_ps
+#define MLOD__VLT _mm_cmplt_ps
+#define MLOD__VLE _mm_cmple_ps
+#define MLOD__VGT _mm_cmpgt_ps
+#define MLOD__VGE _mm_cmpge_ps
+#define MLOD__VEQ _mm_cmpeq_ps
+#define MLOD__VBITS _mm_movemask_ps
+/* lane l holds child l & 1 of the group's parent l >> 1 */
+#define MLOD__LANE_CHILD(l) (l)
+
+static void mlod__vload(const float *rows, const uint32_t *parents, mlod__vf *x, mlod__vf *y, mlod__vf *z,
+                        mlod__vf *w)
+{
+    __m128 a = _mm_loadu_ps(rows + 8 * (size_t)parents[0] + 4), b = _mm_loadu_ps(rows + 8 * (size_t)parents[0] + 8);
+    __m128 c = _mm_loadu_ps(rows + 8 * (size_t)parents[1] + 4), d = _mm_loadu_ps(rows + 8 * (size_t)parents[1] + 8);
+    __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b);
+    __m128 cd0 = _mm_unpacklo_ps(c, d), cd1 = _mm_unpackhi_ps(c, d);
+    *x = _mm_movelh_ps(ab0, cd0);
+    *y = _mm_movehl_ps(cd0, ab0);
+    *z = _mm_movelh_ps(ab1, cd1);
+    *w = _mm_movehl_ps(cd1, ab1);
+}
+
+static mlod__vf mlod__vrelative(mlod__vf v, double e)
+{
+    __m128d de = _mm_set1_pd(e);
+    __m128 lo = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(v), de));
+    __m128 hi = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(v, v)), de));
+    return _mm_movelh_ps(lo, hi);
+}
+#endif
+
+#ifdef MLOD__VLANES
+static mlod__vf mlod__vabs(mlod__vf a) { return MLOD__VANDNOT(MLOD__VSET(-0.0f), a); }
+
+/* The back-face test of mlod__fast_backfacing on lanes: *culled and
+   *unsure as masks, given x (unused orthographic), t and r. */
+static void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf t, mlod__vf r, const mlod__vf *cone,
+                              mlod__vf *culled, mlod__vf *unsure)
+{
+    mlod__vf a = cone[3], away, len, a2, sa, ca, e, m1, lm, z1, z2, live, settled, cull, one = MLOD__VSET(1.0f);
+    live = MLOD__VLT(a, MLOD__VSET((float)(0.5 * MLOD__PI)));
+    if (fv->ortho) {
+        const float *w = fv->subs[0].w;
+        away = MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], MLOD__VSET(w[0])), MLOD__VMUL(cone[1], MLOD__VSET(w[1]))),
+                          MLOD__VMUL(cone[2], MLOD__VSET(w[2])));
+    } else {
+        away = MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], x[0]), MLOD__VMUL(cone[1], x[1])), MLOD__VMUL(cone[2], x[2]));
+    }
+    away = MLOD__VSUB(MLOD__VSET(0.0f), away);
+    len = MLOD__VSQRT(MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], cone[0]), MLOD__VMUL(cone[1], cone[1])),
+                                 MLOD__VMUL(cone[2], cone[2])));
+    a2 = MLOD__VMUL(a, a);
+    sa = MLOD__VMUL(a, MLOD__VSUB(one, MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(1.0f / 6.0f),
+                                                                   MLOD__VMUL(a2, MLOD__VSET(1.0f / 120.0f))))));
+    ca = MLOD__VSUB(one, MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(0.5f),
+                                                   MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(1.0f / 24.0f),
+                                                                             MLOD__VMUL(a2, MLOD__VSET(1.0f / 720.0f)))))));
+    e = MLOD__VADD(MLOD__VMUL(MLOD__VMUL(MLOD__VMUL(MLOD__VMUL(a2, a2), a2), a), MLOD__VSET(1.0f / 5040.0f)),
+                   MLOD__VSET(40.0f * MLOD__FAST_U));
+    m1 = MLOD__VMUL(MLOD__VADD(t, r), e);
+    lm = MLOD__VMUL(len, m1);
+    z2 = MLOD__VADD(away, MLOD__VMUL(len, MLOD__VADD(MLOD__VMUL(sa, t), MLOD__VMUL(ca, r))));
+    z1 = MLOD__VSUB(MLOD__VMUL(ca, t), MLOD__VMUL(sa, r));
+    settled = MLOD__VOR(MLOD__VGT(z2, lm), MLOD__VLT(z1, MLOD__VSUB(MLOD__VSET(0.0f), m1)));
+    cull = MLOD__VANDNOT(settled, MLOD__VAND(MLOD__VGT(z1, m1), MLOD__VLT(z2, MLOD__VSUB(MLOD__VSET(0.0f), lm))));
+    live = MLOD__VAND(live, MLOD__VGE(a, MLOD__VSET(0.0f)));
+    /* a >= pi/2 (or NaN): not culled; 0 <= a < pi/2: as decided; a < 0: unsure */
+    *culled = MLOD__VAND(live, cull);
+    *unsure = MLOD__VOR(MLOD__VLT(a, MLOD__VSET(0.0f)), MLOD__VANDNOT(MLOD__VOR(settled, cull), live));
+}
+
+/* mlod__classify_children's vector path: lanes' statuses in bit masks
+   per status, for the group's parents (MLOD__VLANES / 2 of them). */
+static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const uint32_t *group, int *culled_bits,
+                          int *drawn_bits, int *coarse_bits)
+{
+    mlod__vf x[3], r, cone[4], d2, t, twice, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
+    mlod__vf all = MLOD__VEQ(zero, zero);
+    int s, j;
+    mlod__vload(tree->spheres, group, &x[0], &x[1], &x[2], &r);
+    for (j = 0; j < 3; j++) x[j] = mlod__vrelative(x[j], fv->eye[j]);
+    d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], x[0]), MLOD__VMUL(x[1], x[1])), MLOD__VMUL(x[2], x[2]));
+    unsure = MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(d2, MLOD__VSET(1.20892582e24f))),
+                           all);
+    unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero),
+                                                       MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.09494702e-13f)),
+                                                                  MLOD__VLE(r, MLOD__VSET(1.09951163e12f)))),
+                                             all));
+    if (fv->ortho) {
+        t = MLOD__VSET(1.0f);
+    } else {
+        mlod__vf t2 = MLOD__VSUB(d2, MLOD__VMUL(r, r));
+        unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VGE(MLOD__VMUL(MLOD__VSET(4.0f), t2), d2), all));
+        t = MLOD__VSQRT(MLOD__VAND(t2, MLOD__VGT(t2, zero)));
+    }
+    twice = MLOD__VADD(r, r);
+    none = all;
+    coarse = zero;
+    small = all;
+    for (s = 0; s < fv->sub_count; s++) {
+        const mlod__fsub *fs = &fv->subs[s];
+        mlod__vf out = zero, in = all, xw, lhs, rhs, ok;
+        for (j = 0; j < fs->plane_count; j++) {
+            const float *p = fs->planes[j];
+            mlod__vf a0 = MLOD__VMUL(MLOD__VSET(p[0]), x[0]), a1 = MLOD__VMUL(MLOD__VSET(p[1]), x[1]);
+            mlod__vf a2 = MLOD__VMUL(MLOD__VSET(p[2]), x[2]), a3 = MLOD__VMUL(MLOD__VSET(p[3]), r);
+            mlod__vf v = MLOD__VSUB(MLOD__VADD(MLOD__VADD(MLOD__VADD(a0, a1), a2), a3), MLOD__VSET(p[4]));
+            mlod__vf m = MLOD__VADD(
+                MLOD__VMUL(MLOD__VADD(MLOD__VADD(MLOD__VADD(MLOD__VADD(mlod__vabs(a0), mlod__vabs(a1)), mlod__vabs(a2)), a3),
+                                      MLOD__VSET(fabsf(p[4]))),
+                           MLOD__VSET(1.0f / 1048576.0f)),
+                MLOD__VSET(fs->err[j]));
+            out = MLOD__VOR(out, MLOD__VLT(v, MLOD__VSUB(zero, m)));
+            in = MLOD__VAND(in, MLOD__VGT(v, m));
+        }
+        /* a sub-projection neither surely reached nor surely missed */
+        unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VOR(out, in), all));
+        none = MLOD__VAND(none, out);
+        xw = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], MLOD__VSET(fs->w[0])), MLOD__VMUL(x[1], MLOD__VSET(fs->w[1]))),
+                        MLOD__VMUL(x[2], MLOD__VSET(fs->w[2])));
+        if (fs->kind == MLOD_VIEW_PERSPECTIVE) {
+            mlod__vf near_side = MLOD__VSUB(xw, r);
+            ok = MLOD__VAND(MLOD__VGT(near_side, zero),
+                            MLOD__VGE(MLOD__VMUL(MLOD__VMUL(MLOD__VSET(256.0f), near_side), near_side), d2));
+            lhs = MLOD__VMUL(twice, t);
+            rhs = MLOD__VMUL(near_side, MLOD__VADD(xw, r));
+        } else if (fs->kind == MLOD_VIEW_PARABOLOID) {
+            rhs = MLOD__VADD(xw, t);
+            ok = MLOD__VAND(MLOD__VGT(rhs, zero), MLOD__VGE(MLOD__VMUL(MLOD__VMUL(MLOD__VSET(256.0f), rhs), rhs), d2));
+            lhs = twice;
+        } else {
+            ok = all;
+            lhs = twice;
+            rhs = MLOD__VSET(1.0f);
+        }
+        /* over reached sub-projections: one surely too large makes the
+           node coarse, all surely small enough make it drawn */
+        coarse = MLOD__VOR(coarse, MLOD__VAND(MLOD__VAND(in, ok), MLOD__VGT(MLOD__VMUL(lhs, MLOD__VSET(fs->invalid)), rhs)));
+        small = MLOD__VAND(small, MLOD__VOR(out, MLOD__VAND(ok, MLOD__VLE(MLOD__VMUL(lhs, MLOD__VSET(fs->valid)), rhs))));
+    }
+    culled = none;
+    if (fv->backfaces && tree->cones) {
+        mlod__vf back, back_unsure;
+        mlod__vload(tree->cones, group, &cone[0], &cone[1], &cone[2], &cone[3]);
+        mlod__vbackfacing(fv, x, t, fv->ortho ? zero : r, cone, &back, &back_unsure);
+        culled = MLOD__VOR(culled, back);
+        unsure = MLOD__VOR(unsure, MLOD__VANDNOT(none, back_unsure));
+    }
+    /* every lane sure of its setup and planes: culled, else coarse, else
+       drawn; anything else is unsure (no bit) */
+    *culled_bits = MLOD__VBITS(MLOD__VANDNOT(unsure, culled));
+    *coarse_bits = MLOD__VBITS(MLOD__VANDNOT(MLOD__VOR(unsure, culled), coarse));
+    *drawn_bits = MLOD__VBITS(MLOD__VANDNOT(MLOD__VOR(MLOD__VOR(unsure, culled), coarse), small));
+}
+#endif
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
+#endif
+
 /* ----------------------------------------------------------------- cut -- */
 
 /* Working status of a list entry: 0 = not evaluated yet, else MLOD_STATUS_*.
@@ -3214,14 +3662,30 @@ struct mlod_cut {
 /* GLSL twin: status_valid */
 static int mlod__is_valid(uint8_t status) { return status == MLOD_STATUS_DRAWN || status == MLOD_STATUS_CULLED; }
 
-/* GLSL twin: classify */
-static inline uint8_t mlod__classify(const mlod__pview *pv, const mlod_tree *tree, uint32_t node, double epsilon)
+/* The status of an invalid node: a leaf is oversize. */
+static uint8_t mlod__invalid_status(const mlod_tree *tree, uint32_t node)
+{
+    return (uint8_t)(node >= tree->leaf_count - 1 ? MLOD_STATUS_OVERSIZE : MLOD_STATUS_COARSE);
+}
+
+/* The status of a node-view by the definition (mlod__evaluate). */
+static uint8_t mlod__classify_exact(const mlod__pview *pv, const mlod_tree *tree, uint32_t node, double epsilon)
 {
     int culled;
     double c = mlod__evaluate(pv, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node), &culled);
     if (culled) return MLOD_STATUS_CULLED;
-    if (c <= epsilon) return MLOD_STATUS_DRAWN;
-    return node >= tree->leaf_count - 1 ? MLOD_STATUS_OVERSIZE : MLOD_STATUS_COARSE;
+    return c <= epsilon ? (uint8_t)MLOD_STATUS_DRAWN : mlod__invalid_status(tree, node);
+}
+
+/* The same status, by the float filter where pv has one and it is sure. */
+/* GLSL twin: classify */
+static inline uint8_t mlod__classify(const mlod__pview *pv, const mlod_tree *tree, uint32_t node, double epsilon)
+{
+    if (pv->fast.ok) {
+        uint8_t st = mlod__fast_status(&pv->fast, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node));
+        if (st != MLOD__UNSURE) return st == MLOD_STATUS_COARSE ? mlod__invalid_status(tree, node) : st;
+    }
+    return mlod__classify_exact(pv, tree, node, epsilon);
 }
 
 typedef struct mlod__cut_job {
@@ -3275,22 +3739,65 @@ static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, ui
     return x;
 }
 
+/* Entries split together in the depth-first search of mlod__refine_segment:
+   up to this many coarse entries on top of its stack, their children
+   classified in one call (independent work for the processor, a whole
+   vector for mlod__classify_children). */
+#define MLOD__BATCH 4u
+#define MLOD__STACK 160u
+
+/* The statuses of the children 2p + 1 and 2p + 2 of each of the count
+   (<= MLOD__BATCH, a multiple of a vector's parents) parents p, into
+   status[2i] and status[2i + 1]. */
+static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
+                                    uint32_t count, double epsilon, uint8_t *status)
+{
+    uint32_t i;
+#ifdef MLOD__VLANES
+    if (pv->fast.ok) {
+        uint32_t first, l, group[MLOD__VLANES / 2];
+        for (first = 0; first < count; first += MLOD__VLANES / 2) {
+            int culled, drawn, coarse;
+            for (l = 0; l < MLOD__VLANES / 2; l++) group[l] = parents[first + l < count ? first + l : count - 1];
+            mlod__vstatus(&pv->fast, tree, group, &culled, &drawn, &coarse);
+            for (l = 0; l < MLOD__VLANES; l++) {
+                uint32_t at = MLOD__LANE_CHILD(l), node = 2 * group[at / 2] + 1 + (at & 1u);
+                if (first + at / 2 >= count) continue;
+                status[2 * first + at] = culled >> l & 1   ? (uint8_t)MLOD_STATUS_CULLED
+                                         : coarse >> l & 1 ? mlod__invalid_status(tree, node)
+                                         : drawn >> l & 1  ? (uint8_t)MLOD_STATUS_DRAWN
+                                                           : mlod__classify_exact(pv, tree, node, epsilon);
+            }
+        }
+        return;
+    }
+#endif
+    for (i = 0; i < count; i++) {
+        status[2 * i] = mlod__classify(pv, tree, 2 * parents[i] + 1, epsilon);
+        status[2 * i + 1] = mlod__classify(pv, tree, 2 * parents[i] + 2, epsilon);
+    }
+}
+
 /* Basic and incremental rounds: split invalid nodes down to the cut within
-   the segment's capacity, merge valid sibling pairs. */
+   the segment's capacity, merge valid sibling pairs.  The split is a
+   depth-first search whose stack holds classified entries, the next one
+   left to right on top; the run of coarse entries on top is split at
+   once. */
 static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, const mlod__pview *pv)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
     const uint8_t *in_status = job->in->status + seg->in_begin;
     const mlod_tree *tree = job->tree;
     mlod__emitter out;
-    uint32_t k, stack[80];
+    uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH];
+    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH];
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
     out.capacity = seg->out_capacity;
     for (k = 0; k < seg->in_count; k++) {
-        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top;
+        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i;
         uint8_t st = in_status[k];
         if (st == MLOD__PENDING || !job->trust) {
             st = mlod__classify(pv, tree, node, job->epsilon);
@@ -3302,25 +3809,38 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
             mlod__emit(&out, node, st);
             continue;
         }
-        if (out.count + 2 + remaining > seg->out_capacity) {
-            mlod__emit(&out, node, st); /* no room: split in the next round */
-            continue;
-        }
-        steps++;
-        top = 0;
-        stack[top++] = 2 * node + 2;
-        stack[top++] = 2 * node + 1;
+        stack[0] = node;
+        stack_status[0] = st;
+        top = 1;
         while (top > 0) {
-            uint32_t m = stack[--top];
-            uint8_t ms = mlod__classify(pv, tree, m, job->epsilon);
-            evaluated++;
-            if (ms == MLOD_STATUS_COARSE && out.count + top + 2 + remaining <= seg->out_capacity) {
-                steps++;
-                stack[top++] = 2 * m + 2;
-                stack[top++] = 2 * m + 1;
-            } else {
-                mlod__emit(&out, m, ms);
+            if (stack_status[top - 1] != MLOD_STATUS_COARSE) {
+                --top;
+                mlod__emit(&out, stack[top], stack_status[top]);
+                continue;
             }
+            /* split n more while the output still has room for every entry
+               pending (a coarse entry without room waits for the next
+               round) and the stack for the children */
+            n = 0;
+            while (n < MLOD__BATCH && n < top && stack_status[top - 1 - n] == MLOD_STATUS_COARSE &&
+                   out.count + top + n + 1 + remaining <= seg->out_capacity && top + n + 1 <= MLOD__STACK)
+                n++;
+            if (n == 0) {
+                --top;
+                mlod__emit(&out, stack[top], stack_status[top]);
+                continue;
+            }
+            for (i = 0; i < n; i++) parents[i] = stack[top - 1 - i];
+            mlod__classify_children(pv, tree, parents, n, job->epsilon, children);
+            top -= n;
+            for (i = n; i-- > 0;) {
+                stack[top] = 2 * parents[i] + 2;
+                stack_status[top++] = children[2 * i + 1];
+                stack[top] = 2 * parents[i] + 1;
+                stack_status[top++] = children[2 * i];
+            }
+            evaluated += 2 * n;
+            steps += n;
         }
     }
     seg->out_count = out.count;
@@ -3396,6 +3916,7 @@ static void mlod__segment_task(void *context, uint32_t index)
         mlod__segment *seg = &cut->segments[s];
         if (seg->view != prepared) {
             mlod__view_prepare(&job->views[seg->view], &pv, NULL);
+            mlod__fast_prepare(&pv, job->epsilon);
             prepared = seg->view;
         }
         if (job->lazy)
@@ -3502,7 +4023,10 @@ static void mlod__join_task(void *context, uint32_t index)
     uint32_t end, v = mlod__view_chunk(job->cut, index, &end);
     mlod__pview pv;
     for (; v < end; v++) {
-        if (job->merge && !job->cut->view_done[v]) mlod__view_prepare(&job->views[v], &pv, NULL);
+        if (job->merge && !job->cut->view_done[v]) {
+            mlod__view_prepare(&job->views[v], &pv, NULL);
+            mlod__fast_prepare(&pv, job->epsilon);
+        }
         mlod__join_view(job, v, &pv);
     }
 }

@@ -838,6 +838,171 @@ static void test_criterion_reference(void)
     scene_free(&s);
 }
 
+/* ------------------------------------------------------- float filter */
+
+/* The float filter against the definition for one node-view at epsilon:
+   the scalar filter (mlod__fast_status), where it decides, and the vector
+   path (mlod__classify_children, on the node's parent), always, must give
+   the exact path's status.  0 when they do (or the view has no filter),
+   1 scalar, 2 vector otherwise; *decided counts the scalar decisions. */
+static int fast_disagrees(const mlod_tree *t, uint32_t node, const mlod_view *v, double eps, uint32_t *decided)
+{
+    mlod__pview pv;
+    uint8_t exact, fast, kids[2 * MLOD__BATCH];
+    if (mlod__view_prepare(v, &pv, NULL) != MLOD_OK) return 0;
+    mlod__fast_prepare(&pv, eps);
+    if (!pv.fast.ok) return 0;
+    exact = mlod__classify_exact(&pv, t, node, eps);
+    fast = mlod__fast_status(&pv.fast, t->spheres + 4 * (size_t)node, mlod__cone_of(t, node));
+    if (fast != MLOD__UNSURE) {
+        ++*decided;
+        if ((fast == MLOD_STATUS_COARSE ? mlod__invalid_status(t, node) : fast) != exact) return 1;
+    }
+    if (node > 0) {
+        uint32_t parent = (node - 1) / 2;
+        mlod__classify_children(&pv, t, &parent, 1, eps, kids);
+        if (kids[(node - 1) & 1u] != exact) return 2;
+    }
+    return 0;
+}
+
+/* fast_disagrees at epsilon on the node-view's own criterion c and one
+   double either side (where a filter without its margins errs), when c
+   is finite and positive; the number of disagreements. */
+static uint32_t fast_disagrees_at(const mlod_tree *t, uint32_t node, const mlod_view *v, double c, uint32_t *decided)
+{
+    uint32_t bad = 0;
+    if (!(c > 0.0 && c < INFINITY)) return 0;
+    bad += fast_disagrees(t, node, v, c, decided) != 0;
+    bad += fast_disagrees(t, node, v, nextafter(c, 0.0), decided) != 0;
+    bad += fast_disagrees(t, node, v, nextafter(c, INFINITY), decided) != 0;
+    return bad;
+}
+
+/* The filter decides almost every node-view of ordinary views (else it
+   buys nothing) and agrees with the exact path on every one it decides,
+   at random epsilons and at epsilons on the criterion itself, for every
+   view kind, with and without back-face culling, on trees with and
+   without cones; the vector path (MLOD__VLANES lanes here, the scalar
+   filter where the build has none) agrees on all. */
+static void test_fast_filter(void)
+{
+    mlod_tree *trees[2];
+    scene_mesh s;
+    uint64_t rng = 0xf10a7f17e5ull;
+    double c[3], R;
+    uint32_t ti, kind, i, n, tried = 0, decided = 0, bad_random = 0, bad_on = 0, on_tried = 0, on_decided = 0;
+    memset(&s, 0, sizeof s);
+    scene_torus(&s, 1.0f, 0.35f, 48, 24);
+    tu_bounds(&s, c, &R);
+    trees[0] = tu_build(&s, 6000, 5, MLOD_ATTR_CONE);
+    trees[1] = tu_build(&s, 6000, 6, 0);
+    CHECK(trees[0] && trees[1], "float filter: builds");
+    if (!trees[0] || !trees[1]) return;
+    for (ti = 0; ti < 2; ti++)
+        for (kind = 0; kind < 5; kind++)
+            for (i = 0; i < 16; i++) {
+                const mlod_tree *t = trees[ti];
+                mlod_view v = tu_random_view(&rng, (mlod_view_kind)kind, c, R);
+                double eps = 0.25 * pow(64.0, scene_rng_double(&rng));
+                v.flags = i % 2 ? MLOD_VIEW_CULL_BACKFACES : 0;
+                if (mlod_view_check(&v, NULL) != MLOD_OK) continue;
+                for (n = i % 3; n < t->node_count; n += 3) {
+                    tried++;
+                    bad_random += fast_disagrees(t, n, &v, eps, &decided) != 0;
+                    if (n % 29 == 0) {
+                        on_tried += 3;
+                        bad_on += fast_disagrees_at(t, n, &v, mlod_criterion(t, n, &v), &on_decided);
+                    }
+                }
+            }
+    CHECK(bad_random == 0, "float filter: %u of %u node-views at random epsilons differ from the exact path", bad_random,
+          tried);
+    CHECK(bad_on == 0, "float filter: %u of %u node-views at epsilon on their criterion differ from the exact path",
+          bad_on, on_tried);
+    CHECK(decided >= tried - tried / 200, "float filter: decides only %u of %u node-views of random views", decided,
+          tried);
+    CHECK(on_tried > 10000 && on_decided < on_tried / 100,
+          "float filter: decided %u of %u node-views at epsilon on their criterion (within its margin: expected none)",
+          on_decided, on_tried);
+    printf("  float filter: %u node-views, %.3f %% left to the exact path; %u at epsilon on their criterion, %u "
+           "decided\n", tried, 100.0 * (tried - decided) / tried, on_tried, on_decided);
+    mlod_tree_destroy(trees[0]);
+    mlod_tree_destroy(trees[1]);
+    scene_free(&s);
+}
+
+/* Where the float filter's bounds are weakest: a paraboloid's x.w + t and
+   a perspective view's x.w - r down to 1e-7 of |x| (an eye beside a large
+   sphere, the sphere's silhouette grazing the paraboloid's rim or the
+   eye's plane), at epsilon on the criterion, one double either side and
+   1/16 to 1/2048 of it either side:
+   the filter must leave these to the exact path or decide them as it
+   would (its guards keep these denominators above |x| / 16). */
+static void test_fast_conditioning(void)
+{
+    static const double deltas[] = {0.3, 0.1, 0.06, 0.03, 1e-2, 1e-3, 1e-4, 1e-5, 1e-7};
+    float positions[6] = {0, 0, 0, 1, 0, 0}, radii[2] = {1, 1};
+    uint64_t rng = 0xc0d1710edull;
+    mlod_points pts;
+    mlod_build_desc desc;
+    mlod_tree *t = NULL;
+    uint32_t i, cases = 0, bad = 0, decided = 0, guarded = 0;
+    memset(&pts, 0, sizeof pts);
+    pts.positions = positions;
+    pts.radii = radii;
+    pts.count = 2;
+    memset(&desc, 0, sizeof desc);
+    CHECK(mlod_build_points(&pts, &desc, &t, NULL) == MLOD_OK && t && t->node_count == 3, "conditioning: a 3-node tree");
+    if (!t || t->node_count != 3) return;
+    for (i = 0; i < 20000; i++) {
+        int persp = i % 2, k;
+        double D = pow(10.0, 4.0 * scene_rng_double(&rng) - 2.0), delta = deltas[(i / 2) % 9], w[3], u[3], x[3];
+        double r = persp ? D * (0.05 + 0.9 * scene_rng_double(&rng)) : D * (0.71 + 0.15 * scene_rng_double(&rng));
+        double xw = persp ? r + delta * D : -sqrt(D * D - r * r) + delta * D, side;
+        mlod_view v = tu_view(persp ? MLOD_VIEW_PERSPECTIVE : MLOD_VIEW_PARABOLOID);
+        if (!(fabs(xw) < D)) continue;
+        side = sqrt(D * D - xw * xw);
+        tu_random_unit(&rng, w);
+        tu_random_perp(&rng, w, u);
+        for (k = 0; k < 3; k++) {
+            x[k] = xw * w[k] + side * u[k];
+            v.position[k] = (float)(10.0 * scene_rng_double(&rng) - 5.0);
+            v.forward[k] = (float)w[k];
+            v.up[k] = (float)u[k];
+        }
+        v.width = v.height = 8 + (uint32_t)(scene_rng_double(&rng) * 120);
+        v.fov_y = 3.0f;
+        v.near_plane = (float)(1e-6 * D);
+        v.far_plane = INFINITY;
+        for (k = 0; k < 3; k++) t->spheres[4 + k] = t->spheres[8 + k] = (float)(v.position[k] + x[k]);
+        t->spheres[7] = t->spheres[11] = (float)r;
+        cases++;
+        if (mlod_view_check(&v, NULL) != MLOD_OK) continue;
+        {
+            mlod__pview pv;
+            float fx[3], d2;
+            static const double factors[] = {1 - 1.0 / 16, 1 - 1.0 / 256, 1 - 1.0 / 2048, 1 + 1.0 / 2048, 1 + 1.0 / 256,
+                                             1 + 1.0 / 16};
+            double c = mlod_criterion(t, 1, &v);
+            int f;
+            bad += fast_disagrees_at(t, 1, &v, c, &decided);
+            for (f = 0; f < 6 && c > 0.0 && c < INFINITY; f++) bad += fast_disagrees(t, 1, &v, c * factors[f], &decided) != 0;
+            /* how many fail the guard: those the bounds could not cover */
+            mlod__view_prepare(&v, &pv, NULL);
+            for (k = 0; k < 3; k++) fx[k] = (float)((double)t->spheres[4 + k] - pv.f.eye[k]);
+            d2 = fx[0] * fx[0] + fx[1] * fx[1] + fx[2] * fx[2];
+            guarded += 256.0 * (persp ? delta * delta : delta * delta) * D * D < d2;
+        }
+    }
+    CHECK(bad == 0, "conditioning: %u of %u node-views near a vanishing denominator differ from the exact path", bad,
+          9 * cases);
+    CHECK(decided > cases && guarded > cases / 4, "conditioning: too few decided (%u) or guarded (%u) of %u", decided,
+          guarded, 9 * cases);
+    printf("  float filter near vanishing denominators: %u node-views, %u decided\n", 9 * cases, decided);
+    mlod_tree_destroy(t);
+}
+
 /* ----------------------------------------------- back faces, up close */
 
 /* Back-face culling a hair either side of its boundary, for paraboloid
@@ -858,7 +1023,7 @@ static void test_backface_boundary(void)
     mlod_points pts;
     mlod_build_desc desc;
     mlod_tree *t = NULL;
-    uint32_t i, cases = 0, decided[2] = {0, 0}, near[2] = {0, 0}, wrong = 0;
+    uint32_t i, cases = 0, decided[2] = {0, 0}, near[2] = {0, 0}, wrong = 0, fast_bad = 0, fast_decided = 0;
     char first[256] = "";
     memset(&pts, 0, sizeof pts);
     pts.positions = position;
@@ -930,6 +1095,7 @@ static void test_backface_boundary(void)
         exact_culled = la < EXACT_PI / 2 && away < 0 && m1 > 0 && m2 > 0;
         c = mlod_criterion(t, 0, &v);
         lib_culled = c == 0.0;
+        fast_bad += fast_disagrees(t, 0, &v, 1.0, &fast_decided) != 0;
         decided[exact_culled]++;
         if (fabsl(m2) < 1e-8L * scale) near[exact_culled]++;
         if (lib_culled != exact_culled && !wrong++)
@@ -942,8 +1108,12 @@ static void test_backface_boundary(void)
     CHECK(decided[0] > 2000 && decided[1] > 2000 && near[0] > 200 && near[1] > 200,
           "back-face boundary: too few cases (%u visible, %u culled; %u and %u within 1e-8)", decided[0], decided[1],
           near[0], near[1]);
-    printf("  back-face boundary: %u cases, %u visible and %u culled decided (%u and %u within 1e-8 of the scale)\n",
-           cases, decided[0], decided[1], near[0], near[1]);
+    CHECK(fast_bad == 0 && fast_decided > cases / 10 && fast_decided < cases - cases / 10,
+          "back-face boundary: the float filter differs from the exact path %u times (it decided %u of %u)", fast_bad,
+          fast_decided, cases);
+    printf("  back-face boundary: %u cases, %u visible and %u culled decided (%u and %u within 1e-8 of the scale); "
+           "the float filter decided %u\n",
+           cases, decided[0], decided[1], near[0], near[1], fast_decided);
     mlod_tree_destroy(t);
 }
 
@@ -1095,6 +1265,7 @@ static uint32_t monotone_pairs; /* (child, parent, view) triples checked, all tr
 static void check_monotone(const mlod_tree *t, const char *what, uint64_t seed, uint32_t pairs, const double *centre, double R)
 {
     uint32_t bad[8] = {0}, count[8] = {0}, kinds[5] = {0}, nan_count = 0, skipped = 0, i, type;
+    uint32_t fast_bad[8] = {0}, fast_decided = 0;
     char first[8][640];
     uint64_t rng = seed;
     if (t->node_count < 2) return;
@@ -1115,6 +1286,8 @@ static void check_monotone(const mlod_tree *t, const char *what, uint64_t seed, 
         }
         cc = mlod_criterion(t, child, &v);
         cp = mlod_criterion(t, parent, &v);
+        fast_bad[type] += fast_disagrees_at(t, child, &v, cc, &fast_decided) + fast_disagrees_at(t, parent, &v, cp, &fast_decided);
+        fast_bad[type] += fast_disagrees(t, child, &v, 0.5 + scene_rng_double(&rng), &fast_decided) != 0;
         count[type]++;
         kinds[v.kind]++;
         monotone_pairs++;
@@ -1132,6 +1305,9 @@ static void check_monotone(const mlod_tree *t, const char *what, uint64_t seed, 
     for (type = 0; type < 8; type++)
         CHECK(bad[type] == 0, "monotonicity %s, view type %u: %u of %u pairs with c(child) > c(parent); first: %s", what, type,
               bad[type], count[type], first[type]);
+    for (type = 0; type < 8; type++)
+        CHECK(fast_bad[type] == 0, "float filter on adversarial views, %s, type %u: %u of its decisions differ from the exact path",
+              what, type, fast_bad[type]);
     CHECK(nan_count == 0, "monotonicity %s: %u NaN criteria for valid views", what, nan_count);
     CHECK(skipped < pairs / 20, "monotonicity %s: %u of %u generated views invalid", what, skipped, pairs);
     CHECK(kinds[MLOD_VIEW_CUBE] > pairs / 6, "monotonicity %s: only %u of %u views are cube maps", what,
@@ -1989,6 +2165,8 @@ int main(void)
     TIMED(test_restart());
     TIMED(test_criterion_reference());
     TIMED(test_backface_boundary());
+    TIMED(test_fast_filter());
+    TIMED(test_fast_conditioning());
     TIMED(test_monotonicity());
     TIMED(test_motion());
     TIMED(test_threads());

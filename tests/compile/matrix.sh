@@ -231,6 +231,20 @@ for cc in "$CLANG" "$CLANGXX"; do
         "fp_same_hash $cc $std -O2 -fno-honor-nans"
 done
 
+# The cut's vector float filter: every path this machine runs (none, SSE2,
+# AVX with -mavx2 where the processor has it, -march=native) gives the same
+# bits, and test_cut (which compares the filter with the exact path) passes
+# on each.
+entry fp-simd-off "same hash: $CC -O2 -DMANYLODS_NO_SIMD (the scalar filter)" \
+    "fp_same_hash $CC -std=c99 -O2 -DMANYLODS_NO_SIMD"
+if grep -qw avx2 /proc/cpuinfo 2>/dev/null; then
+    entry fp-avx2 "same hash: $CC -O2 -mavx2 (8 lanes)" "fp_same_hash $CC -std=c99 -O2 -mavx2"
+fi
+entry cut-simd-off "tests/test_cut.c with -DMANYLODS_NO_SIMD, $CC" \
+    "$CC -std=c99 $STRICT -DMANYLODS_NO_SIMD tests/test_cut.c -o $OUT/cut-simd-off $LIBS" "$OUT/cut-simd-off"
+entry cut-native "tests/test_cut.c with $native, $CLANG" \
+    "$CLANG -std=c99 $STRICT $native tests/test_cut.c -o $OUT/cut-native $LIBS" "$OUT/cut-native"
+
 # MANYLODS_STATIC: two private copies in one program.
 entry static-gcc "MANYLODS_STATIC, two private copies in one program, $CC" \
     "$CC -std=c99 $STRICT -c $SRC/static_a.c -o $OUT/static_a.o" \
