@@ -3369,16 +3369,19 @@ typedef __m256 mlod__vf;
 #define MLOD__VGE(a, b) _mm256_cmp_ps(a, b, _CMP_GE_OQ)
 #define MLOD__VEQ(a, b) _mm256_cmp_ps(a, b, _CMP_EQ_OQ)
 #define MLOD__VBITS _mm256_movemask_ps
-/* lane l holds child l >> 2 of the group's parent l & 3 */
-#define MLOD__LANE_CHILD(l) (2 * ((l) & 3) + ((l) >> 2))
 
-/* The four parents' children: lane l gets x, y, z, w of row
-   4 (2 parents[l & 3] + 1 + (l >> 2)) of rows. */
-static void mlod__vload(const float *rows, const uint32_t *parents, mlod__vf *x, mlod__vf *y, mlod__vf *z,
-                        mlod__vf *w)
+/* Rows of four floats, one per lane: lane l gets x, y, z, w of row
+   nodes[l] of rows. */
+static __m256 mlod__vrows(const float *rows, uint32_t low, uint32_t high)
 {
-    __m256 a = _mm256_loadu_ps(rows + 8 * (size_t)parents[0] + 4), b = _mm256_loadu_ps(rows + 8 * (size_t)parents[1] + 4);
-    __m256 c = _mm256_loadu_ps(rows + 8 * (size_t)parents[2] + 4), d = _mm256_loadu_ps(rows + 8 * (size_t)parents[3] + 4);
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(rows + 4 * (size_t)low)),
+                                _mm_loadu_ps(rows + 4 * (size_t)high), 1);
+}
+
+static void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
+{
+    __m256 a = mlod__vrows(rows, nodes[0], nodes[4]), b = mlod__vrows(rows, nodes[1], nodes[5]);
+    __m256 c = mlod__vrows(rows, nodes[2], nodes[6]), d = mlod__vrows(rows, nodes[3], nodes[7]);
     __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
     __m256 cd0 = _mm256_unpacklo_ps(c, d), cd1 = _mm256_unpackhi_ps(c, d);
     *x = _mm256_shuffle_ps(ab0, cd0, 0x44);
@@ -3413,14 +3416,11 @@ typedef __m128 mlod__vf;
 #define MLOD__VGE _mm_cmpge_ps
 #define MLOD__VEQ _mm_cmpeq_ps
 #define MLOD__VBITS _mm_movemask_ps
-/* lane l holds child l & 1 of the group's parent l >> 1 */
-#define MLOD__LANE_CHILD(l) (l)
 
-static void mlod__vload(const float *rows, const uint32_t *parents, mlod__vf *x, mlod__vf *y, mlod__vf *z,
-                        mlod__vf *w)
+static void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
 {
-    __m128 a = _mm_loadu_ps(rows + 8 * (size_t)parents[0] + 4), b = _mm_loadu_ps(rows + 8 * (size_t)parents[0] + 8);
-    __m128 c = _mm_loadu_ps(rows + 8 * (size_t)parents[1] + 4), d = _mm_loadu_ps(rows + 8 * (size_t)parents[1] + 8);
+    __m128 a = _mm_loadu_ps(rows + 4 * (size_t)nodes[0]), b = _mm_loadu_ps(rows + 4 * (size_t)nodes[1]);
+    __m128 c = _mm_loadu_ps(rows + 4 * (size_t)nodes[2]), d = _mm_loadu_ps(rows + 4 * (size_t)nodes[3]);
     __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b);
     __m128 cd0 = _mm_unpacklo_ps(c, d), cd1 = _mm_unpackhi_ps(c, d);
     *x = _mm_movelh_ps(ab0, cd0);
@@ -3478,15 +3478,15 @@ static void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf
     *unsure = MLOD__VOR(MLOD__VLT(a, MLOD__VSET(0.0f)), MLOD__VANDNOT(MLOD__VOR(settled, cull), live));
 }
 
-/* mlod__classify_children's vector path: lanes' statuses in bit masks
-   per status, for the group's parents (MLOD__VLANES / 2 of them). */
-static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const uint32_t *group, int *culled_bits,
+/* mlod__classify_list's vector path: the statuses of nodes[0 ..
+   MLOD__VLANES - 1] as bit masks per status (lane l: bit l). */
+static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const uint32_t *nodes, int *culled_bits,
                           int *drawn_bits, int *coarse_bits)
 {
     mlod__vf x[3], r, cone[4], d2, t, twice, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
     mlod__vf all = MLOD__VEQ(zero, zero);
     int s, j;
-    mlod__vload(tree->spheres, group, &x[0], &x[1], &x[2], &r);
+    mlod__vload(tree->spheres, nodes, &x[0], &x[1], &x[2], &r);
     for (j = 0; j < 3; j++) x[j] = mlod__vrelative(x[j], fv->eye[j]);
     d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], x[0]), MLOD__VMUL(x[1], x[1])), MLOD__VMUL(x[2], x[2]));
     unsure = MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(d2, MLOD__VSET(1.20892582e24f))),
@@ -3550,7 +3550,7 @@ static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const ui
     culled = none;
     if (fv->backfaces && tree->cones) {
         mlod__vf back, back_unsure;
-        mlod__vload(tree->cones, group, &cone[0], &cone[1], &cone[2], &cone[3]);
+        mlod__vload(tree->cones, nodes, &cone[0], &cone[1], &cone[2], &cone[3]);
         mlod__vbackfacing(fv, x, t, fv->ortho ? zero : r, cone, &back, &back_unsure);
         culled = MLOD__VOR(culled, back);
         unsure = MLOD__VOR(unsure, MLOD__VANDNOT(none, back_unsure));
@@ -3746,36 +3746,65 @@ static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, ui
 #define MLOD__BATCH 4u
 #define MLOD__STACK 160u
 
+/* The statuses of nodes[0 .. count - 1] into status[] (the float filter
+   in vector lanes where the build has them, the exact path where it is
+   unsure). */
+static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
+                                double epsilon, uint8_t *status)
+{
+    uint32_t i = 0;
+#ifdef MLOD__VLANES
+    if (pv->fast.ok)
+        for (; i < count; i += MLOD__VLANES) {
+            uint32_t lanes[MLOD__VLANES], l;
+            int culled, drawn, coarse;
+            for (l = 0; l < MLOD__VLANES; l++) lanes[l] = nodes[i + l < count ? i + l : count - 1];
+            mlod__vstatus(&pv->fast, tree, lanes, &culled, &drawn, &coarse);
+            for (l = 0; l < MLOD__VLANES && i + l < count; l++)
+                status[i + l] = culled >> l & 1   ? (uint8_t)MLOD_STATUS_CULLED
+                                : coarse >> l & 1 ? mlod__invalid_status(tree, lanes[l])
+                                : drawn >> l & 1  ? (uint8_t)MLOD_STATUS_DRAWN
+                                                  : mlod__classify_exact(pv, tree, lanes[l], epsilon);
+        }
+#endif
+    for (; i < count; i++) status[i] = mlod__classify(pv, tree, nodes[i], epsilon);
+}
+
 /* The statuses of the children 2p + 1 and 2p + 2 of each of the count
-   (<= MLOD__BATCH, a multiple of a vector's parents) parents p, into
-   status[2i] and status[2i + 1]. */
+   (<= MLOD__BATCH) parents p, into status[2i] and status[2i + 1]. */
 static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
                                     uint32_t count, double epsilon, uint8_t *status)
 {
-    uint32_t i;
-#ifdef MLOD__VLANES
-    if (pv->fast.ok) {
-        uint32_t first, l, group[MLOD__VLANES / 2];
-        for (first = 0; first < count; first += MLOD__VLANES / 2) {
-            int culled, drawn, coarse;
-            for (l = 0; l < MLOD__VLANES / 2; l++) group[l] = parents[first + l < count ? first + l : count - 1];
-            mlod__vstatus(&pv->fast, tree, group, &culled, &drawn, &coarse);
-            for (l = 0; l < MLOD__VLANES; l++) {
-                uint32_t at = MLOD__LANE_CHILD(l), node = 2 * group[at / 2] + 1 + (at & 1u);
-                if (first + at / 2 >= count) continue;
-                status[2 * first + at] = culled >> l & 1   ? (uint8_t)MLOD_STATUS_CULLED
-                                         : coarse >> l & 1 ? mlod__invalid_status(tree, node)
-                                         : drawn >> l & 1  ? (uint8_t)MLOD_STATUS_DRAWN
-                                                           : mlod__classify_exact(pv, tree, node, epsilon);
-            }
-        }
-        return;
-    }
-#endif
+    uint32_t children[2 * MLOD__BATCH], i;
     for (i = 0; i < count; i++) {
-        status[2 * i] = mlod__classify(pv, tree, 2 * parents[i] + 1, epsilon);
-        status[2 * i + 1] = mlod__classify(pv, tree, 2 * parents[i] + 2, epsilon);
+        children[2 * i] = 2 * parents[i] + 1;
+        children[2 * i + 1] = 2 * parents[i] + 2;
     }
+    mlod__classify_list(pv, tree, children, 2 * count, epsilon, status);
+}
+
+/* The statuses of a segment's input entries into status[]: those whose
+   status is not current (all, unless the job trusts the input; else the
+   pending ones) classified, in vector lanes together, the others copied
+   (with their lazy marks).  Returns how many were classified. */
+static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segment *seg, const mlod__pview *pv,
+                                     uint8_t *status)
+{
+    const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
+    const uint8_t *in_status = job->in->status + seg->in_begin;
+    uint32_t todo[MLOD__SEGMENT_INPUT], count = 0, k;
+    uint8_t found[MLOD__SEGMENT_INPUT];
+    MANYLODS_ASSERT(seg->in_count <= MLOD__SEGMENT_INPUT);
+    if (!job->trust) {
+        mlod__classify_list(pv, job->tree, in_nodes, seg->in_count, job->epsilon, status);
+        return seg->in_count;
+    }
+    for (k = 0; k < seg->in_count; k++)
+        if ((in_status[k] & MLOD__STATUS_MASK) == MLOD__PENDING) todo[count++] = in_nodes[k];
+    mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
+    for (k = 0, count = 0; k < seg->in_count; k++)
+        status[k] = (in_status[k] & MLOD__STATUS_MASK) == MLOD__PENDING ? found[count++] : in_status[k];
+    return count;
 }
 
 /* Basic and incremental rounds: split invalid nodes down to the cut within
@@ -3786,23 +3815,19 @@ static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree
 static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, const mlod__pview *pv)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
-    const uint8_t *in_status = job->in->status + seg->in_begin;
     const mlod_tree *tree = job->tree;
     mlod__emitter out;
     uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH];
-    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH];
+    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH], fresh[MLOD__SEGMENT_INPUT];
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
     out.capacity = seg->out_capacity;
+    evaluated += mlod__classify_input(job, seg, pv, fresh);
     for (k = 0; k < seg->in_count; k++) {
         uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i;
-        uint8_t st = in_status[k];
-        if (st == MLOD__PENDING || !job->trust) {
-            st = mlod__classify(pv, tree, node, job->epsilon);
-            evaluated++;
-        }
+        uint8_t st = fresh[k];
         if (st != MLOD_STATUS_COARSE) {
             if (job->merge)
                 node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, &evaluated, &steps);
@@ -3860,15 +3885,12 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
     out.capacity = seg->out_capacity;
+    uint8_t fresh[MLOD__SEGMENT_INPUT];
+    evaluated += mlod__classify_input(job, seg, pv, fresh);
     for (k = 0; k < seg->in_count; k++) {
         size_t at = seg->in_begin + k;
         uint32_t node = job->in->nodes[at];
-        uint8_t raw = job->in->status[at], st = raw & MLOD__STATUS_MASK;
-        if (st == MLOD__PENDING || !job->trust) {
-            st = mlod__classify(pv, tree, node, job->epsilon);
-            raw = st;
-            evaluated++;
-        }
+        uint8_t raw = fresh[k], st = raw & MLOD__STATUS_MASK;
         if (st == MLOD_STATUS_COARSE) {
             mlod__emit(&out, 2 * node + 1, mlod__classify(pv, tree, 2 * node + 1, job->epsilon));
             mlod__emit(&out, 2 * node + 2, mlod__classify(pv, tree, 2 * node + 2, job->epsilon));
