@@ -3739,12 +3739,21 @@ static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, ui
     return x;
 }
 
+/* A hint that the cache line at p is wanted soon (nothing where the
+   compiler has no way to say it). */
+#if defined(__GNUC__) || defined(__clang__)
+#define MLOD__PREFETCH(p) __builtin_prefetch(p)
+#else
+#define MLOD__PREFETCH(p) ((void)(p))
+#endif
+
 /* Entries split together in the depth-first search of mlod__refine_segment:
-   up to this many coarse entries on top of its stack, their children
-   classified in one call (independent work for the processor, a whole
-   vector for mlod__classify_children). */
-#define MLOD__BATCH 4u
-#define MLOD__STACK 160u
+   up to this many coarse entries among the next ones on its stack, their
+   children classified in one call (independent loads and arithmetic for
+   the processor, whole vectors for mlod__classify_list). */
+#define MLOD__BATCH 32u
+#define MLOD__WINDOW 64u /* top stack entries looked through for them */
+#define MLOD__STACK 1024u
 
 /* The statuses of nodes[0 .. count - 1] into status[] (the float filter
    in vector lanes where the build has them, the exact path where it is
@@ -3776,9 +3785,11 @@ static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree
                                     uint32_t count, double epsilon, uint8_t *status)
 {
     uint32_t children[2 * MLOD__BATCH], i;
-    for (i = 0; i < count; i++) {
+    for (i = 0; i < count; i++) { /* ask for every pair's rows first: their loads overlap */
         children[2 * i] = 2 * parents[i] + 1;
         children[2 * i + 1] = 2 * parents[i] + 2;
+        MLOD__PREFETCH(tree->spheres + 8 * (size_t)parents[i] + 4);
+        if (tree->cones) MLOD__PREFETCH(tree->cones + 8 * (size_t)parents[i] + 4);
     }
     mlod__classify_list(pv, tree, children, 2 * count, epsilon, status);
 }
@@ -3810,15 +3821,15 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
 /* Basic and incremental rounds: split invalid nodes down to the cut within
    the segment's capacity, merge valid sibling pairs.  The split is a
    depth-first search whose stack holds classified entries, the next one
-   left to right on top; the run of coarse entries on top is split at
-   once. */
+   left to right on top; the coarse entries among the top ones are split
+   together. */
 static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, const mlod__pview *pv)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
     const mlod_tree *tree = job->tree;
     mlod__emitter out;
-    uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH];
-    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH], fresh[MLOD__SEGMENT_INPUT];
+    uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH], kept[MLOD__WINDOW];
+    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH], kept_status[MLOD__WINDOW], fresh[MLOD__SEGMENT_INPUT];
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
@@ -3826,7 +3837,7 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     out.capacity = seg->out_capacity;
     evaluated += mlod__classify_input(job, seg, pv, fresh);
     for (k = 0; k < seg->in_count; k++) {
-        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i;
+        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i, window;
         uint8_t st = fresh[k];
         if (st != MLOD_STATUS_COARSE) {
             if (job->merge)
@@ -3843,29 +3854,44 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
                 mlod__emit(&out, stack[top], stack_status[top]);
                 continue;
             }
-            /* split n more while the output still has room for every entry
+            /* the coarse entries among the next MLOD__WINDOW, up to
+               MLOD__BATCH of them, split together (their children's loads
+               overlap) while the output still has room for every entry
                pending (a coarse entry without room waits for the next
                round) and the stack for the children */
             n = 0;
-            while (n < MLOD__BATCH && n < top && stack_status[top - 1 - n] == MLOD_STATUS_COARSE &&
-                   out.count + top + n + 1 + remaining <= seg->out_capacity && top + n + 1 <= MLOD__STACK)
-                n++;
+            for (window = 0; window < MLOD__WINDOW && window < top; window++) {
+                if (stack_status[top - 1 - window] != MLOD_STATUS_COARSE) continue;
+                if (n == MLOD__BATCH || out.count + top + n + 1 + remaining > seg->out_capacity ||
+                    top + n + 1 > MLOD__STACK)
+                    break;
+                parents[n++] = stack[top - 1 - window];
+            }
             if (n == 0) {
                 --top;
                 mlod__emit(&out, stack[top], stack_status[top]);
                 continue;
             }
-            for (i = 0; i < n; i++) parents[i] = stack[top - 1 - i];
             mlod__classify_children(pv, tree, parents, n, job->epsilon, children);
-            top -= n;
-            for (i = n; i-- > 0;) {
-                stack[top] = 2 * parents[i] + 2;
-                stack_status[top++] = children[2 * i + 1];
-                stack[top] = 2 * parents[i] + 1;
-                stack_status[top++] = children[2 * i];
+            /* rewrite the window from its bottom (rightmost) entry up: a
+               split entry becomes its right child with its left one above */
+            top -= window;
+            memcpy(kept, stack + top, window * sizeof *kept);
+            memcpy(kept_status, stack_status + top, window);
+            for (i = 0; i < window; i++) {
+                if (kept_status[i] == MLOD_STATUS_COARSE) {
+                    --n; /* parents[] runs from the top down */
+                    stack[top] = 2 * parents[n] + 2;
+                    stack_status[top++] = children[2 * n + 1];
+                    stack[top] = 2 * parents[n] + 1;
+                    stack_status[top++] = children[2 * n];
+                    evaluated += 2;
+                    steps++;
+                } else {
+                    stack[top] = kept[i];
+                    stack_status[top++] = kept_status[i];
+                }
             }
-            evaluated += 2 * n;
-            steps += n;
         }
     }
     seg->out_count = out.count;
