@@ -2718,7 +2718,7 @@ static inline int mlod__outside(const double *p, const float *sphere)
 typedef struct mlod__fsub {
     float w[3], valid, invalid;
     int kind, plane_count;
-    float planes[6][5], err[6];
+    float planes[6][5], slope[6], err[6];
 } mlod__fsub;
 
 typedef struct mlod__fview {
@@ -3172,9 +3172,11 @@ MLOD__PUBLIC double mlod_criterion(const mlod_tree *tree, uint32_t node, const m
      guard is UNSURE.  Then x.w errs by at most 4.01 u |x| (|w| = 1),
      |x|^2 by 5.01 u |x|^2.
    - Planes: s = n.x + l r - k' errs by at most 7.01 u M, M = |n0 x0| +
-     |n1 x1| + |n2 x2| + l r + |k'|, plus err (k' rounded in double; 2^-100
-     for the plane's components and k' rounded to float below 2^-126,
-     times |x_k| <= 2^40); |s| > 2^-20 M + err decides.
+     |n1 x1| + |n2 x2| + l r + |k'| <= l (|x| + r) + |k'| (l >= |n|), plus
+     err (k' rounded in double; 2^-100 for the plane's components and k'
+     rounded to float below 2^-126, times |x_k| <= 2^40); with |x| + r <=
+     reach = t + 2 r (|x|^2 = t^2 + r^2; sqrt(|x|^2) + r orthographic),
+     |s| > 2^-20 (l reach + |k'|) + err decides.
    - Diameters, with t^2 = |x|^2 - r^2 >= |x|^2 / 4 (so t errs by at most
      13.6 u t): perspective 2 r t S / ((x.w - r)(x.w + r)) with
      (x.w - r)^2 >= |x|^2 / 256: each factor errs by at most 65.3 u, the
@@ -3239,7 +3241,10 @@ static void mlod__fast_prepare(mlod__pview *pv, double epsilon)
             for (k = 0; k < 3; k++) fs->planes[j][k] = (float)p[k];
             fs->planes[j][3] = (float)p[4];
             fs->planes[j][4] = (float)kp;
-            fs->err[j] = mlod__float_above(mag * (1.0 / 281474976710656.0)) + 7.88860905e-31f; /* 2^-48, 2^-100 */
+            /* the margin 2^-20 (l (|x| + r) + |k'|) + err: 2^-48, 2^-100 */
+            fs->slope[j] = mlod__float_above(p[4] * (1.0 / 1048576.0));
+            fs->err[j] = mlod__float_above(fabs(kp) * (1.0 / 1048576.0) + mag * (1.0 / 281474976710656.0)) +
+                         7.88860905e-31f;
         }
     }
     fv->ok = 1;
@@ -3280,7 +3285,7 @@ static int mlod__fast_backfacing(const mlod__fview *fv, const float *x, float t,
    MLOD__UNSURE.  fv->ok must be set. */
 static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphere, const float *cone)
 {
-    float x[3], r = sphere[3], d2, t = 1.0f, twice = r + r;
+    float x[3], r = sphere[3], d2, t = 1.0f, twice = r + r, reach;
     unsigned reached = 0;
     int s, j, all_valid = 1;
     x[0] = (float)((double)sphere[0] - fv->eye[0]);
@@ -3293,6 +3298,9 @@ static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphe
         float t2 = d2 - r * r;
         if (!(4.0f * t2 >= d2)) return MLOD__UNSURE;
         t = sqrtf(t2);
+        reach = t + twice; /* >= |x| + r: |x|^2 = t^2 + r^2 */
+    } else {
+        reach = sqrtf(d2) + r;
     }
     for (s = 0; s < fv->sub_count; s++) {
         const mlod__fsub *fs = &fv->subs[s];
@@ -3300,7 +3308,7 @@ static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphe
             const float *p = fs->planes[j];
             float a0 = p[0] * x[0], a1 = p[1] * x[1], a2 = p[2] * x[2], a3 = p[3] * r;
             float v = a0 + a1 + a2 + a3 - p[4];
-            float m = (fabsf(a0) + fabsf(a1) + fabsf(a2) + a3 + fabsf(p[4])) * (1.0f / 1048576.0f) + fs->err[j];
+            float m = fs->slope[j] * reach + fs->err[j];
             if (v < -m) break;
             if (!(v > m)) return MLOD__UNSURE;
         }
@@ -3439,7 +3447,6 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
 #endif
 
 #ifdef MLOD__VLANES
-static mlod__vf mlod__vabs(mlod__vf a) { return MLOD__VANDNOT(MLOD__VSET(-0.0f), a); }
 
 /* The back-face test of mlod__fast_backfacing on lanes: *culled and
    *unsure as masks, given x (unused orthographic), t and r. */
@@ -3483,7 +3490,7 @@ static void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf
 static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const uint32_t *nodes, int *culled_bits,
                           int *drawn_bits, int *coarse_bits)
 {
-    mlod__vf x[3], r, cone[4], d2, t, twice, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
+    mlod__vf x[3], r, cone[4], d2, t, twice, reach, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
     mlod__vf all = MLOD__VEQ(zero, zero);
     int s, j;
     mlod__vload(tree->spheres, nodes, &x[0], &x[1], &x[2], &r);
@@ -3495,14 +3502,16 @@ static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const ui
                                                        MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.09494702e-13f)),
                                                                   MLOD__VLE(r, MLOD__VSET(1.09951163e12f)))),
                                              all));
+    twice = MLOD__VADD(r, r);
     if (fv->ortho) {
         t = MLOD__VSET(1.0f);
+        reach = MLOD__VADD(MLOD__VSQRT(d2), r);
     } else {
         mlod__vf t2 = MLOD__VSUB(d2, MLOD__VMUL(r, r));
         unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VGE(MLOD__VMUL(MLOD__VSET(4.0f), t2), d2), all));
         t = MLOD__VSQRT(MLOD__VAND(t2, MLOD__VGT(t2, zero)));
+        reach = MLOD__VADD(t, twice);
     }
-    twice = MLOD__VADD(r, r);
     none = all;
     coarse = zero;
     small = all;
@@ -3514,11 +3523,7 @@ static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const ui
             mlod__vf a0 = MLOD__VMUL(MLOD__VSET(p[0]), x[0]), a1 = MLOD__VMUL(MLOD__VSET(p[1]), x[1]);
             mlod__vf a2 = MLOD__VMUL(MLOD__VSET(p[2]), x[2]), a3 = MLOD__VMUL(MLOD__VSET(p[3]), r);
             mlod__vf v = MLOD__VSUB(MLOD__VADD(MLOD__VADD(MLOD__VADD(a0, a1), a2), a3), MLOD__VSET(p[4]));
-            mlod__vf m = MLOD__VADD(
-                MLOD__VMUL(MLOD__VADD(MLOD__VADD(MLOD__VADD(MLOD__VADD(mlod__vabs(a0), mlod__vabs(a1)), mlod__vabs(a2)), a3),
-                                      MLOD__VSET(fabsf(p[4]))),
-                           MLOD__VSET(1.0f / 1048576.0f)),
-                MLOD__VSET(fs->err[j]));
+            mlod__vf m = MLOD__VADD(MLOD__VMUL(MLOD__VSET(fs->slope[j]), reach), MLOD__VSET(fs->err[j]));
             out = MLOD__VOR(out, MLOD__VLT(v, MLOD__VSUB(zero, m)));
             in = MLOD__VAND(in, MLOD__VGT(v, m));
         }
