@@ -48,6 +48,7 @@
                      Never used on user input: bad input returns an error.
      MANYLODS_NO_SIMD     no vector code (the cut's float filter runs on
                      scalars); the same results either way.
+     MANYLODS_NO_HUGE_PAGES  no madvise of large buffers (MEMORY).
      MANYLODS_DEF    what every public declaration and definition starts
                      with (default: extern, extern "C" in C++, or static
                      with MANYLODS_STATIC), e.g. to add a visibility or
@@ -301,7 +302,13 @@
      A failed call gives back what it allocated (a cut keeps its bytes and
      cuts).  All memory comes from the allocator given at creation (or
      MANYLODS_MALLOC/FREE, or malloc/free); the allocator is only called
-     from the calling thread.
+     from the calling thread.  On Linux, buffers of 8 MiB or more are
+     advised (madvise MADV_HUGEPAGE) to take transparent huge pages where
+     the system leaves that to programs: a build of 1.3 M leaves then
+     takes 18 k page faults instead of 65 k, and its process 2/3 of the
+     time on the machine the README's figures come from; advice only,
+     ignored for memory that cannot have them.  MANYLODS_NO_HUGE_PAGES
+     turns it off.
 
    LICENSE: MIT or public domain, your choice; see the end of this file.
 */
@@ -926,6 +933,9 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
 #include <stdio.h>
 #include <stdarg.h>
 #include <float.h>
+#if defined(__linux__) && !defined(MANYLODS_NO_HUGE_PAGES)
+#include <sys/mman.h>
+#endif
 
 #if defined(MANYLODS_MALLOC) != defined(MANYLODS_FREE)
 #error "manylods: define both MANYLODS_MALLOC and MANYLODS_FREE, or neither"
@@ -1049,6 +1059,36 @@ static mlod_allocator mlod__allocator(const mlod_allocator *given)
     return mlod_default_allocator();
 }
 
+/* Large buffers on Linux (x86-64, AArch64): ask the kernel for
+   transparent huge pages over the 2 MiB pages inside [p, p + bytes), so
+   that touching them costs one page fault per 2 MiB instead of one per
+   4 KiB (a build of 1.3 M leaves touched 256 MB in 65 k faults, a quarter
+   of its time on a virtual machine).  Advice only: a system that leaves
+   huge pages off (or memory that cannot have them) ignores it.
+   MANYLODS_NO_HUGE_PAGES turns it off. */
+#if defined(__linux__) && !defined(MANYLODS_NO_HUGE_PAGES) && \
+    (defined(MADV_HUGEPAGE) || (!defined(__cplusplus) && (defined(__x86_64__) || defined(__aarch64__))))
+#ifdef MADV_HUGEPAGE
+#define MLOD__MADV_HUGEPAGE MADV_HUGEPAGE
+#else
+/* <sys/mman.h> hides madvise under -std=c99; its Linux value there */
+#define MLOD__MADV_HUGEPAGE 14
+int madvise(void *address, size_t length, int advice);
+#endif
+static void mlod__advise_huge(void *p, size_t bytes)
+{
+    const uintptr_t huge = (uintptr_t)1 << 21;
+    uintptr_t begin = ((uintptr_t)p + huge - 1) & ~(huge - 1), end = ((uintptr_t)p + bytes) & ~(huge - 1);
+    if (bytes >= 4 * huge && end > begin) (void)madvise((void *)begin, (size_t)(end - begin), MLOD__MADV_HUGEPAGE);
+}
+#else
+static void mlod__advise_huge(void *p, size_t bytes)
+{
+    (void)p;
+    (void)bytes;
+}
+#endif
+
 /* count * size bytes, or NULL when that overflows or the allocator fails;
    *bytes_total grows by what was allocated. */
 static void *mlod__alloc_array(const mlod_allocator *a, size_t count, size_t size, size_t *bytes_total)
@@ -1058,6 +1098,7 @@ static void *mlod__alloc_array(const mlod_allocator *a, size_t count, size_t siz
     if (size != 0 && count > (size_t)-1 / size) return NULL;
     bytes = count * size;
     p = a->alloc(a->user, bytes ? bytes : 1);
+    if (p) mlod__advise_huge(p, bytes);
     if (p && bytes_total) *bytes_total += bytes;
     return p;
 }

@@ -631,6 +631,54 @@ static void test_atlas_bounds(void)
     printf("  atlas bounds: %u atlases, each bound what mlod_atlas_create allocated\n", exact);
 }
 
+/* Large buffers get transparent huge pages where the system leaves them
+   to the program (madvise mode) or always has them: after
+   mlod__alloc_array of 64 MiB, touched, /proc/self/smaps shows huge pages
+   in its mapping.  Not checked (and not counted) where the system has no
+   huge pages or no smaps, or the build turned the advice off. */
+static void test_huge_pages(void)
+{
+#if defined(__linux__) && !defined(MANYLODS_NO_HUGE_PAGES)
+    char mode[128] = "", line[256];
+    FILE *f = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
+    mlod_allocator a = mlod_default_allocator();
+    size_t bytes = (size_t)64 << 20, total = 0, huge_kb = 0;
+    unsigned char *p;
+    uintptr_t at;
+    int inside = 0;
+    if (f) {
+        if (!fgets(mode, sizeof mode, f)) mode[0] = '\0';
+        fclose(f);
+    }
+    if (!strstr(mode, "[madvise]") && !strstr(mode, "[always]")) {
+        printf("  huge pages: not checked (the system's mode: %s)\n", mode[0] ? mode : "unknown");
+        return;
+    }
+    p = (unsigned char *)mlod__alloc_array(&a, bytes, 1, &total);
+    CHECK(p != NULL && total == bytes, "huge pages: 64 MiB allocated");
+    if (!p) return;
+    memset(p, 1, bytes);
+    at = (uintptr_t)p + bytes / 2;
+    f = fopen("/proc/self/smaps", "r");
+    while (f && fgets(line, sizeof line, f)) {
+        unsigned long long lo, hi;
+        size_t kb;
+        if (sscanf(line, "%llx-%llx", &lo, &hi) == 2 && strchr(line, '-') && strchr(line, '-') < strchr(line, ' '))
+            inside = lo <= at && at < hi;
+        else if (inside && sscanf(line, "AnonHugePages: %zu kB", &kb) == 1)
+            huge_kb = kb;
+    }
+    if (f) {
+        fclose(f);
+        CHECK(huge_kb >= 2048, "huge pages: the 64 MiB buffer has %zu kB of huge pages (system mode %s)", huge_kb, mode);
+        printf("  huge pages: %zu kB of a 64 MiB buffer\n", huge_kb);
+    } else {
+        printf("  huge pages: not checked (no /proc/self/smaps)\n");
+    }
+    mlod__free(&a, p);
+#endif
+}
+
 int main(void)
 {
     if (!scene_room(&room)) return 1;
@@ -641,6 +689,7 @@ int main(void)
     test_build_bounds();
     test_cut_bounds();
     test_atlas_bounds();
+    test_huge_pages();
     mlod_tree_destroy(room_tree);
     scene_free(&room);
     return test_finish();
