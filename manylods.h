@@ -238,16 +238,18 @@
      Decisions are exact, and fast: each node-view first goes through a
      float filter (the criterion in float, x = centre - eye subtracted in
      double, with margins proven from its rounding errors: 2^-12 relative
-     on the diameter, 2^-20 of the terms' magnitudes on each plane; the
-     proof is beside mlod__fast_status) that decides valid, invalid or
-     culled only where its margin makes the exact path's answer certain,
-     and leaves the rest (about 0.2 % of node-views in tests/test_cut.c,
-     all of them at an epsilon on the node's own criterion) to the exact
-     double path.  The splitting search classifies up to four nodes'
-     children at once, in vector lanes where the build has them: 8 lanes
-     with AVX (-mavx, -mavx2, -march=native on such a processor), 4 with
-     SSE2 (every x86-64 build); MANYLODS_NO_SIMD turns them off.  Every
-     build gives the same cuts, bit for bit.
+     on the diameter, 2^-20 of the plane's norm times |x| + r plus its
+     offset on each plane; the proof is beside mlod__fast_status) that
+     decides valid, invalid or culled only where its margin makes the
+     exact path's answer certain, and leaves the rest (about 0.2 % of
+     node-views in tests/test_cut.c, all of them within the margin of
+     epsilon) to the exact double path.  The splitting search takes up to
+     32 coarse entries among the next 64 at once and classifies their
+     children together, and an update's input entries likewise, in vector
+     lanes where the build has them: 8 lanes with AVX (-mavx, -mavx2,
+     -march=native on such a processor), 4 with SSE2 (every x86-64 build);
+     MANYLODS_NO_SIMD turns them off.  Every build gives the same cuts, bit
+     for bit.
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
@@ -2752,10 +2754,10 @@ static inline int mlod__outside(const double *p, const float *sphere)
 
 /* The float filter's copy of one sub-projection (see mlod__fast_status):
    the axis w, the planes as n0 n1 n2 l k' with k' = k - n.eye (so that
-   they apply to x = centre - eye) and err[] bounding the rounding of k'
-   (plus 2^-100 for float underflow), and the thresholds on the diameter in
-   projection units, S / epsilon times 1 + 2^-12 (valid) and 1 - 2^-12
-   (invalid). */
+   they apply to x = centre - eye), each plane's margin slope * reach +
+   err (slope = 2^-20 l; err = 2^-20 |k'|, the rounding of k' and 2^-100
+   for float underflow), and the thresholds on the diameter in projection
+   units, S / epsilon times 1 + 2^-12 (valid) and 1 - 2^-12 (invalid). */
 typedef struct mlod__fsub {
     float w[3], valid, invalid;
     int kind, plane_count;
