@@ -242,8 +242,8 @@
      offset on each plane; the proof is beside mlod__fast_status) that
      decides valid, invalid or culled only where its margin makes the
      exact path's answer certain, and leaves the rest (about 0.2 % of
-     node-views in tests/test_cut.c, all of them within the margin of
-     epsilon) to the exact double path.  The splitting search takes up to
+     node-views of random views in tests/test_cut.c: near epsilon, a
+     plane or the eye) to the exact double path.  The splitting search takes up to
      32 coarse entries among the next 64 at once and classifies their
      children together, and an update's input entries likewise, in vector
      lanes where the build has them: 8 lanes with AVX (-mavx, -mavx2,
