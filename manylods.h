@@ -243,10 +243,10 @@
      decides valid, invalid or culled only where its margin makes the
      exact path's answer certain, and leaves the rest (about 0.2 % of
      node-views of random views in tests/test_cut.c: near epsilon, a
-     plane or the eye) to the exact double path.  The splitting search takes up to
-     32 coarse entries among the next 64 at once and classifies their
-     children together, and an update's input entries likewise, in vector
-     lanes where the build has them: 8 lanes with AVX (-mavx, -mavx2,
+     plane or the eye) to the exact double path.  The splitting search
+     splits the run of coarse entries next in line (up to 32) at once and
+     classifies their children together, and an update's input entries
+     likewise, in vector lanes where the build has them: 8 lanes with AVX (-mavx, -mavx2,
      -march=native on such a processor), 4 with SSE2 (every x86-64 build);
      MANYLODS_NO_SIMD turns them off.  Every build gives the same cuts, bit
      for bit.
@@ -3796,11 +3796,10 @@ static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, ui
 #endif
 
 /* Entries split together in the depth-first search of mlod__refine_segment:
-   up to this many coarse entries among the next ones on its stack, their
-   children classified in one call (independent loads and arithmetic for
-   the processor, whole vectors for mlod__classify_list). */
+   up to this many coarse entries on top of its stack, their children
+   classified in one call (independent loads and arithmetic for the
+   processor, whole vectors for mlod__classify_list). */
 #define MLOD__BATCH 32u
-#define MLOD__WINDOW 64u /* top stack entries looked through for them */
 #define MLOD__STACK 1024u
 
 /* The statuses of nodes[0 .. count - 1] into status[] (the float filter
@@ -3869,15 +3868,15 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
 /* Basic and incremental rounds: split invalid nodes down to the cut within
    the segment's capacity, merge valid sibling pairs.  The split is a
    depth-first search whose stack holds classified entries, the next one
-   left to right on top; the coarse entries among the top ones are split
+   left to right on top; the run of coarse entries on top is split
    together. */
 static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, const mlod__pview *pv)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
     const mlod_tree *tree = job->tree;
     mlod__emitter out;
-    uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH], kept[MLOD__WINDOW];
-    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH], kept_status[MLOD__WINDOW], fresh[MLOD__SEGMENT_INPUT];
+    uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH];
+    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH], fresh[MLOD__SEGMENT_INPUT];
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
@@ -3885,7 +3884,7 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     out.capacity = seg->out_capacity;
     evaluated += mlod__classify_input(job, seg, pv, fresh);
     for (k = 0; k < seg->in_count; k++) {
-        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i, window;
+        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i;
         uint8_t st = fresh[k];
         if (st != MLOD_STATUS_COARSE) {
             if (job->merge)
@@ -3902,18 +3901,16 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
                 mlod__emit(&out, stack[top], stack_status[top]);
                 continue;
             }
-            /* the coarse entries among the next MLOD__WINDOW, up to
-               MLOD__BATCH of them, split together (their children's loads
-               overlap) while the output still has room for every entry
-               pending (a coarse entry without room waits for the next
-               round) and the stack for the children */
+            /* the run of coarse entries on top, up to MLOD__BATCH of
+               them, split together (their children's loads overlap) while
+               the output still has room for every entry pending (a coarse
+               entry without room waits for the next round) and the stack
+               for the children */
             n = 0;
-            for (window = 0; window < MLOD__WINDOW && window < top; window++) {
-                if (stack_status[top - 1 - window] != MLOD_STATUS_COARSE) continue;
-                if (n == MLOD__BATCH || out.count + top + n + 1 + remaining > seg->out_capacity ||
-                    top + n + 1 > MLOD__STACK)
-                    break;
-                parents[n++] = stack[top - 1 - window];
+            while (n < MLOD__BATCH && n < top && stack_status[top - 1 - n] == MLOD_STATUS_COARSE &&
+                   out.count + top + n + 1 + remaining <= seg->out_capacity && top + n + 1 <= MLOD__STACK) {
+                parents[n] = stack[top - 1 - n];
+                n++;
             }
             if (n == 0) {
                 --top;
@@ -3921,25 +3918,15 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
                 continue;
             }
             mlod__classify_children(pv, tree, parents, n, job->epsilon, children);
-            /* rewrite the window from its bottom (rightmost) entry up: a
-               split entry becomes its right child with its left one above */
-            top -= window;
-            memcpy(kept, stack + top, window * sizeof *kept);
-            memcpy(kept_status, stack_status + top, window);
-            for (i = 0; i < window; i++) {
-                if (kept_status[i] == MLOD_STATUS_COARSE) {
-                    --n; /* parents[] runs from the top down */
-                    stack[top] = 2 * parents[n] + 2;
-                    stack_status[top++] = children[2 * n + 1];
-                    stack[top] = 2 * parents[n] + 1;
-                    stack_status[top++] = children[2 * n];
-                    evaluated += 2;
-                    steps++;
-                } else {
-                    stack[top] = kept[i];
-                    stack_status[top++] = kept_status[i];
-                }
+            top -= n;
+            for (i = n; i-- > 0;) { /* a split entry becomes its right child with its left one above */
+                stack[top] = 2 * parents[i] + 2;
+                stack_status[top++] = children[2 * i + 1];
+                stack[top] = 2 * parents[i] + 1;
+                stack_status[top++] = children[2 * i];
             }
+            evaluated += 2 * n;
+            steps += n;
         }
     }
     seg->out_count = out.count;
