@@ -246,10 +246,10 @@
      plane or the eye) to the exact double path.  The splitting search
      splits the run of coarse entries next in line (up to 32) at once and
      classifies their children together, and an update's input entries
-     likewise, in vector lanes where the build has them: 8 lanes with AVX (-mavx, -mavx2,
-     -march=native on such a processor), 4 with SSE2 (every x86-64 build);
-     MANYLODS_NO_SIMD turns them off.  Every build gives the same cuts, bit
-     for bit.
+     likewise, in vector lanes where the build has them: 8 lanes with
+     AVX (-mavx, -mavx2, -march=native on such a processor), 4 with SSE2
+     (every x86-64 build); MANYLODS_NO_SIMD turns them off.  Every build
+     gives the same cuts, bit for bit.
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
