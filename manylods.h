@@ -248,8 +248,8 @@
      classifies their children together, and an update's input entries
      likewise, in vector lanes where the build has them: 8 lanes with
      AVX (-mavx, -mavx2, -march=native on such a processor), 4 with SSE2
-     (every x86-64 build); MANYLODS_NO_SIMD turns them off.  Every build
-     gives the same cuts, bit for bit.
+     (every x86-64 build) or NEON (every AArch64 build); MANYLODS_NO_SIMD
+     turns them off.  Every build gives the same cuts, bit for bit.
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
@@ -3389,12 +3389,12 @@ static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphe
 /* ------------------------------------------------ vector float filter -- */
 
 /* mlod__fast_status on several node-views at once: lanes of 8 floats with
-   AVX (-mavx and later), 4 with SSE2 (every x86-64 compiler), none
-   otherwise or with MANYLODS_NO_SIMD defined.  Each lane proves its status
-   with the same bounds as mlod__fast_status, so a decided lane agrees
-   with the exact path; a lane that cannot prove it takes the exact path,
-   so every build gives the same cuts bit for bit (tests/test_cut.c
-   compares them). */
+   AVX (-mavx and later), 4 with SSE2 (every x86-64 compiler) or NEON
+   (AArch64), none otherwise or with MANYLODS_NO_SIMD defined.  Each lane
+   proves its status with the same bounds as mlod__fast_status, so a
+   decided lane agrees with the exact path; a lane that cannot prove it
+   takes the exact path, so every build gives the same cuts bit for bit
+   (tests/test_cut.c compares them). */
 #ifdef MLOD__NO_FMA_TARGET
 /* clang cannot inline an intrinsic into a function built for a target
    without FMA: the vector filter keeps the caller's target, and may be
@@ -3486,6 +3486,50 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
     __m128 lo = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(v), de));
     __m128 hi = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(v, v)), de));
     return _mm_movelh_ps(lo, hi);
+}
+#elif !defined(MANYLODS_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
+#define MLOD__VLANES 4
+typedef float32x4_t mlod__vf;
+#define MLOD__VADD vaddq_f32
+#define MLOD__VSUB vsubq_f32
+#define MLOD__VMUL vmulq_f32
+#define MLOD__VBITWISE(op, a, b) vreinterpretq_f32_u32(op(vreinterpretq_u32_f32(a), vreinterpretq_u32_f32(b)))
+#define MLOD__VAND(a, b) MLOD__VBITWISE(vandq_u32, a, b)
+#define MLOD__VOR(a, b) MLOD__VBITWISE(vorrq_u32, a, b)
+#define MLOD__VANDNOT(a, b) MLOD__VBITWISE(vbicq_u32, b, a) /* (not a) and b */
+#define MLOD__VSET vdupq_n_f32
+#define MLOD__VSQRT vsqrtq_f32
+#define MLOD__VLT(a, b) vreinterpretq_f32_u32(vcltq_f32(a, b))
+#define MLOD__VLE(a, b) vreinterpretq_f32_u32(vcleq_f32(a, b))
+#define MLOD__VGT(a, b) vreinterpretq_f32_u32(vcgtq_f32(a, b))
+#define MLOD__VGE(a, b) vreinterpretq_f32_u32(vcgeq_f32(a, b))
+#define MLOD__VEQ(a, b) vreinterpretq_f32_u32(vceqq_f32(a, b))
+
+/* Lane l's bit l where its mask is set. */
+#define MLOD__VBITS mlod__vbits
+static int mlod__vbits(mlod__vf mask)
+{
+    static const uint32_t bit[4] = {1u, 2u, 4u, 8u};
+    return (int)vaddvq_u32(vandq_u32(vreinterpretq_u32_f32(mask), vld1q_u32(bit)));
+}
+
+static void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
+{
+    float32x4x2_t ab = vtrnq_f32(vld1q_f32(rows + 4 * (size_t)nodes[0]), vld1q_f32(rows + 4 * (size_t)nodes[1]));
+    float32x4x2_t cd = vtrnq_f32(vld1q_f32(rows + 4 * (size_t)nodes[2]), vld1q_f32(rows + 4 * (size_t)nodes[3]));
+    *x = vcombine_f32(vget_low_f32(ab.val[0]), vget_low_f32(cd.val[0]));
+    *y = vcombine_f32(vget_low_f32(ab.val[1]), vget_low_f32(cd.val[1]));
+    *z = vcombine_f32(vget_high_f32(ab.val[0]), vget_high_f32(cd.val[0]));
+    *w = vcombine_f32(vget_high_f32(ab.val[1]), vget_high_f32(cd.val[1]));
+}
+
+static mlod__vf mlod__vrelative(mlod__vf v, double e)
+{
+    float64x2_t de = vdupq_n_f64(e);
+    float32x2_t lo = vcvt_f32_f64(vsubq_f64(vcvt_f64_f32(vget_low_f32(v)), de));
+    float32x2_t hi = vcvt_f32_f64(vsubq_f64(vcvt_f64_f32(vget_high_f32(v)), de));
+    return vcombine_f32(lo, hi);
 }
 #endif
 

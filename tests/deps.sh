@@ -18,12 +18,18 @@
 #   vulkan-validationlayers        the validation layer test_vulkan runs under
 #   glslang-tools spirv-tools      recompile shaders/ and compare with the
 #                                  SPIR-V embedded in manylods_vk.h
+#   gcc-aarch64-linux-gnu          (x86-64 hosts) build the tests for AArch64,
+#   libc6-dev-arm64-cross          run them under qemu: the cut's NEON lanes
+#   qemu-user                      (tests/compile/matrix.sh, neon-*)
 # Exit status 0 when everything is there (afterwards), 1 otherwise.
 set -u
 
 clang_major=$(clang --version 2>/dev/null | sed -n 's/.*clang version \([0-9][0-9]*\)\..*/\1/p' | head -n 1)
 packages=(gcc g++ clang make libc6-dev "libclang-rt-${clang_major:-14}-dev" libembree-dev
           libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools spirv-tools)
+if [ "$(uname -m)" = x86_64 ]; then
+    packages+=(gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user)
+fi
 
 if [ "${1:-}" = --list ]; then
     echo "${packages[*]}"

@@ -245,6 +245,26 @@ entry cut-simd-off "tests/test_cut.c with -DMANYLODS_NO_SIMD, $CC" \
 entry cut-native "tests/test_cut.c with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_cut.c -o $OUT/cut-native $LIBS" "$OUT/cut-native"
 
+# The NEON lanes (AArch64), where an AArch64 cross compiler and qemu are
+# here (tests/deps.sh brings them on x86-64): the same hash with and
+# without them, and test_cut on them.  Elsewhere not run, and not counted.
+if command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 && command -v qemu-aarch64 >/dev/null 2>&1; then
+    neon_hash() { # flags...: fp_hash.c built for AArch64 with them, run under qemu, against the reference
+        local exe="$OUT/fp-aarch64-$(printf '%s' "$*" | tr -c 'a-zA-Z0-9' '_')" hash
+        aarch64-linux-gnu-gcc -Wall -Wextra -pedantic -Werror -static "$@" $SRC/fp_hash.c -o "$exe" $LIBS || return 1
+        hash=$(qemu-aarch64 "$exe" | sed -n 's/^hash //p')
+        echo "hash $hash"
+        [ -n "$hash" ] && [ "$hash" = "$fp_reference" ] || { echo "differs from the reference $fp_reference"; return 1; }
+    }
+    entry neon-fp "same hash: aarch64-linux-gnu-gcc -O2 (NEON, 4 lanes) and -DMANYLODS_NO_SIMD, under qemu" \
+        "neon_hash -std=c99 -O2" "neon_hash -std=c99 -O2 -DMANYLODS_NO_SIMD"
+    entry neon-cut "tests/test_cut.c for AArch64 (NEON), under qemu" \
+        "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_cut.c -o $OUT/neon-cut $LIBS" \
+        "qemu-aarch64 $OUT/neon-cut"
+else
+    echo "  (not run: neon-fp, neon-cut: no aarch64-linux-gnu-gcc or qemu-aarch64 here)"
+fi
+
 # MANYLODS_STATIC: two private copies in one program.
 entry static-gcc "MANYLODS_STATIC, two private copies in one program, $CC" \
     "$CC -std=c99 $STRICT -c $SRC/static_a.c -o $OUT/static_a.o" \
