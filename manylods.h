@@ -3849,6 +3849,7 @@ static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, ui
 /* The statuses of nodes[0 .. count - 1] into status[] (the float filter
    in vector lanes where the build has them, the exact path where it is
    unsure). */
+#define MLOD__LIST_AHEAD 16u
 static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
                                 double epsilon, uint8_t *status)
 {
@@ -3858,7 +3859,13 @@ static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, co
         for (; i < count; i += MLOD__VLANES) {
             uint32_t lanes[MLOD__VLANES], l;
             int culled, drawn, coarse;
-            for (l = 0; l < MLOD__VLANES; l++) lanes[l] = nodes[i + l < count ? i + l : count - 1];
+            for (l = 0; l < MLOD__VLANES; l++) {
+                lanes[l] = nodes[i + l < count ? i + l : count - 1];
+                if (i + l + MLOD__LIST_AHEAD < count) { /* rows a few groups on, for the loads to overlap */
+                    MLOD__PREFETCH(tree->spheres + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
+                    if (tree->cones) MLOD__PREFETCH(tree->cones + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
+                }
+            }
             mlod__vstatus(&pv->fast, tree, lanes, &culled, &drawn, &coarse);
             for (l = 0; l < MLOD__VLANES && i + l < count; l++)
                 status[i + l] = culled >> l & 1   ? (uint8_t)MLOD_STATUS_CULLED
