@@ -1714,6 +1714,22 @@ static void skip_reference(skip_env *env, const mlod_tree *tree, const mlod_view
     tally_report(&t, what);
 }
 
+/* An update after a change every view sees (what): every view evaluated,
+   then, settled, every view's cut the reference's. */
+static void skip_all_changed(skip_env *env, mlod_cut *cut, const mlod_view *views, mlod_cut_params p, const char *m,
+                             const char *what)
+{
+    const uint32_t all = (1u << SKIP_NV) - 1;
+    char line[160];
+    uint32_t mask;
+    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: update", m);
+    mask = skip_evaluated(cut);
+    CHECK(mask == all, "skip %s, %s: views 0x%x evaluated, expected all", m, what, mask);
+    CHECK(skip_settle(env, cut, env->tree, views, p) > 0, "skip %s: update", m);
+    snprintf(line, sizeof line, "skip %s, %s", m, what);
+    skip_reference(env, env->tree, views, p.epsilon, cut, line);
+}
+
 static void skip_mode(skip_env *env, mlod_tree *twin, mlod_tree *other, const mlod_mesh *rest, const mlod_view *base,
                       mlod_cut_mode mode, uint32_t lazy_steps)
 {
@@ -1788,21 +1804,11 @@ static void skip_mode(skip_env *env, mlod_tree *twin, mlod_tree *other, const ml
     CHECK(mlod_refit_mesh(env->tree, rest, NULL, NULL) == MLOD_OK, "skip %s: refit", m);
     CHECK(env->tree->revision == revision + 1, "skip %s: a refit took the revision from %llu to %llu", m,
           (unsigned long long)revision, (unsigned long long)env->tree->revision);
-    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: update", m);
-    mask = skip_evaluated(cut);
-    CHECK(mask == all, "skip %s, after a refit to the same positions: views 0x%x evaluated, expected all", m, mask);
-    CHECK(skip_settle(env, cut, env->tree, views, p) > 0, "skip %s: update", m);
-    snprintf(what, sizeof what, "skip %s, after a refit to the same positions", m);
-    skip_reference(env, env->tree, views, p.epsilon, cut, what);
+    skip_all_changed(env, cut, views, p, m, "after a refit to the same positions");
 
     /* 5. another epsilon, then the same again */
     p.epsilon = 2.5f;
-    CHECK(mlod_cut_update(cut, env->tree, views, &p, NULL) == MLOD_OK, "skip %s: update", m);
-    mask = skip_evaluated(cut);
-    CHECK(mask == all, "skip %s, epsilon 1.5 -> 2.5: views 0x%x evaluated, expected all", m, mask);
-    CHECK(skip_settle(env, cut, env->tree, views, p) > 0, "skip %s: update", m);
-    snprintf(what, sizeof what, "skip %s, epsilon 2.5", m);
-    skip_reference(env, env->tree, views, p.epsilon, cut, what);
+    skip_all_changed(env, cut, views, p, m, "epsilon 1.5 -> 2.5");
     mask = skip_update(cut, env->tree, views, &p);
     CHECK(mask == 0, "skip %s, epsilon 2.5 twice: views 0x%x evaluated", m, mask);
 
