@@ -3839,6 +3839,20 @@ static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, ui
 #define MLOD__PREFETCH(p) ((void)(p))
 #endif
 
+#ifdef MLOD__VLANES
+/* The index of the lowest set bit of x (x != 0). */
+static uint32_t mlod__lowest_bit(uint32_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return (uint32_t)__builtin_ctz(x);
+#else
+    uint32_t i = 0;
+    while (!(x >> i & 1u)) i++;
+    return i;
+#endif
+}
+#endif
+
 /* Entries split together in the depth-first search of mlod__refine_segment:
    up to this many coarse entries on top of its stack, their children
    classified in one call (independent loads and arithmetic for the
@@ -3858,7 +3872,7 @@ static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, co
     if (pv->fast.ok)
         for (; i < count; i += MLOD__VLANES) {
             uint32_t lanes[MLOD__VLANES], l;
-            int culled, drawn, coarse;
+            int culled, drawn, coarse, undecided;
             for (l = 0; l < MLOD__VLANES; l++) {
                 lanes[l] = nodes[i + l < count ? i + l : count - 1];
                 if (i + l + MLOD__LIST_AHEAD < count) { /* rows a few groups on, for the loads to overlap */
@@ -3867,11 +3881,17 @@ static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, co
                 }
             }
             mlod__vstatus(&pv->fast, tree, lanes, &culled, &drawn, &coarse);
-            for (l = 0; l < MLOD__VLANES && i + l < count; l++)
-                status[i + l] = culled >> l & 1   ? (uint8_t)MLOD_STATUS_CULLED
-                                : coarse >> l & 1 ? mlod__invalid_status(tree, lanes[l])
-                                : drawn >> l & 1  ? (uint8_t)MLOD_STATUS_DRAWN
-                                                  : mlod__classify_exact(pv, tree, lanes[l], epsilon);
+            /* without a branch per lane (statuses are hard to predict; a
+               coarse leaf is oversize, as mlod__invalid_status says); an
+               undecided lane (rare) takes the exact path */
+            for (l = 0; l < MLOD__VLANES; l++)
+                if (i + l < count)
+                    status[i + l] = (uint8_t)((culled >> l & 1) * MLOD_STATUS_CULLED + (drawn >> l & 1) * MLOD_STATUS_DRAWN +
+                                              (coarse >> l & 1) * mlod__invalid_status(tree, lanes[l]));
+            for (undecided = ~(culled | drawn | coarse) & ((1 << MLOD__VLANES) - 1); undecided; undecided &= undecided - 1) {
+                l = mlod__lowest_bit((uint32_t)undecided);
+                if (i + l < count) status[i + l] = mlod__classify_exact(pv, tree, lanes[l], epsilon);
+            }
         }
 #endif
     for (; i < count; i++) status[i] = mlod__classify(pv, tree, nodes[i], epsilon);
