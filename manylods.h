@@ -15,7 +15,8 @@
    CONTENTS
      USAGE, QUICK EXAMPLE, CONFIGURATION, FLOATING POINT, PIPELINE,
      TREE LAYOUT, SAMPLING, BUILD, VIEWS AND THE CRITERION, THE CUT,
-     SPLATTING, THREADS, ERRORS, MEMORY; then the declarations, each
+     SPLATTING, CHOOSING THE VIEWS, THREADS, ERRORS, MEMORY; then the
+     declarations, each
      documented where it stands, and the implementation.
 
    USAGE
@@ -276,6 +277,33 @@
      mlod_atlas_fill_holes() the pull-push hole filling for either.
      mlod_suggest_sample_count() gives the smallest N whose leaves are at
      most epsilon pixels in the closest view: sample only what views resolve.
+
+   CHOOSING THE VIEWS (importance sampling, e.g. of virtual point lights)
+     mlod_sample() draws N samples from a discrete domain of D candidates
+     (potential VPLs: say the surface points a light's rays hit) in
+     proportion to an importance f >= 0 the caller computes (the light a
+     candidate would bring to the image), with a weight per sample such
+     that (1 / N) sum_j weight_j g(sample_j) estimates sum_i g(i): a VPL
+     made from candidate i carries weight_j / N times candidate i's flux.
+     Two methods, both on quasi-random numbers (Halton radical inverses,
+     rotated by the seed: the same seed every frame keeps samples still):
+       MLOD_SAMPLER_INVERSE_TRANSFORM  sample j is where u_j (base 2)
+         falls in the cumulative importance; weight F / f(i), F = sum f.
+         Exactly proportional, but a change of f anywhere shifts the
+         cumulative sum, and so almost every sample, every frame.
+       MLOD_SAMPLER_METROPOLIS  independent Metropolis-Hastings, after
+         Barak, Bittner, Havran, "Temporally Coherent Adaptive Sampling
+         for Imperfect Shadow Maps", EGSR 2013: sample j is the last state
+         of a chain over M uniform proposals (sequence points j + N k,
+         k < M, so no two chains share one), each accepted when
+         f(proposal) >= xi f(current); weight D (s / M) / f(i), s the sum
+         of f over the chain's proposals.  A local change of f moves only
+         the chains it touches.  For finite M the samples follow f only
+         approximately (M = 1 is uniform sampling); the weights make the
+         estimate exact on average where g is proportional to f, and
+         nearly so elsewhere, closer as M grows (tests/test_sample.c).
+     For the chains to cross the whole domain, the bases of the proposals
+     and of xi are the two smallest primes that do not divide N.
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat* and mlod_atlas_fill_holes take
@@ -894,6 +922,43 @@ MANYLODS_DEF double mlod_mesh_area(const mlod_mesh *mesh);
    an invalid view), MANYLODS_MAX_LEAVES when more would be needed.  Pure. */
 MANYLODS_DEF uint32_t mlod_suggest_sample_count(double surface_area, const mlod_view *views, uint32_t view_count,
                                                 float epsilon, float radius_scale, double closest);
+
+/* ------------------------------------------------- choosing the views */
+
+/* How mlod_sample draws (CHOOSING THE VIEWS, above). */
+typedef enum mlod_sampler {
+    MLOD_SAMPLER_INVERSE_TRANSFORM = 0, /* cumulative importance and a binary search */
+    MLOD_SAMPLER_METROPOLIS = 1         /* independent Metropolis-Hastings chains */
+} mlod_sampler;
+
+typedef struct mlod_sample_params {
+    mlod_sampler method;
+    uint32_t chain_length;           /* MLOD_SAMPLER_METROPOLIS: proposals per chain, M >= 1 (0: 8) */
+    uint64_t seed;                   /* rotates the quasi-random numbers; keep it from frame to frame */
+    const mlod_parallel *parallel;   /* optional */
+    const mlod_allocator *allocator; /* optional: the inverse transform's table */
+} mlod_sample_params;
+
+/* Bytes mlod_sample allocates (and frees before it returns) for a domain
+   of domain_size candidates: (domain_size + 1) doubles for the inverse
+   transform, none for Metropolis.  Pure. */
+MANYLODS_DEF size_t mlod_sample_bound(uint32_t domain_size, mlod_sampler method);
+
+/* sample_count (N >= 1) samples of the domain [0, domain_size) (D >= 1)
+   drawn by importance[0 .. D) (finite, >= 0) into samples[0 .. N), and
+   their weights, finite and >= 0, into weights[0 .. N): (1 / N) sum_j
+   weights[j] g(samples[j]) estimates sum_i g(i) for any g that is 0 where
+   the importance is (see CHOOSING THE VIEWS for how well).  Where every
+   importance is 0, samples are uniform and weights 0.  Deterministic for a
+   seed, for any thread count.  Errors: NULL arrays, N or D 0, a negative
+   or non-finite importance, an unknown method
+   (MLOD_ERROR_INVALID_ARGUMENT / EMPTY / NON_FINITE), importances whose
+   weights could exceed FLT_MAX (the total, or D times the largest,
+   over the smallest positive one: MLOD_ERROR_RANGE), no memory;
+   samples and weights are then untouched.  Thread-safe. */
+MANYLODS_DEF mlod_result mlod_sample(const float *importance, uint32_t domain_size, uint32_t sample_count,
+                                      const mlod_sample_params *params, uint32_t *samples, float *weights,
+                                      mlod_error *error);
 
 /* --------------------------------------------------- built-in thread pool */
 #ifdef MANYLODS_PTHREADS
@@ -5568,6 +5633,169 @@ MLOD__PUBLIC uint32_t mlod_suggest_sample_count(double surface_area, const mlod_
     if (!(radius > 0.0)) return MANYLODS_MAX_LEAVES;
     n = ceil(surface_area * (radius_scale / radius) * (radius_scale / radius));
     return n >= MANYLODS_MAX_LEAVES ? MANYLODS_MAX_LEAVES : (n < 1.0 ? 1u : (uint32_t)n);
+}
+
+/* --------------------------------------------------- choosing the views -- */
+
+/* The radical inverse of n in base 2 (the Halton sequence's first
+   coordinate), rotated by `shift` modulo 1: in [0, 1). */
+static double mlod__halton2(uint32_t n, double shift)
+{
+    double scale = 0.5, x = 0.0;
+    for (; n > 0; n >>= 1, scale *= 0.5) x += (double)(n & 1u) * scale;
+    x += shift;
+    return x >= 1.0 ? x - 1.0 : x;
+}
+
+/* Position x of a keyed pseudo-random permutation of [0, size): a
+   four-round Feistel network on the smallest even number of bits that
+   holds size, walked round its cycle until it lands below size (at most
+   four steps expected: the bits hold less than 4 size). */
+static uint64_t mlod__permute(uint64_t x, uint64_t size, uint64_t key)
+{
+    uint32_t half = 1, round;
+    uint64_t mask;
+    while (((uint64_t)1 << (2 * half)) < size) half++;
+    mask = ((uint64_t)1 << half) - 1;
+    do {
+        uint64_t left = x >> half, right = x & mask;
+        for (round = 0; round < 4; round++) {
+            uint64_t next = left ^ (mlod__mix64(key + 0x9e3779b97f4a7c15ull * (round + 1) + right) & mask);
+            left = right;
+            right = next;
+        }
+        x = left << half | right;
+    } while (x >= size);
+    return x;
+}
+
+typedef struct mlod__sample_job {
+    const float *importance;
+    uint32_t domain_size, sample_count, chain_length;
+    uint64_t seed;
+    double shift;       /* inverse transform: the seed's rotation */
+    const double *cdf;  /* inverse transform: cdf[i] = sum of importance[0 .. i) */
+    uint32_t *samples;
+    float *weights;
+} mlod__sample_job;
+
+#define MLOD__SAMPLE_TASK 1024u
+
+static void mlod__inverse_task(void *context, uint32_t index)
+{
+    const mlod__sample_job *job = (const mlod__sample_job *)context;
+    uint32_t j, end = index * MLOD__SAMPLE_TASK + MLOD__SAMPLE_TASK;
+    double total = job->cdf[job->domain_size];
+    if (end > job->sample_count || end < index * MLOD__SAMPLE_TASK) end = job->sample_count;
+    for (j = index * MLOD__SAMPLE_TASK; j < end; j++) {
+        double u = mlod__halton2(j, job->shift), target = u * total;
+        uint32_t lo = 0, hi = job->domain_size - 1;
+        if (!(total > 0.0)) { /* nothing to follow: uniform, weight 0 */
+            double x = floor(u * job->domain_size);
+            job->samples[j] = x >= job->domain_size ? job->domain_size - 1 : (uint32_t)x;
+            job->weights[j] = 0.0f;
+            continue;
+        }
+        while (lo < hi) { /* the first i with cdf[i + 1] > target: its importance is > 0 */
+            uint32_t mid = lo + (hi - lo) / 2;
+            if (job->cdf[mid + 1] > target)
+                hi = mid;
+            else
+                lo = mid + 1;
+        }
+        job->samples[j] = lo;
+        job->weights[j] = (float)(total / job->importance[lo]);
+    }
+}
+
+static void mlod__metropolis_task(void *context, uint32_t index)
+{
+    const mlod__sample_job *job = (const mlod__sample_job *)context;
+    uint32_t j, k, end = index * MLOD__SAMPLE_TASK + MLOD__SAMPLE_TASK;
+    if (end > job->sample_count || end < index * MLOD__SAMPLE_TASK) end = job->sample_count;
+    for (j = index * MLOD__SAMPLE_TASK; j < end; j++) {
+        uint32_t current = 0;
+        double f_current = 0.0, sum = 0.0;
+        for (k = 0; k < job->chain_length; k++) {
+            /* proposal n = j + N k (no two chains share one) is position
+               n mod D of the (n / D)-th random permutation of the
+               domain: uniform, and distinct while n < D */
+            uint64_t n = j + (uint64_t)job->sample_count * k;
+            uint32_t proposal = (uint32_t)mlod__permute(n % job->domain_size, job->domain_size,
+                                                        mlod__mix64(job->seed + n / job->domain_size));
+            double f = job->importance[proposal];
+            sum += f;
+            /* the first proposal starts the chain; later ones are taken
+               with probability min(1, f / f_current) (always from a
+               state of importance 0, never into one from a state above) */
+            if (k == 0 || f_current == 0.0 || (f > 0.0 && f >= mlod__hash01(job->seed, 1, n) * f_current)) {
+                current = proposal;
+                f_current = f;
+            }
+        }
+        job->samples[j] = current;
+        /* f_current = 0 only where every proposal had importance 0 */
+        job->weights[j] = f_current > 0.0 ? (float)((double)job->domain_size * (sum / job->chain_length) / f_current)
+                                          : 0.0f;
+    }
+}
+
+MLOD__PUBLIC size_t mlod_sample_bound(uint32_t domain_size, mlod_sampler method)
+{
+    return method == MLOD_SAMPLER_INVERSE_TRANSFORM ? ((size_t)domain_size + 1) * sizeof(double) : 0;
+}
+
+MLOD__PUBLIC mlod_result mlod_sample(const float *importance, uint32_t domain_size, uint32_t sample_count,
+                                      const mlod_sample_params *params, uint32_t *samples, float *weights,
+                                      mlod_error *error)
+{
+    mlod__sample_job job;
+    mlod_allocator a;
+    double total = 0.0, largest = 0.0, smallest = INFINITY, *cdf = NULL;
+    uint32_t i, tasks;
+    if (!importance || !params || !samples || !weights)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "importance, params, samples and weights must not be NULL");
+    if (params->method != MLOD_SAMPLER_INVERSE_TRANSFORM && params->method != MLOD_SAMPLER_METROPOLIS)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "unknown sampling method %d", (int)params->method);
+    if (domain_size == 0 || sample_count == 0)
+        return mlod__fail(error, MLOD_ERROR_EMPTY, "%s is 0", domain_size == 0 ? "domain_size" : "sample_count");
+    for (i = 0; i < domain_size; i++) {
+        double f = importance[i];
+        if (!isfinite(f)) return mlod__fail(error, MLOD_ERROR_NON_FINITE, "importance[%u] is not finite", i);
+        if (f < 0.0) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "importance[%u] = %g is negative", i, f);
+        total += f;
+        if (f > largest) largest = f;
+        if (f > 0.0 && f < smallest) smallest = f;
+    }
+    if (total > 0.0 && (params->method == MLOD_SAMPLER_INVERSE_TRANSFORM ? total : (double)domain_size * largest) /
+                               smallest > 3.4028234663852886e38)
+        return mlod__fail(error, MLOD_ERROR_RANGE,
+                          "importances from %g to %g (total %g) would give weights beyond float range", smallest,
+                          largest, total);
+    memset(&job, 0, sizeof job);
+    job.importance = importance;
+    job.domain_size = domain_size;
+    job.sample_count = sample_count;
+    job.chain_length = params->chain_length ? params->chain_length : 8;
+    job.samples = samples;
+    job.weights = weights;
+    job.seed = mlod__mix64(params->seed ^ 0x5851f42d4c957f2dull);
+    job.shift = mlod__hash01(params->seed, 0, 0);
+    tasks = (uint32_t)(((uint64_t)sample_count + MLOD__SAMPLE_TASK - 1) / MLOD__SAMPLE_TASK);
+    if (params->method == MLOD_SAMPLER_METROPOLIS) {
+        mlod__run(params->parallel, tasks, mlod__metropolis_task, &job);
+        return MLOD_OK;
+    }
+    a = mlod__allocator(params->allocator);
+    cdf = (double *)mlod__alloc_array(&a, (size_t)domain_size + 1, sizeof(double), NULL);
+    if (!cdf) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "%zu bytes for the cumulative importance",
+                                mlod_sample_bound(domain_size, MLOD_SAMPLER_INVERSE_TRANSFORM));
+    cdf[0] = 0.0;
+    for (i = 0; i < domain_size; i++) cdf[i + 1] = cdf[i] + importance[i];
+    job.cdf = cdf;
+    mlod__run(params->parallel, tasks, mlod__inverse_task, &job);
+    mlod__free(&a, cdf);
+    return MLOD_OK;
 }
 
 /* ------------------------------------------------- pthreads thread pool -- */
