@@ -285,25 +285,29 @@
      candidate would bring to the image), with a weight per sample such
      that (1 / N) sum_j weight_j g(sample_j) estimates sum_i g(i): a VPL
      made from candidate i carries weight_j / N times candidate i's flux.
-     Two methods, both on quasi-random numbers (Halton radical inverses,
-     rotated by the seed: the same seed every frame keeps samples still):
-       MLOD_SAMPLER_INVERSE_TRANSFORM  sample j is where u_j (base 2)
-         falls in the cumulative importance; weight F / f(i), F = sum f.
-         Exactly proportional, but a change of f anywhere shifts the
-         cumulative sum, and so almost every sample, every frame.
+     The random numbers depend only on the seed: keep it from frame to
+     frame and the samples move only where the importance does.
+       MLOD_SAMPLER_INVERSE_TRANSFORM  sample j is where u_j falls in the
+         cumulative importance (u_j: the base-2 radical inverse of j,
+         rotated by the seed); weight F / f(i), F = sum f.  Exactly
+         proportional, but a change of f anywhere shifts the cumulative
+         sum after it, and with it most samples.
        MLOD_SAMPLER_METROPOLIS  independent Metropolis-Hastings, after
          Barak, Bittner, Havran, "Temporally Coherent Adaptive Sampling
          for Imperfect Shadow Maps", EGSR 2013: sample j is the last state
-         of a chain over M uniform proposals (sequence points j + N k,
-         k < M, so no two chains share one), each accepted when
-         f(proposal) >= xi f(current); weight D (s / M) / f(i), s the sum
-         of f over the chain's proposals.  A local change of f moves only
-         the chains it touches.  For finite M the samples follow f only
-         approximately (M = 1 is uniform sampling); the weights make the
-         estimate exact on average where g is proportional to f, and
+         of a chain over M uniform proposals, each accepted when
+         f(proposal) >= xi f(current) (xi uniform in [0, 1)); weight
+         D (s / M) / f(i), s the sum of f over the chain's proposals.  A
+         local change of f moves only the chains it touches.  Proposal k of
+         chain j is proposal n = j + N k of a sequence that runs through
+         random permutations of the domain, D proposals each, so no two
+         chains share a candidate while N M <= D (the paper's disjoint
+         proposals; its Halton points j + N k made the samples fail a
+         chi-square test of their distribution by 6 to 25 times the
+         threshold, these pass it).  For finite M the samples follow f
+         only approximately (M = 1 is uniform sampling); the weights make
+         the estimate exact on average where g is proportional to f, and
          nearly so elsewhere, closer as M grows (tests/test_sample.c).
-     For the chains to cross the whole domain, the bases of the proposals
-     and of xi are the two smallest primes that do not divide N.
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat* and mlod_atlas_fill_holes take
@@ -934,7 +938,7 @@ typedef enum mlod_sampler {
 typedef struct mlod_sample_params {
     mlod_sampler method;
     uint32_t chain_length;           /* MLOD_SAMPLER_METROPOLIS: proposals per chain, M >= 1 (0: 8) */
-    uint64_t seed;                   /* rotates the quasi-random numbers; keep it from frame to frame */
+    uint64_t seed;                   /* picks the random numbers; keep it from frame to frame */
     const mlod_parallel *parallel;   /* optional */
     const mlod_allocator *allocator; /* optional: the inverse transform's table */
 } mlod_sample_params;

@@ -61,6 +61,7 @@ typedef struct app_options {
     uint32_t match_drawn;  /* --ism-match: time (0), drawn (1) or K (K times the drawn count, 1..16) */
     int tiny;              /* --tiny: the small preset */
     float disc_scale;      /* --disc-scale S: mlod_atlas_desc.disc_scale, in (0, 1] */
+    int sampling;          /* --sampling: instant_radiosity's comparison of VPL samplers */
 } app_options;
 
 /* "basic", "incremental" or "lazy". */
@@ -114,6 +115,9 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             fprintf(stderr, "%s: unknown option \"%s\"\n\n%s", program, arg, usage);
             return 0;
         } else if (strcmp(arg, "--tiny") == 0) {
+            takes = 0;
+        } else if (strcmp(arg, "--sampling") == 0) {
+            o->sampling = 1;
             takes = 0;
         } else if (strcmp(arg, "--out") == 0) {
             ok = value && *value;

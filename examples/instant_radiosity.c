@@ -26,6 +26,13 @@
      instant_radiosity_compare.png  manylods | ISM | reference, side by side
      instant_radiosity_maps.png     the first 64 shadow maps: manylods | ISM | ray-cast
 
+   With --sampling it instead compares how the VPLs are chosen: the light's
+   rays as candidates, their importance after Barak et al. (EGSR 2013, eq.
+   1-2), drawn by mlod_sample's inverse transform and Metropolis-Hastings
+   chains over a sequence (light still, camera turning, object twisting),
+   with the flicker, error, VPLs kept and incremental cut time of each
+   (compare_samplers, below).
+
    Run with --help for the options. */
 #define _POSIX_C_SOURCE 200809L
 #define MANYLODS_IMPLEMENTATION
@@ -49,6 +56,8 @@ static const char usage[] =
     "  --disc-scale S     manylods' discs: S times the sphere image's radius, 0 < S <= 1 (default 0.5;\n"
     "                     below 1 the holes are pull-push filled, in the splat's time)\n"
     "  --threads N        threads (default 2)\n"
+    "  --sampling         compare how the VPLs are chosen (mlod_sample: inverse transform and Metropolis-\n"
+    "                     Hastings) over the frames: flicker, error, VPLs kept, cut time; writes no image\n"
     "  --tiny             a small run for the tests: 64 VPLs, 80x60 pixels, 2 frames\n";
 
 /* Shadow-map lookups.  The receiver moves off its surface by NORMAL_OFFSET
@@ -136,6 +145,23 @@ static float map_visibility(const mlod_atlas *atlas, const uint32_t *tile, const
     return lit;
 }
 
+/* The VPL's geometry term at surface point p (shading normal n), clamped
+   (CLAMP_DISTANCE), and the distance and the cosine at p; 0 where either
+   side faces away. */
+static float vpl_geometry(const vpl *l, const float p[3], const float n[3], float *distance, float *cos_s)
+{
+    float w[3], d2, d, cos_l;
+    int c;
+    for (c = 0; c < 3; c++) w[c] = p[c] - l->position[c];
+    d2 = app_dot(w, w);
+    d = sqrtf(d2);
+    cos_l = app_dot(w, l->normal) / d;
+    *cos_s = -app_dot(w, n) / d;
+    *distance = d;
+    if (!(cos_l > 0.0f && *cos_s > 0.0f)) return 0.0f;
+    return cos_l * *cos_s / (d2 > CLAMP_DISTANCE * CLAMP_DISTANCE ? d2 : CLAMP_DISTANCE * CLAMP_DISTANCE);
+}
+
 /* Shade one block of pixels: the indirect light of every VPL. */
 static void shade_block(void *context, uint32_t block)
 {
@@ -156,16 +182,11 @@ static void shade_block(void *context, uint32_t block)
             for (x = x0; x < x1; x++) {
                 size_t i = (size_t)y * g->width + x;
                 const app_surface *s = &g->surface[i];
-                float w[3], d2, d, cos_l, cos_s, geometry, visibility;
+                float d, cos_s, geometry, visibility;
                 int c;
                 if (!g->hit[i]) continue;
-                for (c = 0; c < 3; c++) w[c] = s->p[c] - l->position[c];
-                d2 = app_dot(w, w);
-                d = sqrtf(d2);
-                cos_l = app_dot(w, l->normal) / d;
-                cos_s = -app_dot(w, s->n) / d;
-                if (!(cos_l > 0.0f && cos_s > 0.0f)) continue;
-                geometry = cos_l * cos_s / (d2 > CLAMP_DISTANCE * CLAMP_DISTANCE ? d2 : CLAMP_DISTANCE * CLAMP_DISTANCE);
+                geometry = vpl_geometry(l, s->p, s->n, &d, &cos_s);
+                if (geometry <= 0.0f) continue;
                 if (job->atlas) {
                     visibility = map_visibility(job->atlas, tile, &job->maps[k], s->p, s->ng, d, cos_s);
                 } else {
@@ -289,11 +310,294 @@ static double splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_vie
     return app_now_ms() - t0;
 }
 
+/* ------------------------------------------- choosing the VPLs (--sampling) */
+
+/* --sampling: the light's rays give CANDIDATES_PER_VPL times as many
+   candidate VPLs (potential VPLs, the reflective shadow map of Ritschel et
+   al. 2011) as there are VPLs; each candidate's importance is eq. 1-2 of
+   Barak, Bittner and Havran (EGSR 2013): the light it would bring, without
+   visibility, to IMPORTANCE_POINTS camera-visible points (fixed pixels),
+   f(v) = sum_k Y(flux(v) albedo(x_k) / pi) G(x_k, v), Y the luminance;
+   mlod_sample draws the VPLs by it.  The light stands still; the camera
+   turns CAMERA_TURN radians a frame and the object twists, so the
+   importance changes every frame.  The indirect light is measured at
+   SAMPLING_RECEIVERS surface points (leaves of the tree spread evenly, on
+   the object too), with exact visibility, so that the figures are the
+   sampler's alone: against the converged reference (every candidate a VPL
+   of its own flux), and from frame to frame at the receivers whose
+   reference changes by at most STABLE of itself (flicker). */
+#define CANDIDATES_PER_VPL 16u
+#define IMPORTANCE_POINTS 256u
+#define SAMPLING_RECEIVERS 512u
+#define CAMERA_TURN 0.026f /* 1.5 degrees */
+#define STABLE 0.02
+#define CHAIN_LENGTH 16u
+
+static float luminance(const float c[3]) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
+
+typedef struct importance_job {
+    const vpl *candidates;
+    uint32_t count;
+    const app_surface *points;
+    uint32_t point_count;
+    float *importance;
+} importance_job;
+
+#define IMPORTANCE_BLOCK 256u
+
+static void importance_block(void *context, uint32_t block)
+{
+    const importance_job *job = (const importance_job *)context;
+    uint32_t i, k, end = (block + 1) * IMPORTANCE_BLOCK < job->count ? (block + 1) * IMPORTANCE_BLOCK : job->count;
+    for (i = block * IMPORTANCE_BLOCK; i < end; i++) {
+        const vpl *l = &job->candidates[i];
+        double f = 0.0;
+        for (k = 0; l->active && k < job->point_count; k++) {
+            const app_surface *x = &job->points[k];
+            float d, cos_s, reflected[3];
+            float geometry = vpl_geometry(l, x->p, x->n, &d, &cos_s);
+            int c;
+            for (c = 0; c < 3; c++) reflected[c] = l->flux[c] * x->albedo[c] * (float)(1.0 / SCENE_PI) * geometry;
+            f += luminance(reflected);
+        }
+        job->importance[i] = (float)f;
+    }
+}
+
+/* The camera of frame `frame`: the demo's, turned about the vertical. */
+static mlod_view sampling_camera(uint32_t width, uint32_t height, uint32_t frame)
+{
+    mlod_view v = app_camera(width, height);
+    float a = CAMERA_TURN * (float)frame, x = v.forward[0], z = v.forward[2];
+    v.forward[0] = x * cosf(a) - z * sinf(a);
+    v.forward[2] = x * sinf(a) + z * cosf(a);
+    return v;
+}
+
+/* What the comparison keeps per sampler. */
+typedef struct sampler_run {
+    mlod_sampler method;
+    mlod_cut *cut;
+    mlod_view *views, *previous;
+    vpl *vpls;
+    uint32_t *samples;
+    float *weights;
+    app_image light, last; /* at the receivers: this frame, the previous */
+    double kept, flicker, error, cut_ms; /* summed over frames 1 .. */
+} sampler_run;
+
+/* Mean absolute difference of a and b's luminance over the receivers (all,
+   or where `stable`), relative to the reference's there. */
+static double receiver_difference(const app_image *a, const app_image *b, const app_image *reference,
+                                  const uint8_t *stable)
+{
+    double diff = 0.0, sum = 0.0;
+    uint32_t i;
+    for (i = 0; i < reference->width; i++) {
+        if (stable && !stable[i]) continue;
+        diff += fabs((double)luminance(a->rgb + 3 * (size_t)i) - luminance(b->rgb + 3 * (size_t)i));
+        sum += luminance(reference->rgb + 3 * (size_t)i);
+    }
+    return sum > 0.0 ? diff / sum : 0.0;
+}
+
+static int compare_samplers(const char *program, const app_options *o, app_scene *scene, mlod_tree *tree,
+                            const app_threads *threads)
+{
+    uint32_t n = o->views, d = CANDIDATES_PER_VPL * o->views, receivers = o->tiny ? 128u : SAMPLING_RECEIVERS;
+    uint32_t frame, j, r, s, stable_count;
+    vpl *candidates = (vpl *)calloc(d, sizeof *candidates);
+    mlod_view *candidate_views = (mlod_view *)calloc(d, sizeof *candidate_views);
+    app_paraboloid *candidate_maps = (app_paraboloid *)calloc(d, sizeof *candidate_maps);
+    float *importance = (float *)calloc(d, sizeof *importance);
+    app_surface points[IMPORTANCE_POINTS];
+    uint8_t *stable = (uint8_t *)calloc(receivers, 1);
+    app_gbuffer g;
+    app_image reference, reference_last;
+    sampler_run runs[2];
+    mlod_cut_params params;
+    mlod_error error;
+    shade_job job;
+    const app_light light = app_light_at(0.0f);
+    int ok = candidates && candidate_views && candidate_maps && importance && stable;
+    memset(&g, 0, sizeof g);
+    memset(runs, 0, sizeof runs);
+    memset(&reference, 0, sizeof reference);
+    memset(&reference_last, 0, sizeof reference_last);
+    g.width = receivers;
+    g.height = 1;
+    g.surface = (app_surface *)calloc(receivers, sizeof *g.surface);
+    g.hit = (uint8_t *)malloc(receivers);
+    ok = ok && g.surface && g.hit && app_image_create(&reference, receivers, 1) &&
+         app_image_create(&reference_last, receivers, 1);
+    for (s = 0; s < 2; s++) {
+        sampler_run *run = &runs[s];
+        run->method = s ? MLOD_SAMPLER_METROPOLIS : MLOD_SAMPLER_INVERSE_TRANSFORM;
+        run->views = (mlod_view *)calloc(n, sizeof *run->views);
+        run->previous = (mlod_view *)calloc(n, sizeof *run->previous);
+        run->vpls = (vpl *)calloc(n, sizeof *run->vpls);
+        run->samples = (uint32_t *)calloc(n, sizeof *run->samples);
+        run->weights = (float *)calloc(n, sizeof *run->weights);
+        ok = ok && run->views && run->previous && run->vpls && run->samples && run->weights &&
+             app_image_create(&run->light, receivers, 1) && app_image_create(&run->last, receivers, 1) &&
+             mlod_cut_create(n, NULL, &run->cut, &error) == MLOD_OK;
+    }
+    if (!ok) {
+        fprintf(stderr, "%s: out of memory\n", program);
+        goto done;
+    }
+    memset(&params, 0, sizeof params);
+    params.epsilon = o->epsilon;
+    params.parallel = threads->parallel;
+    printf("manylods %d.%d.%d instant radiosity, choosing the VPLs: %s, %s\n", MANYLODS_VERSION_MAJOR,
+           MANYLODS_VERSION_MINOR, MANYLODS_VERSION_PATCH, scene->name, threads->description);
+    printf("%u VPLs drawn from %u candidates (the light's rays) by the importance of eq. 1-2 of Barak et al.\n"
+           "(EGSR 2013) over %u camera points; Metropolis-Hastings chains of %u proposals; the same seed every\n"
+           "frame.  The light stands still, the camera turns %.1f deg a frame, the object twists.  Indirect light\n"
+           "at %u surface points, exact visibility: error against every candidate as a VPL (the converged\n"
+           "reference), flicker = frame-to-frame change where the reference changes by <= %.0f %%; kept = VPLs\n"
+           "whose view is the previous frame's; cut: %s, epsilon %g px, %u x %u px paraboloids.\n\n",
+           n, d, IMPORTANCE_POINTS, CHAIN_LENGTH, (double)CAMERA_TURN * 180.0 / SCENE_PI, receivers, 100.0 * STABLE,
+           app_mode_name(MLOD_CUT_INCREMENTAL), (double)o->epsilon, o->tile, o->tile);
+    printf("       inverse transform                     Metropolis-Hastings\n");
+    printf("frame  kept %%  flicker %%  error %%  cut ms    kept %%  flicker %%  error %%  cut ms\n");
+    for (frame = 0; frame <= o->frames; frame++) {
+        mlod_view camera = sampling_camera(o->width, o->height, frame);
+        importance_job ij;
+        uint32_t point_count = 0, k;
+        app_scene_animate(scene, 0.25f * (float)frame);
+        if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
+        /* the candidates, and the importance over fixed camera pixels */
+        spawn_vpls(scene, &light, d, o->tile, candidates, candidate_views, candidate_maps);
+        for (k = 0; k < IMPORTANCE_POINTS; k++) {
+            uint64_t h = 0x9e3779b97f4a7c15ull * (k + 1);
+            float origin[3], direction[3];
+            raytrace_hit hit;
+            h ^= h >> 29;
+            if (mlod_view_pixel_ray(&camera, (float)(h % o->width) + 0.5f, (float)((h >> 20) % o->height) + 0.5f, origin,
+                                    direction) &&
+                raytrace_closest(&scene->bvh, origin, direction, INFINITY, &hit))
+                app_surface_at(scene, origin, direction, &hit, &points[point_count++]);
+        }
+        ij.candidates = candidates;
+        ij.count = d;
+        ij.points = points;
+        ij.point_count = point_count;
+        ij.importance = importance;
+        app_parallel_for(threads, (d + IMPORTANCE_BLOCK - 1) / IMPORTANCE_BLOCK, importance_block, &ij);
+        /* the receivers: leaves spread evenly, as they are this frame */
+        for (r = 0; r < receivers; r++) {
+            size_t leaf = (size_t)tree->leaf_count - 1 + (uint64_t)r * tree->leaf_count / receivers;
+            app_surface *x = &g.surface[r];
+            memcpy(x->p, tree->spheres + 4 * leaf, sizeof x->p);
+            memcpy(x->n, tree->cones + 4 * leaf, sizeof x->n);
+            memcpy(x->ng, x->n, sizeof x->ng);
+            app_set(x->albedo, 1.0f, 1.0f, 1.0f);
+            g.hit[r] = 1;
+        }
+        memset(&job, 0, sizeof job);
+        job.scene = scene;
+        job.g = &g;
+        job.vpls = candidates;
+        job.vpl_count = d;
+        job.indirect = &reference;
+        shade_indirect(&job, threads);
+        stable_count = 0;
+        for (r = 0; r < receivers; r++) {
+            double now = luminance(reference.rgb + 3 * (size_t)r), before = luminance(reference_last.rgb + 3 * (size_t)r);
+            stable[r] = frame > 0 && now > 0.0 && fabs(now - before) <= STABLE * now;
+            stable_count += stable[r];
+        }
+        printf("%5u", frame);
+        for (s = 0; s < 2; s++) {
+            sampler_run *run = &runs[s];
+            mlod_sample_params sp;
+            uint32_t kept = 0;
+            double t0, cut_ms, flicker, err;
+            memset(&sp, 0, sizeof sp);
+            sp.method = run->method;
+            sp.chain_length = CHAIN_LENGTH;
+            sp.seed = 1;
+            sp.parallel = threads->parallel;
+            if (mlod_sample(importance, d, n, &sp, run->samples, run->weights, &error) != MLOD_OK) goto failed;
+            memcpy(run->previous, run->views, n * sizeof *run->views);
+            for (j = 0; j < n; j++) { /* VPL j: candidate samples[j] with weights[j] / n of its flux */
+                const vpl *c = &candidates[run->samples[j]];
+                int ch;
+                run->vpls[j] = *c;
+                for (ch = 0; ch < 3; ch++) run->vpls[j].flux[ch] = c->flux[ch] * run->weights[j] / (float)n;
+                run->views[j] = candidate_views[run->samples[j]];
+                kept += memcmp(&run->views[j], &run->previous[j], sizeof run->views[j]) == 0;
+            }
+            params.mode = frame == 0 ? MLOD_CUT_BASIC : MLOD_CUT_INCREMENTAL;
+            t0 = app_now_ms();
+            if (mlod_cut_update(run->cut, tree, run->views, &params, &error) != MLOD_OK) goto failed;
+            cut_ms = app_now_ms() - t0;
+            memcpy(run->last.rgb, run->light.rgb, 3 * sizeof(float) * receivers);
+            job.vpls = run->vpls;
+            job.vpl_count = n;
+            job.indirect = &run->light;
+            shade_indirect(&job, threads);
+            err = receiver_difference(&run->light, &reference, &reference, NULL);
+            flicker = frame > 0 && stable_count ? receiver_difference(&run->light, &run->last, &reference, stable) : 0.0;
+            if (frame > 0) {
+                run->kept += (double)kept / n;
+                run->flicker += flicker;
+                run->error += err;
+                run->cut_ms += cut_ms;
+                printf("  %6.1f  %9.2f  %7.2f  %6.1f", 100.0 * kept / n, 100.0 * flicker, 100.0 * err, cut_ms);
+            } else {
+                printf("  %6s  %9s  %7.2f  %6.1f", "-", "-", 100.0 * err, cut_ms);
+            }
+        }
+        printf("%s\n", frame == 0 ? "   (basic cuts from the root)" : "");
+        fflush(stdout);
+        memcpy(reference_last.rgb, reference.rgb, 3 * sizeof(float) * receivers);
+    }
+    if (o->frames > 0) {
+        printf("mean  ");
+        for (s = 0; s < 2; s++)
+            printf("  %6.1f  %9.2f  %7.2f  %6.1f", 100.0 * runs[s].kept / o->frames, 100.0 * runs[s].flicker / o->frames,
+                   100.0 * runs[s].error / o->frames, runs[s].cut_ms / o->frames);
+        printf("   (frames 1 .. %u)\n", o->frames);
+        printf("sampling summary: kept %.1f %% vs %.1f %%, flicker %.2f %% vs %.2f %%, error %.2f %% vs %.2f %%,"
+               " cut %.1f ms vs %.1f ms (inverse transform vs Metropolis-Hastings)\n",
+               100.0 * runs[0].kept / o->frames, 100.0 * runs[1].kept / o->frames, 100.0 * runs[0].flicker / o->frames,
+               100.0 * runs[1].flicker / o->frames, 100.0 * runs[0].error / o->frames,
+               100.0 * runs[1].error / o->frames, runs[0].cut_ms / o->frames, runs[1].cut_ms / o->frames);
+    }
+    ok = 1;
+    goto done;
+failed:
+    fprintf(stderr, "%s: %s: %s\n", program, mlod_result_name(error.code), error.message);
+    ok = 0;
+done:
+    for (s = 0; s < 2; s++) {
+        mlod_cut_destroy(runs[s].cut);
+        free(runs[s].views);
+        free(runs[s].previous);
+        free(runs[s].vpls);
+        free(runs[s].samples);
+        free(runs[s].weights);
+        app_image_free(&runs[s].light);
+        app_image_free(&runs[s].last);
+    }
+    free(candidates);
+    free(candidate_views);
+    free(candidate_maps);
+    free(importance);
+    free(stable);
+    app_gbuffer_free(&g);
+    app_image_free(&reference);
+    app_image_free(&reference_last);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 2, MLOD_CUT_INCREMENTAL,
-                          0, 0, 0.5f};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f};
+                          0, 0, 0.5f, 0};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f, 0};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -354,6 +658,10 @@ int main(int argc, char **argv)
     t0 = app_now_ms();
     if (mlod_build_mesh(&scene.mesh, &desc, &tree, &error) != MLOD_OK) goto failed;
     build_ms = app_now_ms() - t0;
+    if (o.sampling) {
+        status = compare_samplers(program, &o, &scene, tree, &threads) ? 0 : 1;
+        goto done;
+    }
     if (mlod_cut_create(o.views, NULL, &cut, &error) != MLOD_OK) goto failed;
     memset(&params, 0, sizeof params);
     params.epsilon = o.epsilon;
