@@ -11,11 +11,7 @@
 #define MANYLODS_IMPLEMENTATION
 #define MANYLODS_PTHREADS
 #include "../manylods.h"
-#include "harness.h"
-
-#include <math.h>
-#include <stdlib.h>
-#include <string.h>
+#include "testutil.h"
 
 #define MAX_SAMPLES 8192
 
@@ -23,11 +19,7 @@ static uint32_t samples[MAX_SAMPLES], other[MAX_SAMPLES];
 static float weights[MAX_SAMPLES], other_weights[MAX_SAMPLES];
 
 static uint64_t rng_state = 12345;
-static double rng01(void)
-{
-    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
-    return (double)(rng_state >> 11) * (1.0 / 9007199254740992.0);
-}
+static double rng01(void) { return scene_rng_double(&rng_state); }
 
 static mlod_sample_params params_of(mlod_sampler method, uint32_t chain_length, uint64_t seed)
 {
