@@ -69,7 +69,11 @@ DEMO_DEFINES ?= -DMANYLODS_PTHREADS
 BENCH_OPT    := -std=c99 -O2
 BENCH_CFLAGS := $(BENCH_OPT) $(WARNINGS) $(CFLAGS) -DBENCH_FLAGS='"$(BENCH_OPT)"'
 BENCH_LDLIBS := -lembree3 -lm -pthread
-BENCH_DEPS   := bench/bench.c $(wildcard bench/*.h) manylods.h examples/scenes.h examples/meshio.h
+BENCH_DEPS   := bench/bench.c bench/cut_avx2.c $(wildcard bench/*.h) manylods.h examples/scenes.h examples/meshio.h
+# On x86-64 the bench also links a second copy of the library built with
+# -mavx2 -mfma (bench/cut_avx2.c) and reports its cut beside this build's.
+BENCH_AVX2   := $(if $(findstring x86_64,$(shell $(CC) -dumpmachine 2>/dev/null)),1)
+BENCH_EXTRA  = $(if $(BENCH_AVX2),-DBENCH_AVX2 $(BUILD)/bench/cut_avx2.o)
 # Test programs build in parallel: with the caller's -jN if given, else on
 # every core.
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
@@ -270,16 +274,21 @@ bench-quick:
 	$(Q)$(MAKE) --no-print-directory $(BUILD)/bench/bench
 	$(Q)$(BUILD)/bench/bench --quick --out $(BUILD)/bench
 
-$(BUILD)/bench/bench: $(BENCH_DEPS)
+$(BUILD)/bench/cut_avx2.o: bench/cut_avx2.c bench/cut_avx2.h manylods.h
 	$(say) CC $@
 	$(Q)mkdir -p $(@D) && rm -f $@
-	$(Q)$(CC) $(BENCH_CFLAGS) $< -o $@ $(BENCH_LDLIBS)
+	$(Q)$(CC) $(BENCH_CFLAGS) -mavx2 -mfma -c $< -o $@
+
+$(BUILD)/bench/bench: $(BENCH_DEPS) $(if $(BENCH_AVX2),$(BUILD)/bench/cut_avx2.o)
+	$(say) CC $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CC) $(BENCH_CFLAGS) $< $(BENCH_EXTRA) -o $@ $(BENCH_LDLIBS)
 
 # The same program, --selftest by default: what `make test` runs.
-$(BUILD)/bench/selftest: $(BENCH_DEPS)
+$(BUILD)/bench/selftest: $(BENCH_DEPS) $(if $(BENCH_AVX2),$(BUILD)/bench/cut_avx2.o)
 	$(say) CC $@
 	$(Q)mkdir -p $(@D) && rm -f $@
-	$(Q)$(CC) $(BENCH_CFLAGS) -DBENCH_SELFTEST $< -o $@ $(BENCH_LDLIBS)
+	$(Q)$(CC) $(BENCH_CFLAGS) -DBENCH_SELFTEST $< $(BENCH_EXTRA) -o $@ $(BENCH_LDLIBS)
 
 clean:
 	rm -rf $(BUILD)

@@ -945,7 +945,8 @@ typedef struct mlod_sample_params {
 
 /* Bytes mlod_sample allocates (and frees before it returns) for a domain
    of domain_size candidates: (domain_size + 1) doubles for the inverse
-   transform, none for Metropolis.  Pure. */
+   transform ((size_t)-1 where that does not fit), none for Metropolis.
+   Pure. */
 MANYLODS_DEF size_t mlod_sample_bound(uint32_t domain_size, mlod_sampler method);
 
 /* sample_count (N >= 1) samples of the domain [0, domain_size) (D >= 1)
@@ -956,7 +957,8 @@ MANYLODS_DEF size_t mlod_sample_bound(uint32_t domain_size, mlod_sampler method)
    importance is 0, samples are uniform and weights 0.  Deterministic for a
    seed, for any thread count.  Errors: NULL arrays, N or D 0, a negative
    or non-finite importance, an unknown method
-   (MLOD_ERROR_INVALID_ARGUMENT / EMPTY / NON_FINITE), importances whose
+   (MLOD_ERROR_INVALID_ARGUMENT / EMPTY / NON_FINITE), a table beyond
+   size_t (MLOD_ERROR_OVERFLOW, 32-bit systems), importances whose
    weights could exceed FLT_MAX (the total, or D times the largest,
    over the smallest positive one: MLOD_ERROR_RANGE), no memory;
    samples and weights are then untouched.  Thread-safe. */
@@ -5746,7 +5748,9 @@ static void mlod__metropolis_task(void *context, uint32_t index)
 
 MLOD__PUBLIC size_t mlod_sample_bound(uint32_t domain_size, mlod_sampler method)
 {
-    return method == MLOD_SAMPLER_INVERSE_TRANSFORM ? ((size_t)domain_size + 1) * sizeof(double) : 0;
+    size_t entries = (size_t)domain_size + 1;
+    if (method != MLOD_SAMPLER_INVERSE_TRANSFORM) return 0;
+    return entries == 0 || entries > (size_t)-1 / sizeof(double) ? (size_t)-1 : entries * sizeof(double);
 }
 
 MLOD__PUBLIC mlod_result mlod_sample(const float *importance, uint32_t domain_size, uint32_t sample_count,
@@ -5790,6 +5794,8 @@ MLOD__PUBLIC mlod_result mlod_sample(const float *importance, uint32_t domain_si
         mlod__run(params->parallel, tasks, mlod__metropolis_task, &job);
         return MLOD_OK;
     }
+    if (mlod_sample_bound(domain_size, MLOD_SAMPLER_INVERSE_TRANSFORM) == (size_t)-1)
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "a table of %u + 1 doubles does not fit in size_t", domain_size);
     a = mlod__allocator(params->allocator);
     cdf = (double *)mlod__alloc_array(&a, (size_t)domain_size + 1, sizeof(double), NULL);
     if (!cdf) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "%zu bytes for the cumulative importance",

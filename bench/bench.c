@@ -72,6 +72,9 @@
 #include "recursive.h"
 #include "rt.h"
 #include "shapes.h"
+#ifdef BENCH_AVX2
+#include "cut_avx2.h"
+#endif
 #ifdef BENCH_VULKAN
 #define MANYLODS_VK_IMPLEMENTATION
 #include "../manylods_vk.h"
@@ -1172,6 +1175,62 @@ static void target_plain(bench *b, protocol *p, uint32_t n, const ranks *rk)
     free(views);
 }
 
+/* The basic cut of the protocol's frames (cones, back-face culling, the
+   sweep's tree refitted to each frame) in this build and in a copy of the
+   library built with -mavx2 -mfma (bench/cut_avx2.c, 8 lanes), in turn,
+   in one run: what the flags buy.  Every frame's cuts must be equal, node
+   for node.  Only where the Makefile built that copy (x86-64) and the
+   processor runs it. */
+static void target_avx2(bench *b, protocol *p, mlod_tree *tree)
+{
+#ifdef BENCH_AVX2
+    const config *c = &b->cfg;
+    mlod_cut *cut = NULL;
+    bench_avx2_cut *wide;
+    mlod_cut_params params;
+    mlod_error error;
+    double ms[2][BENCH_MAX_FRAMES];
+    int f, k;
+    row *r;
+    if (!bench_avx2_supported()) return;
+    wide = bench_avx2_cut_create(p->view_count);
+    if (!wide || mlod_cut_create(p->view_count, NULL, &cut, &error) != MLOD_OK) fail("the AVX2 row's cuts");
+    memset(&params, 0, sizeof params);
+    params.mode = MLOD_CUT_BASIC;
+    params.epsilon = 1.0f;
+    params.parallel = &b->parallel;
+    for (f = 0; f < p->frame_count; f++) {
+        mlod_mesh mesh = frame_mesh(p, f);
+        const mlod_view *views = frame_views(p, f);
+        uint64_t hash = 1469598103934665603ull;
+        uint32_t v;
+        if (mlod_refit_mesh(tree, &mesh, &b->parallel, &error) != MLOD_OK) fail("mlod_refit_mesh: %s", error.message);
+        for (k = 0; k < 2; k++) { /* this build first on even frames, the AVX2 copy first on odd ones */
+            int which = (k + f) & 1;
+            double t0 = now_ms();
+            if ((which ? bench_avx2_cut_update(wide, tree, views, &params, &error)
+                       : mlod_cut_update(cut, tree, views, &params, &error)) != MLOD_OK)
+                fail("mlod_cut_update (%s): %s", which ? "AVX2 copy" : "this build", error.message);
+            if (f >= c->warmup) ms[which][f - c->warmup] = now_ms() - t0;
+        }
+        for (v = 0; v < p->view_count; v++) hash = bench_hash_cut_view(hash, mlod_cut_get(cut, v));
+        if (hash != bench_avx2_cut_hash(wide)) fail("frame %d: the AVX2 build's cuts differ from this build's", f);
+    }
+    r = add_row(b, ROW_TARGET, p->name, "basic cut, AVX2 build");
+    r->cut_ms = median(ms[1], c->measured);
+    r->total_ms = median(ms[0], c->measured); /* this build's, in the same run */
+    r->eps = 1.0f;
+    r->n = tree->leaf_count;
+    snprintf(r->note, sizeof r->note, "%d lanes", bench_avx2_lanes());
+    mlod_cut_destroy(cut);
+    bench_avx2_cut_destroy(wide);
+#else
+    (void)b;
+    (void)p;
+    (void)tree;
+#endif
+}
+
 /* One large view, the setting of the paper's Table 2: a 1024 x 1024
    perspective view (fov_y 60 degrees, back-face culling) of the last
    frame's object, looking at the centre of its bounding sphere (the sphere
@@ -1309,6 +1368,7 @@ static void run_targets(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
     time_threads(b, p, tree, frame_views(p, last), frame_mesh(p, last));
     target_rigs(b, p, tree, rk);
     target_plain(b, p, tree->leaf_count, rk);
+    target_avx2(b, p, tree);
     target_single(b, p, tree, rk);
     printf("  targets N %8u  one thread / two: build %.0f / %.0f, refit %.1f / %.1f, cut %.1f / %.1f, splat %.1f / "
            "%.1f ms (%.0f s)\n",
@@ -1833,6 +1893,7 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
     const row *inc = find_row(b, ROW_OURS, o, "incremental", 1.0f, n);
     const row *lazy = find_row(b, ROW_OURS, o, "lazy q=1", 1.0f, n);
     const row *plain = find_row(b, ROW_TARGET, o, "no cones, no back-face culling: basic", 1.0f, n);
+    const row *avx2 = find_row(b, ROW_TARGET, o, "basic cut, AVX2 build", 1.0f, n);
     const row *rigs[2][2], *same = find_row(b, ROW_TARGET, o, "unchanged views and tree: incremental", 1.0f, n);
     const row *polys = find_row(b, ROW_POLYS, o, NULL, 0, 0), *embree = find_row(b, ROW_EMBREE, o, NULL, 0, 0);
     const row *single_embree = find_row(b, ROW_TARGET, o, "one 1024x1024 perspective view: Embree", 0, 0);
@@ -1873,6 +1934,17 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
                     plain->cut_ms / 8.0, NULL);
     } else {
         target_missing(f, "basic cut, no cones, no back-face culling", "<= 8 ms", "not run in this configuration");
+    }
+    if (avx2) {
+        snprintf(anchor, sizeof anchor, "the same frames, in turn with this build (%s): %s, %.2fx as long; the "
+                 "library compiled a second time with -O2 -mavx2 -mfma (bench/cut_avx2.c), its float filter in %s; "
+                 "equal cuts (checked every frame)",
+                 BENCH_FLAGS, ms_text(avx2->total_ms), avx2->total_ms / avx2->cut_ms, avx2->note);
+        target_line(f, "basic cut, cones + back-face culling, built with -mavx2 -mfma", ms_text(avx2->cut_ms),
+                    "<= 8 ms", anchor, avx2->cut_ms / 8.0, NULL);
+    } else {
+        target_missing(f, "basic cut, cones + back-face culling, built with -mavx2 -mfma", "<= 8 ms",
+                       "not run: no AVX2 and FMA here, or not an x86-64 build");
     }
     snprintf(anchor, sizeof anchor, "paper Table 1: 5.3 ms; our basic cut of the same frames %s (incremental / "
              "basic %.2f); equal to the basic cut node for node (checked every frame)",
@@ -2524,6 +2596,18 @@ static int selftest(bench *b, protocol *p)
         if (check_cut_view(&rk, &broken, 0) == NULL || cut_partitions_by_walk(tree, &broken, hits, stack))
             fail("selftest: a cut listing node 1 twice passed a check");
     }
+#ifdef BENCH_AVX2
+    if (bench_avx2_supported()) { /* the Targets table's AVX2 copy cuts the same */
+        bench_avx2_cut *wide = bench_avx2_cut_create(p->view_count);
+        uint64_t hash = 1469598103934665603ull;
+        if (!wide || bench_avx2_cut_update(wide, tree, frame_views(p, last), &params, &error) != MLOD_OK)
+            fail("selftest: the AVX2 copy's cut: %s", wide ? error.message : "out of memory");
+        for (v = 0; v < p->view_count; v++) hash = bench_hash_cut_view(hash, mlod_cut_get(cut, v));
+        if (hash != bench_avx2_cut_hash(wide)) fail("selftest: the AVX2 copy's cuts differ from this build's");
+        printf("selftest: the copy built with -mavx2 -mfma (%d lanes) gives the same cuts\n", bench_avx2_lanes());
+        bench_avx2_cut_destroy(wide);
+    }
+#endif
     if (mlod_splat(p->atlas, tree, cut, frame_views(p, last), &b->parallel, &error) != MLOD_OK)
         fail("selftest: %s", error.message);
     compare_last(p, &ours);
