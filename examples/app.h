@@ -62,6 +62,7 @@ typedef struct app_options {
     int tiny;              /* --tiny: the small preset */
     float disc_scale;      /* --disc-scale S: mlod_atlas_desc.disc_scale, in (0, 1] */
     int sampling;          /* --sampling: instant_radiosity's comparison of VPL samplers */
+    int still;             /* --still: the object stays at rest */
 } app_options;
 
 /* "basic", "incremental" or "lazy". */
@@ -118,6 +119,9 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             takes = 0;
         } else if (strcmp(arg, "--sampling") == 0) {
             o->sampling = 1;
+            takes = 0;
+        } else if (strcmp(arg, "--still") == 0) {
+            o->still = 1;
             takes = 0;
         } else if (strcmp(arg, "--out") == 0) {
             ok = value && *value;

@@ -58,6 +58,7 @@ static const char usage[] =
     "  --threads N        threads (default 2)\n"
     "  --sampling         compare how the VPLs are chosen (mlod_sample: inverse transform and Metropolis-\n"
     "                     Hastings) over the frames: flicker, error, VPLs kept, cut time; writes no image\n"
+    "  --still            with --sampling: the object stays at rest (the tree is not refitted)\n"
     "  --tiny             a small run for the tests: 64 VPLs, 80x60 pixels, 2 frames\n";
 
 /* Shadow-map lookups.  The receiver moves off its surface by NORMAL_OFFSET
@@ -453,11 +454,12 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
            MANYLODS_VERSION_MINOR, MANYLODS_VERSION_PATCH, scene->name, threads->description);
     printf("%u VPLs drawn from %u candidates (the light's rays) by the importance of eq. 1-2 of Barak et al.\n"
            "(EGSR 2013) over %u camera points; Metropolis-Hastings chains of %u proposals; the same seed every\n"
-           "frame.  The light stands still, the camera turns %.1f deg a frame, the object twists.  Indirect light\n"
+           "frame.  The light stands still, the camera turns %.1f deg a frame, the object %s.  Indirect light\n"
            "at %u surface points, exact visibility: error against every candidate as a VPL (the converged\n"
            "reference), flicker = frame-to-frame change where the reference changes by <= %.0f %%; kept = VPLs\n"
            "whose view is the previous frame's; cut: %s, epsilon %g px, %u x %u px paraboloids.\n\n",
-           n, d, IMPORTANCE_POINTS, CHAIN_LENGTH, (double)CAMERA_TURN * 180.0 / SCENE_PI, receivers, 100.0 * STABLE,
+           n, d, IMPORTANCE_POINTS, CHAIN_LENGTH, (double)CAMERA_TURN * 180.0 / SCENE_PI,
+           o->still ? "stays at rest" : "twists", receivers, 100.0 * STABLE,
            app_mode_name(MLOD_CUT_INCREMENTAL), (double)o->epsilon, o->tile, o->tile);
     printf("       inverse transform                     Metropolis-Hastings\n");
     printf("frame  kept %%  flicker %%  error %%  cut ms    kept %%  flicker %%  error %%  cut ms\n");
@@ -465,8 +467,10 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
         mlod_view camera = sampling_camera(o->width, o->height, frame);
         importance_job ij;
         uint32_t point_count = 0, k;
-        app_scene_animate(scene, 0.25f * (float)frame);
-        if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
+        if (!o->still) { /* else the tree stays as built, at rest: a VPL whose view stays is not evaluated */
+            app_scene_animate(scene, 0.25f * (float)frame);
+            if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
+        }
         /* the candidates, and the importance over fixed camera pixels */
         spawn_vpls(scene, &light, d, o->tile, candidates, candidate_views, candidate_maps);
         for (k = 0; k < IMPORTANCE_POINTS; k++) {
@@ -596,8 +600,8 @@ done:
 int main(int argc, char **argv)
 {
     app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 2, MLOD_CUT_INCREMENTAL,
-                          0, 0, 0.5f, 0};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f, 0};
+                          0, 0, 0.5f, 0, 0};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f, 0, 0};
     app_options o;
     app_threads threads;
     app_scene scene;
