@@ -959,8 +959,8 @@ MANYLODS_DEF size_t mlod_sample_bound(uint32_t domain_size, mlod_sampler method)
    or non-finite importance, an unknown method
    (MLOD_ERROR_INVALID_ARGUMENT / EMPTY / NON_FINITE), a table beyond
    size_t (MLOD_ERROR_OVERFLOW, 32-bit systems), importances whose
-   weights could exceed FLT_MAX (the total, or D times the largest,
-   over the smallest positive one: MLOD_ERROR_RANGE), no memory;
+   weights could exceed float range (the total, or D times the largest,
+   over the smallest positive one above FLT_MAX / 2: MLOD_ERROR_RANGE), no memory;
    samples and weights are then untouched.  Thread-safe. */
 MANYLODS_DEF mlod_result mlod_sample(const float *importance, uint32_t domain_size, uint32_t sample_count,
                                       const mlod_sample_params *params, uint32_t *samples, float *weights,
@@ -5775,8 +5775,10 @@ MLOD__PUBLIC mlod_result mlod_sample(const float *importance, uint32_t domain_si
         if (f > largest) largest = f;
         if (f > 0.0 && f < smallest) smallest = f;
     }
+    /* the weights are at most this ratio (and its rounding); half of
+       FLT_MAX leaves them room */
     if (total > 0.0 && (params->method == MLOD_SAMPLER_INVERSE_TRANSFORM ? total : (double)domain_size * largest) /
-                               smallest > 3.4028234663852886e38)
+                               smallest > 1.7014117331926443e38)
         return mlod__fail(error, MLOD_ERROR_RANGE,
                           "importances from %g to %g (total %g) would give weights beyond float range", smallest,
                           largest, total);

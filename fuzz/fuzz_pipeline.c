@@ -57,6 +57,8 @@
      heap layout, for this tree, hostile leaf counts and any depth;
      mlod_refit_check_growth is monotone, within float range, refuses NaN,
      and refuses exactly the growths for which refit gives MLOD_ERROR_RANGE;
+     mlod_sample refuses exactly what it documents and gives samples in
+     the domain with finite weights, the same with the reversed hook;
    - every block the library allocated is given back.
    Each input stays in the tens of milliseconds: at most 256 vertices, 512
    triangles, 512 points, N = 4096, 8 views, 256-pixel tiles; the large case
@@ -1628,6 +1630,81 @@ static void check_growth(fz_reader *r, const mlod_tree *t)
                "mlod_refit_check_growth accepted a NaN growth");
 }
 
+/* mlod_sample on hostile importances (D <= 64), sample counts, methods
+   and chain lengths: it fails exactly for what its documentation refuses
+   (a NaN or infinite importance, a negative one, an unknown method,
+   weights beyond float range), with the outputs untouched; otherwise every
+   sample is in the domain with a finite weight >= 0, a sample of
+   importance 0 only with weight 0 (and from the inverse transform only
+   where every importance is 0), and the same result with the reversed
+   hook.  The inverse transform's table comes from the counting allocator,
+   its failures injected as elsewhere. */
+static void check_sample(fz_reader *r, fz_counter *counter, const mlod_allocator *alloc)
+{
+    enum { MAX_D = 64, MAX_N = 300 };
+    static uint32_t samples[MAX_N], again[MAX_N];
+    static float weights[MAX_N], again_weights[MAX_N];
+    float importance[MAX_D];
+    uint32_t d = 1 + rd_u8(r) % MAX_D, n = 1 + rd_u16(r) % MAX_N, j;
+    uint8_t form = rd_u8(r);
+    double total = 0.0, largest = 0.0, smallest = INFINITY;
+    int finite = 1, negative = 0, known;
+    mlod_sample_params p;
+    mlod_parallel reverse = {fz_run_reverse, NULL};
+    mlod_error e;
+    mlod_result res;
+    unsigned long live = counter->live;
+    memset(&p, 0, sizeof p);
+    p.method = (mlod_sampler)(form & 1);
+    if (form & 2) p.method = (mlod_sampler)(rd_u8(r) % 4); /* 2 and 3: unknown */
+    p.chain_length = (form & 4) ? rd_u8(r) : 0;
+    p.seed = rd_u32(r);
+    p.allocator = alloc;
+    known = p.method == MLOD_SAMPLER_INVERSE_TRANSFORM || p.method == MLOD_SAMPLER_METROPOLIS;
+    for (j = 0; j < d; j++) {
+        double f;
+        importance[j] = (form & 8) ? rd_raw_float(r) : (rd_u8(r) < 64 ? 0.0f : (float)rd_unit(r));
+        f = importance[j];
+        if (!isfinite(f)) finite = 0;
+        else if (f < 0.0) negative = 1;
+        else {
+            total += f;
+            if (f > largest) largest = f;
+            if (f > 0.0 && f < smallest) smallest = f;
+        }
+    }
+    memset(samples, 0xab, sizeof samples);
+    memset(weights, 0xab, sizeof weights);
+    fz_where = "mlod_sample";
+    res = mlod_sample(importance, d, n, &p, samples, weights, &e);
+    if (res != MLOD_OK) {
+        uint32_t untouched = 1;
+        check_error(res, &e);
+        for (j = 0; j < n; j++) untouched &= samples[j] == 0xababababu;
+        FZ_REQUIRE(untouched, "mlod_sample failed (%s) and wrote samples", mlod_result_name(res));
+        FZ_REQUIRE(!known || !finite || negative || injected_oom(counter, res) ||
+                       (res == MLOD_ERROR_RANGE && total > 0.0 &&
+                        (p.method == MLOD_SAMPLER_INVERSE_TRANSFORM ? total : d * largest) / smallest > 1e37),
+                   "mlod_sample refused valid input: %s (%s)", mlod_result_name(res), e.message);
+    } else {
+        FZ_REQUIRE(known && finite && !negative, "mlod_sample accepted invalid input (method %d)", (int)p.method);
+        for (j = 0; j < n; j++) {
+            FZ_REQUIRE(samples[j] < d && isfinite(weights[j]) && weights[j] >= 0.0f,
+                       "mlod_sample: sample %u is %u of %u, weight %g", j, samples[j], d, (double)weights[j]);
+            if (importance[samples[j]] == 0.0f)
+                FZ_REQUIRE(weights[j] == 0.0f && (p.method == MLOD_SAMPLER_METROPOLIS || total == 0.0),
+                           "mlod_sample: sample %u has importance 0 and weight %g", j, (double)weights[j]);
+        }
+        p.parallel = &reverse;
+        p.allocator = NULL;
+        FZ_REQUIRE(mlod_sample(importance, d, n, &p, again, again_weights, &e) == MLOD_OK &&
+                       memcmp(samples, again, n * sizeof *again) == 0 &&
+                       memcmp(weights, again_weights, n * sizeof *again_weights) == 0,
+                   "mlod_sample differs with the reversed hook");
+    }
+    check_no_leak(counter, live, "mlod_sample");
+}
+
 /* The largest growth of a triangle of the mesh between the build's
    positions and new ones (triangles of zero area at build: none); the
    build keeps each triangle's own area, however small against the total
@@ -1857,6 +1934,7 @@ done:
     check_depth_nodes(t->leaf_count, rd_u32(r));
     check_depth_nodes(rd_leaf_count(r), rd_u32(r));
     check_growth(r, t);
+    check_sample(r, &c->counter, &c->alloc);
     mlod_cut_destroy(basic);
     mlod_cut_destroy(incremental);
     mlod_cut_destroy(lazy);
