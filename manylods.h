@@ -310,9 +310,10 @@
          nearly so elsewhere, closer as M grows (tests/test_sample.c).
 
    THREADS
-     mlod_cut_update, mlod_refit_*, mlod_splat* and mlod_atlas_fill_holes take
-     an optional mlod_parallel hook (a parallel-for), the builds one in
-     mlod_build_desc.parallel; with none they run on the calling thread.
+     mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes and
+     mlod_sample take an optional mlod_parallel hook (a parallel-for), the
+     builds one in mlod_build_desc.parallel; with none they run on the
+     calling thread.
      Work is split into tasks of bounded size within and among views, so one
      view with a cut 100x the others does not serialise the frame.  Results
      are identical for any thread count.  Distinct objects may be used from
@@ -330,7 +331,8 @@
      needs 125 GiB), mlod_cut_bound a cut's bytes for a mean cut size
      (exactly what mlod_cut_reserve gives it, after which its updates
      allocate nothing; an upper bound otherwise), mlod_atlas_bound an
-     atlas's bytes (exactly).  Every
+     atlas's bytes (exactly), mlod_sample_bound what mlod_sample takes for
+     the length of the call (exactly).  Every
      object reports its bytes (mlod_tree.bytes, mlod_cut_bytes,
      mlod_atlas.bytes).  Attributes a scene does not ask for take no memory.
      A failed call gives back what it allocated (a cut keeps its bytes and
