@@ -163,6 +163,13 @@ static float vpl_geometry(const vpl *l, const float p[3], const float n[3], floa
     return cos_l * *cos_s / (d2 > CLAMP_DISTANCE * CLAMP_DISTANCE ? d2 : CLAMP_DISTANCE * CLAMP_DISTANCE);
 }
 
+/* Receiver r of count: the node of a leaf, the leaves spread evenly over
+   the tree (surface samples wherever the surface is). */
+static size_t receiver_leaf(const mlod_tree *tree, uint32_t r, uint32_t count)
+{
+    return (size_t)tree->leaf_count - 1 + (uint64_t)r * tree->leaf_count / count;
+}
+
 /* Shade one block of pixels: the indirect light of every VPL. */
 static void shade_block(void *context, uint32_t block)
 {
@@ -280,16 +287,19 @@ static void spawn_vpls(const app_scene *scene, const app_light *light, uint32_t 
     }
 }
 
-/* Mean absolute difference of a and b over every pixel and channel,
-   relative to the mean of b: the error of an indirect image a against the
-   reference b. */
-static double relative_error(const app_image *a, const app_image *b)
+/* Mean absolute difference of a and b over every channel of the pixels
+   `mask` keeps (NULL: all), relative to the mean of `reference` there:
+   relative_difference(a, b, b, NULL) is the error of an indirect image a
+   against the reference b. */
+static double relative_difference(const app_image *a, const app_image *b, const app_image *reference,
+                                  const uint8_t *mask)
 {
     size_t n = 3 * (size_t)a->width * a->height, i;
     double diff = 0.0, sum = 0.0;
     for (i = 0; i < n; i++) {
+        if (mask && !mask[i / 3]) continue;
         diff += fabs((double)a->rgb[i] - b->rgb[i]);
-        sum += b->rgb[i];
+        sum += reference->rgb[i];
     }
     return sum > 0.0 ? diff / sum : 0.0;
 }
@@ -387,21 +397,6 @@ typedef struct sampler_run {
     double kept, flicker, error, cut_ms; /* summed over frames 1 .. */
 } sampler_run;
 
-/* Mean absolute difference of a and b's luminance over the receivers (all,
-   or where `stable`), relative to the reference's there. */
-static double receiver_difference(const app_image *a, const app_image *b, const app_image *reference,
-                                  const uint8_t *stable)
-{
-    double diff = 0.0, sum = 0.0;
-    uint32_t i;
-    for (i = 0; i < reference->width; i++) {
-        if (stable && !stable[i]) continue;
-        diff += fabs((double)luminance(a->rgb + 3 * (size_t)i) - luminance(b->rgb + 3 * (size_t)i));
-        sum += luminance(reference->rgb + 3 * (size_t)i);
-    }
-    return sum > 0.0 ? diff / sum : 0.0;
-}
-
 static int compare_samplers(const char *program, const app_options *o, app_scene *scene, mlod_tree *tree,
                             const app_threads *threads)
 {
@@ -491,7 +486,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
         app_parallel_for(threads, (d + IMPORTANCE_BLOCK - 1) / IMPORTANCE_BLOCK, importance_block, &ij);
         /* the receivers: leaves spread evenly, as they are this frame */
         for (r = 0; r < receivers; r++) {
-            size_t leaf = (size_t)tree->leaf_count - 1 + (uint64_t)r * tree->leaf_count / receivers;
+            size_t leaf = receiver_leaf(tree, r, receivers);
             app_surface *x = &g.surface[r];
             memcpy(x->p, tree->spheres + 4 * leaf, sizeof x->p);
             memcpy(x->n, tree->cones + 4 * leaf, sizeof x->n);
@@ -508,7 +503,8 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
         shade_indirect(&job, threads);
         stable_count = 0;
         for (r = 0; r < receivers; r++) {
-            double now = luminance(reference.rgb + 3 * (size_t)r), before = luminance(reference_last.rgb + 3 * (size_t)r);
+            const float *now_rgb = reference.rgb + 3 * (size_t)r, *before_rgb = reference_last.rgb + 3 * (size_t)r;
+            double now = now_rgb[0] + now_rgb[1] + now_rgb[2], before = before_rgb[0] + before_rgb[1] + before_rgb[2];
             stable[r] = frame > 0 && now > 0.0 && fabs(now - before) <= STABLE * now;
             stable_count += stable[r];
         }
@@ -542,8 +538,8 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
             job.vpl_count = n;
             job.indirect = &run->light;
             shade_indirect(&job, threads);
-            err = receiver_difference(&run->light, &reference, &reference, NULL);
-            flicker = frame > 0 && stable_count ? receiver_difference(&run->light, &run->last, &reference, stable) : 0.0;
+            err = relative_difference(&run->light, &reference, &reference, NULL);
+            flicker = frame > 0 && stable_count ? relative_difference(&run->light, &run->last, &reference, stable) : 0.0;
             if (frame > 0) {
                 run->kept += (double)kept / n;
                 run->flicker += flicker;
@@ -771,8 +767,8 @@ int main(int argc, char **argv)
         t0 = app_now_ms();
         rays = shade_indirect(&job, &threads);
         reference_ms = app_now_ms() - t0;
-        error_cut = relative_error(&indirect, &reference);
-        error_ism = relative_error(&ism, &reference);
+        error_cut = relative_difference(&indirect, &reference, &reference, NULL);
+        error_ism = relative_difference(&ism, &reference, &reference, NULL);
 
         /* the maps themselves against ray-cast maps (bench/metrics.h) */
         exact = (float *)malloc(sizeof(float) * atlas->width * atlas->height);
@@ -781,9 +777,8 @@ int main(int argc, char **argv)
             goto done;
         }
         metrics_reference_atlas(atlas, views, cast_ray, &scene.bvh, exact);
-        for (r = 0; r < RECEIVERS; r++) /* receivers: surface samples, the leaves spread evenly */
-            memcpy(receivers + 3 * r, tree->spheres + 4 * ((size_t)tree->leaf_count - 1 + (uint64_t)r * tree->leaf_count / RECEIVERS),
-                   3 * sizeof(float));
+        for (r = 0; r < RECEIVERS; r++)
+            memcpy(receivers + 3 * r, tree->spheres + 4 * receiver_leaf(tree, r, RECEIVERS), 3 * sizeof(float));
         metrics_compare(atlas, exact, views, scene.diameter, receivers, RECEIVERS, 0.002, 2.0, &maps_cut, NULL);
         metrics_compare(ism_atlas, exact, views, scene.diameter, receivers, RECEIVERS, 0.002, 2.0, &maps_ism, NULL);
 

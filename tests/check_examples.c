@@ -290,8 +290,8 @@ static void check_command_line(const char *name)
    shows what Metropolis-Hastings is for: it keeps more VPLs from frame to
    frame than the inverse transform and flickers less (--tiny: 64 VPLs of
    1024 candidates, 2 frames; measured when this was written: kept 25 %
-   against 92 %, flicker 43 % against 6 %), its error against the
-   converged reference of the same order (within 3 times; 32 % and 37 %). */
+   against 90 %, flicker 39 % against 8 %), its error against the
+   converged reference of the same order (within 3 times; 31 % and 25 %). */
 static void check_sampling(void)
 {
     char path[512], line[1024];
