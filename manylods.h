@@ -4967,7 +4967,9 @@ static int mlod__image_discs(const mlod__pview *pv, int s, const double (*centre
             out[l].y = mid_y + sub->scale * 0.5 * (hi + lo) * -dir_y;
             out[l].depth = mlod__dot3(x[l], sub->forward);
         } else {
-            if (!(1.0 + c_hi > 0.0)) {
+            /* unbounded once t + b reaches pi (the sphere's cone holds -w):
+               1 + cos(t + b) > 0 alone would pass t + b in (pi, 3 pi / 2) */
+            if (!(1.0 + c_hi > 0.0) || !(s_hi > 0.0 || c_hi > 0.0)) {
                 bounded[l] = 0;
                 continue;
             }
@@ -5232,24 +5234,30 @@ typedef struct mlod__splat_job {
     uint64_t seed;
 } mlod__splat_job;
 
-/* One band of rows of one tile while it is drawn. */
+/* One band of rows of one tile while it is drawn: the tile's pixel
+   (col, row) is depth[row * stride + col] (normal and colour 3 floats per
+   pixel likewise, or NULL), holding the nearest drawn node's depth and
+   channels; a MegaViews map (mlod_megaviews_render) keeps the node's index
+   in ids instead of channels. */
 typedef struct mlod__band {
-    mlod_atlas *atlas;
     const mlod_tree *tree;
-    const uint32_t *tile;
+    float *depth, *normal, *color;
+    uint32_t *ids;
+    size_t stride;               /* pixels from one row to the next */
+    float disc_scale;
     uint32_t row_begin, row_end; /* tile rows */
 } mlod__band;
 
-/* Keep the node's depth (and channels) at a tile pixel if it is nearer. */
+/* Keep the node's depth (and channels, or index) at a tile pixel if it is nearer. */
 static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node)
 {
-    mlod_atlas *atlas = band->atlas;
-    size_t at = (size_t)(band->tile[1] + row) * atlas->width + band->tile[0] + col;
+    size_t at = (size_t)row * band->stride + col;
     int k;
-    if (!(depth < atlas->depth[at])) return;
-    atlas->depth[at] = depth;
-    for (k = 0; k < 3 && atlas->normal; k++) atlas->normal[3 * at + k] = band->tree->cones[4 * (size_t)node + k];
-    for (k = 0; k < 3 && atlas->color; k++) atlas->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
+    if (!(depth < band->depth[at])) return;
+    band->depth[at] = depth;
+    if (band->ids) band->ids[at] = node;
+    for (k = 0; k < 3 && band->normal; k++) band->normal[3 * at + k] = band->tree->cones[4 * (size_t)node + k];
+    for (k = 0; k < 3 && band->color; k++) band->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
 }
 
 /* Draw the disc into the band, clipped to tile columns [columns[0],
@@ -5257,8 +5265,7 @@ static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float
 static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, uint32_t node, const uint32_t *columns,
                               const uint32_t *rows)
 {
-    const mlod_atlas *atlas = band->atlas;
-    double radius = disc->radius * (double)atlas->disc_scale, r2 = radius * radius;
+    double radius = disc->radius * (double)band->disc_scale, r2 = radius * radius;
     double y0 = floor(disc->y - radius), y1 = ceil(disc->y + radius);
     double x0 = floor(disc->x - radius), x1 = ceil(disc->x + radius);
     uint32_t row, col, rb, re, cb, ce, col_begin = columns[0], col_end = columns[1];
@@ -5283,7 +5290,7 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
         }
     }
     /* no pixel centre in the disc: at disc_scale 1, the pixel holding its centre */
-    if (!hit && atlas->disc_scale >= 1.0f && disc->x >= col_begin && disc->x < col_end && disc->y >= row_begin &&
+    if (!hit && band->disc_scale >= 1.0f && disc->x >= col_begin && disc->x < col_end && disc->y >= row_begin &&
         disc->y < row_end)
         mlod__plot(band, (uint32_t)floor(disc->y), (uint32_t)floor(disc->x), depth, node);
 }
@@ -5316,11 +5323,39 @@ static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, cons
     }
 }
 
+/* A band over the whole tile of one view of the atlas. */
+static void mlod__tile_band(mlod_atlas *atlas, const mlod_tree *tree, uint32_t view, mlod__band *band)
+{
+    const uint32_t *tile = atlas->tiles + 4 * (size_t)view;
+    size_t origin = (size_t)tile[1] * atlas->width + tile[0];
+    band->tree = tree;
+    band->depth = atlas->depth + origin;
+    band->normal = atlas->normal ? atlas->normal + 3 * origin : NULL;
+    band->color = atlas->color ? atlas->color + 3 * origin : NULL;
+    band->ids = NULL;
+    band->stride = atlas->width;
+    band->disc_scale = atlas->disc_scale;
+    band->row_begin = 0;
+    band->row_end = tile[3];
+}
+
+/* Empty the band's rows: depth +inf, channels 0. */
+static void mlod__band_clear(const mlod__band *band, uint32_t width)
+{
+    uint32_t row, col;
+    for (row = band->row_begin; row < band->row_end; row++) {
+        size_t at = (size_t)row * band->stride;
+        for (col = 0; col < width; col++) band->depth[at + col] = INFINITY;
+        if (band->normal) memset(band->normal + 3 * at, 0, 3 * sizeof(float) * width);
+        if (band->color) memset(band->color + 3 * at, 0, 3 * sizeof(float) * width);
+    }
+}
+
 /* Which view and rows a band task covers; clears those rows. */
 static uint32_t mlod__band_begin(const mlod__splat_job *job, uint32_t index, mlod__band *band)
 {
     mlod_atlas *atlas = job->atlas;
-    uint32_t lo = 0, hi = atlas->view_count, view, row;
+    uint32_t lo = 0, hi = atlas->view_count, view, height;
     while (hi - lo > 1) { /* the view whose bands hold index */
         uint32_t mid = lo + (hi - lo) / 2;
         if (atlas->bands[mid] <= index)
@@ -5329,19 +5364,11 @@ static uint32_t mlod__band_begin(const mlod__splat_job *job, uint32_t index, mlo
             hi = mid;
     }
     view = lo;
-    band->atlas = atlas;
-    band->tree = job->tree;
-    band->tile = atlas->tiles + 4 * (size_t)view;
+    mlod__tile_band(atlas, job->tree, view, band);
+    height = band->row_end;
     band->row_begin = (index - atlas->bands[view]) * MLOD__BAND_ROWS;
-    band->row_end = (uint64_t)band->row_begin + MLOD__BAND_ROWS > band->tile[3] ? band->tile[3]
-                                                                                 : band->row_begin + MLOD__BAND_ROWS;
-    for (row = band->row_begin; row < band->row_end; row++) {
-        size_t at = (size_t)(band->tile[1] + row) * atlas->width + band->tile[0];
-        uint32_t col;
-        for (col = 0; col < band->tile[2]; col++) atlas->depth[at + col] = INFINITY;
-        if (atlas->normal) memset(atlas->normal + 3 * at, 0, 3 * sizeof(float) * band->tile[2]);
-        if (atlas->color) memset(atlas->color + 3 * at, 0, 3 * sizeof(float) * band->tile[2]);
-    }
+    band->row_end = (uint64_t)band->row_begin + MLOD__BAND_ROWS > height ? height : band->row_begin + MLOD__BAND_ROWS;
+    mlod__band_clear(band, atlas->tiles[4 * (size_t)view + 2]);
     return view;
 }
 

@@ -513,7 +513,7 @@ bool image_disc(uint view, uint s, dvec3 centre, double r, out dvec4 disc)
         py = mid_y - scale * 0.5LF * (hi + lo) * dir_y;
         depth = dot3(x, w);
     } else {
-        if (!(1.0LF + c_hi > 0.0LF)) return false;
+        if (!(1.0LF + c_hi > 0.0LF) || !(s_hi > 0.0LF || c_hi > 0.0LF)) return false;
         hi = s_hi / (1.0LF + c_hi);
         lo = s_lo / (1.0LF + c_lo);
         px = left + 0.5LF * width * (1.0LF + 0.5LF * (hi + lo) * dir_x);

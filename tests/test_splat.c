@@ -1488,6 +1488,58 @@ static void test_overlap(void)
     }
 }
 
+/* A paraboloid's image of a sphere is unbounded once the sphere's cone of
+   directions holds -w (t + b >= pi: the criterion's x.w + sqrt(d^2 - r^2)
+   <= 0); such a node is not drawn in that sub-projection (it once was, as
+   a disc of negative radius, when t + b lay in (pi, 3 pi / 2)).  Just
+   below that, it is drawn. */
+static void test_unbounded_paraboloid(void)
+{
+    /* sphere centres 120 and 170 degrees off w = (0, 0, -1), d = 1: t + b
+       = 190, 259 (the disc's centre inside the tile) and 168.6 degrees */
+    static const float pos[3][3] = {{0.8660254f, 0.0f, 0.5f}, {0.17364818f, 0.0f, 0.98480775f}, {0.8660254f, 0.0f, 0.5f}};
+    static const float radii[3] = {0.94f, 0.99984770f, 0.75f};
+    uint32_t k, v;
+    for (k = 0; k < 3; k++) {
+        mlod_tree *tree = points_tree(1, pos[k], &radii[k], NULL, NULL);
+        mlod_view views[2];
+        mlod_cut *cut = NULL;
+        mlod_atlas *atlas;
+        mlod_cut_params cp = cut_params(1.0f);
+        views[0] = tu_view(MLOD_VIEW_PARABOLOID);
+        views[0].position[2] = 0.0f;
+        views[0].width = views[0].height = 16;
+        views[1] = views[0];
+        views[1].kind = MLOD_VIEW_DUAL_PARABOLOID;
+        views[1].width = 32;
+        atlas = make_atlas(views, 2, 0);
+        if (!tree || !atlas || mlod_cut_create(2, NULL, &cut, NULL) != MLOD_OK ||
+            mlod_cut_update(cut, tree, views, &cp, NULL) != MLOD_OK || mlod_splat(atlas, tree, cut, views, NULL, NULL) != MLOD_OK) {
+            CHECK(0, "unbounded paraboloid: set-up failed");
+        } else {
+            for (v = 0; v < 2; v++) {
+                const uint32_t *tile = atlas->tiles + 4 * v;
+                uint32_t row, col, front = 0, back = 0;
+                for (row = 0; row < tile[3]; row++)
+                    for (col = 0; col < tile[2]; col++)
+                        if (atlas->depth[(size_t)(tile[1] + row) * atlas->width + tile[0] + col] < INFINITY)
+                            *(col < 16 ? &front : &back) += 1;
+                if (k < 2) {
+                    CHECK(isinf(mlod_criterion(tree, 0, &views[v])), "unbounded paraboloid: c is +inf");
+                    CHECK(front == 0, "unbounded paraboloid (%s): %u pixels drawn in the half whose image is unbounded",
+                          kind_name(views[v].kind), front);
+                } else {
+                    CHECK(front > 0, "paraboloid just bounded (%s): drawn", kind_name(views[v].kind));
+                }
+                if (v == 1 && k != 1) CHECK(back > 0, "dual paraboloid: the back half, where the image is bounded, is drawn");
+            }
+        }
+        mlod_cut_destroy(cut);
+        mlod_atlas_destroy(atlas);
+        mlod_tree_destroy(tree);
+    }
+}
+
 static void test_culling_and_clearing(void)
 {
     /* a nearer sphere facing away hides the farther one unless back-face
@@ -2994,6 +3046,7 @@ int main(void)
     test_single_node();
     test_overlap();
     test_culling_and_clearing();
+    test_unbounded_paraboloid();
     test_determinism();
     test_disc_scale();
     test_fill_holes();
