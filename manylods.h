@@ -15,7 +15,8 @@
    CONTENTS
      USAGE, QUICK EXAMPLE, CONFIGURATION, FLOATING POINT, PIPELINE,
      TREE LAYOUT, SAMPLING, BUILD, VIEWS AND THE CRITERION, THE CUT,
-     SPLATTING, CHOOSING THE VIEWS, THREADS, ERRORS, MEMORY; then the
+     SPLATTING, CHOOSING THE VIEWS, MANY VIEWS AT ONCE, THREADS, ERRORS,
+     MEMORY; then the
      declarations, each
      documented where it stands, and the implementation.
 
@@ -309,11 +310,70 @@
          the estimate exact on average where g is proportional to f, and
          nearly so elsewhere, closer as M grows (tests/test_sample.c).
 
+   MANY VIEWS AT ONCE (after MegaViews: T. Kol, P. Bauszat, S. Lee,
+   E. Eisemann, Computer Graphics Forum 2018)
+     For thousands to millions of views, mlod_megaviews_render shares work
+     among views that would draw the same.  A VIEW TREE
+     (mlod_view_tree_build) orders the views' eyes as the scene tree orders
+     samples (median splits, the implicit heap): each node bounds its
+     views' eyes by a sphere (centre c, radius rho; containment as for
+     scene spheres), their directions by a cone and their half fields of
+     view by the smallest and largest.  A view with a direction u and half
+     field of view h culls a sphere when angle(x, u) > h + asin(r / |x|)
+     (never when h >= pi or the eye is inside), x = centre - eye.  Every
+     view renders the same map, a dual paraboloid of one global
+     orientation (mlod_megaviews_view: directions towards +z in the left
+     half of the tile, -z in the right, R x R pixels each), so that an
+     inner view node's map is a partial rendering all views below share.
+     The traversal starts from (scene root, view root), level by level of
+     the view tree; a pair (scene node s, view node v) is
+       at a view leaf: decided as the cut decides for that view (after its
+         field of view): culled, dropped; valid or an oversize leaf, drawn
+         into its map; else s splits;
+       at an inner view node:
+         culled when no view below can see s: s's sphere grown by rho lies
+           outside the views' cone widened by the largest half field of
+           view, or (MLOD_VIEW_CULL_BACKFACES, with scene cones) faces away
+           from every eye of the ball;
+         drawn into v's map, as seen from c, when c(s, eye) <= epsilon for
+           every eye of v's ball, its image moves by at most delta pixels
+           between c and any eye of the ball, and every view below would
+           draw it (within every field of view, facing every eye);
+         s splits when c(s, eye) > epsilon for every eye of the ball and s
+           has children; otherwise v splits (both children take s).
+       The bounds over the ball: d = |x| moves within [d - rho, d + rho]
+       and x.w within [x.w - rho, x.w + rho] in the paraboloid's diameter
+       S 2 r / (x.w + sqrt(d^2 - r^2)), per half; any point of the image
+       moves by at most S tan(asin(rho / (d - r))) / (1 + cos(phi + b)),
+       phi the angle of x off the half's axis and b = asin((r + rho) / d):
+       the direction turns by at most that angle and the map's rate, 1 /
+       (1 + cos), is largest at the widest angle an eye sees the sphere at.
+     Fusion: each inner node's map starts from its parent's, each pixel's
+     node measured again from the node's own centre, then takes its own
+     drawn nodes, nearest first (a tie keeps the parent's); a view's tile
+     gets its leaf's map so, each pixel at its node's distance from the
+     view's own eye (depth as for paraboloids), with the node's normal and
+     colour.  Maps of inner nodes hold node indices and live for one
+     level; the atlas is the result.
+     delta = 0 shares only among eyes at one point (duplicates), and the
+     atlas equals, bit for bit, the per-view cut (mlod_cut_update) and
+     splat (mlod_splat) of the views' mlod_megaviews_view; with
+     directions, the per-view cut less what each view's field of view
+     culls.  delta > 0: a shared node's disc lies within delta pixels of
+     the disc the view would draw (centre and radius), the node is one the
+     view would draw, at its exact distance; what changes is which nodes a
+     view gets (within epsilon for all eyes of a ball, not at its own cut)
+     and, per pixel, which of them is nearest.  tests/test_megaviews.c
+     checks both; README.md measures the cost and the error.
+     Not yet: views closer than a given distance sharing one leaf, the
+     multi-pixel splat of near leaves at inner nodes (MegaViews 3.2.4),
+     queries without fusion, a Vulkan path.
+
    THREADS
-     mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes and
-     mlod_sample take an optional mlod_parallel hook (a parallel-for), the
-     builds one in mlod_build_desc.parallel; with none they run on the
-     calling thread.
+     mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes,
+     mlod_sample, mlod_view_tree_* and mlod_megaviews_render take an
+     optional mlod_parallel hook (a parallel-for), the builds one in
+     mlod_build_desc.parallel; with none they run on the calling thread.
      Work is split into tasks of bounded size within and among views, so one
      view with a cut 100x the others does not serialise the frame.  Results
      are identical for any thread count.  Distinct objects may be used from
@@ -334,7 +394,13 @@
      atlas's bytes (exactly), mlod_sample_bound what mlod_sample takes for
      the length of the call (exactly).  Every
      object reports its bytes (mlod_tree.bytes, mlod_cut_bytes,
-     mlod_atlas.bytes).  Attributes a scene does not ask for take no memory.
+     mlod_atlas.bytes, mlod_view_tree.bytes).  mlod_megaviews_render
+     allocates for its call, per level of the view tree, what the pairs of
+     that level need (16 bytes of room per pair handed down, 4 bytes per
+     pair kept) and the maps of the level's inner nodes that hold anything
+     (8 bytes per pixel), two levels at a time, and reports its peak
+     (mlod_megaviews_stats.peak_bytes).  Attributes a scene does not ask
+     for take no memory.
      A failed call gives back what it allocated (a cut keeps its bytes and
      cuts).  All memory comes from the allocator given at creation (or
      MANYLODS_MALLOC/FREE, or malloc/free); the allocator is only called
@@ -967,6 +1033,110 @@ MANYLODS_DEF size_t mlod_sample_bound(uint32_t domain_size, mlod_sampler method)
 MANYLODS_DEF mlod_result mlod_sample(const float *importance, uint32_t domain_size, uint32_t sample_count,
                                       const mlod_sample_params *params, uint32_t *samples, float *weights,
                                       mlod_error *error);
+
+/* ------------------------------------------ many views at once: MegaViews */
+
+/* Views for a view tree (MANY VIEWS AT ONCE in the manual).  eyes: 3
+   floats per view (world units, finite, |x| <= 1e36); strides as in
+   mlod_points.  directions (optional): each view's axis, finite, not of
+   zero length; with them a view sees the directions within its half field
+   of view of its axis, without them every direction.  half_fovs (optional,
+   with directions): one per view, radians in (0, pi]; NULL: half_fov for
+   every view, 0 meaning pi/2 (a virtual point light's hemisphere). */
+typedef struct mlod_view_set {
+    const float *eyes;
+    size_t eye_stride;
+    uint32_t count;            /* views, 1 .. MANYLODS_MAX_LEAVES */
+    const float *directions;
+    size_t direction_stride;
+    const float *half_fovs;
+    size_t half_fov_stride;
+    float half_fov;
+} mlod_view_set;
+
+/* A bounding sphere hierarchy over views: the scene tree's layout and
+   build over the eyes (mlod_build_points with radius-0 points), so node i
+   of `eyes` bounds the eyes below it by its sphere (exactly, with the
+   scene tree's slack) and their directions by its cone (cones NULL
+   without directions); leaf j holds view eyes->leaf_sources[j].
+   half_fovs[2i], half_fovs[2i + 1]: the smallest and the largest half
+   field of view below node i, or NULL without directions.  Owned by the
+   view tree. */
+typedef struct mlod_view_tree {
+    mlod_tree *eyes;
+    float *half_fovs;
+    float *radii;              /* private: the leaves' radii, 0 (for refits) */
+    uint32_t view_count;
+    size_t bytes;              /* everything the view tree allocated */
+    mlod_allocator allocator;
+} mlod_view_tree;
+
+/* Build the view tree of the views: O(V log V), deterministic; parallel
+   through the hook (NULL: the calling thread), memory from the allocator
+   (NULL: the default); mlod_build_points_bound(count, MLOD_ATTR_REFIT |
+   (directions ? MLOD_ATTR_CONE : 0)) bounds its peak, plus 4 bytes per
+   view for the radii and, with directions, 16 per view.  On error *out is
+   NULL.  Reentrant. */
+MANYLODS_DEF mlod_result mlod_view_tree_build(const mlod_view_set *views, const mlod_allocator *allocator,
+                                              const mlod_parallel *parallel, mlod_view_tree **out,
+                                              mlod_error *error);
+
+/* The views moved: refit the bounds to the same count of views (new eyes,
+   directions, fields of view; the leaves keep their views), with the
+   build's containment.  No allocation; on error the tree is unchanged. */
+MANYLODS_DEF mlod_result mlod_view_tree_refit(mlod_view_tree *tree, const mlod_view_set *views,
+                                              const mlod_parallel *parallel, mlod_error *error);
+
+/* Free the view tree.  NULL is fine. */
+MANYLODS_DEF void mlod_view_tree_destroy(mlod_view_tree *tree);
+
+/* The map every view gets from mlod_megaviews_render: a dual paraboloid
+   of one global orientation (front half: directions towards +z, in the
+   tile's left half; back half: -z, in the right; forward (0, 0, 1), up
+   (0, 1, 0)), at the eye, resolution x resolution pixels per half (tile
+   2 resolution x resolution), with `flags` (MLOD_VIEW_*).  Use it to
+   create the atlas and to look up pixels (mlod_view_project).  Pure. */
+MANYLODS_DEF mlod_view mlod_megaviews_view(const float eye[3], uint32_t resolution, uint32_t flags);
+
+/* The sharing suggested for delta: half a pixel. */
+#define MLOD_MEGAVIEWS_DELTA 0.5f
+
+typedef struct mlod_megaviews_params {
+    float epsilon;             /* pixels, > 0 (+inf allowed): the cut's epsilon */
+    float delta;               /* pixels, >= 0, finite: how far a shared node's image may move
+                                  between the views that share it; 0 gives exactly the per-view
+                                  cut and splat (MLOD_MEGAVIEWS_DELTA: the suggested sharing) */
+    uint32_t resolution;       /* pixels per side of each half of the map, >= 1 */
+    uint32_t flags;            /* MLOD_VIEW_CULL_BACKFACES (with a scene tree that has cones) */
+    const mlod_parallel *parallel;   /* optional */
+    const mlod_allocator *allocator; /* the call's scratch; NULL: the atlas's allocator */
+} mlod_megaviews_params;
+
+/* What a render did. */
+typedef struct mlod_megaviews_stats {
+    uint64_t pairs;            /* (scene node, view node) pairs classified */
+    uint64_t culled;           /* pairs culled for every view below the view node */
+    uint64_t shared_draws;     /* scene nodes drawn into an inner view node's map (shared) */
+    uint64_t leaf_draws;       /* scene nodes drawn into a view leaf's map */
+    uint64_t shared_views;     /* views below the inner nodes of shared draws, summed */
+    uint32_t levels;           /* depth of the view tree + 1 */
+    size_t peak_bytes;         /* the most the call held at once from its allocator */
+} mlod_megaviews_stats;
+
+/* Render every view's map into the atlas (MANY VIEWS AT ONCE): the pair
+   traversal of the scene tree and the view tree, drawing into shared maps
+   of inner view nodes and fusing them down into each view's tile of the
+   atlas (created for the views of mlod_megaviews_view at the same
+   resolution: view i has tile i).  Depth as for paraboloids: distance
+   from the view's eye.  Every tile is cleared first.  stats may be NULL.
+   Parallel through the hook, with the same atlas for any thread count.
+   Errors: NULLs, bad epsilon or delta, a resolution of 0, an atlas of
+   another view count or tile size, channels the scene lacks (the atlas
+   is then untouched); no memory (MLOD_ERROR_OUT_OF_MEMORY, every tile
+   then empty, nothing held).  Not thread-safe for one atlas. */
+MANYLODS_DEF mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
+                                               const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
+                                               mlod_error *error);
 
 /* --------------------------------------------------- built-in thread pool */
 #ifdef MANYLODS_PTHREADS
@@ -5837,6 +6007,808 @@ MLOD__PUBLIC mlod_result mlod_sample(const float *importance, uint32_t domain_si
     mlod__run(params->parallel, tasks, mlod__inverse_task, &job);
     mlod__free(&a, cdf);
     return MLOD_OK;
+}
+
+/* ------------------------------------------------------------ MegaViews -- */
+
+static float mlod__view_half_fov(const mlod_view_set *views, uint32_t i)
+{
+    if (!views->half_fovs) return views->half_fov > 0.0f ? views->half_fov : (float)(0.5 * MLOD__PI);
+    return *(const float *)((const char *)views->half_fovs +
+                            i * (views->half_fov_stride ? views->half_fov_stride : sizeof(float)));
+}
+
+static mlod_result mlod__check_view_set(const mlod_view_set *views, mlod_error *error)
+{
+    mlod_result res;
+    uint32_t i;
+    if (!views) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "views is NULL");
+    if (views->count == 0) return mlod__fail(error, MLOD_ERROR_EMPTY, "the view set has no views");
+    if (views->count > MANYLODS_MAX_LEAVES)
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "%u views exceed MANYLODS_MAX_LEAVES", views->count);
+    if (!views->eyes) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "the views' eyes are NULL");
+    res = mlod__check_floats(views->eyes, views->eye_stride, views->count, 1, "eye", error);
+    if (res != MLOD_OK || !views->directions) return res;
+    res = mlod__check_floats(views->directions, views->direction_stride, views->count, 0, "direction", error);
+    if (res != MLOD_OK) return res;
+    for (i = 0; i < views->count; i++) {
+        const float *p = mlod__at(views->directions, views->direction_stride, i);
+        double n[3] = {p[0], p[1], p[2]};
+        if (!(mlod__length3(n) > 0.0))
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "direction %u has zero length", i);
+    }
+    if (views->half_fovs && views->half_fov_stride % sizeof(float))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "half_fov stride %lu is not a multiple of 4",
+                          (unsigned long)views->half_fov_stride);
+    if (!views->half_fovs && isnan(views->half_fov))
+        return mlod__fail(error, MLOD_ERROR_NON_FINITE, "half_fov is NaN");
+    if (!views->half_fovs && views->half_fov != 0.0f && !(views->half_fov > 0.0f && views->half_fov <= (float)MLOD__PI))
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "half_fov %g is not 0 or in (0, pi]", views->half_fov);
+    for (i = 0; views->half_fovs && i < views->count; i++) {
+        float h = mlod__view_half_fov(views, i);
+        if (isnan(h)) return mlod__fail(error, MLOD_ERROR_NON_FINITE, "half_fovs[%u] is NaN", i);
+        if (!(h > 0.0f && h <= (float)MLOD__PI))
+            return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "half_fovs[%u] = %g is not in (0, pi]", i, h);
+    }
+    return MLOD_OK;
+}
+
+/* Each node's smallest and largest half field of view below it, leaves
+   from the views. */
+static void mlod__view_tree_fovs(mlod_view_tree *tree, const mlod_view_set *views)
+{
+    const mlod_tree *t = tree->eyes;
+    float *f = tree->half_fovs;
+    uint32_t n = t->leaf_count, i;
+    for (i = 0; i < n; i++) f[2 * (n - 1 + i)] = f[2 * (n - 1 + i) + 1] = mlod__view_half_fov(views, t->leaf_sources[i]);
+    for (i = n - 1; i-- > 0;) {
+        const float *a = f + 2 * (2 * i + 1), *b = f + 2 * (2 * i + 2);
+        f[2 * i] = a[0] < b[0] ? a[0] : b[0];
+        f[2 * i + 1] = a[1] > b[1] ? a[1] : b[1];
+    }
+}
+
+/* The view set as radius-0 points with the directions as normals. */
+static mlod_points mlod__view_points(const mlod_view_set *views, const float *zeros)
+{
+    mlod_points p;
+    memset(&p, 0, sizeof p);
+    p.positions = views->eyes;
+    p.position_stride = views->eye_stride;
+    p.count = views->count;
+    p.normals = views->directions;
+    p.normal_stride = views->direction_stride;
+    p.radii = zeros;
+    return p;
+}
+
+MLOD__PUBLIC mlod_result mlod_view_tree_build(const mlod_view_set *views, const mlod_allocator *allocator,
+                                              const mlod_parallel *parallel, mlod_view_tree **out,
+                                              mlod_error *error)
+{
+    mlod_allocator a;
+    mlod_view_tree *tree;
+    mlod_build_desc desc;
+    mlod_points points;
+    mlod_result res;
+    size_t bytes = 0;
+    if (!out) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out is NULL");
+    *out = NULL;
+    if ((res = mlod__check_view_set(views, error)) != MLOD_OK) return res;
+    a = mlod__allocator(allocator);
+    tree = (mlod_view_tree *)mlod__alloc_array(&a, 1, sizeof *tree, &bytes);
+    if (!tree) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the view tree");
+    memset(tree, 0, sizeof *tree);
+    tree->allocator = a;
+    tree->radii = (float *)mlod__alloc_array(&a, views->count, sizeof(float), &bytes);
+    if (!tree->radii) {
+        mlod_view_tree_destroy(tree);
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the view tree");
+    }
+    memset(tree->radii, 0, views->count * sizeof(float));
+    memset(&desc, 0, sizeof desc);
+    desc.attributes = MLOD_ATTR_REFIT | (views->directions ? MLOD_ATTR_CONE : 0u);
+    desc.allocator = &a;
+    desc.parallel = parallel;
+    points = mlod__view_points(views, tree->radii);
+    res = mlod_build_points(&points, &desc, &tree->eyes, error);
+    if (res == MLOD_OK && views->directions) {
+        tree->half_fovs = (float *)mlod__alloc_array(&a, tree->eyes->node_count, 2 * sizeof(float), &bytes);
+        if (!tree->half_fovs) res = mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the view tree");
+    }
+    if (res != MLOD_OK) {
+        mlod_view_tree_destroy(tree);
+        return res;
+    }
+    if (tree->half_fovs) mlod__view_tree_fovs(tree, views);
+    tree->view_count = views->count;
+    tree->bytes = bytes + tree->eyes->bytes;
+    *out = tree;
+    return mlod__succeed(error);
+}
+
+MLOD__PUBLIC mlod_result mlod_view_tree_refit(mlod_view_tree *tree, const mlod_view_set *views,
+                                              const mlod_parallel *parallel, mlod_error *error)
+{
+    mlod_points points;
+    mlod_result res;
+    if (!tree) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "tree is NULL");
+    if ((res = mlod__check_view_set(views, error)) != MLOD_OK) return res;
+    if (views->count != tree->view_count)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "%u views for a view tree of %u", views->count,
+                          tree->view_count);
+    if (!views->directions != !tree->half_fovs)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the view tree was built %s directions",
+                          tree->half_fovs ? "with" : "without");
+    points = mlod__view_points(views, tree->radii);
+    res = mlod_refit_points(tree->eyes, &points, parallel, error);
+    if (res == MLOD_OK && tree->half_fovs) mlod__view_tree_fovs(tree, views);
+    return res;
+}
+
+MLOD__PUBLIC void mlod_view_tree_destroy(mlod_view_tree *tree)
+{
+    mlod_allocator a;
+    if (!tree) return;
+    a = tree->allocator;
+    mlod_tree_destroy(tree->eyes);
+    mlod__free(&a, tree->half_fovs);
+    mlod__free(&a, tree->radii);
+    a.free(a.user, tree);
+}
+
+MLOD__PUBLIC mlod_view mlod_megaviews_view(const float eye[3], uint32_t resolution, uint32_t flags)
+{
+    mlod_view v;
+    int k;
+    memset(&v, 0, sizeof v);
+    v.kind = MLOD_VIEW_DUAL_PARABOLOID;
+    for (k = 0; k < 3; k++) v.position[k] = eye ? eye[k] : 0.0f;
+    v.forward[2] = 1.0f;
+    v.up[1] = 1.0f;
+    v.width = resolution > 0x7fffffffu ? 0u : 2u * resolution;
+    v.height = resolution;
+    v.flags = flags;
+    return v;
+}
+
+/* Pairs (scene node s, view node v) and what the traversal does with them. */
+enum { MLOD__PAIR_CULL, MLOD__PAIR_DRAW, MLOD__PAIR_SPLIT_SCENE, MLOD__PAIR_SPLIT_VIEW };
+
+/* Does no direction from a point of the ball (0, g) around x (d = |x|) to
+   ... lie within `margin` of the cone (axis, alpha) widened by theta?
+   I.e. angle(x, axis) > alpha + theta + asin(g / d) + margin (< pi).  For
+   view nodes x = scene centre - view centre and g = r + rho (Minkowski:
+   every eye of the ball sees every point of the sphere within that
+   angular radius of x): no view below looks at the sphere.  With the
+   scene's normal cone, -x and theta = pi/2: every normal faces away from
+   every eye (the back-face test).  The inner nodes' margin of 2^-30 rad
+   keeps their answers implying their views' (margin 0), the
+   angles being within 1e-11 rad (mlod__atan2). */
+static int mlod__outside_cone(const double *x, double d, double g, const float *cone, double theta, double margin)
+{
+    double axis[3], reach;
+    if (!(d > g) || !(cone[3] < MLOD__PI)) return 0;
+    reach = cone[3] + theta + mlod__atan2(g, sqrt((d - g) * (d + g))) + margin;
+    if (!(reach < MLOD__PI)) return 0;
+    axis[0] = cone[0];
+    axis[1] = cone[1];
+    axis[2] = cone[2];
+    return mlod__angle(x, axis) > reach;
+}
+
+/* Is the sphere (x, d = |x|, r) within the cone (axis, widened by limit)
+   from every eye of the ball (0, rho), however the direction it is seen
+   in turns within `spread` of the axis?  angle(x, axis) + spread +
+   asin(rho / d) + 2^-30 <= limit + asin(r / (d + rho)): from an eye e,
+   x - e is within asin(rho / d) of x, and the sphere's angular radius is
+   at least asin(r / (d + rho)).  With the views' cone (spread alpha) and
+   smallest half field of view: no view below culls the sphere; with the
+   scene's normal cone, -x and limit pi/2 + its half-angle: no eye below
+   finds it facing away.  What may be shared must be drawn by every view
+   below. */
+static int mlod__within_cone(const double *x, double d, double r, double rho, const float *cone, double spread,
+                             double limit)
+{
+    double axis[3] = {cone[0], cone[1], cone[2]}, turn, seen;
+    if (!(d > rho)) return 0;
+    turn = mlod__atan2(rho, sqrt((d - rho) * (d + rho)));
+    seen = r > 0.0 ? mlod__atan2(r, sqrt((d + rho - r) * (d + rho + r))) : 0.0;
+    return mlod__angle(x, axis) + spread + turn + 1.0 / 1073741824.0 <= limit + seen;
+}
+
+/* Bounds on c, in pixels, over every eye of the ball (c + y, |y| <= rho)
+   for the sphere (x = centre - c, d = |x|, r) in the global dual
+   paraboloid of scale S: from the eye, d moves within [d - rho, d + rho]
+   and x.w within [x.w - rho, x.w + rho], so each half's denominator x.w +
+   sqrt(d^2 - r^2) is at least (x.w - rho) + sqrt((d - rho)^2 - r^2) and at
+   most (x.w + rho) + sqrt((d + rho)^2 - r^2).  cmax: the largest over the
+   halves some eye reaches (x.w + rho + r >= 0); cmin: over the halves every
+   eye reaches (x.w - rho + r >= 0), 0 if none.  2^-40 relative to spare,
+   far above the rounding of either side. */
+static void mlod__ball_diameters(double S, const double *x, double d, double r, double rho, double *cmax,
+                                 double *cmin)
+{
+    double near = d - rho, far = d + rho, t_near, t_far;
+    int h;
+    *cmax = 0.0;
+    *cmin = 0.0;
+    if (!(far > r)) { /* every eye inside the sphere */
+        *cmax = *cmin = INFINITY;
+        return;
+    }
+    t_near = near > r ? sqrt((near - r) * (near + r)) : 0.0;
+    t_far = sqrt((far - r) * (far + r));
+    for (h = 0; h < 2; h++) {
+        double xw = h ? -x[2] : x[2], den;
+        if (xw + rho + r >= 0.0) {
+            den = xw - rho + t_near;
+            if (!(near > r) || !(den > 0.0))
+                *cmax = INFINITY;
+            else if (S * 2.0 * r / den > *cmax)
+                *cmax = S * 2.0 * r / den;
+        }
+        if (xw - rho + r >= 0.0) {
+            den = xw + rho + t_far;
+            if (!(den > 0.0))
+                *cmin = INFINITY;
+            else if (S * 2.0 * r / den > *cmin)
+                *cmin = S * 2.0 * r / den;
+        }
+    }
+    *cmax *= 1.0 + 1.0 / 1099511627776.0;
+    *cmin *= 1.0 - 1.0 / 1099511627776.0;
+}
+
+/* How far, in pixels, any point of the sphere's image in the global dual
+   paraboloid of scale S moves between the ball's centre and any eye of
+   the ball: the direction to a point p of the sphere turns by at most
+   asin(rho / |p - c|) <= asin(rho / (d - r)) <= its tangent, and a
+   direction phi off a half's axis maps to radius tan(phi / 2), whose rate
+   1 / (1 + cos phi) (radially and across, the map being conformal) grows
+   with phi up to the largest angle off the axis of any direction from an
+   eye to the sphere, phi + b, with phi = angle(x, w) and b = asin((r +
+   rho) / d).  Halves no eye sees the sphere in (phi - b > pi / 2) are
+   left out; +inf where the bound does not hold (phi + b >= pi).  Sines
+   and cosines of phi +- b from their sums: no trigonometry. */
+static double mlod__ball_motion(double S, const double *x, double d, double r, double rho)
+{
+    double near = d - r, g = r + rho, turn, sin_b, cos_b, sin_phi, most = 0.0;
+    int h;
+    if (rho == 0.0) return 0.0;
+    if (!(near > rho) || !(d > g)) return INFINITY;
+    turn = rho / sqrt((near - rho) * (near + rho));
+    sin_b = g / d;
+    cos_b = sqrt((d - g) * (d + g)) / d;
+    sin_phi = sqrt(x[0] * x[0] + x[1] * x[1]) / d;
+    for (h = 0; h < 2; h++) {
+        double cos_phi = (h ? -x[2] : x[2]) / d, sin_sum, cos_sum, m;
+        if (cos_phi * cos_b + sin_phi * sin_b < -1e-12) continue; /* cos(phi - b) < 0 */
+        sin_sum = sin_phi * cos_b + cos_phi * sin_b;
+        cos_sum = cos_phi * cos_b - sin_phi * sin_b;
+        if (!(sin_sum > 1e-12 || cos_sum > 0.0)) return INFINITY;
+        m = S * turn / (1.0 + cos_sum);
+        if (m > most) most = m;
+    }
+    return most * (1.0 + 1.0 / 1048576.0);
+}
+
+/* A view node as the pair test sees it. */
+typedef struct mlod__vnode {
+    uint32_t node;
+    int leaf;
+    double centre[3], radius, least_fov, most_fov; /* half fields of view below */
+    const float *cone;   /* the views' directions, NULL: every direction */
+    mlod__pview pv;      /* leaves: the view's map, its float filter for epsilon */
+} mlod__vnode;
+
+/* One task's output: pairs (view node, scene node) to draw and to hand to
+   the view node's children, in the order met. */
+typedef struct mlod__mv_out {
+    uint32_t *draw, *split;
+    size_t draw_count, split_count, capacity; /* pairs each */
+    uint64_t pairs, culled;
+    int overflow;
+    int owned; /* draw and split were grown: the task's own allocation */
+} mlod__mv_out;
+
+typedef struct mlod__mv_job {
+    const mlod_tree *scene;
+    const mlod_view_tree *views;
+    mlod_atlas *atlas;
+    double epsilon, delta, S;
+    uint32_t resolution, flags;
+    /* the level: view nodes first .. first + count - 1 */
+    uint32_t first, count, prev_first;
+    const uint32_t *in;     /* scene nodes handed down, by parent */
+    const size_t *in_off;   /* per parent (the previous level's nodes), count + 1; NULL at the root */
+    size_t units, chunk;
+    mlod__mv_out *outs;
+    const uint32_t *redo;   /* chunks to run again (task i runs redo[i]), or NULL */
+    /* drawing the level */
+    const uint32_t *draws;  /* scene nodes to draw, by node of the level */
+    const size_t *draw_off;
+    float *depth;           /* this level's maps: pixels per map, depth and node */
+    uint32_t *ids;
+    const uint32_t *map_of; /* per node of the level: its map, or UINT32_MAX */
+    const float *parent_depth;
+    const uint32_t *parent_ids, *parent_map_of;
+    uint32_t pixels;
+} mlod__mv_job;
+
+#define MLOD__MV_CHUNK 1024u
+#define MLOD__MV_DRAW_NODES 16u
+#define MLOD__NO_MAP 0xffffffffu
+
+static mlod_view mlod__node_map_view(const mlod__mv_job *job, uint32_t node)
+{
+    return mlod_megaviews_view(job->views->eyes->spheres + 4 * (size_t)node, job->resolution, job->flags);
+}
+
+static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode *vn)
+{
+    const mlod_tree *t = job->views->eyes;
+    const float *sphere = t->spheres + 4 * (size_t)node;
+    int k;
+    vn->node = node;
+    vn->leaf = node >= t->leaf_count - 1;
+    for (k = 0; k < 3; k++) vn->centre[k] = sphere[k];
+    vn->radius = sphere[3];
+    vn->cone = mlod__cone_of(t, node);
+    vn->least_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node] : MLOD__PI;
+    vn->most_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node + 1] : MLOD__PI;
+    if (vn->leaf) {
+        mlod_view view = mlod__node_map_view(job, node);
+        mlod__view_prepare(&view, &vn->pv, NULL);
+        mlod__fast_prepare(&vn->pv, job->epsilon);
+    }
+}
+
+/* What the traversal does with (s, v).  A leaf decides as the cut does for
+   its view (after its own field of view); an inner node culls what every
+   view below culls, draws what is within epsilon for every eye of its
+   ball and moves by at most delta, splits the scene node where every eye
+   finds it above epsilon, and otherwise splits itself. */
+static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uint32_t s)
+{
+    const mlod_tree *scene = job->scene;
+    const float *sphere = scene->spheres + 4 * (size_t)s;
+    double x[3], d, r = sphere[3], cmax, cmin;
+    int k, shared = 1;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn->centre[k];
+    d = mlod__length3(x);
+    if (vn->cone && mlod__outside_cone(x, d, r + vn->radius, vn->cone, vn->most_fov, vn->leaf ? 0.0 : 1.0 / 1073741824.0))
+        return MLOD__PAIR_CULL;
+    if (vn->leaf) {
+        uint8_t st = mlod__classify(&vn->pv, scene, s, job->epsilon);
+        return st == MLOD_STATUS_CULLED ? MLOD__PAIR_CULL
+                                        : st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
+    }
+    if (job->flags & MLOD_VIEW_CULL_BACKFACES && scene->cones) {
+        const float *cone = scene->cones + 4 * (size_t)s;
+        double away[3] = {-x[0], -x[1], -x[2]};
+        if (mlod__outside_cone(away, d, r + vn->radius, cone, 0.5 * MLOD__PI, 1.0 / 1073741824.0))
+            return MLOD__PAIR_CULL;
+        shared = cone[3] >= 0.5 * MLOD__PI ||
+                 mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3]);
+    }
+    if (shared && vn->cone) shared = mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov);
+    mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
+    if (cmax <= job->epsilon)
+        return shared && mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta ? MLOD__PAIR_DRAW
+                                                                                      : MLOD__PAIR_SPLIT_VIEW;
+    if (cmin > job->epsilon && s < scene->leaf_count - 1) return MLOD__PAIR_SPLIT_SCENE;
+    return MLOD__PAIR_SPLIT_VIEW;
+}
+
+/* Unit u of the level's work: view node and first scene node. */
+static void mlod__mv_unit(const mlod__mv_job *job, size_t u, uint32_t *view, uint32_t *scene)
+{
+    uint32_t lo = 0, hi = job->first - job->prev_first; /* parents: the previous level's nodes */
+    size_t half = u / 2, local, length;
+    if (!job->in_off) {
+        *view = 0;
+        *scene = 0;
+        return;
+    }
+    while (hi - lo > 1) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (job->in_off[mid] <= half)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    local = u - 2 * job->in_off[lo];
+    length = job->in_off[lo + 1] - job->in_off[lo];
+    *view = 2 * (job->prev_first + lo) + 1 + (local >= length);
+    *scene = job->in[job->in_off[lo] + (local >= length ? local - length : local)];
+}
+
+static int mlod__mv_push(uint32_t *pairs, size_t *count, size_t capacity, uint32_t view, uint32_t scene)
+{
+    if (*count == capacity) return 0;
+    pairs[2 * *count] = view;
+    pairs[2 * *count + 1] = scene;
+    ++*count;
+    return 1;
+}
+
+/* Classify a chunk of the level's units: each scene node handed to a view
+   node, and depth first below it while the scene node splits. */
+static void mlod__mv_classify_task(void *context, uint32_t index)
+{
+    const mlod__mv_job *job = (const mlod__mv_job *)context;
+    uint32_t chunk = job->redo ? job->redo[index] : index, stack[128], view, s0;
+    mlod__mv_out *out = &job->outs[chunk];
+    size_t u = (size_t)chunk * job->chunk, end = u + job->chunk > job->units ? job->units : u + job->chunk;
+    mlod__vnode vn;
+    vn.node = MLOD__NO_MAP;
+    out->draw_count = out->split_count = 0;
+    out->pairs = out->culled = 0;
+    out->overflow = 0;
+    for (; u < end; u++) {
+        uint32_t top = 0;
+        mlod__mv_unit(job, u, &view, &s0);
+        if (view != vn.node) mlod__vnode_set(job, view, &vn);
+        stack[top++] = s0;
+        while (top) {
+            uint32_t s = stack[--top];
+            int ok = 1;
+            out->pairs++;
+            switch (mlod__pair_action(job, &vn, s)) {
+            case MLOD__PAIR_CULL:
+                out->culled++;
+                break;
+            case MLOD__PAIR_DRAW:
+                ok = mlod__mv_push(out->draw, &out->draw_count, out->capacity, view, s);
+                break;
+            case MLOD__PAIR_SPLIT_SCENE:
+                stack[top++] = 2 * s + 2; /* the left child first */
+                stack[top++] = 2 * s + 1;
+                break;
+            default:
+                ok = mlod__mv_push(out->split, &out->split_count, out->capacity, view, s);
+            }
+            if (!ok) {
+                out->overflow = 1;
+                return;
+            }
+        }
+    }
+}
+
+/* Initialise a map (or a leaf's tile) from its parent's map, depths
+   measured again from this node's centre (the eye, for a leaf): the
+   parent's node keeps a pixel until a nearer one is drawn. */
+static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, const float *parent_depth,
+                             const uint32_t *parent_ids, const double *centre)
+{
+    uint32_t width = 2 * job->resolution, row, col;
+    for (row = 0; row < job->resolution; row++)
+        for (col = 0; col < width; col++) {
+            size_t from = (size_t)row * width + col, at = (size_t)row * band->stride + col;
+            uint32_t node = parent_ids[from];
+            const float *sphere = job->scene->spheres + 4 * (size_t)node;
+            double x[3];
+            int k;
+            if (!(parent_depth[from] < INFINITY)) continue;
+            for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - centre[k];
+            band->depth[at] = (float)mlod__length3(x);
+            if (band->ids) band->ids[at] = node;
+            for (k = 0; k < 3 && band->normal; k++) band->normal[3 * at + k] = job->scene->cones[4 * (size_t)node + k];
+            for (k = 0; k < 3 && band->color; k++) band->color[3 * at + k] = job->scene->colors[3 * (size_t)node + k];
+        }
+}
+
+/* Draw a chunk of the level's nodes: each map (or leaf tile) starts from
+   its parent's and takes its own drawn nodes, nearest first. */
+static void mlod__mv_draw_task(void *context, uint32_t index)
+{
+    const mlod__mv_job *job = (const mlod__mv_job *)context;
+    const mlod_tree *eyes = job->views->eyes;
+    uint32_t i = index * MLOD__MV_DRAW_NODES, end = i + MLOD__MV_DRAW_NODES > job->count ? job->count : i + MLOD__MV_DRAW_NODES;
+    for (; i < end; i++) {
+        uint32_t node = job->first + i, parent_map = MLOD__NO_MAP;
+        size_t k, n = job->draw_off[i + 1] - job->draw_off[i];
+        int leaf = node >= eyes->leaf_count - 1;
+        double centre[3];
+        mlod__band band;
+        mlod__pview pv;
+        if (node > 0) parent_map = job->parent_map_of[(node - 1) / 2 - job->prev_first];
+        if (leaf) {
+            mlod__tile_band(job->atlas, job->scene, eyes->leaf_sources[node - (eyes->leaf_count - 1)], &band);
+            mlod__band_clear(&band, 2 * job->resolution);
+        } else {
+            size_t at;
+            if (job->map_of[i] == MLOD__NO_MAP) continue;
+            at = (size_t)job->map_of[i] * job->pixels;
+            memset(&band, 0, sizeof band);
+            band.tree = job->scene;
+            band.depth = job->depth + at;
+            band.ids = job->ids + at;
+            band.stride = 2 * job->resolution;
+            band.disc_scale = job->atlas->disc_scale;
+            band.row_end = job->resolution;
+            for (k = 0; k < job->pixels; k++) band.depth[k] = INFINITY;
+        }
+        for (k = 0; k < 3; k++) centre[k] = eyes->spheres[4 * (size_t)node + k];
+        if (parent_map != MLOD__NO_MAP)
+            mlod__mv_inherit(job, &band, job->parent_depth + (size_t)parent_map * job->pixels,
+                             job->parent_ids + (size_t)parent_map * job->pixels, centre);
+        if (n == 0) continue;
+        {
+            mlod_view view = mlod__node_map_view(job, node);
+            mlod__view_prepare(&view, &pv, NULL);
+        }
+        for (k = 0; k < n; k += MLOD__LANES) /* in batches, as mlod_splat draws a cut */
+            mlod__draw_nodes(&band, &pv, job->draws + job->draw_off[i] + k,
+                             n - k < MLOD__LANES ? (uint32_t)(n - k) : MLOD__LANES);
+    }
+}
+
+/* The call's memory, with its peak. */
+typedef struct mlod__mv_memory {
+    mlod_allocator a;
+    size_t live, peak;
+    int failed;
+} mlod__mv_memory;
+
+static void *mlod__mv_alloc(mlod__mv_memory *m, size_t count, size_t size)
+{
+    size_t bytes = 0;
+    void *p = m->failed ? NULL : mlod__alloc_array(&m->a, count, size, &bytes);
+    if (!p) {
+        m->failed = 1;
+        return NULL;
+    }
+    m->live += bytes;
+    if (m->live > m->peak) m->peak = m->live;
+    return p;
+}
+
+static void mlod__mv_free(mlod__mv_memory *m, void *p, size_t count, size_t size)
+{
+    if (!p) return;
+    m->live -= count * size;
+    mlod__free(&m->a, p);
+}
+
+static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tree *scene,
+                                         const mlod_view_tree *views, const mlod_megaviews_params *params,
+                                         mlod_error *error)
+{
+    uint32_t v;
+    if (!atlas || !scene || !views || !params)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas, scene, views and params must not be NULL");
+    if (!(params->epsilon > 0.0f))
+        return mlod__fail(error, MLOD_ERROR_BAD_EPSILON, "epsilon %g is not > 0", params->epsilon);
+    if (!(params->delta >= 0.0f && params->delta < INFINITY))
+        return mlod__fail(error, isnan(params->delta) ? MLOD_ERROR_NON_FINITE : MLOD_ERROR_INVALID_ARGUMENT,
+                          "delta %g is not finite and >= 0", params->delta);
+    if (params->resolution == 0 || params->resolution > 0x7fffffffu)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "resolution %u is not in 1 .. 2^31 - 1",
+                          params->resolution);
+    if (atlas->view_count != views->view_count)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has %u views, the view tree %u", atlas->view_count,
+                          views->view_count);
+    for (v = 0; v < atlas->view_count; v++) {
+        const uint32_t *t = atlas->tiles + 4 * (size_t)v;
+        if (t[2] != 2 * params->resolution || t[3] != params->resolution)
+            return mlod__fail(error, MLOD_ERROR_MISMATCH, "view %u has a %ux%u tile, the maps are %ux%u", v, t[2], t[3],
+                              2 * params->resolution, params->resolution);
+    }
+    if (atlas->normal && !scene->cones)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has normals and the scene no cones");
+    if (atlas->color && !scene->colors)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the scene none");
+    return MLOD_OK;
+}
+
+/* Classify one level's units into its job's outputs, growing the outputs
+   of chunks that ran out and running those again (a chunk's result does
+   not depend on its capacity).  0 when memory failed. */
+static int mlod__mv_classify_level(mlod__mv_job *job, mlod__mv_memory *m, const mlod_parallel *parallel,
+                                   uint32_t chunks)
+{
+    uint32_t *redo = (uint32_t *)mlod__mv_alloc(m, chunks, sizeof(uint32_t)), count = chunks, i;
+    if (!redo) return 0;
+    job->redo = NULL;
+    for (;;) {
+        uint32_t again = 0;
+        mlod__run(parallel, count, mlod__mv_classify_task, job);
+        for (i = 0; i < count; i++) {
+            uint32_t c = job->redo ? job->redo[i] : i;
+            mlod__mv_out *out = &job->outs[c];
+            size_t grown;
+            uint32_t *pairs;
+            if (!out->overflow) continue;
+            grown = 4 * out->capacity;
+            pairs = (uint32_t *)mlod__mv_alloc(m, grown, 4 * sizeof(uint32_t));
+            if (!pairs) break;
+            if (out->owned) mlod__mv_free(m, out->draw, out->capacity, 4 * sizeof(uint32_t));
+            out->draw = pairs;
+            out->split = pairs + 2 * grown;
+            out->capacity = grown;
+            out->owned = 1;
+            redo[again++] = c;
+        }
+        if (m->failed) break;
+        if (!again) break;
+        job->redo = redo;
+        count = again;
+    }
+    job->redo = NULL;
+    mlod__mv_free(m, redo, chunks, sizeof(uint32_t));
+    return !m->failed;
+}
+
+MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
+                                               const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
+                                               mlod_error *error)
+{
+    mlod_result res = mlod__check_megaviews(atlas, scene, views, params, error);
+    const mlod_tree *eyes;
+    mlod__mv_memory m;
+    mlod__mv_job job;
+    mlod_megaviews_stats st;
+    uint32_t levels, d, i, maps = 0, parent_maps = 0, parent_count = 0;
+    size_t *in_off = NULL, in_total = 0, units, u;
+    uint32_t *in = NULL, *parent_map_of = NULL, *parent_ids = NULL;
+    float *parent_depth = NULL;
+    if (res != MLOD_OK) return res;
+    eyes = views->eyes;
+    memset(&m, 0, sizeof m);
+    m.a = params->allocator ? *params->allocator : atlas->allocator;
+    memset(&st, 0, sizeof st);
+    memset(&job, 0, sizeof job);
+    job.scene = scene;
+    job.views = views;
+    job.atlas = atlas;
+    job.epsilon = params->epsilon;
+    job.delta = params->delta;
+    job.resolution = params->resolution;
+    job.flags = params->flags;
+    job.S = 0.5 * params->resolution;
+    job.pixels = 2 * params->resolution * params->resolution;
+    levels = mlod__depth_of(eyes->node_count - 1) + 1;
+    st.levels = levels;
+    for (d = 0; d < levels && !m.failed; d++) {
+        uint32_t first = (uint32_t)((1ull << d) - 1), count, chunks, c;
+        size_t draws = 0, splits = 0, *draw_off, *split_off;
+        uint32_t *draw, *split, *map_of;
+        mlod__mv_out *outs;
+        uint32_t *block;
+        count = (uint32_t)((uint64_t)eyes->node_count - first < (1ull << d) ? eyes->node_count - first : (1u << d));
+        units = d == 0 ? 1 : 2 * in_total;
+        chunks = (uint32_t)((units + MLOD__MV_CHUNK - 1) / MLOD__MV_CHUNK);
+        job.first = first;
+        job.count = count;
+        job.in = in;
+        job.in_off = in_off;
+        job.units = units;
+        job.chunk = MLOD__MV_CHUNK;
+        /* first pass: each chunk room for twice its units of either kind, plus 64 */
+        outs = (mlod__mv_out *)mlod__mv_alloc(&m, chunks ? chunks : 1, sizeof(mlod__mv_out));
+        block = (uint32_t *)mlod__mv_alloc(&m, 2 * units + 64 * (size_t)chunks + 1, 4 * sizeof(uint32_t));
+        if (!outs || !block) {
+            mlod__mv_free(&m, outs, chunks ? chunks : 1, sizeof(mlod__mv_out));
+            mlod__mv_free(&m, block, 2 * units + 64 * (size_t)chunks + 1, 4 * sizeof(uint32_t));
+            break;
+        }
+        for (c = 0, u = 0; c < chunks; c++) {
+            size_t n = units - (size_t)c * MLOD__MV_CHUNK < MLOD__MV_CHUNK ? units - (size_t)c * MLOD__MV_CHUNK : MLOD__MV_CHUNK;
+            memset(&outs[c], 0, sizeof outs[c]);
+            outs[c].capacity = 2 * n + 64;
+            outs[c].draw = block + 4 * u;
+            outs[c].split = outs[c].draw + 2 * outs[c].capacity;
+            u += outs[c].capacity;
+        }
+        job.outs = outs;
+        if (chunks) mlod__mv_classify_level(&job, &m, params->parallel, chunks);
+        draw_off = (size_t *)mlod__mv_alloc(&m, (size_t)count + 1, sizeof(size_t));
+        split_off = (size_t *)mlod__mv_alloc(&m, (size_t)count + 1, sizeof(size_t));
+        for (c = 0; c < chunks; c++) {
+            draws += outs[c].draw_count;
+            splits += outs[c].split_count;
+            st.pairs += outs[c].pairs;
+            st.culled += outs[c].culled;
+        }
+        draw = (uint32_t *)mlod__mv_alloc(&m, draws, sizeof(uint32_t));
+        split = (uint32_t *)mlod__mv_alloc(&m, splits, sizeof(uint32_t));
+        map_of = (uint32_t *)mlod__mv_alloc(&m, count, sizeof(uint32_t));
+        if (!m.failed) {
+            /* gather by view node, in the order met (chunks in order) */
+            memset(draw_off, 0, ((size_t)count + 1) * sizeof(size_t));
+            memset(split_off, 0, ((size_t)count + 1) * sizeof(size_t));
+            for (c = 0; c < chunks; c++) {
+                for (u = 0; u < outs[c].draw_count; u++) draw_off[outs[c].draw[2 * u] - first + 1]++;
+                for (u = 0; u < outs[c].split_count; u++) split_off[outs[c].split[2 * u] - first + 1]++;
+            }
+            for (i = 0; i < count; i++) {
+                draw_off[i + 1] += draw_off[i];
+                split_off[i + 1] += split_off[i];
+            }
+            for (c = 0; c < chunks; c++) {
+                for (u = 0; u < outs[c].draw_count; u++) {
+                    uint32_t v = outs[c].draw[2 * u] - first;
+                    draw[draw_off[v]++] = outs[c].draw[2 * u + 1];
+                    if (v + first < eyes->leaf_count - 1) {
+                        st.shared_draws++;
+                        st.shared_views += mlod__leaves_below(v + first, eyes->leaf_count);
+                    } else {
+                        st.leaf_draws++;
+                    }
+                }
+                for (u = 0; u < outs[c].split_count; u++) split[split_off[outs[c].split[2 * u] - first]++] = outs[c].split[2 * u + 1];
+            }
+            for (i = count; i > 0; i--) {
+                draw_off[i] = draw_off[i - 1];
+                split_off[i] = split_off[i - 1];
+            }
+            draw_off[0] = split_off[0] = 0;
+        }
+        for (c = 0; c < chunks; c++)
+            if (outs[c].owned) mlod__mv_free(&m, outs[c].draw, outs[c].capacity, 4 * sizeof(uint32_t));
+        mlod__mv_free(&m, block, 2 * units + 64 * (size_t)chunks + 1, 4 * sizeof(uint32_t));
+        mlod__mv_free(&m, outs, chunks ? chunks : 1, sizeof(mlod__mv_out));
+        mlod__mv_free(&m, in, in_total, sizeof(uint32_t));
+        mlod__mv_free(&m, in_off, (size_t)parent_count + 1, sizeof(size_t));
+        in = split;
+        in_off = split_off;
+        in_total = splits;
+        if (m.failed) {
+            mlod__mv_free(&m, draw, draws, sizeof(uint32_t));
+            mlod__mv_free(&m, draw_off, (size_t)count + 1, sizeof(size_t));
+            mlod__mv_free(&m, map_of, count, sizeof(uint32_t));
+            parent_count = count;
+            break;
+        }
+        /* the level's maps: inner nodes with a parent's map or a draw */
+        for (i = maps = 0; i < count; i++) {
+            uint32_t node = first + i;
+            int inherits = node > 0 && parent_map_of[(node - 1) / 2 - job.prev_first] != MLOD__NO_MAP;
+            map_of[i] = node < eyes->leaf_count - 1 && (inherits || draw_off[i + 1] > draw_off[i]) ? maps++ : MLOD__NO_MAP;
+        }
+        job.depth = (float *)mlod__mv_alloc(&m, (size_t)maps * job.pixels, sizeof(float));
+        job.ids = (uint32_t *)mlod__mv_alloc(&m, (size_t)maps * job.pixels, sizeof(uint32_t));
+        if (!m.failed) {
+            job.draws = draw;
+            job.draw_off = draw_off;
+            job.map_of = map_of;
+            job.parent_depth = parent_depth;
+            job.parent_ids = parent_ids;
+            job.parent_map_of = parent_map_of;
+            mlod__run(params->parallel, (count + MLOD__MV_DRAW_NODES - 1) / MLOD__MV_DRAW_NODES, mlod__mv_draw_task,
+                      &job);
+        }
+        mlod__mv_free(&m, draw, draws, sizeof(uint32_t));
+        mlod__mv_free(&m, draw_off, (size_t)count + 1, sizeof(size_t));
+        mlod__mv_free(&m, parent_depth, (size_t)parent_maps * job.pixels, sizeof(float));
+        mlod__mv_free(&m, parent_ids, (size_t)parent_maps * job.pixels, sizeof(uint32_t));
+        mlod__mv_free(&m, parent_map_of, parent_count, sizeof(uint32_t));
+        parent_depth = job.depth;
+        parent_ids = job.ids;
+        parent_map_of = map_of;
+        parent_maps = maps;
+        parent_count = count;
+        job.prev_first = first;
+    }
+    mlod__mv_free(&m, in, in_total, sizeof(uint32_t));
+    mlod__mv_free(&m, in_off, (size_t)parent_count + 1, sizeof(size_t));
+    mlod__mv_free(&m, parent_depth, (size_t)parent_maps * job.pixels, sizeof(float));
+    mlod__mv_free(&m, parent_ids, (size_t)parent_maps * job.pixels, sizeof(uint32_t));
+    mlod__mv_free(&m, parent_map_of, parent_count, sizeof(uint32_t));
+    if (m.failed) {
+        for (i = 0; i < atlas->view_count; i++) {
+            mlod__band band;
+            mlod__tile_band(atlas, scene, i, &band);
+            mlod__band_clear(&band, atlas->tiles[4 * (size_t)i + 2]);
+        }
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the render (%zu bytes held at most)", m.peak);
+    }
+    st.peak_bytes = m.peak;
+    if (stats) *stats = st;
+    return mlod__succeed(error);
 }
 
 /* ------------------------------------------------- pthreads thread pool -- */

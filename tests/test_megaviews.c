@@ -1,0 +1,827 @@
+/* tests/test_megaviews.c - the view tree and the MegaViews render, against
+   independent references.
+
+   - the view tree: its spheres and cones contain their children exactly
+     (with the scene tree's slack), each leaf holds its view's eye exactly
+     (radius 0) and its direction, the leaves hold every view once, each
+     node's half field of view is the largest below it (brute force), and
+     all of it again after a refit to moved views;
+   - with delta = 0 the render equals, bit for bit in depth, normal and
+     colour, the per-view cut and splat of the same maps (mlod_cut_update
+     and mlod_splat on mlod_megaviews_view), for omnidirectional views,
+     with back-face culling, with duplicate eyes, eyes outside the scene,
+     several resolutions and epsilons; with fields of view it equals the
+     per-view cut's nodes that the view's field of view does not cull,
+     drawn as mlod_splat draws;
+   - culling is conservative, by brute force in long double: no view below
+     a culled pair sees any point of the scene node's sphere in its field
+     of view (or, back-face culled, with any normal of its cone), and every
+     view below would cull it itself;
+   - the bounds the traversal shares by hold for eyes sampled in the view
+     node's ball: the diameter lies within [cmin, cmax], and the image disc
+     (centre and radius) moves by at most the motion bound;
+   - the same atlas for every thread count and task order, delta > 0;
+   - statistics: with delta = 0 and distinct eyes nothing is shared and
+     the leaf draws are the per-view cuts' drawn nodes;
+   - errors: NULLs, bad epsilon, delta, resolution, mismatched atlases and
+     channels, bad view sets, failing allocators (the atlas then empty). */
+#define MANYLODS_IMPLEMENTATION
+#define MANYLODS_PTHREADS
+#include "../manylods.h"
+#include "testutil.h"
+
+/* ============================================================ helpers */
+
+typedef struct views {
+    uint32_t count;
+    float *eyes, *directions, *fovs;
+} views;
+
+/* count eyes in the box [lo, hi] (some duplicated when dup), random unit
+   directions and half fields of view in [0.3, pi]. */
+static views make_views(uint64_t seed, uint32_t count, const float *lo, const float *hi, int dup)
+{
+    views v;
+    uint64_t rng = seed;
+    uint32_t i;
+    int k;
+    v.count = count;
+    v.eyes = (float *)malloc(12 * (size_t)count);
+    v.directions = (float *)malloc(12 * (size_t)count);
+    v.fovs = (float *)malloc(4 * (size_t)count);
+    for (i = 0; i < count; i++) {
+        double d[3];
+        for (k = 0; k < 3; k++) v.eyes[3 * i + k] = scene_rng_range(&rng, lo[k], hi[k]);
+        if (dup && i % 7 == 3) memcpy(v.eyes + 3 * i, v.eyes + 3 * (i - 1), 12);
+        tu_random_unit(&rng, d);
+        for (k = 0; k < 3; k++) v.directions[3 * i + k] = (float)(d[k] * (1.0 + i % 3));
+        v.fovs[i] = (float)(0.3 + (TU_PI - 0.3) * scene_rng_double(&rng));
+    }
+    return v;
+}
+
+static void free_views(views *v)
+{
+    free(v->eyes);
+    free(v->directions);
+    free(v->fovs);
+}
+
+static mlod_view_set view_set(const views *v, int directions, int per_view_fov)
+{
+    mlod_view_set s;
+    memset(&s, 0, sizeof s);
+    s.eyes = v->eyes;
+    s.count = v->count;
+    if (directions) s.directions = v->directions;
+    if (per_view_fov) s.half_fovs = v->fovs;
+    return s;
+}
+
+static mlod_view_tree *build_views(const mlod_view_set *s, const mlod_parallel *parallel)
+{
+    mlod_view_tree *t = NULL;
+    mlod_error e;
+    if (mlod_view_tree_build(s, NULL, parallel, &t, &e) != MLOD_OK) fprintf(stderr, "view tree: %s\n", e.message);
+    return t;
+}
+
+static mlod_atlas *make_atlas(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
+                              uint32_t flags)
+{
+    mlod_view *vs = (mlod_view *)malloc(sizeof(mlod_view) * v->count);
+    mlod_atlas_desc desc;
+    mlod_atlas *a = NULL;
+    mlod_error e;
+    uint32_t i;
+    for (i = 0; i < v->count; i++) vs[i] = mlod_megaviews_view(v->eyes + 3 * i, resolution, flags);
+    memset(&desc, 0, sizeof desc);
+    desc.channels = channels;
+    if (mlod_atlas_create(vs, v->count, &desc, NULL, &a, &e) != MLOD_OK) fprintf(stderr, "atlas: %s\n", e.message);
+    *out_views = vs;
+    return a;
+}
+
+static int same_atlas(const mlod_atlas *a, const mlod_atlas *b, size_t *first)
+{
+    size_t n = (size_t)a->width * a->height, i;
+    for (i = 0; i < n; i++)
+        if (memcmp(&a->depth[i], &b->depth[i], 4) || (a->normal && memcmp(a->normal + 3 * i, b->normal + 3 * i, 12)) ||
+            (a->color && memcmp(a->color + 3 * i, b->color + 3 * i, 12))) {
+            *first = i;
+            return 0;
+        }
+    return 1;
+}
+
+/* The per-view reference: each view's basic cut of its map view, and of
+   its drawn nodes those its own field of view does not cull (all of them
+   without directions), drawn in order as mlod_splat draws them. */
+static void reference_render(mlod_atlas *ref, const mlod_tree *scene, const mlod_view *vs, const views *v,
+                             int directions, float epsilon, uint64_t *drawn_total)
+{
+    mlod_cut *cut = NULL;
+    mlod_cut_params cp;
+    mlod_error e;
+    uint32_t i, j;
+    memset(&cp, 0, sizeof cp);
+    cp.epsilon = epsilon;
+    if (mlod_cut_create(v->count, NULL, &cut, &e) != MLOD_OK || mlod_cut_update(cut, scene, vs, &cp, &e) != MLOD_OK) {
+        CHECK(0, "reference cut: %s", e.message);
+        mlod_cut_destroy(cut);
+        return;
+    }
+    *drawn_total = 0;
+    for (i = 0; i < v->count; i++) {
+        mlod_cut_view cv = mlod_cut_get(cut, i);
+        mlod__band band;
+        mlod__pview pv;
+        uint32_t batch[MLOD__LANES], n = 0;
+        double len = 0.0;
+        float cone[4] = {0, 0, 0, 0};
+        mlod__view_prepare(&vs[i], &pv, NULL);
+        mlod__tile_band(ref, scene, i, &band);
+        mlod__band_clear(&band, ref->tiles[4 * (size_t)i + 2]);
+        for (j = 0; j < 3; j++) len += (double)v->directions[3 * i + j] * v->directions[3 * i + j];
+        for (j = 0; j < 3; j++) cone[j] = (float)(v->directions[3 * i + j] / sqrt(len));
+        for (j = 0; j < cv.count; j++) {
+            const float *s = scene->spheres + 4 * (size_t)cv.nodes[j];
+            double x[3];
+            int k;
+            if (cv.status[j] == MLOD_STATUS_CULLED) continue;
+            for (k = 0; k < 3; k++) x[k] = (double)s[k] - v->eyes[3 * i + k];
+            if (directions && mlod__outside_cone(x, mlod__length3(x), s[3], cone, v->fovs[i], 0.0)) continue;
+            ++*drawn_total;
+            batch[n++] = cv.nodes[j];
+            if (n == MLOD__LANES) {
+                mlod__draw_nodes(&band, &pv, batch, n);
+                n = 0;
+            }
+        }
+        mlod__draw_nodes(&band, &pv, batch, n);
+    }
+    mlod_cut_destroy(cut);
+}
+
+/* ========================================================== view tree */
+
+/* Every view under leaf j's subtree, brute force: the largest half fov. */
+static void check_view_tree(const mlod_view_tree *t, const views *v, int directions, int per_view, const char *what)
+{
+    const mlod_tree *eyes = t->eyes;
+    uint32_t n = eyes->leaf_count, i, bad_eye = 0, bad_dir = 0, bad_fov = 0, bad_perm = 0;
+    char *seen = (char *)calloc(v->count, 1);
+    tu_check_containment(eyes, what);
+    CHECK(t->view_count == v->count && n == v->count, "%s: %u leaves for %u views", what, n, v->count);
+    for (i = 0; i < n; i++) {
+        uint32_t view = eyes->leaf_sources[i];
+        const float *s = eyes->spheres + 4 * (size_t)(n - 1 + i);
+        if (view >= v->count || seen[view]++) {
+            bad_perm++;
+            continue;
+        }
+        if (memcmp(s, v->eyes + 3 * view, 12) || s[3] != 0.0f) bad_eye++;
+        if (directions) {
+            const float *c = eyes->cones + 4 * (size_t)(n - 1 + i), *d = v->directions + 3 * view;
+            long double dot = (long double)c[0] * d[0] + (long double)c[1] * d[1] + (long double)c[2] * d[2];
+            long double len = sqrtl((long double)d[0] * d[0] + (long double)d[1] * d[1] + (long double)d[2] * d[2]) *
+                              sqrtl((long double)c[0] * c[0] + (long double)c[1] * c[1] + (long double)c[2] * c[2]);
+            if (!(dot / len > 1.0L - 1e-12L) || c[3] != 0.0f) bad_dir++;
+        }
+    }
+    if (directions) {
+        for (i = 0; i < eyes->node_count; i++) {
+            /* the largest and smallest fov of the leaves below node i, by walking up from each leaf */
+            float most = 0.0f, least = 4.0f;
+            uint32_t j;
+            for (j = 0; j < n; j++) {
+                uint32_t node = n - 1 + j;
+                while (node > i) node = (node - 1) / 2;
+                if (node == i) {
+                    float f = per_view ? v->fovs[eyes->leaf_sources[j]] : (float)(0.5 * TU_PI);
+                    if (f > most) most = f;
+                    if (f < least) least = f;
+                }
+            }
+            if (t->half_fovs[2 * i + 1] != most || t->half_fovs[2 * i] != least) bad_fov++;
+            if (eyes->node_count > 300) i += 37; /* a sample of nodes beyond small trees */
+        }
+    } else {
+        CHECK(t->half_fovs == NULL && eyes->cones == NULL, "%s: no directions, yet fovs or cones", what);
+    }
+    CHECK(bad_perm == 0, "%s: %u leaves do not hold a distinct view", what, bad_perm);
+    CHECK(bad_eye == 0, "%s: %u leaves are not their view's eye with radius 0", what, bad_eye);
+    CHECK(bad_dir == 0, "%s: %u leaf cones are not their view's direction", what, bad_dir);
+    CHECK(bad_fov == 0, "%s: %u nodes' half_fovs are not the smallest and largest below", what, bad_fov);
+    free(seen);
+}
+
+static void test_view_tree(void)
+{
+    static const float lo[3] = {-3, -1, -2}, hi[3] = {3, 1, 2};
+    uint32_t counts[] = {1, 2, 3, 17, 500}, c;
+    for (c = 0; c < sizeof counts / sizeof counts[0]; c++) {
+        views v = make_views(11 + c, counts[c], lo, hi, 1);
+        int mode;
+        for (mode = 0; mode < 3; mode++) {
+            mlod_view_set s = view_set(&v, mode > 0, mode > 1);
+            mlod_view_tree *t = build_views(&s, NULL);
+            char what[64];
+            mlod_error e;
+            uint32_t i;
+            snprintf(what, sizeof what, "view tree of %u views, mode %d", counts[c], mode);
+            CHECK(t != NULL, "%s: built", what);
+            if (!t) continue;
+            check_view_tree(t, &v, mode > 0, mode > 1, what);
+            CHECK(t->bytes >= t->eyes->bytes + sizeof *t, "%s: bytes %zu count the tree", what, t->bytes);
+            /* the views move: refit keeps the leaves' views and contains them again */
+            for (i = 0; i < 3 * v.count; i++) v.eyes[i] = v.eyes[i] * 1.5f + 0.25f;
+            for (i = 0; i < v.count; i++) v.fovs[i] = v.fovs[i] * 0.5f;
+            {
+                uint64_t rng = 99 + c;
+                for (i = 0; i < 3 * v.count; i++) v.directions[i] += scene_rng_range(&rng, -0.5f, 0.5f);
+                for (i = 0; i < v.count; i++)
+                    if (v.directions[3 * i] == 0 && v.directions[3 * i + 1] == 0 && v.directions[3 * i + 2] == 0)
+                        v.directions[3 * i] = 1;
+            }
+            CHECK(mlod_view_tree_refit(t, &s, NULL, &e) == MLOD_OK, "%s: refit", what);
+            snprintf(what, sizeof what, "refit view tree of %u views, mode %d", counts[c], mode);
+            check_view_tree(t, &v, mode > 0, mode > 1, what);
+            mlod_view_tree_destroy(t);
+        }
+        free_views(&v);
+    }
+}
+
+/* ================================================= delta 0: per view */
+
+static void test_equals_per_view(const mlod_tree *scene, const char *scene_name)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    static const float far_lo[3] = {-9, -9, -9}, far_hi[3] = {9, 9, 9};
+    struct {
+        uint32_t views, resolution;
+        float epsilon;
+        int directions, per_view, backfaces, far, dup;
+    } cases[] = {{300, 8, 1.0f, 0, 0, 0, 0, 0}, {200, 5, 2.5f, 0, 0, 1, 0, 1}, {150, 16, 1.0f, 0, 0, 0, 1, 0},
+                 {300, 8, 1.0f, 1, 1, 0, 0, 0}, {200, 8, 1.5f, 1, 0, 1, 0, 1}, {1, 7, 1.0f, 1, 1, 0, 0, 0},
+                 {64, 4, 0.25f, 0, 0, 0, 0, 0}};
+    uint32_t c;
+    for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        views v = make_views(100 + c, cases[c].views, cases[c].far ? far_lo : lo, cases[c].far ? far_hi : hi,
+                             cases[c].dup);
+        mlod_view_set s = view_set(&v, cases[c].directions, cases[c].per_view);
+        mlod_view_tree *t = build_views(&s, NULL);
+        uint32_t flags = cases[c].backfaces ? MLOD_VIEW_CULL_BACKFACES : 0u, i;
+        uint32_t channels = (scene->cones ? MLOD_ATLAS_NORMAL : 0u) | (scene->colors ? MLOD_ATLAS_COLOR : 0u);
+        mlod_view *vs = NULL, *vs2 = NULL;
+        mlod_atlas *a = make_atlas(&v, cases[c].resolution, channels, &vs, flags);
+        mlod_atlas *ref = make_atlas(&v, cases[c].resolution, channels, &vs2, flags);
+        mlod_megaviews_params p;
+        mlod_megaviews_stats st;
+        mlod_error e;
+        uint64_t drawn = 0;
+        size_t first = 0;
+        memset(&p, 0, sizeof p);
+        p.epsilon = cases[c].epsilon;
+        p.resolution = cases[c].resolution;
+        p.flags = flags;
+        if (!cases[c].per_view && cases[c].directions)
+            for (i = 0; i < v.count; i++) v.fovs[i] = (float)(0.5 * TU_PI); /* the reference's fov */
+        if (t && a && ref) {
+            mlod_result r = mlod_megaviews_render(a, scene, t, &p, &st, &e);
+            CHECK(r == MLOD_OK, "%s case %u: render: %s", scene_name, c, e.message);
+            reference_render(ref, scene, vs, &v, cases[c].directions, p.epsilon, &drawn);
+            int same = same_atlas(a, ref, &first);
+            CHECK(same, "%s case %u: delta 0 differs from the per-view cut and splat at "
+                  "pixel %zu (%g against %g)", scene_name, c, first, a->depth[first], ref->depth[first]);
+            if (!cases[c].dup) {
+                CHECK(st.shared_draws == 0, "%s case %u: %llu shared draws with delta 0 and distinct eyes",
+                      scene_name, c, (unsigned long long)st.shared_draws);
+                CHECK(st.leaf_draws == drawn, "%s case %u: %llu leaf draws, the per-view cuts draw %llu", scene_name,
+                      c, (unsigned long long)st.leaf_draws, (unsigned long long)drawn);
+            }
+            CHECK(st.pairs >= st.leaf_draws + st.shared_draws + st.culled && st.levels == mlod__depth_of(2 * v.count - 2) + 1,
+                  "%s case %u: statistics add up", scene_name, c);
+        } else {
+            CHECK(0, "%s case %u: set up", scene_name, c);
+        }
+        mlod_atlas_destroy(a);
+        mlod_atlas_destroy(ref);
+        mlod_view_tree_destroy(t);
+        free(vs);
+        free(vs2);
+        free_views(&v);
+    }
+}
+
+/* ========================================================= conservative */
+
+/* Does an eye e with direction dir and half fov see any point of the
+   sphere?  (long double) */
+static int sees_sphere(const float *e, const float *dir, float fov, const float *sphere)
+{
+    long double x[3], d = 0, dl = 0, dot = 0, ang;
+    int k;
+    for (k = 0; k < 3; k++) {
+        x[k] = (long double)sphere[k] - e[k];
+        d += x[k] * x[k];
+        dl += (long double)dir[k] * dir[k];
+        dot += x[k] * dir[k];
+    }
+    d = sqrtl(d);
+    if (d <= sphere[3]) return 1;
+    ang = acosl(fmaxl(-1.0L, fminl(1.0L, dot / (d * sqrtl(dl)))));
+    return ang <= (long double)fov + asinl((long double)sphere[3] / d);
+}
+
+/* Can some normal of the cone at some point of the sphere face the eye? */
+static int faces_eye(const float *e, const float *sphere, const float *cone)
+{
+    long double x[3], d = 0, dot = 0, ang;
+    int k;
+    if (cone[3] >= TU_PI / 2) return 1;
+    for (k = 0; k < 3; k++) {
+        x[k] = (long double)e[k] - sphere[k];
+        d += x[k] * x[k];
+        dot += x[k] * cone[k];
+    }
+    d = sqrtl(d);
+    if (d <= sphere[3]) return 1;
+    ang = acosl(fmaxl(-1.0L, fminl(1.0L, dot / d)));
+    return ang <= TU_PI / 2 + (long double)cone[3] + asinl((long double)sphere[3] / d);
+}
+
+static void test_culling(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    views v = make_views(7, 400, lo, hi, 0);
+    mlod_view_set s = view_set(&v, 1, 1);
+    mlod_view_tree *t = build_views(&s, NULL);
+    mlod__mv_job job;
+    uint64_t rng = 5;
+    uint32_t trial, culled = 0, wrong = 0, not_implied = 0, back = 0, back_wrong = 0;
+    if (!t) return;
+    memset(&job, 0, sizeof job);
+    job.scene = scene;
+    job.views = t;
+    job.epsilon = 1.0;
+    job.resolution = 8;
+    job.S = 4.0;
+    job.flags = MLOD_VIEW_CULL_BACKFACES;
+    for (trial = 0; trial < 20000; trial++) {
+        uint32_t vn_index = (uint32_t)(scene_rng_double(&rng) * (t->eyes->leaf_count - 1));
+        uint32_t s_index = (uint32_t)(scene_rng_double(&rng) * scene->node_count);
+        const float *sphere = scene->spheres + 4 * (size_t)s_index;
+        mlod__vnode vn;
+        double x[3], d;
+        int k, by_fov;
+        mlod__vnode_set(&job, vn_index, &vn);
+        for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn.centre[k];
+        d = mlod__length3(x);
+        if (mlod__pair_action(&job, &vn, s_index) != MLOD__PAIR_CULL) continue;
+        culled++;
+        by_fov = mlod__outside_cone(x, d, sphere[3] + vn.radius, vn.cone, vn.most_fov, 1.0 / 1073741824.0);
+        if (!by_fov) back++;
+        {
+            uint32_t n = t->eyes->leaf_count, j;
+            for (j = 0; j < n; j++) { /* every view below vn_index */
+                uint32_t node = n - 1 + j, view = t->eyes->leaf_sources[j], leaves = 0;
+                const float *e = v.eyes + 3 * view;
+                const float *cone = t->eyes->cones + 4 * (size_t)(n - 1 + j);
+                double y[3];
+                while (node > vn_index) node = (node - 1) / 2;
+                if (node != vn_index) continue;
+                for (k = 0; k < 3; k++) y[k] = (double)sphere[k] - e[k];
+                if (by_fov) {
+                    if (!mlod__outside_cone(y, mlod__length3(y), sphere[3], cone, v.fovs[view], 0.0)) not_implied++;
+                    if (sees_sphere(e, v.directions + 3 * view, v.fovs[view], sphere)) wrong++;
+                } else {
+                    /* back-face culled: no leaf below the scene node (up to 64) faces the eye */
+                    uint32_t stack[64], top = 0;
+                    stack[top++] = s_index;
+                    while (top && leaves < 64) {
+                        uint32_t node2 = stack[--top];
+                        if (node2 >= scene->leaf_count - 1) {
+                            leaves++;
+                            if (faces_eye(e, scene->spheres + 4 * (size_t)node2, scene->cones + 4 * (size_t)node2))
+                                back_wrong++;
+                            continue;
+                        }
+                        stack[top++] = 2 * node2 + 2;
+                        stack[top++] = 2 * node2 + 1;
+                    }
+                    {
+                        mlod_view mv = mlod_megaviews_view(e, 8, MLOD_VIEW_CULL_BACKFACES);
+                        int culled_there = 0;
+                        mlod__pview pv;
+                        mlod__view_prepare(&mv, &pv, NULL);
+                        mlod__evaluate(&pv, sphere, scene->cones + 4 * (size_t)s_index, &culled_there);
+                        if (!culled_there) not_implied++;
+                    }
+                }
+            }
+        }
+    }
+    CHECK(culled > 200 && back > 20, "culling: %u culled pairs sampled (%u back-facing): enough to test", culled, back);
+    CHECK(wrong == 0, "culling: %u culled (view, scene node) pairs where the view sees the sphere", wrong);
+    CHECK(back_wrong == 0, "culling: %u back-face culled pairs where a leaf below faces the eye", back_wrong);
+    CHECK(not_implied == 0, "culling: %u culled pairs a view below would not cull itself", not_implied);
+    mlod_view_tree_destroy(t);
+    free_views(&v);
+}
+
+/* ============================================ the bounds sharing rests on */
+
+static void test_bounds(void)
+{
+    uint64_t rng = 3;
+    uint32_t trial, tested = 0, moved = 0, bad_max = 0, bad_min = 0, bad_motion = 0;
+    double worst = 0.0;
+    for (trial = 0; trial < 4000; trial++) {
+        double c[3], x[3], d, rho = 0.5 * scene_rng_double(&rng), r = 0.3 * scene_rng_double(&rng), cmax, cmin, motion;
+        double S = 8.0, dir[3];
+        float sphere[4], cf[3];
+        mlod_view mv;
+        mlod__pview pc;
+        mlod__disc dc[2];
+        int k, bc[2], sample;
+        tu_random_unit(&rng, dir);
+        d = 0.05 + 3.0 * scene_rng_double(&rng);
+        for (k = 0; k < 3; k++) {
+            c[k] = scene_rng_range(&rng, -1, 1);
+            cf[k] = (float)c[k];
+            sphere[k] = (float)(c[k] + d * dir[k]);
+        }
+        sphere[3] = (float)r;
+        for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - (double)cf[k];
+        d = mlod__length3(x);
+        mlod__ball_diameters(S, x, d, r, rho, &cmax, &cmin);
+        motion = mlod__ball_motion(S, x, d, r, rho);
+        mv = mlod_megaviews_view(cf, 16, 0);
+        mlod__view_prepare(&mv, &pc, NULL);
+        for (k = 0; k < 2; k++) {
+            double centre[3] = {sphere[0], sphere[1], sphere[2]};
+            bc[k] = mlod__image_disc(&pc, k, centre, r, &dc[k]) && mlod__reached(&pc, sphere) >> k & 1u;
+        }
+        for (sample = 0; sample < 16; sample++) {
+            double y[3], len = rho * pow(scene_rng_double(&rng), 1.0 / 3.0);
+            float e[3];
+            mlod__pview pe;
+            int culled;
+            double ce;
+            tu_random_unit(&rng, y);
+            for (k = 0; k < 3; k++) e[k] = (float)(c[k] + len * y[k]);
+            {
+                double off[3] = {(double)e[0] - cf[0], (double)e[1] - cf[1], (double)e[2] - cf[2]};
+                if (mlod__length3(off) > rho) continue; /* rounding left the ball */
+            }
+            mv = mlod_megaviews_view(e, 16, 0);
+            mlod__view_prepare(&mv, &pe, NULL);
+            ce = mlod__evaluate(&pe, sphere, NULL, &culled);
+            tested++;
+            if (ce > cmax) bad_max++;
+            if (ce < cmin) bad_min++;
+            if (motion < INFINITY) {
+                for (k = 0; k < 2; k++) {
+                    mlod__disc de;
+                    double centre[3] = {sphere[0], sphere[1], sphere[2]}, shift;
+                    if (!bc[k] || !(mlod__reached(&pe, sphere) >> k & 1u)) continue;
+                    if (!mlod__image_disc(&pe, k, centre, r, &de)) {
+                        bad_motion++;
+                        continue;
+                    }
+                    /* every point of one disc within `motion` of the other: centres and radii */
+                    shift = sqrt((de.x - dc[k].x) * (de.x - dc[k].x) + (de.y - dc[k].y) * (de.y - dc[k].y)) +
+                            fabs(de.radius - dc[k].radius);
+                    moved++;
+                    if (shift > motion * (1 + 1e-9)) bad_motion++;
+                    if (motion > 0 && shift / motion > worst) worst = shift / motion;
+                }
+            }
+        }
+    }
+    CHECK(tested > 30000 && moved > 10000, "bounds: %u eyes sampled, %u motions", tested, moved);
+    CHECK(bad_max == 0, "bounds: %u eyes see a diameter above cmax", bad_max);
+    CHECK(bad_min == 0, "bounds: %u eyes see a diameter below cmin", bad_min);
+    CHECK(bad_motion == 0, "bounds: %u images moved beyond the motion bound", bad_motion);
+    CHECK(worst > 0.3, "bounds: the motion bound is not vacuous (largest shift / bound %.3f)", worst);
+}
+
+/* ================================================= delta > 0: fusion */
+
+/* With delta > 0, each pixel of each view holds a node (read from the
+   colour channel, set to the node's index) whose depth is exactly its
+   distance from the view's own eye (the fusion's correction), whose
+   normal is its cone's axis, whose image from that eye lies within
+   delta of the pixel (the disc's radius plus delta, plus the pixel
+   holding a disc's centre), and which the view itself would not cull (by
+   its field of view, or facing away); and the views share. */
+static void test_fusion(mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    static const float deltas[2] = {MLOD_MEGAVIEWS_DELTA, 2.0f};
+    views v = make_views(41, 900, lo, hi, 0);
+    uint32_t i, d;
+    for (i = 0; i < scene->node_count; i++) {
+        scene->colors[3 * (size_t)i] = (float)i;
+        scene->colors[3 * (size_t)i + 1] = scene->colors[3 * (size_t)i + 2] = 0.0f;
+    }
+    for (d = 0; d < 2; d++) {
+        mlod_view_set s = view_set(&v, d == 1, d == 1);
+        mlod_view_tree *t = build_views(&s, NULL);
+        mlod_view *vs = NULL;
+        uint32_t flags = d == 1 ? MLOD_VIEW_CULL_BACKFACES : 0u;
+        mlod_atlas *a = make_atlas(&v, 8, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, &vs, flags);
+        mlod_megaviews_params p;
+        mlod_megaviews_stats st;
+        mlod_error e;
+        uint64_t filled = 0, bad_depth = 0, bad_normal = 0, far_off = 0, culled = 0;
+        double worst = 0.0;
+        memset(&p, 0, sizeof p);
+        p.epsilon = 1.0f;
+        p.delta = deltas[d];
+        p.resolution = 8;
+        p.flags = flags;
+        if (!t || !a || mlod_megaviews_render(a, scene, t, &p, &st, &e) != MLOD_OK) {
+            CHECK(0, "fusion: render");
+            continue;
+        }
+        for (i = 0; i < v.count; i++) {
+            const uint32_t *tile = a->tiles + 4 * (size_t)i;
+            uint32_t row, col;
+            mlod__pview pv;
+            mlod__view_prepare(&vs[i], &pv, NULL);
+            for (row = 0; row < tile[3]; row++)
+                for (col = 0; col < tile[2]; col++) {
+                    size_t at = (size_t)(tile[1] + row) * a->width + tile[0] + col;
+                    uint32_t node = (uint32_t)a->color[3 * at];
+                    const float *sph = scene->spheres + 4 * (size_t)node;
+                    double x[3], centre[3], dist;
+                    mlod__disc disc;
+                    int k;
+                    if (!(a->depth[at] < INFINITY)) continue;
+                    filled++;
+                    for (k = 0; k < 3; k++) {
+                        centre[k] = sph[k];
+                        x[k] = (double)sph[k] - v.eyes[3 * i + k];
+                    }
+                    if (a->depth[at] != (float)mlod__length3(x)) bad_depth++;
+                    if (memcmp(a->normal + 3 * at, scene->cones + 4 * (size_t)node, 12)) bad_normal++;
+                    if (d == 1) {
+                        const float *dir = v.directions + 3 * i;
+                        double len = sqrt((double)dir[0] * dir[0] + (double)dir[1] * dir[1] + (double)dir[2] * dir[2]);
+                        float cone[4] = {(float)(dir[0] / len), (float)(dir[1] / len), (float)(dir[2] / len), 0.0f};
+                        int away = 0;
+                        mlod__evaluate(&pv, sph, scene->cones + 4 * (size_t)node, &away);
+                        if (away || mlod__outside_cone(x, mlod__length3(x), sph[3], cone, v.fovs[i], 0.0)) culled++;
+                    }
+                    if (!mlod__image_disc(&pv, col < p.resolution ? 0 : 1, centre, sph[3], &disc)) {
+                        far_off++;
+                        continue;
+                    }
+                    dist = sqrt((col + 0.5 - disc.x) * (col + 0.5 - disc.x) + (row + 0.5 - disc.y) * (row + 0.5 - disc.y));
+                    if (dist > disc.radius + p.delta + 0.7072) far_off++;
+                    if (dist - disc.radius > worst) worst = dist - disc.radius;
+                }
+        }
+        CHECK(st.shared_draws > 1000 && st.shared_views > 2 * st.shared_draws,
+              "fusion, delta %g: %llu shared draws for %llu views", p.delta, (unsigned long long)st.shared_draws,
+              (unsigned long long)st.shared_views);
+        CHECK(filled > v.count * 64, "fusion, delta %g: %llu pixels filled", p.delta, (unsigned long long)filled);
+        CHECK(bad_depth == 0, "fusion, delta %g: %llu pixels whose depth is not the distance from the view's eye",
+              p.delta, (unsigned long long)bad_depth);
+        CHECK(bad_normal == 0, "fusion, delta %g: %llu pixels whose normal is not their node's", p.delta,
+              (unsigned long long)bad_normal);
+        CHECK(culled == 0, "fusion, delta %g: %llu pixels hold a node their view culls", p.delta,
+              (unsigned long long)culled);
+        CHECK(far_off == 0, "fusion, delta %g: %llu pixels farther than delta from their node's image (worst %.3f px)",
+              p.delta, (unsigned long long)far_off, worst);
+        CHECK(worst > 0.25, "fusion, delta %g: shared images do move (worst %.3f px beyond the disc)", p.delta,
+              worst);
+        mlod_atlas_destroy(a);
+        mlod_view_tree_destroy(t);
+        free(vs);
+    }
+    free_views(&v);
+}
+
+/* ============================================================ threads */
+
+static void test_threads(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    views v = make_views(21, 700, lo, hi, 1);
+    mlod_view_set s = view_set(&v, 1, 0);
+    mlod_pool *pools[3];
+    mlod_parallel hooks[5];
+    mlod_view_tree *t0 = build_views(&s, NULL);
+    mlod_view *vs = NULL;
+    uint32_t channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, h;
+    mlod_atlas *ref = make_atlas(&v, 8, channels, &vs, 0);
+    mlod_megaviews_params p;
+    mlod_megaviews_stats st0, st;
+    memset(&st0, 0, sizeof st0);
+    mlod_error e;
+    tu_hooks(pools, hooks);
+    memset(&p, 0, sizeof p);
+    p.epsilon = 1.0f;
+    p.delta = MLOD_MEGAVIEWS_DELTA;
+    p.resolution = 8;
+    CHECK(t0 && ref && mlod_megaviews_render(ref, scene, t0, &p, &st0, &e) == MLOD_OK, "threads: reference render");
+    CHECK(st0.shared_draws > 1000, "threads: delta %g shares (%llu shared draws)", p.delta,
+          (unsigned long long)st0.shared_draws);
+    for (h = 0; h < 5 && t0 && ref; h++) {
+        mlod_view_tree *t = build_views(&s, &hooks[h]);
+        mlod_view *vs2 = NULL;
+        mlod_atlas *a = make_atlas(&v, 8, channels, &vs2, 0);
+        size_t first = 0;
+        p.parallel = &hooks[h];
+        CHECK(t && a && mlod_megaviews_render(a, scene, t, &p, &st, &e) == MLOD_OK, "threads: hook %u renders", h);
+        if (t && a) {
+            CHECK(memcmp(t->eyes->spheres, t0->eyes->spheres, 16 * (size_t)t0->eyes->node_count) == 0 &&
+                  memcmp(t->half_fovs, t0->half_fovs, 8 * (size_t)t0->eyes->node_count) == 0,
+                  "threads: hook %u builds the same view tree", h);
+            int same = same_atlas(a, ref, &first);
+            CHECK(same, "threads: hook %u gives another atlas (pixel %zu)", h, first);
+            CHECK(st.pairs == st0.pairs && st.shared_draws == st0.shared_draws && st.leaf_draws == st0.leaf_draws,
+                  "threads: hook %u gives other statistics", h);
+        }
+        mlod_atlas_destroy(a);
+        mlod_view_tree_destroy(t);
+        free(vs2);
+    }
+    for (h = 0; h < 3; h++) mlod_pool_destroy(pools[h]);
+    mlod_atlas_destroy(ref);
+    mlod_view_tree_destroy(t0);
+    free(vs);
+    free_views(&v);
+}
+
+/* ============================================================= errors */
+
+static int atlas_all_empty(const mlod_atlas *a)
+{
+    size_t i, n = (size_t)a->width * a->height;
+    for (i = 0; i < n; i++)
+        if (a->depth[i] < INFINITY) return 0;
+    return 1;
+}
+
+static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
+{
+    static const float lo[3] = {-1, 0.5f, -1}, hi[3] = {1, 2, 1};
+    views v = make_views(31, 40, lo, hi, 0);
+    mlod_view_set s = view_set(&v, 1, 1), bad;
+    mlod_view_tree *t = build_views(&s, NULL), *none = (mlod_view_tree *)1;
+    mlod_view *vs = NULL, *vs2 = NULL;
+    mlod_atlas *a = make_atlas(&v, 8, MLOD_ATLAS_NORMAL, &vs, 0), *small = NULL;
+    mlod_megaviews_params p, q;
+    mlod_error e;
+    size_t bytes = (size_t)a->width * a->height * 4;
+    float *before = (float *)malloc(bytes);
+    uint32_t i;
+    float nan = NAN, zero[3] = {0, 0, 0};
+    memset(&p, 0, sizeof p);
+    p.epsilon = 1.0f;
+    p.resolution = 8;
+    CHECK(t && a && mlod_megaviews_render(a, scene, t, &p, NULL, &e) == MLOD_OK, "errors: a good render");
+    memcpy(before, a->depth, bytes);
+    CHECK(mlod_megaviews_render(NULL, scene, t, &p, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "NULL atlas");
+    CHECK(mlod_megaviews_render(a, NULL, t, &p, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "NULL scene");
+    CHECK(mlod_megaviews_render(a, scene, NULL, &p, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "NULL views");
+    CHECK(mlod_megaviews_render(a, scene, t, NULL, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "NULL params");
+    q = p;
+    q.epsilon = 0.0f;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_BAD_EPSILON, "epsilon 0");
+    q.epsilon = nan;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_BAD_EPSILON, "epsilon NaN");
+    q = p;
+    q.delta = -1.0f;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "delta < 0");
+    q.delta = INFINITY;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "delta inf");
+    q.delta = nan;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_NON_FINITE, "delta NaN");
+    q = p;
+    q.resolution = 0;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "resolution 0");
+    q.resolution = 9;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_MISMATCH, "tiles of another resolution");
+    CHECK(mlod_megaviews_render(a, bare, t, &p, NULL, &e) == MLOD_ERROR_MISMATCH, "normals without cones");
+    small = make_atlas(&v, 8, 0, &vs2, 0);
+    {
+        views w = v;
+        w.count = 39;
+        free(vs2);
+        mlod_atlas_destroy(small);
+        small = make_atlas(&w, 8, 0, &vs2, 0);
+        CHECK(mlod_megaviews_render(small, scene, t, &p, NULL, &e) == MLOD_ERROR_MISMATCH, "an atlas of 39 views for 40");
+    }
+    CHECK(memcmp(before, a->depth, bytes) == 0, "errors: the atlas is untouched by refused calls");
+    /* failing allocators: an error, nothing held, the atlas empty */
+    for (i = 1; i < 40; i++) {
+        tu_counter counter;
+        mlod_allocator al;
+        mlod_result r;
+        memset(&counter, 0, sizeof counter);
+        counter.fail_at = i;
+        al = tu_allocator(&counter);
+        q = p;
+        q.allocator = &al;
+        r = mlod_megaviews_render(a, scene, t, &q, NULL, &e);
+        CHECK(counter.live_blocks == 0, "allocation %u failing: %lu blocks left", i, counter.live_blocks);
+        if (r == MLOD_OK) {
+            CHECK(memcmp(before, a->depth, bytes) == 0, "allocation %u: no failure, the same atlas", i);
+            break;
+        }
+        CHECK(r == MLOD_ERROR_OUT_OF_MEMORY && atlas_all_empty(a), "allocation %u failing: %s and an empty atlas", i,
+              mlod_result_name(r));
+    }
+    /* view sets */
+    CHECK(mlod_view_tree_build(NULL, NULL, NULL, &none, &e) == MLOD_ERROR_INVALID_ARGUMENT && none == NULL,
+          "NULL view set");
+    CHECK(mlod_view_tree_build(&s, NULL, NULL, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "NULL out");
+    bad = s;
+    bad.count = 0;
+    CHECK(mlod_view_tree_build(&bad, NULL, NULL, &none, &e) == MLOD_ERROR_EMPTY, "no views");
+    bad = s;
+    bad.eyes = NULL;
+    CHECK(mlod_view_tree_build(&bad, NULL, NULL, &none, &e) == MLOD_ERROR_INVALID_ARGUMENT, "NULL eyes");
+    v.eyes[7] = nan;
+    CHECK(mlod_view_tree_build(&s, NULL, NULL, &none, &e) == MLOD_ERROR_NON_FINITE, "NaN eye");
+    CHECK(mlod_view_tree_refit(t, &s, NULL, &e) == MLOD_ERROR_NON_FINITE, "refit: NaN eye");
+    v.eyes[7] = 1e37f;
+    CHECK(mlod_view_tree_build(&s, NULL, NULL, &none, &e) == MLOD_ERROR_RANGE, "eye beyond 1e36");
+    v.eyes[7] = 0.5f;
+    memcpy(v.directions + 6, zero, 12);
+    CHECK(mlod_view_tree_build(&s, NULL, NULL, &none, &e) == MLOD_ERROR_BAD_VIEW, "zero direction");
+    v.directions[6] = 1.0f;
+    v.fovs[3] = 0.0f;
+    CHECK(mlod_view_tree_build(&s, NULL, NULL, &none, &e) == MLOD_ERROR_BAD_VIEW, "half fov 0 per view");
+    v.fovs[3] = 3.5f;
+    CHECK(mlod_view_tree_build(&s, NULL, NULL, &none, &e) == MLOD_ERROR_BAD_VIEW, "half fov above pi");
+    v.fovs[3] = nan;
+    CHECK(mlod_view_tree_build(&s, NULL, NULL, &none, &e) == MLOD_ERROR_NON_FINITE, "half fov NaN");
+    v.fovs[3] = 1.0f;
+    bad = s;
+    bad.half_fovs = NULL;
+    bad.half_fov = -1.0f;
+    CHECK(mlod_view_tree_build(&bad, NULL, NULL, &none, &e) == MLOD_ERROR_BAD_VIEW, "negative half_fov");
+    bad.half_fov = nan;
+    CHECK(mlod_view_tree_build(&bad, NULL, NULL, &none, &e) == MLOD_ERROR_NON_FINITE, "NaN half_fov");
+    bad = s;
+    bad.count = 39;
+    CHECK(mlod_view_tree_refit(t, &bad, NULL, &e) == MLOD_ERROR_MISMATCH, "refit: another count");
+    bad = s;
+    bad.directions = NULL;
+    CHECK(mlod_view_tree_refit(t, &bad, NULL, &e) == MLOD_ERROR_MISMATCH, "refit: without directions");
+    CHECK(mlod_view_tree_refit(NULL, &s, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "refit: NULL tree");
+    for (i = 1; i < 20; i++) {
+        tu_counter counter;
+        mlod_allocator al;
+        mlod_view_tree *out = (mlod_view_tree *)1;
+        mlod_result r;
+        memset(&counter, 0, sizeof counter);
+        counter.fail_at = i;
+        al = tu_allocator(&counter);
+        r = mlod_view_tree_build(&s, &al, NULL, &out, &e);
+        if (r == MLOD_OK) {
+            mlod_view_tree_destroy(out);
+            CHECK(counter.live_blocks == 0, "view tree: destroy gives everything back");
+            break;
+        }
+        CHECK(r == MLOD_ERROR_OUT_OF_MEMORY && out == NULL && counter.live_blocks == 0,
+              "view tree, allocation %u failing: %s, %lu blocks left", i, mlod_result_name(r), counter.live_blocks);
+    }
+    mlod_view_tree_destroy(NULL);
+    free(before);
+    free(vs);
+    free(vs2);
+    mlod_atlas_destroy(a);
+    mlod_atlas_destroy(small);
+    mlod_view_tree_destroy(t);
+    free_views(&v);
+}
+
+int main(void)
+{
+    scene_mesh room;
+    mlod_tree *scene, *bare;
+    if (!scene_room(&room)) return 1;
+    scene = tu_build(&room, 8192, 1, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    bare = tu_build(&room, 3000, 2, 0);
+    if (!scene || !bare) return 1;
+    test_view_tree();
+    test_equals_per_view(scene, "room with cones and colours");
+    test_equals_per_view(bare, "room without attributes");
+    test_culling(scene);
+    test_bounds();
+    test_threads(scene);
+    test_fusion(scene); /* last: it overwrites the scene's colours */
+    test_errors(scene, bare);
+    mlod_tree_destroy(scene);
+    mlod_tree_destroy(bare);
+    scene_free(&room);
+    return test_finish();
+}
