@@ -50,7 +50,7 @@ SAN_CFLAGS  := -std=c99 -fsanitize=address,undefined -fno-sanitize-recover=all -
 # ThreadSanitizer: the tests that run the built-in thread pool.  (Add
 # test_extremes to TSAN_TESTS for the extremes table: clean, but 2.5
 # minutes under TSan on two cores, so `make test` leaves it out.)
-TSAN_TESTS  ?= test_build test_cut test_refit test_splat
+TSAN_TESTS  ?= test_build test_cut test_refit test_splat test_megaviews
 TSAN_CFLAGS := -std=c99 -fsanitize=thread -g -O1 $(WARNINGS) -I. $(CFLAGS)
 # libFuzzer with ASan and UBSan.  No comparison tracing (trace-cmp): it
 # tripled the time per input, and the harness reads its fields through

@@ -6107,7 +6107,7 @@ MLOD__PUBLIC mlod_result mlod_view_tree_build(const mlod_view_set *views, const 
     }
     memset(tree->radii, 0, views->count * sizeof(float));
     memset(&desc, 0, sizeof desc);
-    desc.attributes = MLOD_ATTR_REFIT | (views->directions ? MLOD_ATTR_CONE : 0u);
+    desc.attributes = MLOD_ATTR_REFIT | (views->directions ? (uint32_t)MLOD_ATTR_CONE : 0u);
     desc.allocator = &a;
     desc.parallel = parallel;
     points = mlod__view_points(views, tree->radii);
@@ -6229,27 +6229,27 @@ static int mlod__within_cone(const double *x, double d, double r, double rho, co
 static void mlod__ball_diameters(double S, const double *x, double d, double r, double rho, double *cmax,
                                  double *cmin)
 {
-    double near = d - rho, far = d + rho, t_near, t_far;
+    double closest = d - rho, farthest = d + rho, t_closest, t_farthest;
     int h;
     *cmax = 0.0;
     *cmin = 0.0;
-    if (!(far > r)) { /* every eye inside the sphere */
+    if (!(farthest > r)) { /* every eye inside the sphere */
         *cmax = *cmin = INFINITY;
         return;
     }
-    t_near = near > r ? sqrt((near - r) * (near + r)) : 0.0;
-    t_far = sqrt((far - r) * (far + r));
+    t_closest = closest > r ? sqrt((closest - r) * (closest + r)) : 0.0;
+    t_farthest = sqrt((farthest - r) * (farthest + r));
     for (h = 0; h < 2; h++) {
         double xw = h ? -x[2] : x[2], den;
         if (xw + rho + r >= 0.0) {
-            den = xw - rho + t_near;
-            if (!(near > r) || !(den > 0.0))
+            den = xw - rho + t_closest;
+            if (!(closest > r) || !(den > 0.0))
                 *cmax = INFINITY;
             else if (S * 2.0 * r / den > *cmax)
                 *cmax = S * 2.0 * r / den;
         }
         if (xw - rho + r >= 0.0) {
-            den = xw + rho + t_far;
+            den = xw + rho + t_farthest;
             if (!(den > 0.0))
                 *cmin = INFINITY;
             else if (S * 2.0 * r / den > *cmin)
@@ -6260,7 +6260,7 @@ static void mlod__ball_diameters(double S, const double *x, double d, double r, 
     *cmin *= 1.0 - 1.0 / 1099511627776.0;
 }
 
-/* How far, in pixels, any point of the sphere's image in the global dual
+/* How farthest, in pixels, any point of the sphere's image in the global dual
    paraboloid of scale S moves between the ball's centre and any eye of
    the ball: the direction to a point p of the sphere turns by at most
    asin(rho / |p - c|) <= asin(rho / (d - r)) <= its tangent, and a
@@ -6273,11 +6273,11 @@ static void mlod__ball_diameters(double S, const double *x, double d, double r, 
    and cosines of phi +- b from their sums: no trigonometry. */
 static double mlod__ball_motion(double S, const double *x, double d, double r, double rho)
 {
-    double near = d - r, g = r + rho, turn, sin_b, cos_b, sin_phi, most = 0.0;
+    double closest = d - r, g = r + rho, turn, sin_b, cos_b, sin_phi, most = 0.0;
     int h;
     if (rho == 0.0) return 0.0;
-    if (!(near > rho) || !(d > g)) return INFINITY;
-    turn = rho / sqrt((near - rho) * (near + rho));
+    if (!(closest > rho) || !(d > g)) return INFINITY;
+    turn = rho / sqrt((closest - rho) * (closest + rho));
     sin_b = g / d;
     cos_b = sqrt((d - g) * (d + g)) / d;
     sin_phi = sqrt(x[0] * x[0] + x[1] * x[1]) / d;
@@ -6401,16 +6401,22 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
     return MLOD__PAIR_SPLIT_VIEW;
 }
 
-/* Unit u of the level's work: view node and first scene node. */
-static void mlod__mv_unit(const mlod__mv_job *job, size_t u, uint32_t *view, uint32_t *scene)
+/* The level's units in order: unit u is scene node in[in_off[j] + i] of
+   parent j (a node of the previous level) handed to its left child (u =
+   2 in_off[j] + i) or its right (u = 2 in_off[j] + len_j + i).  A cursor
+   walks them from any unit on. */
+typedef struct mlod__mv_cursor {
+    size_t u;
+    uint32_t parent;
+} mlod__mv_cursor;
+
+static void mlod__mv_seek(const mlod__mv_job *job, size_t u, mlod__mv_cursor *at)
 {
     uint32_t lo = 0, hi = job->first - job->prev_first; /* parents: the previous level's nodes */
-    size_t half = u / 2, local, length;
-    if (!job->in_off) {
-        *view = 0;
-        *scene = 0;
-        return;
-    }
+    size_t half = u / 2;
+    at->u = u;
+    at->parent = 0;
+    if (!job->in_off) return;
     while (hi - lo > 1) {
         uint32_t mid = lo + (hi - lo) / 2;
         if (job->in_off[mid] <= half)
@@ -6418,10 +6424,28 @@ static void mlod__mv_unit(const mlod__mv_job *job, size_t u, uint32_t *view, uin
         else
             hi = mid;
     }
-    local = u - 2 * job->in_off[lo];
-    length = job->in_off[lo + 1] - job->in_off[lo];
-    *view = 2 * (job->prev_first + lo) + 1 + (local >= length);
-    *scene = job->in[job->in_off[lo] + (local >= length ? local - length : local)];
+    while (job->in_off[lo + 1] == job->in_off[lo]) lo++; /* parents that handed nothing down */
+    at->parent = lo;
+}
+
+/* The view node and scene node of the cursor's unit; moves it on. */
+static void mlod__mv_next(const mlod__mv_job *job, mlod__mv_cursor *at, uint32_t *view, uint32_t *scene)
+{
+    size_t begin, length, local;
+    if (!job->in_off) { /* the root level: one unit, (root, root) */
+        *view = *scene = 0;
+        at->u++;
+        return;
+    }
+    begin = job->in_off[at->parent];
+    length = job->in_off[at->parent + 1] - begin;
+    local = at->u - 2 * begin;
+    *view = 2 * (job->prev_first + at->parent) + 1 + (local >= length);
+    *scene = job->in[begin + (local >= length ? local - length : local)];
+    if (++at->u == 2 * job->in_off[at->parent + 1] && at->u < job->units) {
+        do at->parent++;
+        while (job->in_off[at->parent + 1] == job->in_off[at->parent]);
+    }
 }
 
 static int mlod__mv_push(uint32_t *pairs, size_t *count, size_t capacity, uint32_t view, uint32_t scene)
@@ -6442,13 +6466,15 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
     mlod__mv_out *out = &job->outs[chunk];
     size_t u = (size_t)chunk * job->chunk, end = u + job->chunk > job->units ? job->units : u + job->chunk;
     mlod__vnode vn;
+    mlod__mv_cursor at;
     vn.node = MLOD__NO_MAP;
     out->draw_count = out->split_count = 0;
     out->pairs = out->culled = 0;
     out->overflow = 0;
+    if (u < end) mlod__mv_seek(job, u, &at);
     for (; u < end; u++) {
         uint32_t top = 0;
-        mlod__mv_unit(job, u, &view, &s0);
+        mlod__mv_next(job, &at, &view, &s0);
         if (view != vn.node) mlod__vnode_set(job, view, &vn);
         stack[top++] = s0;
         while (top) {
