@@ -6302,12 +6302,13 @@ typedef struct mlod__vnode {
     mlod__pview pv;      /* leaves: the view's map, its float filter for epsilon */
 } mlod__vnode;
 
-/* One task's output: pairs (view node, scene node) to draw and to hand to
-   the view node's children, in the order met. */
+/* One task's output: pairs (inner view node, scene node) to draw and to
+   hand to the view node's children, in the order met (view leaves draw
+   into their tiles at once). */
 typedef struct mlod__mv_out {
     uint32_t *draw, *split;
     size_t draw_count, split_count, capacity; /* pairs each */
-    uint64_t pairs, culled;
+    uint64_t pairs, culled, leaf_draws;
     int overflow;
     int owned; /* draw and split were grown: the task's own allocation */
 } mlod__mv_out;
@@ -6322,7 +6323,8 @@ typedef struct mlod__mv_job {
     uint32_t first, count, prev_first;
     const uint32_t *in;     /* scene nodes handed down, by parent */
     const size_t *in_off;   /* per parent (the previous level's nodes), count + 1; NULL at the root */
-    size_t units, chunk;
+    size_t units;
+    const size_t *chunk_begin; /* the chunks' first units, chunk count + 1 */
     mlod__mv_out *outs;
     const uint32_t *redo;   /* chunks to run again (task i runs redo[i]), or NULL */
     /* drawing the level */
@@ -6331,7 +6333,7 @@ typedef struct mlod__mv_job {
     float *depth;           /* this level's maps: pixels per map, depth and node */
     uint32_t *ids;
     const uint32_t *map_of; /* per node of the level: its map, or UINT32_MAX */
-    const float *parent_depth;
+    const float *parent_depth; /* the previous level's maps */
     const uint32_t *parent_ids, *parent_map_of;
     uint32_t pixels;
 } mlod__mv_job;
@@ -6457,52 +6459,6 @@ static int mlod__mv_push(uint32_t *pairs, size_t *count, size_t capacity, uint32
     return 1;
 }
 
-/* Classify a chunk of the level's units: each scene node handed to a view
-   node, and depth first below it while the scene node splits. */
-static void mlod__mv_classify_task(void *context, uint32_t index)
-{
-    const mlod__mv_job *job = (const mlod__mv_job *)context;
-    uint32_t chunk = job->redo ? job->redo[index] : index, stack[128], view, s0;
-    mlod__mv_out *out = &job->outs[chunk];
-    size_t u = (size_t)chunk * job->chunk, end = u + job->chunk > job->units ? job->units : u + job->chunk;
-    mlod__vnode vn;
-    mlod__mv_cursor at;
-    vn.node = MLOD__NO_MAP;
-    out->draw_count = out->split_count = 0;
-    out->pairs = out->culled = 0;
-    out->overflow = 0;
-    if (u < end) mlod__mv_seek(job, u, &at);
-    for (; u < end; u++) {
-        uint32_t top = 0;
-        mlod__mv_next(job, &at, &view, &s0);
-        if (view != vn.node) mlod__vnode_set(job, view, &vn);
-        stack[top++] = s0;
-        while (top) {
-            uint32_t s = stack[--top];
-            int ok = 1;
-            out->pairs++;
-            switch (mlod__pair_action(job, &vn, s)) {
-            case MLOD__PAIR_CULL:
-                out->culled++;
-                break;
-            case MLOD__PAIR_DRAW:
-                ok = mlod__mv_push(out->draw, &out->draw_count, out->capacity, view, s);
-                break;
-            case MLOD__PAIR_SPLIT_SCENE:
-                stack[top++] = 2 * s + 2; /* the left child first */
-                stack[top++] = 2 * s + 1;
-                break;
-            default:
-                ok = mlod__mv_push(out->split, &out->split_count, out->capacity, view, s);
-            }
-            if (!ok) {
-                out->overflow = 1;
-                return;
-            }
-        }
-    }
-}
-
 /* Initialise a map (or a leaf's tile) from its parent's map, depths
    measured again from this node's centre (the eye, for a leaf): the
    parent's node keeps a pixel until a nearer one is drawn. */
@@ -6526,6 +6482,86 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
         }
 }
 
+/* A view leaf's tile, cleared and initialised from its parent's map. */
+static void mlod__mv_leaf_begin(const mlod__mv_job *job, uint32_t node, mlod__band *band)
+{
+    const mlod_tree *eyes = job->views->eyes;
+    uint32_t parent_map = node > 0 ? job->parent_map_of[(node - 1) / 2 - job->prev_first] : MLOD__NO_MAP;
+    double eye[3];
+    int k;
+    mlod__tile_band(job->atlas, job->scene, eyes->leaf_sources[node - (eyes->leaf_count - 1)], band);
+    mlod__band_clear(band, 2 * job->resolution);
+    for (k = 0; k < 3; k++) eye[k] = eyes->spheres[4 * (size_t)node + k];
+    if (parent_map != MLOD__NO_MAP)
+        mlod__mv_inherit(job, band, job->parent_depth + (size_t)parent_map * job->pixels,
+                         job->parent_ids + (size_t)parent_map * job->pixels, eye);
+}
+
+/* Classify a chunk of the level's units: each scene node handed to a view
+   node, and depth first below it while the scene node splits.  A chunk
+   holds whole view leaves (mlod__mv_chunks), which it draws at once, in
+   the order met, in batches as mlod_splat draws a cut. */
+static void mlod__mv_classify_task(void *context, uint32_t index)
+{
+    const mlod__mv_job *job = (const mlod__mv_job *)context;
+    uint32_t chunk = job->redo ? job->redo[index] : index, stack[128], view, s0, batch[MLOD__LANES], n = 0;
+    mlod__mv_out *out = &job->outs[chunk];
+    size_t u = job->chunk_begin[chunk], end = job->chunk_begin[chunk + 1];
+    mlod__vnode vn;
+    mlod__mv_cursor at;
+    mlod__band band;
+    vn.node = MLOD__NO_MAP;
+    vn.leaf = 0;
+    out->draw_count = out->split_count = 0;
+    out->pairs = out->culled = out->leaf_draws = 0;
+    out->overflow = 0;
+    if (u < end) mlod__mv_seek(job, u, &at);
+    for (; u < end; u++) {
+        uint32_t top = 0;
+        mlod__mv_next(job, &at, &view, &s0);
+        if (view != vn.node) {
+            if (vn.leaf) mlod__draw_nodes(&band, &vn.pv, batch, n);
+            n = 0;
+            mlod__vnode_set(job, view, &vn);
+            if (vn.leaf) mlod__mv_leaf_begin(job, view, &band);
+        }
+        stack[top++] = s0;
+        while (top) {
+            uint32_t s = stack[--top];
+            int ok = 1;
+            out->pairs++;
+            switch (mlod__pair_action(job, &vn, s)) {
+            case MLOD__PAIR_CULL:
+                out->culled++;
+                break;
+            case MLOD__PAIR_DRAW:
+                if (!vn.leaf) {
+                    ok = mlod__mv_push(out->draw, &out->draw_count, out->capacity, view, s);
+                    break;
+                }
+                out->leaf_draws++;
+                batch[n++] = s;
+                if (n == MLOD__LANES) {
+                    mlod__draw_nodes(&band, &vn.pv, batch, n);
+                    n = 0;
+                }
+                break;
+            case MLOD__PAIR_SPLIT_SCENE:
+                stack[top++] = 2 * s + 2; /* the left child first */
+                stack[top++] = 2 * s + 1;
+                break;
+            default:
+                ok = mlod__mv_push(out->split, &out->split_count, out->capacity, view, s);
+            }
+            if (!ok) {
+                out->overflow = 1;
+                return;
+            }
+        }
+    }
+    if (vn.leaf) mlod__draw_nodes(&band, &vn.pv, batch, n);
+}
+
 /* Draw a chunk of the level's nodes: each map (or leaf tile) starts from
    its parent's and takes its own drawn nodes, nearest first. */
 static void mlod__mv_draw_task(void *context, uint32_t index)
@@ -6536,15 +6572,16 @@ static void mlod__mv_draw_task(void *context, uint32_t index)
     for (; i < end; i++) {
         uint32_t node = job->first + i, parent_map = MLOD__NO_MAP;
         size_t k, n = job->draw_off[i + 1] - job->draw_off[i];
-        int leaf = node >= eyes->leaf_count - 1;
         double centre[3];
         mlod__band band;
         mlod__pview pv;
+        if (node >= eyes->leaf_count - 1) { /* leaves given no pair: the parent's map alone */
+            uint32_t p = (node - 1) / 2 - job->prev_first;
+            if (node > 0 && job->in_off[p + 1] == job->in_off[p]) mlod__mv_leaf_begin(job, node, &band);
+            continue;
+        }
         if (node > 0) parent_map = job->parent_map_of[(node - 1) / 2 - job->prev_first];
-        if (leaf) {
-            mlod__tile_band(job->atlas, job->scene, eyes->leaf_sources[node - (eyes->leaf_count - 1)], &band);
-            mlod__band_clear(&band, 2 * job->resolution);
-        } else {
+        {
             size_t at;
             if (job->map_of[i] == MLOD__NO_MAP) continue;
             at = (size_t)job->map_of[i] * job->pixels;
@@ -6668,6 +6705,36 @@ static int mlod__mv_classify_level(mlod__mv_job *job, mlod__mv_memory *m, const 
     return !m->failed;
 }
 
+/* The level's chunks of units, their first units into begin (chunk count
+   + 1 entries; NULL: count only).  A level with view leaves cuts only
+   between parents, so that a chunk draws whole leaves. */
+static uint32_t mlod__mv_chunks(const mlod__mv_job *job, int whole_parents, size_t *begin)
+{
+    uint32_t n = 0, j, parents = job->first - job->prev_first;
+    size_t start = 0;
+    if (begin) begin[0] = 0;
+    if (!job->in_off) {
+        if (begin) begin[1] = 1;
+        return 1;
+    }
+    if (!whole_parents) {
+        for (start = 0; start < job->units; start += MLOD__MV_CHUNK) {
+            n++;
+            if (begin) begin[n] = start + MLOD__MV_CHUNK < job->units ? start + MLOD__MV_CHUNK : job->units;
+        }
+        return n;
+    }
+    for (j = 0; j < parents; j++) {
+        size_t end = 2 * job->in_off[j + 1];
+        if (end - start >= MLOD__MV_CHUNK || (j + 1 == parents && end > start)) {
+            n++;
+            if (begin) begin[n] = end;
+            start = end;
+        }
+    }
+    return n;
+}
+
 MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
                                                const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
                                                mlod_error *error)
@@ -6678,7 +6745,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
     mlod__mv_job job;
     mlod_megaviews_stats st;
     uint32_t levels, d, i, maps = 0, parent_maps = 0, parent_count = 0;
-    size_t *in_off = NULL, in_total = 0, units, u;
+    size_t *in_off = NULL, in_total = 0, u;
     uint32_t *in = NULL, *parent_map_of = NULL, *parent_ids = NULL;
     float *parent_depth = NULL;
     if (res != MLOD_OK) return res;
@@ -6700,31 +6767,37 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
     st.levels = levels;
     for (d = 0; d < levels && !m.failed; d++) {
         uint32_t first = (uint32_t)((1ull << d) - 1), count, chunks, c;
-        size_t draws = 0, splits = 0, *draw_off, *split_off;
+        size_t draws = 0, splits = 0, room, *draw_off, *split_off, *chunk_begin;
         uint32_t *draw, *split, *map_of;
         mlod__mv_out *outs;
         uint32_t *block;
         count = (uint32_t)((uint64_t)eyes->node_count - first < (1ull << d) ? eyes->node_count - first : (1u << d));
-        units = d == 0 ? 1 : 2 * in_total;
-        chunks = (uint32_t)((units + MLOD__MV_CHUNK - 1) / MLOD__MV_CHUNK);
         job.first = first;
         job.count = count;
         job.in = in;
         job.in_off = in_off;
-        job.units = units;
-        job.chunk = MLOD__MV_CHUNK;
-        /* first pass: each chunk room for twice its units of either kind, plus 64 */
+        job.units = d == 0 ? 1 : 2 * in_total;
+        job.parent_depth = parent_depth;
+        job.parent_ids = parent_ids;
+        job.parent_map_of = parent_map_of;
+        chunks = mlod__mv_chunks(&job, first + count > eyes->leaf_count - 1, NULL);
+        chunk_begin = (size_t *)mlod__mv_alloc(&m, (size_t)chunks + 1, sizeof(size_t));
+        /* first pass: each chunk room for its units and a half of either kind, plus 64 */
+        room = job.units + job.units / 2 + 64 * (size_t)chunks + 1;
         outs = (mlod__mv_out *)mlod__mv_alloc(&m, chunks ? chunks : 1, sizeof(mlod__mv_out));
-        block = (uint32_t *)mlod__mv_alloc(&m, 2 * units + 64 * (size_t)chunks + 1, 4 * sizeof(uint32_t));
-        if (!outs || !block) {
+        block = (uint32_t *)mlod__mv_alloc(&m, room, 4 * sizeof(uint32_t));
+        if (m.failed) {
+            mlod__mv_free(&m, chunk_begin, (size_t)chunks + 1, sizeof(size_t));
             mlod__mv_free(&m, outs, chunks ? chunks : 1, sizeof(mlod__mv_out));
-            mlod__mv_free(&m, block, 2 * units + 64 * (size_t)chunks + 1, 4 * sizeof(uint32_t));
+            mlod__mv_free(&m, block, room, 4 * sizeof(uint32_t));
             break;
         }
+        mlod__mv_chunks(&job, first + count > eyes->leaf_count - 1, chunk_begin);
+        job.chunk_begin = chunk_begin;
         for (c = 0, u = 0; c < chunks; c++) {
-            size_t n = units - (size_t)c * MLOD__MV_CHUNK < MLOD__MV_CHUNK ? units - (size_t)c * MLOD__MV_CHUNK : MLOD__MV_CHUNK;
+            size_t n = chunk_begin[c + 1] - chunk_begin[c];
             memset(&outs[c], 0, sizeof outs[c]);
-            outs[c].capacity = 2 * n + 64;
+            outs[c].capacity = n + n / 2 + 64;
             outs[c].draw = block + 4 * u;
             outs[c].split = outs[c].draw + 2 * outs[c].capacity;
             u += outs[c].capacity;
@@ -6738,6 +6811,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
             splits += outs[c].split_count;
             st.pairs += outs[c].pairs;
             st.culled += outs[c].culled;
+            st.leaf_draws += outs[c].leaf_draws;
         }
         draw = (uint32_t *)mlod__mv_alloc(&m, draws, sizeof(uint32_t));
         split = (uint32_t *)mlod__mv_alloc(&m, splits, sizeof(uint32_t));
@@ -6758,12 +6832,8 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
                 for (u = 0; u < outs[c].draw_count; u++) {
                     uint32_t v = outs[c].draw[2 * u] - first;
                     draw[draw_off[v]++] = outs[c].draw[2 * u + 1];
-                    if (v + first < eyes->leaf_count - 1) {
-                        st.shared_draws++;
-                        st.shared_views += mlod__leaves_below(v + first, eyes->leaf_count);
-                    } else {
-                        st.leaf_draws++;
-                    }
+                    st.shared_draws++;
+                    st.shared_views += mlod__leaves_below(v + first, eyes->leaf_count);
                 }
                 for (u = 0; u < outs[c].split_count; u++) split[split_off[outs[c].split[2 * u] - first]++] = outs[c].split[2 * u + 1];
             }
@@ -6775,43 +6845,42 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
         }
         for (c = 0; c < chunks; c++)
             if (outs[c].owned) mlod__mv_free(&m, outs[c].draw, outs[c].capacity, 4 * sizeof(uint32_t));
-        mlod__mv_free(&m, block, 2 * units + 64 * (size_t)chunks + 1, 4 * sizeof(uint32_t));
+        mlod__mv_free(&m, block, room, 4 * sizeof(uint32_t));
         mlod__mv_free(&m, outs, chunks ? chunks : 1, sizeof(mlod__mv_out));
-        mlod__mv_free(&m, in, in_total, sizeof(uint32_t));
-        mlod__mv_free(&m, in_off, (size_t)parent_count + 1, sizeof(size_t));
-        in = split;
-        in_off = split_off;
-        in_total = splits;
-        if (m.failed) {
-            mlod__mv_free(&m, draw, draws, sizeof(uint32_t));
-            mlod__mv_free(&m, draw_off, (size_t)count + 1, sizeof(size_t));
-            mlod__mv_free(&m, map_of, count, sizeof(uint32_t));
-            parent_count = count;
-            break;
+        mlod__mv_free(&m, chunk_begin, (size_t)chunks + 1, sizeof(size_t));
+        if (!m.failed) {
+            /* the level's maps: inner nodes with a parent's map or a draw */
+            for (i = maps = 0; i < count; i++) {
+                uint32_t node = first + i;
+                int inherits = node > 0 && parent_map_of[(node - 1) / 2 - job.prev_first] != MLOD__NO_MAP;
+                map_of[i] = node < eyes->leaf_count - 1 && (inherits || draw_off[i + 1] > draw_off[i]) ? maps++ : MLOD__NO_MAP;
+            }
+            job.depth = (float *)mlod__mv_alloc(&m, (size_t)maps * job.pixels, sizeof(float));
+            job.ids = (uint32_t *)mlod__mv_alloc(&m, (size_t)maps * job.pixels, sizeof(uint32_t));
         }
-        /* the level's maps: inner nodes with a parent's map or a draw */
-        for (i = maps = 0; i < count; i++) {
-            uint32_t node = first + i;
-            int inherits = node > 0 && parent_map_of[(node - 1) / 2 - job.prev_first] != MLOD__NO_MAP;
-            map_of[i] = node < eyes->leaf_count - 1 && (inherits || draw_off[i + 1] > draw_off[i]) ? maps++ : MLOD__NO_MAP;
-        }
-        job.depth = (float *)mlod__mv_alloc(&m, (size_t)maps * job.pixels, sizeof(float));
-        job.ids = (uint32_t *)mlod__mv_alloc(&m, (size_t)maps * job.pixels, sizeof(uint32_t));
         if (!m.failed) {
             job.draws = draw;
             job.draw_off = draw_off;
             job.map_of = map_of;
-            job.parent_depth = parent_depth;
-            job.parent_ids = parent_ids;
-            job.parent_map_of = parent_map_of;
             mlod__run(params->parallel, (count + MLOD__MV_DRAW_NODES - 1) / MLOD__MV_DRAW_NODES, mlod__mv_draw_task,
                       &job);
+        } else {
+            mlod__mv_free(&m, job.depth, (size_t)maps * job.pixels, sizeof(float));
+            mlod__mv_free(&m, job.ids, (size_t)maps * job.pixels, sizeof(uint32_t));
+            job.depth = NULL;
+            job.ids = NULL;
+            maps = 0;
         }
         mlod__mv_free(&m, draw, draws, sizeof(uint32_t));
         mlod__mv_free(&m, draw_off, (size_t)count + 1, sizeof(size_t));
+        mlod__mv_free(&m, in, in_total, sizeof(uint32_t));
+        mlod__mv_free(&m, in_off, (size_t)parent_count + 1, sizeof(size_t));
         mlod__mv_free(&m, parent_depth, (size_t)parent_maps * job.pixels, sizeof(float));
         mlod__mv_free(&m, parent_ids, (size_t)parent_maps * job.pixels, sizeof(uint32_t));
         mlod__mv_free(&m, parent_map_of, parent_count, sizeof(uint32_t));
+        in = split;
+        in_off = split_off;
+        in_total = splits;
         parent_depth = job.depth;
         parent_ids = job.ids;
         parent_map_of = map_of;
