@@ -6780,6 +6780,9 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
         job.parent_depth = parent_depth;
         job.parent_ids = parent_ids;
         job.parent_map_of = parent_map_of;
+        job.depth = NULL; /* this level's maps, once allocated */
+        job.ids = NULL;
+        maps = 0;
         chunks = mlod__mv_chunks(&job, first + count > eyes->leaf_count - 1, NULL);
         chunk_begin = (size_t *)mlod__mv_alloc(&m, (size_t)chunks + 1, sizeof(size_t));
         /* first pass: each chunk room for its units and a half of either kind, plus 64 */
