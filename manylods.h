@@ -6299,6 +6299,9 @@ typedef struct mlod__vnode {
     int leaf;
     double centre[3], radius, least_fov, most_fov; /* half fields of view below */
     const float *cone;   /* the views' directions, NULL: every direction */
+    /* the fast paths' constants (mlod__pair_action): |axis|, cos(alpha + most_fov) (-2 when that reaches pi),
+       and L = least_fov - alpha - 2^-30 (cos, sin; L < 0: none) */
+    double axis_length, cos_reach, cos_least, sin_least;
     mlod__pview pv;      /* leaves: the view's map, its float filter for epsilon */
 } mlod__vnode;
 
@@ -6359,11 +6362,35 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     vn->cone = mlod__cone_of(t, node);
     vn->least_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node] : MLOD__PI;
     vn->most_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node + 1] : MLOD__PI;
+    if (vn->cone) {
+        double axis[3] = {vn->cone[0], vn->cone[1], vn->cone[2]}, reach = vn->cone[3] + vn->most_fov, s;
+        double least = vn->least_fov - vn->cone[3] - 1.0 / 1073741824.0;
+        vn->axis_length = mlod__length3(axis);
+        vn->cos_reach = -2.0;
+        if (reach < MLOD__PI) mlod__sin_cos(reach, &s, &vn->cos_reach);
+        vn->cos_least = -2.0;
+        vn->sin_least = 0.0;
+        if (least >= 0.0) mlod__sin_cos(least, &vn->sin_least, &vn->cos_least);
+    }
     if (vn->leaf) {
         mlod_view view = mlod__node_map_view(job, node);
         mlod__view_prepare(&view, &vn->pv, NULL);
         mlod__fast_prepare(&vn->pv, job->epsilon);
     }
+}
+
+/* Within the smallest field of view of every view below for sure: phi +
+   alpha + asin(rho / d) + 2^-30 <= least_fov (what mlod__within_cone
+   asks, less its asin(r / (d + rho)) >= 0), by cosines: cos phi >= cos(L -
+   turn) with L from the node and turn = asin(rho / d), where L - turn is
+   in [0, pi] (its sine >= 0), with 1e-12 to spare. */
+static int mlod__surely_within(double cos_phi, double d, const mlod__vnode *vn)
+{
+    double sin_t = vn->radius / d, cos_t;
+    if (vn->cos_least < -1.0 || !(sin_t < 1.0)) return 0;
+    cos_t = sqrt((1.0 - sin_t) * (1.0 + sin_t));
+    if (vn->sin_least * cos_t - vn->cos_least * sin_t < 0.0) return 0;
+    return cos_phi >= vn->cos_least * cos_t + vn->sin_least * sin_t + 1e-12;
 }
 
 /* What the traversal does with (s, v).  A leaf decides as the cut does for
@@ -6375,12 +6402,18 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
 {
     const mlod_tree *scene = job->scene;
     const float *sphere = scene->spheres + 4 * (size_t)s;
-    double x[3], d, r = sphere[3], cmax, cmin;
+    double x[3], d, r = sphere[3], cmax, cmin, cos_phi = 0.0;
     int k, shared = 1;
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn->centre[k];
     d = mlod__length3(x);
-    if (vn->cone && mlod__outside_cone(x, d, r + vn->radius, vn->cone, vn->most_fov, vn->leaf ? 0.0 : 1.0 / 1073741824.0))
-        return MLOD__PAIR_CULL;
+    if (vn->cone) {
+        /* most spheres lie within alpha + the field of view of the axis, where
+           no view culls them: that needs a cosine, the test an arc tangent */
+        cos_phi = (x[0] * vn->cone[0] + x[1] * vn->cone[1] + x[2] * vn->cone[2]) / (d * vn->axis_length);
+        if (!(cos_phi >= vn->cos_reach + 1e-12) &&
+            mlod__outside_cone(x, d, r + vn->radius, vn->cone, vn->most_fov, vn->leaf ? 0.0 : 1.0 / 1073741824.0))
+            return MLOD__PAIR_CULL;
+    }
     if (vn->leaf) {
         uint8_t st = mlod__classify(&vn->pv, scene, s, job->epsilon);
         return st == MLOD_STATUS_CULLED ? MLOD__PAIR_CULL
@@ -6394,7 +6427,8 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
         shared = cone[3] >= 0.5 * MLOD__PI ||
                  mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3]);
     }
-    if (shared && vn->cone) shared = mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov);
+    if (shared && vn->cone && !mlod__surely_within(cos_phi, d, vn)) 
+        shared = mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov);
     mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
     if (cmax <= job->epsilon)
         return shared && mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta ? MLOD__PAIR_DRAW

@@ -1,4 +1,4 @@
-/* bench/plot.h - a hand-written SVG scatter plot: log x, linear y, markers
+/* bench/plot.h - a hand-written SVG scatter plot: log x, linear or log y, markers
    per series, a step line for a Pareto front, a legend.  C99, stdio only.
 
      plot_begin(f, width, height, title)   ...   plot_end(f)
@@ -25,6 +25,7 @@ typedef struct plot_panel_desc {
     double left, top, width, height; /* the plotting area, pixels */
     const char *title, *x_label, *y_label;
     double x_min, x_max, y_max; /* x_min, x_max > 0 (log axis); y from 0 */
+    double y_min;               /* > 0: a log y axis from y_min to y_max; 0: linear from 0 */
 } plot_panel_desc;
 
 static inline void plot_begin(FILE *f, int width, int height, const char *title)
@@ -108,6 +109,10 @@ static inline double plot_px(const plot_panel_desc *p, double x)
 static inline double plot_py(const plot_panel_desc *p, double y)
 {
     double v = y > p->y_max ? p->y_max : y < 0 ? 0 : y;
+    if (p->y_min > 0) {
+        v = v < p->y_min ? p->y_min : v;
+        return p->top + p->height * (1.0 - (log10(v) - log10(p->y_min)) / (log10(p->y_max) - log10(p->y_min)));
+    }
     return p->top + p->height * (1.0 - v / p->y_max);
 }
 
@@ -136,9 +141,11 @@ static inline void plot_panel(FILE *f, const plot_panel_desc *p, const plot_seri
                         p->top + p->height + 14, x);
         }
     }
-    /* y: 5 steps from 0 */
-    for (i = 0; i <= 5; i++) {
-        double y = p->y_max * i / 5.0, py = plot_py(p, y);
+    /* y: 5 steps from 0, or the decades of a log axis */
+    for (i = 0; i <= 5 || (p->y_min > 0 && p->y_min * pow(10.0, i) <= p->y_max * 1.001); i++) {
+        double y = p->y_min > 0 ? p->y_min * pow(10.0, i) : p->y_max * i / 5.0, py;
+        if (p->y_min > 0 && y > p->y_max * 1.001) break;
+        py = plot_py(p, y);
         fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", p->left, py,
                 p->left + p->width, py);
         fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" font-size=\"10\">%.3g</text>\n", p->left - 4,
