@@ -365,9 +365,18 @@
      view gets (within epsilon for all eyes of a ball, not at its own cut)
      and, per pixel, which of them is nearest.  tests/test_megaviews.c
      checks both; README.md measures the cost and the error.
-     Not yet: views closer than a given distance sharing one leaf, the
-     multi-pixel splat of near leaves at inner nodes (MegaViews 3.2.4),
-     queries without fusion, a Vulkan path.
+     Grouping (params.group_radius g > 0; the paper's equal-depth octrees
+     do the like): a view node whose sphere's radius is at most g is a
+     group.  Its pairs are culled as an inner node's are, and otherwise
+     decided as the cut decides for one view at its centre (without
+     back-face culling there): drawn into its map, or the scene node
+     splits.  Every view below gets that map, each pixel at its node's
+     distance from the view's own eye: the views see the scene from up to
+     g away, with the parallax that brings, and no delta bound holds
+     within a group.  README.md measures the error against exact maps.
+     Not yet: the multi-pixel splat of near leaves at inner nodes
+     (MegaViews 3.2.4), queries without fusion, a bound on the call's
+     memory, a Vulkan path.
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes,
@@ -396,7 +405,7 @@
      object reports its bytes (mlod_tree.bytes, mlod_cut_bytes,
      mlod_atlas.bytes, mlod_view_tree.bytes).  mlod_megaviews_render
      allocates for its call, per level of the view tree, what the pairs of
-     that level need (16 bytes of room per pair handed down, 4 bytes per
+     that level need (24 bytes of room per pair handed down, 4 bytes per
      pair kept) and the maps of the level's inner nodes that hold anything
      (8 bytes per pixel), two levels at a time, and reports its peak
      (mlod_megaviews_stats.peak_bytes).  Attributes a scene does not ask
@@ -1108,6 +1117,9 @@ typedef struct mlod_megaviews_params {
                                   cut and splat (MLOD_MEGAVIEWS_DELTA: the suggested sharing) */
     uint32_t resolution;       /* pixels per side of each half of the map, >= 1 */
     uint32_t flags;            /* MLOD_VIEW_CULL_BACKFACES (with a scene tree that has cones) */
+    float group_radius;        /* world units, >= 0, finite: a view node whose eyes lie within this of
+                                  its centre renders one map, from its centre, for all its views
+                                  (an approximation: see MANY VIEWS AT ONCE); 0: none */
     const mlod_parallel *parallel;   /* optional */
     const mlod_allocator *allocator; /* the call's scratch; NULL: the atlas's allocator */
 } mlod_megaviews_params;
@@ -1384,6 +1396,12 @@ static int mlod__finite3(const float *p)
 static const float *mlod__at(const float *base, size_t stride, size_t index)
 {
     return (const float *)((const char *)base + index * (stride ? stride : 3 * sizeof(float)));
+}
+
+/* Element `index` of a strided array of single floats (stride 0: packed). */
+static float mlod__scalar_at(const float *base, size_t stride, size_t index)
+{
+    return *(const float *)((const char *)base + index * (stride ? stride : sizeof(float)));
 }
 
 /* The box around count >= 1 strided positions (mlod__at): lo and hi. */
@@ -1857,7 +1875,7 @@ static mlod_result mlod__check_points(const mlod_points *points, mlod_error *err
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "radius stride %lu is not a multiple of 4",
                           (unsigned long)points->radius_stride);
     for (i = 0; res == MLOD_OK && points->radii && i < points->count; i++) {
-        float r = *(const float *)((const char *)points->radii + i * (points->radius_stride ? points->radius_stride : sizeof(float)));
+        float r = mlod__scalar_at(points->radii, points->radius_stride, i);
         if (!isfinite(r)) return mlod__fail(error, MLOD_ERROR_NON_FINITE, "radius %u is not finite", i);
         if (r < 0.0f || r > MLOD__MAX_COORDINATE)
             return mlod__fail(error, MLOD_ERROR_RANGE, "radius %u = %g is negative or beyond 1e36", i, r);
@@ -2581,7 +2599,7 @@ done:
 
 static float mlod__point_radius(const mlod_points *points, uint32_t i)
 {
-    return *(const float *)((const char *)points->radii + i * (points->radius_stride ? points->radius_stride : sizeof(float)));
+    return mlod__scalar_at(points->radii, points->radius_stride, i);
 }
 
 /* Write leaf `node` from point `item`.  radius: before radius_scale. */
@@ -6014,8 +6032,7 @@ MLOD__PUBLIC mlod_result mlod_sample(const float *importance, uint32_t domain_si
 static float mlod__view_half_fov(const mlod_view_set *views, uint32_t i)
 {
     if (!views->half_fovs) return views->half_fov > 0.0f ? views->half_fov : (float)(0.5 * MLOD__PI);
-    return *(const float *)((const char *)views->half_fovs +
-                            i * (views->half_fov_stride ? views->half_fov_stride : sizeof(float)));
+    return mlod__scalar_at(views->half_fovs, views->half_fov_stride, i);
 }
 
 static mlod_result mlod__check_view_set(const mlod_view_set *views, mlod_error *error)
@@ -6296,7 +6313,7 @@ static double mlod__ball_motion(double S, const double *x, double d, double r, d
 /* A view node as the pair test sees it. */
 typedef struct mlod__vnode {
     uint32_t node;
-    int leaf;
+    int leaf, group; /* group: an inner node within params->group_radius, one view at its centre */
     double centre[3], radius, least_fov, most_fov; /* half fields of view below */
     const float *cone;   /* the views' directions, NULL: every direction */
     /* the fast paths' constants (mlod__pair_action): |axis|, cos(alpha + most_fov) (-2 when that reaches pi),
@@ -6320,7 +6337,7 @@ typedef struct mlod__mv_job {
     const mlod_tree *scene;
     const mlod_view_tree *views;
     mlod_atlas *atlas;
-    double epsilon, delta, S;
+    double epsilon, delta, S, group_radius;
     uint32_t resolution, flags;
     /* the level: view nodes first .. first + count - 1 */
     uint32_t first, count, prev_first;
@@ -6359,6 +6376,7 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     vn->leaf = node >= t->leaf_count - 1;
     for (k = 0; k < 3; k++) vn->centre[k] = sphere[k];
     vn->radius = sphere[3];
+    vn->group = !vn->leaf && job->group_radius > 0.0 && vn->radius <= job->group_radius;
     vn->cone = mlod__cone_of(t, node);
     vn->least_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node] : MLOD__PI;
     vn->most_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node + 1] : MLOD__PI;
@@ -6372,8 +6390,9 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
         vn->sin_least = 0.0;
         if (least >= 0.0) mlod__sin_cos(least, &vn->sin_least, &vn->cos_least);
     }
-    if (vn->leaf) {
+    if (vn->leaf || vn->group) {
         mlod_view view = mlod__node_map_view(job, node);
+        if (vn->group) view.flags &= ~(uint32_t)MLOD_VIEW_CULL_BACKFACES; /* culled for all eyes, above */
         mlod__view_prepare(&view, &vn->pv, NULL);
         mlod__fast_prepare(&vn->pv, job->epsilon);
     }
@@ -6397,7 +6416,9 @@ static int mlod__surely_within(double cos_phi, double d, const mlod__vnode *vn)
    its view (after its own field of view); an inner node culls what every
    view below culls, draws what is within epsilon for every eye of its
    ball and moves by at most delta, splits the scene node where every eye
-   finds it above epsilon, and otherwise splits itself. */
+   finds it above epsilon, and otherwise splits itself; a group (an inner
+   node within the group radius) culls as an inner node and decides the
+   rest as the cut does for one view at its centre. */
 static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uint32_t s)
 {
     const mlod_tree *scene = job->scene;
@@ -6427,7 +6448,11 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
         shared = cone[3] >= 0.5 * MLOD__PI ||
                  mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3]);
     }
-    if (shared && vn->cone && !mlod__surely_within(cos_phi, d, vn)) 
+    if (vn->group) {
+        uint8_t st = mlod__classify(&vn->pv, scene, s, job->epsilon);
+        return st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
+    }
+    if (shared && vn->cone && !mlod__surely_within(cos_phi, d, vn))
         shared = mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov);
     mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
     if (cmax <= job->epsilon)
@@ -6682,6 +6707,9 @@ static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tre
     if (!(params->delta >= 0.0f && params->delta < INFINITY))
         return mlod__fail(error, isnan(params->delta) ? MLOD_ERROR_NON_FINITE : MLOD_ERROR_INVALID_ARGUMENT,
                           "delta %g is not finite and >= 0", params->delta);
+    if (!(params->group_radius >= 0.0f && params->group_radius < INFINITY))
+        return mlod__fail(error, isnan(params->group_radius) ? MLOD_ERROR_NON_FINITE : MLOD_ERROR_INVALID_ARGUMENT,
+                          "group_radius %g is not finite and >= 0", params->group_radius);
     if (params->resolution == 0 || params->resolution > 0x7fffffffu)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "resolution %u is not in 1 .. 2^31 - 1",
                           params->resolution);
@@ -6793,6 +6821,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
     job.atlas = atlas;
     job.epsilon = params->epsilon;
     job.delta = params->delta;
+    job.group_radius = params->group_radius;
     job.resolution = params->resolution;
     job.flags = params->flags;
     job.S = 0.5 * params->resolution;

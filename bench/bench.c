@@ -317,7 +317,8 @@ typedef struct bench {
             leaf_draws;
         double per_ms, per_cut_ms, per_splat_ms, per_bytes; /* NAN: not run */
         double cast_ms;                                     /* Embree's exact maps */
-        metrics mega_m, per_m;
+        double group_ms, group_peak, group_pairs;           /* grouped within a scene leaf's radius */
+        metrics mega_m, per_m, group_m;
     } views[BENCH_MAX_LIST];
     int views_rows;
     char views_note[240];
@@ -1936,6 +1937,7 @@ static void run_views(bench *b)
     shape_anchor *anchors;
     float *eyes, *directions, *receivers;
     double offset, diameter, build_ms;
+    float group_radius;
     rt_scene rt;
     protocol shell;
     for (v = 0; v < c->view_count_n; v++)
@@ -1966,12 +1968,13 @@ static void run_views(bench *b)
                    RTC_BUILD_QUALITY_MEDIUM, &rt))
         fail("Embree could not create the room's scene");
     rt_commit(&rt);
+    group_radius = (float)(diameter / 200.0);
     views_check_exact(b, tree, eyes, c->view_counts[0] < 1024 ? c->view_counts[0] : 1024, eps);
     snprintf(b->views_note, sizeof b->views_note,
              "room (%u triangles), N = %u, epsilon %g px, delta %g px; lights %.3g above random surface points, "
-             "hemispheres along the normal; maps 2 x %u x %u px",
+             "hemispheres along the normal; maps 2 x %u x %u px; grouped: group_radius %.3g (1/200 of the diameter)",
              mesh.index_count / 3, tree->leaf_count, (double)eps, (double)MLOD_MEGAVIEWS_DELTA, offset,
-             c->views_resolution, c->views_resolution);
+             c->views_resolution, c->views_resolution, (double)group_radius);
     for (v = 0; v < c->view_count_n; v++) {
         struct views_row *row = &b->views[b->views_rows++];
         uint32_t count = c->view_counts[v], repeats = count <= 16384 ? 3 : 1, rep;
@@ -2035,6 +2038,19 @@ static void run_views(bench *b)
         views_mask_reference(atlas, views, directions, reference);
         metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
                         &row->mega_m, NULL);
+        /* grouped: lights within 1/200 of the scene's diameter of a view node's centre share its map */
+        mp.group_radius = group_radius;
+        for (rep = 0; rep < repeats; rep++) {
+            t0 = now_ms();
+            if (mlod_megaviews_render(atlas, tree, vt, &mp, &st, &e) != MLOD_OK) fail("megaviews: %s", e.message);
+            times[rep] = now_ms() - t0;
+        }
+        mp.group_radius = 0.0f;
+        row->group_ms = median(times, (int)repeats);
+        row->group_peak = (double)st.peak_bytes;
+        row->group_pairs = (double)st.pairs;
+        metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
+                        &row->group_m, NULL);
         if (count <= c->views_per_view_max) {
             mlod_cut *cut = NULL;
             mlod_cut_params cp;
@@ -2066,6 +2082,8 @@ static void run_views(bench *b)
                count, row->tree_ms, row->refit_ms, row->mega_ms, row->mega_peak / 1048576.0, row->pairs,
                row->shared_draws > 0 ? row->shared_views / row->shared_draws : 0.0, 100.0 * row->mega_m.depth_rms,
                100.0 * row->mega_m.shadow_disagreement, row->cast_ms);
+        printf("; grouped %.0f ms, %.0f pairs, depth RMS %.2f%%, shadow %.2f%%", row->group_ms, row->group_pairs,
+               100.0 * row->group_m.depth_rms, 100.0 * row->group_m.shadow_disagreement);
         if (row->per_ms == row->per_ms)
             printf("; per-view %.0f ms, depth RMS %.2f%%, shadow %.2f%%", row->per_ms, 100.0 * row->per_m.depth_rms,
                    100.0 * row->per_m.shadow_disagreement);
@@ -2440,15 +2458,24 @@ static void write_views_markdown(const bench *b, FILE *f)
                 r->shared_draws > 0 ? r->shared_views / r->shared_draws : 0.0, r->leaf_draws / r->views, per, per_mb,
                 r->cast_ms, rms, holes, shadow);
     }
+    fprintf(f, "\nGrouped (mlod_megaviews_params.group_radius: lights within 1/200 of the scene's diameter of a view node's "
+               "centre share its map, seen from the centre), same renders otherwise:\n\n| views | grouped ms | peak MB "
+               "| pairs per view | depth RMS %% | holes %% | shadow %% |\n|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (k = 0; k < b->views_rows; k++) {
+        const struct views_row *r = &b->views[k];
+        fprintf(f, "| %u | %.0f | %.0f | %.0f | %.2f | %.2f | %.2f |\n", r->views, r->group_ms, r->group_peak / 1048576.0,
+                r->group_pairs / r->views, 100.0 * r->group_m.depth_rms, 100.0 * r->group_m.hole_rate,
+                100.0 * r->group_m.shadow_disagreement);
+    }
     fprintf(f, "\nGrowth exponents (time proportional to views^k) from one view count to the next:\n\n"
-               "| views | MegaViews | pairs | per-view | Embree |\n|---|---:|---:|---:|---:|\n");
+               "| views | MegaViews | pairs | grouped | per-view | Embree |\n|---|---:|---:|---:|---:|---:|\n");
     for (k = 1; k < b->views_rows; k++) {
         const struct views_row *a = &b->views[k - 1], *r = &b->views[k];
         char per[32];
         fmt(per, sizeof per, "%.2f", growth(a->per_ms, r->per_ms, a->views, r->views));
-        fprintf(f, "| %u -> %u | %.2f | %.2f | %s | %.2f |\n", a->views, r->views,
-                growth(a->mega_ms, r->mega_ms, a->views, r->views), growth(a->pairs, r->pairs, a->views, r->views), per,
-                growth(a->cast_ms, r->cast_ms, a->views, r->views));
+        fprintf(f, "| %u -> %u | %.2f | %.2f | %.2f | %s | %.2f |\n", a->views, r->views,
+                growth(a->mega_ms, r->mega_ms, a->views, r->views), growth(a->pairs, r->pairs, a->views, r->views),
+                growth(a->group_ms, r->group_ms, a->views, r->views), per, growth(a->cast_ms, r->cast_ms, a->views, r->views));
     }
     fprintf(f, "\n");
 }
@@ -2457,14 +2484,14 @@ static void write_views_markdown(const bench *b, FILE *f)
    splat, Embree's exact maps. */
 static void write_views_svg(const bench *b, FILE *f)
 {
-    double x[3][BENCH_MAX_LIST], y[3][BENCH_MAX_LIST], y_lo = INFINITY, y_hi = 0;
-    int n[3] = {0, 0, 0}, k, s;
-    plot_series series[3];
+    double x[4][BENCH_MAX_LIST], y[4][BENCH_MAX_LIST], y_lo = INFINITY, y_hi = 0;
+    int n[4] = {0, 0, 0, 0}, k, s;
+    plot_series series[4];
     plot_panel_desc panel;
     for (k = 0; k < b->views_rows; k++) {
         const struct views_row *r = &b->views[k];
-        double t[3] = {r->mega_ms, r->per_ms, r->cast_ms};
-        for (s = 0; s < 3; s++) {
+        double t[4] = {r->mega_ms, r->per_ms, r->cast_ms, r->group_ms};
+        for (s = 0; s < 4; s++) {
             if (!(t[s] > 0)) continue;
             x[s][n[s]] = r->views;
             y[s][n[s]++] = t[s];
@@ -2482,7 +2509,10 @@ static void write_views_svg(const bench *b, FILE *f)
     series[2].name = "Embree, exact maps";
     series[2].color = "#7f7f7f";
     series[2].marker = PLOT_TRIANGLE;
-    for (s = 0; s < 3; s++) {
+    series[3].name = "MegaViews, lights grouped within 1/200 of the diameter";
+    series[3].color = "#ff7f0e";
+    series[3].marker = PLOT_DIAMOND;
+    for (s = 0; s < 4; s++) {
         series[s].x = x[s];
         series[s].y = y[s];
         series[s].count = n[s];
@@ -2499,9 +2529,9 @@ static void write_views_svg(const bench *b, FILE *f)
     panel.x_max = plot_nice(b->views[b->views_rows - 1].views, 1);
     panel.y_min = pow(10.0, floor(log10(y_lo > 0 ? y_lo : 1.0)));
     panel.y_max = pow(10.0, ceil(log10(y_hi > 0 ? y_hi : 10.0)));
-    plot_begin(f, 800, 440, "manylods: many views at once");
-    plot_panel(f, &panel, series, 3);
-    plot_legend(f, 560, 90, series, 3);
+    plot_begin(f, 880, 440, "manylods: many views at once");
+    plot_panel(f, &panel, series, 4);
+    plot_legend(f, 540, 90, series, 4);
     plot_end(f);
 }
 

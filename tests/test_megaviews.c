@@ -13,6 +13,10 @@
      several resolutions and epsilons; with fields of view it equals the
      per-view cut's nodes that the view's field of view does not cull,
      drawn as mlod_splat draws;
+   - grouping: a group radius holding every eye gives every view the map
+     of one view at the root's centre (its cut and splat), node for node,
+     at each view's own distances; smaller groups keep depths exact and
+     the atlas the same for any hook, with fewer pairs;
    - culling is conservative, by brute force in long double: no view below
      a culled pair sees any point of the scene node's sphere in its field
      of view (or, back-face culled, with any normal of its cone), and every
@@ -606,6 +610,129 @@ static void test_fusion(mlod_tree *scene)
     free_views(&v);
 }
 
+/* ============================================================= groups */
+
+/* The scene's colours are node indices (test_fusion).  With a group radius
+   that holds every eye, the root is one group: every view's tile holds, per
+   pixel, the node that one view at the root's centre draws there (its cut
+   and splat), at the distance from the view's own eye.  With a smaller
+   radius, depths stay exact per eye and the atlas is the same for any
+   thread count. */
+static void test_groups(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    views v = make_views(51, 300, lo, hi, 1);
+    mlod_view_set s = view_set(&v, 0, 0);
+    mlod_view_tree *t = build_views(&s, NULL);
+    mlod_view *vs = NULL, centre_view;
+    mlod_atlas *a = make_atlas(&v, 8, MLOD_ATLAS_COLOR, &vs, 0), *one = NULL;
+    mlod_atlas_desc desc;
+    mlod_cut *cut = NULL;
+    mlod_cut_params cp;
+    mlod_megaviews_params p;
+    mlod_megaviews_stats st;
+    mlod_error e;
+    uint64_t wrong_node = 0, wrong_depth = 0, filled = 0;
+    uint32_t i, row, col, g;
+    if (!t || !a) {
+        CHECK(0, "groups: set-up");
+        return;
+    }
+    memset(&p, 0, sizeof p);
+    p.epsilon = 1.0f;
+    p.resolution = 8;
+    p.group_radius = 1e6f;
+    centre_view = mlod_megaviews_view(t->eyes->spheres, 8, 0);
+    memset(&desc, 0, sizeof desc);
+    desc.channels = MLOD_ATLAS_COLOR;
+    memset(&cp, 0, sizeof cp);
+    cp.epsilon = 1.0f;
+    CHECK(mlod_megaviews_render(a, scene, t, &p, &st, &e) == MLOD_OK, "groups: render with one group");
+    CHECK(mlod_atlas_create(&centre_view, 1, &desc, NULL, &one, &e) == MLOD_OK && mlod_cut_create(1, NULL, &cut, &e) == MLOD_OK &&
+          mlod_cut_update(cut, scene, &centre_view, &cp, &e) == MLOD_OK &&
+          mlod_splat(one, scene, cut, &centre_view, NULL, &e) == MLOD_OK, "groups: the centre's view");
+    CHECK(st.leaf_draws == 0 && st.shared_draws == (uint64_t)mlod_cut_get(cut, 0).drawn + mlod_cut_get(cut, 0).oversize,
+          "groups: one group draws the centre's cut once (%llu shared draws)", (unsigned long long)st.shared_draws);
+    for (i = 0; i < v.count && one; i++) {
+        const uint32_t *tile = a->tiles + 4 * (size_t)i;
+        for (row = 0; row < tile[3]; row++)
+            for (col = 0; col < tile[2]; col++) {
+                size_t at = (size_t)(tile[1] + row) * a->width + tile[0] + col, ref = (size_t)row * one->width + col;
+                uint32_t node;
+                const float *sph;
+                double x[3];
+                int k;
+                if ((a->depth[at] < INFINITY) != (one->depth[ref] < INFINITY) ||
+                    (a->depth[at] < INFINITY && a->color[3 * at] != one->color[3 * ref])) {
+                    wrong_node++;
+                    continue;
+                }
+                if (!(a->depth[at] < INFINITY)) continue;
+                filled++;
+                node = (uint32_t)a->color[3 * at];
+                sph = scene->spheres + 4 * (size_t)node;
+                for (k = 0; k < 3; k++) x[k] = (double)sph[k] - v.eyes[3 * i + k];
+                if (a->depth[at] != (float)mlod__length3(x)) wrong_depth++;
+            }
+    }
+    CHECK(filled > v.count * 100, "groups: %llu pixels filled", (unsigned long long)filled);
+    CHECK(wrong_node == 0, "groups: %llu pixels hold another node than the centre's view", (unsigned long long)wrong_node);
+    CHECK(wrong_depth == 0, "groups: %llu pixels not at their node's distance from the view's eye",
+          (unsigned long long)wrong_depth);
+    /* a radius that makes many small groups: same atlas for any hook, fewer pairs than without */
+    for (g = 0; g < 2; g++) {
+        mlod_pool *pool = mlod_pool_create(3);
+        mlod_parallel hook = mlod_pool_parallel(pool), reverse;
+        mlod_view *vs2 = NULL, *vs3 = NULL;
+        mlod_atlas *b1 = make_atlas(&v, 8, MLOD_ATLAS_COLOR, &vs2, 0), *b2 = make_atlas(&v, 8, MLOD_ATLAS_COLOR, &vs3, 0);
+        mlod_megaviews_stats s1, s2, s0;
+        size_t first = 0;
+        int same;
+        reverse.run = tu_run_reverse;
+        reverse.user = NULL;
+        p.delta = g ? MLOD_MEGAVIEWS_DELTA : 0.0f;
+        p.group_radius = 0.0f;
+        p.parallel = NULL;
+        CHECK(mlod_megaviews_render(b1, scene, t, &p, &s0, &e) == MLOD_OK, "groups: render without");
+        p.group_radius = 0.3f;
+        p.parallel = &hook;
+        CHECK(mlod_megaviews_render(b1, scene, t, &p, &s1, &e) == MLOD_OK, "groups: render, pool");
+        p.parallel = &reverse;
+        CHECK(mlod_megaviews_render(b2, scene, t, &p, &s2, &e) == MLOD_OK, "groups: render, reversed");
+        same = same_atlas(b1, b2, &first);
+        CHECK(same && s1.pairs == s2.pairs, "groups, delta %g: another atlas for another hook (pixel %zu)", p.delta,
+              first);
+        CHECK(s1.pairs < s0.pairs, "groups, delta %g: %llu pairs with groups, %llu without", p.delta,
+              (unsigned long long)s1.pairs, (unsigned long long)s0.pairs);
+        for (i = 0, wrong_depth = 0; i < v.count; i++) {
+            const uint32_t *tile = b1->tiles + 4 * (size_t)i;
+            for (row = 0; row < tile[3]; row++)
+                for (col = 0; col < tile[2]; col++) {
+                    size_t at = (size_t)(tile[1] + row) * b1->width + tile[0] + col;
+                    const float *sph = scene->spheres + 4 * (size_t)(uint32_t)b1->color[3 * at];
+                    double x[3];
+                    int k;
+                    if (!(b1->depth[at] < INFINITY)) continue;
+                    for (k = 0; k < 3; k++) x[k] = (double)sph[k] - v.eyes[3 * i + k];
+                    if (b1->depth[at] != (float)mlod__length3(x)) wrong_depth++;
+                }
+        }
+        CHECK(wrong_depth == 0, "groups, delta %g: %llu pixels not at their node's distance from the eye", p.delta,
+              (unsigned long long)wrong_depth);
+        mlod_atlas_destroy(b1);
+        mlod_atlas_destroy(b2);
+        free(vs2);
+        free(vs3);
+        mlod_pool_destroy(pool);
+    }
+    mlod_cut_destroy(cut);
+    mlod_atlas_destroy(one);
+    mlod_atlas_destroy(a);
+    mlod_view_tree_destroy(t);
+    free(vs);
+    free_views(&v);
+}
+
 /* ============================================================ threads */
 
 static void test_threads(const mlod_tree *scene)
@@ -703,6 +830,13 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
     CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "delta inf");
     q.delta = nan;
     CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_NON_FINITE, "delta NaN");
+    q = p;
+    q.group_radius = -1.0f;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "group_radius < 0");
+    q.group_radius = INFINITY;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "group_radius inf");
+    q.group_radius = nan;
+    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_NON_FINITE, "group_radius NaN");
     q = p;
     q.resolution = 0;
     CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "resolution 0");
@@ -818,7 +952,8 @@ int main(void)
     test_culling(scene);
     test_bounds();
     test_threads(scene);
-    test_fusion(scene); /* last: it overwrites the scene's colours */
+    test_fusion(scene); /* it overwrites the scene's colours with node indices */
+    test_groups(scene);
     test_errors(scene, bare);
     mlod_tree_destroy(scene);
     mlod_tree_destroy(bare);
