@@ -2509,7 +2509,7 @@ static void write_views_svg(const bench *b, FILE *f)
     series[2].name = "Embree, exact maps";
     series[2].color = "#7f7f7f";
     series[2].marker = PLOT_TRIANGLE;
-    series[3].name = "MegaViews, lights grouped within 1/200 of the diameter";
+    series[3].name = "MegaViews, grouped (radius: diameter / 200)";
     series[3].color = "#ff7f0e";
     series[3].marker = PLOT_DIAMOND;
     for (s = 0; s < 4; s++) {
