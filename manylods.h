@@ -354,7 +354,11 @@
      gets its leaf's map so, each pixel at its node's distance from the
      view's own eye (depth as for paraboloids), with the node's normal and
      colour.  Maps of inner nodes hold node indices and live for one
-     level; the atlas is the result.
+     level; the atlas is the result.  Without fusion
+     (mlod_megaviews_render_maps) every node keeps its own map, leaves
+     included, and mlod_megaviews_query descends from the root to a
+     view's pixel by the same rule: the fused atlas's pixel, at the cost
+     of the tree's depth in lookups, for programs that read few pixels.
      delta = 0 shares only among eyes at one point (duplicates), and the
      atlas equals, bit for bit, the per-view cut (mlod_cut_update) and
      splat (mlod_splat) of the views' mlod_megaviews_view; with
@@ -375,8 +379,7 @@
      g away, with the parallax that brings, and no delta bound holds
      within a group.  README.md measures the error against exact maps.
      Not yet: the multi-pixel splat of near leaves at inner nodes
-     (MegaViews 3.2.4), queries without fusion, a bound on the call's
-     memory, a Vulkan path.
+     (MegaViews 3.2.4), a bound on the call's memory, a Vulkan path.
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes,
@@ -1135,6 +1138,9 @@ typedef struct mlod_megaviews_stats {
     size_t peak_bytes;         /* the most the call held at once from its allocator */
 } mlod_megaviews_stats;
 
+/* The maps of every view node, unfused (mlod_megaviews_render_maps). */
+typedef struct mlod_megaviews_maps mlod_megaviews_maps;
+
 /* Render every view's map into the atlas (MANY VIEWS AT ONCE): the pair
    traversal of the scene tree and the view tree, drawing into shared maps
    of inner view nodes and fusing them down into each view's tile of the
@@ -1149,6 +1155,35 @@ typedef struct mlod_megaviews_stats {
 MANYLODS_DEF mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
                                                const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
                                                mlod_error *error);
+
+/* The same traversal without fusion, for programs that look up a few
+   pixels: every view node keeps its own map (what was drawn there, 8
+   bytes per pixel for each node that drew anything; drawn with disc
+   scale 1, as an atlas created without a disc_scale), and
+   mlod_megaviews_query descends to a view's pixel.  On success *out
+   owns the maps (mlod_megaviews_maps_destroy; their bytes:
+   mlod_megaviews_maps_bytes); on error *out is NULL.  Errors as
+   mlod_megaviews_render's, without an atlas. */
+MANYLODS_DEF mlod_result mlod_megaviews_render_maps(const mlod_tree *scene, const mlod_view_tree *views,
+                                                    const mlod_megaviews_params *params, mlod_megaviews_maps **out,
+                                                    mlod_megaviews_stats *stats, mlod_error *error);
+
+/* Pixel (x, y) of view `view`'s map (x < 2 resolution, y < resolution):
+   down the view tree from the root to the view's leaf, each node's pixel
+   taken where it is nearer (from that node's centre) than what the nodes
+   above left there, as the fusion does.  Returns 1 and writes the depth
+   (distance from the view's eye) and the scene node, equal to the fused
+   atlas's pixel of mlod_megaviews_render with the same arguments, or 0
+   where nothing was drawn (or for arguments out of range).  scene and
+   views must be those of the render.  Pure, thread-safe. */
+MANYLODS_DEF int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlod_tree *scene,
+                                      const mlod_view_tree *views, uint32_t view, uint32_t x, uint32_t y, float *depth,
+                                      uint32_t *node);
+
+/* Bytes the maps hold.  Free them with mlod_megaviews_maps_destroy (NULL
+   is fine). */
+MANYLODS_DEF size_t mlod_megaviews_maps_bytes(const mlod_megaviews_maps *maps);
+MANYLODS_DEF void mlod_megaviews_maps_destroy(mlod_megaviews_maps *maps);
 
 /* --------------------------------------------------- built-in thread pool */
 #ifdef MANYLODS_PTHREADS
@@ -6339,6 +6374,8 @@ typedef struct mlod__mv_job {
     mlod_atlas *atlas;
     double epsilon, delta, S, group_radius;
     uint32_t resolution, flags;
+    float disc_scale;
+    mlod_megaviews_maps *keep; /* unfused: every node's own map, leaves too; NULL: fuse into the atlas */
     /* the level: view nodes first .. first + count - 1 */
     uint32_t first, count, prev_first;
     const uint32_t *in;     /* scene nodes handed down, by parent */
@@ -6579,10 +6616,10 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
         uint32_t top = 0;
         mlod__mv_next(job, &at, &view, &s0);
         if (view != vn.node) {
-            if (vn.leaf) mlod__draw_nodes(&band, &vn.pv, batch, n);
+            if (vn.leaf && !job->keep) mlod__draw_nodes(&band, &vn.pv, batch, n);
             n = 0;
             mlod__vnode_set(job, view, &vn);
-            if (vn.leaf) mlod__mv_leaf_begin(job, view, &band);
+            if (vn.leaf && !job->keep) mlod__mv_leaf_begin(job, view, &band);
         }
         stack[top++] = s0;
         while (top) {
@@ -6594,7 +6631,7 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
                 out->culled++;
                 break;
             case MLOD__PAIR_DRAW:
-                if (!vn.leaf) {
+                if (!vn.leaf || job->keep) {
                     ok = mlod__mv_push(out->draw, &out->draw_count, out->capacity, view, s);
                     break;
                 }
@@ -6618,7 +6655,7 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
             }
         }
     }
-    if (vn.leaf) mlod__draw_nodes(&band, &vn.pv, batch, n);
+    if (vn.leaf && !job->keep) mlod__draw_nodes(&band, &vn.pv, batch, n);
 }
 
 /* Draw a chunk of the level's nodes: each map (or leaf tile) starts from
@@ -6634,12 +6671,12 @@ static void mlod__mv_draw_task(void *context, uint32_t index)
         double centre[3];
         mlod__band band;
         mlod__pview pv;
-        if (node >= eyes->leaf_count - 1) { /* leaves given no pair: the parent's map alone */
+        if (node >= eyes->leaf_count - 1 && !job->keep) { /* leaves given no pair: the parent's map alone */
             uint32_t p = (node - 1) / 2 - job->prev_first;
             if (node > 0 && job->in_off[p + 1] == job->in_off[p]) mlod__mv_leaf_begin(job, node, &band);
             continue;
         }
-        if (node > 0) parent_map = job->parent_map_of[(node - 1) / 2 - job->prev_first];
+        if (node > 0 && !job->keep) parent_map = job->parent_map_of[(node - 1) / 2 - job->prev_first];
         {
             size_t at;
             if (job->map_of[i] == MLOD__NO_MAP) continue;
@@ -6649,7 +6686,7 @@ static void mlod__mv_draw_task(void *context, uint32_t index)
             band.depth = job->depth + at;
             band.ids = job->ids + at;
             band.stride = 2 * job->resolution;
-            band.disc_scale = job->atlas->disc_scale;
+            band.disc_scale = job->disc_scale;
             band.row_end = job->resolution;
             for (k = 0; k < job->pixels; k++) band.depth[k] = INFINITY;
         }
@@ -6695,13 +6732,15 @@ static void mlod__mv_free(mlod__mv_memory *m, void *p, size_t count, size_t size
     mlod__free(&m->a, p);
 }
 
+/* The checks of mlod_megaviews_render (atlas NULL: of
+   mlod_megaviews_render_maps, which has none). */
 static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tree *scene,
                                          const mlod_view_tree *views, const mlod_megaviews_params *params,
                                          mlod_error *error)
 {
     uint32_t v;
-    if (!atlas || !scene || !views || !params)
-        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas, scene, views and params must not be NULL");
+    if (!scene || !views || !params)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "scene, views and params must not be NULL");
     if (!(params->epsilon > 0.0f))
         return mlod__fail(error, MLOD_ERROR_BAD_EPSILON, "epsilon %g is not > 0", params->epsilon);
     if (!(params->delta >= 0.0f && params->delta < INFINITY))
@@ -6713,6 +6752,7 @@ static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tre
     if (params->resolution == 0 || params->resolution > 0x7fffffffu)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "resolution %u is not in 1 .. 2^31 - 1",
                           params->resolution);
+    if (!atlas) return MLOD_OK;
     if (atlas->view_count != views->view_count)
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has %u views, the view tree %u", atlas->view_count,
                           views->view_count);
@@ -6767,6 +6807,66 @@ static int mlod__mv_classify_level(mlod__mv_job *job, mlod__mv_memory *m, const 
     return !m->failed;
 }
 
+struct mlod_megaviews_maps {
+    uint32_t resolution, levels;
+    uint32_t *map_of;     /* per view node: its map among its level's, or MLOD__NO_MAP */
+    uint32_t *leaf_of;    /* per view: its leaf node */
+    float **depth;        /* per level: the maps' depths from their node's centre, 2 R^2 per map */
+    uint32_t **ids;       /* per level: the maps' scene nodes */
+    uint32_t *level_maps; /* per level: how many maps */
+    size_t bytes;
+    mlod_allocator allocator;
+};
+
+MLOD__PUBLIC size_t mlod_megaviews_maps_bytes(const mlod_megaviews_maps *maps) { return maps ? maps->bytes : 0; }
+
+MLOD__PUBLIC void mlod_megaviews_maps_destroy(mlod_megaviews_maps *maps)
+{
+    uint32_t d;
+    if (!maps) return;
+    for (d = 0; d < maps->levels && maps->depth && maps->ids; d++) {
+        mlod__free(&maps->allocator, maps->depth[d]);
+        mlod__free(&maps->allocator, maps->ids[d]);
+    }
+    mlod__free(&maps->allocator, maps->map_of);
+    mlod__free(&maps->allocator, maps->leaf_of);
+    mlod__free(&maps->allocator, maps->depth);
+    mlod__free(&maps->allocator, maps->ids);
+    mlod__free(&maps->allocator, maps->level_maps);
+    mlod__free(&maps->allocator, maps);
+}
+
+/* An empty maps object for the views and levels; NULL without memory. */
+static mlod_megaviews_maps *mlod__maps_create(const mlod_allocator *a, const mlod_view_tree *views, uint32_t levels,
+                                              uint32_t resolution)
+{
+    const mlod_tree *eyes = views->eyes;
+    size_t bytes = 0;
+    mlod_megaviews_maps *maps = (mlod_megaviews_maps *)mlod__alloc_array(a, 1, sizeof *maps, &bytes);
+    uint32_t i;
+    if (!maps) return NULL;
+    memset(maps, 0, sizeof *maps);
+    maps->allocator = *a;
+    maps->resolution = resolution;
+    maps->levels = levels;
+    maps->map_of = (uint32_t *)mlod__alloc_array(a, eyes->node_count, sizeof(uint32_t), &bytes);
+    maps->leaf_of = (uint32_t *)mlod__alloc_array(a, eyes->leaf_count, sizeof(uint32_t), &bytes);
+    maps->depth = (float **)mlod__alloc_array(a, levels, sizeof(float *), &bytes);
+    maps->ids = (uint32_t **)mlod__alloc_array(a, levels, sizeof(uint32_t *), &bytes);
+    maps->level_maps = (uint32_t *)mlod__alloc_array(a, levels, sizeof(uint32_t), &bytes);
+    maps->bytes = bytes;
+    if (maps->depth) memset(maps->depth, 0, levels * sizeof(float *));
+    if (maps->ids) memset(maps->ids, 0, levels * sizeof(uint32_t *));
+    if (!maps->map_of || !maps->leaf_of || !maps->depth || !maps->ids || !maps->level_maps) {
+        mlod_megaviews_maps_destroy(maps);
+        return NULL;
+    }
+    memset(maps->level_maps, 0, levels * sizeof(uint32_t));
+    for (i = 0; i < eyes->node_count; i++) maps->map_of[i] = MLOD__NO_MAP;
+    for (i = 0; i < eyes->leaf_count; i++) maps->leaf_of[eyes->leaf_sources[i]] = eyes->leaf_count - 1 + i;
+    return maps;
+}
+
 /* The level's chunks of units, their first units into begin (chunk count
    + 1 entries; NULL: count only).  A level with view leaves cuts only
    between parents, so that a chunk draws whole leaves. */
@@ -6797,9 +6897,10 @@ static uint32_t mlod__mv_chunks(const mlod__mv_job *job, int whole_parents, size
     return n;
 }
 
-MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
-                                               const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
-                                               mlod_error *error)
+/* The render: fused into the atlas, or (keep) every node's own map kept. */
+static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **keep, const mlod_tree *scene,
+                                       const mlod_view_tree *views, const mlod_megaviews_params *params,
+                                       mlod_megaviews_stats *stats, mlod_error *error)
 {
     mlod_result res = mlod__check_megaviews(atlas, scene, views, params, error);
     const mlod_tree *eyes;
@@ -6813,12 +6914,13 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
     if (res != MLOD_OK) return res;
     eyes = views->eyes;
     memset(&m, 0, sizeof m);
-    m.a = params->allocator ? *params->allocator : atlas->allocator;
+    m.a = params->allocator ? *params->allocator : atlas ? atlas->allocator : mlod__allocator(NULL);
     memset(&st, 0, sizeof st);
     memset(&job, 0, sizeof job);
     job.scene = scene;
     job.views = views;
     job.atlas = atlas;
+    job.disc_scale = atlas ? atlas->disc_scale : 1.0f;
     job.epsilon = params->epsilon;
     job.delta = params->delta;
     job.group_radius = params->group_radius;
@@ -6828,6 +6930,8 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
     job.pixels = 2 * params->resolution * params->resolution;
     levels = mlod__depth_of(eyes->node_count - 1) + 1;
     st.levels = levels;
+    if (keep && !(job.keep = mlod__maps_create(&m.a, views, levels, params->resolution)))
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the maps");
     for (d = 0; d < levels && !m.failed; d++) {
         uint32_t first = (uint32_t)((1ull << d) - 1), count, chunks, c;
         size_t draws = 0, splits = 0, room, *draw_off, *split_off, *chunk_begin;
@@ -6878,6 +6982,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
             st.pairs += outs[c].pairs;
             st.culled += outs[c].culled;
             st.leaf_draws += outs[c].leaf_draws;
+            for (u = 0; job.keep && u < outs[c].draw_count; u++) st.leaf_draws += outs[c].draw[2 * u] >= eyes->leaf_count - 1;
         }
         draw = (uint32_t *)mlod__mv_alloc(&m, draws, sizeof(uint32_t));
         split = (uint32_t *)mlod__mv_alloc(&m, splits, sizeof(uint32_t));
@@ -6898,6 +7003,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
                 for (u = 0; u < outs[c].draw_count; u++) {
                     uint32_t v = outs[c].draw[2 * u] - first;
                     draw[draw_off[v]++] = outs[c].draw[2 * u + 1];
+                    if (v + first >= eyes->leaf_count - 1) continue; /* kept maps: leaves draw here too */
                     st.shared_draws++;
                     st.shared_views += mlod__leaves_below(v + first, eyes->leaf_count);
                 }
@@ -6915,11 +7021,12 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
         mlod__mv_free(&m, outs, chunks ? chunks : 1, sizeof(mlod__mv_out));
         mlod__mv_free(&m, chunk_begin, (size_t)chunks + 1, sizeof(size_t));
         if (!m.failed) {
-            /* the level's maps: inner nodes with a parent's map or a draw */
+            /* the level's maps: inner nodes with a parent's map or a draw (kept: nodes with a draw) */
             for (i = maps = 0; i < count; i++) {
                 uint32_t node = first + i;
-                int inherits = node > 0 && parent_map_of[(node - 1) / 2 - job.prev_first] != MLOD__NO_MAP;
-                map_of[i] = node < eyes->leaf_count - 1 && (inherits || draw_off[i + 1] > draw_off[i]) ? maps++ : MLOD__NO_MAP;
+                int inherits = !job.keep && node > 0 && parent_map_of[(node - 1) / 2 - job.prev_first] != MLOD__NO_MAP;
+                int holds = job.keep || node < eyes->leaf_count - 1;
+                map_of[i] = holds && (inherits || draw_off[i + 1] > draw_off[i]) ? maps++ : MLOD__NO_MAP;
             }
             job.depth = (float *)mlod__mv_alloc(&m, (size_t)maps * job.pixels, sizeof(float));
             job.ids = (uint32_t *)mlod__mv_alloc(&m, (size_t)maps * job.pixels, sizeof(uint32_t));
@@ -6933,6 +7040,17 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
         } else {
             mlod__mv_free(&m, job.depth, (size_t)maps * job.pixels, sizeof(float));
             mlod__mv_free(&m, job.ids, (size_t)maps * job.pixels, sizeof(uint32_t));
+            job.depth = NULL;
+            job.ids = NULL;
+            maps = 0;
+        }
+        if (job.keep && !m.failed) { /* the level's maps move to the maps object */
+            job.keep->depth[d] = job.depth;
+            job.keep->ids[d] = job.ids;
+            job.keep->level_maps[d] = maps;
+            job.keep->bytes += (size_t)maps * job.pixels * (sizeof(float) + sizeof(uint32_t));
+            for (i = 0; i < count; i++) job.keep->map_of[first + i] = map_of[i];
+            m.live -= (size_t)maps * job.pixels * (sizeof(float) + sizeof(uint32_t));
             job.depth = NULL;
             job.ids = NULL;
             maps = 0;
@@ -6960,16 +7078,73 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
     mlod__mv_free(&m, parent_ids, (size_t)parent_maps * job.pixels, sizeof(uint32_t));
     mlod__mv_free(&m, parent_map_of, parent_count, sizeof(uint32_t));
     if (m.failed) {
-        for (i = 0; i < atlas->view_count; i++) {
+        for (i = 0; atlas && i < atlas->view_count; i++) {
             mlod__band band;
             mlod__tile_band(atlas, scene, i, &band);
             mlod__band_clear(&band, atlas->tiles[4 * (size_t)i + 2]);
         }
+        mlod_megaviews_maps_destroy(job.keep);
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the render (%zu bytes held at most)", m.peak);
     }
     st.peak_bytes = m.peak;
     if (stats) *stats = st;
+    if (keep) *keep = job.keep;
     return mlod__succeed(error);
+}
+
+MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
+                                               const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
+                                               mlod_error *error)
+{
+    if (!atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas is NULL");
+    return mlod__megaviews_run(atlas, NULL, scene, views, params, stats, error);
+}
+
+MLOD__PUBLIC mlod_result mlod_megaviews_render_maps(const mlod_tree *scene, const mlod_view_tree *views,
+                                                    const mlod_megaviews_params *params, mlod_megaviews_maps **out,
+                                                    mlod_megaviews_stats *stats, mlod_error *error)
+{
+    if (!out) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out is NULL");
+    *out = NULL;
+    return mlod__megaviews_run(NULL, out, scene, views, params, stats, error);
+}
+
+MLOD__PUBLIC int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlod_tree *scene,
+                                      const mlod_view_tree *views, uint32_t view, uint32_t x, uint32_t y, float *depth,
+                                      uint32_t *node)
+{
+    const mlod_tree *eyes;
+    uint32_t path[64], count = 0, leaf, k, have = 0, at_node = 0;
+    float at_depth = INFINITY;
+    size_t pixel;
+    if (!maps || !scene || !views || view >= views->view_count || x >= 2 * maps->resolution || y >= maps->resolution)
+        return 0;
+    eyes = views->eyes;
+    pixel = (size_t)y * 2 * maps->resolution + x;
+    leaf = maps->leaf_of[view];
+    for (path[count++] = leaf; leaf > 0;) path[count++] = leaf = (leaf - 1) / 2;
+    while (count--) { /* root first */
+        uint32_t n = path[count], m = maps->map_of[n], level = mlod__depth_of(n), own;
+        const float *sphere, *centre = eyes->spheres + 4 * (size_t)n;
+        double x3[3];
+        size_t at;
+        if (have) { /* the nodes above, measured again from this node's centre */
+            sphere = scene->spheres + 4 * (size_t)at_node;
+            for (k = 0; k < 3; k++) x3[k] = (double)sphere[k] - centre[k];
+            at_depth = (float)mlod__length3(x3);
+        }
+        if (m == MLOD__NO_MAP) continue;
+        at = (size_t)m * 2 * maps->resolution * maps->resolution + pixel;
+        if (!(maps->depth[level][at] < at_depth)) continue;
+        own = maps->ids[level][at];
+        at_depth = maps->depth[level][at];
+        at_node = own;
+        have = 1;
+    }
+    if (!have) return 0;
+    if (depth) *depth = at_depth;
+    if (node) *node = at_node;
+    return 1;
 }
 
 /* ------------------------------------------------- pthreads thread pool -- */

@@ -3,7 +3,7 @@
    user would otherwise pick.
 
      bench [--quick | --selftest] [--threads T] [--out DIR] [--scene object|room|views]
-           [--sizes N,N,...] [--eps E,E,...] [MESH.obj|MESH.ply]
+           [--sizes N,N,...] [--eps E,E,...] [--views V,V,...] [MESH.obj|MESH.ply]
 
    Scenes (deterministic):
      object  a closed, bumpy (2,3) torus knot that deforms every frame (the
@@ -62,6 +62,7 @@
    --out DIR   also write DIR/BENCHMARKS.md, DIR/bench.csv, DIR/bench.svg and
                DIR/views.svg
    --sizes, --eps  replace the sweep's lists (comma-separated)
+   --views     replace the view counts of the many-views table
    --threads T the built-in pool's threads (default 2; Embree gets as many) */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -3064,7 +3065,7 @@ static int selftest(bench *b, protocol *p)
 static void usage(void)
 {
     fprintf(stderr, "usage: bench [--quick | --selftest] [--threads T] [--out DIR] [--scene object|room|views]\n"
-                    "             [--sizes N,N,...] [--eps E,E,...] [MESH.obj|MESH.ply]\n");
+                    "             [--sizes N,N,...] [--eps E,E,...] [--views V,V,...] [MESH.obj|MESH.ply]\n");
     exit(2);
 }
 
@@ -3094,7 +3095,7 @@ int main(int argc, char **argv)
     protocol object, room, *protocols[2];
     int protocol_count = 0, i;
     char device_config[64];
-    const char *sizes = NULL, *eps = NULL;
+    const char *sizes = NULL, *eps = NULL, *view_counts = NULL;
     memset(&b, 0, sizeof b);
     memset(&object, 0, sizeof object);
     memset(&room, 0, sizeof room);
@@ -3117,6 +3118,8 @@ int main(int argc, char **argv)
             sizes = argv[++i];
         else if (strcmp(argv[i], "--eps") == 0 && i + 1 < argc)
             eps = argv[++i];
+        else if (strcmp(argv[i], "--views") == 0 && i + 1 < argc)
+            view_counts = argv[++i];
         else if (argv[i][0] == '-')
             usage();
         else
@@ -3135,6 +3138,10 @@ int main(int argc, char **argv)
     if (eps) {
         b.cfg.eps_count = parse_list(eps, b.cfg.eps, NULL);
         if (b.cfg.eps_count == 0) usage();
+    }
+    if (view_counts) {
+        b.cfg.view_count_n = parse_list(view_counts, NULL, b.cfg.view_counts);
+        if (b.cfg.view_count_n == 0) usage();
     }
     b.started_ms = now_ms();
     describe_machine(&b);

@@ -25,6 +25,7 @@
      node's ball: the diameter lies within [cmin, cmax], and the image disc
      (centre and radius) moves by at most the motion bound;
    - the same atlas for every thread count and task order, delta > 0;
+   - the unfused maps queried down the view tree equal the fused atlas;
    - statistics: with delta = 0 and distinct eyes nothing is shared and
      the leaf draws are the per-view cuts' drawn nodes;
    - errors: NULLs, bad epsilon, delta, resolution, mismatched atlases and
@@ -733,6 +734,73 @@ static void test_groups(const mlod_tree *scene)
     free_views(&v);
 }
 
+/* ============================================================== query */
+
+/* The unfused maps, queried pixel by pixel down the view tree, equal the
+   fused atlas (depth, and the node through the colour channel holding
+   node indices), with sharing, fields of view, back faces and groups. */
+static void test_query(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    views v = make_views(61, 500, lo, hi, 1);
+    uint32_t c, i, row, col;
+    for (c = 0; c < 3; c++) {
+        mlod_view_set s = view_set(&v, c > 0, c > 0);
+        mlod_view_tree *t = build_views(&s, NULL);
+        mlod_view *vs = NULL;
+        uint32_t flags = c == 2 ? MLOD_VIEW_CULL_BACKFACES : 0u;
+        mlod_atlas *a = make_atlas(&v, 8, MLOD_ATLAS_COLOR, &vs, flags);
+        mlod_megaviews_maps *maps = NULL;
+        mlod_megaviews_params p;
+        mlod_megaviews_stats st_a, st_m;
+        mlod_error e;
+        uint64_t compared = 0, differ = 0, filled = 0;
+        memset(&p, 0, sizeof p);
+        p.epsilon = 1.0f;
+        p.delta = MLOD_MEGAVIEWS_DELTA;
+        p.resolution = 8;
+        p.flags = flags;
+        p.group_radius = c == 1 ? 0.2f : 0.0f;
+        if (!t || !a || mlod_megaviews_render(a, scene, t, &p, &st_a, &e) != MLOD_OK ||
+            mlod_megaviews_render_maps(scene, t, &p, &maps, &st_m, &e) != MLOD_OK) {
+            CHECK(0, "query case %u: renders", c);
+        } else {
+            for (i = 0; i < v.count; i++) {
+                const uint32_t *tile = a->tiles + 4 * (size_t)i;
+                for (row = 0; row < tile[3]; row++)
+                    for (col = 0; col < tile[2]; col++) {
+                        size_t at = (size_t)(tile[1] + row) * a->width + tile[0] + col;
+                        float depth = -1.0f;
+                        uint32_t node = 0;
+                        int hit = mlod_megaviews_query(maps, scene, t, i, col, row, &depth, &node);
+                        compared++;
+                        filled += hit;
+                        if (hit != (a->depth[at] < INFINITY) ||
+                            (hit && (memcmp(&depth, &a->depth[at], 4) || (float)node != a->color[3 * at])))
+                            differ++;
+                    }
+            }
+            CHECK(filled > compared / 2 && st_a.shared_draws > 1000, "query case %u: %llu of %llu pixels filled, %llu shared draws",
+                  c, (unsigned long long)filled, (unsigned long long)compared, (unsigned long long)st_a.shared_draws);
+            CHECK(differ == 0, "query case %u: %llu pixels differ from the fused atlas", c, (unsigned long long)differ);
+            CHECK(st_m.pairs == st_a.pairs && st_m.shared_draws == st_a.shared_draws && st_m.leaf_draws == st_a.leaf_draws,
+                  "query case %u: the same traversal (pairs %llu / %llu)", c, (unsigned long long)st_m.pairs,
+                  (unsigned long long)st_a.pairs);
+            CHECK(mlod_megaviews_maps_bytes(maps) > (size_t)v.count * 8 * 16,
+                  "query case %u: the maps report their bytes (%zu)", c, mlod_megaviews_maps_bytes(maps));
+            CHECK(!mlod_megaviews_query(maps, scene, t, v.count, 0, 0, NULL, NULL) &&
+                  !mlod_megaviews_query(maps, scene, t, 0, 16, 0, NULL, NULL) &&
+                  !mlod_megaviews_query(maps, scene, t, 0, 0, 8, NULL, NULL) && !mlod_megaviews_query(NULL, scene, t, 0, 0, 0, NULL, NULL),
+                  "query: out of range is 0");
+        }
+        mlod_megaviews_maps_destroy(maps);
+        mlod_atlas_destroy(a);
+        mlod_view_tree_destroy(t);
+        free(vs);
+    }
+    free_views(&v);
+}
+
 /* ============================================================ threads */
 
 static void test_threads(const mlod_tree *scene)
@@ -854,7 +922,7 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
     }
     CHECK(memcmp(before, a->depth, bytes) == 0, "errors: the atlas is untouched by refused calls");
     /* failing allocators: an error, nothing held, the atlas empty */
-    for (i = 1; i < 40; i++) {
+    for (i = 1; i < 1000; i++) {
         tu_counter counter;
         mlod_allocator al;
         mlod_result r;
@@ -871,6 +939,38 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
         }
         CHECK(r == MLOD_ERROR_OUT_OF_MEMORY && atlas_all_empty(a), "allocation %u failing: %s and an empty atlas", i,
               mlod_result_name(r));
+    }
+    CHECK(i < 1000, "a render without failures within 1000 allocations (%u)", i);
+    /* the unfused maps: refusals, failing allocators */
+    {
+        mlod_megaviews_maps *maps = (mlod_megaviews_maps *)1;
+        CHECK(mlod_megaviews_render_maps(scene, t, &p, NULL, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "maps: NULL out");
+        CHECK(mlod_megaviews_render_maps(NULL, t, &p, &maps, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT && maps == NULL,
+              "maps: NULL scene");
+        q = p;
+        q.epsilon = -1.0f;
+        CHECK(mlod_megaviews_render_maps(scene, t, &q, &maps, NULL, &e) == MLOD_ERROR_BAD_EPSILON && maps == NULL,
+              "maps: bad epsilon");
+        for (i = 1; i < 1000; i++) {
+            tu_counter counter;
+            mlod_allocator al;
+            mlod_result r;
+            memset(&counter, 0, sizeof counter);
+            counter.fail_at = i;
+            al = tu_allocator(&counter);
+            q = p;
+            q.allocator = &al;
+            r = mlod_megaviews_render_maps(scene, t, &q, &maps, NULL, &e);
+            if (r == MLOD_OK) {
+                mlod_megaviews_maps_destroy(maps);
+                CHECK(counter.live_blocks == 0, "maps: destroy gives everything back");
+                break;
+            }
+            CHECK(r == MLOD_ERROR_OUT_OF_MEMORY && maps == NULL && counter.live_blocks == 0,
+                  "maps, allocation %u failing: %s, %lu blocks left", i, mlod_result_name(r), counter.live_blocks);
+        }
+        CHECK(i < 1000, "maps: a render without failures within 1000 allocations (%u)", i);
+        mlod_megaviews_maps_destroy(NULL);
     }
     /* view sets */
     CHECK(mlod_view_tree_build(NULL, NULL, NULL, &none, &e) == MLOD_ERROR_INVALID_ARGUMENT && none == NULL,
@@ -954,6 +1054,7 @@ int main(void)
     test_threads(scene);
     test_fusion(scene); /* it overwrites the scene's colours with node indices */
     test_groups(scene);
+    test_query(scene);
     test_errors(scene, bare);
     mlod_tree_destroy(scene);
     mlod_tree_destroy(bare);
