@@ -6351,9 +6351,9 @@ typedef struct mlod__vnode {
     int leaf, group; /* group: an inner node within params->group_radius, one view at its centre */
     double centre[3], radius, least_fov, most_fov; /* half fields of view below */
     const float *cone;   /* the views' directions, NULL: every direction */
-    /* the fast paths' constants (mlod__pair_action): |axis|, cos(alpha + most_fov) (-2 when that reaches pi),
-       and L = least_fov - alpha - 2^-30 (cos, sin; L < 0: none) */
-    double axis_length, cos_reach, cos_least, sin_least;
+    /* the fast paths' constants (mlod__pair_action): |axis|, A = alpha + most_fov + the culling margin
+       (cos, sin; cos -2 when A reaches pi), and L = least_fov - alpha - 2^-30 (cos, sin; L < 0: none) */
+    double axis_length, cos_reach, sin_reach, cos_least, sin_least;
     mlod__pview pv;      /* leaves: the view's map, its float filter for epsilon */
 } mlod__vnode;
 
@@ -6418,11 +6418,13 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     vn->least_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node] : MLOD__PI;
     vn->most_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node + 1] : MLOD__PI;
     if (vn->cone) {
-        double axis[3] = {vn->cone[0], vn->cone[1], vn->cone[2]}, reach = vn->cone[3] + vn->most_fov, s;
+        double axis[3] = {vn->cone[0], vn->cone[1], vn->cone[2]};
+        double reach = vn->cone[3] + vn->most_fov + (vn->leaf ? 0.0 : 1.0 / 1073741824.0);
         double least = vn->least_fov - vn->cone[3] - 1.0 / 1073741824.0;
         vn->axis_length = mlod__length3(axis);
         vn->cos_reach = -2.0;
-        if (reach < MLOD__PI) mlod__sin_cos(reach, &s, &vn->cos_reach);
+        vn->sin_reach = 0.0;
+        if (reach < MLOD__PI) mlod__sin_cos(reach, &vn->sin_reach, &vn->cos_reach);
         vn->cos_least = -2.0;
         vn->sin_least = 0.0;
         if (least >= 0.0) mlod__sin_cos(least, &vn->sin_least, &vn->cos_least);
@@ -6449,6 +6451,26 @@ static int mlod__surely_within(double cos_phi, double d, const mlod__vnode *vn)
     return cos_phi >= vn->cos_least * cos_t + vn->sin_least * sin_t + 1e-12;
 }
 
+/* mlod__outside_cone's answer where cosines settle it, without its arc
+   tangents: the sphere (d, grown to g) is outside when phi > psi = A + b,
+   b = asin(g / d), i.e. cos phi < cos psi = cos A cos b - sin A sin b with
+   psi < pi (sin psi > 0).  1 outside, 0 not, -1 when cos phi lies within
+   1e-9 of cos psi (or psi near pi), far above both sides' errors (the
+   arc tangents' 1e-11 rad): the exact test decides those. */
+static int mlod__surely_outside(double cos_phi, double d, double g, const mlod__vnode *vn)
+{
+    double sin_b, cos_b, cos_psi, sin_psi;
+    if (vn->cos_reach < -1.0 || !(d > g)) return 0; /* A >= pi, or an eye in the sphere: never culled */
+    sin_b = g / d;
+    cos_b = sqrt((1.0 - sin_b) * (1.0 + sin_b));
+    cos_psi = vn->cos_reach * cos_b - vn->sin_reach * sin_b;
+    sin_psi = vn->sin_reach * cos_b + vn->cos_reach * sin_b;
+    if (!(sin_psi > 1e-9)) return -1;
+    if (cos_phi > cos_psi + 1e-9) return 0;
+    if (cos_phi < cos_psi - 1e-9) return 1;
+    return -1;
+}
+
 /* What the traversal does with (s, v).  A leaf decides as the cut does for
    its view (after its own field of view); an inner node culls what every
    view below culls, draws what is within epsilon for every eye of its
@@ -6465,11 +6487,10 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn->centre[k];
     d = mlod__length3(x);
     if (vn->cone) {
-        /* most spheres lie within alpha + the field of view of the axis, where
-           no view culls them: that needs a cosine, the test an arc tangent */
         cos_phi = (x[0] * vn->cone[0] + x[1] * vn->cone[1] + x[2] * vn->cone[2]) / (d * vn->axis_length);
-        if (!(cos_phi >= vn->cos_reach + 1e-12) &&
-            mlod__outside_cone(x, d, r + vn->radius, vn->cone, vn->most_fov, vn->leaf ? 0.0 : 1.0 / 1073741824.0))
+        k = mlod__surely_outside(cos_phi, d, r + vn->radius, vn);
+        if (k > 0 || (k < 0 && mlod__outside_cone(x, d, r + vn->radius, vn->cone, vn->most_fov,
+                                                  vn->leaf ? 0.0 : 1.0 / 1073741824.0)))
             return MLOD__PAIR_CULL;
     }
     if (vn->leaf) {
