@@ -411,8 +411,10 @@
      that level need (24 bytes of room per pair handed down, 4 bytes per
      pair kept) and the maps of the level's inner nodes that hold anything
      (8 bytes per pixel), two levels at a time, and reports its peak
-     (mlod_megaviews_stats.peak_bytes).  Attributes a scene does not ask
-     for take no memory.
+     (mlod_megaviews_stats.peak_bytes); mlod_megaviews_render_maps keeps,
+     on top, 8 bytes per pixel of every view node that drew anything
+     (mlod_megaviews_maps_bytes).  Attributes a scene does not ask for take
+     no memory.
      A failed call gives back what it allocated (a cut keeps its bytes and
      cuts).  All memory comes from the allocator given at creation (or
      MANYLODS_MALLOC/FREE, or malloc/free); the allocator is only called
