@@ -6766,12 +6766,12 @@ static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tre
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "scene, views and params must not be NULL");
     if (!(params->epsilon > 0.0f))
         return mlod__fail(error, MLOD_ERROR_BAD_EPSILON, "epsilon %g is not > 0", params->epsilon);
-    if (!(params->delta >= 0.0f && params->delta < INFINITY))
-        return mlod__fail(error, isnan(params->delta) ? MLOD_ERROR_NON_FINITE : MLOD_ERROR_INVALID_ARGUMENT,
-                          "delta %g is not finite and >= 0", params->delta);
-    if (!(params->group_radius >= 0.0f && params->group_radius < INFINITY))
-        return mlod__fail(error, isnan(params->group_radius) ? MLOD_ERROR_NON_FINITE : MLOD_ERROR_INVALID_ARGUMENT,
-                          "group_radius %g is not finite and >= 0", params->group_radius);
+    for (v = 0; v < 2; v++) { /* delta, group_radius: finite and >= 0 */
+        float x = v ? params->group_radius : params->delta;
+        if (!(x >= 0.0f && x < INFINITY))
+            return mlod__fail(error, isnan(x) ? MLOD_ERROR_NON_FINITE : MLOD_ERROR_INVALID_ARGUMENT,
+                              "%s %g is not finite and >= 0", v ? "group_radius" : "delta", x);
+    }
     if (params->resolution == 0 || params->resolution > 0x7fffffffu)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "resolution %u is not in 1 .. 2^31 - 1",
                           params->resolution);

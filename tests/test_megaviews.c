@@ -891,20 +891,18 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
     CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_BAD_EPSILON, "epsilon 0");
     q.epsilon = nan;
     CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_BAD_EPSILON, "epsilon NaN");
-    q = p;
-    q.delta = -1.0f;
-    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "delta < 0");
-    q.delta = INFINITY;
-    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "delta inf");
-    q.delta = nan;
-    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_NON_FINITE, "delta NaN");
-    q = p;
-    q.group_radius = -1.0f;
-    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "group_radius < 0");
-    q.group_radius = INFINITY;
-    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "group_radius inf");
-    q.group_radius = nan;
-    CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_NON_FINITE, "group_radius NaN");
+    for (i = 0; i < 2; i++) { /* delta, group_radius: finite and >= 0 */
+        const char *name = i ? "group_radius" : "delta";
+        float *field;
+        q = p;
+        field = i ? &q.group_radius : &q.delta;
+        *field = -1.0f;
+        CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "%s < 0", name);
+        *field = INFINITY;
+        CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "%s inf", name);
+        *field = nan;
+        CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_NON_FINITE, "%s NaN", name);
+    }
     q = p;
     q.resolution = 0;
     CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "resolution 0");
