@@ -855,6 +855,15 @@ static void test_threads(const mlod_tree *scene)
 
 /* ============================================================= errors */
 
+/* A counting allocator (reset) that fails its i-th call. */
+static mlod_allocator failing_at(tu_counter *counter, unsigned long i)
+{
+    memset(counter, 0, sizeof *counter);
+    counter->fail_at = i;
+    return tu_allocator(counter);
+}
+
+
 static int atlas_all_empty(const mlod_atlas *a)
 {
     size_t i, n = (size_t)a->width * a->height;
@@ -922,11 +931,8 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
     /* failing allocators: an error, nothing held, the atlas empty */
     for (i = 1; i < 1000; i++) {
         tu_counter counter;
-        mlod_allocator al;
+        mlod_allocator al = failing_at(&counter, i);
         mlod_result r;
-        memset(&counter, 0, sizeof counter);
-        counter.fail_at = i;
-        al = tu_allocator(&counter);
         q = p;
         q.allocator = &al;
         r = mlod_megaviews_render(a, scene, t, &q, NULL, &e);
@@ -951,11 +957,8 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
               "maps: bad epsilon");
         for (i = 1; i < 1000; i++) {
             tu_counter counter;
-            mlod_allocator al;
+            mlod_allocator al = failing_at(&counter, i);
             mlod_result r;
-            memset(&counter, 0, sizeof counter);
-            counter.fail_at = i;
-            al = tu_allocator(&counter);
             q = p;
             q.allocator = &al;
             r = mlod_megaviews_render_maps(scene, t, &q, &maps, NULL, &e);
@@ -1011,12 +1014,9 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
     CHECK(mlod_view_tree_refit(NULL, &s, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "refit: NULL tree");
     for (i = 1; i < 20; i++) {
         tu_counter counter;
-        mlod_allocator al;
+        mlod_allocator al = failing_at(&counter, i);
         mlod_view_tree *out = (mlod_view_tree *)1;
         mlod_result r;
-        memset(&counter, 0, sizeof counter);
-        counter.fail_at = i;
-        al = tu_allocator(&counter);
         r = mlod_view_tree_build(&s, &al, NULL, &out, &e);
         if (r == MLOD_OK) {
             mlod_view_tree_destroy(out);
