@@ -5473,16 +5473,22 @@ typedef struct mlod__band {
     uint32_t row_begin, row_end; /* tile rows */
 } mlod__band;
 
-/* Keep the node's depth (and channels, or index) at a tile pixel if it is nearer. */
-static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node)
+/* Set a pixel (index `at` of the band's arrays) to the node: its depth and
+   channels, or its index. */
+static void mlod__band_set(const mlod__band *band, size_t at, float depth, uint32_t node)
 {
-    size_t at = (size_t)row * band->stride + col;
     int k;
-    if (!(depth < band->depth[at])) return;
     band->depth[at] = depth;
     if (band->ids) band->ids[at] = node;
     for (k = 0; k < 3 && band->normal; k++) band->normal[3 * at + k] = band->tree->cones[4 * (size_t)node + k];
     for (k = 0; k < 3 && band->color; k++) band->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
+}
+
+/* Keep the node's depth (and channels, or index) at a tile pixel if it is nearer. */
+static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node)
+{
+    size_t at = (size_t)row * band->stride + col;
+    if (depth < band->depth[at]) mlod__band_set(band, at, depth, node);
 }
 
 /* Draw the disc into the band, clipped to tile columns [columns[0],
@@ -6578,6 +6584,18 @@ static int mlod__mv_push(uint32_t *pairs, size_t *count, size_t capacity, uint32
     return 1;
 }
 
+/* A scene node's depth in the paraboloid maps of a view node with this
+   centre: the distance from it to the node's centre (as mlod__image_discs
+   measures it). */
+static float mlod__node_distance(const mlod_tree *scene, uint32_t node, const double *centre)
+{
+    const float *sphere = scene->spheres + 4 * (size_t)node;
+    double x[3];
+    int k;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - centre[k];
+    return (float)mlod__length3(x);
+}
+
 /* Initialise a map (or a leaf's tile) from its parent's map, depths
    measured again from this node's centre (the eye, for a leaf): the
    parent's node keeps a pixel until a nearer one is drawn. */
@@ -6587,17 +6605,10 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
     uint32_t width = 2 * job->resolution, row, col;
     for (row = 0; row < job->resolution; row++)
         for (col = 0; col < width; col++) {
-            size_t from = (size_t)row * width + col, at = (size_t)row * band->stride + col;
+            size_t from = (size_t)row * width + col;
             uint32_t node = parent_ids[from];
-            const float *sphere = job->scene->spheres + 4 * (size_t)node;
-            double x[3];
-            int k;
-            if (!(parent_depth[from] < INFINITY)) continue;
-            for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - centre[k];
-            band->depth[at] = (float)mlod__length3(x);
-            if (band->ids) band->ids[at] = node;
-            for (k = 0; k < 3 && band->normal; k++) band->normal[3 * at + k] = job->scene->cones[4 * (size_t)node + k];
-            for (k = 0; k < 3 && band->color; k++) band->color[3 * at + k] = job->scene->colors[3 * (size_t)node + k];
+            if (parent_depth[from] < INFINITY)
+                mlod__band_set(band, (size_t)row * band->stride + col, mlod__node_distance(job->scene, node, centre), node);
         }
 }
 
@@ -7148,14 +7159,10 @@ MLOD__PUBLIC int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlo
     for (path[count++] = leaf; leaf > 0;) path[count++] = leaf = (leaf - 1) / 2;
     while (count--) { /* root first */
         uint32_t n = path[count], m = maps->map_of[n], level = mlod__depth_of(n), own;
-        const float *sphere, *centre = eyes->spheres + 4 * (size_t)n;
-        double x3[3];
+        double centre[3];
         size_t at;
-        if (have) { /* the nodes above, measured again from this node's centre */
-            sphere = scene->spheres + 4 * (size_t)at_node;
-            for (k = 0; k < 3; k++) x3[k] = (double)sphere[k] - centre[k];
-            at_depth = (float)mlod__length3(x3);
-        }
+        for (k = 0; k < 3; k++) centre[k] = eyes->spheres[4 * (size_t)n + k];
+        if (have) at_depth = mlod__node_distance(scene, at_node, centre); /* measured again from this node's centre */
         if (m == MLOD__NO_MAP) continue;
         at = (size_t)m * 2 * maps->resolution * maps->resolution + pixel;
         if (!(maps->depth[level][at] < at_depth)) continue;
