@@ -6367,14 +6367,27 @@ typedef struct mlod__vnode {
 
 /* One task's output: pairs (inner view node, scene node) to draw and to
    hand to the view node's children, in the order met (view leaves draw
-   into their tiles at once). */
+   into their tiles at once); a subtree walk (mlod__mv_walk) lists only the
+   scene nodes it hands down (with_view 0). */
 typedef struct mlod__mv_out {
     uint32_t *draw, *split;
     size_t draw_count, split_count, capacity; /* pairs each */
-    uint64_t pairs, culled, leaf_draws;
+    uint64_t pairs, culled, drawn;            /* drawn: at once, into a band */
+    int with_view;
     int overflow;
     int owned; /* draw and split were grown: the task's own allocation */
 } mlod__mv_out;
+
+/* Drawing at once into a band (a leaf's tile, or an inner map of a subtree
+   walk): the nodes wait in batches of MLOD__LANES, as mlod_splat draws a
+   cut.  The view is prepared at the first draw. */
+typedef struct mlod__mv_drawer {
+    mlod__band band;
+    mlod__pview *pv;
+    int ready;
+    uint32_t node; /* the view node */
+    uint32_t batch[MLOD__LANES], n;
+} mlod__mv_drawer;
 
 typedef struct mlod__mv_job {
     const mlod_tree *scene;
@@ -6401,10 +6414,20 @@ typedef struct mlod__mv_job {
     const float *parent_depth; /* the previous level's maps */
     const uint32_t *parent_ids, *parent_map_of;
     uint32_t pixels;
+    /* below the walk level: one walk per view subtree (mlod__mv_walk_task) */
+    struct mlod__mv_walk *walks;
+    uint32_t walk_level, levels;
+    size_t walk_room; /* a walk's first list stack: 4 entries per scene node handed to it, and this */
 } mlod__mv_job;
 
 #define MLOD__MV_CHUNK 1024u
 #define MLOD__MV_DRAW_NODES 16u
+/* The level from which the fused render walks each view subtree depth
+   first (its 2^6 subtrees are the tasks): its memory below then grows with
+   the tree's depth, not with a level's pairs.  Any level gives the same
+   result (the tests walk from each). */
+#define MLOD__MV_WALK_LEVEL 6u
+#define MLOD__MV_WALK_ROOM 4096u
 #define MLOD__NO_MAP 0xffffffffu
 
 static mlod_view mlod__node_map_view(const mlod__mv_job *job, uint32_t node)
@@ -6575,11 +6598,16 @@ static void mlod__mv_next(const mlod__mv_job *job, mlod__mv_cursor *at, uint32_t
     }
 }
 
-static int mlod__mv_push(uint32_t *pairs, size_t *count, size_t capacity, uint32_t view, uint32_t scene)
+/* Append (view, scene) to a list of pairs, or the scene node alone
+   (with_view 0); 0 when the list is full. */
+static int mlod__mv_push(uint32_t *list, size_t *count, size_t capacity, int with_view, uint32_t view, uint32_t scene)
 {
     if (*count == capacity) return 0;
-    pairs[2 * *count] = view;
-    pairs[2 * *count + 1] = scene;
+    if (with_view) {
+        list[2 * *count] = view;
+        list[2 * *count + 1] = scene;
+    } else
+        list[*count] = scene;
     ++*count;
     return 1;
 }
@@ -6596,100 +6624,169 @@ static float mlod__node_distance(const mlod_tree *scene, uint32_t node, const do
     return (float)mlod__length3(x);
 }
 
+static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *centre)
+{
+    int k;
+    for (k = 0; k < 3; k++) centre[k] = job->views->eyes->spheres[4 * (size_t)node + k];
+}
+
 /* Initialise a map (or a leaf's tile) from its parent's map, depths
    measured again from this node's centre (the eye, for a leaf): the
    parent's node keeps a pixel until a nearer one is drawn. */
 static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, const float *parent_depth,
-                             const uint32_t *parent_ids, const double *centre)
+                             const uint32_t *parent_ids, uint32_t node)
 {
     uint32_t width = 2 * job->resolution, row, col;
+    double centre[3];
+    mlod__mv_centre(job, node, centre);
     for (row = 0; row < job->resolution; row++)
         for (col = 0; col < width; col++) {
             size_t from = (size_t)row * width + col;
-            uint32_t node = parent_ids[from];
+            uint32_t id = parent_ids[from];
             if (parent_depth[from] < INFINITY)
-                mlod__band_set(band, (size_t)row * band->stride + col, mlod__node_distance(job->scene, node, centre), node);
+                mlod__band_set(band, (size_t)row * band->stride + col, mlod__node_distance(job->scene, id, centre), id);
         }
 }
 
-/* A view leaf's tile, cleared and initialised from its parent's map. */
-static void mlod__mv_leaf_begin(const mlod__mv_job *job, uint32_t node, mlod__band *band)
+/* A view node's parent's map in the level-synchronous traversal (NULL:
+   none). */
+static void mlod__mv_parent_map(const mlod__mv_job *job, uint32_t node, const float **depth, const uint32_t **ids)
+{
+    uint32_t map = node > 0 ? job->parent_map_of[(node - 1) / 2 - job->prev_first] : MLOD__NO_MAP;
+    *depth = map == MLOD__NO_MAP ? NULL : job->parent_depth + (size_t)map * job->pixels;
+    *ids = map == MLOD__NO_MAP ? NULL : job->parent_ids + (size_t)map * job->pixels;
+}
+
+/* A view leaf's tile, cleared and initialised from its parent's map (NULL:
+   none). */
+static void mlod__mv_leaf_begin(const mlod__mv_job *job, uint32_t node, mlod__band *band, const float *parent_depth,
+                                const uint32_t *parent_ids)
 {
     const mlod_tree *eyes = job->views->eyes;
-    uint32_t parent_map = node > 0 ? job->parent_map_of[(node - 1) / 2 - job->prev_first] : MLOD__NO_MAP;
-    double eye[3];
-    int k;
     mlod__tile_band(job->atlas, job->scene, eyes->leaf_sources[node - (eyes->leaf_count - 1)], band);
     mlod__band_clear(band, 2 * job->resolution);
-    for (k = 0; k < 3; k++) eye[k] = eyes->spheres[4 * (size_t)node + k];
-    if (parent_map != MLOD__NO_MAP)
-        mlod__mv_inherit(job, band, job->parent_depth + (size_t)parent_map * job->pixels,
-                         job->parent_ids + (size_t)parent_map * job->pixels, eye);
+    if (parent_depth) mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
+}
+
+/* An inner view node's map (depth and ids, pixels each) as a band, cleared,
+   then initialised from its parent's map (NULL: none). */
+static void mlod__mv_map_begin(const mlod__mv_job *job, uint32_t node, float *depth, uint32_t *ids,
+                               const float *parent_depth, const uint32_t *parent_ids, mlod__band *band)
+{
+    uint32_t k;
+    memset(band, 0, sizeof *band);
+    band->tree = job->scene;
+    band->depth = depth;
+    band->ids = ids;
+    band->stride = 2 * job->resolution;
+    band->disc_scale = job->disc_scale;
+    band->row_end = job->resolution;
+    for (k = 0; k < job->pixels; k++) depth[k] = INFINITY;
+    if (parent_depth) mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
+}
+
+/* Draw the drawer's waiting nodes. */
+static void mlod__mv_flush(mlod__mv_drawer *dr)
+{
+    if (dr->n) mlod__draw_nodes(&dr->band, dr->pv, dr->batch, dr->n);
+    dr->n = 0;
+}
+
+/* Draw a scene node into the drawer's band, in turn with the others. */
+static void mlod__mv_draw(const mlod__mv_job *job, mlod__mv_drawer *dr, uint32_t s)
+{
+    if (!dr->ready) {
+        mlod_view view = mlod__node_map_view(job, dr->node);
+        mlod__view_prepare(&view, dr->pv, NULL);
+        dr->ready = 1;
+    }
+    dr->batch[dr->n++] = s;
+    if (dr->n == MLOD__LANES) mlod__mv_flush(dr);
+}
+
+/* Classify (s0, the view node) and, depth first, the scene nodes below s0
+   that split: culled pairs are counted, drawn ones drawn at once (dr) or
+   listed, view splits listed.  0 when a list is full. */
+static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, uint32_t s0, mlod__mv_out *out,
+                            mlod__mv_drawer *dr)
+{
+    uint32_t stack[128], top = 0;
+    stack[top++] = s0;
+    while (top) {
+        uint32_t s = stack[--top];
+        out->pairs++;
+        switch (mlod__pair_action(job, vn, s)) {
+        case MLOD__PAIR_CULL:
+            out->culled++;
+            break;
+        case MLOD__PAIR_DRAW:
+            if (dr) {
+                out->drawn++;
+                mlod__mv_draw(job, dr, s);
+            } else if (!mlod__mv_push(out->draw, &out->draw_count, out->capacity, 1, vn->node, s))
+                return 0;
+            break;
+        case MLOD__PAIR_SPLIT_SCENE:
+            stack[top++] = 2 * s + 2; /* the left child first */
+            stack[top++] = 2 * s + 1;
+            break;
+        default:
+            if (!mlod__mv_push(out->split, &out->split_count, out->capacity, out->with_view, vn->node, s)) return 0;
+        }
+    }
+    return 1;
+}
+
+/* A view leaf's drawer: its tile, begun from its parent's map. */
+static void mlod__mv_leaf_drawer(const mlod__mv_job *job, mlod__vnode *vn, const float *parent_depth,
+                                 const uint32_t *parent_ids, mlod__mv_drawer *dr)
+{
+    mlod__mv_leaf_begin(job, vn->node, &dr->band, parent_depth, parent_ids);
+    dr->pv = &vn->pv; /* the leaf's own view (mlod__vnode_set) */
+    dr->ready = 1;
+    dr->node = vn->node;
+    dr->n = 0;
 }
 
 /* Classify a chunk of the level's units: each scene node handed to a view
    node, and depth first below it while the scene node splits.  A chunk
    holds whole view leaves (mlod__mv_chunks), which it draws at once, in
-   the order met, in batches as mlod_splat draws a cut. */
+   the order met. */
 static void mlod__mv_classify_task(void *context, uint32_t index)
 {
     const mlod__mv_job *job = (const mlod__mv_job *)context;
-    uint32_t chunk = job->redo ? job->redo[index] : index, stack[128], view, s0, batch[MLOD__LANES], n = 0;
+    uint32_t chunk = job->redo ? job->redo[index] : index, view, s0;
     mlod__mv_out *out = &job->outs[chunk];
     size_t u = job->chunk_begin[chunk], end = job->chunk_begin[chunk + 1];
     mlod__vnode vn;
     mlod__mv_cursor at;
-    mlod__band band;
+    mlod__mv_drawer dr, *drawing = NULL;
     vn.node = MLOD__NO_MAP;
-    vn.leaf = 0;
     out->draw_count = out->split_count = 0;
-    out->pairs = out->culled = out->leaf_draws = 0;
+    out->pairs = out->culled = out->drawn = 0;
+    out->with_view = 1;
     out->overflow = 0;
     if (u < end) mlod__mv_seek(job, u, &at);
     for (; u < end; u++) {
-        uint32_t top = 0;
         mlod__mv_next(job, &at, &view, &s0);
         if (view != vn.node) {
-            if (vn.leaf && !job->keep) mlod__draw_nodes(&band, &vn.pv, batch, n);
-            n = 0;
+            if (drawing) mlod__mv_flush(drawing);
             mlod__vnode_set(job, view, &vn);
-            if (vn.leaf && !job->keep) mlod__mv_leaf_begin(job, view, &band);
+            drawing = NULL;
+            if (vn.leaf && !job->keep) {
+                const float *parent_depth;
+                const uint32_t *parent_ids;
+                mlod__mv_parent_map(job, view, &parent_depth, &parent_ids);
+                mlod__mv_leaf_drawer(job, &vn, parent_depth, parent_ids, &dr);
+                drawing = &dr;
+            }
         }
-        stack[top++] = s0;
-        while (top) {
-            uint32_t s = stack[--top];
-            int ok = 1;
-            out->pairs++;
-            switch (mlod__pair_action(job, &vn, s)) {
-            case MLOD__PAIR_CULL:
-                out->culled++;
-                break;
-            case MLOD__PAIR_DRAW:
-                if (!vn.leaf || job->keep) {
-                    ok = mlod__mv_push(out->draw, &out->draw_count, out->capacity, view, s);
-                    break;
-                }
-                out->leaf_draws++;
-                batch[n++] = s;
-                if (n == MLOD__LANES) {
-                    mlod__draw_nodes(&band, &vn.pv, batch, n);
-                    n = 0;
-                }
-                break;
-            case MLOD__PAIR_SPLIT_SCENE:
-                stack[top++] = 2 * s + 2; /* the left child first */
-                stack[top++] = 2 * s + 1;
-                break;
-            default:
-                ok = mlod__mv_push(out->split, &out->split_count, out->capacity, view, s);
-            }
-            if (!ok) {
-                out->overflow = 1;
-                return;
-            }
+        if (!mlod__mv_descend(job, &vn, s0, out, drawing)) {
+            out->overflow = 1;
+            return;
         }
     }
-    if (vn.leaf && !job->keep) mlod__draw_nodes(&band, &vn.pv, batch, n);
+    if (drawing) mlod__mv_flush(drawing);
 }
 
 /* Draw a chunk of the level's nodes: each map (or leaf tile) starts from
@@ -6700,42 +6797,28 @@ static void mlod__mv_draw_task(void *context, uint32_t index)
     const mlod_tree *eyes = job->views->eyes;
     uint32_t i = index * MLOD__MV_DRAW_NODES, end = i + MLOD__MV_DRAW_NODES > job->count ? job->count : i + MLOD__MV_DRAW_NODES;
     for (; i < end; i++) {
-        uint32_t node = job->first + i, parent_map = MLOD__NO_MAP;
+        uint32_t node = job->first + i;
         size_t k, n = job->draw_off[i + 1] - job->draw_off[i];
-        double centre[3];
-        mlod__band band;
+        const float *parent_depth = NULL;
+        const uint32_t *parent_ids = NULL;
         mlod__pview pv;
+        mlod__mv_drawer dr;
+        if (!job->keep) mlod__mv_parent_map(job, node, &parent_depth, &parent_ids);
         if (node >= eyes->leaf_count - 1 && !job->keep) { /* leaves given no pair: the parent's map alone */
             uint32_t p = (node - 1) / 2 - job->prev_first;
-            if (node > 0 && job->in_off[p + 1] == job->in_off[p]) mlod__mv_leaf_begin(job, node, &band);
+            if (node > 0 && job->in_off[p + 1] == job->in_off[p])
+                mlod__mv_leaf_begin(job, node, &dr.band, parent_depth, parent_ids);
             continue;
         }
-        if (node > 0 && !job->keep) parent_map = job->parent_map_of[(node - 1) / 2 - job->prev_first];
-        {
-            size_t at;
-            if (job->map_of[i] == MLOD__NO_MAP) continue;
-            at = (size_t)job->map_of[i] * job->pixels;
-            memset(&band, 0, sizeof band);
-            band.tree = job->scene;
-            band.depth = job->depth + at;
-            band.ids = job->ids + at;
-            band.stride = 2 * job->resolution;
-            band.disc_scale = job->disc_scale;
-            band.row_end = job->resolution;
-            for (k = 0; k < job->pixels; k++) band.depth[k] = INFINITY;
-        }
-        for (k = 0; k < 3; k++) centre[k] = eyes->spheres[4 * (size_t)node + k];
-        if (parent_map != MLOD__NO_MAP)
-            mlod__mv_inherit(job, &band, job->parent_depth + (size_t)parent_map * job->pixels,
-                             job->parent_ids + (size_t)parent_map * job->pixels, centre);
-        if (n == 0) continue;
-        {
-            mlod_view view = mlod__node_map_view(job, node);
-            mlod__view_prepare(&view, &pv, NULL);
-        }
-        for (k = 0; k < n; k += MLOD__LANES) /* in batches, as mlod_splat draws a cut */
-            mlod__draw_nodes(&band, &pv, job->draws + job->draw_off[i] + k,
-                             n - k < MLOD__LANES ? (uint32_t)(n - k) : MLOD__LANES);
+        if (job->map_of[i] == MLOD__NO_MAP) continue;
+        mlod__mv_map_begin(job, node, job->depth + (size_t)job->map_of[i] * job->pixels,
+                           job->ids + (size_t)job->map_of[i] * job->pixels, parent_depth, parent_ids, &dr.band);
+        dr.pv = &pv;
+        dr.ready = 0;
+        dr.node = node;
+        dr.n = 0;
+        for (k = 0; k < n; k++) mlod__mv_draw(job, &dr, job->draws[job->draw_off[i] + k]);
+        mlod__mv_flush(&dr);
     }
 }
 
@@ -6841,6 +6924,155 @@ static int mlod__mv_classify_level(mlod__mv_job *job, mlod__mv_memory *m, const 
     return !m->failed;
 }
 
+/* A walk of one view subtree, depth first: each view node classifies the
+   scene nodes its parent handed down, draws into its map (or its tile) at
+   once and hands its view splits to both children.  The lists along the
+   path share one stack; the inner levels' maps and view nodes one slot
+   per level below the subtree's root. */
+typedef struct mlod__mv_walk {
+    uint32_t root;                      /* its view node, at the walk level */
+    const uint32_t *in;                 /* the scene nodes handed to it */
+    size_t in_count;
+    const float *parent_depth;          /* its parent's map, NULL: none */
+    const uint32_t *parent_ids;
+    uint32_t *list;                     /* the lists along the path */
+    size_t capacity;
+    float *depth;                       /* one map per inner level */
+    uint32_t *ids;
+    mlod__vnode *vn;                    /* one per level */
+    mlod__pview *pv;                    /* one per level: the inner maps' views */
+    int overflow;
+    uint64_t pairs, culled, leaf_draws, shared_draws, shared_views;
+} mlod__mv_walk;
+
+/* One view node of a walk (level: below the subtree's root) and its
+   subtree; the scene nodes in[0 .. n) handed to it, the list stack free
+   from `top` on. */
+static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32_t node, uint32_t level,
+                               const uint32_t *in, size_t n, size_t top, const float *parent_depth,
+                               const uint32_t *parent_ids)
+{
+    const mlod_tree *eyes = job->views->eyes;
+    mlod__vnode *vn = &w->vn[level];
+    mlod__mv_drawer dr;
+    mlod__mv_out out;
+    size_t i;
+    memset(&out, 0, sizeof out);
+    out.split = w->list + top;
+    out.capacity = w->capacity - top;
+    vn->node = node;
+    if (n) mlod__vnode_set(job, node, vn);
+    if (node >= eyes->leaf_count - 1) {
+        mlod__mv_leaf_drawer(job, vn, parent_depth, parent_ids, &dr);
+        for (i = 0; i < n; i++) mlod__mv_descend(job, vn, in[i], &out, &dr); /* a leaf splits no view */
+        mlod__mv_flush(&dr);
+        w->leaf_draws += out.drawn;
+    } else {
+        float *depth = w->depth + (size_t)level * job->pixels;
+        uint32_t *ids = w->ids + (size_t)level * job->pixels;
+        mlod__mv_map_begin(job, node, depth, ids, parent_depth, parent_ids, &dr.band);
+        dr.pv = &w->pv[level];
+        dr.ready = 0;
+        dr.node = node;
+        dr.n = 0;
+        for (i = 0; i < n; i++)
+            if (!mlod__mv_descend(job, vn, in[i], &out, &dr)) {
+                w->overflow = 1;
+                return;
+            }
+        mlod__mv_flush(&dr);
+        w->shared_draws += out.drawn;
+        w->shared_views += out.drawn * mlod__leaves_below(node, eyes->leaf_count);
+        if (!parent_depth && !out.drawn) depth = NULL, ids = NULL; /* an empty map */
+        mlod__mv_walk_node(job, w, 2 * node + 1, level + 1, out.split, out.split_count, top + out.split_count,
+                           depth, ids);
+        if (w->overflow) return;
+        mlod__mv_walk_node(job, w, 2 * node + 2, level + 1, out.split, out.split_count, top + out.split_count,
+                           depth, ids);
+    }
+    w->pairs += out.pairs;
+    w->culled += out.culled;
+}
+
+static void mlod__mv_walk_task(void *context, uint32_t index)
+{
+    const mlod__mv_job *job = (const mlod__mv_job *)context;
+    mlod__mv_walk *w = &job->walks[job->redo ? job->redo[index] : index];
+    w->overflow = 0;
+    w->pairs = w->culled = w->leaf_draws = w->shared_draws = w->shared_views = 0;
+    mlod__mv_walk_node(job, w, w->root, 0, w->in, w->in_count, 0, w->parent_depth, w->parent_ids);
+}
+
+/* The levels from the walk level down: one walk per view node of that
+   level, from the scene nodes and maps the level above handed down (the
+   job's in, in_off and parent maps), in parallel; walks whose list stack
+   ran out get one four times larger and run again (a walk's result does not
+   depend on its room).  0 when memory failed. */
+static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_parallel *parallel,
+                          mlod_megaviews_stats *st)
+{
+    uint32_t count = job->count, i, depth = job->levels - job->walk_level, *redo, todo = count;
+    size_t inner = depth > 1 ? depth - 1 : 1; /* maps: one per inner level (room for one at least) */
+    mlod__mv_walk *walks = (mlod__mv_walk *)mlod__mv_alloc(m, count, sizeof(mlod__mv_walk));
+    redo = (uint32_t *)mlod__mv_alloc(m, count, sizeof(uint32_t));
+    if (walks) memset(walks, 0, count * sizeof(mlod__mv_walk));
+    for (i = 0; walks && i < count && !m->failed; i++) {
+        mlod__mv_walk *w = &walks[i];
+        static const uint32_t scene_root = 0;
+        w->root = job->first + i;
+        if (job->in_off) {
+            uint32_t p = (w->root - 1) / 2 - job->prev_first;
+            w->in = job->in + job->in_off[p];
+            w->in_count = job->in_off[p + 1] - job->in_off[p];
+        } else { /* walking from the root */
+            w->in = &scene_root;
+            w->in_count = 1;
+        }
+        mlod__mv_parent_map(job, w->root, &w->parent_depth, &w->parent_ids);
+        w->capacity = 4 * w->in_count + job->walk_room;
+        w->list = (uint32_t *)mlod__mv_alloc(m, w->capacity, sizeof(uint32_t));
+        w->depth = (float *)mlod__mv_alloc(m, inner * job->pixels, sizeof(float));
+        w->ids = (uint32_t *)mlod__mv_alloc(m, inner * job->pixels, sizeof(uint32_t));
+        w->vn = (mlod__vnode *)mlod__mv_alloc(m, depth, sizeof(mlod__vnode));
+        w->pv = (mlod__pview *)mlod__mv_alloc(m, depth, sizeof(mlod__pview));
+    }
+    job->walks = walks;
+    job->redo = NULL;
+    while (!m->failed && todo) {
+        uint32_t again = 0;
+        mlod__run(parallel, todo, mlod__mv_walk_task, job);
+        for (i = 0; i < todo; i++) {
+            mlod__mv_walk *w = &walks[job->redo ? job->redo[i] : i];
+            if (!w->overflow) continue;
+            mlod__mv_free(m, w->list, w->capacity, sizeof(uint32_t));
+            w->capacity *= 4;
+            w->list = (uint32_t *)mlod__mv_alloc(m, w->capacity, sizeof(uint32_t));
+            if (!w->list) w->capacity = 0;
+            redo[again++] = (uint32_t)(w - walks);
+        }
+        job->redo = redo;
+        todo = again;
+    }
+    job->redo = NULL;
+    for (i = 0; walks && i < count; i++) {
+        mlod__mv_walk *w = &walks[i];
+        st->pairs += w->pairs;
+        st->culled += w->culled;
+        st->leaf_draws += w->leaf_draws;
+        st->shared_draws += w->shared_draws;
+        st->shared_views += w->shared_views;
+        mlod__mv_free(m, w->list, w->capacity, sizeof(uint32_t));
+        mlod__mv_free(m, w->depth, inner * job->pixels, sizeof(float));
+        mlod__mv_free(m, w->ids, inner * job->pixels, sizeof(uint32_t));
+        mlod__mv_free(m, w->vn, depth, sizeof(mlod__vnode));
+        mlod__mv_free(m, w->pv, depth, sizeof(mlod__pview));
+    }
+    mlod__mv_free(m, walks, count, sizeof(mlod__mv_walk));
+    mlod__mv_free(m, redo, count, sizeof(uint32_t));
+    job->walks = NULL;
+    return !m->failed;
+}
+
 struct mlod_megaviews_maps {
     uint32_t resolution, levels;
     uint32_t *map_of;     /* per view node: its map among its level's, or MLOD__NO_MAP */
@@ -6934,7 +7166,8 @@ static uint32_t mlod__mv_chunks(const mlod__mv_job *job, int whole_parents, size
 /* The render: fused into the atlas, or (keep) every node's own map kept. */
 static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **keep, const mlod_tree *scene,
                                        const mlod_view_tree *views, const mlod_megaviews_params *params,
-                                       mlod_megaviews_stats *stats, mlod_error *error)
+                                       uint32_t walk_level, size_t walk_room, mlod_megaviews_stats *stats,
+                                       mlod_error *error)
 {
     mlod_result res = mlod__check_megaviews(atlas, scene, views, params, error);
     const mlod_tree *eyes;
@@ -6966,6 +7199,9 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     st.levels = levels;
     if (keep && !(job.keep = mlod__maps_create(&m.a, views, levels, params->resolution)))
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the maps");
+    job.levels = levels;
+    job.walk_level = keep || levels <= walk_level ? levels : walk_level;
+    job.walk_room = walk_room;
     for (d = 0; d < levels && !m.failed; d++) {
         uint32_t first = (uint32_t)((1ull << d) - 1), count, chunks, c;
         size_t draws = 0, splits = 0, room, *draw_off, *split_off, *chunk_begin;
@@ -6984,6 +7220,10 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
         job.depth = NULL; /* this level's maps, once allocated */
         job.ids = NULL;
         maps = 0;
+        if (d == job.walk_level) { /* the rest depth first, a walk per view subtree */
+            mlod__mv_walks(&job, &m, params->parallel, &st);
+            break;
+        }
         chunks = mlod__mv_chunks(&job, first + count > eyes->leaf_count - 1, NULL);
         chunk_begin = (size_t *)mlod__mv_alloc(&m, (size_t)chunks + 1, sizeof(size_t));
         /* first pass: each chunk room for its units and a half of either kind, plus 64 */
@@ -7015,7 +7255,7 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
             splits += outs[c].split_count;
             st.pairs += outs[c].pairs;
             st.culled += outs[c].culled;
-            st.leaf_draws += outs[c].leaf_draws;
+            st.leaf_draws += outs[c].drawn;
             for (u = 0; job.keep && u < outs[c].draw_count; u++) st.leaf_draws += outs[c].draw[2 * u] >= eyes->leaf_count - 1;
         }
         draw = (uint32_t *)mlod__mv_alloc(&m, draws, sizeof(uint32_t));
@@ -7131,7 +7371,8 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
                                                mlod_error *error)
 {
     if (!atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas is NULL");
-    return mlod__megaviews_run(atlas, NULL, scene, views, params, stats, error);
+    return mlod__megaviews_run(atlas, NULL, scene, views, params, MLOD__MV_WALK_LEVEL, MLOD__MV_WALK_ROOM, stats,
+                               error);
 }
 
 MLOD__PUBLIC mlod_result mlod_megaviews_render_maps(const mlod_tree *scene, const mlod_view_tree *views,
@@ -7140,7 +7381,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render_maps(const mlod_tree *scene, cons
 {
     if (!out) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out is NULL");
     *out = NULL;
-    return mlod__megaviews_run(NULL, out, scene, views, params, stats, error);
+    return mlod__megaviews_run(NULL, out, scene, views, params, 0, 0, stats, error);
 }
 
 MLOD__PUBLIC int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlod_tree *scene,

@@ -25,6 +25,9 @@
      node's ball: the diameter lies within [cmin, cmax], and the image disc
      (centre and radius) moves by at most the motion bound;
    - the same atlas for every thread count and task order, delta > 0;
+   - the same atlas and statistics walking each view subtree depth first
+     from any level of the view tree, however little room its lists get
+     first, as level by level;
    - the unfused maps queried down the view tree equal the fused atlas;
    - statistics: with delta = 0 and distinct eyes nothing is shared and
      the leaf draws are the per-view cuts' drawn nodes;
@@ -103,7 +106,10 @@ static mlod_atlas *make_atlas(const views *v, uint32_t resolution, uint32_t chan
     memset(&desc, 0, sizeof desc);
     desc.channels = channels;
     if (mlod_atlas_create(vs, v->count, &desc, NULL, &a, &e) != MLOD_OK) fprintf(stderr, "atlas: %s\n", e.message);
-    *out_views = vs;
+    if (out_views)
+        *out_views = vs;
+    else
+        free(vs);
     return a;
 }
 
@@ -801,6 +807,73 @@ static void test_query(const mlod_tree *scene)
     free_views(&v);
 }
 
+/* ============================================================== walks */
+
+/* Walking each view subtree depth first from any level, with any first
+   room for its lists (1: every walk outgrows it and runs again), gives the
+   atlas and statistics of the level-synchronous traversal (walk level
+   past the last), bit for bit: with sharing, fields of view, back faces,
+   groups, and a tree whose leaves lie on two levels. */
+static void test_walks(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    static const uint32_t counts[3] = {700, 1, 257};
+    uint32_t c;
+    for (c = 0; c < 3; c++) {
+        views v = make_views(71 + c, counts[c], lo, hi, 1);
+        mlod_view_set s = view_set(&v, c != 1, c == 2);
+        mlod_view_tree *t = build_views(&s, NULL);
+        mlod_view *vs = NULL;
+        uint32_t flags = c == 2 ? MLOD_VIEW_CULL_BACKFACES : 0u, channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
+        mlod_atlas *ref = make_atlas(&v, 8, channels, &vs, flags), *a = make_atlas(&v, 8, channels, NULL, flags);
+        uint32_t levels = 0, level, g, differ = 0, runs = 0;
+        mlod_megaviews_params p;
+        mlod_megaviews_stats st0, st;
+        mlod_error e;
+        memset(&p, 0, sizeof p);
+        memset(&st0, 0, sizeof st0);
+        p.epsilon = 1.0f;
+        p.delta = MLOD_MEGAVIEWS_DELTA;
+        p.resolution = 8;
+        p.flags = flags;
+        for (g = 0; g < 2 && t && ref && a; g++) {
+            p.group_radius = g ? 0.3f : 0.0f;
+            if (mlod__megaviews_run(ref, NULL, scene, t, &p, 64, 0, &st0, &e) != MLOD_OK) {
+                CHECK(0, "walks case %u: level-synchronous render: %s", c, e.message);
+                break;
+            }
+            levels = st0.levels;
+            for (level = 0; level <= levels; level++) {
+                size_t room;
+                for (room = 1; room <= 4096; room *= 4096) {
+                    size_t first = 0;
+                    int same;
+                    runs++;
+                    if (mlod__megaviews_run(a, NULL, scene, t, &p, level, room, &st, &e) != MLOD_OK) {
+                        CHECK(0, "walks case %u: walk from level %u: %s", c, level, e.message);
+                        continue;
+                    }
+                    same = same_atlas(a, ref, &first) && st.pairs == st0.pairs && st.culled == st0.culled &&
+                           st.shared_draws == st0.shared_draws && st.shared_views == st0.shared_views &&
+                           st.leaf_draws == st0.leaf_draws && st.levels == st0.levels;
+                    if (!same && differ++ < 3)
+                        CHECK(0, "walks case %u, group %u: walking from level %u (room %zu) differs (pixel %zu, pairs %llu / %llu)",
+                              c, g, level, room, first, (unsigned long long)st.pairs, (unsigned long long)st0.pairs);
+                }
+            }
+            CHECK(c == 1 || st0.shared_draws > (g ? 100u : 1000u), "walks case %u: shares (%llu shared draws)", c,
+                  (unsigned long long)st0.shared_draws);
+        }
+        CHECK(differ == 0 && runs == 2 * 2 * (levels + 1), "walks case %u: %u walk levels x 2 rooms x 2 group radii equal the level-synchronous render (%u differ)",
+              c, levels + 1, differ);
+        mlod_atlas_destroy(ref);
+        mlod_atlas_destroy(a);
+        mlod_view_tree_destroy(t);
+        free(vs);
+        free_views(&v);
+    }
+}
+
 /* ============================================================ threads */
 
 static void test_threads(const mlod_tree *scene)
@@ -1050,6 +1123,7 @@ int main(void)
     test_culling(scene);
     test_bounds();
     test_threads(scene);
+    test_walks(scene);
     test_fusion(scene); /* it overwrites the scene's colours with node indices */
     test_groups(scene);
     test_query(scene);
