@@ -6468,18 +6468,32 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     }
 }
 
-/* Within the smallest field of view of every view below for sure: phi +
-   alpha + asin(rho / d) + 2^-30 <= least_fov (what mlod__within_cone
-   asks, less its asin(r / (d + rho)) >= 0), by cosines: cos phi >= cos(L -
-   turn) with L from the node and turn = asin(rho / d), where L - turn is
-   in [0, pi] (its sine >= 0), with 1e-12 to spare. */
-static int mlod__surely_within(double cos_phi, double d, const mlod__vnode *vn)
+/* mlod__within_cone's answer for the views' cone where cosines settle it,
+   without its arc tangents: within when phi <= psi = L - turn + seen, with
+   L from the node (least_fov - alpha - 2^-30), turn = asin(rho / d) and
+   seen = asin(r / (d + rho)), i.e. cos phi >= cos psi while psi is in [0,
+   pi]; psi's sine and cosine come from their sums.  psi lies in (-pi / 2,
+   3 pi / 2): below 0 (only when L < turn) nothing is within, above pi
+   everything.  1 within, 0 not, -1 when cos phi lies within 1e-9 of cos psi
+   or psi within 1e-9 of 0 or pi (by its sine), far above both sides'
+   errors (the arc tangents' 1e-11 rad): the exact test decides those. */
+static int mlod__surely_within(double cos_phi, double d, double r, const mlod__vnode *vn)
 {
-    double sin_t = vn->radius / d, cos_t;
-    if (vn->cos_least < -1.0 || !(sin_t < 1.0)) return 0;
+    double sin_t = vn->radius / d, cos_t, sin_1, cos_1, sin_s, cos_s, sin_psi, cos_psi;
+    if (vn->cos_least < -1.0 || !(sin_t < 1.0)) return -1; /* L < 0, or an eye in reach: the exact test */
     cos_t = sqrt((1.0 - sin_t) * (1.0 + sin_t));
-    if (vn->sin_least * cos_t - vn->cos_least * sin_t < 0.0) return 0;
-    return cos_phi >= vn->cos_least * cos_t + vn->sin_least * sin_t + 1e-12;
+    sin_1 = vn->sin_least * cos_t - vn->cos_least * sin_t; /* L - turn, in (-pi / 2, pi] */
+    cos_1 = vn->cos_least * cos_t + vn->sin_least * sin_t;
+    sin_s = r / (d + vn->radius);
+    if (!(sin_s < 1.0)) return -1;
+    cos_s = sqrt((1.0 - sin_s) * (1.0 + sin_s));
+    sin_psi = sin_1 * cos_s + cos_1 * sin_s;
+    cos_psi = cos_1 * cos_s - sin_1 * sin_s;
+    if (sin_psi > -1e-9 && sin_psi < 1e-9) return -1; /* psi near 0 or pi */
+    if (sin_psi < 0.0) return sin_1 < 0.0 ? 0 : 1;    /* psi below 0, or above pi */
+    if (cos_phi > cos_psi + 1e-9) return 1;
+    if (cos_phi < cos_psi - 1e-9) return 0;
+    return -1;
 }
 
 /* mlod__outside_cone's answer where cosines settle it, without its arc
@@ -6541,8 +6555,10 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
         uint8_t st = mlod__classify(&vn->pv, scene, s, job->epsilon);
         return st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
     }
-    if (shared && vn->cone && !mlod__surely_within(cos_phi, d, vn))
-        shared = mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov);
+    if (shared && vn->cone) {
+        k = mlod__surely_within(cos_phi, d, r, vn);
+        shared = k >= 0 ? k : mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov);
+    }
     mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
     if (cmax <= job->epsilon)
         return shared && mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta ? MLOD__PAIR_DRAW
