@@ -325,8 +325,10 @@
      orientation (mlod_megaviews_view: directions towards +z in the left
      half of the tile, -z in the right, R x R pixels each), so that an
      inner view node's map is a partial rendering all views below share.
-     The traversal starts from (scene root, view root), level by level of
-     the view tree; a pair (scene node s, view node v) is
+     The traversal starts from (scene root, view root), level by level
+     down the view tree's first six levels, then depth first within each of
+     the 64 subtrees below (one task each, so no two threads draw into one
+     map); a pair (scene node s, view node v) is
        at a view leaf: decided as the cut decides for that view (after its
          field of view): culled, dropped; valid or an oversize leaf, drawn
          into its map; else s splits;
@@ -339,8 +341,12 @@
            every eye of v's ball, its image moves by at most delta pixels
            between c and any eye of the ball, and every view below would
            draw it (within every field of view, facing every eye);
-         s splits when c(s, eye) > epsilon for every eye of the ball and s
-           has children; otherwise v splits (both children take s).
+         s splits when it has children and c(s, eye) > epsilon for every
+           eye of the ball, or (delta > 0) some eyes find c <= epsilon and
+           others not while both children of s are at least as large as
+           the ball (MegaViews 3.2.3: the larger node splits; views below
+           then get finer nodes than their own cut would give them, never
+           coarser); otherwise v splits (both children take s).
        The bounds over the ball: d = |x| moves within [d - rho, d + rho]
        and x.w within [x.w - rho, x.w + rho] in the paraboloid's diameter
        S 2 r / (x.w + sqrt(d^2 - r^2)), per half; any point of the image
@@ -353,8 +359,8 @@
      drawn nodes, nearest first (a tie keeps the parent's); a view's tile
      gets its leaf's map so, each pixel at its node's distance from the
      view's own eye (depth as for paraboloids), with the node's normal and
-     colour.  Maps of inner nodes hold node indices and live for one
-     level; the atlas is the result.  Without fusion
+     colour.  Maps of inner nodes hold node indices and live until their
+     children have theirs; the atlas is the result.  Without fusion
      (mlod_megaviews_render_maps) every node keeps its own map, leaves
      included, and mlod_megaviews_query descends from the root to a
      view's pixel by the same rule: the fused atlas's pixel, at the cost
@@ -379,7 +385,8 @@
      g away, with the parallax that brings, and no delta bound holds
      within a group.  README.md measures the error against exact maps.
      Not yet: the multi-pixel splat of near leaves at inner nodes
-     (MegaViews 3.2.4), a bound on the call's memory, a Vulkan path.
+     (MegaViews 3.2.4), a sizing function for the call's memory (it
+     reports its peak after), a Vulkan path.
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes,
@@ -407,12 +414,18 @@
      the length of the call (exactly).  Every
      object reports its bytes (mlod_tree.bytes, mlod_cut_bytes,
      mlod_atlas.bytes, mlod_view_tree.bytes).  mlod_megaviews_render
-     allocates for its call, per level of the view tree, what the pairs of
-     that level need (24 bytes of room per pair handed down, 4 bytes per
-     pair kept) and the maps of the level's inner nodes that hold anything
-     (8 bytes per pixel), two levels at a time, and reports its peak
-     (mlod_megaviews_stats.peak_bytes); mlod_megaviews_render_maps keeps,
-     on top, 8 bytes per pixel of every view node that drew anything
+     allocates for its call, per level of the view tree's first six, what
+     the pairs of that level need (24 bytes of room per pair handed down, 4
+     bytes per pair kept) and the maps of the level's inner nodes that hold
+     anything (8 bytes per pixel), two levels at a time; below, each of the
+     64 subtree walks holds the scene nodes handed down along its path (4
+     bytes each, room for four per scene node handed to its root plus 4096
+     first, four times more when short: the walk runs again) and one map
+     per level (8 bytes per pixel).  It reports its peak
+     (mlod_megaviews_stats.peak_bytes: 12 to 16 MB for 64 k to 256 k
+     lights in README.md's benchmark, against the atlas's 4 bytes per
+     pixel); mlod_megaviews_render_maps, level by level throughout, keeps
+     on top 8 bytes per pixel of every view node that drew anything
      (mlod_megaviews_maps_bytes).  Attributes a scene does not ask for take
      no memory.
      A failed call gives back what it allocated (a cut keeps its bytes and
@@ -6563,7 +6576,12 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
     if (cmax <= job->epsilon)
         return shared && mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta ? MLOD__PAIR_DRAW
                                                                                       : MLOD__PAIR_SPLIT_VIEW;
-    if (cmin > job->epsilon && s < scene->leaf_count - 1) return MLOD__PAIR_SPLIT_SCENE;
+    if (s >= scene->leaf_count - 1) return MLOD__PAIR_SPLIT_VIEW;
+    if (cmin > job->epsilon) return MLOD__PAIR_SPLIT_SCENE;
+    if (job->delta > 0.0) { /* some eyes find s within epsilon, some not: split the larger (MegaViews 3.2.3) */
+        const float *left = scene->spheres + 4 * (size_t)(2 * s + 1), *right = left + 4;
+        if ((left[3] < right[3] ? left[3] : right[3]) >= vn->radius) return MLOD__PAIR_SPLIT_SCENE;
+    }
     return MLOD__PAIR_SPLIT_VIEW;
 }
 
