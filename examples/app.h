@@ -63,6 +63,7 @@ typedef struct app_options {
     float disc_scale;      /* --disc-scale S: mlod_atlas_desc.disc_scale, in (0, 1] */
     int sampling;          /* --sampling: instant_radiosity's comparison of VPL samplers */
     int still;             /* --still: the object stays at rest */
+    uint32_t megaviews;    /* --megaviews N: instant_radiosity's N VPLs through the view tree (0: off) */
 } app_options;
 
 /* "basic", "incremental" or "lazy". */
@@ -142,6 +143,8 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             }
         } else if (strcmp(arg, "--samples") == 0) {
             ok = app_parse_u32(value, 1, MANYLODS_MAX_LEAVES, &o->samples);
+        } else if (strcmp(arg, "--megaviews") == 0) {
+            ok = app_parse_u32(value, 1, 1u << 20, &o->megaviews);
         } else if (strcmp(arg, "--views") == 0) {
             ok = app_parse_u32(value, 1, 1u << 20, &o->views);
         } else if (strcmp(arg, "--tile") == 0) {

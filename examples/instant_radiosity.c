@@ -33,6 +33,14 @@
    with the flicker, error, VPLs kept and incremental cut time of each
    (compare_samplers, below).
 
+   With --megaviews N it instead renders N VPLs (64 k and more) through
+   the view tree (mlod_megaviews_render: global dual paraboloid maps,
+   shared among nearby VPLs), shades each pixel with an interleaved 1/64 of
+   them and filters the sets over each surface, and compares it, against
+   exact visibility of the same N VPLs, with --views VPLs through per-view
+   cuts and ISM given their time (compare_megaviews, below); it writes
+   instant_radiosity_megaviews.png.
+
    Run with --help for the options. */
 #define _POSIX_C_SOURCE 200809L
 #define MANYLODS_IMPLEMENTATION
@@ -59,6 +67,9 @@ static const char usage[] =
     "  --sampling         compare how the VPLs are chosen (mlod_sample: inverse transform and Metropolis-\n"
     "                     Hastings) over the frames: flicker, error, VPLs kept, cut time; writes no image\n"
     "  --still            with --sampling: the object stays at rest (the tree is not refitted)\n"
+    "  --megaviews N      instead, N virtual point lights (64 k and more) through the view tree (MegaViews) beside\n"
+    "                     --views VPLs through per-view cuts and ISM, against exact visibility; writes\n"
+    "                     instant_radiosity_megaviews.png\n"
     "  --tiny             a small run for the tests: 64 VPLs, 80x60 pixels, 2 frames\n";
 
 /* Shadow-map lookups.  The receiver moves off its surface by NORMAL_OFFSET
@@ -105,7 +116,9 @@ typedef struct shade_job {
     const vpl *vpls;
     const app_paraboloid *maps; /* per VPL */
     const mlod_atlas *atlas;    /* NULL: exact visibility (shadow rays) */
+    const mlod_view *dual;      /* per VPL: its MegaViews map (a global dual paraboloid), or NULL (maps) */
     uint32_t vpl_count;
+    uint32_t interleave;        /* P > 1: pixel (x, y) takes VPLs k = (y mod P) P + x mod P (mod P^2), P^2 times */
     app_image *indirect;
     uint64_t *rays;             /* per block: shadow rays cast (reference only) */
 } shade_job;
@@ -146,6 +159,44 @@ static float map_visibility(const mlod_atlas *atlas, const uint32_t *tile, const
     return lit;
 }
 
+/* Visibility of x in a VPL's MegaViews map (mlod_megaviews_view: a dual
+   paraboloid of the global orientation, two halves of R x R pixels side by
+   side), as map_visibility reads a paraboloid: the same offset, bias and
+   2 x 2 filter, kept within the half the point falls in. */
+static float dual_visibility(const mlod_atlas *atlas, const uint32_t *tile, const mlod_view *view, const float x[3],
+                             const float n[3], float distance, float cos_theta)
+{
+    float q[3], pixel[2], z, half, rx, ry, tan_theta, bias, lit = 0.0f, px, py, fx, fy;
+    int k, i0, j0, di, dj, lo, size = (int)tile[3];
+    for (k = 0; k < 3; k++) q[k] = x[k] + NORMAL_OFFSET * distance * n[k];
+    if (!mlod_view_project(view, q, pixel, &z)) return 1.0f;
+    half = 0.5f * (float)size;
+    lo = pixel[0] < (float)size ? 0 : size;
+    rx = (pixel[0] - (float)lo) / half - 1.0f;
+    ry = pixel[1] / half - 1.0f;
+    tan_theta = sqrtf(1.0f - cos_theta * cos_theta) / cos_theta;
+    if (tan_theta > 8.0f) tan_theta = 8.0f;
+    bias = z * (DEPTH_BIAS + FILTER_PIXELS * 2.0f / ((1.0f + rx * rx + ry * ry) * half) * tan_theta);
+    px = pixel[0] - 0.5f;
+    py = pixel[1] - 0.5f;
+    i0 = (int)floorf(px);
+    j0 = (int)floorf(py);
+    fx = px - (float)i0;
+    fy = py - (float)j0;
+    for (dj = 0; dj < 2; dj++)
+        for (di = 0; di < 2; di++) {
+            int i = i0 + di, j = j0 + dj;
+            float w = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy), d;
+            if (i < lo) i = lo;
+            if (i >= lo + size) i = lo + size - 1;
+            if (j < 0) j = 0;
+            if (j >= size) j = size - 1;
+            d = atlas->depth[(size_t)(tile[1] + (uint32_t)j) * atlas->width + tile[0] + (uint32_t)i];
+            if (z <= d + bias) lit += w;
+        }
+    return lit;
+}
+
 /* The VPL's geometry term at surface point p (shading normal n), clamped
    (CLAMP_DISTANCE), and the distance and the cosine at p; 0 where either
    side faces away. */
@@ -170,43 +221,70 @@ static size_t receiver_leaf(const mlod_tree *tree, uint32_t r, uint32_t count)
     return (size_t)tree->leaf_count - 1 + (uint64_t)r * tree->leaf_count / count;
 }
 
-/* Shade one block of pixels: the indirect light of every VPL. */
+/* What VPL k brings to pixel i (a surface), per unit of its flux and of
+   the albedo: its geometry term times its visibility, read from its map
+   (the job's atlas) or cast as a shadow ray (counted in *rays). */
+static float vpl_weight(const shade_job *job, uint32_t k, size_t i, uint64_t *rays)
+{
+    const vpl *l = &job->vpls[k];
+    const app_surface *s = &job->g->surface[i];
+    float d, cos_s, geometry, visibility;
+    geometry = vpl_geometry(l, s->p, s->n, &d, &cos_s);
+    if (geometry <= 0.0f) return 0.0f;
+    if (job->atlas) {
+        const uint32_t *tile = job->atlas->tiles + 4 * (size_t)k;
+        visibility = job->dual ? dual_visibility(job->atlas, tile, &job->dual[k], s->p, s->ng, d, cos_s)
+                               : map_visibility(job->atlas, tile, &job->maps[k], s->p, s->ng, d, cos_s);
+    } else {
+        float start[3];
+        app_offset(job->scene, s, start);
+        visibility = (float)app_visible(job->scene, start, l->position);
+        ++*rays;
+    }
+    return visibility > 0.0f ? geometry * (visibility * (float)(1.0 / SCENE_PI)) : 0.0f;
+}
+
+/* Shade one block of pixels: the indirect light of every VPL (or, with
+   interleaving, of the pixel's own set of them, P^2 times). */
 static void shade_block(void *context, uint32_t block)
 {
     const shade_job *job = (const shade_job *)context;
     const app_gbuffer *g = job->g;
     uint32_t blocks_x = (g->width + BLOCK - 1) / BLOCK, bx = block % blocks_x, by = block / blocks_x;
     uint32_t x0 = bx * BLOCK, y0 = by * BLOCK, x1 = x0 + BLOCK, y1 = y0 + BLOCK, x, y, k;
+    uint32_t sets = job->interleave > 1 ? job->interleave * job->interleave : 1;
     float sum[BLOCK * BLOCK][3];
     uint64_t rays = 0;
     if (x1 > g->width) x1 = g->width;
     if (y1 > g->height) y1 = g->height;
     memset(sum, 0, sizeof sum);
-    for (k = 0; k < job->vpl_count; k++) {
-        const vpl *l = &job->vpls[k];
-        const uint32_t *tile = job->atlas ? job->atlas->tiles + 4 * (size_t)k : NULL;
-        if (!l->active) continue;
+    if (sets > 1) {
         for (y = y0; y < y1; y++)
             for (x = x0; x < x1; x++) {
                 size_t i = (size_t)y * g->width + x;
-                const app_surface *s = &g->surface[i];
-                float d, cos_s, geometry, visibility;
-                int c;
+                float *to = sum[(y - y0) * BLOCK + (x - x0)];
                 if (!g->hit[i]) continue;
-                geometry = vpl_geometry(l, s->p, s->n, &d, &cos_s);
-                if (geometry <= 0.0f) continue;
-                if (job->atlas) {
-                    visibility = map_visibility(job->atlas, tile, &job->maps[k], s->p, s->ng, d, cos_s);
-                } else {
-                    float start[3];
-                    app_offset(job->scene, s, start);
-                    visibility = (float)app_visible(job->scene, start, l->position);
-                    rays++;
+                for (k = (y % job->interleave) * job->interleave + x % job->interleave; k < job->vpl_count; k += sets) {
+                    float w = job->vpls[k].active ? vpl_weight(job, k, i, &rays) : 0.0f;
+                    int c;
+                    for (c = 0; c < 3 && w > 0.0f; c++) to[c] += job->vpls[k].flux[c] * w * (float)sets;
                 }
-                if (visibility <= 0.0f) continue;
-                geometry *= visibility * (float)(1.0 / SCENE_PI);
-                for (c = 0; c < 3; c++) sum[(y - y0) * BLOCK + (x - x0)][c] += l->flux[c] * geometry;
             }
+    } else {
+        for (k = 0; k < job->vpl_count; k++) {
+            const vpl *l = &job->vpls[k];
+            if (!l->active) continue;
+            for (y = y0; y < y1; y++)
+                for (x = x0; x < x1; x++) {
+                    size_t i = (size_t)y * g->width + x;
+                    float w;
+                    int c;
+                    if (!g->hit[i]) continue;
+                    w = vpl_weight(job, k, i, &rays);
+                    if (w <= 0.0f) continue;
+                    for (c = 0; c < 3; c++) sum[(y - y0) * BLOCK + (x - x0)][c] += l->flux[c] * w;
+                }
+        }
     }
     for (y = y0; y < y1; y++)
         for (x = x0; x < x1; x++) {
@@ -319,6 +397,22 @@ static double splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_vie
     *ok = mlod_splat_ism(atlas, tree, views, points, 7, threads->parallel, error) == MLOD_OK &&
           mlod_atlas_fill_holes(atlas, threads->parallel, error) == MLOD_OK;
     return app_now_ms() - t0;
+}
+
+/* ISM given about target_ms: starting from `points` per view, three rounds
+   of points in proportion to the time; returns the points, the time in
+   *ism_ms. */
+static uint32_t ism_at_time(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views, uint32_t points,
+                            double target_ms, const app_threads *threads, mlod_error *error, int *ok, double *ism_ms)
+{
+    uint32_t round;
+    *ism_ms = splat_ism(atlas, tree, views, points, threads, error, ok);
+    for (round = 0; *ok && round < 3; round++) {
+        double scaled = (double)points * target_ms / (*ism_ms > 0.01 ? *ism_ms : 0.01);
+        points = scaled < 1.0 ? 1u : scaled > 1048576.0 ? 1048576u : (uint32_t)scaled;
+        *ism_ms = splat_ism(atlas, tree, views, points, threads, error, ok);
+    }
+    return points;
 }
 
 /* ------------------------------------------- choosing the VPLs (--sampling) */
@@ -593,11 +687,265 @@ done:
     return ok;
 }
 
+/* ------------------------------------------------ many VPLs (--megaviews) */
+
+/* --megaviews N: N VPLs (64 k and more) through the view tree
+   (mlod_megaviews_render), beside the per-view pipeline's o.views VPLs
+   (mlod_cut_update + mlod_splat) and ISM given its time, all from the same
+   light on the first frame.  N VPLs cost N lookups per pixel: each pixel
+   takes only its interleaved set of them (1 / P^2, P = INTERLEAVE, P^2
+   times as bright) and filter_interleaved averages the P x P sets over
+   each pixel's own surface, the way interleaved sampling does (Keller and
+   Heidrich 2001).  The reference is the same N VPLs with exact visibility,
+   interleaved and filtered alike. */
+#define INTERLEAVE 8u
+
+/* The interleaved image averaged over the P x P window around each pixel,
+   among the pixels on its own surface: normals within 25 degrees, and
+   within 1 % of the scene's diameter of its tangent plane. */
+static void filter_interleaved(const app_gbuffer *g, const app_image *in, uint32_t P, float diameter, app_image *out)
+{
+    int w = (int)g->width, h = (int)g->height, x, y, half = (int)P / 2;
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) {
+            size_t i = (size_t)y * (size_t)w + (size_t)x;
+            const app_surface *s = &g->surface[i];
+            float sum[3] = {0.0f, 0.0f, 0.0f}, count = 0.0f;
+            int u, v, c;
+            if (!g->hit[i]) {
+                for (c = 0; c < 3; c++) out->rgb[3 * i + (size_t)c] = 0.0f;
+                continue;
+            }
+            for (v = y - half; v < y - half + (int)P; v++)
+                for (u = x - half; u < x - half + (int)P; u++) {
+                    size_t j = (size_t)v * (size_t)w + (size_t)u;
+                    const app_surface *t;
+                    float gap[3];
+                    if (u < 0 || v < 0 || u >= w || v >= h || !g->hit[j]) continue;
+                    t = &g->surface[j];
+                    for (c = 0; c < 3; c++) gap[c] = t->p[c] - s->p[c];
+                    if (app_dot(s->n, t->n) < 0.9f || fabsf(app_dot(gap, s->n)) > 0.01f * diameter) continue;
+                    for (c = 0; c < 3; c++) sum[c] += in->rgb[3 * j + (size_t)c];
+                    count += 1.0f;
+                }
+            for (c = 0; c < 3; c++) out->rgb[3 * i + (size_t)c] = sum[c] / count;
+        }
+}
+
+static int compare_megaviews(const char *program, const app_options *o, app_scene *scene, mlod_tree *tree,
+                             const app_threads *threads)
+{
+    uint32_t many = o->megaviews, few = o->views, resolution = o->tile / 2 < 2 ? 2 : o->tile / 2, k, points = 1;
+    uint32_t width = 0;
+    app_light light = app_light_at(0.0f);
+    mlod_view camera = app_camera(o->width, o->height);
+    vpl *many_vpls = (vpl *)calloc(many, sizeof(vpl)), *few_vpls = (vpl *)calloc(few, sizeof(vpl));
+    mlod_view *spawned = (mlod_view *)calloc(many, sizeof(mlod_view)), *duals = (mlod_view *)calloc(many, sizeof(mlod_view));
+    mlod_view *few_views = (mlod_view *)calloc(few, sizeof(mlod_view));
+    app_paraboloid *spawned_maps = (app_paraboloid *)calloc(many, sizeof(app_paraboloid));
+    app_paraboloid *few_maps = (app_paraboloid *)calloc(few, sizeof(app_paraboloid));
+    float *eyes = (float *)malloc(sizeof(float) * 3 * (size_t)many), *directions = (float *)malloc(sizeof(float) * 3 * (size_t)many);
+    mlod_view_tree *vtree = NULL;
+    mlod_atlas *mv_atlas = NULL, *cut_atlas = NULL, *ism_atlas = NULL;
+    mlod_cut *cut = NULL;
+    mlod_view_set set;
+    mlod_megaviews_params mp;
+    mlod_megaviews_stats st;
+    mlod_cut_params cp;
+    mlod_atlas_desc desc = {0, 0, 0.0f};
+    mlod_error error;
+    app_gbuffer g;
+    app_image direct, raw, mv, exact, per_view, ism, exact_few, panels[3];
+    app_image *images[7];
+    double t0, tree_ms, render_ms, shade_ms, exact_ms, cut_ms, ism_ms = 0.0, e[6];
+    uint64_t rays, drawn = 0;
+    int ok = 0, c;
+    memset(&g, 0, sizeof g);
+    memset(&error, 0, sizeof error);
+    memset(panels, 0, sizeof panels);
+    images[0] = &direct;
+    images[1] = &raw;
+    images[2] = &mv;
+    images[3] = &exact;
+    images[4] = &per_view;
+    images[5] = &ism;
+    images[6] = &exact_few;
+    for (c = 0; c < 7; c++) memset(images[c], 0, sizeof(app_image));
+    for (c = 0; c < 7; c++)
+        if (!app_image_create(images[c], o->width, o->height)) goto oom;
+    if (!many_vpls || !few_vpls || !spawned || !duals || !few_views || !spawned_maps || !few_maps || !eyes || !directions)
+        goto oom;
+    app_scene_animate(scene, 0.0f);
+    if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
+    if (!app_gbuffer_trace(&g, scene, &camera, threads)) goto oom;
+    app_direct_image(scene, &light, &g, direct.rgb, threads);
+    printf("manylods %d.%d.%d instant radiosity, many VPLs: %s, %s\n", MANYLODS_VERSION_MAJOR, MANYLODS_VERSION_MINOR,
+           MANYLODS_VERSION_PATCH, scene->name, threads->description);
+    printf("tree    %u samples; image %ux%u; epsilon %g px\n\n", tree->leaf_count, o->width, o->height, (double)o->epsilon);
+
+    /* N VPLs through the view tree: each a global dual paraboloid of 2 R x R pixels */
+    spawn_vpls(scene, &light, many, o->tile, many_vpls, spawned, spawned_maps);
+    for (k = 0; k < many; k++) {
+        memcpy(eyes + 3 * (size_t)k, spawned[k].position, 3 * sizeof(float));
+        memcpy(directions + 3 * (size_t)k, spawned[k].forward, 3 * sizeof(float));
+        duals[k] = mlod_megaviews_view(spawned[k].position, resolution, MLOD_VIEW_CULL_BACKFACES);
+    }
+    memset(&set, 0, sizeof set);
+    set.eyes = eyes;
+    set.directions = directions; /* each a hemisphere along its surface's normal (half field of view pi / 2) */
+    set.count = many;
+    t0 = app_now_ms();
+    if (mlod_view_tree_build(&set, NULL, threads->parallel, &vtree, &error) != MLOD_OK) goto failed;
+    tree_ms = app_now_ms() - t0;
+    desc.disc_scale = o->disc_scale;
+    if (mlod_atlas_create(duals, many, &desc, NULL, &mv_atlas, &error) != MLOD_OK) goto failed;
+    desc.disc_scale = 0.0f;
+    memset(&mp, 0, sizeof mp);
+    mp.epsilon = o->epsilon;
+    mp.delta = MLOD_MEGAVIEWS_DELTA;
+    mp.resolution = resolution;
+    mp.flags = MLOD_VIEW_CULL_BACKFACES;
+    mp.parallel = threads->parallel;
+    t0 = app_now_ms();
+    if (mlod_megaviews_render(mv_atlas, tree, vtree, &mp, &st, &error) != MLOD_OK ||
+        (o->disc_scale < 1.0f && mlod_atlas_fill_holes(mv_atlas, threads->parallel, &error) != MLOD_OK))
+        goto failed;
+    render_ms = app_now_ms() - t0;
+    {
+        shade_job job;
+        memset(&job, 0, sizeof job);
+        job.scene = scene;
+        job.g = &g;
+        job.vpls = many_vpls;
+        job.atlas = mv_atlas;
+        job.dual = duals;
+        job.vpl_count = many;
+        job.interleave = INTERLEAVE;
+        job.indirect = &raw;
+        t0 = app_now_ms();
+        shade_indirect(&job, threads);
+        filter_interleaved(&g, &raw, INTERLEAVE, scene->diameter, &mv);
+        shade_ms = app_now_ms() - t0;
+        job.atlas = NULL;
+        t0 = app_now_ms();
+        rays = shade_indirect(&job, threads);
+        filter_interleaved(&g, &raw, INTERLEAVE, scene->diameter, &exact);
+        exact_ms = app_now_ms() - t0;
+    }
+
+    /* o.views VPLs through the per-view cut and splat, and ISM given its time */
+    spawn_vpls(scene, &light, few, o->tile, few_vpls, few_views, few_maps);
+    memset(&cp, 0, sizeof cp);
+    cp.epsilon = o->epsilon;
+    cp.parallel = threads->parallel;
+    if (mlod_cut_create(few, NULL, &cut, &error) != MLOD_OK) goto failed;
+    if (mlod_atlas_create(few_views, few, &desc, NULL, &ism_atlas, &error) != MLOD_OK) goto failed;
+    desc.disc_scale = o->disc_scale;
+    if (mlod_atlas_create(few_views, few, &desc, NULL, &cut_atlas, &error) != MLOD_OK) goto failed;
+    t0 = app_now_ms();
+    if (mlod_cut_update(cut, tree, few_views, &cp, &error) != MLOD_OK ||
+        mlod_splat(cut_atlas, tree, cut, few_views, threads->parallel, &error) != MLOD_OK ||
+        (o->disc_scale < 1.0f && mlod_atlas_fill_holes(cut_atlas, threads->parallel, &error) != MLOD_OK))
+        goto failed;
+    cut_ms = app_now_ms() - t0;
+    for (k = 0; k < few; k++) {
+        mlod_cut_view cv = mlod_cut_get(cut, k);
+        drawn += cv.drawn + cv.oversize + cv.coarse;
+    }
+    points = ism_at_time(ism_atlas, tree, few_views, (uint32_t)((drawn + few - 1) / few), cut_ms, threads, &error, &ok,
+                         &ism_ms);
+    if (!ok) goto failed;
+    {
+        shade_job job;
+        memset(&job, 0, sizeof job);
+        job.scene = scene;
+        job.g = &g;
+        job.vpls = few_vpls;
+        job.maps = few_maps;
+        job.vpl_count = few;
+        job.atlas = cut_atlas;
+        job.indirect = &per_view;
+        shade_indirect(&job, threads);
+        job.atlas = ism_atlas;
+        job.indirect = &ism;
+        shade_indirect(&job, threads);
+        job.atlas = NULL;
+        job.indirect = &exact_few;
+        shade_indirect(&job, threads);
+    }
+    e[0] = relative_difference(&mv, &exact, &exact, NULL);
+    e[1] = relative_difference(&per_view, &exact_few, &exact_few, NULL);
+    e[2] = relative_difference(&ism, &exact_few, &exact_few, NULL);
+    e[3] = relative_difference(&per_view, &exact, &exact, NULL);
+    e[4] = relative_difference(&ism, &exact, &exact, NULL);
+    e[5] = relative_difference(&exact_few, &exact, &exact, NULL);
+    printf("indirect light against exact visibility           maps ms   against the same VPLs   against %u VPLs\n", many);
+    printf("  MegaViews: %7u VPLs, view tree + render %7.0f     %6.1f %%            %6.1f %%\n", many, tree_ms + render_ms,
+           100.0 * e[0], 100.0 * e[0]);
+    printf("  manylods:  %7u VPLs, cut + splat          %7.0f     %6.1f %%            %6.1f %%\n", few, cut_ms,
+           100.0 * e[1], 100.0 * e[3]);
+    printf("  ISM:       %7u VPLs, splat + pull-push    %7.0f     %6.1f %%            %6.1f %%\n", few, ism_ms,
+           100.0 * e[2], 100.0 * e[4]);
+    printf("  exact:     %7u VPLs, shadow rays          %7s     %6s              %6.1f %%\n", few, "-", "-",
+           100.0 * e[5]);
+    printf("  MegaViews: maps 2 x %u x %u px, epsilon %g px, delta %g px; view tree %.0f ms, render %.0f ms, %.3g pairs,"
+           " %.1f views per shared draw, peak %.1f MiB; shading %.0f ms\n",
+           resolution, resolution, (double)o->epsilon, (double)mp.delta, tree_ms, render_ms, (double)st.pairs,
+           st.shared_draws ? (double)st.shared_views / (double)st.shared_draws : 0.0, app_mib((double)st.peak_bytes),
+           shade_ms);
+    printf("  ISM: %u points per VPL (matched to the cut + splat's time); each pixel shades 1/%u of the %u VPLs\n"
+           "  (interleaved %ux%u, filtered over its surface); the reference: %.1f million shadow rays in %.0f ms\n",
+           points, INTERLEAVE * INTERLEAVE, many, INTERLEAVE, INTERLEAVE, (double)rays / 1e6, exact_ms);
+    printf("megaviews summary: %u VPLs %.2f %% against their exact visibility; against it, %u VPLs: manylods %.2f %%, "
+           "ISM %.2f %%, exact %.2f %%\n",
+           many, 100.0 * e[0], few, 100.0 * e[3], 100.0 * e[4], 100.0 * e[5]);
+    add_images(&direct, &mv, &mv);
+    add_images(&direct, &exact, &exact);
+    add_images(&direct, &per_view, &per_view);
+    panels[0] = mv;
+    panels[1] = exact;
+    panels[2] = per_view;
+    {
+        uint8_t *rgb = app_compose(panels, 3, app_auto_exposure(&exact), &width);
+        ok = app_write_png(program, o->out_dir, "instant_radiosity_megaviews.png", width, o->height, rgb);
+        free(rgb);
+    }
+    if (ok)
+        printf("\nwrote %s/instant_radiosity_megaviews.png (MegaViews, %u VPLs | exact visibility, %u VPLs | manylods, "
+               "%u VPLs)\n", o->out_dir, many, many, few);
+    goto done;
+oom:
+    fprintf(stderr, "%s: out of memory\n", program);
+    ok = 0;
+    goto done;
+failed:
+    fprintf(stderr, "%s: %s: %s\n", program, mlod_result_name(error.code), error.message);
+    ok = 0;
+done:
+    mlod_view_tree_destroy(vtree);
+    mlod_atlas_destroy(mv_atlas);
+    mlod_atlas_destroy(cut_atlas);
+    mlod_atlas_destroy(ism_atlas);
+    mlod_cut_destroy(cut);
+    for (c = 0; c < 7; c++) app_image_free(images[c]);
+    app_gbuffer_free(&g);
+    free(many_vpls);
+    free(few_vpls);
+    free(spawned);
+    free(duals);
+    free(few_views);
+    free(spawned_maps);
+    free(few_maps);
+    free(eyes);
+    free(directions);
+    return ok;
+}
+
 int main(int argc, char **argv)
 {
     app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 2, MLOD_CUT_INCREMENTAL,
-                          0, 0, 0.5f, 0, 0};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f, 0, 0};
+                          0, 0, 0.5f, 0, 0, 0};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f, 0, 0, 0};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -660,6 +1008,10 @@ int main(int argc, char **argv)
     build_ms = app_now_ms() - t0;
     if (o.sampling) {
         status = compare_samplers(program, &o, &scene, tree, &threads) ? 0 : 1;
+        goto done;
+    }
+    if (o.megaviews) {
+        status = compare_megaviews(program, &o, &scene, tree, &threads) ? 0 : 1;
         goto done;
     }
     if (mlod_cut_create(o.views, NULL, &cut, &error) != MLOD_OK) goto failed;
@@ -745,19 +1097,17 @@ int main(int argc, char **argv)
            app_mib((double)atlas->bytes), app_mib((double)mlod_atlas_bound(views, o.views, &atlas_desc)));
 
     { /* the last frame three ways: manylods, ISM at equal time (or equal drawn count), exact visibility */
-        uint32_t points = (uint32_t)((drawn_total + o.views - 1) / o.views), round, r;
+        uint32_t points = (uint32_t)((drawn_total + o.views - 1) / o.views), r;
         double ism_ms = 0, target = cut_ms + splat_ms, reference_ms, error_cut, error_ism;
         float receivers[3 * RECEIVERS];
         uint64_t rays;
         int ok = 1;
         points *= o.match_drawn ? o.match_drawn : 1;
         if (points == 0) points = 1;
-        ism_ms = splat_ism(ism_atlas, tree, views, points, &threads, &error, &ok);
-        for (round = 0; ok && !o.match_drawn && round < 3; round++) { /* points in proportion to the time */
-            double scaled = (double)points * target / (ism_ms > 0.01 ? ism_ms : 0.01);
-            points = scaled < 1.0 ? 1u : scaled > 1048576.0 ? 1048576u : (uint32_t)scaled;
+        if (o.match_drawn)
             ism_ms = splat_ism(ism_atlas, tree, views, points, &threads, &error, &ok);
-        }
+        else
+            points = ism_at_time(ism_atlas, tree, views, points, target, &threads, &error, &ok, &ism_ms);
         if (!ok) goto failed;
         job.atlas = ism_atlas;
         job.indirect = &ism;
