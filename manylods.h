@@ -6529,6 +6529,83 @@ static int mlod__surely_outside(double cos_phi, double d, double g, const mlod__
     return -1;
 }
 
+/* Bounds on sin a and cos a for a in [0, pi/2): exact at 0 (a leaf's
+   cone), else mlod__sin_cos (within 1e-16) with 1e-15 to spare. */
+static void mlod__sin_cos_bounds(double a, double *sin_lo, double *sin_hi, double *cos_lo, double *cos_hi)
+{
+    double sa = 0.0, ca = 1.0, spare = 0.0;
+    if (a != 0.0) {
+        mlod__sin_cos(a, &sa, &ca);
+        spare = 1e-15;
+    }
+    *sin_lo = sa - spare;
+    *sin_hi = sa + spare;
+    *cos_lo = ca - spare;
+    *cos_hi = ca + spare;
+}
+
+/* The back-face tests of an inner view node without their arc tangents,
+   where cosines settle them; the scene node's normal cone (axis n, half-
+   angle theta < pi/2) and gamma = angle(-x, n), cos gamma = -x.n / (d |n|).
+   Culled (mlod__outside_cone(-x, d, g, cone, pi/2, 2^-30)) when gamma >
+   pi/2 + theta + b + 2^-30, b = asin(g / d), i.e. cos gamma < -sin(theta + b)
+   while theta + b < pi/2.  Shared (mlod__within_cone(-x, d, r, rho, cone,
+   0, pi/2 + theta)) when gamma + turn + 2^-30 <= pi/2 + theta + seen, turn =
+   asin(rho / d), seen = asin(r / (d + rho)): gamma <= pi/2 + delta - 2^-30,
+   delta = theta + sigma, sigma = seen - turn in (-pi/2, pi/2); for delta
+   >= pi/2 always.  Sines and cosines from square roots and their sums
+   (theta's from mlod__sin_cos_bounds); each answer is given only 1e-8 (in cosines:
+   as much in angle) clear of its threshold, far above the 2^-30 of the
+   definitions and the arc tangents' 1e-11 rad; -1 otherwise (the exact
+   tests decide). */
+static int mlod__surely_backfacing(const double *x, double d, double g, const float *cone)
+{
+    double theta = cone[3], len, cos_gamma, sin_b, cos_b, s_lo, s_hi, c_lo, c_hi, sum_hi, sum_lo, cos_sum_lo;
+    if (!(theta >= 0.0)) return -1;
+    if (!(theta < 0.5 * MLOD__PI)) return 0; /* pi/2 + theta >= pi: never culled */
+    if (!(d > g)) return 0;
+    len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
+    if (!(len > 0.0)) return -1;
+    cos_gamma = -(x[0] * cone[0] + x[1] * cone[1] + x[2] * cone[2]) / (d * len);
+    sin_b = g / d;
+    cos_b = sqrt((1.0 - sin_b) * (1.0 + sin_b));
+    mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);
+    sum_hi = s_hi * cos_b + c_hi * sin_b;      /* sin(theta + b) at most */
+    sum_lo = s_lo * cos_b + c_lo * sin_b;      /* at least */
+    cos_sum_lo = c_lo * cos_b - s_hi * sin_b;  /* cos(theta + b) at least */
+    if (cos_gamma > -sum_lo + 1e-8) return 0;
+    if (cos_sum_lo > 1e-8 && cos_gamma < -sum_hi - 1e-8) return 1;
+    return -1;
+}
+
+static int mlod__surely_facing(const double *x, double d, double r, double rho, const float *cone)
+{
+    double theta = cone[3], len, cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
+    double sin_d_lo, sin_d_hi, cos_d_lo, cos_d_hi;
+    if (!(theta >= 0.0 && theta < 0.5 * MLOD__PI) || !(d > rho)) return -1;
+    len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
+    if (!(len > 0.0)) return -1;
+    cos_gamma = -(x[0] * cone[0] + x[1] * cone[1] + x[2] * cone[2]) / (d * len);
+    sin_t = rho / d;
+    cos_t = sqrt((1.0 - sin_t) * (1.0 + sin_t));
+    sin_s = r / (d + rho);
+    if (!(sin_s < 1.0)) return -1;
+    cos_s = sqrt((1.0 - sin_s) * (1.0 + sin_s));
+    sin_sg = sin_s * cos_t - cos_s * sin_t; /* sigma = seen - turn */
+    cos_sg = cos_s * cos_t + sin_s * sin_t;
+    mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);
+    /* delta = theta + sigma: sin delta = sin theta cos sigma + cos theta sin sigma, cos sigma > 0 */
+    sin_d_lo = s_lo * cos_sg + (sin_sg >= 0.0 ? c_lo : c_hi) * sin_sg;
+    sin_d_hi = s_hi * cos_sg + (sin_sg >= 0.0 ? c_hi : c_lo) * sin_sg;
+    cos_d_lo = c_lo * cos_sg - (sin_sg >= 0.0 ? s_hi : s_lo) * sin_sg;
+    cos_d_hi = c_hi * cos_sg - (sin_sg >= 0.0 ? s_lo : s_hi) * sin_sg;
+    if (cos_d_hi < -1e-8) return 1;     /* delta > pi/2: pi/2 + delta > pi >= gamma */
+    if (!(cos_d_lo > 1e-8)) return -1;  /* delta near pi/2 */
+    if (cos_gamma > -sin_d_lo + 1e-8) return 1;
+    if (cos_gamma < -sin_d_hi - 1e-8) return 0;
+    return -1;
+}
+
 /* What the traversal does with (s, v).  A leaf decides as the cut does for
    its view (after its own field of view); an inner node culls what every
    view below culls, draws what is within epsilon for every eye of its
@@ -6559,10 +6636,11 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
     if (job->flags & MLOD_VIEW_CULL_BACKFACES && scene->cones) {
         const float *cone = scene->cones + 4 * (size_t)s;
         double away[3] = {-x[0], -x[1], -x[2]};
-        if (mlod__outside_cone(away, d, r + vn->radius, cone, 0.5 * MLOD__PI, 1.0 / 1073741824.0))
+        k = mlod__surely_backfacing(x, d, r + vn->radius, cone);
+        if (k > 0 || (k < 0 && mlod__outside_cone(away, d, r + vn->radius, cone, 0.5 * MLOD__PI, 1.0 / 1073741824.0)))
             return MLOD__PAIR_CULL;
-        shared = cone[3] >= 0.5 * MLOD__PI ||
-                 mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3]);
+        k = cone[3] >= 0.5 * MLOD__PI ? 1 : mlod__surely_facing(x, d, r, vn->radius, cone);
+        shared = k >= 0 ? k : mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3]);
     }
     if (vn->group) {
         uint8_t st = mlod__classify(&vn->pv, scene, s, job->epsilon);

@@ -874,6 +874,75 @@ static void test_walks(const mlod_tree *scene)
     }
 }
 
+/* ========================================================== fast paths */
+
+/* The back-face tests' cosine fast paths decide as the exact tests do
+   wherever they decide: mlod__surely_backfacing against mlod__outside_cone
+   (the sphere grown by rho faces away from every eye), mlod__surely_facing
+   against mlod__within_cone (every eye finds a normal facing it), on random
+   spheres, balls of eyes and normal cones, the direction to the sphere put
+   10^-10 to 10^-1 rad from the test's threshold; and they decide most of
+   them: 99 % of those 1e-6 rad or more from the threshold. */
+static void test_fast_paths(void)
+{
+    uint64_t rng = 5;
+    uint32_t i, n = 400000, wrong[2] = {0, 0}, decided[2] = {0, 0}, tried[2] = {0, 0}, far[2] = {0, 0}, far_decided[2] = {0, 0};
+    const double margin = 1.0 / 1073741824.0;
+    for (i = 0; i < n; i++) {
+        double axis[3], p[3], x[3], away[3], len, d, r, rho, theta, gamma, offset, dot;
+        float cone[4];
+        int k, which = (int)(i & 1), fast, exact;
+        tu_random_unit(&rng, axis);
+        tu_random_unit(&rng, p);
+        theta = i % 5 == 0 ? 0.0 : scene_rng_double(&rng) * 1.7; /* past pi/2 too */
+        d = 0.5 + 10.0 * scene_rng_double(&rng);
+        r = d * 0.6 * scene_rng_double(&rng);
+        rho = i % 7 == 0 ? 0.0 : d * 0.6 * scene_rng_double(&rng);
+        for (k = 0; k < 3; k++) cone[k] = (float)axis[k];
+        cone[3] = (float)theta;
+        theta = cone[3];
+        len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
+        for (k = 0; k < 3; k++) axis[k] = cone[k] / len;
+        dot = p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2];
+        for (k = 0; k < 3; k++) p[k] -= dot * axis[k];
+        len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        if (!(len > 1e-3) || !(d > r + rho) || !(d + rho > r)) continue;
+        for (k = 0; k < 3; k++) p[k] /= len;
+        gamma = 0.5 * 3.14159265358979323846 + theta +
+                (which ? asin(r / (d + rho)) - asin(rho / d) : asin((r + rho) / d));
+        offset = pow(10.0, -10.0 + 9.0 * scene_rng_double(&rng)) * (scene_rng_double(&rng) < 0.5 ? -1.0 : 1.0);
+        gamma += offset;
+        if (!(gamma > 0.0 && gamma < 3.14159265358979323846)) continue;
+        for (k = 0; k < 3; k++) {
+            away[k] = d * (cos(gamma) * axis[k] + sin(gamma) * p[k]); /* -x, gamma off the axis */
+            x[k] = -away[k];
+        }
+        d = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (which == 0) {
+            fast = mlod__surely_backfacing(x, d, r + rho, cone);
+            exact = mlod__outside_cone(away, d, r + rho, cone, 0.5 * MLOD__PI, margin);
+        } else {
+            if (!(cone[3] < 0.5 * MLOD__PI)) continue;
+            fast = mlod__surely_facing(x, d, r, rho, cone);
+            exact = mlod__within_cone(away, d, r, rho, cone, 0.0, 0.5 * MLOD__PI + cone[3]);
+        }
+        tried[which]++;
+        far[which] += fabs(offset) >= 1e-6;
+        if (fast < 0) continue;
+        decided[which]++;
+        far_decided[which] += fabs(offset) >= 1e-6;
+        if (fast != exact && wrong[which]++ < 3)
+            CHECK(0, "%s fast path: %d, exact test: %d (theta %.9g, d %.9g, r %.9g, rho %.9g, %.3g rad off)",
+                  which ? "facing" : "back-facing", fast, exact, theta, d, r, rho, offset);
+    }
+    CHECK(wrong[0] == 0 && wrong[1] == 0, "the back-face fast paths decide as the exact tests (%u and %u of %u and %u "
+                                          "decided, %u and %u wrong)",
+          decided[0], decided[1], tried[0], tried[1], wrong[0], wrong[1]);
+    CHECK(far_decided[0] >= 0.99 * far[0] && far_decided[1] >= 0.99 * far[1],
+          "the fast paths decide 99 %% of the cases 1e-6 rad or more from the threshold (%u of %u, %u of %u)",
+          far_decided[0], far[0], far_decided[1], far[1]);
+}
+
 /* ============================================================ threads */
 
 static void test_threads(const mlod_tree *scene)
@@ -1122,6 +1191,7 @@ int main(void)
     test_equals_per_view(bare, "room without attributes");
     test_culling(scene);
     test_bounds();
+    test_fast_paths();
     test_threads(scene);
     test_walks(scene);
     test_fusion(scene); /* it overwrites the scene's colours with node indices */
