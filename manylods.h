@@ -6617,8 +6617,9 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
 {
     const mlod_tree *scene = job->scene;
     const float *sphere = scene->spheres + 4 * (size_t)s;
+    const float *cone = NULL; /* the scene node's normals, when back faces are culled */
     double x[3], d, r = sphere[3], cmax, cmin, cos_phi = 0.0;
-    int k, shared = 1;
+    int k;
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn->centre[k];
     d = mlod__length3(x);
     if (vn->cone) {
@@ -6634,26 +6635,32 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
                                         : st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
     }
     if (job->flags & MLOD_VIEW_CULL_BACKFACES && scene->cones) {
-        const float *cone = scene->cones + 4 * (size_t)s;
         double away[3] = {-x[0], -x[1], -x[2]};
+        cone = scene->cones + 4 * (size_t)s;
         k = mlod__surely_backfacing(x, d, r + vn->radius, cone);
         if (k > 0 || (k < 0 && mlod__outside_cone(away, d, r + vn->radius, cone, 0.5 * MLOD__PI, 1.0 / 1073741824.0)))
             return MLOD__PAIR_CULL;
-        k = cone[3] >= 0.5 * MLOD__PI ? 1 : mlod__surely_facing(x, d, r, vn->radius, cone);
-        shared = k >= 0 ? k : mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3]);
     }
     if (vn->group) {
         uint8_t st = mlod__classify(&vn->pv, scene, s, job->epsilon);
         return st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
     }
-    if (shared && vn->cone) {
-        k = mlod__surely_within(cos_phi, d, r, vn);
-        shared = k >= 0 ? k : mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov);
-    }
     mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
-    if (cmax <= job->epsilon)
-        return shared && mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta ? MLOD__PAIR_DRAW
-                                                                                      : MLOD__PAIR_SPLIT_VIEW;
+    if (cmax <= job->epsilon) { /* shared if it moves by at most delta, every view below would draw it, and faces every eye */
+        if (!(mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta)) return MLOD__PAIR_SPLIT_VIEW;
+        if (vn->cone) {
+            k = mlod__surely_within(cos_phi, d, r, vn);
+            if (!(k >= 0 ? k : mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov)))
+                return MLOD__PAIR_SPLIT_VIEW;
+        }
+        if (cone && cone[3] < 0.5 * MLOD__PI) {
+            double away[3] = {-x[0], -x[1], -x[2]};
+            k = mlod__surely_facing(x, d, r, vn->radius, cone);
+            if (!(k >= 0 ? k : mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3])))
+                return MLOD__PAIR_SPLIT_VIEW;
+        }
+        return MLOD__PAIR_DRAW;
+    }
     if (s >= scene->leaf_count - 1) return MLOD__PAIR_SPLIT_VIEW;
     if (cmin > job->epsilon) return MLOD__PAIR_SPLIT_SCENE;
     if (job->delta > 0.0) { /* some eyes find s within epsilon, some not: split the larger (MegaViews 3.2.3) */
