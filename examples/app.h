@@ -64,6 +64,7 @@ typedef struct app_options {
     int sampling;          /* --sampling: instant_radiosity's comparison of VPL samplers */
     int still;             /* --still: the object stays at rest */
     uint32_t megaviews;    /* --megaviews N: instant_radiosity's N VPLs through the view tree (0: off) */
+    uint32_t bounces;      /* --bounces B: with --megaviews, VPLs at the first B hits of each light path */
 } app_options;
 
 /* "basic", "incremental" or "lazy". */
@@ -143,6 +144,8 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             }
         } else if (strcmp(arg, "--samples") == 0) {
             ok = app_parse_u32(value, 1, MANYLODS_MAX_LEAVES, &o->samples);
+        } else if (strcmp(arg, "--bounces") == 0) {
+            ok = app_parse_u32(value, 1, 16, &o->bounces);
         } else if (strcmp(arg, "--megaviews") == 0) {
             ok = app_parse_u32(value, 1, 1u << 20, &o->megaviews);
         } else if (strcmp(arg, "--views") == 0) {

@@ -39,7 +39,8 @@
    them and filters the sets over each surface, and compares it, against
    exact visibility of the same N VPLs, with --views VPLs through per-view
    cuts and ISM given their time (compare_megaviews, below); it writes
-   instant_radiosity_megaviews.png.
+   instant_radiosity_megaviews.png.  --bounces B leaves VPLs at the first B
+   hits of each light path (multi-bounce VPLs, as MegaViews' section 4).
 
    Run with --help for the options. */
 #define _POSIX_C_SOURCE 200809L
@@ -70,6 +71,7 @@ static const char usage[] =
     "  --megaviews N      instead, N virtual point lights (64 k and more) through the view tree (MegaViews) beside\n"
     "                     --views VPLs through per-view cuts and ISM, against exact visibility; writes\n"
     "                     instant_radiosity_megaviews.png\n"
+    "  --bounces B        with --megaviews: light paths leave a VPL at each of their first B hits (default 1)\n"
     "  --tiny             a small run for the tests: 64 VPLs, 80x60 pixels, 2 frames\n";
 
 /* Shadow-map lookups.  The receiver moves off its surface by NORMAL_OFFSET
@@ -313,15 +315,54 @@ static uint64_t shade_indirect(shade_job *job, const app_threads *threads)
     return total;
 }
 
-/* Shoot the light's rays: VPL k where ray k first hits, carrying the flux
-   it delivers there times the albedo; its shadow map looks along the
-   surface normal.  Directions follow the light's cosine lobe (a golden-
-   angle spiral, the same for every frame, so VPLs move smoothly). */
-static void spawn_vpls(const app_scene *scene, const app_light *light, uint32_t count, uint32_t tile, vpl *vpls,
-                       mlod_view *views, app_paraboloid *maps)
+/* VPL k's view: a paraboloid along its normal (its shadow map). */
+static void vpl_view(const vpl *l, const app_light *light, uint32_t tile, mlod_view *v, app_paraboloid *map)
 {
-    float up[3], right[3], per_vpl = light->intensity * 2.0f * (float)SCENE_PI / ((light->exponent + 1.0f) * (float)count);
-    uint32_t k;
+    memset(v, 0, sizeof *v);
+    v->kind = MLOD_VIEW_PARABOLOID;
+    v->width = v->height = tile;
+    v->flags = MLOD_VIEW_CULL_BACKFACES;
+    if (l->active) {
+        memcpy(v->position, l->position, sizeof v->position);
+        memcpy(v->forward, l->normal, sizeof v->forward);
+    } else { /* an open scene: a dark VPL at the light, still a valid view */
+        memcpy(v->position, light->position, sizeof v->position);
+        memcpy(v->forward, light->axis, sizeof v->forward);
+    }
+    app_perpendicular(v->forward, v->up);
+    app_paraboloid_of(v, map);
+}
+
+/* A direction about n by the cosine lobe, from two numbers in [0, 1). */
+static void cosine_direction(const float n[3], float u1, float u2, float d[3])
+{
+    float t[3], b[3], r = sqrtf(u1), phi = 2.0f * (float)SCENE_PI * u2, z = sqrtf(1.0f - u1);
+    int c;
+    app_perpendicular(n, t);
+    b[0] = n[1] * t[2] - n[2] * t[1];
+    b[1] = n[2] * t[0] - n[0] * t[2];
+    b[2] = n[0] * t[1] - n[1] * t[0];
+    app_normalize(b);
+    t[0] = b[1] * n[2] - b[2] * n[1];
+    t[1] = b[2] * n[0] - b[0] * n[2];
+    t[2] = b[0] * n[1] - b[1] * n[0];
+    for (c = 0; c < 3; c++) d[c] = r * cosf(phi) * t[c] + r * sinf(phi) * b[c] + z * n[c];
+}
+
+/* Shoot the light's rays: with one bounce, VPL k where ray k first hits,
+   carrying the flux it delivers there times the albedo; its shadow map
+   looks along the surface normal.  Directions follow the light's cosine
+   lobe (a golden-angle spiral, the same for every frame, so VPLs move
+   smoothly).  With B bounces (MegaViews 4) count / B paths leave a VPL at
+   each of their first B hits, VPLs path * B + b: the path goes on by the
+   cosine lobe of the surface it hit (fixed numbers per path and bounce),
+   which carries the VPL's flux on, times the next albedo. */
+static void spawn_vpls(const app_scene *scene, const app_light *light, uint32_t count, uint32_t bounces, uint32_t tile,
+                       vpl *vpls, mlod_view *views, app_paraboloid *maps)
+{
+    uint32_t paths = (count + bounces - 1) / bounces;
+    float up[3], right[3], per_vpl = light->intensity * 2.0f * (float)SCENE_PI / ((light->exponent + 1.0f) * (float)paths);
+    uint32_t k, b;
     int c;
     app_perpendicular(light->axis, up);
     right[0] = light->axis[1] * up[2] - light->axis[2] * up[1];
@@ -331,38 +372,34 @@ static void spawn_vpls(const app_scene *scene, const app_light *light, uint32_t 
     up[0] = right[1] * light->axis[2] - right[2] * light->axis[1];
     up[1] = right[2] * light->axis[0] - right[0] * light->axis[2];
     up[2] = right[0] * light->axis[1] - right[1] * light->axis[0];
-    for (k = 0; k < count; k++) {
+    for (k = 0; k < count; k++) memset(&vpls[k], 0, sizeof vpls[k]);
+    for (k = 0; k < paths; k++) {
         /* p(w) = (e + 1) / (2 pi) cos^e: cos = u^(1 / (e + 1)); intensity / (count p) is then constant */
-        float u = ((float)k + 0.5f) / (float)count, phi = 2.39996323f * (float)k;
-        float cos_t = powf(u, 1.0f / (light->exponent + 1.0f)), sin_t = sqrtf(1.0f - cos_t * cos_t), d[3];
-        raytrace_hit hit;
-        vpl *l = &vpls[k];
-        mlod_view *v = &views[k];
-        for (c = 0; c < 3; c++)
+        float u = ((float)k + 0.5f) / (float)paths, phi = 2.39996323f * (float)k;
+        float cos_t = powf(u, 1.0f / (light->exponent + 1.0f)), sin_t = sqrtf(1.0f - cos_t * cos_t), d[3], origin[3];
+        float carried[3] = {per_vpl, per_vpl, per_vpl};
+        uint64_t rng = 0x9e3779b97f4a7c15ull * (k + 1);
+        for (c = 0; c < 3; c++) {
             d[c] = cos_t * light->axis[c] + sin_t * (cosf(phi) * right[c] + sinf(phi) * up[c]);
-        memset(l, 0, sizeof *l);
-        memset(v, 0, sizeof *v);
-        v->kind = MLOD_VIEW_PARABOLOID;
-        v->width = v->height = tile;
-        v->flags = MLOD_VIEW_CULL_BACKFACES;
-        if (raytrace_closest(&scene->bvh, light->position, d, INFINITY, &hit)) {
+            origin[c] = light->position[c];
+        }
+        for (b = 0; b < bounces && k * bounces + b < count; b++) {
+            raytrace_hit hit;
             app_surface s;
-            app_surface_at(scene, light->position, d, &hit, &s);
+            vpl *l = &vpls[k * bounces + b];
+            if (!raytrace_closest(&scene->bvh, origin, d, INFINITY, &hit)) break;
+            app_surface_at(scene, origin, d, &hit, &s);
             for (c = 0; c < 3; c++) {
                 l->normal[c] = s.n[c];
                 l->position[c] = s.p[c] + VPL_OFFSET * s.n[c];
-                l->flux[c] = s.albedo[c] * per_vpl;
+                l->flux[c] = carried[c] = s.albedo[c] * carried[c];
             }
             l->active = 1;
-            memcpy(v->position, l->position, sizeof v->position);
-            memcpy(v->forward, l->normal, sizeof v->forward);
-        } else { /* an open scene: a dark VPL at the light, still a valid view */
-            memcpy(v->position, light->position, sizeof v->position);
-            memcpy(v->forward, light->axis, sizeof v->forward);
+            app_offset(scene, &s, origin);
+            cosine_direction(s.n, (float)scene_rng_double(&rng), (float)scene_rng_double(&rng), d);
         }
-        app_perpendicular(v->forward, v->up);
-        app_paraboloid_of(v, &maps[k]);
     }
+    for (k = 0; k < count; k++) vpl_view(&vpls[k], light, tile, &views[k], &maps[k]);
 }
 
 /* Mean absolute difference of a and b over every channel of the pixels
@@ -561,7 +598,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
             if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
         }
         /* the candidates, and the importance over fixed camera pixels */
-        spawn_vpls(scene, &light, d, o->tile, candidates, candidate_views, candidate_maps);
+        spawn_vpls(scene, &light, d, 1, o->tile, candidates, candidate_views, candidate_maps);
         for (k = 0; k < IMPORTANCE_POINTS; k++) {
             uint64_t h = 0x9e3779b97f4a7c15ull * (k + 1);
             float origin[3], direction[3];
@@ -781,10 +818,11 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     app_direct_image(scene, &light, &g, direct.rgb, threads);
     printf("manylods %d.%d.%d instant radiosity, many VPLs: %s, %s\n", MANYLODS_VERSION_MAJOR, MANYLODS_VERSION_MINOR,
            MANYLODS_VERSION_PATCH, scene->name, threads->description);
-    printf("tree    %u samples; image %ux%u; epsilon %g px\n\n", tree->leaf_count, o->width, o->height, (double)o->epsilon);
+    printf("tree    %u samples; image %ux%u; epsilon %g px; VPLs at the first %u hit%s of the light's paths\n\n",
+           tree->leaf_count, o->width, o->height, (double)o->epsilon, o->bounces, o->bounces > 1 ? "s" : "");
 
     /* N VPLs through the view tree: each a global dual paraboloid of 2 R x R pixels */
-    spawn_vpls(scene, &light, many, o->tile, many_vpls, spawned, spawned_maps);
+    spawn_vpls(scene, &light, many, o->bounces, o->tile, many_vpls, spawned, spawned_maps);
     for (k = 0; k < many; k++) {
         memcpy(eyes + 3 * (size_t)k, spawned[k].position, 3 * sizeof(float));
         memcpy(directions + 3 * (size_t)k, spawned[k].forward, 3 * sizeof(float));
@@ -834,7 +872,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     }
 
     /* o.views VPLs through the per-view cut and splat, and ISM given its time */
-    spawn_vpls(scene, &light, few, o->tile, few_vpls, few_views, few_maps);
+    spawn_vpls(scene, &light, few, o->bounces, o->tile, few_vpls, few_views, few_maps);
     memset(&cp, 0, sizeof cp);
     cp.epsilon = o->epsilon;
     cp.parallel = threads->parallel;
@@ -944,8 +982,8 @@ done:
 int main(int argc, char **argv)
 {
     app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 2, MLOD_CUT_INCREMENTAL,
-                          0, 0, 0.5f, 0, 0, 0};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f, 0, 0, 0};
+                          0, 0, 0.5f, 0, 0, 0, 1};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f, 0, 0, 0, 1};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -975,6 +1013,10 @@ int main(int argc, char **argv)
 
     parsed = app_parse_options(argc, argv, usage, &normal, &tiny, &o);
     if (parsed <= 0) return parsed < 0 ? 0 : 2;
+    if (o.bounces > 1 && !o.megaviews) {
+        fprintf(stderr, "%s: --bounces is for --megaviews\n\n%s", program, usage);
+        return 2;
+    }
     memset(&error, 0, sizeof error);
     memset(&g, 0, sizeof g);
     memset(&direct, 0, sizeof direct);
@@ -1042,7 +1084,7 @@ int main(int argc, char **argv)
         if (mlod_refit_mesh(tree, &scene.mesh, threads.parallel, &error) != MLOD_OK) goto failed;
         refit_ms = app_now_ms() - t0;
 
-        spawn_vpls(&scene, &light, o.views, o.tile, vpls, views, maps);
+        spawn_vpls(&scene, &light, o.views, 1, o.tile, vpls, views, maps);
         params.mode = frame == 0 ? MLOD_CUT_BASIC : o.mode;
         t0 = app_now_ms();
         if (mlod_cut_update(cut, tree, views, &params, &error) != MLOD_OK) goto failed;

@@ -174,8 +174,8 @@ static void interpolate_row(void *context, uint32_t y)
 
 int main(int argc, char **argv)
 {
-    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 3072, 16, 0, 2, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 300, 16, 0, 2, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0};
+    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 3072, 16, 0, 2, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 300, 16, 0, 2, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1};
     app_options o;
     app_threads threads;
     app_scene scene;
