@@ -127,20 +127,21 @@ typedef struct shade_job {
 
 #define BLOCK 16 /* pixels per side of a shading block: its VPL maps stay in cache */
 
-/* Visibility of x (normal n, depth z from the VPL) in one shadow map,
-   filtered over the 2 x 2 nearest map pixels (percentage closer). */
-static float map_visibility(const mlod_atlas *atlas, const uint32_t *tile, const app_paraboloid *map, const float x[3],
-                            const float n[3], float distance, float cos_theta)
+/* The shadow test of a receiver at depth z from the VPL whose point lands
+   at tile pixel (px, py) of a paraboloid (of half sizes half_w, half_h)
+   drawn in the tile's columns [lo, lo + columns) and rows [0, rows): lit
+   where z is at most the map's depth plus the bias, filtered over the 2 x 2
+   nearest map pixels (percentage closer), kept within those pixels. */
+static float paraboloid_lit(const mlod_atlas *atlas, const uint32_t *tile, float px, float py, float z, float cos_theta,
+                            int lo, int columns, int rows, float half_w, float half_h)
 {
-    float q[3], px, py, z, fx, fy, rx, ry, tan_theta, bias, lit = 0.0f;
-    int k, i0, j0, di, dj;
-    for (k = 0; k < 3; k++) q[k] = x[k] + NORMAL_OFFSET * distance * n[k];
-    if (!app_paraboloid_project(map, q, &px, &py, &z)) return 1.0f;
-    rx = px / map->half_width - 1.0f;
-    ry = py / map->half_height - 1.0f;
+    float fx, fy, rx, ry, tan_theta, bias, lit = 0.0f;
+    int i0, j0, di, dj;
+    rx = (px - (float)lo) / half_w - 1.0f;
+    ry = py / half_h - 1.0f;
     tan_theta = sqrtf(1.0f - cos_theta * cos_theta) / cos_theta;
     if (tan_theta > 8.0f) tan_theta = 8.0f;
-    bias = z * (DEPTH_BIAS + FILTER_PIXELS * 2.0f / ((1.0f + rx * rx + ry * ry) * map->half_width) * tan_theta);
+    bias = z * (DEPTH_BIAS + FILTER_PIXELS * 2.0f / ((1.0f + rx * rx + ry * ry) * half_w) * tan_theta);
     px -= 0.5f;
     py -= 0.5f;
     i0 = (int)floorf(px);
@@ -151,52 +152,41 @@ static float map_visibility(const mlod_atlas *atlas, const uint32_t *tile, const
         for (di = 0; di < 2; di++) {
             int i = i0 + di, j = j0 + dj;
             float w = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy), d;
-            if (i < 0) i = 0;
+            if (i < lo) i = lo;
             if (j < 0) j = 0;
-            if (i >= (int)tile[2]) i = (int)tile[2] - 1;
-            if (j >= (int)tile[3]) j = (int)tile[3] - 1;
+            if (i >= lo + columns) i = lo + columns - 1;
+            if (j >= rows) j = rows - 1;
             d = atlas->depth[(size_t)(tile[1] + (uint32_t)j) * atlas->width + tile[0] + (uint32_t)i];
             if (z <= d + bias) lit += w;
         }
     return lit;
 }
 
+/* Visibility of x (normal n, distance from the VPL) in one shadow map. */
+static float map_visibility(const mlod_atlas *atlas, const uint32_t *tile, const app_paraboloid *map, const float x[3],
+                            const float n[3], float distance, float cos_theta)
+{
+    float q[3], px, py, z;
+    int k;
+    for (k = 0; k < 3; k++) q[k] = x[k] + NORMAL_OFFSET * distance * n[k];
+    if (!app_paraboloid_project(map, q, &px, &py, &z)) return 1.0f;
+    return paraboloid_lit(atlas, tile, px, py, z, cos_theta, 0, (int)tile[2], (int)tile[3], map->half_width,
+                          map->half_height);
+}
+
 /* Visibility of x in a VPL's MegaViews map (mlod_megaviews_view: a dual
    paraboloid of the global orientation, two halves of R x R pixels side by
-   side), as map_visibility reads a paraboloid: the same offset, bias and
-   2 x 2 filter, kept within the half the point falls in. */
+   side), read as map_visibility reads a paraboloid, within the half the
+   point falls in. */
 static float dual_visibility(const mlod_atlas *atlas, const uint32_t *tile, const mlod_view *view, const float x[3],
                              const float n[3], float distance, float cos_theta)
 {
-    float q[3], pixel[2], z, half, rx, ry, tan_theta, bias, lit = 0.0f, px, py, fx, fy;
-    int k, i0, j0, di, dj, lo, size = (int)tile[3];
+    float q[3], pixel[2], z;
+    int k, size = (int)tile[3];
     for (k = 0; k < 3; k++) q[k] = x[k] + NORMAL_OFFSET * distance * n[k];
     if (!mlod_view_project(view, q, pixel, &z)) return 1.0f;
-    half = 0.5f * (float)size;
-    lo = pixel[0] < (float)size ? 0 : size;
-    rx = (pixel[0] - (float)lo) / half - 1.0f;
-    ry = pixel[1] / half - 1.0f;
-    tan_theta = sqrtf(1.0f - cos_theta * cos_theta) / cos_theta;
-    if (tan_theta > 8.0f) tan_theta = 8.0f;
-    bias = z * (DEPTH_BIAS + FILTER_PIXELS * 2.0f / ((1.0f + rx * rx + ry * ry) * half) * tan_theta);
-    px = pixel[0] - 0.5f;
-    py = pixel[1] - 0.5f;
-    i0 = (int)floorf(px);
-    j0 = (int)floorf(py);
-    fx = px - (float)i0;
-    fy = py - (float)j0;
-    for (dj = 0; dj < 2; dj++)
-        for (di = 0; di < 2; di++) {
-            int i = i0 + di, j = j0 + dj;
-            float w = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy), d;
-            if (i < lo) i = lo;
-            if (i >= lo + size) i = lo + size - 1;
-            if (j < 0) j = 0;
-            if (j >= size) j = size - 1;
-            d = atlas->depth[(size_t)(tile[1] + (uint32_t)j) * atlas->width + tile[0] + (uint32_t)i];
-            if (z <= d + bias) lit += w;
-        }
-    return lit;
+    return paraboloid_lit(atlas, tile, pixel[0], pixel[1], z, cos_theta, pixel[0] < (float)size ? 0 : size, size, size,
+                          0.5f * (float)size, 0.5f * (float)size);
 }
 
 /* The VPL's geometry term at surface point p (shading normal n), clamped
