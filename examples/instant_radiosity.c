@@ -125,6 +125,21 @@ typedef struct shade_job {
     uint64_t *rays;             /* per block: shadow rays cast (reference only) */
 } shade_job;
 
+/* A frame's shading of these VPLs into `indirect`: exact visibility until
+   the caller gives maps (atlas, and maps or dual views). */
+static shade_job shade_job_for(const app_scene *scene, const app_gbuffer *g, const vpl *vpls, uint32_t count,
+                               app_image *indirect)
+{
+    shade_job job;
+    memset(&job, 0, sizeof job);
+    job.scene = scene;
+    job.g = g;
+    job.vpls = vpls;
+    job.vpl_count = count;
+    job.indirect = indirect;
+    return job;
+}
+
 #define BLOCK 16 /* pixels per side of a shading block: its VPL maps stay in cache */
 
 /* The shadow test of a receiver at depth z from the VPL whose point lands
@@ -615,12 +630,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
             app_set(x->albedo, 1.0f, 1.0f, 1.0f);
             g.hit[r] = 1;
         }
-        memset(&job, 0, sizeof job);
-        job.scene = scene;
-        job.g = &g;
-        job.vpls = candidates;
-        job.vpl_count = d;
-        job.indirect = &reference;
+        job = shade_job_for(scene, &g, candidates, d, &reference);
         shade_indirect(&job, threads);
         stable_count = 0;
         for (r = 0; r < receivers; r++) {
@@ -840,16 +850,10 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
         goto failed;
     render_ms = app_now_ms() - t0;
     {
-        shade_job job;
-        memset(&job, 0, sizeof job);
-        job.scene = scene;
-        job.g = &g;
-        job.vpls = many_vpls;
+        shade_job job = shade_job_for(scene, &g, many_vpls, many, &raw);
         job.atlas = mv_atlas;
         job.dual = duals;
-        job.vpl_count = many;
         job.interleave = INTERLEAVE;
-        job.indirect = &raw;
         t0 = app_now_ms();
         shade_indirect(&job, threads);
         filter_interleaved(&g, &raw, INTERLEAVE, scene->diameter, &mv);
@@ -884,15 +888,9 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
                          &ism_ms);
     if (!ok) goto failed;
     {
-        shade_job job;
-        memset(&job, 0, sizeof job);
-        job.scene = scene;
-        job.g = &g;
-        job.vpls = few_vpls;
+        shade_job job = shade_job_for(scene, &g, few_vpls, few, &per_view);
         job.maps = few_maps;
-        job.vpl_count = few;
         job.atlas = cut_atlas;
-        job.indirect = &per_view;
         shade_indirect(&job, threads);
         job.atlas = ism_atlas;
         job.indirect = &ism;
@@ -1095,14 +1093,9 @@ int main(int argc, char **argv)
             goto done;
         }
         app_direct_image(&scene, &light, &g, direct.rgb, &threads);
-        memset(&job, 0, sizeof job);
-        job.scene = &scene;
-        job.g = &g;
-        job.vpls = vpls;
+        job = shade_job_for(&scene, &g, vpls, o.views, &indirect);
         job.maps = maps;
         job.atlas = atlas;
-        job.vpl_count = o.views;
-        job.indirect = &indirect;
         shade_indirect(&job, &threads);
         add_images(&direct, &indirect, &lit);
         shade_ms = app_now_ms() - t0;
