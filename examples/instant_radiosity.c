@@ -338,19 +338,25 @@ static void vpl_view(const vpl *l, const app_light *light, uint32_t tile, mlod_v
     app_paraboloid_of(v, map);
 }
 
+/* Two unit vectors that make an orthonormal frame with the unit axis. */
+static void axis_frame(const float axis[3], float right[3], float up[3])
+{
+    app_perpendicular(axis, up);
+    right[0] = axis[1] * up[2] - axis[2] * up[1];
+    right[1] = axis[2] * up[0] - axis[0] * up[2];
+    right[2] = axis[0] * up[1] - axis[1] * up[0];
+    app_normalize(right);
+    up[0] = right[1] * axis[2] - right[2] * axis[1];
+    up[1] = right[2] * axis[0] - right[0] * axis[2];
+    up[2] = right[0] * axis[1] - right[1] * axis[0];
+}
+
 /* A direction about n by the cosine lobe, from two numbers in [0, 1). */
 static void cosine_direction(const float n[3], float u1, float u2, float d[3])
 {
     float t[3], b[3], r = sqrtf(u1), phi = 2.0f * (float)SCENE_PI * u2, z = sqrtf(1.0f - u1);
     int c;
-    app_perpendicular(n, t);
-    b[0] = n[1] * t[2] - n[2] * t[1];
-    b[1] = n[2] * t[0] - n[0] * t[2];
-    b[2] = n[0] * t[1] - n[1] * t[0];
-    app_normalize(b);
-    t[0] = b[1] * n[2] - b[2] * n[1];
-    t[1] = b[2] * n[0] - b[0] * n[2];
-    t[2] = b[0] * n[1] - b[1] * n[0];
+    axis_frame(n, b, t);
     for (c = 0; c < 3; c++) d[c] = r * cosf(phi) * t[c] + r * sinf(phi) * b[c] + z * n[c];
 }
 
@@ -369,14 +375,7 @@ static void spawn_vpls(const app_scene *scene, const app_light *light, uint32_t 
     float up[3], right[3], per_vpl = light->intensity * 2.0f * (float)SCENE_PI / ((light->exponent + 1.0f) * (float)paths);
     uint32_t k, b;
     int c;
-    app_perpendicular(light->axis, up);
-    right[0] = light->axis[1] * up[2] - light->axis[2] * up[1];
-    right[1] = light->axis[2] * up[0] - light->axis[0] * up[2];
-    right[2] = light->axis[0] * up[1] - light->axis[1] * up[0];
-    app_normalize(right);
-    up[0] = right[1] * light->axis[2] - right[2] * light->axis[1];
-    up[1] = right[2] * light->axis[0] - right[0] * light->axis[2];
-    up[2] = right[0] * light->axis[1] - right[1] * light->axis[0];
+    axis_frame(light->axis, right, up);
     for (k = 0; k < count; k++) memset(&vpls[k], 0, sizeof vpls[k]);
     for (k = 0; k < paths; k++) {
         /* p(w) = (e + 1) / (2 pi) cos^e: cos = u^(1 / (e + 1)); intensity / (count p) is then constant */
