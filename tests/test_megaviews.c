@@ -1087,6 +1087,25 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
               mlod_result_name(r));
     }
     CHECK(i < 1000, "a render without failures within 1000 allocations (%u)", i);
+    /* the same, walking from the root with a list room of 1: the walks outgrow their lists again and again, and
+       any of those allocations may fail */
+    for (i = 1; i < 1000; i++) {
+        tu_counter counter;
+        mlod_allocator al = failing_at(&counter, i);
+        mlod_result r;
+        q = p;
+        q.allocator = &al;
+        r = mlod__megaviews_run(a, NULL, scene, t, &q, 0, 1, NULL, &e);
+        CHECK(counter.live_blocks == 0, "walks, allocation %u failing: %lu blocks left", i, counter.live_blocks);
+        if (r == MLOD_OK) {
+            CHECK(memcmp(before, a->depth, bytes) == 0, "walks, allocation %u: no failure, the same atlas", i);
+            break;
+        }
+        CHECK(r == MLOD_ERROR_OUT_OF_MEMORY && atlas_all_empty(a), "walks, allocation %u failing: %s and an empty atlas",
+              i, mlod_result_name(r));
+    }
+    CHECK(i > 10 && i < 1000, "walks: a render without failures after %u allocations (seven for the walk, the rest "
+                              "its list growing)", i);
     /* the unfused maps: refusals, failing allocators */
     {
         mlod_megaviews_maps *maps = (mlod_megaviews_maps *)1;
