@@ -1014,6 +1014,35 @@ static int atlas_all_empty(const mlod_atlas *a)
     return 1;
 }
 
+/* Render with the i-th allocation failing, i = 1, 2, ... (walks from
+   walk_level, list room `room`): each failure returns out of memory, holds
+   nothing and leaves the atlas empty; the first run without a failure
+   gives the atlas `before`.  Returns that i (1000 if none within). */
+static uint32_t failing_renders(mlod_atlas *a, const mlod_tree *scene, const mlod_view_tree *t,
+                                const mlod_megaviews_params *p, uint32_t walk_level, size_t room, const float *before,
+                                const char *what)
+{
+    size_t bytes = (size_t)a->width * a->height * 4;
+    uint32_t i;
+    for (i = 1; i < 1000; i++) {
+        tu_counter counter;
+        mlod_allocator al = failing_at(&counter, i);
+        mlod_megaviews_params q = *p;
+        mlod_error e;
+        mlod_result r;
+        q.allocator = &al;
+        r = mlod__megaviews_run(a, NULL, scene, t, &q, walk_level, room, NULL, &e);
+        CHECK(counter.live_blocks == 0, "%s, allocation %u failing: %lu blocks left", what, i, counter.live_blocks);
+        if (r == MLOD_OK) {
+            CHECK(memcmp(before, a->depth, bytes) == 0, "%s, allocation %u: no failure, the same atlas", what, i);
+            break;
+        }
+        CHECK(r == MLOD_ERROR_OUT_OF_MEMORY && atlas_all_empty(a), "%s, allocation %u failing: %s and an empty atlas",
+              what, i, mlod_result_name(r));
+    }
+    return i;
+}
+
 static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
 {
     static const float lo[3] = {-1, 0.5f, -1}, hi[3] = {1, 2, 1};
@@ -1071,39 +1100,11 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
     }
     CHECK(memcmp(before, a->depth, bytes) == 0, "errors: the atlas is untouched by refused calls");
     /* failing allocators: an error, nothing held, the atlas empty */
-    for (i = 1; i < 1000; i++) {
-        tu_counter counter;
-        mlod_allocator al = failing_at(&counter, i);
-        mlod_result r;
-        q = p;
-        q.allocator = &al;
-        r = mlod_megaviews_render(a, scene, t, &q, NULL, &e);
-        CHECK(counter.live_blocks == 0, "allocation %u failing: %lu blocks left", i, counter.live_blocks);
-        if (r == MLOD_OK) {
-            CHECK(memcmp(before, a->depth, bytes) == 0, "allocation %u: no failure, the same atlas", i);
-            break;
-        }
-        CHECK(r == MLOD_ERROR_OUT_OF_MEMORY && atlas_all_empty(a), "allocation %u failing: %s and an empty atlas", i,
-              mlod_result_name(r));
-    }
+    i = failing_renders(a, scene, t, &p, MLOD__MV_WALK_LEVEL, MLOD__MV_WALK_ROOM, before, "fused");
     CHECK(i < 1000, "a render without failures within 1000 allocations (%u)", i);
     /* the same, walking from the root with a list room of 1: the walks outgrow their lists again and again, and
        any of those allocations may fail */
-    for (i = 1; i < 1000; i++) {
-        tu_counter counter;
-        mlod_allocator al = failing_at(&counter, i);
-        mlod_result r;
-        q = p;
-        q.allocator = &al;
-        r = mlod__megaviews_run(a, NULL, scene, t, &q, 0, 1, NULL, &e);
-        CHECK(counter.live_blocks == 0, "walks, allocation %u failing: %lu blocks left", i, counter.live_blocks);
-        if (r == MLOD_OK) {
-            CHECK(memcmp(before, a->depth, bytes) == 0, "walks, allocation %u: no failure, the same atlas", i);
-            break;
-        }
-        CHECK(r == MLOD_ERROR_OUT_OF_MEMORY && atlas_all_empty(a), "walks, allocation %u failing: %s and an empty atlas",
-              i, mlod_result_name(r));
-    }
+    i = failing_renders(a, scene, t, &p, 0, 1, before, "walks");
     CHECK(i > 10 && i < 1000, "walks: a render without failures after %u allocations (seven for the walk, the rest "
                               "its list growing)", i);
     /* the unfused maps: refusals, failing allocators */
