@@ -339,8 +339,14 @@
            from every eye of the ball;
          drawn into v's map, as seen from c, when c(s, eye) <= epsilon for
            every eye of v's ball, its image moves by at most delta pixels
-           between c and any eye of the ball, and every view below would
-           draw it (within every field of view, facing every eye);
+           between c and any eye of the ball, it faces every eye (with
+           MLOD_VIEW_CULL_BACKFACES) and, with delta = 0 only, lies within
+           every field of view below.  With delta > 0 a view's direction
+           and field of view act only in culling, as in the paper: a node
+           shared for its view node may lie outside one view's field of
+           view, and lands in that view's tile outside it (up to delta
+           pixels and the pixel holding a small disc's centre inside),
+           where the view's own cut leaves the tile empty;
          s splits when it has children and c(s, eye) > epsilon for every
            eye of the ball, or (delta > 0) some eyes find c <= epsilon and
            others not while both children of s are at least as large as
@@ -371,9 +377,10 @@
      directions, the per-view cut less what each view's field of view
      culls.  delta > 0: a shared node's disc lies within delta pixels of
      the disc the view would draw (centre and radius), the node is one the
-     view would draw, at its exact distance; what changes is which nodes a
-     view gets (within epsilon for all eyes of a ball, not at its own cut)
-     and, per pixel, which of them is nearest.  tests/test_megaviews.c
+     view would draw (or, wholly outside its field of view, one it culls),
+     at its exact distance; what changes is which nodes a view gets
+     (within epsilon for all eyes of a ball, not at its own cut) and, per
+     pixel, which of them is nearest.  tests/test_megaviews.c
      checks both; README.md measures the cost and the error.
      Grouping (params.group_radius g > 0; the paper's equal-depth octrees
      do the like): a view node whose sphere's radius is at most g is a
@@ -6609,10 +6616,12 @@ static int mlod__surely_facing(const double *x, double d, double r, double rho, 
 /* What the traversal does with (s, v).  A leaf decides as the cut does for
    its view (after its own field of view); an inner node culls what every
    view below culls, draws what is within epsilon for every eye of its
-   ball and moves by at most delta, splits the scene node where every eye
-   finds it above epsilon, and otherwise splits itself; a group (an inner
-   node within the group radius) culls as an inner node and decides the
-   rest as the cut does for one view at its centre. */
+   ball, moves by at most delta and faces every eye (back faces culled),
+   and with delta = 0 lies within every field of view below; it splits
+   the scene node where every eye finds it above epsilon, and otherwise
+   itself; a group (an inner node within the group radius) culls as an
+   inner node and decides the rest as the cut does for one view at its
+   centre. */
 static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uint32_t s)
 {
     const mlod_tree *scene = job->scene;
@@ -6648,7 +6657,7 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
     mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
     if (cmax <= job->epsilon) { /* shared if it moves by at most delta and every view below would draw it */
         if (!(mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta)) return MLOD__PAIR_SPLIT_VIEW;
-        if (vn->cone) {
+        if (vn->cone && job->delta == 0.0) { /* delta 0: only what every view below would draw itself */
             k = mlod__surely_within(cos_phi, d, r, vn);
             if (!(k >= 0 ? k : mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov)))
                 return MLOD__PAIR_SPLIT_VIEW;

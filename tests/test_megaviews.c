@@ -526,33 +526,39 @@ static void test_bounds(void)
    distance from the view's own eye (the fusion's correction), whose
    normal is its cone's axis, whose image from that eye lies within
    delta of the pixel (the disc's radius plus delta, plus the pixel
-   holding a disc's centre), and which the view itself would not cull (by
-   its field of view, or facing away); and the views share. */
+   holding a disc's centre), which the view itself would not cull facing
+   away, and which, where the view's field of view culls it (shared from
+   above: with delta > 0 fields of view act only in culling), lies at a
+   pixel outside that field of view, but for the angle delta plus the
+   pixel holding a disc's centre span there; and the views share. */
 static void test_fusion(mlod_tree *scene)
 {
     static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
-    static const float deltas[2] = {MLOD_MEGAVIEWS_DELTA, 2.0f};
+    static const float deltas[3] = {MLOD_MEGAVIEWS_DELTA, 2.0f, MLOD_MEGAVIEWS_DELTA};
+    static const uint32_t resolutions[3] = {8, 8, 24};
     views v = make_views(41, 900, lo, hi, 0);
     uint32_t i, d;
     for (i = 0; i < scene->node_count; i++) {
         scene->colors[3 * (size_t)i] = (float)i;
         scene->colors[3 * (size_t)i + 1] = scene->colors[3 * (size_t)i + 2] = 0.0f;
     }
-    for (d = 0; d < 2; d++) {
-        mlod_view_set s = view_set(&v, d == 1, d == 1);
+    for (d = 0; d < 3; d++) {
+        mlod_view_set s = view_set(&v, d > 0, d > 0);
         mlod_view_tree *t = build_views(&s, NULL);
         mlod_view *vs = NULL;
         uint32_t flags = d == 1 ? MLOD_VIEW_CULL_BACKFACES : 0u;
-        mlod_atlas *a = make_atlas(&v, 8, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, &vs, flags);
+        mlod_atlas *a = make_atlas(&v, resolutions[d], MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, &vs, flags);
         mlod_megaviews_params p;
         mlod_megaviews_stats st;
         mlod_error e;
-        uint64_t filled = 0, bad_depth = 0, bad_normal = 0, far_off = 0, culled = 0;
-        double worst = 0.0;
+        uint64_t filled = 0, bad_depth = 0, bad_normal = 0, far_off = 0, culled = 0, outside = 0, inside = 0;
+        /* the angle delta + the centre pixel's 0.7072 px span at most: 2 / R map units a pixel, the
+           paraboloid's map r = tan(phi / 2) turning at most 2 rad per unit */
+        double worst = 0.0, deepest = -TU_PI, reach = 2.0 * (deltas[d] + 0.7072) * 2.0 / resolutions[d];
         memset(&p, 0, sizeof p);
         p.epsilon = 1.0f;
         p.delta = deltas[d];
-        p.resolution = 8;
+        p.resolution = resolutions[d];
         p.flags = flags;
         if (!t || !a || mlod_megaviews_render(a, scene, t, &p, &st, &e) != MLOD_OK) {
             CHECK(0, "fusion: render");
@@ -579,13 +585,24 @@ static void test_fusion(mlod_tree *scene)
                     }
                     if (a->depth[at] != (float)mlod__length3(x)) bad_depth++;
                     if (memcmp(a->normal + 3 * at, scene->cones + 4 * (size_t)node, 12)) bad_normal++;
-                    if (d == 1) {
+                    if (d > 0) {
                         const float *dir = v.directions + 3 * i;
                         double len = sqrt((double)dir[0] * dir[0] + (double)dir[1] * dir[1] + (double)dir[2] * dir[2]);
                         float cone[4] = {(float)(dir[0] / len), (float)(dir[1] / len), (float)(dir[2] / len), 0.0f};
+                        float origin[3], ray[3];
                         int away = 0;
                         mlod__evaluate(&pv, sph, scene->cones + 4 * (size_t)node, &away);
-                        if (away || mlod__outside_cone(x, mlod__length3(x), sph[3], cone, v.fovs[i], 0.0)) culled++;
+                        if (away) culled++;
+                        if (mlod__outside_cone(x, mlod__length3(x), sph[3], cone, v.fovs[i], 0.0)) {
+                            /* how far inside the field of view its pixel's ray lies */
+                            double ray_d[3], axis[3], in;
+                            outside++;
+                            if (!mlod_view_pixel_ray(&vs[i], col + 0.5f, row + 0.5f, origin, ray)) continue;
+                            for (k = 0; k < 3; k++) ray_d[k] = ray[k], axis[k] = cone[k];
+                            in = v.fovs[i] - mlod__angle(ray_d, axis);
+                            if (in > deepest) deepest = in;
+                            if (in > reach) inside++;
+                        }
                     }
                     if (!mlod__image_disc(&pv, col < p.resolution ? 0 : 1, centre, sph[3], &disc)) {
                         far_off++;
@@ -604,8 +621,12 @@ static void test_fusion(mlod_tree *scene)
               p.delta, (unsigned long long)bad_depth);
         CHECK(bad_normal == 0, "fusion, delta %g: %llu pixels whose normal is not their node's", p.delta,
               (unsigned long long)bad_normal);
-        CHECK(culled == 0, "fusion, delta %g: %llu pixels hold a node their view culls", p.delta,
+        CHECK(culled == 0, "fusion, delta %g: %llu pixels hold a node their view culls facing away", p.delta,
               (unsigned long long)culled);
+        CHECK(inside == 0, "fusion, delta %g, R %u: %llu pixels within the field of view (by more than %.3f rad, "
+              "up to %.3f) hold a node it culls", p.delta, p.resolution, (unsigned long long)inside, reach, deepest);
+        CHECK(d == 0 || outside > 0, "fusion, delta %g, R %u: nodes shared outside some field of view (%llu pixels)",
+              p.delta, p.resolution, (unsigned long long)outside);
         CHECK(far_off == 0, "fusion, delta %g: %llu pixels farther than delta from their node's image (worst %.3f px)",
               p.delta, (unsigned long long)far_off, worst);
         CHECK(worst > 0.25, "fusion, delta %g: shared images do move (worst %.3f px beyond the disc)", p.delta,
