@@ -38,7 +38,9 @@
    shared among nearby VPLs), shades each pixel with an interleaved 1/64 of
    them and filters the sets over each surface, and compares it, against
    exact visibility of the same N VPLs, with --views VPLs through per-view
-   cuts and ISM given their time (compare_megaviews, below); it writes
+   cuts and ISM given their time, and at equal time: as many VPLs through
+   per-view cuts as MegaViews' time affords (their cost grows with the
+   VPLs), ISM given that time (compare_megaviews, below); it writes
    instant_radiosity_megaviews.png.  --bounces B leaves VPLs at the first B
    hits of each light path (multi-bounce VPLs, as MegaViews' section 4).
 
@@ -768,6 +770,83 @@ static void filter_interleaved(const app_gbuffer *g, const app_image *in, uint32
         }
 }
 
+/* `count` VPLs through per-view cuts and splats (their maps' time in
+   *cut_ms) and through ISM given target_ms (0: the cut + splat's time;
+   its points per VPL in *points, its time in *ism_ms), shaded into
+   per_view and ism, and with exact visibility into exact_few (NULL: not
+   shaded).  0 on failure (message printed). */
+static int per_view_vpls(const char *program, const app_options *o, const app_scene *scene, mlod_tree *tree,
+                         const app_light *light, const app_gbuffer *g, const app_threads *threads, uint32_t count,
+                         double target_ms, app_image *per_view, app_image *ism, app_image *exact_few, double *cut_ms,
+                         double *ism_ms, uint32_t *points)
+{
+    vpl *vpls = (vpl *)calloc(count, sizeof(vpl));
+    mlod_view *views = (mlod_view *)calloc(count, sizeof(mlod_view));
+    app_paraboloid *maps = (app_paraboloid *)calloc(count, sizeof(app_paraboloid));
+    mlod_atlas *cut_atlas = NULL, *ism_atlas = NULL;
+    mlod_cut *cut = NULL;
+    mlod_cut_params cp;
+    mlod_atlas_desc desc = {0, 0, 0.0f};
+    mlod_error error;
+    uint64_t drawn = 0;
+    uint32_t k;
+    int ok = 0;
+    double t0;
+    memset(&error, 0, sizeof error);
+    if (!vpls || !views || !maps) {
+        fprintf(stderr, "%s: out of memory\n", program);
+        goto done;
+    }
+    spawn_vpls(scene, light, count, o->bounces, o->tile, vpls, views, maps);
+    memset(&cp, 0, sizeof cp);
+    cp.epsilon = o->epsilon;
+    cp.parallel = threads->parallel;
+    if (mlod_cut_create(count, NULL, &cut, &error) != MLOD_OK ||
+        mlod_atlas_create(views, count, &desc, NULL, &ism_atlas, &error) != MLOD_OK)
+        goto failed;
+    desc.disc_scale = o->disc_scale;
+    if (mlod_atlas_create(views, count, &desc, NULL, &cut_atlas, &error) != MLOD_OK) goto failed;
+    t0 = app_now_ms();
+    if (mlod_cut_update(cut, tree, views, &cp, &error) != MLOD_OK ||
+        mlod_splat(cut_atlas, tree, cut, views, threads->parallel, &error) != MLOD_OK ||
+        (o->disc_scale < 1.0f && mlod_atlas_fill_holes(cut_atlas, threads->parallel, &error) != MLOD_OK))
+        goto failed;
+    *cut_ms = app_now_ms() - t0;
+    for (k = 0; k < count; k++) {
+        mlod_cut_view cv = mlod_cut_get(cut, k);
+        drawn += cv.drawn + cv.oversize + cv.coarse;
+    }
+    *points = ism_at_time(ism_atlas, tree, views, (uint32_t)((drawn + count - 1) / count),
+                          target_ms > 0.0 ? target_ms : *cut_ms, threads, &error, &ok, ism_ms);
+    if (!ok) goto failed;
+    {
+        shade_job job = shade_job_for(scene, g, vpls, count, per_view);
+        job.maps = maps;
+        job.atlas = cut_atlas;
+        shade_indirect(&job, threads);
+        job.atlas = ism_atlas;
+        job.indirect = ism;
+        shade_indirect(&job, threads);
+        if (exact_few) {
+            job.atlas = NULL;
+            job.indirect = exact_few;
+            shade_indirect(&job, threads);
+        }
+    }
+    goto done;
+failed:
+    fprintf(stderr, "%s: %s: %s\n", program, mlod_result_name(error.code), error.message);
+    ok = 0;
+done:
+    mlod_atlas_destroy(cut_atlas);
+    mlod_atlas_destroy(ism_atlas);
+    mlod_cut_destroy(cut);
+    free(vpls);
+    free(views);
+    free(maps);
+    return ok;
+}
+
 static int compare_megaviews(const char *program, const app_options *o, app_scene *scene, mlod_tree *tree,
                              const app_threads *threads)
 {
@@ -775,26 +854,24 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     uint32_t width = 0;
     app_light light = app_light_at(0.0f);
     mlod_view camera = app_camera(o->width, o->height);
-    vpl *many_vpls = (vpl *)calloc(many, sizeof(vpl)), *few_vpls = (vpl *)calloc(few, sizeof(vpl));
+    vpl *many_vpls = (vpl *)calloc(many, sizeof(vpl));
     mlod_view *spawned = (mlod_view *)calloc(many, sizeof(mlod_view)), *duals = (mlod_view *)calloc(many, sizeof(mlod_view));
-    mlod_view *few_views = (mlod_view *)calloc(few, sizeof(mlod_view));
     app_paraboloid *spawned_maps = (app_paraboloid *)calloc(many, sizeof(app_paraboloid));
-    app_paraboloid *few_maps = (app_paraboloid *)calloc(few, sizeof(app_paraboloid));
     float *eyes = (float *)malloc(sizeof(float) * 3 * (size_t)many), *directions = (float *)malloc(sizeof(float) * 3 * (size_t)many);
     mlod_view_tree *vtree = NULL;
-    mlod_atlas *mv_atlas = NULL, *cut_atlas = NULL, *ism_atlas = NULL;
-    mlod_cut *cut = NULL;
+    mlod_atlas *mv_atlas = NULL;
     mlod_view_set set;
     mlod_megaviews_params mp;
     mlod_megaviews_stats st;
-    mlod_cut_params cp;
     mlod_atlas_desc desc = {0, 0, 0.0f};
     mlod_error error;
     app_gbuffer g;
-    app_image direct, raw, mv, exact, per_view, ism, exact_few, panels[3];
-    app_image *images[7];
-    double t0, tree_ms, render_ms, shade_ms, exact_ms, cut_ms, ism_ms = 0.0, e[6];
-    uint64_t rays, drawn = 0;
+    app_image direct, raw, mv, exact, per_view, ism, exact_few, per_view_eq, ism_eq, panels[3];
+    app_image *images[9];
+    double t0, tree_ms, render_ms, shade_ms, exact_ms, cut_ms = 0.0, ism_ms = 0.0, cut_eq_ms = 0.0, ism_eq_ms = 0.0;
+    double e[8], scaled;
+    uint64_t rays;
+    uint32_t equal = few, points_eq = 1;
     int ok = 0, c;
     memset(&g, 0, sizeof g);
     memset(&error, 0, sizeof error);
@@ -806,11 +883,12 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     images[4] = &per_view;
     images[5] = &ism;
     images[6] = &exact_few;
-    for (c = 0; c < 7; c++) memset(images[c], 0, sizeof(app_image));
-    for (c = 0; c < 7; c++)
+    images[7] = &per_view_eq;
+    images[8] = &ism_eq;
+    for (c = 0; c < 9; c++) memset(images[c], 0, sizeof(app_image));
+    for (c = 0; c < 9; c++)
         if (!app_image_create(images[c], o->width, o->height)) goto oom;
-    if (!many_vpls || !few_vpls || !spawned || !duals || !few_views || !spawned_maps || !few_maps || !eyes || !directions)
-        goto oom;
+    if (!many_vpls || !spawned || !duals || !spawned_maps || !eyes || !directions) goto oom;
     app_scene_animate(scene, 0.0f);
     if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
     if (!app_gbuffer_trace(&g, scene, &camera, threads)) goto oom;
@@ -865,45 +943,24 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     }
 
     /* o.views VPLs through the per-view cut and splat, and ISM given its time */
-    spawn_vpls(scene, &light, few, o->bounces, o->tile, few_vpls, few_views, few_maps);
-    memset(&cp, 0, sizeof cp);
-    cp.epsilon = o->epsilon;
-    cp.parallel = threads->parallel;
-    if (mlod_cut_create(few, NULL, &cut, &error) != MLOD_OK) goto failed;
-    if (mlod_atlas_create(few_views, few, &desc, NULL, &ism_atlas, &error) != MLOD_OK) goto failed;
-    desc.disc_scale = o->disc_scale;
-    if (mlod_atlas_create(few_views, few, &desc, NULL, &cut_atlas, &error) != MLOD_OK) goto failed;
-    t0 = app_now_ms();
-    if (mlod_cut_update(cut, tree, few_views, &cp, &error) != MLOD_OK ||
-        mlod_splat(cut_atlas, tree, cut, few_views, threads->parallel, &error) != MLOD_OK ||
-        (o->disc_scale < 1.0f && mlod_atlas_fill_holes(cut_atlas, threads->parallel, &error) != MLOD_OK))
-        goto failed;
-    cut_ms = app_now_ms() - t0;
-    for (k = 0; k < few; k++) {
-        mlod_cut_view cv = mlod_cut_get(cut, k);
-        drawn += cv.drawn + cv.oversize + cv.coarse;
-    }
-    points = ism_at_time(ism_atlas, tree, few_views, (uint32_t)((drawn + few - 1) / few), cut_ms, threads, &error, &ok,
-                         &ism_ms);
-    if (!ok) goto failed;
-    {
-        shade_job job = shade_job_for(scene, &g, few_vpls, few, &per_view);
-        job.maps = few_maps;
-        job.atlas = cut_atlas;
-        shade_indirect(&job, threads);
-        job.atlas = ism_atlas;
-        job.indirect = &ism;
-        shade_indirect(&job, threads);
-        job.atlas = NULL;
-        job.indirect = &exact_few;
-        shade_indirect(&job, threads);
-    }
+    if (!per_view_vpls(program, o, scene, tree, &light, &g, threads, few, 0.0, &per_view, &ism, &exact_few, &cut_ms,
+                       &ism_ms, &points))
+        goto done;
+    /* equal time: as many VPLs through per-view cuts as MegaViews' time gives them (their cost grows with
+       the VPLs), ISM given that time */
+    scaled = (double)few * (tree_ms + render_ms) / (cut_ms > 0.01 ? cut_ms : 0.01);
+    equal = scaled < (double)few ? few : scaled > (double)many ? many : (uint32_t)scaled;
+    if (!per_view_vpls(program, o, scene, tree, &light, &g, threads, equal, tree_ms + render_ms, &per_view_eq, &ism_eq,
+                       NULL, &cut_eq_ms, &ism_eq_ms, &points_eq))
+        goto done;
     e[0] = relative_difference(&mv, &exact, &exact, NULL);
     e[1] = relative_difference(&per_view, &exact_few, &exact_few, NULL);
     e[2] = relative_difference(&ism, &exact_few, &exact_few, NULL);
     e[3] = relative_difference(&per_view, &exact, &exact, NULL);
     e[4] = relative_difference(&ism, &exact, &exact, NULL);
     e[5] = relative_difference(&exact_few, &exact, &exact, NULL);
+    e[6] = relative_difference(&per_view_eq, &exact, &exact, NULL);
+    e[7] = relative_difference(&ism_eq, &exact, &exact, NULL);
     printf("indirect light against exact visibility           maps ms   against the same VPLs   against %u VPLs\n", many);
     printf("  MegaViews: %7u VPLs, view tree + render %7.0f     %6.1f %%            %6.1f %%\n", many, tree_ms + render_ms,
            100.0 * e[0], 100.0 * e[0]);
@@ -913,17 +970,25 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
            100.0 * e[2], 100.0 * e[4]);
     printf("  exact:     %7u VPLs, shadow rays          %7s     %6s              %6.1f %%\n", few, "-", "-",
            100.0 * e[5]);
+    printf(" at MegaViews' time:\n");
+    printf("  manylods:  %7u VPLs, cut + splat          %7.0f     %6s              %6.1f %%\n", equal, cut_eq_ms, "-",
+           100.0 * e[6]);
+    printf("  ISM:       %7u VPLs, splat + pull-push    %7.0f     %6s              %6.1f %%\n", equal, ism_eq_ms, "-",
+           100.0 * e[7]);
     printf("  MegaViews: maps 2 x %u x %u px, epsilon %g px, delta %g px; view tree %.0f ms, render %.0f ms, %.3g pairs,"
            " %.1f views per shared draw, peak %.1f MiB; shading %.0f ms\n",
            resolution, resolution, (double)o->epsilon, (double)mp.delta, tree_ms, render_ms, (double)st.pairs,
            st.shared_draws ? (double)st.shared_views / (double)st.shared_draws : 0.0, app_mib((double)st.peak_bytes),
            shade_ms);
-    printf("  ISM: %u points per VPL (matched to the cut + splat's time); each pixel shades 1/%u of the %u VPLs\n"
-           "  (interleaved %ux%u, filtered over its surface); the reference: %.1f million shadow rays in %.0f ms\n",
-           points, INTERLEAVE * INTERLEAVE, many, INTERLEAVE, INTERLEAVE, (double)rays / 1e6, exact_ms);
+    printf("  ISM: %u points per VPL (matched to the cut + splat's time), %u at MegaViews' time; each pixel shades\n"
+           "  1/%u of the %u VPLs (interleaved %ux%u, filtered over its surface); the reference: %.1f million shadow\n"
+           "  rays in %.0f ms\n",
+           points, points_eq, INTERLEAVE * INTERLEAVE, many, INTERLEAVE, INTERLEAVE, (double)rays / 1e6, exact_ms);
     printf("megaviews summary: %u VPLs %.2f %% against their exact visibility; against it, %u VPLs: manylods %.2f %%, "
            "ISM %.2f %%, exact %.2f %%\n",
            many, 100.0 * e[0], few, 100.0 * e[3], 100.0 * e[4], 100.0 * e[5]);
+    printf("megaviews equal time: %u VPLs manylods %.2f %%, ISM %.2f %% against the %u VPLs' exact visibility\n", equal,
+           100.0 * e[6], 100.0 * e[7], many);
     add_images(&direct, &mv, &mv);
     add_images(&direct, &exact, &exact);
     add_images(&direct, &per_view, &per_view);
@@ -949,18 +1014,12 @@ failed:
 done:
     mlod_view_tree_destroy(vtree);
     mlod_atlas_destroy(mv_atlas);
-    mlod_atlas_destroy(cut_atlas);
-    mlod_atlas_destroy(ism_atlas);
-    mlod_cut_destroy(cut);
-    for (c = 0; c < 7; c++) app_image_free(images[c]);
+    for (c = 0; c < 9; c++) app_image_free(images[c]);
     app_gbuffer_free(&g);
     free(many_vpls);
-    free(few_vpls);
     free(spawned);
     free(duals);
-    free(few_views);
     free(spawned_maps);
-    free(few_maps);
     free(eyes);
     free(directions);
     return ok;

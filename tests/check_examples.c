@@ -12,7 +12,9 @@
      keeps more VPLs and flickers less than the inverse transform;
    - instant_radiosity --megaviews (check_megaviews), with one bounce and
      four: 4096 VPLs through the view tree come closer to their exact
-     visibility than 64 VPLs do even with exact visibility;
+     visibility than 64 VPLs do even with exact visibility; the equal-time
+     line is printed (its VPL count depends on the machine's timing, so
+     only its range is checked);
    - accuracy, instant radiosity at epsilon = 1 (--tiny: 64 VPLs of 32 x 32
      pixels, 100 000 samples, 80 x 60 pixels), ISM given twice as many
      points per VPL as the cut draws nodes (--ism-match 2: deterministic,
@@ -340,9 +342,9 @@ static void check_megaviews(void)
     int b;
     for (b = 0; b < 2; b++) {
         char path[512], line[1024], tag[128], command[1024];
-        double own = -1, few[3] = {-1, -1, -1};
-        unsigned many = 0, count = 0;
-        int status, found = 0;
+        double own = -1, few[3] = {-1, -1, -1}, equal_error[2] = {-1, -1};
+        unsigned many = 0, count = 0, equal = 0, equal_many = 0;
+        int status, found = 0, found_equal = 0;
         FILE *f;
         snprintf(tag, sizeof tag, "instant_radiosity-megaviews-%s", bounces[b]);
         snprintf(command, sizeof command,
@@ -353,11 +355,19 @@ static void check_megaviews(void)
               status);
         snprintf(path, sizeof path, "%s/%s.out", OUT_DIR, tag);
         f = fopen(path, "r");
-        while (f && fgets(line, sizeof line, f))
+        while (f && fgets(line, sizeof line, f)) {
             found |= sscanf(line, "megaviews summary: %u VPLs %lf %% against their exact visibility; against it, %u VPLs: "
                                   "manylods %lf %%, ISM %lf %%, exact %lf %%",
                             &many, &own, &count, &few[0], &few[1], &few[2]) == 6;
+            found_equal |= sscanf(line, "megaviews equal time: %u VPLs manylods %lf %%, ISM %lf %% against the %u VPLs'",
+                                  &equal, &equal_error[0], &equal_error[1], &equal_many) == 4;
+        }
         if (f) fclose(f);
+        /* the count depends on the machine's timing: only its range is checked */
+        CHECK(found_equal && equal >= 64 && equal <= 4096 && equal_many == 4096 && equal_error[0] >= 0.0 &&
+                  equal_error[0] < 100.0 && equal_error[1] >= 0.0 && equal_error[1] < 100.0,
+              "instant_radiosity --megaviews (%s bounces) prints its equal-time line (%u VPLs, %.2f and %.2f %%)",
+              bounces[b], equal, equal_error[0], equal_error[1]);
         CHECK(found && many == 4096 && count == 64,
               "instant_radiosity --megaviews (%s bounces) prints its summary line (%u and %u VPLs)", bounces[b], many,
               count);
