@@ -6309,8 +6309,10 @@ static int mlod__within_cone(const double *x, double d, double r, double rho, co
 static void mlod__ball_diameters(double S, const double *x, double d, double r, double rho, double *cmax,
                                  double *cmin)
 {
-    double closest = d - rho, farthest = d + rho, t_closest, t_farthest;
-    int h;
+    /* the largest quotient over the halves is S 2 r over the least denominator (division being monotone):
+       one division each, the same bits as a division per half */
+    double closest = d - rho, farthest = d + rho, t_closest, t_farthest, least_near = INFINITY, least_far = INFINITY;
+    int h, some = 0, every = 0;
     *cmax = 0.0;
     *cmin = 0.0;
     if (!(farthest > r)) { /* every eye inside the sphere */
@@ -6321,21 +6323,21 @@ static void mlod__ball_diameters(double S, const double *x, double d, double r, 
     t_farthest = sqrt((farthest - r) * (farthest + r));
     for (h = 0; h < 2; h++) {
         double xw = h ? -x[2] : x[2], den;
-        if (xw + rho + r >= 0.0) {
+        if (xw + rho + r >= 0.0) { /* some eye reaches this half */
             den = xw - rho + t_closest;
-            if (!(closest > r) || !(den > 0.0))
-                *cmax = INFINITY;
-            else if (S * 2.0 * r / den > *cmax)
-                *cmax = S * 2.0 * r / den;
+            some = 1;
+            if (!(closest > r) || !(den > 0.0)) den = 0.0;
+            if (den < least_near) least_near = den;
         }
-        if (xw - rho + r >= 0.0) {
+        if (xw - rho + r >= 0.0) { /* every eye */
             den = xw + rho + t_farthest;
-            if (!(den > 0.0))
-                *cmin = INFINITY;
-            else if (S * 2.0 * r / den > *cmin)
-                *cmin = S * 2.0 * r / den;
+            every = 1;
+            if (!(den > 0.0)) den = 0.0;
+            if (den < least_far) least_far = den;
         }
     }
+    if (some) *cmax = least_near > 0.0 ? S * 2.0 * r / least_near : INFINITY;
+    if (every) *cmin = least_far > 0.0 ? S * 2.0 * r / least_far : INFINITY;
     *cmax *= 1.0 + 1.0 / 1099511627776.0;
     *cmin *= 1.0 - 1.0 / 1099511627776.0;
 }
@@ -6353,7 +6355,9 @@ static void mlod__ball_diameters(double S, const double *x, double d, double r, 
    and cosines of phi +- b from their sums: no trigonometry. */
 static double mlod__ball_motion(double S, const double *x, double d, double r, double rho)
 {
-    double closest = d - r, g = r + rho, turn, sin_b, cos_b, sin_phi, most = 0.0;
+    /* the largest quotient over the halves is S turn over the least 1 + cos(phi + b) (division being
+       monotone), and the halves' cos phi are +-x.w / d: the same bits as dividing per half */
+    double closest = d - r, g = r + rho, turn, sin_b, cos_b, sin_phi, cos_w, least = INFINITY;
     int h;
     if (rho == 0.0) return 0.0;
     if (!(closest > rho) || !(d > g)) return INFINITY;
@@ -6361,16 +6365,17 @@ static double mlod__ball_motion(double S, const double *x, double d, double r, d
     sin_b = g / d;
     cos_b = sqrt((d - g) * (d + g)) / d;
     sin_phi = sqrt(x[0] * x[0] + x[1] * x[1]) / d;
+    cos_w = x[2] / d;
     for (h = 0; h < 2; h++) {
-        double cos_phi = (h ? -x[2] : x[2]) / d, sin_sum, cos_sum, m;
+        double cos_phi = h ? -cos_w : cos_w, sin_sum, cos_sum;
         if (cos_phi * cos_b + sin_phi * sin_b < -1e-12) continue; /* cos(phi - b) < 0 */
         sin_sum = sin_phi * cos_b + cos_phi * sin_b;
         cos_sum = cos_phi * cos_b - sin_phi * sin_b;
-        if (!(sin_sum > 1e-12 || cos_sum > 0.0)) return INFINITY;
-        m = S * turn / (1.0 + cos_sum);
-        if (m > most) most = m;
+        /* phi + b at pi, or rounded past it (1 + cos below 0): no bound */
+        if (!(sin_sum > 1e-12 || cos_sum > 0.0) || !(1.0 + cos_sum > 0.0)) return INFINITY;
+        if (1.0 + cos_sum < least) least = 1.0 + cos_sum;
     }
-    return most * (1.0 + 1.0 / 1048576.0);
+    return least < INFINITY ? S * turn / least * (1.0 + 1.0 / 1048576.0) : 0.0;
 }
 
 /* A view node as the pair test sees it. */
@@ -6764,9 +6769,11 @@ static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *cent
 static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, const float *parent_depth,
                              const uint32_t *parent_ids, uint32_t node)
 {
-    uint32_t width = 2 * job->resolution, row, col;
+    uint32_t width = 2 * job->resolution, row, col, k;
     double centre[3];
     mlod__mv_centre(job, node, centre);
+    for (k = 0; k < job->pixels; k++) /* the pixels' scene nodes lie anywhere in the tree: ask for all at once */
+        if (parent_depth[k] < INFINITY) MLOD__PREFETCH(job->scene->spheres + 4 * (size_t)parent_ids[k]);
     for (row = 0; row < job->resolution; row++)
         for (col = 0; col < width; col++) {
             size_t from = (size_t)row * width + col;
