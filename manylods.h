@@ -6769,11 +6769,9 @@ static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *cent
 static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, const float *parent_depth,
                              const uint32_t *parent_ids, uint32_t node)
 {
-    uint32_t width = 2 * job->resolution, row, col, k;
+    uint32_t width = 2 * job->resolution, row, col;
     double centre[3];
     mlod__mv_centre(job, node, centre);
-    for (k = 0; k < job->pixels; k++) /* the pixels' scene nodes lie anywhere in the tree: ask for all at once */
-        if (parent_depth[k] < INFINITY) MLOD__PREFETCH(job->scene->spheres + 4 * (size_t)parent_ids[k]);
     for (row = 0; row < job->resolution; row++)
         for (col = 0; col < width; col++) {
             size_t from = (size_t)row * width + col;
