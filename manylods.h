@@ -4153,8 +4153,10 @@ static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, ui
    compiler has no way to say it). */
 #if defined(__GNUC__) || defined(__clang__)
 #define MLOD__PREFETCH(p) __builtin_prefetch(p)
+#define MLOD__PREFETCH_WRITE(p) __builtin_prefetch(p, 1)
 #else
 #define MLOD__PREFETCH(p) ((void)(p))
+#define MLOD__PREFETCH_WRITE(p) ((void)(p))
 #endif
 
 #ifdef MLOD__VLANES
@@ -6796,7 +6798,16 @@ static void mlod__mv_leaf_begin(const mlod__mv_job *job, uint32_t node, mlod__ba
                                 const uint32_t *parent_ids)
 {
     const mlod_tree *eyes = job->views->eyes;
-    mlod__tile_band(job->atlas, job->scene, eyes->leaf_sources[node - (eyes->leaf_count - 1)], band);
+    uint32_t leaf = node - (eyes->leaf_count - 1), row;
+    mlod__tile_band(job->atlas, job->scene, eyes->leaf_sources[leaf], band);
+    if (leaf + 1 < eyes->leaf_count) { /* the next leaf's tile (the walks' next, in order), out in the atlas */
+        const uint32_t *tile = job->atlas->tiles + 4 * (size_t)eyes->leaf_sources[leaf + 1];
+        float *next = job->atlas->depth + (size_t)tile[1] * job->atlas->width + tile[0];
+        for (row = 0; row < tile[3]; row++) {
+            MLOD__PREFETCH_WRITE(next + (size_t)row * job->atlas->width);
+            MLOD__PREFETCH_WRITE(next + (size_t)row * job->atlas->width + tile[2] - 1);
+        }
+    }
     mlod__band_clear(band, 2 * job->resolution);
     if (parent_depth) mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
 }
