@@ -429,7 +429,7 @@
      bytes each, room for four per scene node handed to its root plus 4096
      first, four times more when short: the walk runs again) and one map
      per level (8 bytes per pixel).  It reports its peak
-     (mlod_megaviews_stats.peak_bytes: 13 to 24 MB for 64 k to 1 M
+     (mlod_megaviews_stats.peak_bytes: 11 to 14 MB for 64 k to 1 M
      lights in README.md's benchmark, against the atlas's 4 bytes per
      pixel); mlod_megaviews_render_maps, level by level throughout, keeps
      on top 8 bytes per pixel of every view node that drew anything
