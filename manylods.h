@@ -6414,6 +6414,12 @@ typedef struct mlod__mv_drawer {
     int ready;
     uint32_t node; /* the view node */
     uint32_t batch[MLOD__LANES], n;
+    /* a walk's inner map, begun (from the parent's map) at the first draw;
+       NULL once begun, or when the band was begun before the first draw */
+    float *lazy_depth;
+    uint32_t *lazy_ids;
+    const float *lazy_parent_depth;
+    const uint32_t *lazy_parent_ids;
 } mlod__mv_drawer;
 
 typedef struct mlod__mv_job {
@@ -6839,6 +6845,11 @@ static void mlod__mv_flush(mlod__mv_drawer *dr)
 /* Draw a scene node into the drawer's band, in turn with the others. */
 static void mlod__mv_draw(const mlod__mv_job *job, mlod__mv_drawer *dr, uint32_t s)
 {
+    if (dr->lazy_depth) {
+        mlod__mv_map_begin(job, dr->node, dr->lazy_depth, dr->lazy_ids, dr->lazy_parent_depth, dr->lazy_parent_ids,
+                           &dr->band);
+        dr->lazy_depth = NULL;
+    }
     if (!dr->ready) {
         mlod_view view = mlod__node_map_view(job, dr->node);
         mlod__view_prepare(&view, dr->pv, NULL);
@@ -6890,6 +6901,7 @@ static void mlod__mv_leaf_drawer(const mlod__mv_job *job, mlod__vnode *vn, const
     dr->ready = 1;
     dr->node = vn->node;
     dr->n = 0;
+    dr->lazy_depth = NULL;
 }
 
 /* Classify a chunk of the level's units: each scene node handed to a view
@@ -6961,6 +6973,7 @@ static void mlod__mv_draw_task(void *context, uint32_t index)
         dr.ready = 0;
         dr.node = node;
         dr.n = 0;
+        dr.lazy_depth = NULL;
         for (k = 0; k < n; k++) mlod__mv_draw(job, &dr, job->draws[job->draw_off[i] + k]);
         mlod__mv_flush(&dr);
     }
@@ -7112,9 +7125,12 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
         mlod__mv_flush(&dr);
         w->leaf_draws += out.drawn;
     } else {
-        float *depth = w->depth + (size_t)level * job->pixels;
-        uint32_t *ids = w->ids + (size_t)level * job->pixels;
-        mlod__mv_map_begin(job, node, depth, ids, parent_depth, parent_ids, &dr.band);
+        const float *depth = parent_depth; /* what the children begin from */
+        const uint32_t *ids = parent_ids;
+        dr.lazy_depth = w->depth + (size_t)level * job->pixels; /* begun at the first draw */
+        dr.lazy_ids = w->ids + (size_t)level * job->pixels;
+        dr.lazy_parent_depth = parent_depth;
+        dr.lazy_parent_ids = parent_ids;
         dr.pv = &w->pv[level];
         dr.ready = 0;
         dr.node = node;
@@ -7127,7 +7143,9 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
         mlod__mv_flush(&dr);
         w->shared_draws += out.drawn;
         w->shared_views += out.drawn * mlod__leaves_below(node, eyes->leaf_count);
-        if (!parent_depth && !out.drawn) depth = NULL, ids = NULL; /* an empty map */
+        /* a map that drew nothing would be the parent's, each pixel measured again from this node's
+           centre: the children measure again from theirs anyway, so they begin from the parent's */
+        if (out.drawn) depth = w->depth + (size_t)level * job->pixels, ids = w->ids + (size_t)level * job->pixels;
         mlod__mv_walk_node(job, w, 2 * node + 1, level + 1, out.split, out.split_count, top + out.split_count,
                            depth, ids);
         if (w->overflow) return;
