@@ -6668,7 +6668,7 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
         return st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
     }
     mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
-    if (cmax <= job->epsilon) { /* shared if it moves by at most delta and every view below would draw it */
+    if (cmax <= job->epsilon) { /* shared if it moves by at most delta (delta 0: and every view below draws it) */
         if (!(mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta)) return MLOD__PAIR_SPLIT_VIEW;
         if (vn->cone && job->delta == 0.0) { /* delta 0: only what every view below would draw itself */
             k = mlod__surely_within(cos_phi, d, r, vn);
