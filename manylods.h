@@ -6578,15 +6578,23 @@ static void mlod__sin_cos_bounds(double a, double *sin_lo, double *sin_hi, doubl
    as much in angle) clear of its threshold, far above the 2^-30 of the
    definitions and the arc tangents' 1e-11 rad; -1 otherwise (the exact
    tests decide). */
+/* cos gamma = -x.n / (d |n|) for the scene node's normal cone n; 0 when
+   its axis has no length (the exact tests decide). */
+static int mlod__cos_gamma(const double *x, double d, const float *cone, double *cos_gamma)
+{
+    double len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
+    if (!(len > 0.0)) return 0;
+    *cos_gamma = -(x[0] * cone[0] + x[1] * cone[1] + x[2] * cone[2]) / (d * len);
+    return 1;
+}
+
 static int mlod__surely_backfacing(const double *x, double d, double g, const float *cone)
 {
-    double theta = cone[3], len, cos_gamma, sin_b, cos_b, s_lo, s_hi, c_lo, c_hi, sum_hi, sum_lo, cos_sum_lo;
+    double theta = cone[3], cos_gamma, sin_b, cos_b, s_lo, s_hi, c_lo, c_hi, sum_hi, sum_lo, cos_sum_lo;
     if (!(theta >= 0.0)) return -1;
     if (!(theta < 0.5 * MLOD__PI)) return 0; /* pi/2 + theta >= pi: never culled */
     if (!(d > g)) return 0;
-    len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
-    if (!(len > 0.0)) return -1;
-    cos_gamma = -(x[0] * cone[0] + x[1] * cone[1] + x[2] * cone[2]) / (d * len);
+    if (!mlod__cos_gamma(x, d, cone, &cos_gamma)) return -1;
     sin_b = g / d;
     cos_b = sqrt((1.0 - sin_b) * (1.0 + sin_b));
     mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);
@@ -6600,12 +6608,10 @@ static int mlod__surely_backfacing(const double *x, double d, double g, const fl
 
 static int mlod__surely_facing(const double *x, double d, double r, double rho, const float *cone)
 {
-    double theta = cone[3], len, cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
+    double theta = cone[3], cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
     double sin_d_lo, sin_d_hi, cos_d_lo, cos_d_hi;
     if (!(theta >= 0.0 && theta < 0.5 * MLOD__PI) || !(d > rho)) return -1;
-    len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
-    if (!(len > 0.0)) return -1;
-    cos_gamma = -(x[0] * cone[0] + x[1] * cone[1] + x[2] * cone[2]) / (d * len);
+    if (!mlod__cos_gamma(x, d, cone, &cos_gamma)) return -1;
     sin_t = rho / d;
     cos_t = sqrt((1.0 - sin_t) * (1.0 + sin_t));
     sin_s = r / (d + rho);
@@ -6640,9 +6646,9 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
     const mlod_tree *scene = job->scene;
     const float *sphere = scene->spheres + 4 * (size_t)s;
     const float *cone = NULL; /* the scene node's normals, when back faces are culled */
-    double x[3], d, r = sphere[3], cmax, cmin, cos_phi = 0.0;
+    double x[3], away[3], d, r = sphere[3], cmax, cmin, cos_phi = 0.0;
     int k;
-    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn->centre[k];
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn->centre[k], away[k] = -x[k];
     d = mlod__length3(x);
     if (vn->cone) {
         cos_phi = (x[0] * vn->cone[0] + x[1] * vn->cone[1] + x[2] * vn->cone[2]) / (d * vn->axis_length);
@@ -6657,7 +6663,6 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
                                         : st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
     }
     if (job->flags & MLOD_VIEW_CULL_BACKFACES && scene->cones) {
-        double away[3] = {-x[0], -x[1], -x[2]};
         cone = scene->cones + 4 * (size_t)s;
         k = mlod__surely_backfacing(x, d, r + vn->radius, cone);
         if (k > 0 || (k < 0 && mlod__outside_cone(away, d, r + vn->radius, cone, 0.5 * MLOD__PI, 1.0 / 1073741824.0)))
@@ -6676,7 +6681,6 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
                 return MLOD__PAIR_SPLIT_VIEW;
         }
         if (cone && cone[3] < 0.5 * MLOD__PI) {
-            double away[3] = {-x[0], -x[1], -x[2]};
             k = mlod__surely_facing(x, d, r, vn->radius, cone);
             if (!(k >= 0 ? k : mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3])))
                 return MLOD__PAIR_SPLIT_VIEW;
@@ -7125,10 +7129,12 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
         mlod__mv_flush(&dr);
         w->leaf_draws += out.drawn;
     } else {
-        const float *depth = parent_depth; /* what the children begin from */
-        const uint32_t *ids = parent_ids;
-        dr.lazy_depth = w->depth + (size_t)level * job->pixels; /* begun at the first draw */
-        dr.lazy_ids = w->ids + (size_t)level * job->pixels;
+        float *map_depth = w->depth + (size_t)level * job->pixels; /* this node's map, begun at the first draw */
+        uint32_t *map_ids = w->ids + (size_t)level * job->pixels;
+        const float *child_depth;
+        const uint32_t *child_ids;
+        dr.lazy_depth = map_depth;
+        dr.lazy_ids = map_ids;
         dr.lazy_parent_depth = parent_depth;
         dr.lazy_parent_ids = parent_ids;
         dr.pv = &w->pv[level];
@@ -7145,12 +7151,13 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
         w->shared_views += out.drawn * mlod__leaves_below(node, eyes->leaf_count);
         /* a map that drew nothing would be the parent's, each pixel measured again from this node's
            centre: the children measure again from theirs anyway, so they begin from the parent's */
-        if (out.drawn) depth = w->depth + (size_t)level * job->pixels, ids = w->ids + (size_t)level * job->pixels;
+        child_depth = out.drawn ? map_depth : parent_depth;
+        child_ids = out.drawn ? map_ids : parent_ids;
         mlod__mv_walk_node(job, w, 2 * node + 1, level + 1, out.split, out.split_count, top + out.split_count,
-                           depth, ids);
+                           child_depth, child_ids);
         if (w->overflow) return;
         mlod__mv_walk_node(job, w, 2 * node + 2, level + 1, out.split, out.split_count, top + out.split_count,
-                           depth, ids);
+                           child_depth, child_ids);
     }
     w->pairs += out.pairs;
     w->culled += out.culled;

@@ -205,6 +205,19 @@ static inline double app_machine_bytes(void)
 
 static inline double app_mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
+/* A cut's nodes over its first `views` views: all of them (culled ones
+   included) and those the splat draws (drawn, oversize and coarse). */
+static inline void app_cut_counts(const mlod_cut *cut, uint32_t views, uint64_t *nodes, uint64_t *drawn)
+{
+    uint32_t v;
+    *nodes = *drawn = 0;
+    for (v = 0; v < views; v++) {
+        mlod_cut_view c = mlod_cut_get(cut, v);
+        *nodes += c.count;
+        *drawn += c.drawn + c.oversize + c.coarse;
+    }
+}
+
 /* An allocator that counts the bytes it holds and their high-water mark,
    to print beside what the sizing functions predicted.  The library calls
    it from the calling thread only. */

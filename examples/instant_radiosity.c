@@ -788,8 +788,7 @@ static int per_view_vpls(const char *program, const app_options *o, const app_sc
     mlod_cut_params cp;
     mlod_atlas_desc desc = {0, 0, 0.0f};
     mlod_error error;
-    uint64_t drawn = 0;
-    uint32_t k;
+    uint64_t nodes, drawn;
     int ok = 0;
     double t0;
     memset(&error, 0, sizeof error);
@@ -812,10 +811,7 @@ static int per_view_vpls(const char *program, const app_options *o, const app_sc
         (o->disc_scale < 1.0f && mlod_atlas_fill_holes(cut_atlas, threads->parallel, &error) != MLOD_OK))
         goto failed;
     *cut_ms = app_now_ms() - t0;
-    for (k = 0; k < count; k++) {
-        mlod_cut_view cv = mlod_cut_get(cut, k);
-        drawn += cv.drawn + cv.oversize + cv.coarse;
-    }
+    app_cut_counts(cut, count, &nodes, &drawn);
     *points = ism_at_time(ism_atlas, tree, views, (uint32_t)((drawn + count - 1) / count),
                           target_ms > 0.0 ? target_ms : *cut_ms, threads, &error, &ok, ism_ms);
     if (!ok) goto failed;
@@ -1054,7 +1050,7 @@ int main(int argc, char **argv)
     mlod_allocator build_allocator = app_counting(&build_memory);
     size_t build_bound;
     mlod_atlas_desc atlas_desc = {0, 0, 0.0f};
-    uint32_t frame, v, compare_width = 0;
+    uint32_t frame, compare_width = 0;
     int status = 1, parsed;
 
     parsed = app_parse_options(argc, argv, usage, &normal, &tiny, &o);
@@ -1158,12 +1154,7 @@ int main(int argc, char **argv)
         add_images(&direct, &indirect, &lit);
         shade_ms = app_now_ms() - t0;
 
-        nodes_total = drawn_total = 0;
-        for (v = 0; v < o.views; v++) {
-            mlod_cut_view c = mlod_cut_get(cut, v);
-            nodes_total += c.count;
-            drawn_total += c.drawn + c.oversize + c.coarse;
-        }
+        app_cut_counts(cut, o.views, &nodes_total, &drawn_total);
         if (nodes_total > nodes_most) nodes_most = nodes_total;
         printf("%5u  %8.1f  %6.1f  %8.1f  %8.1f  %10.0f  %10.0f%s\n", frame, refit_ms, frame_cut_ms, frame_splat_ms,
                shade_ms, (double)nodes_total / o.views, (double)drawn_total / o.views,

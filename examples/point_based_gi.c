@@ -284,11 +284,7 @@ int main(int argc, char **argv)
     t0 = app_now_ms();
     if (mlod_splat(atlas, tree, cut, views, threads.parallel, &error) != MLOD_OK) goto failed;
     splat_ms = app_now_ms() - t0;
-    for (k = 0; k < count; k++) {
-        mlod_cut_view c = mlod_cut_get(cut, k);
-        nodes += c.count;
-        drawn += c.drawn + c.oversize + c.coarse;
-    }
+    app_cut_counts(cut, count, &nodes, &drawn);
 
     t0 = app_now_ms();
     {
