@@ -79,13 +79,14 @@ BENCH_EXTRA  = $(if $(BENCH_AVX2),-DBENCH_AVX2 $(BUILD)/bench/cut_avx2.o)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PARALLEL = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(JOBS))
 
-# tests/test_vulkan.c links the Vulkan loader: built by its own rule below.
-TEST_SOURCES := $(filter-out tests/test_vulkan.c,$(sort $(wildcard tests/test_*.c)))
+# tests/test_vulkan.c and tests/test_f64_vulkan.c link the Vulkan loader:
+# built by their own rules below.
+TEST_SOURCES := $(filter-out tests/test_vulkan.c tests/test_f64_vulkan.c,$(sort $(wildcard tests/test_*.c)))
 TEST_NAMES   := $(TEST_SOURCES:tests/%.c=%)
 GCC_TESTS    := $(TEST_NAMES:%=$(BUILD)/gcc/%)
 SAN_TESTS    := $(TEST_NAMES:%=$(BUILD)/san/%)
 TSAN_PROGRAMS := $(TSAN_TESTS:%=$(BUILD)/tsan/%)
-HEADERS      := manylods.h $(wildcard tests/*.h) $(wildcard examples/*.h)
+HEADERS      := manylods.h $(wildcard tests/*.h) $(wildcard examples/*.h) shaders/f64.glsl
 
 # LeakSanitizer on, and a readable report from UBSan.
 export ASAN_OPTIONS ?= detect_leaks=1:abort_on_error=0
@@ -116,8 +117,8 @@ ifeq ($(HAVE_VULKAN),1)
 BENCH_CFLAGS += -DBENCH_VULKAN
 BENCH_LDLIBS += $(VULKAN_LIBS)
 BENCH_DEPS   += manylods_vk.h
-VULKAN_TEST := $(BUILD)/vulkan/test_vulkan tests/check_vulkan_example.sh
-VULKAN_PROGRAMS := $(BUILD)/vulkan/test_vulkan $(BUILD)/examples/vulkan_minimal
+VULKAN_TEST := $(BUILD)/vulkan/test_vulkan $(BUILD)/vulkan/test_f64_vulkan tests/check_vulkan_example.sh
+VULKAN_PROGRAMS := $(BUILD)/vulkan/test_vulkan $(BUILD)/vulkan/test_f64_vulkan $(BUILD)/examples/vulkan_minimal
 else
 VULKAN_TEST := tests/vulkan_missing.sh
 VULKAN_PROGRAMS :=
@@ -188,6 +189,12 @@ shaders:
 	$(Q)shaders/embed.sh
 
 $(BUILD)/vulkan/test_vulkan: tests/test_vulkan.c manylods_vk.h $(HEADERS)
+	$(say) CC $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CC) $(TEST_CFLAGS) $< -o $@ $(VULKAN_LIBS) $(LDLIBS)
+
+# shaders/f64.glsl on the device (it compiles tests/f64_check.comp when run).
+$(BUILD)/vulkan/test_f64_vulkan: tests/test_f64_vulkan.c manylods_vk.h $(HEADERS)
 	$(say) CC $@
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CC) $(TEST_CFLAGS) $< -o $@ $(VULKAN_LIBS) $(LDLIBS)

@@ -1314,10 +1314,11 @@ static mlod_result mlodvk__pipeline_layout(mlodvk_context *ctx, VkDescriptorSetL
     return MLOD_OK;
 }
 
-/* A compute pipeline, entry point "main"; the shader module is needed only
-   while the pipeline is created. */
-static mlod_result mlodvk__pipeline(mlodvk_context *ctx, const mlodvk__shader *shader, VkPipeline *out,
-                                    mlod_error *error)
+/* A compute pipeline of the SPIR-V words (bytes long) with layout, entry
+   point "main"; the shader module is needed only while the pipeline is
+   created.  (tests/test_f64_vulkan.c builds its own shader with it.) */
+static mlod_result mlodvk__pipeline(mlodvk_context *ctx, const uint32_t *words, size_t bytes, VkPipelineLayout layout,
+                                    VkPipeline *out, mlod_error *error)
 {
     VkShaderModuleCreateInfo module_info;
     VkComputePipelineCreateInfo info;
@@ -1325,8 +1326,8 @@ static mlod_result mlodvk__pipeline(mlodvk_context *ctx, const mlodvk__shader *s
     VkResult r;
     memset(&module_info, 0, sizeof module_info);
     module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-    module_info.codeSize = shader->bytes;
-    module_info.pCode = shader->words;
+    module_info.codeSize = bytes;
+    module_info.pCode = words;
     MLODVK__CHECK(ctx->vk.CreateShaderModule(ctx->device, &module_info, ctx->vk_allocator, &module),
                   "vkCreateShaderModule");
     memset(&info, 0, sizeof info);
@@ -1335,7 +1336,7 @@ static mlod_result mlodvk__pipeline(mlodvk_context *ctx, const mlodvk__shader *s
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
-    info.layout = ctx->layouts[shader->layout];
+    info.layout = layout;
     r = ctx->vk.CreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, ctx->vk_allocator, out);
     ctx->vk.DestroyShaderModule(ctx->device, module, ctx->vk_allocator);
     if (r != VK_SUCCESS) {
@@ -1416,7 +1417,7 @@ MANYLODS_VK_DEF mlod_result mlodvk_context_create(const mlodvk_context_desc *des
         mlodvk__shader shader;
         shader.words = mlodvk__spirv(i, &shader.bytes);
         shader.layout = layouts[i];
-        res = mlodvk__pipeline(ctx, &shader, &ctx->pipelines[i], error);
+        res = mlodvk__pipeline(ctx, shader.words, shader.bytes, ctx->layouts[shader.layout], &ctx->pipelines[i], error);
     }
     if (res == MLOD_OK) {
         VkCommandPoolCreateInfo pool;

@@ -261,8 +261,11 @@ if command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 && command -v qemu-aarch64 >
     entry neon-cut "tests/test_cut.c for AArch64 (NEON), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_cut.c -o $OUT/neon-cut $LIBS" \
         "qemu-aarch64 $OUT/neon-cut"
+    entry f64-aarch64 "tests/test_f64.c for AArch64 (shaders/f64.glsl against AArch64's doubles), under qemu" \
+        "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_f64.c -o $OUT/f64-aarch64 $LIBS" \
+        "qemu-aarch64 $OUT/f64-aarch64 300000"
 else
-    echo "  (not run: neon-fp, neon-cut: no aarch64-linux-gnu-gcc or qemu-aarch64 here)"
+    echo "  (not run: neon-fp, neon-cut, f64-aarch64: no aarch64-linux-gnu-gcc or qemu-aarch64 here)"
 fi
 
 # MANYLODS_STATIC: two private copies in one program.

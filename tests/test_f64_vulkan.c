@@ -1,0 +1,239 @@
+/* tests/test_f64_vulkan.c - shaders/f64.glsl on a Vulkan device (lavapipe
+   in CI, with the Khronos validation layer) against the same text compiled
+   as C (tests/f64_c.h), which tests/test_f64.c checks against the host's
+   doubles: every operation gives the same bits on the device, so a shader
+   that computes in f64.glsl decides as the CPU's double code does, on a
+   device without shaderFloat64 or shaderInt64.
+
+   tests/f64_check.comp is compiled here, with glslangValidator (Debian:
+   glslang-tools; GLSLANG overrides the command), and its module must not
+   declare the Float64, Int64 or Int64Atomics capabilities.  Without a
+   Vulkan device or the compiler it prints why and reports no test (0
+   passed, 0 failed), unless MANYLODS_REQUIRE_VULKAN=1 (CI): then a skip is
+   a failure.  Run from the repository's root (make test does). */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MANYLODS_IMPLEMENTATION
+#include "../manylods.h"
+#define MANYLODS_VK_IMPLEMENTATION
+#include "../manylods_vk.h"
+
+#include "harness.h"
+#include "tempdir.h"
+#include "f64_c.h"
+
+VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instance, const char *name);
+
+#define RESULTS 5 /* uvec4 per operand pair, as tests/f64_check.comp writes them */
+
+static int skip(const char *why)
+{
+    const char *require = getenv("MANYLODS_REQUIRE_VULKAN");
+    printf("SKIPPED: %s\n", why);
+    if (require && strcmp(require, "1") == 0) {
+        printf("MANYLODS_REQUIRE_VULKAN=1: a skip is a failure\n0 passed, 1 failed\n");
+        return 1;
+    }
+    printf("0 passed, 0 failed\n");
+    return 0;
+}
+
+/* The SPIR-V words of tests/f64_check.comp, malloc'd, or NULL (why in `why`). */
+static uint32_t *compile(size_t *bytes, char *why, size_t why_size)
+{
+    char dir[256], cmd[1024], path[300];
+    const char *glslang = getenv("GLSLANG");
+    uint32_t *words = NULL;
+    FILE *f;
+    long size;
+    if (!test_temp_dir(dir, sizeof dir, "f64")) {
+        snprintf(why, why_size, "no temporary directory");
+        return NULL;
+    }
+    snprintf(path, sizeof path, "%s/f64_check.spv", dir);
+    snprintf(cmd, sizeof cmd, "%s -V --target-env vulkan1.1 -Ishaders tests/f64_check.comp -o %s >%s/log 2>&1",
+             glslang && *glslang ? glslang : "glslangValidator", path, dir);
+    if (system(cmd) != 0) {
+        snprintf(why, why_size, "%s could not compile tests/f64_check.comp (its log: %s/log)",
+                 glslang && *glslang ? glslang : "glslangValidator", dir);
+        return NULL;
+    }
+    f = fopen(path, "rb");
+    if (f && fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) > 20 && size % 4 == 0 && fseek(f, 0, SEEK_SET) == 0) {
+        words = malloc((size_t)size);
+        if (words && fread(words, 1, (size_t)size, f) != (size_t)size) {
+            free(words);
+            words = NULL;
+        }
+        *bytes = (size_t)size;
+    }
+    if (f) fclose(f);
+    if (!words) snprintf(why, why_size, "could not read %s", path);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (words && system(cmd) != 0) fprintf(stderr, "note: could not remove %s\n", dir);
+    return words;
+}
+
+/* The capabilities a module declares that need 64-bit types or atomics
+   (OpCapability Float64 = 10, Int64 = 11, Int64Atomics = 12), as a count. */
+static int wide_capabilities(const uint32_t *words, size_t count)
+{
+    size_t i = 5;
+    int wide = 0;
+    while (i < count) {
+        uint32_t op = words[i] & 0xFFFFu, length = words[i] >> 16;
+        if (length == 0) return 99;
+        if (op == 17 && length == 2 && (words[i + 1] == 10 || words[i + 1] == 11 || words[i + 1] == 12)) wide++;
+        i += length;
+    }
+    return wide;
+}
+
+static uvec2 u2(uint32_t x, uint32_t y)
+{
+    uvec2 r;
+    r.x = x;
+    r.y = y;
+    return r;
+}
+
+int main(int argc, char **argv)
+{
+    uint32_t n = argc > 1 ? (uint32_t)strtoul(argv[1], NULL, 10) : 200000u, i, groups, wrong = 0, wrong_ops[RESULTS * 4];
+    uint64_t state = 0x5EEDF64ull + 1;
+    mlodvk_device_desc dd;
+    mlodvk_device device;
+    mlodvk_context_desc desc;
+    mlodvk_context *ctx = NULL;
+    mlod_error e;
+    char why[1200];
+    size_t bytes = 0;
+    uint32_t *words, *in, *out;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set;
+    mlodvk__buffer operands, results;
+    mlod_result res;
+
+    words = compile(&bytes, why, sizeof why);
+    if (!words) return skip(why);
+    CHECK(wide_capabilities(words, bytes / 4) == 0,
+          "tests/f64_check.comp declares no Float64, Int64 or Int64Atomics capability (found %d)",
+          wide_capabilities(words, bytes / 4));
+
+    memset(&dd, 0, sizeof dd);
+    dd.get_instance_proc_addr = vkGetInstanceProcAddr;
+    dd.validation = 1;
+    dd.prefer_cpu = getenv("MANYLODS_VULKAN_GPU") == NULL;
+    if (mlodvk_device_create(&dd, &device, &e) != MLOD_OK) {
+        free(words);
+        snprintf(why, sizeof why, "no usable Vulkan device with the validation layer: %s", e.message);
+        return skip(why);
+    }
+    desc = mlodvk_device_context_desc(&device);
+    if (mlodvk_context_create(&desc, &ctx, &e) != MLOD_OK) {
+        CHECK(0, "mlodvk_context_create on %s: %s", device.name, e.message);
+        free(words);
+        mlodvk_device_destroy(&device);
+        return test_finish();
+    }
+    printf("  device: %s\n", mlodvk_context_device_name(ctx));
+
+    memset(&operands, 0, sizeof operands);
+    memset(&results, 0, sizeof results);
+    res = mlodvk__set_layout(ctx, 2, &set_layout, &e);
+    if (res == MLOD_OK) res = mlodvk__pipeline_layout(ctx, set_layout, 4, &layout, &e);
+    if (res == MLOD_OK) res = mlodvk__pipeline(ctx, words, bytes, layout, &pipeline, &e);
+    if (res == MLOD_OK)
+        res = mlodvk__buffer_create(ctx, 16 * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, &operands, &e);
+    if (res == MLOD_OK)
+        res = mlodvk__buffer_create(ctx, 16 * RESULTS * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1,
+                                    &results, &e);
+    if (res == MLOD_OK) res = mlodvk__pool(ctx, 1, 2, &pool, &e);
+    if (res == MLOD_OK) res = mlodvk__sets(ctx, pool, set_layout, 1, &set, &e);
+    CHECK(res == MLOD_OK, "the test pipeline and buffers: %s", e.message);
+    if (res == MLOD_OK) {
+        VkBuffer buffers[2];
+        in = operands.mapped;
+        for (i = 0; i < n; i++) {
+            uint64_t a = f64t_operand(&state, i % 7), b = f64t_partner(&state, a, i / 7);
+            in[4 * i] = (uint32_t)a;
+            in[4 * i + 1] = (uint32_t)(a >> 32);
+            in[4 * i + 2] = (uint32_t)b;
+            in[4 * i + 3] = (uint32_t)(b >> 32);
+        }
+        buffers[0] = operands.buffer;
+        buffers[1] = results.buffer;
+        mlodvk__write_set(ctx, set, buffers, 2);
+        res = mlodvk__begin(ctx, &e);
+        if (res == MLOD_OK) {
+            groups = (n + 63) / 64;
+            ctx->vk.CmdBindPipeline(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+            ctx->vk.CmdBindDescriptorSets(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, NULL);
+            ctx->vk.CmdPushConstants(ctx->commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &n);
+            ctx->vk.CmdDispatch(ctx->commands, groups, 1, 1);
+            mlodvk__barrier(ctx);
+            res = mlodvk__submit(ctx, &e);
+        }
+        mlodvk__abandon(ctx);
+        CHECK(res == MLOD_OK, "the dispatch of %u operand pairs: %s", n, e.message);
+    }
+    if (res == MLOD_OK) {
+        /* the same results from the C compile of f64.glsl, word for word */
+        static const char *names[RESULTS * 4] = {"add", "add", "sub", "sub", "mul", "mul", "div", "div",
+                                                  "sqrt", "sqrt", "to float", "lt, le, eq", "from float",
+                                                  "from float", "from int", "from int", "from uint", "from uint",
+                                                  "to int", "(unused)"};
+        memset(wrong_ops, 0, sizeof wrong_ops);
+        out = results.mapped;
+        for (i = 0; i < n; i++) {
+            uvec2 a = u2(in[4 * i], in[4 * i + 1]), b = u2(in[4 * i + 2], in[4 * i + 3]), r;
+            uint32_t want[RESULTS * 4], k;
+            int small = f64_lt(f64_abs(a), u2(0u, 0x41E00000u));
+            r = f64_add(a, b), want[0] = r.x, want[1] = r.y;
+            r = f64_sub(a, b), want[2] = r.x, want[3] = r.y;
+            r = f64_mul(a, b), want[4] = r.x, want[5] = r.y;
+            r = f64_div(a, b), want[6] = r.x, want[7] = r.y;
+            r = f64_sqrt(a), want[8] = r.x, want[9] = r.y;
+            want[10] = floatBitsToUint(f64_to_float(a));
+            want[11] = (uint32_t)f64_lt(a, b) | (uint32_t)f64_le(a, b) << 1 | (uint32_t)f64_eq(a, b) << 2;
+            r = f64_from_float(uintBitsToFloat(b.x)), want[12] = r.x, want[13] = r.y;
+            r = f64_from_int((int32_t)b.y), want[14] = r.x, want[15] = r.y;
+            r = f64_from_uint(b.y), want[16] = r.x, want[17] = r.y;
+            want[18] = small ? (uint32_t)f64_to_int(a) : 0u;
+            want[19] = 0u;
+            for (k = 0; k < RESULTS * 4; k++)
+                if (out[RESULTS * 4 * i + k] != want[k]) {
+                    if (!wrong++)
+                        fprintf(stderr, "first difference: pair %u (0x%08x%08x, 0x%08x%08x), %s: device 0x%08x, C 0x%08x\n",
+                                i, a.y, a.x, b.y, b.x, names[k], out[RESULTS * 4 * i + k], want[k]);
+                    wrong_ops[k]++;
+                }
+        }
+        for (i = 0; i < RESULTS * 4 - 1; i += (i < 10 ? 2 : 1)) {
+            uint32_t count = wrong_ops[i] + (i < 10 || i == 12 || i == 14 || i == 16 ? wrong_ops[i + 1] : 0);
+            if (i == 13 || i == 15 || i == 17) continue;
+            CHECK(count == 0, "%s: %u of %u operand pairs differ between the device and the C compile", names[i],
+                  count, n);
+        }
+        printf("  %u operand pairs: add, sub, mul, div, sqrt, comparisons and conversions, %u words differ\n", n,
+               wrong);
+    }
+    CHECK(device.validation_messages == 0, "%u validation message(s), the last: %s", device.validation_messages,
+          device.last_message);
+    if (pool) ctx->vk.DestroyDescriptorPool(ctx->device, pool, ctx->vk_allocator);
+    if (pipeline) ctx->vk.DestroyPipeline(ctx->device, pipeline, ctx->vk_allocator);
+    if (layout) ctx->vk.DestroyPipelineLayout(ctx->device, layout, ctx->vk_allocator);
+    if (set_layout) ctx->vk.DestroyDescriptorSetLayout(ctx->device, set_layout, ctx->vk_allocator);
+    mlodvk__buffer_destroy(ctx, &operands);
+    mlodvk__buffer_destroy(ctx, &results);
+    mlodvk_context_destroy(ctx);
+    mlodvk_device_destroy(&device);
+    free(words);
+    return test_finish();
+}
