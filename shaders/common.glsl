@@ -4,33 +4,47 @@
 // Each function here is the twin of the C function its "C twin:" line names
 // in manylods.h, which names it back ("GLSL twin:"), in the same order
 // (tests/check_twins.sh checks both), operation for operation, in double
-// precision, every temporary `precise` (no fused multiply-add): on a
-// device whose double arithmetic is IEEE (lavapipe; most desktop GPUs) the
-// two compute the same bits, and the CPU and Vulkan cuts are equal node for
-// node.  Change one, change both.
+// precision through real.glsl (every operation an r_* call, rounded on its
+// own: no fused multiply-add): the device's own doubles, or with
+// MLOD_F64_EMULATED doubles from 32-bit integers (f64.glsl).  Either way
+// the two compute the same bits (on a device whose doubles are IEEE, for
+// the native form: lavapipe, most desktop GPUs), and the CPU and Vulkan
+// cuts are equal node for node.  Change one, change both.
 //
 // The includer declares, before including this file:
 //   vec4 spheres[]  (x, y, z, r per node)   in a buffer named tree_spheres
 //   vec4 cones[]    (axis, half-angle)      in a buffer named tree_cones
-//   double views[]  (MLOD_IF_VIEW_STRIDE doubles per view: interface.h)
+//   uvec2 views[]   (MLOD_IF_VIEW_STRIDE doubles per view, as their bits:
+//                    interface.h)
 // and a macro MLOD_HAS_CONES (a bool expression) - or defines MLOD_NO_VIEWS
 // (the refit shaders) and gets only the functions that need no view.
 
-#define MLOD_PI 3.14159265358979323846LF
+#include "real.glsl"
 
 // The view layout (MLOD_IF_V_*), kind and status codes come from
 // interface.h, which the layout files include first.
 
+#ifdef MLOD_F64_EMULATED
+struct real4 {
+    uvec2 x;
+    uvec2 y;
+    uvec2 z;
+    uvec2 w;
+};
+#else
+#define real4 dvec4
+#endif
+
 #ifndef MLOD_NO_VIEWS
 // A view's field (MLOD_IF_V_*), and the first double of its sub-projection
 // s, whose fields (MLOD_IF_S_*) sd and sd3 read.
-double vd(uint view, uint field) { return views[view * MLOD_IF_VIEW_STRIDE + field]; }
-dvec3 vd3(uint view, uint field) { return dvec3(vd(view, field), vd(view, field + 1), vd(view, field + 2)); }
-uint sub_count(uint view) { return uint(vd(view, MLOD_IF_V_SUB_COUNT)); }
+real vd(uint view, uint field) { return r_load(views[view * MLOD_IF_VIEW_STRIDE + field]); }
+real3 vd3(uint view, uint field) { return real3(vd(view, field), vd(view, field + 1), vd(view, field + 2)); }
+uint sub_count(uint view) { return r_to_u(vd(view, MLOD_IF_V_SUB_COUNT)); }
 uint sub_base(uint view, uint s) { return view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_SUBS + s * MLOD_IF_SUB_STRIDE; }
-double sd(uint sub, uint field) { return views[sub + field]; }
-dvec3 sd3(uint sub, uint field) { return dvec3(sd(sub, field), sd(sub, field + 1), sd(sub, field + 2)); }
-int sub_kind(uint sub) { return int(sd(sub, MLOD_IF_S_KIND)); }
+real sd(uint sub, uint field) { return r_load(views[sub + field]); }
+real3 sd3(uint sub, uint field) { return real3(sd(sub, field), sd(sub, field + 1), sd(sub, field + 2)); }
+int sub_kind(uint sub) { return int(r_to_u(sd(sub, MLOD_IF_S_KIND))); }
 
 #endif // MLOD_NO_VIEWS
 
@@ -38,145 +52,163 @@ int sub_kind(uint sub) { return int(sd(sub, MLOD_IF_S_KIND)); }
 
 // C twin: mlod__float_up
 // The smallest float >= x (x >= 0)
-float float_up(double x)
+float float_up(real x)
 {
-    float f = float(x);
-    if (double(f) < x) f = uintBitsToFloat(floatBitsToUint(f) + 1u);
+    float f = r_to_f(x);
+    if (r_lt(r_f(f), x)) f = uintBitsToFloat(floatBitsToUint(f) + 1u);
     return f;
 }
 
 // C twin: mlod__dot3
-double dot3(dvec3 a, dvec3 b)
+real dot3(real3 a, real3 b)
 {
-    precise double s = a.x * b.x + a.y * b.y + a.z * b.z;
-    return s;
+    return r_add(r_add(r_mul(a.x, b.x), r_mul(a.y, b.y)), r_mul(a.z, b.z));
 }
 
 // C twin: mlod__cross3
-dvec3 cross_d(dvec3 a, dvec3 b)
+real3 cross_d(real3 a, real3 b)
 {
-    precise double x = a.y * b.z - a.z * b.y;
-    precise double y = a.z * b.x - a.x * b.z;
-    precise double z = a.x * b.y - a.y * b.x;
-    return dvec3(x, y, z);
+    return real3(r_sub(r_mul(a.y, b.z), r_mul(a.z, b.y)), r_sub(r_mul(a.z, b.x), r_mul(a.x, b.z)),
+                 r_sub(r_mul(a.x, b.y), r_mul(a.y, b.x)));
 }
 
 // C twin: mlod__length3
-double length_d(dvec3 a) { return sqrt(dot3(a, a)); }
+real length_d(real3 a) { return r_sqrt(dot3(a, a)); }
 
 // C twin: mlod__distance_f
-double distance_f(vec3 a, vec3 b)
+real distance_f(vec3 a, vec3 b)
 {
-    precise double dx = double(a.x) - double(b.x);
-    precise double dy = double(a.y) - double(b.y);
-    precise double dz = double(a.z) - double(b.z);
-    precise double d = sqrt(dx * dx + dy * dy + dz * dz);
-    return d;
+    real3 x = r3_sub(r3_f(a), r3_f(b));
+    return r_sqrt(dot3(x, x));
 }
 
 // C twin: mlod__cos_even
 // (and the five arrays after it: the same literals)
-const double COS_EVEN[6] = double[](
-    4.110317623312165e-19LF, 4.779477332387385e-14LF, 2.08767569878681e-09LF, 2.48015873015873e-05LF,
-    0.041666666666666664LF, 1.0LF);
+const real COS_EVEN[6] = real[](
+    RK(0x3C1E542Bu, 0xA4020225u, 4.110317623312165e-19LF),
+    RK(0x3D2AE7F3u, 0xE733B81Fu, 4.779477332387385e-14LF),
+    RK(0x3E21EED8u, 0xEFF8D898u, 2.08767569878681e-09LF),
+    RK(0x3EFA01A0u, 0x1A01A01Au, 2.48015873015873e-05LF),
+    RK(0x3FA55555u, 0x55555555u, 0.041666666666666664LF),
+    RK(0x3FF00000u, 0x00000000u, 1.0LF));
 
-const double COS_ODD[6] = double[](
-    8.896791392450574e-22LF, 1.5619206968586225e-16LF, 1.1470745597729725e-11LF, 2.755731922398589e-07LF,
-    0.001388888888888889LF, 0.5LF);
+const real COS_ODD[6] = real[](
+    RK(0x3B90CE39u, 0x6DB7F853u, 8.896791392450574e-22LF),
+    RK(0x3CA68278u, 0x63B97D97u, 1.5619206968586225e-16LF),
+    RK(0x3DA93974u, 0xA8C07C9Du, 1.1470745597729725e-11LF),
+    RK(0x3E927E4Fu, 0xB7789F5Cu, 2.755731922398589e-07LF),
+    RK(0x3F56C16Cu, 0x16C16C17u, 0.001388888888888889LF),
+    RK(0x3FE00000u, 0x00000000u, 0.5LF));
 
-const double SIN_EVEN[6] = double[](
-    1.9572941063391263e-20LF, 2.8114572543455206e-15LF, 1.6059043836821613e-10LF, 2.7557319223985893e-06LF,
-    0.008333333333333333LF, 1.0LF);
+const real SIN_EVEN[6] = real[](
+    RK(0x3BD71B8Eu, 0xF6DCF572u, 1.9572941063391263e-20LF),
+    RK(0x3CE952C7u, 0x7030AD4Au, 2.8114572543455206e-15LF),
+    RK(0x3DE61246u, 0x13A86D09u, 1.6059043836821613e-10LF),
+    RK(0x3EC71DE3u, 0xA556C734u, 2.7557319223985893e-06LF),
+    RK(0x3F811111u, 0x11111111u, 0.008333333333333333LF),
+    RK(0x3FF00000u, 0x00000000u, 1.0LF));
 
-const double SIN_ODD[5] = double[](
-    8.22063524662433e-18LF, 7.647163731819816e-13LF, 2.505210838544172e-08LF, 0.0001984126984126984LF,
-    0.16666666666666666LF);
+const real SIN_ODD[5] = real[](
+    RK(0x3C62F49Bu, 0x46814157u, 8.22063524662433e-18LF),
+    RK(0x3D6AE7F3u, 0xE733B81Fu, 7.647163731819816e-13LF),
+    RK(0x3E5AE645u, 0x67F544E4u, 2.505210838544172e-08LF),
+    RK(0x3F2A01A0u, 0x1A01A01Au, 0.0001984126984126984LF),
+    RK(0x3FC55555u, 0x55555555u, 0.16666666666666666LF));
 
-const double ATAN_EVEN[6] = double[](
-    0.047619047619047616LF, 0.058823529411764705LF, 0.07692307692307693LF, 0.1111111111111111LF, 0.2LF, 1.0LF);
+const real ATAN_EVEN[6] = real[](
+    RK(0x3FA86186u, 0x18618618u, 0.047619047619047616LF),
+    RK(0x3FAE1E1Eu, 0x1E1E1E1Eu, 0.058823529411764705LF),
+    RK(0x3FB3B13Bu, 0x13B13B14u, 0.07692307692307693LF),
+    RK(0x3FBC71C7u, 0x1C71C71Cu, 0.1111111111111111LF),
+    RK(0x3FC99999u, 0x9999999Au, 0.2LF),
+    RK(0x3FF00000u, 0x00000000u, 1.0LF));
 
-const double ATAN_ODD[6] = double[](
-    0.043478260869565216LF, 0.05263157894736842LF, 0.06666666666666667LF, 0.09090909090909091LF,
-    0.14285714285714285LF, 0.3333333333333333LF);
+const real ATAN_ODD[6] = real[](
+    RK(0x3FA642C8u, 0x590B2164u, 0.043478260869565216LF),
+    RK(0x3FAAF286u, 0xBCA1AF28u, 0.05263157894736842LF),
+    RK(0x3FB11111u, 0x11111111u, 0.06666666666666667LF),
+    RK(0x3FB745D1u, 0x745D1746u, 0.09090909090909091LF),
+    RK(0x3FC24924u, 0x92492492u, 0.14285714285714285LF),
+    RK(0x3FD55555u, 0x55555555u, 0.3333333333333333LF));
 
 // C twin: mlod__sin_cos
-void sin_cos(double a, out double sin_a, out double cos_a)
+void sin_cos(real a, out real sin_a, out real cos_a)
 {
-    precise double x = a - 1.57079632679489661923LF;
-    precise double y = x * x;
-    precise double z = y * y;
-    precise double ce = COS_EVEN[0];
-    precise double co = COS_ODD[0];
-    precise double se = SIN_EVEN[0];
-    precise double so = SIN_ODD[0];
+    real x = r_sub(a, R_HALF_PI);
+    real y = r_mul(x, x);
+    real z = r_mul(y, y);
+    real ce = COS_EVEN[0];
+    real co = COS_ODD[0];
+    real se = SIN_EVEN[0];
+    real so = SIN_ODD[0];
     [[unroll]] for (int k = 1; k < 6; k++) {
-        ce = COS_EVEN[k] + z * ce;
-        co = COS_ODD[k] + z * co;
-        se = SIN_EVEN[k] + z * se;
+        ce = r_add(COS_EVEN[k], r_mul(z, ce));
+        co = r_add(COS_ODD[k], r_mul(z, co));
+        se = r_add(SIN_EVEN[k], r_mul(z, se));
     }
-    [[unroll]] for (int k = 1; k < 5; k++) so = SIN_ODD[k] + z * so;
-    sin_a = ce - y * co;
-    precise double sine = se - y * so;
-    cos_a = -x * sine;
+    [[unroll]] for (int k = 1; k < 5; k++) so = r_add(SIN_ODD[k], r_mul(z, so));
+    sin_a = r_sub(ce, r_mul(y, co));
+    real sine = r_sub(se, r_mul(y, so));
+    cos_a = r_mul(r_neg(x), sine);
 }
 
 // C twin: mlod__atan2
 // (y >= 0)
-double atan2_d(double y, double x)
+real atan2_d(real y, real x)
 {
-    precise double ax = abs(x);
-    bool swap = y > ax;
-    if (!(y > 0.0LF) && !(ax > 0.0LF)) return x < 0.0LF ? MLOD_PI : 0.0LF;
-    precise double t = swap ? ax / y : y / ax;
-    precise double u = t;
-    precise double base = 0.0LF;
-    if (t > 0.41421356237309504880LF) {
-        u = (t - 1.0LF) / (t + 1.0LF);
-        base = 0.78539816339744830962LF;
+    real ax = r_abs(x);
+    bool swap = r_gt(y, ax);
+    if (!r_gt(y, R_ZERO) && !r_gt(ax, R_ZERO)) return r_lt(x, R_ZERO) ? R_PI : R_ZERO;
+    real t = swap ? r_div(ax, y) : r_div(y, ax);
+    real u = t;
+    real base = R_ZERO;
+    if (r_gt(t, RK(0x3FDA8279u, 0x99FCEF32u, 0.41421356237309504880LF))) {
+        u = r_div(r_sub(t, R_ONE), r_add(t, R_ONE));
+        base = RK(0x3FE921FBu, 0x54442D18u, 0.78539816339744830962LF);
     }
-    precise double u2 = u * u;
-    precise double w = u2 * u2;
-    precise double even = ATAN_EVEN[0];
-    precise double odd = ATAN_ODD[0];
+    real u2 = r_mul(u, u);
+    real w = r_mul(u2, u2);
+    real even = ATAN_EVEN[0];
+    real odd = ATAN_ODD[0];
     [[unroll]] for (int k = 1; k < 6; k++) {
-        even = ATAN_EVEN[k] + w * even;
-        odd = ATAN_ODD[k] + w * odd;
+        even = r_add(ATAN_EVEN[k], r_mul(w, even));
+        odd = r_add(ATAN_ODD[k], r_mul(w, odd));
     }
-    precise double a = base + u * (even - u2 * odd);
-    if (swap) a = 1.57079632679489661923LF - a;
-    precise double result = x < 0.0LF ? MLOD_PI - a : a;
-    return result;
+    real a = r_add(base, r_mul(u, r_sub(even, r_mul(u2, odd))));
+    if (swap) a = r_sub(R_HALF_PI, a);
+    return r_lt(x, R_ZERO) ? r_sub(R_PI, a) : a;
 }
 
 // C twin: mlod__angle
-double angle_d(dvec3 a, dvec3 b) { return atan2_d(length_d(cross_d(a, b)), dot3(a, b)); }
+real angle_d(real3 a, real3 b) { return atan2_d(length_d(cross_d(a, b)), dot3(a, b)); }
 
 // C twin: mlod__sphere_enclose
 vec4 sphere_enclose(vec4 a, vec4 b)
 {
-    precise double d = distance_f(a.xyz, b.xyz);
-    double ra = double(a.w), rb = double(b.w);
+    real d = distance_f(a.xyz, b.xyz);
+    real ra = r_f(a.w), rb = r_f(b.w);
     vec3 c;
-    if (d + rb <= ra) {
+    if (r_le(r_add(d, rb), ra)) {
         c = a.xyz;
-    } else if (d + ra <= rb) {
+    } else if (r_le(r_add(d, ra), rb)) {
         c = b.xyz;
     } else {
-        precise double t = ((d + ra + rb) * 0.5LF - ra) / d;
-        precise double cx = double(a.x) + (double(b.x) - double(a.x)) * t;
-        precise double cy = double(a.y) + (double(b.y) - double(a.y)) * t;
-        precise double cz = double(a.z) + (double(b.z) - double(a.z)) * t;
-        c = vec3(float(cx), float(cy), float(cz));
+        real t = r_div(r_sub(r_mul(r_add(r_add(d, ra), rb), R_HALF), ra), d);
+        real cx = r_add(r_f(a.x), r_mul(r_sub(r_f(b.x), r_f(a.x)), t));
+        real cy = r_add(r_f(a.y), r_mul(r_sub(r_f(b.y), r_f(a.y)), t));
+        real cz = r_add(r_f(a.z), r_mul(r_sub(r_f(b.z), r_f(a.z)), t));
+        c = vec3(r_to_f(cx), r_to_f(cy), r_to_f(cz));
     }
-    precise double need_a = distance_f(c, a.xyz) + ra;
-    precise double need_b = distance_f(c, b.xyz) + rb;
-    precise double need = (need_a > need_b ? need_a : need_b) * (1.0LF + 1.0LF / 1048576.0LF) *
-                          (1.0LF + 1.0LF / 1125899906842624.0LF);
+    real need_a = r_add(distance_f(c, a.xyz), ra);
+    real need_b = r_add(distance_f(c, b.xyz), rb);
+    // (1 + 2^-20) (1 + 2^-50)
+    real need = r_mul(r_mul(r_gt(need_a, need_b) ? need_a : need_b, RK(0x3FF00001u, 0x00000000u, 1.00000095367431640625LF)),
+                      RK(0x3FF00000u, 0x00000004u, 1.00000000000000088817841970012523LF));
     return vec4(c, float_up(need));
 }
 
 // C twin: mlod__cone_full
-vec4 cone_full(vec3 axis) { return vec4(axis, float_up(MLOD_PI)); }
+vec4 cone_full(vec3 axis) { return vec4(axis, float_up(R_PI)); }
 
 // C twin: mlod__cone_enclose
 // (the stored axis is within MLOD__CONE_ROUNDING, 2^-22
@@ -184,112 +216,114 @@ vec4 cone_full(vec3 axis) { return vec4(axis, float_up(MLOD_PI)); }
 // MLOD__CONE_OPPOSITE, measure the stored axis against both cones)
 vec4 cone_enclose(vec4 a, vec4 b)
 {
-    if (double(a.w) >= MLOD_PI || double(b.w) >= MLOD_PI) return cone_full(a.xyz);
-    dvec3 A = dvec3(a.xyz), B = dvec3(b.xyz), X;
-    precise double theta = angle_d(A, B);
-    precise double alpha;
+    real aw = r_f(a.w), bw = r_f(b.w);
+    if (r_ge(aw, R_PI) || r_ge(bw, R_PI)) return cone_full(a.xyz);
+    real3 A = r3_f(a.xyz), B = r3_f(b.xyz), X;
+    real theta = angle_d(A, B);
+    real alpha;
     bool measure = false;
-    if (theta + double(b.w) <= double(a.w)) {
+    if (r_le(r_add(theta, bw), aw)) {
         X = A;
-        alpha = double(a.w);
-    } else if (theta + double(a.w) <= double(b.w)) {
+        alpha = aw;
+    } else if (r_le(r_add(theta, aw), bw)) {
         X = B;
-        alpha = double(b.w);
+        alpha = bw;
     } else {
-        alpha = (theta + double(a.w) + double(b.w)) * 0.5LF;
-        if (alpha >= MLOD_PI) return cone_full(a.xyz);
-        precise double phi = alpha - double(a.w);
-        double sin_phi, cos_phi;
+        alpha = r_mul(r_add(r_add(theta, aw), bw), R_HALF);
+        if (r_ge(alpha, R_PI)) return cone_full(a.xyz);
+        real phi = r_sub(alpha, aw);
+        real sin_phi, cos_phi;
         sin_cos(phi, sin_phi, cos_phi);
-        precise double la = length_d(A);
-        precise dvec3 An = dvec3(A.x / la, A.y / la, A.z / la);
-        precise double ab = dot3(An, B);
-        precise dvec3 t = dvec3(B.x - An.x * ab, B.y - An.y * ab, B.z - An.z * ab);
-        precise double len = length_d(t);
-        measure = !(len >= 1.0LF / 1024.0LF) && !(ab > 0.0LF);
-        if (!(len > 0.0LF)) {
-            dvec3 helper = dvec3(0.0LF);
-            if (abs(An.x) < 0.5LF) helper.x = 1.0LF; else helper.y = 1.0LF;
+        real la = length_d(A);
+        real3 An = real3(r_div(A.x, la), r_div(A.y, la), r_div(A.z, la));
+        real ab = dot3(An, B);
+        real3 t = r3_sub(B, r3_scale(An, ab));
+        real len = length_d(t);
+        measure = !r_ge(len, RK(0x3F500000u, 0x00000000u, 0.0009765625LF)) && !r_gt(ab, R_ZERO);
+        if (!r_gt(len, R_ZERO)) {
+            real3 helper = real3(R_ZERO, R_ZERO, R_ZERO);
+            if (r_lt(r_abs(An.x), R_HALF)) helper.x = R_ONE; else helper.y = R_ONE;
             t = cross_d(An, helper);
             len = length_d(t);
         }
-        precise dvec3 Xr = dvec3(An.x * cos_phi + t.x / len * sin_phi, An.y * cos_phi + t.y / len * sin_phi,
-                                 An.z * cos_phi + t.z / len * sin_phi);
-        X = Xr;
+        X = real3(r_add(r_mul(An.x, cos_phi), r_mul(r_div(t.x, len), sin_phi)),
+                  r_add(r_mul(An.y, cos_phi), r_mul(r_div(t.y, len), sin_phi)),
+                  r_add(r_mul(An.z, cos_phi), r_mul(r_div(t.z, len), sin_phi)));
     }
-    precise double lx = length_d(X);
-    vec3 axis = vec3(float(X.x / lx), float(X.y / lx), float(X.z / lx));
+    real lx = length_d(X);
+    vec3 axis = vec3(r_to_f(r_div(X.x, lx)), r_to_f(r_div(X.y, lx)), r_to_f(r_div(X.z, lx)));
     // +0 for a zero component however it was reached: the compiler may fold
     // away the terms that decide the sign of a zero (x + 0 -> x), the CPU
     // does not; the test on the bits cannot be folded
     [[unroll]] for (int k = 0; k < 3; k++)
         if (floatBitsToUint(axis[k]) == 0x80000000u) axis[k] = 0.0;
     if (measure) {
-        dvec3 S = dvec3(axis);
-        precise double need_a = angle_d(S, A) + double(a.w);
-        precise double need_b = angle_d(S, B) + double(b.w);
-        alpha = need_a > need_b ? need_a : need_b;
+        real3 S = r3_f(axis);
+        real need_a = r_add(angle_d(S, A), aw);
+        real need_b = r_add(angle_d(S, B), bw);
+        alpha = r_gt(need_a, need_b) ? need_a : need_b;
     }
-    precise double stored = alpha + 1.0LF / 4194304.0LF + 1.0LF / 1048576.0LF;
-    if (stored >= MLOD_PI) return cone_full(axis);
+    // + 2^-22 + 2^-20
+    real stored = r_add(r_add(alpha, RK(0x3E900000u, 0x00000000u, 2.384185791015625e-07LF)),
+                        RK(0x3EB00000u, 0x00000000u, 9.5367431640625e-07LF));
+    if (r_ge(stored, R_PI)) return cone_full(axis);
     return vec4(axis, float_up(stored));
 }
 
 // C twin: mlod__depth_of
-uint depth_of(uint64_t node)
+// (node < 2^32 - 1)
+uint depth_of(uint node)
 {
-    uint64_t x = node + 1UL;
-    uint hi = uint(x >> 32);
-    return hi != 0u ? 32u + uint(findMSB(hi)) : uint(findMSB(uint(x)));
+    return uint(findMSB(node + 1u));
 }
 
 // C twin: mlod__leaves_below
-// Leaves under node i of the tree of n leaves
+// Leaves under node i of the tree of n leaves (n <= 2^31).  In 32 bits:
+// every quantity's true value is below 2^32 (the deepest level is at
+// most 31), so wrapping arithmetic gives it; ceil(nodes / 2) without
+// nodes + 1, which can reach 2^32.
 uint leaves_below(uint i, uint n)
 {
-    uint64_t last = 2UL * uint64_t(n) - 2UL;
-    uint k = depth_of(uint64_t(i)), deepest = depth_of(last);
+    uint last = 2u * n - 2u;
+    uint k = depth_of(i), deepest = depth_of(last);
     uint span = deepest - k;
-    uint64_t lo = ((uint64_t(i) + 1UL) << span) - 1UL, hi = ((uint64_t(i) + 2UL) << span) - 2UL;
-    uint64_t at_deepest = lo > last ? 0UL : (hi < last ? hi : last) - lo + 1UL;
-    uint64_t nodes = ((1UL << span) - 1UL) + at_deepest;
-    return uint((nodes + 1UL) / 2UL);
+    uint lo = ((i + 1u) << span) - 1u, hi = ((i + 2u) << span) - 2u;
+    uint at_deepest = lo > last ? 0u : (hi < last ? hi : last) - lo + 1u;
+    uint nodes = ((1u << span) - 1u) + at_deepest;
+    return nodes / 2u + (nodes & 1u);
 }
 
 // ------------------------------------------------ exact plane predicate --
 
 // C twin: mlod__two_sum
-void two_sum(double a, double b, out double s, out double err)
+void two_sum(real a, real b, out real s, out real err)
 {
-    precise double sum = a + b;
-    precise double bv = sum - a;
-    precise double av = sum - bv;
-    precise double e = (a - av) + (b - bv);
+    real sum = r_add(a, b);
+    real bv = r_sub(sum, a);
+    real av = r_sub(sum, bv);
+    err = r_add(r_sub(a, av), r_sub(b, bv));
     s = sum;
-    err = e;
 }
 
 // C twin: mlod__split
-void split_double(double a, out double hi, out double lo)
+void split_double(real a, out real hi, out real lo)
 {
-    precise double c = 134217729.0LF * a;
-    precise double big = c - a;
-    precise double h = c - big;
-    precise double l = a - h;
+    real c = r_mul(RK(0x41A00000u, 0x02000000u, 134217729.0LF), a);
+    real big = r_sub(c, a);
+    real h = r_sub(c, big);
+    lo = r_sub(a, h);
     hi = h;
-    lo = l;
 }
 
 // C twin: mlod__two_product
-void two_product(double a, double b, out double p, out double err)
+void two_product(real a, real b, out real p, out real err)
 {
-    precise double prod = a * b;
-    double ah, al, bh, bl;
+    real prod = r_mul(a, b);
+    real ah, al, bh, bl;
     split_double(a, ah, al);
     split_double(b, bh, bl);
-    precise double e = al * bl - (((prod - ah * bh) - al * bh) - ah * bl);
+    err = r_sub(r_mul(al, bl), r_sub(r_sub(r_sub(prod, r_mul(ah, bh)), r_mul(al, bh)), r_mul(ah, bl)));
     p = prod;
-    err = e;
 }
 
 // C twin: mlod__exact_sign
@@ -298,11 +332,11 @@ void two_product(double a, double b, out double p, out double err)
 // index is a constant once the loops unroll (lavapipe then keeps the
 // expansion in registers; the dynamic version costs every evaluation a
 // factor of two even though it rarely runs).
-int exact_sign9(double t[9])
+int exact_sign9(real t[9])
 {
-    double e[9];
+    real e[9];
     [[unroll]] for (int i = 0; i < 9; i++) {
-        double q = t[i], h;
+        real q = t[i], h;
         [[unroll]] for (int j = 0; j < i; j++) {
             two_sum(q, e[j], q, h);
             e[j] = h;
@@ -311,7 +345,7 @@ int exact_sign9(double t[9])
     }
     int sign = 0;
     [[unroll]] for (int i = 0; i < 9; i++)
-        if (e[i] != 0.0LF) sign = e[i] > 0.0LF ? 1 : -1; /* the largest nonzero component decides */
+        if (!r_eq(e[i], R_ZERO)) sign = r_gt(e[i], R_ZERO) ? 1 : -1; /* the largest nonzero component decides */
     return sign;
 }
 
@@ -321,88 +355,88 @@ int exact_sign9(double t[9])
 // (n.c + l r < k, exactly)?
 bool plane_outside(uint base, vec4 sphere)
 {
-    double n0 = views[base], n1 = views[base + 1], n2 = views[base + 2], k = views[base + 3], l = views[base + 4];
-    precise double t0 = n0 * double(sphere.x);
-    precise double t1 = n1 * double(sphere.y);
-    precise double t2 = n2 * double(sphere.z);
-    precise double t3 = l * double(sphere.w);
-    precise double s = t0 + t1 + t2 + t3 - k;
-    precise double bound = (abs(t0) + abs(t1) + abs(t2) + abs(t3) + abs(k)) * (1.0LF / 281474976710656.0LF);
+    real n0 = sd(base, 0u), n1 = sd(base, 1u), n2 = sd(base, 2u), k = sd(base, 3u), l = sd(base, 4u);
+    real t0 = r_mul(n0, r_f(sphere.x));
+    real t1 = r_mul(n1, r_f(sphere.y));
+    real t2 = r_mul(n2, r_f(sphere.z));
+    real t3 = r_mul(l, r_f(sphere.w));
+    real s = r_sub(r_add(r_add(r_add(t0, t1), t2), t3), k);
+    // 2^-48 of the terms' magnitudes
+    real bound = r_mul(r_add(r_add(r_add(r_add(r_abs(t0), r_abs(t1)), r_abs(t2)), r_abs(t3)), r_abs(k)),
+                       RK(0x3CF00000u, 0x00000000u, 3.552713678800501e-15LF));
+    bool below = r_lt(s, r_neg(bound)), above = r_gt(s, bound);
     // The exact path runs where the filter cannot decide, which is rare;
     // asking the whole subgroup first keeps SIMD devices (lavapipe runs
     // every lane of a divergent branch) from paying for it every time.
-    if (!subgroupAny(!(s < -bound) && !(s > bound))) return s < -bound;
-    if (s < -bound) return true;
-    if (s > bound) return false;
-    double t[9];
-    two_product(n0, double(sphere.x), t[0], t[1]);
-    two_product(n1, double(sphere.y), t[2], t[3]);
-    two_product(n2, double(sphere.z), t[4], t[5]);
-    two_product(l, double(sphere.w), t[6], t[7]);
-    t[8] = -k;
+    if (!subgroupAny(!below && !above)) return below;
+    if (below) return true;
+    if (above) return false;
+    real t[9];
+    two_product(n0, r_f(sphere.x), t[0], t[1]);
+    two_product(n1, r_f(sphere.y), t[2], t[3]);
+    two_product(n2, r_f(sphere.z), t[4], t[5]);
+    two_product(l, r_f(sphere.w), t[6], t[7]);
+    t[8] = r_neg(k);
     return exact_sign9(t) < 0;
 }
 
 // ------------------------------------------------------------ criterion --
 
 // C twin: mlod__backfacing
-bool backfacing(uint view, dvec3 x, double d2, double r, vec4 cone)
+bool backfacing(uint view, real3 x, real d2, real r, vec4 cone)
 {
-    double c0 = double(cone.x), c1 = double(cone.y), c2 = double(cone.z);
-    if (!(double(cone.w) < 0.5LF * MLOD_PI)) return false;
-    double sa, ca;
+    real c0 = r_f(cone.x), c1 = r_f(cone.y), c2 = r_f(cone.z);
+    real3 c = real3(c0, c1, c2);
+    if (!r_lt(r_f(cone.w), r_mul(R_HALF, R_PI))) return false;
+    real sa, ca;
     if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) {
-        dvec3 w = sd3(sub_base(view, 0u), MLOD_IF_S_FORWARD);
-        precise double away = -(c0 * w.x + c1 * w.y + c2 * w.z);
-        if (!(away < 0.0LF)) return false;
-        precise double len = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
-        sin_cos(double(cone.w), sa, ca);
-        precise double along = away / len;
-        return ca > 0.0LF && along < -sa;
+        real3 w = sd3(sub_base(view, 0u), MLOD_IF_S_FORWARD);
+        real away = r_neg(dot3(c, w));
+        if (!r_lt(away, R_ZERO)) return false;
+        real len = r_sqrt(dot3(c, c));
+        sin_cos(r_f(cone.w), sa, ca);
+        real along = r_div(away, len);
+        return r_gt(ca, R_ZERO) && r_lt(along, r_neg(sa));
     }
-    if (d2 <= r * r) return false;
-    precise double away = -(c0 * x.x + c1 * x.y + c2 * x.z);
-    if (!(away < 0.0LF)) return false;
-    precise double len = sqrt(c0 * c0 + c1 * c1 + c2 * c2);
-    precise double tangent = sqrt(d2 - r * r);
-    sin_cos(double(cone.w), sa, ca);
-    precise double lhs = ca * tangent - sa * r;
-    precise double rhs = -(sa * tangent + ca * r);
-    precise double along = away / len;
-    return lhs > 0.0LF && along < rhs;
+    if (r_le(d2, r_mul(r, r))) return false;
+    real away = r_neg(dot3(c, x));
+    if (!r_lt(away, R_ZERO)) return false;
+    real len = r_sqrt(dot3(c, c));
+    real tangent = r_sqrt(r_sub(d2, r_mul(r, r)));
+    sin_cos(r_f(cone.w), sa, ca);
+    real lhs = r_sub(r_mul(ca, tangent), r_mul(sa, r));
+    real rhs = r_neg(r_add(r_mul(sa, tangent), r_mul(ca, r)));
+    real along = r_div(away, len);
+    return r_gt(lhs, R_ZERO) && r_lt(along, rhs);
 }
 
 #endif // MLOD_NO_VIEWS
 
 // C twin: mlod__paraboloid_diameter
-double paraboloid_diameter(double r, double xw, double tangent)
+real paraboloid_diameter(real r, real xw, real tangent)
 {
-    precise double den = xw + tangent;
-    precise double c = 2.0LF * r / den;
-    return den > 0.0LF ? c : 1.0LF / 0.0LF;
+    real den = r_add(xw, tangent);
+    return r_gt(den, R_ZERO) ? r_div(r_mul(R_TWO, r), den) : r_inf();
 }
 
 #ifndef MLOD_NO_VIEWS
 // C twin: mlod__sub_diameter
 // The diameter of the sphere's image in the sub-projection at views[sub],
 // in pixels (tangent: 0 for orthographic views).
-double sub_diameter(uint sub, dvec3 x, double d2, double r, double tangent)
+real sub_diameter(uint sub, real3 x, real d2, real r, real tangent)
 {
-    precise double xw = dot3(x, sd3(sub, MLOD_IF_S_FORWARD));
-    double scale = sd(sub, MLOD_IF_S_SCALE);
+    real xw = dot3(x, sd3(sub, MLOD_IF_S_FORWARD));
+    real scale = sd(sub, MLOD_IF_S_SCALE);
     int kind = sub_kind(sub);
     if (kind == MLOD_IF_KIND_PERSPECTIVE) {
-        if (xw <= r) return 1.0LF / 0.0LF;
-        precise double c = scale * 2.0LF * r * tangent / ((xw - r) * (xw + r));
-        return c;
+        if (r_le(xw, r)) return r_inf();
+        return r_div(r_mul(r_mul(r_mul(scale, R_TWO), r), tangent), r_mul(r_sub(xw, r), r_add(xw, r)));
     }
     if (kind == MLOD_IF_KIND_PARABOLOID) {
-        if (d2 <= r * r) return 1.0LF / 0.0LF;
-        precise double c = scale * paraboloid_diameter(r, xw, tangent);
-        return c;
+        if (r_le(d2, r_mul(r, r))) return r_inf();
+        return r_mul(scale, paraboloid_diameter(r, xw, tangent));
     }
-    precise double c = scale * 2.0LF * r;
-    return c;
+    return r_mul(r_mul(scale, R_TWO), r);
 }
 
 // C twin: mlod__reached
@@ -411,7 +445,7 @@ uint reached_subs(uint view, vec4 sphere)
 {
     uint reached = 0u, count = sub_count(view);
     for (uint s = 0u; s < count; s++) {
-        uint sub = sub_base(view, s), planes = uint(sd(sub, MLOD_IF_S_PLANE_COUNT));
+        uint sub = sub_base(view, s), planes = r_to_u(sd(sub, MLOD_IF_S_PLANE_COUNT));
         bool inside = true;
         for (uint k = 0u; k < planes && inside; k++)
             if (plane_outside(sub + MLOD_IF_S_PLANES + 5u * k, sphere)) inside = false;
@@ -422,28 +456,27 @@ uint reached_subs(uint view, vec4 sphere)
 
 // C twin: mlod__evaluate
 // c(node, view) in pixels; culled set when culled.
-double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
+real evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
 {
     // one sub-projection: its planes first; several: the back faces first
     // (the C twin's order; either culls the same nodes)
     uint count = sub_count(view), reached = 0u;
     culled = true;
-    if (count == 1u && (reached = reached_subs(view, sphere)) == 0u) return 0.0LF;
-    dvec3 e = vd3(view, MLOD_IF_V_EYE);
-    precise dvec3 x = dvec3(double(sphere.x) - e.x, double(sphere.y) - e.y, double(sphere.z) - e.z);
-    precise double d2 = dot3(x, x);
-    precise double r = double(sphere.w);
-    precise double t2 = d2 - r * r;
-    precise double tangent = sqrt(t2 > 0.0LF ? t2 : 0.0LF);
-    if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) tangent = 0.0LF;
-    if (use_cone && vd(view, MLOD_IF_V_BACKFACES) != 0.0LF && backfacing(view, x, d2, r, cone)) return 0.0LF;
-    if (count > 1u && (reached = reached_subs(view, sphere)) == 0u) return 0.0LF;
+    if (count == 1u && (reached = reached_subs(view, sphere)) == 0u) return R_ZERO;
+    real3 x = r3_sub(r3_f(sphere.xyz), vd3(view, MLOD_IF_V_EYE));
+    real d2 = dot3(x, x);
+    real r = r_f(sphere.w);
+    real t2 = r_sub(d2, r_mul(r, r));
+    real tangent = r_sqrt(r_gt(t2, R_ZERO) ? t2 : R_ZERO);
+    if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) tangent = R_ZERO;
+    if (use_cone && !r_eq(vd(view, MLOD_IF_V_BACKFACES), R_ZERO) && backfacing(view, x, d2, r, cone)) return R_ZERO;
+    if (count > 1u && (reached = reached_subs(view, sphere)) == 0u) return R_ZERO;
     culled = false;
-    double c = 0.0LF;
+    real c = R_ZERO;
     for (uint s = 0u; s < count; s++)
         if (((reached >> s) & 1u) != 0u) {
-            double d = sub_diameter(sub_base(view, s), x, d2, r, tangent);
-            if (d > c) c = d;
+            real d = sub_diameter(sub_base(view, s), x, d2, r, tangent);
+            if (r_gt(d, c)) c = d;
         }
     return c;
 }
@@ -452,13 +485,13 @@ double evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culle
 bool status_valid(uint s) { return s == MLOD_IF_STATUS_DRAWN || s == MLOD_IF_STATUS_CULLED; }
 
 // C twin: mlod__classify
-uint classify(uint view, uint node, double epsilon, uint leaf_count)
+uint classify(uint view, uint node, real epsilon, uint leaf_count)
 {
     bool culled;
     vec4 cone = MLOD_HAS_CONES ? cones[node] : vec4(0.0);
-    double c = evaluate(view, spheres[node], MLOD_HAS_CONES, cone, culled);
+    real c = evaluate(view, spheres[node], MLOD_HAS_CONES, cone, culled);
     if (culled) return MLOD_IF_STATUS_CULLED;
-    if (c <= epsilon) return MLOD_IF_STATUS_DRAWN;
+    if (r_le(c, epsilon)) return MLOD_IF_STATUS_DRAWN;
     return node >= leaf_count - 1u ? MLOD_IF_STATUS_OVERSIZE : MLOD_IF_STATUS_COARSE;
 }
 
@@ -468,60 +501,60 @@ uint classify(uint view, uint node, double epsilon, uint leaf_count)
 // The disc around the image of sphere (centre, r) in sub-projection s of
 // the view's tile (pixels), and the depth of its centre.  Returns false
 // when unbounded.
-bool image_disc(uint view, uint s, dvec3 centre, double r, out dvec4 disc)
+bool image_disc(uint view, uint s, real3 centre, real r, out real4 disc)
 {
-    disc = dvec4(0.0LF);
+    disc = real4(R_ZERO, R_ZERO, R_ZERO, R_ZERO);
     uint sub = sub_base(view, s);
-    dvec3 e = vd3(view, MLOD_IF_V_EYE), u = sd3(sub, MLOD_IF_S_RIGHT), v = sd3(sub, MLOD_IF_S_UP);
-    dvec3 w = sd3(sub, MLOD_IF_S_FORWARD);
-    precise dvec3 x = dvec3(centre.x - e.x, centre.y - e.y, centre.z - e.z);
-    double scale = sd(sub, MLOD_IF_S_SCALE), left = sd(sub, MLOD_IF_S_X), top = sd(sub, MLOD_IF_S_Y);
-    double width = sd(sub, MLOD_IF_S_WIDTH), height = sd(sub, MLOD_IF_S_HEIGHT);
-    precise double mid_x = left + 0.5LF * width;
-    precise double mid_y = top + 0.5LF * height;
+    real3 u = sd3(sub, MLOD_IF_S_RIGHT), v = sd3(sub, MLOD_IF_S_UP);
+    real3 w = sd3(sub, MLOD_IF_S_FORWARD);
+    real3 x = r3_sub(centre, vd3(view, MLOD_IF_V_EYE));
+    real scale = sd(sub, MLOD_IF_S_SCALE), left = sd(sub, MLOD_IF_S_X), top = sd(sub, MLOD_IF_S_Y);
+    real width = sd(sub, MLOD_IF_S_WIDTH), height = sd(sub, MLOD_IF_S_HEIGHT);
+    real mid_x = r_add(left, r_mul(R_HALF, width));
+    real mid_y = r_add(top, r_mul(R_HALF, height));
     int kind = sub_kind(sub);
     if (kind == MLOD_IF_KIND_ORTHOGRAPHIC) {
-        precise double px = mid_x + sd(sub, MLOD_IF_S_SCALE_X) * dot3(x, u);
-        precise double py = mid_y - sd(sub, MLOD_IF_S_SCALE_Y) * dot3(x, v);
-        precise double radius = r * scale;
-        disc = dvec4(px, py, radius, dot3(x, w));
+        real px = r_add(mid_x, r_mul(sd(sub, MLOD_IF_S_SCALE_X), dot3(x, u)));
+        real py = r_sub(mid_y, r_mul(sd(sub, MLOD_IF_S_SCALE_Y), dot3(x, v)));
+        disc = real4(px, py, r_mul(r, scale), dot3(x, w));
         return true;
     }
-    precise double d = sqrt(dot3(x, x));
-    if (!(d > r)) return false;
-    precise double a = dot3(x, u) / d;
-    precise double b = dot3(x, v) / d;
-    precise double cos_t = dot3(x, w) / d;
-    precise double sin_t = sqrt(a * a + b * b);
-    precise double sin_b = r / d;
-    precise double cos_b = sqrt(1.0LF - sin_b * sin_b);
-    precise double dir_x = 0.0LF, dir_y = 0.0LF;
-    if (sin_t > 0.0LF) {
-        dir_x = a / sin_t;
-        dir_y = b / sin_t;
+    real d = r_sqrt(dot3(x, x));
+    if (!r_gt(d, r)) return false;
+    real a = r_div(dot3(x, u), d);
+    real b = r_div(dot3(x, v), d);
+    real cos_t = r_div(dot3(x, w), d);
+    real sin_t = r_sqrt(r_add(r_mul(a, a), r_mul(b, b)));
+    real sin_b = r_div(r, d);
+    real cos_b = r_sqrt(r_sub(R_ONE, r_mul(sin_b, sin_b)));
+    real dir_x = R_ZERO, dir_y = R_ZERO;
+    if (r_gt(sin_t, R_ZERO)) {
+        dir_x = r_div(a, sin_t);
+        dir_y = r_div(b, sin_t);
     }
-    precise double s_hi = sin_t * cos_b + cos_t * sin_b;
-    precise double c_hi = cos_t * cos_b - sin_t * sin_b;
-    precise double s_lo = sin_t * cos_b - cos_t * sin_b;
-    precise double c_lo = cos_t * cos_b + sin_t * sin_b;
-    precise double hi, lo, px, py, depth;
+    real s_hi = r_add(r_mul(sin_t, cos_b), r_mul(cos_t, sin_b));
+    real c_hi = r_sub(r_mul(cos_t, cos_b), r_mul(sin_t, sin_b));
+    real s_lo = r_sub(r_mul(sin_t, cos_b), r_mul(cos_t, sin_b));
+    real c_lo = r_add(r_mul(cos_t, cos_b), r_mul(sin_t, sin_b));
+    real hi, lo, px, py, depth;
     if (kind == MLOD_IF_KIND_PERSPECTIVE) {
-        if (!(c_hi > 0.0LF)) return false;
-        hi = s_hi / c_hi;
-        lo = s_lo / c_lo;
-        px = mid_x + scale * 0.5LF * (hi + lo) * dir_x;
-        py = mid_y - scale * 0.5LF * (hi + lo) * dir_y;
+        if (!r_gt(c_hi, R_ZERO)) return false;
+        hi = r_div(s_hi, c_hi);
+        lo = r_div(s_lo, c_lo);
+        px = r_add(mid_x, r_mul(r_mul(r_mul(scale, R_HALF), r_add(hi, lo)), dir_x));
+        py = r_sub(mid_y, r_mul(r_mul(r_mul(scale, R_HALF), r_add(hi, lo)), dir_y));
         depth = dot3(x, w);
     } else {
-        if (!(1.0LF + c_hi > 0.0LF) || !(s_hi > 0.0LF || c_hi > 0.0LF)) return false;
-        hi = s_hi / (1.0LF + c_hi);
-        lo = s_lo / (1.0LF + c_lo);
-        px = left + 0.5LF * width * (1.0LF + 0.5LF * (hi + lo) * dir_x);
-        py = top + 0.5LF * height * (1.0LF - 0.5LF * (hi + lo) * dir_y);
+        real one_hi = r_add(R_ONE, c_hi);
+        if (!r_gt(one_hi, R_ZERO) || !(r_gt(s_hi, R_ZERO) || r_gt(c_hi, R_ZERO))) return false;
+        hi = r_div(s_hi, one_hi);
+        lo = r_div(s_lo, r_add(R_ONE, c_lo));
+        real mean = r_mul(R_HALF, r_add(hi, lo));
+        px = r_add(left, r_mul(r_mul(R_HALF, width), r_add(R_ONE, r_mul(mean, dir_x))));
+        py = r_add(top, r_mul(r_mul(R_HALF, height), r_sub(R_ONE, r_mul(mean, dir_y))));
         depth = d;
     }
-    precise double radius = scale * 0.5LF * (hi - lo);
-    disc = dvec4(px, py, radius, depth);
+    disc = real4(px, py, r_mul(r_mul(scale, R_HALF), r_sub(hi, lo)), depth);
     return true;
 }
 

@@ -27,7 +27,7 @@ void main()
         uint s = (in_b ? status_out[i] : status_in[i]) & 7u;
         uint previous_view = i == 0u ? 0xffffffffu : (in_b ? list_out[i - 1u].y : list_in[i - 1u].y);
         if (s == MLOD_IF_STATUS_PENDING) {
-            s = classify(e.y, e.x, double(pc.epsilon), pc.leaf_count);
+            s = classify(e.y, e.x, r_f(pc.epsilon), pc.leaf_count);
             evaluated = 1u;
         }
         if (in_b) list_in[i] = e;

@@ -17,7 +17,7 @@
 
 layout(std430, set = 0, binding = MLOD_IF_CUT_SPHERES) readonly buffer tree_spheres { vec4 spheres[]; };
 layout(std430, set = 0, binding = MLOD_IF_CUT_CONES) readonly buffer tree_cones { vec4 cones[]; };
-layout(std430, set = 0, binding = MLOD_IF_CUT_VIEWS) readonly buffer view_frames { double views[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_VIEWS) readonly buffer view_frames { uvec2 views[]; }; // doubles, as their bits (real.glsl: r_load)
 layout(std430, set = 0, binding = MLOD_IF_CUT_LIST_IN) buffer list_in_buffer { uvec2 list_in[]; };
 layout(std430, set = 0, binding = MLOD_IF_CUT_LIST_OUT) buffer list_out_buffer { uvec2 list_out[]; };
 layout(std430, set = 0, binding = MLOD_IF_CUT_STATUS_IN) buffer status_in_buffer { uint status_in[]; };

@@ -26,7 +26,7 @@ void main()
     uint group = group_index();
     uint i = group * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     uint out_count = 0u, evaluated = 0u, steps = 0u;
-    double epsilon = double(pc.epsilon);
+    real epsilon = r_f(pc.epsilon);
     if (i < n) {
         uvec2 e = list_in[i];
         uint node = e.x, view = e.y, raw = status_in[i], s = raw & 7u, act;

@@ -12,7 +12,7 @@
 
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_SPHERES) readonly buffer tree_spheres { vec4 spheres[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_CONES) readonly buffer tree_cones { vec4 cones[]; };
-layout(std430, set = 0, binding = MLOD_IF_SPLAT_VIEWS) readonly buffer view_frames { double views[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_VIEWS) readonly buffer view_frames { uvec2 views[]; }; // doubles, as their bits (real.glsl: r_load)
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_LIST) readonly buffer cut_list { uvec2 list[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_STATUS) readonly buffer cut_status { uint status[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_COLORS) readonly buffer tree_colors { float colors[]; };
