@@ -41,5 +41,5 @@ void main()
         if (gl_LocalInvocationID.x < stride) sum_evaluated[gl_LocalInvocationID.x] += sum_evaluated[gl_LocalInvocationID.x + stride];
         barrier();
     }
-    if (gl_LocalInvocationID.x == 0u && sum_evaluated[0] != 0u) atomicAdd(ctl.evaluated, uint64_t(sum_evaluated[0]));
+    if (gl_LocalInvocationID.x == 0u && sum_evaluated[0] != 0u) MLOD_IF_COUNT64(ctl.evaluated, sum_evaluated[0]);
 }

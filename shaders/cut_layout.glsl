@@ -11,8 +11,6 @@
 // entries, grouped by view in view order, each view's left to right.
 // The bindings, the control block and the push constants: interface.h.
 
-#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
-#extension GL_EXT_shader_atomic_int64 : require
 #include "interface.h"
 
 layout(std430, set = 0, binding = MLOD_IF_CUT_SPHERES) readonly buffer tree_spheres { vec4 spheres[]; };
@@ -28,6 +26,14 @@ layout(std430, set = 0, binding = MLOD_IF_CUT_CONTROL) coherent buffer control_b
 layout(std430, set = 0, binding = MLOD_IF_CUT_VIEW_OFFSETS) buffer view_offsets_buffer { uint view_offsets[]; };
 
 layout(push_constant) uniform push_block { MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE) } pc;
+
+// Add v to a 64-bit count of the control block (two words, low first)
+// with 32-bit atomics: the carry goes to the high word.
+#define MLOD_IF_COUNT64(count, v)                                                                                      \
+    {                                                                                                                  \
+        uint add_ = (v), was_ = atomicAdd(count[0], add_);                                                             \
+        if (was_ + add_ < was_) atomicAdd(count[1], 1u);                                                               \
+    }
 
 #define ACT_KEEP 0u
 #define ACT_SPLIT 1u

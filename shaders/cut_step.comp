@@ -75,9 +75,9 @@ void main()
         }
     if (gl_LocalInvocationID.x == 0u && group * MLOD_IF_GROUP < n) {
         block_sums[group] = sum_count[0];
-        if (sum_evaluated[0] != 0u) atomicAdd(ctl.evaluated, uint64_t(sum_evaluated[0]));
+        if (sum_evaluated[0] != 0u) MLOD_IF_COUNT64(ctl.evaluated, sum_evaluated[0]);
         if (sum_steps[0] != 0u) {
-            atomicAdd(ctl.steps, uint64_t(sum_steps[0]));
+            MLOD_IF_COUNT64(ctl.steps, sum_steps[0]);
             atomicAdd(ctl.changed, sum_steps[0]);
         }
     }

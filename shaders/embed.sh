@@ -15,14 +15,23 @@ trap 'rm -rf "$tmp"' EXIT
 {
     echo "/* BEGIN GENERATED SPIR-V (make shaders) */"
     echo "/* compiler: $($GLSLANG --version | head -n 1) */"
+    # each shader as it is (the device's doubles where it computes in
+    # double), and those that include common.glsl a second time with
+    # -DMLOD_F64_EMULATED (doubles from 32-bit integers: real.glsl), as
+    # mlodvk__spv_NAME_emulated
     for name in cut_init cut_step cut_scan cut_write cut_finish splat_clear splat_draw splat_resolve refit_check refit_leaves refit_merge; do
         src=shaders/$name.comp
-        $GLSLANG -V --target-env vulkan1.1 -Ishaders "$src" -o "$tmp/$name.spv" >"$tmp/log" || { cat "$tmp/log" >&2; exit 1; }
-        spirv-val --target-env vulkan1.1 "$tmp/$name.spv"
-        echo "/* $src: glslangValidator -V --target-env vulkan1.1 -Ishaders $src -o $name.spv */"
-        echo "static const uint32_t mlodvk__spv_$name[] = {"
-        od -An -v -tx4 -w32 "$tmp/$name.spv" | sed -e 's/^ *//' -e 's/ *$//' -e 's/\([0-9a-f]\{8\}\)/0x\1,/g' -e 's/^/    /'
-        echo "};"
+        variants="-"
+        if grep -q '#include "common.glsl"' "$src"; then variants="- emulated"; fi
+        for variant in $variants; do
+            if [ "$variant" = - ]; then flags= spv=$name; else flags=-DMLOD_F64_EMULATED spv=${name}_emulated; fi
+            $GLSLANG -V --target-env vulkan1.1 $flags -Ishaders "$src" -o "$tmp/$spv.spv" >"$tmp/log" || { cat "$tmp/log" >&2; exit 1; }
+            spirv-val --target-env vulkan1.1 "$tmp/$spv.spv"
+            echo "/* $src: glslangValidator -V --target-env vulkan1.1${flags:+ $flags} -Ishaders $src -o $spv.spv */"
+            echo "static const uint32_t mlodvk__spv_$spv[] = {"
+            od -An -v -tx4 -w32 "$tmp/$spv.spv" | sed -e 's/^ *//' -e 's/ *$//' -e 's/\([0-9a-f]\{8\}\)/0x\1,/g' -e 's/^/    /'
+            echo "};"
+        done
     done
     echo "/* END GENERATED SPIR-V */"
 } >"$tmp/block"

@@ -339,6 +339,28 @@ uvec2 f64_sqrt(uvec2 a)
     return f64_round_pack(0u, e / 2 + 1049, root);
 }
 
+// The largest integer at most a (C's floor): its fraction bits cleared,
+// then one less for a negative a that had any.
+uvec2 f64_floor(uvec2 a)
+{
+    if (f64_isnan(a)) return f64_nan();
+    if (f64_isinf(a) || f64_iszero(a)) return a;
+    int e = f64_biased(a) - 1023;
+    if (e >= 52) return a; // an integer already
+    uint sign = f64_sign(a);
+    if (e < 0) return sign != 0u ? uvec2(0u, 0xBFF00000u) : f64_zero(0u); // -1 or +0
+    uvec2 mask = f64u_sub(f64u_shl(uvec2(1u, 0u), 52 - e), uvec2(1u, 0u)); // the fraction bits
+    if (((a.x & mask.x) | (a.y & mask.y)) == 0u) return a;
+    uvec2 t = uvec2(a.x & ~mask.x, a.y & ~mask.y); // toward zero
+    return sign != 0u ? f64_sub(t, uvec2(0u, 0x3FF00000u)) : t;
+}
+
+// The least integer at least a (C's ceil).
+uvec2 f64_ceil(uvec2 a)
+{
+    return f64_neg(f64_floor(f64_neg(a)));
+}
+
 // ---------------------------------------------------------- comparisons --
 
 bool f64_lt(uvec2 a, uvec2 b)

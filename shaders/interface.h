@@ -10,7 +10,11 @@
    The member lists are X-macros: MEMBER(type, name) for one member,
    ARRAY(type, name, count) for an array, in std430 order.  The types are
    MLOD_IF_U32, MLOD_IF_UVEC4 (uint / uvec4 in GLSL, uint32_t / four of
-   them in C), float, double and uint64_t.  Defined by the includer: in C,
+   them in C), float, and MLOD_IF_F64 (a double: its bits as a uvec2 in
+   GLSL, which real.glsl's r_load reads, so that no shader needs a 64-bit
+   type; double in C).  64-bit counts are two 32-bit words, low first,
+   which the shaders add to with 32-bit atomics and a carry
+   (MLOD_IF_COUNT64 in the layout files).  Defined by the includer: in C,
    mlodvk__uvec4 (uint32_t[4]) before this file. */
 #ifndef MLOD_IF_INTERFACE_H
 #define MLOD_IF_INTERFACE_H
@@ -18,9 +22,11 @@
 #if defined(VULKAN) || defined(GL_SPIRV) /* GLSL for SPIR-V (glslangValidator -V or -G) */
 #define MLOD_IF_U32 uint
 #define MLOD_IF_UVEC4 uvec4
+#define MLOD_IF_F64 uvec2
 #else
 #define MLOD_IF_U32 uint32_t
 #define MLOD_IF_UVEC4 mlodvk__uvec4
+#define MLOD_IF_F64 double
 #endif
 
 /* One view in the views buffer: MLOD_IF_VIEW_STRIDE doubles, laid out as
@@ -119,7 +125,8 @@
    round needed more than capacity entries, converged, rounds that changed
    the list, whether the current list is in buffer B, the entries the
    overflowing round needed, the entries of the current list, padding, and
-   the criterion evaluations and the steps of the call. */
+   the criterion evaluations and the steps of the call (64-bit counts: low
+   word, high word). */
 #define MLOD_IF_CONTROL(MEMBER, ARRAY)                                                                                 \
     ARRAY(MLOD_IF_UVEC4, args, 3)                                                                                      \
     ARRAY(MLOD_IF_U32, count, 2)                                                                                       \
@@ -131,8 +138,8 @@
     MEMBER(MLOD_IF_U32, needed)                                                                                        \
     MEMBER(MLOD_IF_U32, current)                                                                                       \
     MEMBER(MLOD_IF_U32, pad)                                                                                           \
-    MEMBER(uint64_t, evaluated)                                                                                        \
-    MEMBER(uint64_t, steps)
+    ARRAY(MLOD_IF_U32, evaluated, 2)                                                                                   \
+    ARRAY(MLOD_IF_U32, steps, 2)
 #define MLOD_IF_CONTROL_BYTES 104
 
 /* The cut shaders' push constants: epsilon (pixels), the tree's leaves,
@@ -155,7 +162,8 @@
 /* The splat shaders' push constants: the atlas's width and pixels, whether
    the tree has cones, whether the atlas has normals and colours, the
    device's maxComputeWorkGroupCount[0], the drawn radius over the image
-   radius (in (0, 1]; below 1, no pixel-holding-the-centre fallback). */
+   radius (in (0, 1]; below 1, no pixel-holding-the-centre fallback), and
+   splat_draw's pass (splat_layout.glsl). */
 #define MLOD_IF_SPLAT_PUSH(MEMBER)                                                                                     \
     MEMBER(MLOD_IF_U32, atlas_width)                                                                                   \
     MEMBER(MLOD_IF_U32, pixel_count)                                                                                   \
@@ -163,17 +171,20 @@
     MEMBER(MLOD_IF_U32, want_normal)                                                                                   \
     MEMBER(MLOD_IF_U32, want_color)                                                                                    \
     MEMBER(MLOD_IF_U32, max_groups_x)                                                                                  \
-    MEMBER(float, disc_scale)
-#define MLOD_IF_SPLAT_PUSH_BYTES 28
+    MEMBER(float, disc_scale)                                                                                          \
+    MEMBER(MLOD_IF_U32, pass)
+#define MLOD_IF_SPLAT_PUSH_BYTES 32
 
 /* The refit shaders' push constants: the tree's area_unit and
    radius_scale, its leaves, the items of this dispatch (vertices for the
    check, leaves, or the nodes of one depth), the depth's first node (merge)
    or the triangles (check), the floats between consecutive vertices'
    positions, normals (0: none) and colours (0: none), whether the tree has
-   cones and colours, the device's maxComputeWorkGroupCount[0]. */
+   cones and colours, the device's maxComputeWorkGroupCount[0], and the
+   check's pass (0: the vertices and the high words of the growths, 1: the
+   low words of the growths whose high word is the largest). */
 #define MLOD_IF_REFIT_PUSH(MEMBER)                                                                                     \
-    MEMBER(double, area_unit)                                                                                          \
+    MEMBER(MLOD_IF_F64, area_unit)                                                                                     \
     MEMBER(float, radius_scale)                                                                                        \
     MEMBER(MLOD_IF_U32, leaf_count)                                                                                    \
     MEMBER(MLOD_IF_U32, count)                                                                                         \
@@ -183,17 +194,21 @@
     MEMBER(MLOD_IF_U32, color_stride)                                                                                  \
     MEMBER(MLOD_IF_U32, has_cones)                                                                                     \
     MEMBER(MLOD_IF_U32, has_colors)                                                                                    \
-    MEMBER(MLOD_IF_U32, max_groups_x)
-#define MLOD_IF_REFIT_PUSH_BYTES 48
+    MEMBER(MLOD_IF_U32, max_groups_x)                                                                                  \
+    MEMBER(MLOD_IF_U32, pass)
+#define MLOD_IF_REFIT_PUSH_BYTES 56
 
 /* The refit check's findings: flags (1 a non-finite position, 2 a position
    beyond 1e36, 4 a non-finite normal, 8 a non-finite colour), the first
    vertex flagged (atomicMin), the largest growth of a triangle's area (a
-   positive double, its bits ordered as a uint64). */
+   non-negative double, whose bits order as the doubles do: the largest
+   high word, by atomicMax in pass 0, then the largest low word among the
+   growths with that high word, in pass 1). */
 #define MLOD_IF_FINDINGS(MEMBER)                                                                                       \
     MEMBER(MLOD_IF_U32, flags)                                                                                         \
     MEMBER(MLOD_IF_U32, first_vertex)                                                                                  \
-    MEMBER(uint64_t, growth_bits)
+    MEMBER(MLOD_IF_U32, growth_low)                                                                                    \
+    MEMBER(MLOD_IF_U32, growth_high)
 #define MLOD_IF_FINDINGS_BYTES 16
 
 /* Spelling a member list out as declarations, in either language. */

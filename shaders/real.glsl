@@ -32,6 +32,8 @@ real r_sub(real a, real b) { return f64_sub(a, b); }
 real r_mul(real a, real b) { return f64_mul(a, b); }
 real r_div(real a, real b) { return f64_div(a, b); }
 real r_sqrt(real a) { return f64_sqrt(a); }
+real r_floor(real a) { return f64_floor(a); }
+real r_ceil(real a) { return f64_ceil(a); }
 real r_neg(real a) { return f64_neg(a); }
 real r_abs(real a) { return f64_abs(a); }
 bool r_lt(real a, real b) { return f64_lt(a, b); }
@@ -40,6 +42,7 @@ bool r_gt(real a, real b) { return f64_lt(b, a); }
 bool r_ge(real a, real b) { return f64_le(b, a); }
 bool r_eq(real a, real b) { return f64_eq(a, b); }
 bool r_isnan(real a) { return f64_isnan(a); }
+bool r_isinf(real a) { return f64_isinf(a); }
 real r_f(float f) { return f64_from_float(f); }
 real r_u(uint u) { return f64_from_uint(u); }
 float r_to_f(real a) { return f64_to_float(a); }
@@ -47,6 +50,7 @@ uint r_to_u(real a) { return uint(f64_to_int(a)); } // a in [0, 2^31)
 real r_inf() { return f64_inf(0u); }
 // The buffer word of a double as the shaders keep it (both forms: its bits).
 real r_load(uvec2 bits) { return bits; }
+uvec2 r_bits(real a) { return a; }
 
 #else
 
@@ -59,6 +63,8 @@ real r_sub(real a, real b) { precise real r = a - b; return r; }
 real r_mul(real a, real b) { precise real r = a * b; return r; }
 real r_div(real a, real b) { precise real r = a / b; return r; }
 real r_sqrt(real a) { precise real r = sqrt(a); return r; }
+real r_floor(real a) { return floor(a); }
+real r_ceil(real a) { return ceil(a); }
 real r_neg(real a) { return -a; }
 real r_abs(real a) { return abs(a); }
 bool r_lt(real a, real b) { return a < b; }
@@ -67,12 +73,14 @@ bool r_gt(real a, real b) { return a > b; }
 bool r_ge(real a, real b) { return a >= b; }
 bool r_eq(real a, real b) { return a == b; }
 bool r_isnan(real a) { return isnan(a); }
+bool r_isinf(real a) { return isinf(a); }
 real r_f(float f) { return double(f); }
 real r_u(uint u) { return double(u); }
 float r_to_f(real a) { return float(a); }
 uint r_to_u(real a) { return uint(a); }
 real r_inf() { return 1.0LF / 0.0LF; }
 real r_load(uvec2 bits) { return packDouble2x32(bits); }
+uvec2 r_bits(real a) { return unpackDouble2x32(a); }
 
 #endif
 

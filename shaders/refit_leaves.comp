@@ -13,13 +13,16 @@ layout(local_size_x = MLOD_IF_GROUP) in;
 #include "refit_mesh.glsl"
 
 // mlod__interpolate
-dvec3 interpolate(uint which, uint tri, double s, double t)
+real interpolate1(real a, real b, real c, real s, real t)
 {
-    dvec3 a = vertex_attribute(which, indices[3u * tri]), b = vertex_attribute(which, indices[3u * tri + 1u]),
+    return r_add(r_add(a, r_mul(s, r_sub(b, a))), r_mul(t, r_sub(c, a)));
+}
+
+real3 interpolate(uint which, uint tri, real s, real t)
+{
+    real3 a = vertex_attribute(which, indices[3u * tri]), b = vertex_attribute(which, indices[3u * tri + 1u]),
           c = vertex_attribute(which, indices[3u * tri + 2u]);
-    precise dvec3 r = dvec3(a.x + s * (b.x - a.x) + t * (c.x - a.x), a.y + s * (b.y - a.y) + t * (c.y - a.y),
-                            a.z + s * (b.z - a.z) + t * (c.z - a.z));
-    return r;
+    return real3(interpolate1(a.x, b.x, c.x, s, t), interpolate1(a.y, b.y, c.y, s, t), interpolate1(a.z, b.z, c.z, s, t));
 }
 
 void main()
@@ -27,32 +30,30 @@ void main()
     uint j = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (j >= pc.count) return;
     uint node = pc.leaf_count - 1u + j, tri = leaf_sources[j];
-    double s = double(barycentrics[j].x), t = double(barycentrics[j].y);
-    precise double ratio = triangle_area(tri) / triangle_areas[tri];
-    dvec3 p = interpolate(0u, tri, s, t);
-    precise double r = double(pc.radius_scale) * sqrt(pc.area_unit * ratio);
-    spheres[node] = vec4(float(p.x), float(p.y), float(p.z), float_up(r));
+    real s = r_f(barycentrics[j].x), t = r_f(barycentrics[j].y);
+    real ratio = r_div(triangle_area(tri), r_load(triangle_areas[tri]));
+    real3 p = interpolate(0u, tri, s, t);
+    real r = r_mul(r_f(pc.radius_scale), r_sqrt(r_mul(r_load(pc.area_unit), ratio)));
+    spheres[node] = vec4(r_to_f(p.x), r_to_f(p.y), r_to_f(p.z), float_up(r));
     if (pc.has_cones != 0u) {
-        dvec3 n = dvec3(0.0LF);
+        real3 n = real3(R_ZERO, R_ZERO, R_ZERO);
         if (pc.normal_stride != 0u) n = interpolate(1u, tri, s, t);
-        if (!(dot3(n, n) > 0.0LF)) {
-            dvec3 v0 = vertex_attribute(0u, indices[3u * tri]), v1 = vertex_attribute(0u, indices[3u * tri + 1u]),
+        if (!r_gt(dot3(n, n), R_ZERO)) {
+            real3 v0 = vertex_attribute(0u, indices[3u * tri]), v1 = vertex_attribute(0u, indices[3u * tri + 1u]),
                   v2 = vertex_attribute(0u, indices[3u * tri + 2u]);
-            precise dvec3 e1 = dvec3(v1.x - v0.x, v1.y - v0.y, v1.z - v0.z);
-            precise dvec3 e2 = dvec3(v2.x - v0.x, v2.y - v0.y, v2.z - v0.z);
-            n = cross_d(e1, e2);
+            n = cross_d(r3_sub(v1, v0), r3_sub(v2, v0));
         }
         // mlod__cone_from_normal
-        precise double len = length_d(n);
-        if (!(len > 0.0LF) || isinf(len) || isnan(len))
+        real len = length_d(n);
+        if (!r_gt(len, R_ZERO) || r_isinf(len) || r_isnan(len))
             cones[node] = cone_full(vec3(0.0, 0.0, 1.0));
         else
-            cones[node] = vec4(float(n.x / len), float(n.y / len), float(n.z / len), 0.0);
+            cones[node] = vec4(r_to_f(r_div(n.x, len)), r_to_f(r_div(n.y, len)), r_to_f(r_div(n.z, len)), 0.0);
     }
     if (pc.has_colors != 0u) {
-        dvec3 c = interpolate(2u, tri, s, t);
-        colors[3u * node] = float(c.x);
-        colors[3u * node + 1u] = float(c.y);
-        colors[3u * node + 2u] = float(c.z);
+        real3 c = interpolate(2u, tri, s, t);
+        colors[3u * node] = r_to_f(c.x);
+        colors[3u * node + 1u] = r_to_f(c.y);
+        colors[3u * node + 2u] = r_to_f(c.z);
     }
 }

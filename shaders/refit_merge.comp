@@ -20,10 +20,10 @@ void main()
     spheres[i] = sphere_enclose(spheres[l], spheres[r]);
     if (pc.has_cones != 0u) cones[i] = cone_enclose(cones[l], cones[r]);
     if (pc.has_colors != 0u) {
-        double wl = double(leaves_below(l, pc.leaf_count)), wr = double(leaves_below(r, pc.leaf_count));
+        real wl = r_u(leaves_below(l, pc.leaf_count)), wr = r_u(leaves_below(r, pc.leaf_count));
         for (uint c = 0u; c < 3u; c++) {
-            precise double v = (wl * double(colors[3u * l + c]) + wr * double(colors[3u * r + c])) / (wl + wr);
-            colors[3u * i + c] = float(v);
+            real v = r_div(r_add(r_mul(wl, r_f(colors[3u * l + c])), r_mul(wr, r_f(colors[3u * r + c]))), r_add(wl, wr));
+            colors[3u * i + c] = r_to_f(v);
         }
     }
 }

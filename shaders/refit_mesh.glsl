@@ -1,14 +1,13 @@
 // shaders/refit_mesh.glsl - mesh geometry for the refit shaders, after
 // refit_layout.glsl and common.glsl.
 
+// Attribute `which` of a vertex, in double.
+real3 vertex_attribute(uint which, uint vertex) { return r3_f(vertex_float3(which, vertex)); }
+
 // mlod__triangle_area
-double triangle_area(uint tri)
+real triangle_area(uint tri)
 {
-    dvec3 v0 = vertex_attribute(0u, indices[3u * tri]), v1 = vertex_attribute(0u, indices[3u * tri + 1u]),
+    real3 v0 = vertex_attribute(0u, indices[3u * tri]), v1 = vertex_attribute(0u, indices[3u * tri + 1u]),
           v2 = vertex_attribute(0u, indices[3u * tri + 2u]);
-    precise dvec3 e1 = dvec3(v1.x - v0.x, v1.y - v0.y, v1.z - v0.z);
-    precise dvec3 e2 = dvec3(v2.x - v0.x, v2.y - v0.y, v2.z - v0.z);
-    dvec3 n = cross_d(e1, e2);
-    precise double area = 0.5LF * length_d(n);
-    return area;
+    return r_mul(R_HALF, length_d(cross_d(r3_sub(v1, v0), r3_sub(v2, v0))));
 }

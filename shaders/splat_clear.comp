@@ -9,5 +9,5 @@ layout(local_size_x = MLOD_IF_GROUP) in;
 void main()
 {
     uint p = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
-    if (p < pc.pixel_count) keys[p] = EMPTY_KEY;
+    if (p < pc.pixel_count) keys[2u * p] = keys[2u * p + 1u] = EMPTY_WORD;
 }

@@ -15,7 +15,7 @@ layout(local_size_x = MLOD_IF_GROUP) in;
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
 
-#define BAND_ROWS 64.0LF
+#define BAND_ROWS RK(0x40500000u, 0x00000000u, 64.0LF)
 
 // A depth as a 32-bit pattern whose unsigned order is the depth's order.
 uint ordered_bits(float depth)
@@ -24,49 +24,57 @@ uint ordered_bits(float depth)
     return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
 }
 
-void plot(uint view, uint row, uint col, uint64_t key)
+// Pass 0: the nearest depth; pass 1: the first entry at that depth.
+void plot(uint view, uint row, uint col, uint depth_bits, uint entry)
 {
-    uint x = tiles[4u * view] + col, y = tiles[4u * view + 1u] + row;
-    atomicMin(keys[y * pc.atlas_width + x], key);
+    uint x = tiles[4u * view] + col, y = tiles[4u * view + 1u] + row, p = y * pc.atlas_width + x;
+    if (pc.pass == 0u)
+        atomicMin(keys[2u * p], depth_bits);
+    else if (keys[2u * p] == depth_bits)
+        atomicMin(keys[2u * p + 1u], entry);
 }
 
 // Clipped to the sub-tile of the view's sub-projection s (whole pixels:
 // columns floor(x) .. floor(x + width) - 1, rows likewise).
-void raster_disc(uint view, uint s, dvec4 disc, uint64_t entry)
+void raster_disc(uint view, uint s, real4 disc, uint entry)
 {
     uint sub = sub_base(view, s);
-    precise double sub_right = sd(sub, MLOD_IF_S_X) + sd(sub, MLOD_IF_S_WIDTH);
-    precise double sub_bottom = sd(sub, MLOD_IF_S_Y) + sd(sub, MLOD_IF_S_HEIGHT);
-    uint col_begin = uint(sd(sub, MLOD_IF_S_X)), col_end = uint(sub_right);
-    uint row_begin = uint(sd(sub, MLOD_IF_S_Y)), row_end = uint(sub_bottom);
-    double tile_h = double(tiles[4u * view + 3u]);
-    precise double radius = disc.z * double(pc.disc_scale);
-    precise double r2 = radius * radius;
-    if (!(disc.z < 1e9LF) || isinf(disc.x) || isnan(disc.x) || isinf(disc.y) || isnan(disc.y)) return;
-    uint64_t key = (uint64_t(ordered_bits(float(disc.w))) << 32) | entry;
-    precise double y0 = floor(disc.y - radius), y1 = ceil(disc.y + radius);
-    precise double x0 = floor(disc.x - radius), x1 = ceil(disc.x + radius);
-    uint rb = y0 < double(row_begin) ? row_begin : (y0 >= double(row_end) ? row_end : uint(y0));
-    uint re = y1 > double(row_end) ? row_end : (y1 <= double(row_begin) ? row_begin : uint(y1));
-    uint cb = x0 < double(col_begin) ? col_begin : (x0 >= double(col_end) ? col_end : uint(x0));
-    uint ce = x1 > double(col_end) ? col_end : (x1 <= double(col_begin) ? col_begin : uint(x1));
+    real sub_right = r_add(sd(sub, MLOD_IF_S_X), sd(sub, MLOD_IF_S_WIDTH));
+    real sub_bottom = r_add(sd(sub, MLOD_IF_S_Y), sd(sub, MLOD_IF_S_HEIGHT));
+    uint col_begin = r_to_u(sd(sub, MLOD_IF_S_X)), col_end = r_to_u(sub_right);
+    uint row_begin = r_to_u(sd(sub, MLOD_IF_S_Y)), row_end = r_to_u(sub_bottom);
+    real tile_h = r_u(tiles[4u * view + 3u]);
+    real radius = r_mul(disc.z, r_f(pc.disc_scale));
+    real r2 = r_mul(radius, radius);
+    if (!r_lt(disc.z, RK(0x41CDCD65u, 0x00000000u, 1e9LF)) || r_isinf(disc.x) || r_isnan(disc.x) || r_isinf(disc.y) ||
+        r_isnan(disc.y))
+        return;
+    uint depth_bits = ordered_bits(r_to_f(disc.w));
+    real y0 = r_floor(r_sub(disc.y, radius)), y1 = r_ceil(r_add(disc.y, radius));
+    real x0 = r_floor(r_sub(disc.x, radius)), x1 = r_ceil(r_add(disc.x, radius));
+    real rb_ = r_u(row_begin), re_ = r_u(row_end), cb_ = r_u(col_begin), ce_ = r_u(col_end);
+    uint rb = r_lt(y0, rb_) ? row_begin : (r_ge(y0, re_) ? row_end : r_to_u(y0));
+    uint re = r_gt(y1, re_) ? row_end : (r_le(y1, rb_) ? row_begin : r_to_u(y1));
+    uint cb = r_lt(x0, cb_) ? col_begin : (r_ge(x0, ce_) ? col_end : r_to_u(x0));
+    uint ce = r_gt(x1, ce_) ? col_end : (r_le(x1, cb_) ? col_begin : r_to_u(x1));
     // the band of mlod_splat's tasks that holds the disc's centre
-    bool centre_inside = disc.x >= double(col_begin) && disc.x < double(col_end) && disc.y >= double(row_begin) &&
-                         disc.y < double(row_end);
-    double band_begin = centre_inside ? floor(disc.y / BAND_ROWS) * BAND_ROWS : 0.0LF;
-    double band_end = min(band_begin + BAND_ROWS, tile_h);
+    bool centre_inside = r_ge(disc.x, cb_) && r_lt(disc.x, ce_) && r_ge(disc.y, rb_) && r_lt(disc.y, re_);
+    real band_begin = centre_inside ? r_mul(r_floor(r_div(disc.y, BAND_ROWS)), BAND_ROWS) : R_ZERO;
+    real band_top = r_add(band_begin, BAND_ROWS);
+    real band_end = r_lt(tile_h, band_top) ? tile_h : band_top; // GLSL's min
     bool hit_in_band = false;
     for (uint row = rb; row < re; row++) {
-        precise double dy = double(row) + 0.5LF - disc.y;
+        real dy = r_sub(r_add(r_u(row), R_HALF), disc.y);
         for (uint col = cb; col < ce; col++) {
-            precise double dx = double(col) + 0.5LF - disc.x;
-            if (dx * dx + dy * dy <= r2) {
-                plot(view, row, col, key);
-                if (double(row) >= band_begin && double(row) < band_end) hit_in_band = true;
+            real dx = r_sub(r_add(r_u(col), R_HALF), disc.x);
+            if (r_le(r_add(r_mul(dx, dx), r_mul(dy, dy)), r2)) {
+                plot(view, row, col, depth_bits, entry);
+                if (r_ge(r_u(row), band_begin) && r_lt(r_u(row), band_end)) hit_in_band = true;
             }
         }
     }
-    if (!hit_in_band && centre_inside && pc.disc_scale >= 1.0) plot(view, uint(floor(disc.y)), uint(floor(disc.x)), key);
+    if (!hit_in_band && centre_inside && pc.disc_scale >= 1.0)
+        plot(view, r_to_u(r_floor(disc.y)), r_to_u(r_floor(disc.x)), depth_bits, entry);
 }
 
 // As mlod__draw_nodes: in every sub-projection the sphere reaches (a view
@@ -79,9 +87,9 @@ void main()
     if (status[i] == MLOD_IF_STATUS_CULLED) return;
     uint view = e.y, node = e.x, count = sub_count(view);
     vec4 s = spheres[node];
-    dvec3 c = dvec3(s.xyz);
-    dvec4 disc;
+    real3 c = r3_f(s.xyz);
+    real4 disc;
     uint reached = count == 1u ? 1u : reached_subs(view, s);
     for (uint k = 0u; k < count; k++)
-        if (((reached >> k) & 1u) != 0u && image_disc(view, k, c, double(s.w), disc)) raster_disc(view, k, disc, uint64_t(i));
+        if (((reached >> k) & 1u) != 0u && image_disc(view, k, c, r_f(s.w), disc)) raster_disc(view, k, disc, i);
 }

@@ -1,13 +1,13 @@
 // shaders/splat_layout.glsl - buffers and push constants of the splat
 // shaders (splat_clear, splat_draw, splat_resolve); host side:
-// mlodvk_splat in manylods_vk.h.  Each atlas pixel holds a 64-bit key while
-// drawing: the depth as an order-preserving 32-bit pattern, then the index
-// of the cut entry, so that atomicMin keeps the nearest depth and, among
-// equal depths, the entry first in cut order (as mlod_splat: the node drawn
-// first).  splat_resolve turns keys into depth, normal and colour.
+// mlodvk_splat in manylods_vk.h.  Each atlas pixel holds a key of two words
+// while drawing: the depth as an order-preserving 32-bit pattern, then the
+// index of the cut entry.  splat_draw's pass 0 keeps the nearest depth
+// (atomicMin on the first word), its pass 1 the least entry among the
+// draws at that depth (atomicMin on the second): the entry first in cut
+// order (as mlod_splat: the node drawn first), with 32-bit atomics.
+// splat_resolve turns keys into depth, normal and colour.
 
-#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
-#extension GL_EXT_shader_atomic_int64 : require
 #include "interface.h"
 
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_SPHERES) readonly buffer tree_spheres { vec4 spheres[]; };
@@ -17,7 +17,7 @@ layout(std430, set = 0, binding = MLOD_IF_SPLAT_LIST) readonly buffer cut_list {
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_STATUS) readonly buffer cut_status { uint status[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_COLORS) readonly buffer tree_colors { float colors[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_TILES) readonly buffer atlas_tiles { uint tiles[]; };
-layout(std430, set = 0, binding = MLOD_IF_SPLAT_KEYS) buffer atlas_keys { uint64_t keys[]; };
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_KEYS) buffer atlas_keys { uint keys[]; }; // two words a pixel
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_DEPTH) writeonly buffer atlas_depth { float depth_out[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_NORMAL) writeonly buffer atlas_normal { float normal_out[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_COLOR) writeonly buffer atlas_color { float color_out[]; };
@@ -27,4 +27,4 @@ layout(push_constant) uniform push_block { MLOD_IF_SPLAT_PUSH(MLOD_IF_DECLARE) }
 
 uint group_index() { return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x; }
 
-#define EMPTY_KEY 0xffffffffffffffffUL
+#define EMPTY_WORD 0xffffffffu // both words of an empty pixel's key

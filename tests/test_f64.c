@@ -80,7 +80,7 @@ int main(int argc, char **argv)
 {
     unsigned long n = argc > 1 ? strtoul(argv[1], NULL, 10) : 2000000ul, i;
     uint64_t state = 0x5EEDF64ull;
-    tally add, sub, mul, dv, sq, cmp, tof, fromf, fromi, toi;
+    tally add, sub, mul, dv, sq, cmp, tof, fromf, fromi, toi, rnd;
     tally_init(&add, "add");
     tally_init(&sub, "sub");
     tally_init(&mul, "mul");
@@ -91,6 +91,7 @@ int main(int argc, char **argv)
     tally_init(&fromf, "from float");
     tally_init(&fromi, "from int, from uint");
     tally_init(&toi, "to int");
+    tally_init(&rnd, "floor, ceil");
     for (i = 0; i < n; i++) {
         uint32_t k = (uint32_t)(i % 7);
         double a = from_bits(f64t_operand(&state, k)), b = from_bits(f64t_partner(&state, bits(a), (uint32_t)(i / 7)));
@@ -100,6 +101,8 @@ int main(int argc, char **argv)
         note(&mul, same(to_d(f64_mul(ua, ub)), a * b), a, b, to_d(f64_mul(ua, ub)), a * b);
         note(&dv, same(to_d(f64_div(ua, ub)), a / b), a, b, to_d(f64_div(ua, ub)), a / b);
         note(&sq, same(to_d(f64_sqrt(ua)), sqrt(a)), a, 0.0, to_d(f64_sqrt(ua)), sqrt(a));
+        note(&rnd, same(to_d(f64_floor(ua)), floor(a)) && same(to_d(f64_ceil(ua)), ceil(a)), a, 0.0,
+             to_d(f64_floor(ua)), floor(a));
         note(&cmp, f64_lt(ua, ub) == (a < b) && f64_le(ua, ub) == (a <= b) && f64_eq(ua, ub) == (a == b), a, b,
              f64_lt(ua, ub) + 2 * f64_le(ua, ub) + 4 * f64_eq(ua, ub), (a < b) + 2 * (a <= b) + 4 * (a == b));
         {
@@ -138,7 +141,8 @@ int main(int argc, char **argv)
     report(&fromf);
     report(&fromi);
     report(&toi);
-    printf("f64.glsl as C: %lu operand pairs, add, sub, mul, div, sqrt, comparisons and conversions against the host\n",
+    report(&rnd);
+    printf("f64.glsl as C: %lu operand pairs, add, sub, mul, div, sqrt, floor, ceil, comparisons and conversions against the host\n",
            n);
     return test_finish();
 }

@@ -27,7 +27,7 @@
 
 VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instance, const char *name);
 
-#define RESULTS 5 /* uvec4 per operand pair, as tests/f64_check.comp writes them */
+#define RESULTS 6 /* uvec4 per operand pair, as tests/f64_check.comp writes them */
 
 static int skip(const char *why)
 {
@@ -188,7 +188,7 @@ int main(int argc, char **argv)
         static const char *names[RESULTS * 4] = {"add", "add", "sub", "sub", "mul", "mul", "div", "div",
                                                   "sqrt", "sqrt", "to float", "lt, le, eq", "from float",
                                                   "from float", "from int", "from int", "from uint", "from uint",
-                                                  "to int", "(unused)"};
+                                                  "to int", "(unused)", "floor", "floor", "ceil", "ceil"};
         memset(wrong_ops, 0, sizeof wrong_ops);
         out = results.mapped;
         for (i = 0; i < n; i++) {
@@ -207,6 +207,8 @@ int main(int argc, char **argv)
             r = f64_from_uint(b.y), want[16] = r.x, want[17] = r.y;
             want[18] = small ? (uint32_t)f64_to_int(a) : 0u;
             want[19] = 0u;
+            r = f64_floor(a), want[20] = r.x, want[21] = r.y;
+            r = f64_ceil(a), want[22] = r.x, want[23] = r.y;
             for (k = 0; k < RESULTS * 4; k++)
                 if (out[RESULTS * 4 * i + k] != want[k]) {
                     if (!wrong++)
@@ -215,13 +217,15 @@ int main(int argc, char **argv)
                     wrong_ops[k]++;
                 }
         }
-        for (i = 0; i < RESULTS * 4 - 1; i += (i < 10 ? 2 : 1)) {
-            uint32_t count = wrong_ops[i] + (i < 10 || i == 12 || i == 14 || i == 16 ? wrong_ops[i + 1] : 0);
-            if (i == 13 || i == 15 || i == 17) continue;
+        for (i = 0; i < RESULTS * 4; i++) {
+            /* a double's two words count once, under its name's first word */
+            uint32_t count = wrong_ops[i];
+            if (i == 19 || (i > 0 && strcmp(names[i], names[i - 1]) == 0)) continue;
+            if (i + 1 < RESULTS * 4 && strcmp(names[i], names[i + 1]) == 0) count += wrong_ops[i + 1];
             CHECK(count == 0, "%s: %u of %u operand pairs differ between the device and the C compile", names[i],
                   count, n);
         }
-        printf("  %u operand pairs: add, sub, mul, div, sqrt, comparisons and conversions, %u words differ\n", n,
+        printf("  %u operand pairs: add, sub, mul, div, sqrt, floor, ceil, comparisons and conversions, %u words differ\n", n,
                wrong);
     }
     CHECK(device.validation_messages == 0, "%u validation message(s), the last: %s", device.validation_messages,

@@ -48,6 +48,10 @@ VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instan
 
 static mlodvk_device device;
 static mlodvk_context *context;
+/* The parity tests at a smaller size (fewer samples, views, modes): for
+   the context with emulated doubles, whose every double operation costs
+   lavapipe tens to hundreds of integer instructions. */
+static int lean;
 
 /* A validation message since the last call fails the named step. */
 static uint32_t validation_seen = 0;
@@ -185,7 +189,7 @@ static void test_cut_parity(void)
         CHECK(0, "scene_torus failed");
         return;
     }
-    tree = tu_build(&s, 30000, 5, MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT);
+    tree = tu_build(&s, lean ? 3000 : 30000, 5, MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT);
     tu_bounds(&s, c, &R);
     if (!tree || mlodvk_tree_upload(context, tree, &vtree, &e) != MLOD_OK) {
         CHECK(0, "tree upload: %s", tree ? e.message : "build failed");
@@ -194,19 +198,20 @@ static void test_cut_parity(void)
         return;
     }
     for (kind = 0; kind <= VIEW_KINDS; kind++)
-        for (m = 0; m < 4; m++)
-            for (ei = 0; ei < 2; ei++) {
+        for (m = 0; m < (lean ? 2 : 4); m++)
+            for (ei = lean; ei < 2; ei++) {
                 mlod_view views[24];
                 char name[120];
                 static const mlod_cut_mode mode_of[4] = {MLOD_CUT_BASIC, MLOD_CUT_INCREMENTAL, MLOD_CUT_LAZY, MLOD_CUT_LAZY};
                 make_views(1000u * (uint64_t)kind + 17u * (uint64_t)m + (uint64_t)ei, kind == VIEW_KINDS ? -1 : kind, c, R,
                            views, 24);
                 snprintf(name, sizeof name, "%s, %s, eps %g", kinds[kind], modes[m], (double)epsilons[ei]);
-                compared += run_mode(tree, vtree, views, 24, mode_of[m], m == 3 ? 3u : 1u, epsilons[ei], 0, name, NULL);
+                compared += run_mode(tree, vtree, views, lean ? 4 : 24, mode_of[m], m == 3 ? 3u : 1u, epsilons[ei], 0,
+                                     name, NULL);
                 check_validation(name);
             }
-    printf("  cut parity: %llu cut entries compared over %d view sets x 4 modes x 2 epsilons x 4 frames\n",
-           (unsigned long long)compared, VIEW_KINDS + 1);
+    printf("  cut parity: %llu cut entries compared over %d view sets x %d modes x %d epsilons x 4 frames\n",
+           (unsigned long long)compared, VIEW_KINDS + 1, lean ? 2 : 4, lean ? 1 : 2);
     /* a list that outgrows its buffers: start with room for one entry per
        view; the loop stops, grows and resumes, with the same cuts */
     {
@@ -278,7 +283,7 @@ static void test_splat_parity(void)
         CHECK(0, "scene_room failed");
         return;
     }
-    tree = tu_build(&s, 40000, 9, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    tree = tu_build(&s, lean ? 4000 : 40000, 9, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
     tu_bounds(&s, c, &R);
     if (!tree || mlodvk_tree_upload(context, tree, &vtree, &e) != MLOD_OK) {
         CHECK(0, "splat: tree upload: %s", tree ? e.message : "build failed");
@@ -1105,6 +1110,37 @@ static void test_arguments(void)
     CHECK(strcmp(mlod_result_name(MLOD_ERROR_DEVICE), "MLOD_ERROR_DEVICE") == 0, "the name of MLOD_ERROR_DEVICE");
 }
 
+/* The same parity with doubles built from 32-bit integers (f64.glsl):
+   the pipelines without shaderFloat64, equal to the CPU all the same. */
+static void test_emulated_doubles(void)
+{
+    mlodvk_context_desc desc = mlodvk_device_context_desc(&device);
+    mlod_error e;
+    double t0, t1, t2;
+    desc.doubles = MLODVK_DOUBLES_EMULATED;
+    lean = 1;
+    t0 = seconds();
+    if (mlodvk_context_create(&desc, &context, &e) != MLOD_OK) {
+        CHECK(0, "mlodvk_context_create with MLODVK_DOUBLES_EMULATED on %s: %s", device.name, e.message);
+        return;
+    }
+    CHECK(mlodvk_context_emulates_doubles(context) == 1, "a context asked for MLODVK_DOUBLES_EMULATED emulates them");
+    printf("  emulated doubles: processor time: context (pipelines) %.1f s\n", seconds() - t0);
+    t0 = seconds();
+    test_cut_parity();
+    t1 = seconds();
+    test_splat_parity();
+    test_refit_parity();
+    test_opposite_cone_parity();
+    t2 = seconds();
+    printf("  emulated doubles: processor time: cut parity %.1f s, splat and refit parity %.1f s\n", t1 - t0, t2 - t1);
+    CHECK(mlodvk_context_device_bytes(context) == 0, "emulated doubles: device memory left: %llu bytes",
+          (unsigned long long)mlodvk_context_device_bytes(context));
+    mlodvk_context_destroy(context);
+    context = NULL;
+    check_validation("emulated doubles");
+}
+
 int main(void)
 {
     const char *require = getenv("MANYLODS_REQUIRE_VULKAN");
@@ -1153,6 +1189,8 @@ int main(void)
     CHECK(mlodvk_context_device_bytes(context) == 0, "device memory left: %llu bytes",
           (unsigned long long)mlodvk_context_device_bytes(context));
     mlodvk_context_destroy(context);
+    context = NULL;
+    test_emulated_doubles();
     mlodvk_device_destroy(&device);
     check_validation("teardown");
     return test_finish();
