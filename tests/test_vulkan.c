@@ -1110,13 +1110,27 @@ static void test_arguments(void)
     CHECK(strcmp(mlod_result_name(MLOD_ERROR_DEVICE), "MLOD_ERROR_DEVICE") == 0, "the name of MLOD_ERROR_DEVICE");
 }
 
+/* Every parity test on the context; prints their processor times after
+   label. */
+static void run_parity(const char *label)
+{
+    double t0 = seconds(), t1, t2;
+    test_cut_parity();
+    t1 = seconds();
+    test_splat_parity();
+    test_refit_parity();
+    test_opposite_cone_parity();
+    t2 = seconds();
+    printf("  %sprocessor time: cut parity %.1f s, splat and refit parity %.1f s\n", label, t1 - t0, t2 - t1);
+}
+
 /* The same parity with doubles built from 32-bit integers (f64.glsl):
    the pipelines without shaderFloat64, equal to the CPU all the same. */
 static void test_emulated_doubles(void)
 {
     mlodvk_context_desc desc = mlodvk_device_context_desc(&device);
     mlod_error e;
-    double t0, t1, t2;
+    double t0;
     desc.doubles = MLODVK_DOUBLES_EMULATED;
     lean = 1;
     t0 = seconds();
@@ -1126,14 +1140,7 @@ static void test_emulated_doubles(void)
     }
     CHECK(mlodvk_context_emulates_doubles(context) == 1, "a context asked for MLODVK_DOUBLES_EMULATED emulates them");
     printf("  emulated doubles: processor time: context (pipelines) %.1f s\n", seconds() - t0);
-    t0 = seconds();
-    test_cut_parity();
-    t1 = seconds();
-    test_splat_parity();
-    test_refit_parity();
-    test_opposite_cone_parity();
-    t2 = seconds();
-    printf("  emulated doubles: processor time: cut parity %.1f s, splat and refit parity %.1f s\n", t1 - t0, t2 - t1);
+    run_parity("emulated doubles: ");
     CHECK(mlodvk_context_device_bytes(context) == 0, "emulated doubles: device memory left: %llu bytes",
           (unsigned long long)mlodvk_context_device_bytes(context));
     mlodvk_context_destroy(context);
@@ -1173,18 +1180,11 @@ int main(void)
     test_arguments();
     test_refusals();
     test_default_allocator();
+    run_parity("");
     {
-        double t0 = seconds(), t1, t2, t3;
-        test_cut_parity();
-        t1 = seconds();
-        test_splat_parity();
-        test_refit_parity();
-        test_opposite_cone_parity();
-        t2 = seconds();
+        double t0 = seconds();
         test_failures();
-        t3 = seconds();
-        printf("  processor time: cut parity %.1f s, splat and refit parity %.1f s, failure injection %.1f s\n", t1 - t0, t2 - t1,
-               t3 - t2);
+        printf("  processor time: failure injection %.1f s\n", seconds() - t0);
     }
     CHECK(mlodvk_context_device_bytes(context) == 0, "device memory left: %llu bytes",
           (unsigned long long)mlodvk_context_device_bytes(context));
