@@ -2387,10 +2387,10 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
     if (vk_emulated && vk_emulated->cpu_ms > 0.0) {
         snprintf(anchor, sizeof anchor, "MLODVK_DOUBLES_EMULATED (shaders/f64.glsl: doubles from 32-bit integers; "
                  "no shader declares Float64, Int64 or 64-bit atomics), %s, N = %u: its basic cut and atlas equal the "
-                 "CPU's (checked); basic cut %s = %.0fx the CPU's %s (the device's own doubles: %s), splat %s, the "
-                 "pipelines compiled in %s",
+                 "CPU's (checked); basic cut %s = %.0fx the CPU's %s (the device's own doubles, N = %u: %s), splat %s, "
+                 "the pipelines compiled in %s",
                  vk_emulated->note, vk_emulated->n, ms_text(vk_emulated->cut_ms), vk_emulated->cut_ms / vk_emulated->cpu_ms,
-                 ms_text(vk_emulated->cpu_ms), vk_basic ? ms_text(vk_basic->cut_ms) : "-",
+                 ms_text(vk_emulated->cpu_ms), vk_basic ? vk_basic->n : 0, vk_basic ? ms_text(vk_basic->cut_ms) : "-",
                  vk_emulated_splat ? ms_text(vk_emulated_splat->splat_ms) : "-",
                  vk_emulated_context ? ms_text(vk_emulated_context->total_ms) : "-");
         target_line(f, "Vulkan: runs without shaderFloat64, shaderInt64, 64-bit atomics", "yes (emulated doubles)",

@@ -291,7 +291,7 @@ static void test_splat_parity(void)
         scene_free(&s);
         return;
     }
-    for (round = 0; round < 2 * (VIEW_KINDS + 1); round++) {
+    for (round = 0; round < (lean ? VIEW_KINDS + 2 : 2 * (VIEW_KINDS + 1)); round++) {
         float disc_scale = round <= VIEW_KINDS ? 0.0f : 0.5f;
         mlod_view views[16];
         mlod_atlas_desc ad;
@@ -308,8 +308,8 @@ static void test_splat_parity(void)
         p.epsilon = kind == VIEW_KINDS ? 3.0f : 1.0f;
         make_views(500u + (uint64_t)kind, kind == VIEW_KINDS ? -1 : kind, c, R, views, 16);
         for (v = 0; v < 16; v++) { /* larger tiles than the cut tests */
-            views[v].width = 16 + (views[v].width * 3) % 48;
-            views[v].height = 16 + (views[v].height * 5) % 48;
+            views[v].width = lean ? 8 + (views[v].width * 3) % 16 : 16 + (views[v].width * 3) % 48;
+            views[v].height = lean ? 8 + (views[v].height * 5) % 16 : 16 + (views[v].height * 5) % 48;
             fit_tile(&views[v]);
         }
         memset(&ad, 0, sizeof ad);
@@ -435,7 +435,7 @@ static void test_refit_parity(void)
 {
     scene_mesh s;
     int with_normals;
-    if (!scene_torus(&s, 1.0f, 0.4f, 40, 20)) {
+    if (!scene_torus(&s, 1.0f, 0.4f, lean ? 20 : 40, lean ? 10 : 20)) {
         CHECK(0, "scene_torus failed");
         return;
     }
@@ -1141,6 +1141,7 @@ static void test_emulated_doubles(void)
     CHECK(mlodvk_context_emulates_doubles(context) == 1, "a context asked for MLODVK_DOUBLES_EMULATED emulates them");
     printf("  emulated doubles: processor time: context (pipelines) %.1f s\n", seconds() - t0);
     run_parity("emulated doubles: ");
+    lean = 0;
     CHECK(mlodvk_context_device_bytes(context) == 0, "emulated doubles: device memory left: %llu bytes",
           (unsigned long long)mlodvk_context_device_bytes(context));
     mlodvk_context_destroy(context);
