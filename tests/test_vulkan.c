@@ -1108,6 +1108,27 @@ static void test_arguments(void)
               strstr(e.message, "2147483648 views") != NULL,
           "a cut of 2^31 views: %s (%s)", mlod_result_name(e.code), e.message);
     CHECK(strcmp(mlod_result_name(MLOD_ERROR_DEVICE), "MLOD_ERROR_DEVICE") == 0, "the name of MLOD_ERROR_DEVICE");
+    /* where the doubles come from: a value that is no mlodvk_doubles is
+       refused before anything is made; lavapipe has shaderFloat64, so AUTO
+       and DEVICE use it (EMULATED: test_emulated_doubles) */
+    desc = mlodvk_device_context_desc(&device);
+    desc.doubles = (mlodvk_doubles)7;
+    CHECK(mlodvk_context_create(&desc, &none, &e) == MLOD_ERROR_INVALID_ARGUMENT && none == NULL &&
+              strstr(e.message, "doubles: 7") != NULL,
+          "doubles 7 is refused: %s (%s)", mlod_result_name(e.code), e.message);
+    CHECK(mlodvk_context_emulates_doubles(context) == !device.float64,
+          "the default context uses the device's doubles where it has shaderFloat64 (%d, the device %d)",
+          mlodvk_context_emulates_doubles(context), device.float64);
+    desc.doubles = MLODVK_DOUBLES_DEVICE;
+    if (device.float64) {
+        CHECK(mlodvk_context_create(&desc, &none, &e) == MLOD_OK && mlodvk_context_emulates_doubles(none) == 0,
+              "MLODVK_DOUBLES_DEVICE on a device with shaderFloat64: %s", e.message);
+    } else {
+        CHECK(mlodvk_context_create(&desc, &none, &e) == MLOD_ERROR_DEVICE && strstr(e.message, "shaderFloat64"),
+              "MLODVK_DOUBLES_DEVICE on a device without shaderFloat64 is refused: %s", e.message);
+    }
+    mlodvk_context_destroy(none);
+    CHECK(mlodvk_context_emulates_doubles(NULL) == 0, "no context emulates nothing");
 }
 
 /* Every parity test on the context; prints their processor times after
