@@ -791,9 +791,11 @@ struct mlodvk_cut {
     mlod_cut_view *host_views;
 };
 
-/* keys: 64 bits a pixel, the depth's ordered bits above the cut entry's
-   index, so that one atomicMin keeps the nearest disc and breaks ties the
-   same way every time; splat_resolve turns the keys into the images. */
+/* keys: two 32-bit words a pixel, the depth's ordered bits and the cut
+   entry's index: splat_draw's first pass keeps the nearest depth, its
+   second the least entry at that depth, so ties break the same way every
+   time (shaders/splat_layout.glsl); splat_resolve turns the keys into the
+   images. */
 struct mlodvk_atlas {
     uint32_t width, height, view_count, channels;
     float disc_scale;
