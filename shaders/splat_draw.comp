@@ -11,6 +11,11 @@
 #extension GL_EXT_control_flow_attributes : require
 #include "interface.h"
 layout(local_size_x = MLOD_IF_GROUP) in;
+#ifndef MLOD_F64_EMULATED
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#define MLOD_SPLAT_KEY uint64_t
+#endif
 #include "splat_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
@@ -24,14 +29,19 @@ uint ordered_bits(float depth)
     return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
 }
 
-// Pass 0: the nearest depth; pass 1: the first entry at that depth.
+// The least key (splat_layout.glsl): one 64-bit atomicMin, or with
+// emulated doubles pass 0 the nearest depth, pass 1 the first entry at it.
 void plot(uint view, uint row, uint col, uint depth_bits, uint entry)
 {
     uint x = tiles[4u * view] + col, y = tiles[4u * view + 1u] + row, p = y * pc.atlas_width + x;
+#ifdef MLOD_F64_EMULATED
     if (pc.pass == 0u)
-        atomicMin(keys[2u * p], depth_bits);
-    else if (keys[2u * p] == depth_bits)
-        atomicMin(keys[2u * p + 1u], entry);
+        atomicMin(keys[2u * p + 1u], depth_bits);
+    else if (keys[2u * p + 1u] == depth_bits)
+        atomicMin(keys[2u * p], entry);
+#else
+    atomicMin(keys[p], (uint64_t(depth_bits) << 32) | uint64_t(entry));
+#endif
 }
 
 // Clipped to the sub-tile of the view's sub-projection s (whole pixels:

@@ -1,12 +1,20 @@
 // shaders/splat_layout.glsl - buffers and push constants of the splat
 // shaders (splat_clear, splat_draw, splat_resolve); host side:
 // mlodvk_splat in manylods_vk.h.  Each atlas pixel holds a key of two words
-// while drawing: the depth as an order-preserving 32-bit pattern, then the
-// index of the cut entry.  splat_draw's pass 0 keeps the nearest depth
-// (atomicMin on the first word), its pass 1 the least entry among the
-// draws at that depth (atomicMin on the second): the entry first in cut
-// order (as mlod_splat: the node drawn first), with 32-bit atomics.
-// splat_resolve turns keys into depth, normal and colour.
+// while drawing: the index of the cut entry, then the depth as an
+// order-preserving 32-bit pattern (as a uint64: the depth above the
+// entry).  The least key wins: the nearest depth and, among equal depths,
+// the entry first in cut order (as mlod_splat: the node drawn first).
+// splat_draw keeps it with one 64-bit atomicMin where the device's
+// doubles are used (those devices have shaderInt64 and 64-bit buffer
+// atomics: manylods_vk.h, DOUBLES), and with 32-bit atomics in two passes
+// with emulated doubles (MLOD_F64_EMULATED): the nearest depth, then the
+// least entry at that depth.  splat_resolve turns keys into depth, normal
+// and colour.  The includer may declare the keys' element type first
+// (MLOD_SPLAT_KEY: uint, two a pixel, unless splat_draw's one 64-bit word).
+#ifndef MLOD_SPLAT_KEY
+#define MLOD_SPLAT_KEY uint
+#endif
 
 #include "interface.h"
 
@@ -17,7 +25,7 @@ layout(std430, set = 0, binding = MLOD_IF_SPLAT_LIST) readonly buffer cut_list {
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_STATUS) readonly buffer cut_status { uint status[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_COLORS) readonly buffer tree_colors { float colors[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_TILES) readonly buffer atlas_tiles { uint tiles[]; };
-layout(std430, set = 0, binding = MLOD_IF_SPLAT_KEYS) buffer atlas_keys { uint keys[]; }; // two words a pixel
+layout(std430, set = 0, binding = MLOD_IF_SPLAT_KEYS) buffer atlas_keys { MLOD_SPLAT_KEY keys[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_DEPTH) writeonly buffer atlas_depth { float depth_out[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_NORMAL) writeonly buffer atlas_normal { float normal_out[]; };
 layout(std430, set = 0, binding = MLOD_IF_SPLAT_COLOR) writeonly buffer atlas_color { float color_out[]; };

@@ -12,7 +12,7 @@ void main()
 {
     uint p = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (p >= pc.pixel_count) return;
-    uint ordered = keys[2u * p], entry = keys[2u * p + 1u];
+    uint entry = keys[2u * p], ordered = keys[2u * p + 1u];
     if (ordered == EMPTY_WORD && entry == EMPTY_WORD) {
         depth_out[p] = uintBitsToFloat(0x7f800000u);
         if (pc.want_normal != 0u) normal_out[3u * p] = normal_out[3u * p + 1u] = normal_out[3u * p + 2u] = 0.0;

@@ -62,6 +62,15 @@ static int f64u_int(uint32_t u)
 #undef uvec2
 #undef uint
 
+/* The uvec2 of two words (uvec2() is GLSL's, taken back above). */
+static uvec2 f64t_pair(uint32_t lo, uint32_t hi)
+{
+    uvec2 r;
+    r.x = lo;
+    r.y = hi;
+    return r;
+}
+
 /* ---- operands for the tests: doubles as bits, drawn to reach every path
    (random patterns, moderate and subnormal values, few-bit significands
    whose sums and products tie, the edges of the range, specials) ---- */

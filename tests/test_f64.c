@@ -11,24 +11,6 @@
 #include "harness.h"
 #include "f64_c.h"
 
-static uvec2 to_u(double d)
-{
-    uint64_t b;
-    uvec2 u;
-    memcpy(&b, &d, sizeof b);
-    u.x = (uint32_t)b;
-    u.y = (uint32_t)(b >> 32);
-    return u;
-}
-
-static double to_d(uvec2 u)
-{
-    uint64_t b = (uint64_t)u.y << 32 | u.x;
-    double d;
-    memcpy(&d, &b, sizeof d);
-    return d;
-}
-
 static double from_bits(uint64_t b)
 {
     double d;
@@ -42,6 +24,9 @@ static uint64_t bits(double d)
     memcpy(&b, &d, sizeof b);
     return b;
 }
+
+static uvec2 to_u(double d) { return f64t_pair((uint32_t)bits(d), (uint32_t)(bits(d) >> 32)); }
+static double to_d(uvec2 u) { return from_bits((uint64_t)u.y << 32 | u.x); }
 
 /* the same bits, or both NaN */
 static int same(double got, double want)

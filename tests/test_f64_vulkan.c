@@ -92,14 +92,6 @@ static int wide_capabilities(const uint32_t *words, size_t count)
     return wide;
 }
 
-static uvec2 u2(uint32_t x, uint32_t y)
-{
-    uvec2 r;
-    r.x = x;
-    r.y = y;
-    return r;
-}
-
 int main(int argc, char **argv)
 {
     uint32_t n = argc > 1 ? (uint32_t)strtoul(argv[1], NULL, 10) : 200000u, i, groups, wrong = 0, wrong_ops[RESULTS * 4];
@@ -192,9 +184,9 @@ int main(int argc, char **argv)
         memset(wrong_ops, 0, sizeof wrong_ops);
         out = results.mapped;
         for (i = 0; i < n; i++) {
-            uvec2 a = u2(in[4 * i], in[4 * i + 1]), b = u2(in[4 * i + 2], in[4 * i + 3]), r;
+            uvec2 a = f64t_pair(in[4 * i], in[4 * i + 1]), b = f64t_pair(in[4 * i + 2], in[4 * i + 3]), r;
             uint32_t want[RESULTS * 4], k;
-            int small = f64_lt(f64_abs(a), u2(0u, 0x41E00000u));
+            int small = f64_lt(f64_abs(a), f64t_pair(0u, 0x41E00000u));
             r = f64_add(a, b), want[0] = r.x, want[1] = r.y;
             r = f64_sub(a, b), want[2] = r.x, want[3] = r.y;
             r = f64_mul(a, b), want[4] = r.x, want[5] = r.y;
