@@ -239,7 +239,7 @@
      built where a destroyed one stood is another tree to the cut.
      Decisions are exact, and fast: each node-view first goes through a
      float filter (the criterion in float, x = centre - eye subtracted in
-     double, with margins proven from its rounding errors: 2^-12 relative
+     double, or in float where the eye's coordinates are floats, with margins proven from its rounding errors: 2^-12 relative
      on the diameter, 2^-20 of the plane's norm times |x| + r plus its
      offset on each plane; the proof is beside mlod__fast_status) that
      decides valid, invalid or culled only where its margin makes the
@@ -3085,7 +3085,9 @@ typedef struct mlod__fsub {
 typedef struct mlod__fview {
     int ok; /* 0: every node-view takes the exact path */
     int sub_count, backfaces, ortho;
+    int float_eye; /* eye[] holds floats: centre - eye subtracted in float (the same bound) */
     double eye[3];
+    float eye_f[3];
     mlod__fsub subs[MLOD_VIEW_MAX_SUBS];
 } mlod__fview;
 
@@ -3525,7 +3527,8 @@ MLOD__PUBLIC double mlod_criterion(const mlod_tree *tree, uint32_t node, const m
    "not valid"), or MLOD__UNSURE when it cannot prove it; only then does
    the exact path run.  The proof, with u = 2^-24 (float rounding):
 
-   - x = centre - eye is subtracted in double and rounded to float, so
+   - x = centre - eye is subtracted in double and rounded to float (in
+     float, one rounding, where the eye's coordinates are floats), so
      each component is within u |x_k| (the eye may be far from the origin
      and x small).  Guards keep every float value normal and finite:
      2^-40 <= |x|^2 <= 2^80, r = 0 or 2^-40 <= r <= 2^40, the thresholds
@@ -3576,9 +3579,12 @@ static void mlod__fast_prepare(mlod__pview *pv, double epsilon)
     fv->sub_count = pv->sub_count;
     fv->backfaces = pv->backfaces;
     fv->ortho = pv->kind[0] == MLOD_VIEW_ORTHOGRAPHIC;
+    fv->float_eye = 1;
     for (k = 0; k < 3; k++) {
         fv->eye[k] = pv->f.eye[k];
         if (!(fabs(fv->eye[k]) <= 18446744073709551616.0)) return; /* 2^64: centre - eye rounds into float range */
+        fv->eye_f[k] = (float)fv->eye[k];
+        if ((double)fv->eye_f[k] != fv->eye[k]) fv->float_eye = 0;
     }
     for (s = 0; s < pv->sub_count; s++) {
         const mlod_view_sub *sub = &pv->f.subs[s];
@@ -3649,9 +3655,15 @@ static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphe
     float x[3], r = sphere[3], d2, t = 1.0f, twice = r + r, reach;
     unsigned reached = 0;
     int s, j, all_valid = 1;
-    x[0] = (float)((double)sphere[0] - fv->eye[0]);
-    x[1] = (float)((double)sphere[1] - fv->eye[1]);
-    x[2] = (float)((double)sphere[2] - fv->eye[2]);
+    if (fv->float_eye) {
+        x[0] = sphere[0] - fv->eye_f[0];
+        x[1] = sphere[1] - fv->eye_f[1];
+        x[2] = sphere[2] - fv->eye_f[2];
+    } else {
+        x[0] = (float)((double)sphere[0] - fv->eye[0]);
+        x[1] = (float)((double)sphere[1] - fv->eye[1]);
+        x[2] = (float)((double)sphere[2] - fv->eye[2]);
+    }
     d2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
     if (!(d2 >= 9.09494702e-13f && d2 <= 1.20892582e24f)) return MLOD__UNSURE; /* 2^-40, 2^80 */
     if (!(r == 0.0f || (r >= 9.09494702e-13f && r <= 1.09951163e12f))) return MLOD__UNSURE;
@@ -3767,6 +3779,63 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
     __m128 hi = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(v, 1)), de));
     return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
 }
+
+/* Lanes whose node is at least `first` (unsigned), as a mask; nodes[] of
+   the lanes, or (pairs) the four parents p whose children 2p + 1 and
+   2p + 2 fill the low and high halves. */
+static __m128 mlod__vat_least(__m128i n, uint32_t first)
+{
+    const __m128i flip = _mm_set1_epi32((int)0x80000000u);
+    __m128i below = _mm_cmpgt_epi32(_mm_xor_si128(_mm_set1_epi32((int)first), flip), _mm_xor_si128(n, flip));
+    return _mm_castsi128_ps(_mm_xor_si128(below, _mm_set1_epi32(-1)));
+}
+static __m256 mlod__vleaf(const uint32_t *nodes, uint32_t first)
+{
+    __m128 lo = mlod__vat_least(_mm_loadu_si128((const __m128i *)(const void *)nodes), first);
+    __m128 hi = mlod__vat_least(_mm_loadu_si128((const __m128i *)(const void *)(nodes + 4)), first);
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+}
+
+/* Status codes (small whole numbers in float lanes) to bytes at out. */
+static void mlod__vbytes(__m256 codes, uint8_t *out)
+{
+    __m256i i = _mm256_cvttps_epi32(codes);
+    __m128i p = _mm_packs_epi32(_mm256_castsi256_si128(i), _mm256_extractf128_si256(i, 1));
+    _mm_storel_epi64((__m128i *)(void *)out, _mm_packus_epi16(p, p));
+}
+
+/* The children of four parents in one load per pair (a pair's rows are
+   adjacent): lanes 0 - 3 the left children 2p + 1, lanes 4 - 7 the right
+   ones 2p + 2. */
+#define MLOD__VPAIRS 4
+static void mlod__vload_pairs(const float *rows, const uint32_t *parents, __m256 *x, __m256 *y, __m256 *z, __m256 *w)
+{
+    __m256 a = _mm256_loadu_ps(rows + 8 * (size_t)parents[0] + 4), b = _mm256_loadu_ps(rows + 8 * (size_t)parents[1] + 4);
+    __m256 c = _mm256_loadu_ps(rows + 8 * (size_t)parents[2] + 4), d = _mm256_loadu_ps(rows + 8 * (size_t)parents[3] + 4);
+    __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
+    __m256 cd0 = _mm256_unpacklo_ps(c, d), cd1 = _mm256_unpackhi_ps(c, d);
+    *x = _mm256_shuffle_ps(ab0, cd0, 0x44);
+    *y = _mm256_shuffle_ps(ab0, cd0, 0xEE);
+    *z = _mm256_shuffle_ps(ab1, cd1, 0x44);
+    *w = _mm256_shuffle_ps(ab1, cd1, 0xEE);
+}
+static __m256 mlod__vleaf_pairs(const uint32_t *parents, uint32_t first)
+{
+    __m128i p = _mm_loadu_si128((const __m128i *)(const void *)parents), twice = _mm_add_epi32(p, p);
+    __m128 lo = mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(1)), first);
+    __m128 hi = mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(2)), first);
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+}
+
+/* mlod__vbytes with the pairs' order undone: out[2i] the left child of
+   parent i, out[2i + 1] its right one. */
+static void mlod__vbytes_pairs(__m256 codes, uint8_t *out)
+{
+    __m256i i = _mm256_cvttps_epi32(codes);
+    __m128i p = _mm_packs_epi32(_mm256_castsi256_si128(i), _mm256_extractf128_si256(i, 1));
+    p = _mm_packus_epi16(p, p);
+    _mm_storel_epi64((__m128i *)(void *)out, _mm_unpacklo_epi8(p, _mm_srli_si128(p, 4)));
+}
 #elif !defined(MANYLODS_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
 #define MLOD__VLANES 4
@@ -3804,6 +3873,25 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
     __m128 lo = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(v), de));
     __m128 hi = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(v, v)), de));
     return _mm_movelh_ps(lo, hi);
+}
+
+/* Lanes whose node is at least `first` (unsigned), as a mask. */
+static __m128 mlod__vleaf(const uint32_t *nodes, uint32_t first)
+{
+    const __m128i flip = _mm_set1_epi32((int)0x80000000u);
+    __m128i n = _mm_loadu_si128((const __m128i *)(const void *)nodes);
+    __m128i below = _mm_cmpgt_epi32(_mm_xor_si128(_mm_set1_epi32((int)first), flip), _mm_xor_si128(n, flip));
+    return _mm_castsi128_ps(_mm_xor_si128(below, _mm_set1_epi32(-1)));
+}
+
+/* Status codes (small whole numbers in float lanes) to bytes at out. */
+static void mlod__vbytes(__m128 codes, uint8_t *out)
+{
+    __m128i p = _mm_cvttps_epi32(codes);
+    int word;
+    p = _mm_packs_epi32(p, p);
+    word = _mm_cvtsi128_si32(_mm_packus_epi16(p, p));
+    memcpy(out, &word, 4);
 }
 #elif !defined(MANYLODS_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
 #include <arm_neon.h>
@@ -3849,6 +3937,21 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
     float32x2_t hi = vcvt_f32_f64(vsubq_f64(vcvt_f64_f32(vget_high_f32(v)), de));
     return vcombine_f32(lo, hi);
 }
+
+/* Lanes whose node is at least `first`, as a mask. */
+static float32x4_t mlod__vleaf(const uint32_t *nodes, uint32_t first)
+{
+    return vreinterpretq_f32_u32(vcgeq_u32(vld1q_u32(nodes), vdupq_n_u32(first)));
+}
+
+/* Status codes (small whole numbers in float lanes) to bytes at out. */
+static void mlod__vbytes(float32x4_t codes, uint8_t *out)
+{
+    uint16x4_t h = vmovn_u32(vcvtq_u32_f32(codes));
+    uint8_t bytes[8];
+    vst1_u8(bytes, vmovn_u16(vcombine_u16(h, h)));
+    memcpy(out, bytes, 4);
+}
 #endif
 
 #ifdef MLOD__VLANES
@@ -3890,16 +3993,19 @@ static void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf
     *unsure = MLOD__VOR(MLOD__VLT(a, MLOD__VSET(0.0f)), MLOD__VANDNOT(MLOD__VOR(settled, cull), live));
 }
 
-/* mlod__classify_list's vector path: the statuses of nodes[0 ..
-   MLOD__VLANES - 1] as bit masks per status (lane l: bit l). */
-static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const uint32_t *nodes, int *culled_bits,
-                          int *drawn_bits, int *coarse_bits)
+/* mlod__classify_list's vector path: the statuses of the lanes' node-views
+   (rows x, y, z, r of their spheres; cone their cones' rows, NULL for
+   none; leaf the lanes whose node is a leaf) as status codes in float
+   lanes: MLOD_STATUS_CULLED, _DRAWN, _COARSE or _OVERSIZE (invalid
+   internal node or leaf), 0 (MLOD__UNSURE) where the lane cannot prove
+   its status. */
+static mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone, mlod__vf leaf)
 {
-    mlod__vf x[3], r, cone[4], d2, t, twice, reach, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
+    mlod__vf x[3], r = sphere[3], d2, t, twice, reach, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
     mlod__vf all = MLOD__VEQ(zero, zero);
     int s, j;
-    mlod__vload(tree->spheres, nodes, &x[0], &x[1], &x[2], &r);
-    for (j = 0; j < 3; j++) x[j] = mlod__vrelative(x[j], fv->eye[j]);
+    for (j = 0; j < 3; j++)
+        x[j] = fv->float_eye ? MLOD__VSUB(sphere[j], MLOD__VSET(fv->eye_f[j])) : mlod__vrelative(sphere[j], fv->eye[j]);
     d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], x[0]), MLOD__VMUL(x[1], x[1])), MLOD__VMUL(x[2], x[2]));
     unsure = MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(d2, MLOD__VSET(1.20892582e24f))),
                            all);
@@ -3958,19 +4064,26 @@ static void mlod__vstatus(const mlod__fview *fv, const mlod_tree *tree, const ui
         small = MLOD__VAND(small, MLOD__VOR(out, MLOD__VAND(ok, MLOD__VLE(MLOD__VMUL(lhs, MLOD__VSET(fs->valid)), rhs))));
     }
     culled = none;
-    if (fv->backfaces && tree->cones) {
+    if (cone) {
         mlod__vf back, back_unsure;
-        mlod__vload(tree->cones, nodes, &cone[0], &cone[1], &cone[2], &cone[3]);
         mlod__vbackfacing(fv, x, t, fv->ortho ? zero : r, cone, &back, &back_unsure);
         culled = MLOD__VOR(culled, back);
         unsure = MLOD__VOR(unsure, MLOD__VANDNOT(none, back_unsure));
     }
-    /* every lane sure of its setup and planes: culled, else coarse, else
-       drawn; anything else is unsure (no bit) */
-    *culled_bits = MLOD__VBITS(MLOD__VANDNOT(unsure, culled));
-    *coarse_bits = MLOD__VBITS(MLOD__VANDNOT(MLOD__VOR(unsure, culled), coarse));
-    *drawn_bits = MLOD__VBITS(MLOD__VANDNOT(MLOD__VOR(MLOD__VOR(unsure, culled), coarse), small));
+    /* every lane sure of its setup and planes: culled, else coarse (an
+       oversize leaf), else drawn; anything else is unsure (0); the masks
+       exclusive, so or selects */
+    coarse = MLOD__VANDNOT(culled, coarse);
+    small = MLOD__VANDNOT(MLOD__VOR(culled, coarse), small);
+    return MLOD__VANDNOT(unsure,
+                         MLOD__VOR(MLOD__VOR(MLOD__VAND(culled, MLOD__VSET((float)MLOD_STATUS_CULLED)),
+                                             MLOD__VAND(small, MLOD__VSET((float)MLOD_STATUS_DRAWN))),
+                                   MLOD__VAND(coarse, MLOD__VOR(MLOD__VAND(leaf, MLOD__VSET((float)MLOD_STATUS_OVERSIZE)),
+                                                                MLOD__VANDNOT(leaf, MLOD__VSET((float)MLOD_STATUS_COARSE))))));
 }
+
+/* The lanes of status codes that the filter left undecided (0), as bits. */
+static uint32_t mlod__vundecided(mlod__vf codes) { return (uint32_t)MLOD__VBITS(MLOD__VEQ(codes, MLOD__VSET(0.0f))); }
 #endif
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
@@ -4184,35 +4297,54 @@ static uint32_t mlod__lowest_bit(uint32_t x)
    in vector lanes where the build has them, the exact path where it is
    unsure). */
 #define MLOD__LIST_AHEAD 16u
+#ifdef MLOD__VLANES
+/* The exact path for the lanes the vector filter left undecided (status
+   0): lane l is nodes[l], its status out[l]; lanes `valid` and above are
+   padding. */
+static void mlod__settle_lanes(const mlod__pview *pv, const mlod_tree *tree, mlod__vf codes, const uint32_t *nodes,
+                               uint32_t valid, double epsilon, uint8_t *out)
+{
+    uint32_t undecided = mlod__vundecided(codes), l;
+    if (valid < MLOD__VLANES) undecided &= (1u << valid) - 1u;
+    for (; undecided; undecided &= undecided - 1u) {
+        l = mlod__lowest_bit(undecided);
+        out[l] = mlod__classify_exact(pv, tree, nodes[l], epsilon);
+    }
+}
+#endif
+
 static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
                                 double epsilon, uint8_t *status)
 {
     uint32_t i = 0;
 #ifdef MLOD__VLANES
-    if (pv->fast.ok)
+    if (pv->fast.ok) {
+        const int cones = pv->fast.backfaces && tree->cones;
         for (; i < count; i += MLOD__VLANES) {
-            uint32_t lanes[MLOD__VLANES], l;
-            int culled, drawn, coarse, undecided;
-            for (l = 0; l < MLOD__VLANES; l++) {
-                lanes[l] = nodes[i + l < count ? i + l : count - 1];
-                if (i + l + MLOD__LIST_AHEAD < count) { /* rows a few groups on, for the loads to overlap */
+            uint32_t pad[MLOD__VLANES], l, valid = count - i < MLOD__VLANES ? count - i : MLOD__VLANES;
+            const uint32_t *lanes = nodes + i;
+            uint8_t part[MLOD__VLANES], *out = valid == MLOD__VLANES ? status + i : part;
+            mlod__vf sphere[4], cone[4], codes;
+            if (valid < MLOD__VLANES) { /* the last group: padded with its last node */
+                for (l = 0; l < MLOD__VLANES; l++) pad[l] = nodes[i + (l < valid ? l : valid - 1)];
+                lanes = pad;
+            } else if (i + MLOD__VLANES + MLOD__LIST_AHEAD <= count) { /* rows a few groups on, for the loads to overlap */
+                for (l = 0; l < MLOD__VLANES; l++) {
                     MLOD__PREFETCH(tree->spheres + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
-                    if (tree->cones) MLOD__PREFETCH(tree->cones + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
+                    if (cones) MLOD__PREFETCH(tree->cones + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
                 }
             }
-            mlod__vstatus(&pv->fast, tree, lanes, &culled, &drawn, &coarse);
-            /* without a branch per lane (statuses are hard to predict; a
-               coarse leaf is oversize, as mlod__invalid_status says); an
-               undecided lane (rare) takes the exact path */
-            for (l = 0; l < MLOD__VLANES; l++)
-                if (i + l < count)
-                    status[i + l] = (uint8_t)((culled >> l & 1) * MLOD_STATUS_CULLED + (drawn >> l & 1) * MLOD_STATUS_DRAWN +
-                                              (coarse >> l & 1) * mlod__invalid_status(tree, lanes[l]));
-            for (undecided = ~(culled | drawn | coarse) & ((1 << MLOD__VLANES) - 1); undecided; undecided &= undecided - 1) {
-                l = mlod__lowest_bit((uint32_t)undecided);
-                if (i + l < count) status[i + l] = mlod__classify_exact(pv, tree, lanes[l], epsilon);
-            }
+            mlod__vload(tree->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+            if (cones) mlod__vload(tree->cones, lanes, &cone[0], &cone[1], &cone[2], &cone[3]);
+            codes = mlod__vstatus(&pv->fast, sphere, cones ? cone : NULL, mlod__vleaf(lanes, tree->leaf_count - 1));
+            /* statuses stored as bytes at once (they are hard to predict:
+               no branch per lane); an undecided lane (rare) takes the
+               exact path */
+            mlod__vbytes(codes, out);
+            mlod__settle_lanes(pv, tree, codes, lanes, valid, epsilon, out);
+            if (out == part) memcpy(status + i, part, valid);
         }
+    }
 #endif
     for (; i < count; i++) status[i] = mlod__classify(pv, tree, nodes[i], epsilon);
 }
@@ -4224,10 +4356,47 @@ static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree
 {
     uint32_t children[2 * MLOD__BATCH], i;
     for (i = 0; i < count; i++) { /* ask for every pair's rows first: their loads overlap */
-        children[2 * i] = 2 * parents[i] + 1;
-        children[2 * i + 1] = 2 * parents[i] + 2;
         MLOD__PREFETCH(tree->spheres + 8 * (size_t)parents[i] + 4);
         if (tree->cones) MLOD__PREFETCH(tree->cones + 8 * (size_t)parents[i] + 4);
+    }
+#ifdef MLOD__VPAIRS
+    /* a pair's rows are adjacent: one load each, MLOD__VPAIRS pairs a vector */
+    if (pv->fast.ok) {
+        const int cones = pv->fast.backfaces && tree->cones;
+        for (i = 0; i < count; i += MLOD__VPAIRS) {
+            uint32_t pad[MLOD__VPAIRS], lanes[2 * MLOD__VPAIRS], l, valid = count - i < MLOD__VPAIRS ? count - i : MLOD__VPAIRS;
+            const uint32_t *group = parents + i;
+            uint8_t part[2 * MLOD__VPAIRS], lane_status[2 * MLOD__VPAIRS];
+            mlod__vf sphere[4], cone[4], codes;
+            if (valid < MLOD__VPAIRS) {
+                for (l = 0; l < MLOD__VPAIRS; l++) pad[l] = parents[i + (l < valid ? l : valid - 1)];
+                group = pad;
+            }
+            mlod__vload_pairs(tree->spheres, group, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+            if (cones) mlod__vload_pairs(tree->cones, group, &cone[0], &cone[1], &cone[2], &cone[3]);
+            codes = mlod__vstatus(&pv->fast, sphere, cones ? cone : NULL, mlod__vleaf_pairs(group, tree->leaf_count - 1));
+            mlod__vbytes_pairs(codes, valid == MLOD__VPAIRS ? status + 2 * i : part);
+            if (mlod__vundecided(codes)) { /* rare: lanes the filter left undecided */
+                for (l = 0; l < MLOD__VPAIRS; l++) {
+                    lanes[l] = 2 * group[l] + 1;
+                    lanes[MLOD__VPAIRS + l] = 2 * group[l] + 2;
+                }
+                mlod__vbytes(codes, lane_status);
+                mlod__settle_lanes(pv, tree, codes, lanes, 2 * MLOD__VPAIRS, epsilon, lane_status);
+                for (l = 0; l < valid; l++) {
+                    uint8_t *to = valid == MLOD__VPAIRS ? status + 2 * (i + l) : part + 2 * l;
+                    to[0] = lane_status[l];
+                    to[1] = lane_status[MLOD__VPAIRS + l];
+                }
+            }
+            if (valid < MLOD__VPAIRS) memcpy(status + 2 * i, part, 2 * valid);
+        }
+        return;
+    }
+#endif
+    for (i = 0; i < count; i++) {
+        children[2 * i] = 2 * parents[i] + 1;
+        children[2 * i + 1] = 2 * parents[i] + 2;
     }
     mlod__classify_list(pv, tree, children, 2 * count, epsilon, status);
 }

@@ -859,9 +859,16 @@ static int fast_disagrees(const mlod_tree *t, uint32_t node, const mlod_view *v,
         if ((fast == MLOD_STATUS_COARSE ? mlod__invalid_status(t, node) : fast) != exact) return 1;
     }
     if (node > 0) {
-        uint32_t parent = (node - 1) / 2;
-        mlod__classify_children(&pv, t, &parent, 1, eps, kids);
-        if (kids[(node - 1) & 1u] != exact) return 2;
+        /* the parent alone (a partial vector), and five times over (a
+           whole vector of pairs where the build has them, then a partial
+           one): every copy as the exact path */
+        uint32_t parents[5], i, side = (node - 1) & 1u;
+        for (i = 0; i < 5; i++) parents[i] = (node - 1) / 2;
+        mlod__classify_children(&pv, t, parents, 1, eps, kids);
+        if (kids[side] != exact) return 2;
+        mlod__classify_children(&pv, t, parents, 5, eps, kids);
+        for (i = 0; i < 5; i++)
+            if (kids[2 * i + side] != exact) return 2;
     }
     return 0;
 }
