@@ -249,9 +249,11 @@
      splits the run of coarse entries next in line (up to 32) at once and
      classifies their children together, and an update's input entries
      likewise, in vector lanes where the build has them: 8 lanes with
-     AVX (-mavx, -mavx2, -march=native on such a processor), 4 with SSE2
-     (every x86-64 build) or NEON (every AArch64 build); MANYLODS_NO_SIMD
-     turns them off.  Every build gives the same cuts, bit for bit.
+     AVX (-mavx, -mavx2, -march=native on such a processor; a pair of
+     children's rows, adjacent in the tree, in one load), 4 with SSE2
+     (every x86-64 build) or NEON (every AArch64 build); the lanes'
+     statuses leave as bytes in one store.  MANYLODS_NO_SIMD turns them
+     off.  Every build gives the same cuts, bit for bit.
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
