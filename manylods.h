@@ -2279,12 +2279,103 @@ static void mlod__radix_sort(uint64_t *pairs, uint64_t *scratch, uint32_t n)
     }
 }
 
+/* The box around count >= 1 packed points (3 floats each, consecutive),
+   as mlod__box_of but four points at a time in vector lanes where the
+   build has them (SSE2, NEON): their 12 floats are three vectors, each
+   lane always the same coordinate.  Minima and maxima are exact, so the
+   box is mlod__box_of's (a zero's sign aside, which no difference of two
+   bounds sees). */
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute pop
+#endif
+#if !defined(MANYLODS_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#include <emmintrin.h>
+#define MLOD__BOX_LANES 1
+typedef __m128 mlod__box_vf;
+#define MLOD__BOX_LOAD _mm_loadu_ps
+#define MLOD__BOX_MIN _mm_min_ps
+#define MLOD__BOX_MAX _mm_max_ps
+#define MLOD__BOX_STORE _mm_storeu_ps
+#elif !defined(MANYLODS_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
+#define MLOD__BOX_LANES 1
+typedef float32x4_t mlod__box_vf;
+#define MLOD__BOX_LOAD vld1q_f32
+#define MLOD__BOX_MIN vminq_f32
+#define MLOD__BOX_MAX vmaxq_f32
+#define MLOD__BOX_STORE vst1q_f32
+#endif
+#ifdef MLOD__BOX_LANES
+static void mlod__box_packed_lanes(const float *pts, uint32_t quads, float lo[12], float hi[12])
+{
+    mlod__box_vf a0 = MLOD__BOX_LOAD(pts), b0 = MLOD__BOX_LOAD(pts + 4), c0 = MLOD__BOX_LOAD(pts + 8);
+    mlod__box_vf a1 = a0, b1 = b0, c1 = c0;
+    uint32_t q;
+    for (q = 1; q < quads; q++) {
+        const float *p = pts + 12 * (size_t)q;
+        mlod__box_vf a = MLOD__BOX_LOAD(p), b = MLOD__BOX_LOAD(p + 4), c = MLOD__BOX_LOAD(p + 8);
+        a0 = MLOD__BOX_MIN(a0, a);
+        b0 = MLOD__BOX_MIN(b0, b);
+        c0 = MLOD__BOX_MIN(c0, c);
+        a1 = MLOD__BOX_MAX(a1, a);
+        b1 = MLOD__BOX_MAX(b1, b);
+        c1 = MLOD__BOX_MAX(c1, c);
+    }
+    MLOD__BOX_STORE(lo, a0);
+    MLOD__BOX_STORE(lo + 4, b0);
+    MLOD__BOX_STORE(lo + 8, c0);
+    MLOD__BOX_STORE(hi, a1);
+    MLOD__BOX_STORE(hi + 4, b1);
+    MLOD__BOX_STORE(hi + 8, c1);
+}
+#endif
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
+#endif
+
+static void mlod__box_packed(const float *pts, uint32_t count, double lo[3], double hi[3])
+{
+#ifdef MLOD__BOX_LANES
+    if (count >= 8) {
+        float l[12], h[12], x0, x1, y0, y1, z0, z1;
+        uint32_t quads = count / 4, i, j;
+        mlod__box_packed_lanes(pts, quads, l, h);
+        x0 = l[0], y0 = l[1], z0 = l[2], x1 = h[0], y1 = h[1], z1 = h[2];
+        for (j = 3; j < 12; j += 3) { /* float j of a quad is coordinate j % 3 */
+            x0 = l[j] < x0 ? l[j] : x0;
+            y0 = l[j + 1] < y0 ? l[j + 1] : y0;
+            z0 = l[j + 2] < z0 ? l[j + 2] : z0;
+            x1 = h[j] > x1 ? h[j] : x1;
+            y1 = h[j + 1] > y1 ? h[j + 1] : y1;
+            z1 = h[j + 2] > z1 ? h[j + 2] : z1;
+        }
+        for (i = 4 * quads; i < count; i++) {
+            const float *p = pts + 3 * (size_t)i;
+            x0 = p[0] < x0 ? p[0] : x0;
+            x1 = p[0] > x1 ? p[0] : x1;
+            y0 = p[1] < y0 ? p[1] : y0;
+            y1 = p[1] > y1 ? p[1] : y1;
+            z0 = p[2] < z0 ? p[2] : z0;
+            z1 = p[2] > z1 ? p[2] : z1;
+        }
+        lo[0] = x0;
+        lo[1] = y0;
+        lo[2] = z0;
+        hi[0] = x1;
+        hi[1] = y1;
+        hi[2] = z1;
+        return;
+    }
+#endif
+    mlod__box_of(pts, 3 * sizeof(float), count, lo, hi);
+}
+
 /* d^3 for the diagonal d of the box around count points (3 floats each,
    consecutive): proportional to the volume of the box's sphere. */
 static double mlod__box_volume_of(const float *pts, uint32_t count)
 {
     double lo[3], hi[3], dx, dy, dz, d2;
-    mlod__box_of(pts, 3 * sizeof(float), count, lo, hi);
+    mlod__box_packed(pts, count, lo, hi);
     dx = hi[0] - lo[0];
     dy = hi[1] - lo[1];
     dz = hi[2] - lo[2];
@@ -2301,7 +2392,6 @@ typedef struct mlod__order_ctx {
     uint32_t *scratch;   /* n items, and scratch_pts 3n floats, at the node's slots */
     float *scratch_pts;
     uint32_t *begin;     /* per node: its first slot */
-    uint8_t *left;       /* per item: in the left child of the node being split */
     uint32_t first, last, per_task; /* the nodes of one depth, per_task of them per task */
 } mlod__order_ctx;
 
@@ -2313,6 +2403,7 @@ static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
 {
     uint32_t b = c->begin[node], count = mlod__leaves_below(node, c->n);
     uint32_t nl = mlod__leaves_below(2 * node + 1, c->n), i;
+    uint64_t pivot;
     double best = 0.0;
     int axis = 0, k;
     for (k = 0; k < 3; k++) {
@@ -2323,13 +2414,18 @@ static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
             axis = k;
         }
     }
-    for (i = 0; i < count; i++) c->left[c->order[axis][b + i]] = (uint8_t)(i < nl);
+    /* the left child takes the first nl items of the node along the axis,
+       which is sorted by (key, item): those below the (nl + 1)-th, found
+       from each item's own position (no lookup by item) */
+    pivot = (uint64_t)mlod__sort_key(c->pts[axis][3 * ((size_t)b + nl) + (size_t)axis]) << 32 | c->order[axis][b + nl];
     for (k = 0; k < 3; k++) {
         uint32_t *o = c->order[k] + b, *so = c->scratch + b, l = 0, r = nl;
         float *p = c->pts[k] + 3 * (size_t)b, *sp = c->scratch_pts + 3 * (size_t)b;
         if (k == axis) continue;
         for (i = 0; i < count; i++) { /* branch-free: left and right are a coin toss */
-            uint32_t item = o[i], is_left = c->left[item], to = is_left ? l : r;
+            uint32_t item = o[i], to;
+            uint32_t is_left = ((uint64_t)mlod__sort_key(p[3 * (size_t)i + (size_t)axis]) << 32 | item) < pivot;
+            to = is_left ? l : r;
             l += is_left;
             r += 1u - is_left;
             so[to] = item;
@@ -2404,7 +2500,6 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
     ok = ok && (c.scratch = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL)) != NULL;
     ok = ok && (c.scratch_pts = (float *)mlod__alloc_array(a, n, 3 * sizeof(float), NULL)) != NULL;
     ok = ok && (c.begin = (uint32_t *)mlod__alloc_array(a, nodes, sizeof(uint32_t), NULL)) != NULL;
-    ok = ok && (c.left = (uint8_t *)mlod__alloc_array(a, n, 1, NULL)) != NULL;
     for (k = 0; k < 3; k++)
         ok = ok && (sort.scratch[k] = (uint64_t *)mlod__alloc_array(a, n, sizeof(uint64_t), NULL)) != NULL;
     if (!ok) {
@@ -2439,7 +2534,6 @@ done:
     mlod__free(a, c.scratch);
     mlod__free(a, c.scratch_pts);
     mlod__free(a, c.begin);
-    mlod__free(a, c.left);
     return res;
 }
 
@@ -2448,7 +2542,7 @@ done:
 static uint64_t mlod__order_bytes(uint64_t n)
 {
     uint64_t per_axis = sizeof(uint32_t) + 3 * sizeof(float) + sizeof(uint64_t); /* order, positions, sort */
-    return n * (3 * per_axis + sizeof(uint32_t) + 3 * sizeof(float) + 1) + (2 * n - 1) * sizeof(uint32_t);
+    return n * (3 * per_axis + sizeof(uint32_t) + 3 * sizeof(float)) + (2 * n - 1) * sizeof(uint32_t);
 }
 
 /* A build's peak: its own arrays (`held`), then the largest of the ordering

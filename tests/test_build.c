@@ -708,6 +708,111 @@ static void test_parallel_build(void)
     scene_free(&s);
 }
 
+/* ---------------------------------------------------------- split rule */
+
+/* The order of the leaves against a reference written from the rule
+   (DESIGN.md, tree layout): a node's items go to its children, the first
+   (leaves below the left child) of them to the left, in the order of their
+   coordinate along the axis whose two halves' boxes have the smaller sum
+   of diagonal^3 (the first axis on a tie), equal coordinates by item
+   index.  Sorted afresh at every node, with plain float comparisons. */
+static const float *ref_pos;
+static int ref_axis;
+static int ref_compare(const void *a, const void *b)
+{
+    uint32_t i = *(const uint32_t *)a, j = *(const uint32_t *)b;
+    float x = ref_pos[3 * (size_t)i + ref_axis], y = ref_pos[3 * (size_t)j + ref_axis];
+    return x < y ? -1 : x > y ? 1 : (i > j) - (i < j);
+}
+
+/* Leaves below `node` of the implicit tree of n leaves, level by level. */
+static uint32_t ref_leaves_below(uint64_t node, uint64_t n)
+{
+    uint64_t lo = node, hi = node, last = 2 * n - 2, count = 0;
+    while (lo <= last) {
+        uint64_t b = hi < last ? hi : last, a = lo > n - 1 ? lo : n - 1;
+        if (b >= a) count += b - a + 1;
+        lo = 2 * lo + 1;
+        hi = 2 * hi + 2;
+    }
+    return (uint32_t)count;
+}
+
+static double ref_box_volume(const uint32_t *items, uint32_t count)
+{
+    float lo[3], hi[3];
+    double d2 = 0.0;
+    uint32_t i;
+    int k;
+    for (k = 0; k < 3; k++) lo[k] = hi[k] = ref_pos[3 * (size_t)items[0] + k];
+    for (i = 1; i < count; i++)
+        for (k = 0; k < 3; k++) {
+            float x = ref_pos[3 * (size_t)items[i] + k];
+            if (x < lo[k]) lo[k] = x;
+            if (x > hi[k]) hi[k] = x;
+        }
+    for (k = 0; k < 3; k++) d2 += ((double)hi[k] - lo[k]) * ((double)hi[k] - lo[k]);
+    return d2 * sqrt(d2);
+}
+
+static void ref_order(uint32_t *items, uint32_t count, uint32_t node, uint32_t n, uint32_t *leaf_item)
+{
+    uint32_t nl;
+    double best = 0.0;
+    int k, axis = 0;
+    if (node >= n - 1) {
+        leaf_item[node - (n - 1)] = items[0];
+        return;
+    }
+    nl = ref_leaves_below(2 * (uint64_t)node + 1, n);
+    for (k = 0; k < 3; k++) {
+        double v;
+        ref_axis = k;
+        qsort(items, count, sizeof(uint32_t), ref_compare);
+        v = ref_box_volume(items, nl) + ref_box_volume(items + nl, count - nl);
+        if (k == 0 || v < best) {
+            best = v;
+            axis = k;
+        }
+    }
+    ref_axis = axis;
+    qsort(items, count, sizeof(uint32_t), ref_compare);
+    ref_order(items, nl, 2 * node + 1, n, leaf_item);
+    ref_order(items + nl, count - nl, 2 * node + 2, n, leaf_item);
+}
+
+static void test_split_rule(void)
+{
+    static const uint32_t sizes[] = {2, 3, 7, 8, 9, 64, 257, 1000, 3001};
+    uint64_t rng = 0x5b1175ull;
+    uint32_t si;
+    for (si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
+        uint32_t n = sizes[si], i, bad = 0, grid = si % 2 ? 8 : 1u << 20;
+        float *pos = (float *)malloc(sizeof(float) * 3 * n);
+        uint32_t *items = (uint32_t *)malloc(sizeof(uint32_t) * n), *leaf_item = (uint32_t *)malloc(sizeof(uint32_t) * n);
+        mlod_points pts;
+        mlod_build_desc d = tu_desc(0, 1, MLOD_ATTR_REFIT);
+        mlod_tree *t = NULL;
+        /* a coarse grid (every other size): many equal coordinates */
+        for (i = 0; i < 3 * n; i++) pos[i] = (float)((uint32_t)(scene_rng_double(&rng) * grid) + 1) / (float)grid;
+        memset(&pts, 0, sizeof pts);
+        pts.positions = pos;
+        pts.count = n;
+        CHECK(mlod_build_points(&pts, &d, &t, NULL) == MLOD_OK && t && t->leaf_sources, "split rule: build of %u points",
+              n);
+        for (i = 0; i < n; i++) items[i] = i;
+        ref_pos = pos;
+        ref_order(items, n, 0, n, leaf_item);
+        for (i = 0; t && t->leaf_sources && i < n; i++) bad += t->leaf_sources[i] != leaf_item[i];
+        CHECK(t && bad == 0, "split rule: %u of %u leaves (grid %u) hold another item than the reference's", bad, n,
+              grid);
+        mlod_tree_destroy(t);
+        free(pos);
+        free(items);
+        free(leaf_item);
+    }
+}
+
 /* --------------------------------------------------------------- points */
 
 static void test_points(void)
@@ -826,6 +931,7 @@ int main(void)
     test_progress();
     test_parallel_build();
     test_points();
+    test_split_rule();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
     return rc;
