@@ -2337,33 +2337,18 @@ static void mlod__box_packed(const float *pts, uint32_t count, double lo[3], dou
 {
 #ifdef MLOD__BOX_LANES
     if (count >= 8) {
-        float l[12], h[12], x0, x1, y0, y1, z0, z1;
-        uint32_t quads = count / 4, i, j;
+        float l[12], h[12];
+        uint32_t quads = count / 4, j;
+        int k;
         mlod__box_packed_lanes(pts, quads, l, h);
-        x0 = l[0], y0 = l[1], z0 = l[2], x1 = h[0], y1 = h[1], z1 = h[2];
-        for (j = 3; j < 12; j += 3) { /* float j of a quad is coordinate j % 3 */
-            x0 = l[j] < x0 ? l[j] : x0;
-            y0 = l[j + 1] < y0 ? l[j + 1] : y0;
-            z0 = l[j + 2] < z0 ? l[j + 2] : z0;
-            x1 = h[j] > x1 ? h[j] : x1;
-            y1 = h[j + 1] > y1 ? h[j + 1] : y1;
-            z1 = h[j + 2] > z1 ? h[j + 2] : z1;
+        if (count > 4 * quads) /* the last points, one by one */
+            mlod__box_of(pts + 12 * (size_t)quads, 3 * sizeof(float), count - 4 * quads, lo, hi);
+        else
+            for (k = 0; k < 3; k++) lo[k] = hi[k] = l[k];
+        for (j = 0; j < 12; j++) { /* float j of a quad is coordinate j % 3 */
+            lo[j % 3] = l[j] < lo[j % 3] ? l[j] : lo[j % 3];
+            hi[j % 3] = h[j] > hi[j % 3] ? h[j] : hi[j % 3];
         }
-        for (i = 4 * quads; i < count; i++) {
-            const float *p = pts + 3 * (size_t)i;
-            x0 = p[0] < x0 ? p[0] : x0;
-            x1 = p[0] > x1 ? p[0] : x1;
-            y0 = p[1] < y0 ? p[1] : y0;
-            y1 = p[1] > y1 ? p[1] : y1;
-            z0 = p[2] < z0 ? p[2] : z0;
-            z1 = p[2] > z1 ? p[2] : z1;
-        }
-        lo[0] = x0;
-        lo[1] = y0;
-        lo[2] = z0;
-        hi[0] = x1;
-        hi[1] = y1;
-        hi[2] = z1;
         return;
     }
 #endif
