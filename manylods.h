@@ -239,9 +239,10 @@
      built where a destroyed one stood is another tree to the cut.
      Decisions are exact, and fast: each node-view first goes through a
      float filter (the criterion in float, x = centre - eye subtracted in
-     double, or in float where the eye's coordinates are floats, with margins proven from its rounding errors: 2^-12 relative
-     on the diameter, 2^-20 of the plane's norm times |x| + r plus its
-     offset on each plane; the proof is beside mlod__fast_status) that
+     double, or in float where the eye's coordinates are floats, with
+     margins proven from its rounding errors: 2^-12 relative on the
+     diameter, 2^-20 of the plane's norm times |x| + r plus its offset on
+     each plane; the proof is beside mlod__fast_status) that
      decides valid, invalid or culled only where its margin makes the
      exact path's answer certain, and leaves the rest (about 0.2 % of
      node-views of random views in tests/test_cut.c: near epsilon, a
