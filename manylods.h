@@ -3817,6 +3817,7 @@ static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphe
 #if !defined(MANYLODS_NO_SIMD) && defined(__AVX__)
 #include <immintrin.h>
 #define MLOD__VLANES 8
+#define MLOD__X86_LANES 1
 typedef __m256 mlod__vf;
 #define MLOD__VADD _mm256_add_ps
 #define MLOD__VSUB _mm256_sub_ps
@@ -3862,29 +3863,17 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
     return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
 }
 
-/* Lanes whose node is at least `first` (unsigned), as a mask; nodes[] of
-   the lanes, or (pairs) the four parents p whose children 2p + 1 and
-   2p + 2 fill the low and high halves. */
-static __m128 mlod__vat_least(__m128i n, uint32_t first)
-{
-    const __m128i flip = _mm_set1_epi32((int)0x80000000u);
-    __m128i below = _mm_cmpgt_epi32(_mm_xor_si128(_mm_set1_epi32((int)first), flip), _mm_xor_si128(n, flip));
-    return _mm_castsi128_ps(_mm_xor_si128(below, _mm_set1_epi32(-1)));
-}
-static __m256 mlod__vleaf(const uint32_t *nodes, uint32_t first)
-{
-    __m128 lo = mlod__vat_least(_mm_loadu_si128((const __m128i *)(const void *)nodes), first);
-    __m128 hi = mlod__vat_least(_mm_loadu_si128((const __m128i *)(const void *)(nodes + 4)), first);
-    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
-}
-
-/* Status codes (small whole numbers in float lanes) to bytes at out. */
-static void mlod__vbytes(__m256 codes, uint8_t *out)
+/* Status codes (small whole numbers in float lanes) as bytes, lane l in
+   byte l. */
+static __m128i mlod__vpack(__m256 codes)
 {
     __m256i i = _mm256_cvttps_epi32(codes);
     __m128i p = _mm_packs_epi32(_mm256_castsi256_si128(i), _mm256_extractf128_si256(i, 1));
-    _mm_storel_epi64((__m128i *)(void *)out, _mm_packus_epi16(p, p));
+    return _mm_packus_epi16(p, p);
 }
+
+/* Status codes to bytes at out. */
+static void mlod__vbytes(__m256 codes, uint8_t *out) { _mm_storel_epi64((__m128i *)(void *)out, mlod__vpack(codes)); }
 
 /* The children of four parents in one load per pair (a pair's rows are
    adjacent): lanes 0 - 3 the left children 2p + 1, lanes 4 - 7 the right
@@ -3901,26 +3890,17 @@ static void mlod__vload_pairs(const float *rows, const uint32_t *parents, __m256
     *z = _mm256_shuffle_ps(ab1, cd1, 0x44);
     *w = _mm256_shuffle_ps(ab1, cd1, 0xEE);
 }
-static __m256 mlod__vleaf_pairs(const uint32_t *parents, uint32_t first)
-{
-    __m128i p = _mm_loadu_si128((const __m128i *)(const void *)parents), twice = _mm_add_epi32(p, p);
-    __m128 lo = mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(1)), first);
-    __m128 hi = mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(2)), first);
-    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
-}
-
 /* mlod__vbytes with the pairs' order undone: out[2i] the left child of
    parent i, out[2i + 1] its right one. */
 static void mlod__vbytes_pairs(__m256 codes, uint8_t *out)
 {
-    __m256i i = _mm256_cvttps_epi32(codes);
-    __m128i p = _mm_packs_epi32(_mm256_castsi256_si128(i), _mm256_extractf128_si256(i, 1));
-    p = _mm_packus_epi16(p, p);
+    __m128i p = mlod__vpack(codes);
     _mm_storel_epi64((__m128i *)(void *)out, _mm_unpacklo_epi8(p, _mm_srli_si128(p, 4)));
 }
 #elif !defined(MANYLODS_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
 #define MLOD__VLANES 4
+#define MLOD__X86_LANES 1
 typedef __m128 mlod__vf;
 #define MLOD__VADD _mm_add_ps
 #define MLOD__VSUB _mm_sub_ps
@@ -3955,15 +3935,6 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
     __m128 lo = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(v), de));
     __m128 hi = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(v, v)), de));
     return _mm_movelh_ps(lo, hi);
-}
-
-/* Lanes whose node is at least `first` (unsigned), as a mask. */
-static __m128 mlod__vleaf(const uint32_t *nodes, uint32_t first)
-{
-    const __m128i flip = _mm_set1_epi32((int)0x80000000u);
-    __m128i n = _mm_loadu_si128((const __m128i *)(const void *)nodes);
-    __m128i below = _mm_cmpgt_epi32(_mm_xor_si128(_mm_set1_epi32((int)first), flip), _mm_xor_si128(n, flip));
-    return _mm_castsi128_ps(_mm_xor_si128(below, _mm_set1_epi32(-1)));
 }
 
 /* Status codes (small whole numbers in float lanes) to bytes at out. */
@@ -4034,6 +4005,36 @@ static void mlod__vbytes(float32x4_t codes, uint8_t *out)
     vst1_u8(bytes, vmovn_u16(vcombine_u16(h, h)));
     memcpy(out, bytes, 4);
 }
+#endif
+
+#ifdef MLOD__X86_LANES
+/* Four node indices' lanes that are at least `first` (unsigned), as a mask. */
+static __m128 mlod__vat_least(__m128i n, uint32_t first)
+{
+    const __m128i flip = _mm_set1_epi32((int)0x80000000u);
+    __m128i below = _mm_cmpgt_epi32(_mm_xor_si128(_mm_set1_epi32((int)first), flip), _mm_xor_si128(n, flip));
+    return _mm_castsi128_ps(_mm_xor_si128(below, _mm_set1_epi32(-1)));
+}
+#define MLOD__LOAD4(nodes) _mm_loadu_si128((const __m128i *)(const void *)(nodes))
+#if MLOD__VLANES == 8
+/* Lanes whose node (nodes[l]) is a leaf, `first` the first leaf; and for
+   the pairs of mlod__vload_pairs, of the children of four parents. */
+static __m256 mlod__vleaf(const uint32_t *nodes, uint32_t first)
+{
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(mlod__vat_least(MLOD__LOAD4(nodes), first)),
+                                mlod__vat_least(MLOD__LOAD4(nodes + 4), first), 1);
+}
+static __m256 mlod__vleaf_pairs(const uint32_t *parents, uint32_t first)
+{
+    __m128i twice = _mm_slli_epi32(MLOD__LOAD4(parents), 1);
+    return _mm256_insertf128_ps(
+        _mm256_castps128_ps256(mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(1)), first)),
+        mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(2)), first), 1);
+}
+#else
+static __m128 mlod__vleaf(const uint32_t *nodes, uint32_t first) { return mlod__vat_least(MLOD__LOAD4(nodes), first); }
+#endif
+#undef MLOD__LOAD4
 #endif
 
 #ifdef MLOD__VLANES
