@@ -341,7 +341,11 @@
            view, or (MLOD_VIEW_CULL_BACKFACES, with scene cones) faces away
            from every eye of the ball;
          drawn into v's map, as seen from c, when c(s, eye) <= epsilon for
-           every eye of v's ball, its image moves by at most delta pixels
+           every eye of v's ball, or s is a scene leaf (nothing finer to
+           split into: every view below draws it whole, as an oversize
+           leaf where it exceeds epsilon; the near geometry of MegaViews
+           3.2.4, its disc filling every pixel it covers; counted in
+           stats.shared_leaves), and its image moves by at most delta pixels
            between c and any eye of the ball, it faces every eye (with
            MLOD_VIEW_CULL_BACKFACES) and, with delta = 0 only, lies within
            every field of view below.  With delta > 0 a view's direction
@@ -1159,6 +1163,7 @@ typedef struct mlod_megaviews_stats {
     uint64_t shared_draws;     /* scene nodes drawn into an inner view node's map (shared) */
     uint64_t leaf_draws;       /* scene nodes drawn into a view leaf's map */
     uint64_t shared_views;     /* views below the inner nodes of shared draws, summed */
+    uint64_t shared_leaves;    /* of shared_draws: scene leaves above epsilon for some eye (MegaViews 3.2.4) */
     uint32_t levels;           /* depth of the view tree + 1 */
     size_t peak_bytes;         /* the most the call held at once from its allocator */
 } mlod_megaviews_stats;
@@ -6507,7 +6512,7 @@ MLOD__PUBLIC mlod_view mlod_megaviews_view(const float eye[3], uint32_t resoluti
 }
 
 /* Pairs (scene node s, view node v) and what the traversal does with them. */
-enum { MLOD__PAIR_CULL, MLOD__PAIR_DRAW, MLOD__PAIR_SPLIT_SCENE, MLOD__PAIR_SPLIT_VIEW };
+enum { MLOD__PAIR_CULL, MLOD__PAIR_DRAW, MLOD__PAIR_DRAW_LEAF, MLOD__PAIR_SPLIT_SCENE, MLOD__PAIR_SPLIT_VIEW };
 
 /* Does no direction from a point of the ball (0, g) around x (d = |x|) to
    ... lie within `margin` of the cone (axis, alpha) widened by theta?
@@ -6652,6 +6657,7 @@ typedef struct mlod__mv_out {
     uint32_t *draw, *split;
     size_t draw_count, split_count, capacity; /* pairs each */
     uint64_t pairs, culled, drawn;            /* drawn: at once, into a band */
+    uint64_t near;                            /* drawn or listed: scene leaves above epsilon, shared */
     int with_view;
     int overflow;
     int owned; /* draw and split were grown: the task's own allocation */
@@ -6925,7 +6931,10 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
         return st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
     }
     mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
-    if (cmax <= job->epsilon) { /* shared if it moves by at most delta (delta 0: and every view below draws it) */
+    /* within epsilon for every eye, or a scene leaf (no finer node to split into: every view below draws it
+       whole, an oversize leaf where above epsilon; MegaViews 3.2.4): shared if it moves by at most delta
+       (delta 0: and every view below draws it) */
+    if (cmax <= job->epsilon || s >= scene->leaf_count - 1) {
         if (!(mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta)) return MLOD__PAIR_SPLIT_VIEW;
         if (vn->cone && job->delta == 0.0) { /* delta 0: only what every view below would draw itself */
             k = mlod__surely_within(cos_phi, d, r, vn);
@@ -6937,9 +6946,8 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
             if (!(k >= 0 ? k : mlod__within_cone(away, d, r, vn->radius, cone, 0.0, 0.5 * MLOD__PI + cone[3])))
                 return MLOD__PAIR_SPLIT_VIEW;
         }
-        return MLOD__PAIR_DRAW;
+        return cmax <= job->epsilon ? MLOD__PAIR_DRAW : MLOD__PAIR_DRAW_LEAF;
     }
-    if (s >= scene->leaf_count - 1) return MLOD__PAIR_SPLIT_VIEW;
     if (cmin > job->epsilon) return MLOD__PAIR_SPLIT_SCENE;
     if (job->delta > 0.0) { /* some eyes find s within epsilon, some not: split the larger (MegaViews 3.2.3) */
         const float *left = scene->spheres + 4 * (size_t)(2 * s + 1), *right = left + 4;
@@ -7130,6 +7138,9 @@ static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, uint
         case MLOD__PAIR_CULL:
             out->culled++;
             break;
+        case MLOD__PAIR_DRAW_LEAF:
+            out->near++;
+            /* fall through */
         case MLOD__PAIR_DRAW:
             if (dr) {
                 out->drawn++;
@@ -7175,7 +7186,7 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
     mlod__mv_drawer dr, *drawing = NULL;
     vn.node = MLOD__NO_MAP;
     out->draw_count = out->split_count = 0;
-    out->pairs = out->culled = out->drawn = 0;
+    out->pairs = out->culled = out->drawn = out->near = 0;
     out->with_view = 1;
     out->overflow = 0;
     if (u < end) mlod__mv_seek(job, u, &at);
@@ -7355,7 +7366,7 @@ typedef struct mlod__mv_walk {
     mlod__vnode *vn;                    /* one per level */
     mlod__pview *pv;                    /* one per level: the inner maps' views */
     int overflow;
-    uint64_t pairs, culled, leaf_draws, shared_draws, shared_views;
+    uint64_t pairs, culled, leaf_draws, shared_draws, shared_views, shared_leaves;
 } mlod__mv_walk;
 
 /* One view node of a walk (level: below the subtree's root) and its
@@ -7401,6 +7412,7 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
         mlod__mv_flush(&dr);
         w->shared_draws += out.drawn;
         w->shared_views += out.drawn * mlod__leaves_below(node, eyes->leaf_count);
+        w->shared_leaves += out.near;
         /* a map that drew nothing would be the parent's, each pixel measured again from this node's
            centre: the children measure again from theirs anyway, so they begin from the parent's */
         child_depth = out.drawn ? map_depth : parent_depth;
@@ -7420,7 +7432,7 @@ static void mlod__mv_walk_task(void *context, uint32_t index)
     const mlod__mv_job *job = (const mlod__mv_job *)context;
     mlod__mv_walk *w = &job->walks[job->redo ? job->redo[index] : index];
     w->overflow = 0;
-    w->pairs = w->culled = w->leaf_draws = w->shared_draws = w->shared_views = 0;
+    w->pairs = w->culled = w->leaf_draws = w->shared_draws = w->shared_views = w->shared_leaves = 0;
     mlod__mv_walk_node(job, w, w->root, 0, w->in, w->in_count, 0, w->parent_depth, w->parent_ids);
 }
 
@@ -7482,6 +7494,7 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
         st->leaf_draws += w->leaf_draws;
         st->shared_draws += w->shared_draws;
         st->shared_views += w->shared_views;
+        st->shared_leaves += w->shared_leaves;
         mlod__mv_free(m, w->list, w->capacity, sizeof(uint32_t));
         mlod__mv_free(m, w->depth, inner * job->pixels, sizeof(float));
         mlod__mv_free(m, w->ids, inner * job->pixels, sizeof(uint32_t));
@@ -7676,6 +7689,7 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
             splits += outs[c].split_count;
             st.pairs += outs[c].pairs;
             st.culled += outs[c].culled;
+            st.shared_leaves += outs[c].near;
             st.leaf_draws += outs[c].drawn;
             for (u = 0; job.keep && u < outs[c].draw_count; u++) st.leaf_draws += outs[c].draw[2 * u] >= eyes->leaf_count - 1;
         }

@@ -315,7 +315,7 @@ typedef struct bench {
     struct views_row {
         uint32_t views;
         double tree_ms, refit_ms, tree_bytes, mega_ms, mega_peak, atlas_bytes, pairs, culled, shared_draws, shared_views,
-            leaf_draws;
+            leaf_draws, shared_leaves;
         double per_ms, per_cut_ms, per_splat_ms, per_bytes; /* NAN: not run */
         double cast_ms;                                     /* Embree's exact maps */
         double group_ms, group_peak, group_pairs;           /* grouped within a scene leaf's radius */
@@ -2063,6 +2063,7 @@ static void run_views(bench *b)
         row->shared_draws = (double)st.shared_draws;
         row->shared_views = (double)st.shared_views;
         row->leaf_draws = (double)st.leaf_draws;
+        row->shared_leaves = (double)st.shared_leaves;
         reference = (float *)checked_malloc(sizeof(float) * atlas->width * atlas->height);
         t0 = now_ms();
         rt_reference(atlas, views, &rt, &b->parallel, reference);
@@ -2540,7 +2541,7 @@ static void write_views_markdown(const bench *b, FILE *f)
                "checked to equal the per-view cut and splat bit for bit.\n\n",
             b->views_note, b->cfg.views_per_view_max, b->cfg.views_receivers);
     fprintf(f, "| views | view tree ms (refit) | view tree MB | MegaViews ms | peak MB | atlas MB | pairs per view | views per "
-               "shared draw | leaf draws per view | per-view ms (cut + splat) | per-view cut MB | Embree ms | depth RMS %% "
+               "shared draw | leaf draws per view (near scene leaves shared) | per-view ms (cut + splat) | per-view cut MB | Embree ms | depth RMS %% "
                "(ours / per-view) | holes %% | shadow %% |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|\n");
     for (k = 0; k < b->views_rows; k++) {
         const struct views_row *r = &b->views[k];
@@ -2559,10 +2560,11 @@ static void write_views_markdown(const bench *b, FILE *f)
             snprintf(holes, sizeof holes, "%.2f / -", 100.0 * r->mega_m.hole_rate);
             snprintf(shadow, sizeof shadow, "%.2f / -", 100.0 * r->mega_m.shadow_disagreement);
         }
-        fprintf(f, "| %u | %.1f (%.1f) | %.1f | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f | %s | %s | %.0f | %s | %s | %s |\n",
+        fprintf(f, "| %u | %.1f (%.1f) | %.1f | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f (%.1f) | %s | %s | %.0f | %s | %s | %s |\n",
                 r->views, r->tree_ms, r->refit_ms, r->tree_bytes / 1048576.0, r->mega_ms, r->mega_peak / 1048576.0,
                 r->atlas_bytes / 1048576.0, r->pairs / r->views,
-                r->shared_draws > 0 ? r->shared_views / r->shared_draws : 0.0, r->leaf_draws / r->views, per, per_mb,
+                r->shared_draws > 0 ? r->shared_views / r->shared_draws : 0.0, r->leaf_draws / r->views,
+                r->shared_leaves / r->views, per, per_mb,
                 r->cast_ms, rms, holes, shadow);
     }
     fprintf(f, "\nGrouped (mlod_megaviews_params.group_radius: lights within 1/200 of the scene's diameter of a view node's "

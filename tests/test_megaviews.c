@@ -312,7 +312,8 @@ static void test_equals_per_view(const mlod_tree *scene, const char *scene_name)
                 CHECK(st.leaf_draws == drawn, "%s case %u: %llu leaf draws, the per-view cuts draw %llu", scene_name,
                       c, (unsigned long long)st.leaf_draws, (unsigned long long)drawn);
             }
-            CHECK(st.pairs >= st.leaf_draws + st.shared_draws + st.culled && st.levels == mlod__depth_of(2 * v.count - 2) + 1,
+            CHECK(st.pairs >= st.leaf_draws + st.shared_draws + st.culled && st.shared_leaves <= st.shared_draws &&
+                  st.levels == mlod__depth_of(2 * v.count - 2) + 1,
                   "%s case %u: statistics add up", scene_name, c);
         } else {
             CHECK(0, "%s case %u: set up", scene_name, c);
@@ -616,6 +617,10 @@ static void test_fusion(mlod_tree *scene)
         CHECK(st.shared_draws > 1000 && st.shared_views > 2 * st.shared_draws,
               "fusion, delta %g: %llu shared draws for %llu views", p.delta, (unsigned long long)st.shared_draws,
               (unsigned long long)st.shared_views);
+        /* scene leaves larger than epsilon shared too (MegaViews 3.2.4): the checks above hold for them */
+        CHECK(st.shared_leaves > 0 && st.shared_leaves < st.shared_draws,
+              "fusion, delta %g: %llu oversize scene leaves shared (of %llu shared draws)", p.delta,
+              (unsigned long long)st.shared_leaves, (unsigned long long)st.shared_draws);
         CHECK(filled > v.count * 64, "fusion, delta %g: %llu pixels filled", p.delta, (unsigned long long)filled);
         CHECK(bad_depth == 0, "fusion, delta %g: %llu pixels whose depth is not the distance from the view's eye",
               p.delta, (unsigned long long)bad_depth);
@@ -810,7 +815,8 @@ static void test_query(const mlod_tree *scene)
             CHECK(filled > compared / 2 && st_a.shared_draws > 1000, "query case %u: %llu of %llu pixels filled, %llu shared draws",
                   c, (unsigned long long)filled, (unsigned long long)compared, (unsigned long long)st_a.shared_draws);
             CHECK(differ == 0, "query case %u: %llu pixels differ from the fused atlas", c, (unsigned long long)differ);
-            CHECK(st_m.pairs == st_a.pairs && st_m.shared_draws == st_a.shared_draws && st_m.leaf_draws == st_a.leaf_draws,
+            CHECK(st_m.pairs == st_a.pairs && st_m.shared_draws == st_a.shared_draws && st_m.leaf_draws == st_a.leaf_draws &&
+                  st_m.shared_leaves == st_a.shared_leaves,
                   "query case %u: the same traversal (pairs %llu / %llu)", c, (unsigned long long)st_m.pairs,
                   (unsigned long long)st_a.pairs);
             CHECK(mlod_megaviews_maps_bytes(maps) > (size_t)v.count * 8 * 16,
@@ -876,6 +882,7 @@ static void test_walks(const mlod_tree *scene)
                     }
                     same = same_atlas(a, ref, &first) && st.pairs == st0.pairs && st.culled == st0.culled &&
                            st.shared_draws == st0.shared_draws && st.shared_views == st0.shared_views &&
+                           st.shared_leaves == st0.shared_leaves &&
                            st.leaf_draws == st0.leaf_draws && st.levels == st0.levels;
                     if (!same && differ++ < 3)
                         CHECK(0, "walks case %u, group %u: walking from level %u (room %zu) differs (pixel %zu, pairs %llu / %llu)",
@@ -1002,7 +1009,8 @@ static void test_threads(const mlod_tree *scene)
                   "threads: hook %u builds the same view tree", h);
             int same = same_atlas(a, ref, &first);
             CHECK(same, "threads: hook %u gives another atlas (pixel %zu)", h, first);
-            CHECK(st.pairs == st0.pairs && st.shared_draws == st0.shared_draws && st.leaf_draws == st0.leaf_draws,
+            CHECK(st.pairs == st0.pairs && st.shared_draws == st0.shared_draws && st.leaf_draws == st0.leaf_draws &&
+                  st.shared_leaves == st0.shared_leaves,
                   "threads: hook %u gives other statistics", h);
         }
         mlod_atlas_destroy(a);
