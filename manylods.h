@@ -6657,7 +6657,7 @@ typedef struct mlod__mv_out {
     uint32_t *draw, *split;
     size_t draw_count, split_count, capacity; /* pairs each */
     uint64_t pairs, culled, drawn;            /* drawn: at once, into a band */
-    uint64_t near;                            /* drawn or listed: scene leaves above epsilon, shared */
+    uint64_t leaves;                          /* drawn or listed: scene leaves above epsilon, shared */
     int with_view;
     int overflow;
     int owned; /* draw and split were grown: the task's own allocation */
@@ -7139,7 +7139,7 @@ static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, uint
             out->culled++;
             break;
         case MLOD__PAIR_DRAW_LEAF:
-            out->near++;
+            out->leaves++;
             /* fall through */
         case MLOD__PAIR_DRAW:
             if (dr) {
@@ -7186,7 +7186,7 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
     mlod__mv_drawer dr, *drawing = NULL;
     vn.node = MLOD__NO_MAP;
     out->draw_count = out->split_count = 0;
-    out->pairs = out->culled = out->drawn = out->near = 0;
+    out->pairs = out->culled = out->drawn = out->leaves = 0;
     out->with_view = 1;
     out->overflow = 0;
     if (u < end) mlod__mv_seek(job, u, &at);
@@ -7412,7 +7412,7 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
         mlod__mv_flush(&dr);
         w->shared_draws += out.drawn;
         w->shared_views += out.drawn * mlod__leaves_below(node, eyes->leaf_count);
-        w->shared_leaves += out.near;
+        w->shared_leaves += out.leaves;
         /* a map that drew nothing would be the parent's, each pixel measured again from this node's
            centre: the children measure again from theirs anyway, so they begin from the parent's */
         child_depth = out.drawn ? map_depth : parent_depth;
@@ -7689,7 +7689,7 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
             splits += outs[c].split_count;
             st.pairs += outs[c].pairs;
             st.culled += outs[c].culled;
-            st.shared_leaves += outs[c].near;
+            st.shared_leaves += outs[c].leaves;
             st.leaf_draws += outs[c].drawn;
             for (u = 0; job.keep && u < outs[c].draw_count; u++) st.leaf_draws += outs[c].draw[2 * u] >= eyes->leaf_count - 1;
         }
