@@ -2541,7 +2541,8 @@ static void write_views_markdown(const bench *b, FILE *f)
                "checked to equal the per-view cut and splat bit for bit.\n\n",
             b->views_note, b->cfg.views_per_view_max, b->cfg.views_receivers);
     fprintf(f, "| views | view tree ms (refit) | view tree MB | MegaViews ms | peak MB | atlas MB | pairs per view | views per "
-               "shared draw | leaf draws per view (near scene leaves shared) | per-view ms (cut + splat) | per-view cut MB | Embree ms | depth RMS %% "
+               "shared draw | leaf draws per view (near scene leaves shared) | per-view ms (cut + splat) | per-view cut MB "
+               "| Embree ms | depth RMS %% "
                "(ours / per-view) | holes %% | shadow %% |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|\n");
     for (k = 0; k < b->views_rows; k++) {
         const struct views_row *r = &b->views[k];
@@ -2560,7 +2561,8 @@ static void write_views_markdown(const bench *b, FILE *f)
             snprintf(holes, sizeof holes, "%.2f / -", 100.0 * r->mega_m.hole_rate);
             snprintf(shadow, sizeof shadow, "%.2f / -", 100.0 * r->mega_m.shadow_disagreement);
         }
-        fprintf(f, "| %u | %.1f (%.1f) | %.1f | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f (%.1f) | %s | %s | %.0f | %s | %s | %s |\n",
+        fprintf(f,
+                "| %u | %.1f (%.1f) | %.1f | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f (%.1f) | %s | %s | %.0f | %s | %s | %s |\n",
                 r->views, r->tree_ms, r->refit_ms, r->tree_bytes / 1048576.0, r->mega_ms, r->mega_peak / 1048576.0,
                 r->atlas_bytes / 1048576.0, r->pairs / r->views,
                 r->shared_draws > 0 ? r->shared_views / r->shared_draws : 0.0, r->leaf_draws / r->views,
