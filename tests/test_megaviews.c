@@ -306,12 +306,11 @@ static void test_equals_per_view(const mlod_tree *scene, const char *scene_name)
             int same = same_atlas(a, ref, &first);
             CHECK(same, "%s case %u: delta 0 differs from the per-view cut and splat at "
                   "pixel %zu (%g against %g)", scene_name, c, first, a->depth[first], ref->depth[first]);
-            /* coincident eyes share, near scene leaves too: the equality above covers them */
-            if (cases[c].dup)
+            if (cases[c].dup) { /* coincident eyes share, near scene leaves too: the equality above covers them */
                 CHECK(st.shared_draws > 0 && st.shared_leaves > 0, "%s case %u: coincident eyes share (%llu draws, "
                       "%llu of them near leaves)", scene_name, c, (unsigned long long)st.shared_draws,
                       (unsigned long long)st.shared_leaves);
-            if (!cases[c].dup) {
+            } else {
                 CHECK(st.shared_draws == 0, "%s case %u: %llu shared draws with delta 0 and distinct eyes",
                       scene_name, c, (unsigned long long)st.shared_draws);
                 CHECK(st.leaf_draws == drawn, "%s case %u: %llu leaf draws, the per-view cuts draw %llu", scene_name,
