@@ -398,9 +398,7 @@
      distance from the view's own eye: the views see the scene from up to
      g away, with the parallax that brings, and no delta bound holds
      within a group.  README.md measures the error against exact maps.
-     Not yet: the multi-pixel splat of near leaves at inner nodes
-     (MegaViews 3.2.4), a sizing function for the call's memory (it
-     reports its peak after), a Vulkan path.
+     Not yet: a Vulkan path.
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes,
@@ -434,11 +432,15 @@
      anything (8 bytes per pixel), two levels at a time; below, each of the
      64 subtree walks holds the scene nodes handed down along its path (4
      bytes each, room for four per scene node handed to its root plus 4096
-     first, four times more when short: the walk runs again) and one map
+     first, twice as much when short: the walk runs again) and one map
      per level (8 bytes per pixel).  It reports its peak
      (mlod_megaviews_stats.peak_bytes: 11 to 14 MB for 64 k to 1 M
      lights in README.md's benchmark, against the atlas's 4 bytes per
-     pixel); mlod_megaviews_render_maps, level by level throughout, keeps
+     pixel) and the most pairs one view node classified
+     (stats.node_pairs), for which mlod_megaviews_bound bounds the peak
+     before the call (4 to 6 times above it in that benchmark; with the
+     scene tree's node count, for any scene: far above);
+     mlod_megaviews_render_maps, level by level throughout, keeps
      on top 8 bytes per pixel of every view node that drew anything
      (mlod_megaviews_maps_bytes).  Attributes a scene does not ask for take
      no memory.
@@ -1166,7 +1168,24 @@ typedef struct mlod_megaviews_stats {
     uint64_t shared_leaves;    /* of shared_draws: scene leaves above epsilon for some eye (MegaViews 3.2.4) */
     uint32_t levels;           /* depth of the view tree + 1 */
     size_t peak_bytes;         /* the most the call held at once from its allocator */
+    uint64_t node_pairs;       /* the most pairs classified at one view node (mlod_megaviews_bound) */
 } mlod_megaviews_stats;
+
+/* Sizing, before a render: an upper bound on the bytes that
+   mlod_megaviews_render holds at once from its allocator (its
+   stats.peak_bytes) for this view tree at this resolution, when no view
+   node classifies more than node_pairs pairs.  The pairs depend on the
+   scene and the views: stats.node_pairs reports them after a render (the
+   next frames of a moving scene need a margin: 6 276 to 6 821 in
+   README.md's benchmark, 1 k to 1 M lights), and the scene tree's node
+   count holds for any render (each scene node meets a view node at most
+   once) at the price of a far larger bound.  Maps and tables are counted
+   as allocated, the pair lists at their worst for node_pairs: 4 to 6
+   times the peak in that benchmark.  (mlod_megaviews_render_maps keeps
+   every view node's map: up to 16 R^2 bytes per view tree node, beside
+   its level-by-level lists.)  0 for views NULL or a resolution of 0,
+   (size_t)-1 beyond size_t.  Pure, thread-safe. */
+MANYLODS_DEF size_t mlod_megaviews_bound(const mlod_view_tree *views, uint32_t resolution, uint64_t node_pairs);
 
 /* The maps of every view node, unfused (mlod_megaviews_render_maps). */
 typedef struct mlod_megaviews_maps mlod_megaviews_maps;
@@ -6661,6 +6680,11 @@ typedef struct mlod__mv_out {
     int with_view;
     int overflow;
     int owned; /* draw and split were grown: the task's own allocation */
+    /* pairs per view node: a chunk's first and last view nodes may go on
+       in the chunks beside it (their pairs summed in order), those between
+       are whole (the most of them) */
+    uint32_t first_node, last_node;
+    uint64_t first_pairs, last_pairs, most_pairs;
 } mlod__mv_out;
 
 /* Drawing at once into a band (a leaf's tile, or an inner map of a subtree
@@ -7171,6 +7195,44 @@ static void mlod__mv_leaf_drawer(const mlod__mv_job *job, mlod__vnode *vn, const
     dr->lazy_depth = NULL;
 }
 
+/* The pairs of view node `node` (all of them, or the part in this chunk)
+   into the chunk's output, once its last unit there is classified. */
+static void mlod__mv_node_pairs(mlod__mv_out *out, uint32_t node, uint64_t pairs)
+{
+    if (out->first_node == MLOD__NO_MAP) {
+        out->first_node = node;
+        out->first_pairs = pairs;
+        return;
+    }
+    if (out->last_node != MLOD__NO_MAP && out->last_pairs > out->most_pairs) out->most_pairs = out->last_pairs;
+    out->last_node = node;
+    out->last_pairs = pairs;
+}
+
+/* The most pairs of one view node over a level's chunks, in order. */
+static uint64_t mlod__mv_level_node_pairs(const mlod__mv_out *outs, uint32_t chunks)
+{
+    uint32_t c, node = MLOD__NO_MAP;
+    uint64_t most = 0, sum = 0;
+    for (c = 0; c < chunks; c++) {
+        const mlod__mv_out *o = &outs[c];
+        if (o->first_node == MLOD__NO_MAP) continue;
+        if (o->first_node != node) {
+            if (sum > most) most = sum;
+            node = o->first_node;
+            sum = 0;
+        }
+        sum += o->first_pairs;
+        if (o->most_pairs > most) most = o->most_pairs;
+        if (o->last_node != MLOD__NO_MAP) {
+            if (sum > most) most = sum;
+            node = o->last_node;
+            sum = o->last_pairs;
+        }
+    }
+    return sum > most ? sum : most;
+}
+
 /* Classify a chunk of the level's units: each scene node handed to a view
    node, and depth first below it while the scene node splits.  A chunk
    holds whole view leaves (mlod__mv_chunks), which it draws at once, in
@@ -7184,15 +7246,20 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
     mlod__vnode vn;
     mlod__mv_cursor at;
     mlod__mv_drawer dr, *drawing = NULL;
+    uint64_t node_start = 0; /* out->pairs at the view node's first unit */
     vn.node = MLOD__NO_MAP;
     out->draw_count = out->split_count = 0;
     out->pairs = out->culled = out->drawn = out->leaves = 0;
     out->with_view = 1;
     out->overflow = 0;
+    out->first_node = out->last_node = MLOD__NO_MAP;
+    out->first_pairs = out->last_pairs = out->most_pairs = 0;
     if (u < end) mlod__mv_seek(job, u, &at);
     for (; u < end; u++) {
         mlod__mv_next(job, &at, &view, &s0);
         if (view != vn.node) {
+            if (vn.node != MLOD__NO_MAP) mlod__mv_node_pairs(out, vn.node, out->pairs - node_start);
+            node_start = out->pairs;
             if (drawing) mlod__mv_flush(drawing);
             mlod__vnode_set(job, view, &vn);
             drawing = NULL;
@@ -7209,6 +7276,7 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
             return;
         }
     }
+    if (vn.node != MLOD__NO_MAP) mlod__mv_node_pairs(out, vn.node, out->pairs - node_start);
     if (drawing) mlod__mv_flush(drawing);
 }
 
@@ -7367,6 +7435,7 @@ typedef struct mlod__mv_walk {
     mlod__pview *pv;                    /* one per level: the inner maps' views */
     int overflow;
     uint64_t pairs, culled, leaf_draws, shared_draws, shared_views, shared_leaves;
+    uint64_t node_pairs; /* the most pairs of one view node */
 } mlod__mv_walk;
 
 /* One view node of a walk (level: below the subtree's root) and its
@@ -7425,6 +7494,7 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
     }
     w->pairs += out.pairs;
     w->culled += out.culled;
+    if (out.pairs > w->node_pairs) w->node_pairs = out.pairs;
 }
 
 static void mlod__mv_walk_task(void *context, uint32_t index)
@@ -7432,14 +7502,14 @@ static void mlod__mv_walk_task(void *context, uint32_t index)
     const mlod__mv_job *job = (const mlod__mv_job *)context;
     mlod__mv_walk *w = &job->walks[job->redo ? job->redo[index] : index];
     w->overflow = 0;
-    w->pairs = w->culled = w->leaf_draws = w->shared_draws = w->shared_views = w->shared_leaves = 0;
+    w->pairs = w->culled = w->leaf_draws = w->shared_draws = w->shared_views = w->shared_leaves = w->node_pairs = 0;
     mlod__mv_walk_node(job, w, w->root, 0, w->in, w->in_count, 0, w->parent_depth, w->parent_ids);
 }
 
 /* The levels from the walk level down: one walk per view node of that
    level, from the scene nodes and maps the level above handed down (the
    job's in, in_off and parent maps), in parallel; walks whose list stack
-   ran out get one four times larger and run again (a walk's result does not
+   ran out get one twice as large and run again (a walk's result does not
    depend on its room).  0 when memory failed. */
 static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_parallel *parallel,
                           mlod_megaviews_stats *st)
@@ -7478,7 +7548,7 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
             mlod__mv_walk *w = &walks[job->redo ? job->redo[i] : i];
             if (!w->overflow) continue;
             mlod__mv_free(m, w->list, w->capacity, sizeof(uint32_t));
-            w->capacity *= 4;
+            w->capacity *= 2;
             w->list = (uint32_t *)mlod__mv_alloc(m, w->capacity, sizeof(uint32_t));
             if (!w->list) w->capacity = 0;
             redo[again++] = (uint32_t)(w - walks);
@@ -7495,6 +7565,7 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
         st->shared_draws += w->shared_draws;
         st->shared_views += w->shared_views;
         st->shared_leaves += w->shared_leaves;
+        if (w->node_pairs > st->node_pairs) st->node_pairs = w->node_pairs;
         mlod__mv_free(m, w->list, w->capacity, sizeof(uint32_t));
         mlod__mv_free(m, w->depth, inner * job->pixels, sizeof(float));
         mlod__mv_free(m, w->ids, inner * job->pixels, sizeof(uint32_t));
@@ -7684,6 +7755,10 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
         if (chunks) mlod__mv_classify_level(&job, &m, params->parallel, chunks);
         draw_off = (size_t *)mlod__mv_alloc(&m, (size_t)count + 1, sizeof(size_t));
         split_off = (size_t *)mlod__mv_alloc(&m, (size_t)count + 1, sizeof(size_t));
+        if (!m.failed) {
+            uint64_t most = mlod__mv_level_node_pairs(outs, chunks);
+            if (most > st.node_pairs) st.node_pairs = most;
+        }
         for (c = 0; c < chunks; c++) {
             draws += outs[c].draw_count;
             splits += outs[c].split_count;
@@ -7799,6 +7874,67 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     if (stats) *stats = st;
     if (keep) *keep = job.keep;
     return mlod__succeed(error);
+}
+
+/* The most bytes mlod__megaviews_run holds at once, fused (walks from
+   walk_level, first list room `room`), when no view node classifies more
+   than P pairs.  Level by level it holds the level above's hand-down (its
+   splits, their offsets, its maps and map table) and its own arrays, each
+   at its largest:
+   - of a level of C nodes, I of them inner: the pairs handed down U <= C P
+     and <= 2 T' (T' the level above's splits), draws and splits D + T
+     <= C P (distinct pairs), splits T <= I P;
+   - chunks K <= U / MLOD__MV_CHUNK + 1;
+   - a chunk's grown lists: a capacity below four times its need (its
+     draws or its splits, the more), the one before it (a quarter) held
+     while it is allocated: 16 (4 + 1) bytes per need, the needs summing to
+     at most D + T;
+   - one map per inner node;
+   - a walk's list: its first room (4 entries per scene node handed to its
+     root, <= P, and `room`), or grown, below twice what its path needs
+     (each inner level's list <= P, one level less than the walk's depth);
+   and every array one byte more (a zero-size allocation takes one).  The
+   phases of a level are summed, not overlapped. */
+static double mlod__mv_bound(const mlod_tree *eyes, uint32_t resolution, uint64_t P, uint32_t walk_level, size_t room)
+{
+    const double px = 2.0 * (double)resolution * (double)resolution, p = P > 0 ? (double)P : 1.0;
+    const double per_level = (double)(sizeof(mlod__vnode) + sizeof(mlod__pview));
+    uint32_t levels = mlod__depth_of(eyes->node_count - 1) + 1, d;
+    double most = 0.0, prev = 0.0, splits_above = 0.0;
+    for (d = 0; d < levels; d++) {
+        uint64_t first = (1ull << d) - 1, count = eyes->node_count - first < (1ull << d) ? eyes->node_count - first : (1ull << d);
+        uint64_t inner = eyes->leaf_count - 1 > first ? eyes->leaf_count - 1 - first : 0;
+        double C = (double)count, I = (double)(inner < count ? inner : count), Q = C * p, T = I * p, U, K;
+        double classify, gather, maps, level;
+        if (d == walk_level) {
+            uint32_t depth = levels - d;
+            double inner_maps = depth > 1 ? depth - 1.0 : 1.0, list = 4.0 * p + (double)room;
+            if (2.0 * (depth - 1.0) * p > list) list = 2.0 * (depth - 1.0) * p;
+            level = prev + C * ((double)sizeof(mlod__mv_walk) + 4.0) + 2.0 +
+                    C * (4.0 * list + 8.0 * inner_maps * px + depth * per_level + 5.0);
+            return level > most ? level : most;
+        }
+        U = d == 0 ? 1.0 : (Q < 2.0 * splits_above ? Q : 2.0 * splits_above);
+        K = floor(U / MLOD__MV_CHUNK) + 1.0;
+        classify = 8.0 * (K + 1.0) + (double)sizeof(mlod__mv_out) * K + 16.0 * (U + floor(U / 2.0) + 64.0 * K + 1.0) +
+                   4.0 * K + 80.0 * Q + 2.0 * K + 4.0;
+        gather = 16.0 * (C + 1.0) + 4.0 * Q + 4.0 * C + 5.0; /* offsets, draw and split lists, map table */
+        maps = 8.0 * I * px + 2.0;
+        level = prev + classify + gather + maps;
+        if (level > most) most = level;
+        /* handed to the next level: the splits, their offsets, the maps and the map table */
+        prev = 4.0 * T + 8.0 * (C + 1.0) + 4.0 * C + 3.0 + maps;
+        splits_above = T;
+    }
+    return most;
+}
+
+MLOD__PUBLIC size_t mlod_megaviews_bound(const mlod_view_tree *views, uint32_t resolution, uint64_t node_pairs)
+{
+    double bytes;
+    if (!views || !views->eyes || resolution == 0) return 0;
+    bytes = mlod__mv_bound(views->eyes, resolution, node_pairs, MLOD__MV_WALK_LEVEL, MLOD__MV_WALK_ROOM);
+    return bytes >= (double)(size_t)-1 ? (size_t)-1 : (size_t)bytes;
 }
 
 MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,

@@ -319,11 +319,14 @@ typedef struct bench {
         double per_ms, per_cut_ms, per_splat_ms, per_bytes; /* NAN: not run */
         double cast_ms;                                     /* Embree's exact maps */
         double group_ms, group_peak, group_pairs;           /* grouped within a scene leaf's radius */
+        /* sizing: the most pairs of one view node and mlod_megaviews_bound for it (and for any scene) */
+        double node_pairs, bound, bound_any, group_node_pairs, group_bound;
         metrics mega_m, per_m, group_m;
     } views[BENCH_MAX_LIST];
     int views_rows;
     char views_note[240];
     double views_scene_bytes; /* the room's tree the views render */
+    double views_scene_nodes; /* its node count */
 } bench;
 
 static row *add_row(bench *b, int kind, const char *scene, const char *method)
@@ -2001,6 +2004,7 @@ static void run_views(bench *b)
     rt_commit(&rt);
     group_radius = (float)(diameter / 200.0);
     b->views_scene_bytes = (double)tree->bytes;
+    b->views_scene_nodes = (double)tree->node_count;
     views_check_exact(b, tree, eyes, c->view_counts[0] < 1024 ? c->view_counts[0] : 1024, eps);
     snprintf(b->views_note, sizeof b->views_note,
              "room (%u triangles), N = %u, epsilon %g px, delta %g px; lights %.3g above random surface points, "
@@ -2058,6 +2062,10 @@ static void run_views(bench *b)
         }
         row->mega_ms = median(times, (int)repeats);
         row->mega_peak = (double)st.peak_bytes;
+        row->node_pairs = (double)st.node_pairs;
+        row->bound = (double)mlod_megaviews_bound(vt, mp.resolution, st.node_pairs);
+        row->bound_any = (double)mlod_megaviews_bound(vt, mp.resolution, tree->node_count);
+        if (!(row->mega_peak <= row->bound)) fail("megaviews: peak %.0f bytes above the sizing bound %.0f", row->mega_peak, row->bound);
         row->pairs = (double)st.pairs;
         row->culled = (double)st.culled;
         row->shared_draws = (double)st.shared_draws;
@@ -2082,6 +2090,10 @@ static void run_views(bench *b)
         row->group_ms = median(times, (int)repeats);
         row->group_peak = (double)st.peak_bytes;
         row->group_pairs = (double)st.pairs;
+        row->group_node_pairs = (double)st.node_pairs;
+        row->group_bound = (double)mlod_megaviews_bound(vt, mp.resolution, st.node_pairs);
+        if (!(row->group_peak <= row->group_bound))
+            fail("megaviews, grouped: peak %.0f bytes above the sizing bound %.0f", row->group_peak, row->group_bound);
         metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
                         &row->group_m, NULL);
         if (count <= c->views_per_view_max) {
@@ -2577,6 +2589,18 @@ static void write_views_markdown(const bench *b, FILE *f)
         fprintf(f, "| %u | %.0f | %.0f | %.0f | %.2f | %.2f | %.2f |\n", r->views, r->group_ms, r->group_peak / 1048576.0,
                 r->group_pairs / r->views, 100.0 * r->group_m.depth_rms, 100.0 * r->group_m.hole_rate,
                 100.0 * r->group_m.shadow_disagreement);
+    }
+    fprintf(f, "\nSizing (mlod_megaviews_bound, before a render): the render's peak beside the bound for the most pairs "
+               "one view node classified (stats.node_pairs, as a program reads it after a frame) and the bound for any "
+               "scene (the scene tree's node count, %.0f):\n\n| views | pairs per view node | peak MB | bound MB | bound / "
+               "peak | grouped: pairs per view node | peak MB | bound MB | bound / peak | any scene: bound MB |\n"
+               "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", b->views_scene_nodes);
+    for (k = 0; k < b->views_rows; k++) {
+        const struct views_row *r = &b->views[k];
+        fprintf(f, "| %u | %.0f | %.1f | %.1f | %.1f | %.0f | %.1f | %.1f | %.1f | %.0f |\n", r->views, r->node_pairs,
+                r->mega_peak / 1048576.0, r->bound / 1048576.0, r->bound / r->mega_peak, r->group_node_pairs,
+                r->group_peak / 1048576.0, r->group_bound / 1048576.0, r->group_bound / r->group_peak,
+                r->bound_any / 1048576.0);
     }
     fprintf(f, "\nGrowth exponents (time proportional to views^k) from one view count to the next:\n\n"
                "| views | MegaViews | pairs | grouped | per-view | Embree |\n|---|---:|---:|---:|---:|---:|\n");

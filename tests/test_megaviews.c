@@ -857,8 +857,10 @@ static void test_walks(const mlod_tree *scene)
         mlod_view *vs = NULL;
         uint32_t flags = c == 2 ? MLOD_VIEW_CULL_BACKFACES : 0u, channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
         mlod_atlas *ref = make_atlas(&v, 8, channels, &vs, flags), *a = make_atlas(&v, 8, channels, NULL, flags);
-        uint32_t levels = 0, level, g, differ = 0, runs = 0;
+        uint32_t levels = 0, level, g, differ = 0, runs = 0, over = 0;
         mlod_megaviews_params p;
+        tu_counter counter;
+        mlod_allocator al = tu_allocator(&counter);
         mlod_megaviews_stats st0, st;
         mlod_error e;
         memset(&p, 0, sizeof p);
@@ -867,26 +869,39 @@ static void test_walks(const mlod_tree *scene)
         p.delta = MLOD_MEGAVIEWS_DELTA;
         p.resolution = 8;
         p.flags = flags;
+        p.allocator = &al;
         for (g = 0; g < 2 && t && ref && a; g++) {
             p.group_radius = g ? 0.3f : 0.0f;
+            memset(&counter, 0, sizeof counter);
             if (mlod__megaviews_run(ref, NULL, scene, t, &p, 64, 0, &st0, &e) != MLOD_OK) {
                 CHECK(0, "walks case %u: level-synchronous render: %s", c, e.message);
                 break;
             }
             levels = st0.levels;
+            over += counter.peak_bytes > mlod__mv_bound(t->eyes, p.resolution, st0.node_pairs, 64, 0);
             for (level = 0; level <= levels; level++) {
                 size_t room;
                 for (room = 1; room <= 4096; room *= 4096) {
                     size_t first = 0;
                     int same;
                     runs++;
+                    memset(&counter, 0, sizeof counter);
                     if (mlod__megaviews_run(a, NULL, scene, t, &p, level, room, &st, &e) != MLOD_OK) {
                         CHECK(0, "walks case %u: walk from level %u: %s", c, level, e.message);
                         continue;
                     }
+                    /* the sizing bound holds for the pairs per view node the render reports (the
+                       allocator's own count, and the render's) */
+                    if (counter.peak_bytes > mlod__mv_bound(t->eyes, p.resolution, st.node_pairs, level, room) ||
+                        st.peak_bytes > counter.peak_bytes) {
+                        if (over++ < 3)
+                            CHECK(0, "walks case %u, group %u, level %u, room %zu: peak %zu bytes (reported %zu) above the bound %.0f",
+                                  c, g, level, room, counter.peak_bytes, st.peak_bytes,
+                                  mlod__mv_bound(t->eyes, p.resolution, st.node_pairs, level, room));
+                    }
                     same = same_atlas(a, ref, &first) && st.pairs == st0.pairs && st.culled == st0.culled &&
                            st.shared_draws == st0.shared_draws && st.shared_views == st0.shared_views &&
-                           st.shared_leaves == st0.shared_leaves &&
+                           st.shared_leaves == st0.shared_leaves && st.node_pairs == st0.node_pairs &&
                            st.leaf_draws == st0.leaf_draws && st.levels == st0.levels;
                     if (!same && differ++ < 3)
                         CHECK(0, "walks case %u, group %u: walking from level %u (room %zu) differs (pixel %zu, pairs %llu / %llu)",
@@ -898,6 +913,9 @@ static void test_walks(const mlod_tree *scene)
         }
         CHECK(differ == 0 && runs == 2 * 2 * (levels + 1), "walks case %u: %u walk levels x 2 rooms x 2 group radii equal the level-synchronous render (%u differ)",
               c, levels + 1, differ);
+        CHECK(over == 0 && st0.node_pairs > 0 && st0.node_pairs <= st0.pairs && st0.node_pairs <= scene->node_count,
+              "walks case %u: every render's peak within the sizing bound for its pairs per view node (%llu; %u above)",
+              c, (unsigned long long)st0.node_pairs, over);
         mlod_atlas_destroy(ref);
         mlod_atlas_destroy(a);
         mlod_view_tree_destroy(t);
@@ -975,6 +993,57 @@ static void test_fast_paths(void)
           far_decided[0], far[0], far_decided[1], far[1]);
 }
 
+/* ============================================================= sizing */
+
+/* mlod_megaviews_bound: what the render's allocator held at once stays
+   within the bound for the pairs per view node the render reports, and
+   within the bound for any scene of that tree (its node count), over view
+   counts from one to thousands and both resolutions; its edges. */
+static void test_sizing(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    static const uint32_t counts[4] = {1, 2, 300, 3000}, resolutions[2] = {1, 8};
+    uint32_t c, r, checked = 0;
+    for (c = 0; c < 4; c++)
+        for (r = 0; r < 2; r++) {
+            views v = make_views(301 + c, counts[c], lo, hi, 0);
+            mlod_view_set s = view_set(&v, c % 2, 0);
+            mlod_view_tree *t = build_views(&s, NULL);
+            mlod_atlas *a = make_atlas(&v, resolutions[r], 0, NULL, 0);
+            tu_counter counter;
+            mlod_allocator al = tu_allocator(&counter);
+            mlod_megaviews_params p;
+            mlod_megaviews_stats st;
+            mlod_error e;
+            size_t bound, any;
+            memset(&p, 0, sizeof p);
+            memset(&counter, 0, sizeof counter);
+            p.epsilon = 1.0f;
+            p.delta = MLOD_MEGAVIEWS_DELTA;
+            p.resolution = resolutions[r];
+            p.allocator = &al;
+            if (!t || !a || mlod_megaviews_render(a, scene, t, &p, &st, &e) != MLOD_OK) {
+                CHECK(0, "sizing: %u views at %u px render", counts[c], resolutions[r]);
+            } else {
+                bound = mlod_megaviews_bound(t, p.resolution, st.node_pairs);
+                any = mlod_megaviews_bound(t, p.resolution, scene->node_count);
+                CHECK(counter.peak_bytes <= bound && st.peak_bytes <= counter.peak_bytes && bound <= any &&
+                      st.node_pairs <= scene->node_count,
+                      "sizing: %u views at %u px: peak %zu bytes (reported %zu), bound %zu for %llu pairs per view "
+                      "node, %zu for any scene", counts[c], resolutions[r], counter.peak_bytes, st.peak_bytes, bound,
+                      (unsigned long long)st.node_pairs, any);
+                checked++;
+            }
+            CHECK(mlod_megaviews_bound(t, 0, 1) == 0 && mlod_megaviews_bound(NULL, 8, 1) == 0 &&
+                  mlod_megaviews_bound(t, 8, UINT64_MAX) == (size_t)-1,
+                  "sizing: 0 for no views or resolution 0, (size_t)-1 beyond size_t");
+            mlod_atlas_destroy(a);
+            mlod_view_tree_destroy(t);
+            free_views(&v);
+        }
+    CHECK(checked == 8, "sizing: 4 view counts x 2 resolutions checked (%u)", checked);
+}
+
 /* ============================================================ threads */
 
 static void test_threads(const mlod_tree *scene)
@@ -1014,7 +1083,8 @@ static void test_threads(const mlod_tree *scene)
             int same = same_atlas(a, ref, &first);
             CHECK(same, "threads: hook %u gives another atlas (pixel %zu)", h, first);
             CHECK(st.pairs == st0.pairs && st.shared_draws == st0.shared_draws && st.leaf_draws == st0.leaf_draws &&
-                  st.shared_leaves == st0.shared_leaves,
+                  st.shared_leaves == st0.shared_leaves && st.node_pairs == st0.node_pairs &&
+                  st.peak_bytes <= mlod_megaviews_bound(t, p.resolution, st.node_pairs),
                   "threads: hook %u gives other statistics", h);
         }
         mlod_atlas_destroy(a);
@@ -1246,6 +1316,7 @@ int main(void)
     test_bounds();
     test_fast_paths();
     test_threads(scene);
+    test_sizing(scene);
     test_walks(scene);
     test_fusion(scene); /* it overwrites the scene's colours with node indices */
     test_groups(scene);
