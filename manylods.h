@@ -5422,6 +5422,125 @@ typedef struct mlod__disc {
     double x, y, radius, depth;
 } mlod__disc;
 
+/* Two doubles a vector (SSE2 on x86, NEON on AArch64; none with
+   MANYLODS_NO_SIMD) for the images of spheres: each lane computes the
+   same operations, in the same order, as mlod__image_discs's scalar steps,
+   so the bits are the same.  Not where clang builds for a target with FMA
+   (MLOD__NO_FMA_TARGET): an intrinsic cannot be inlined into the code
+   built without it, and outside it the code generator may fuse. */
+#if !defined(MANYLODS_NO_SIMD) && !defined(MLOD__NO_FMA_TARGET) &&                                                  \
+    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
+#include <emmintrin.h>
+#define MLOD__VD 1
+typedef __m128d mlod__vd;
+#define MLOD__DPAIR(a, b) _mm_set_pd(b, a) /* lane 0: a */
+#define MLOD__DSPLAT _mm_set1_pd
+#define MLOD__DADD _mm_add_pd
+#define MLOD__DSUB _mm_sub_pd
+#define MLOD__DMUL _mm_mul_pd
+#define MLOD__DDIV _mm_div_pd
+#define MLOD__DSQRT _mm_sqrt_pd
+#define MLOD__DNEG(a) _mm_xor_pd(a, _mm_set1_pd(-0.0))
+#define MLOD__DSTORE _mm_storeu_pd
+/* a where mask (all ones, lane by lane), else +0 */
+#define MLOD__DKEEP(mask, a) _mm_and_pd(mask, a)
+#define MLOD__DGT _mm_cmpgt_pd
+#elif !defined(MANYLODS_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
+#include <arm_neon.h>
+#define MLOD__VD 1
+typedef float64x2_t mlod__vd;
+#define MLOD__DPAIR(a, b) vcombine_f64(vdup_n_f64(a), vdup_n_f64(b))
+#define MLOD__DSPLAT vdupq_n_f64
+#define MLOD__DADD vaddq_f64
+#define MLOD__DSUB vsubq_f64
+#define MLOD__DMUL vmulq_f64
+#define MLOD__DDIV vdivq_f64
+#define MLOD__DSQRT vsqrtq_f64
+#define MLOD__DNEG vnegq_f64
+#define MLOD__DSTORE vst1q_f64
+#define MLOD__DKEEP(mask, a) vreinterpretq_f64_u64(vandq_u64(vreinterpretq_u64_f64(mask), vreinterpretq_u64_f64(a)))
+#define MLOD__DGT(a, b) vreinterpretq_f64_u64(vcgtq_f64(a, b))
+#endif
+
+#ifdef MLOD__VD
+/* a . v over three coordinate vectors, as mlod__dot3 sums it */
+static mlod__vd mlod__vd_dot(mlod__vd x, mlod__vd y, mlod__vd z, const double *v)
+{
+    return MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, MLOD__DSPLAT(v[0])), MLOD__DMUL(y, MLOD__DSPLAT(v[1]))),
+                      MLOD__DMUL(z, MLOD__DSPLAT(v[2])));
+}
+
+/* mlod__image_discs's perspective and paraboloid images for lanes 0 .. 2k
+   - 1 (2k <= n), two at a time; returns 2k, the first lane left to the
+   scalar steps. */
+static uint32_t mlod__image_discs_vd(const mlod__pview *pv, int s, const double (*centre)[3], const double *r,
+                                     mlod__disc *out, int *bounded, uint32_t n)
+{
+    const mlod_view_sub *sub = &pv->f.subs[s];
+    const mlod__vd one = MLOD__DSPLAT(1.0), half = MLOD__DSPLAT(0.5), zero = MLOD__DSPLAT(0.0);
+    const int perspective = pv->kind[s] == MLOD_VIEW_PERSPECTIVE;
+    uint32_t l, j;
+    for (l = 0; l + 2 <= n; l += 2) {
+        const double *c0 = centre[l], *c1 = centre[l + 1];
+        mlod__vd x = MLOD__DSUB(MLOD__DPAIR(c0[0], c1[0]), MLOD__DSPLAT(pv->f.eye[0]));
+        mlod__vd y = MLOD__DSUB(MLOD__DPAIR(c0[1], c1[1]), MLOD__DSPLAT(pv->f.eye[1]));
+        mlod__vd z = MLOD__DSUB(MLOD__DPAIR(c0[2], c1[2]), MLOD__DSPLAT(pv->f.eye[2]));
+        mlod__vd d = MLOD__DSQRT(MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, x), MLOD__DMUL(y, y)), MLOD__DMUL(z, z)));
+        mlod__vd a = MLOD__DDIV(mlod__vd_dot(x, y, z, sub->right), d);
+        mlod__vd b = MLOD__DDIV(mlod__vd_dot(x, y, z, sub->up), d);
+        mlod__vd cos_t = MLOD__DDIV(mlod__vd_dot(x, y, z, sub->forward), d);
+        mlod__vd sin_b = MLOD__DDIV(MLOD__DPAIR(r[l], r[l + 1]), d);
+        mlod__vd sin_t = MLOD__DSQRT(MLOD__DADD(MLOD__DMUL(a, a), MLOD__DMUL(b, b)));
+        mlod__vd cos_b = MLOD__DSQRT(MLOD__DSUB(one, MLOD__DMUL(sin_b, sin_b)));
+        mlod__vd turned = MLOD__DGT(sin_t, zero); /* else the direction is (0, 0) */
+        mlod__vd dir_x = MLOD__DKEEP(turned, MLOD__DDIV(a, sin_t)), dir_y = MLOD__DKEEP(turned, MLOD__DDIV(b, sin_t));
+        mlod__vd s_hi = MLOD__DADD(MLOD__DMUL(sin_t, cos_b), MLOD__DMUL(cos_t, sin_b));
+        mlod__vd c_hi = MLOD__DSUB(MLOD__DMUL(cos_t, cos_b), MLOD__DMUL(sin_t, sin_b));
+        mlod__vd s_lo = MLOD__DSUB(MLOD__DMUL(sin_t, cos_b), MLOD__DMUL(cos_t, sin_b));
+        mlod__vd c_lo = MLOD__DADD(MLOD__DMUL(cos_t, cos_b), MLOD__DMUL(sin_t, sin_b));
+        mlod__vd hi, lo, px, py, depth, radius;
+        double ox[2], oy[2], od[2], orad[2], dist[2], ch[2], sh[2];
+        if (perspective) {
+            mlod__vd k;
+            hi = MLOD__DDIV(s_hi, c_hi);
+            lo = MLOD__DDIV(s_lo, c_lo);
+            k = MLOD__DMUL(MLOD__DMUL(MLOD__DSPLAT(sub->scale), half), MLOD__DADD(hi, lo));
+            px = MLOD__DADD(MLOD__DSPLAT(sub->x + 0.5 * sub->width), MLOD__DMUL(k, dir_x));
+            py = MLOD__DADD(MLOD__DSPLAT(sub->y + 0.5 * sub->height), MLOD__DMUL(k, MLOD__DNEG(dir_y)));
+            depth = mlod__vd_dot(x, y, z, sub->forward);
+        } else {
+            mlod__vd k;
+            hi = MLOD__DDIV(s_hi, MLOD__DADD(one, c_hi));
+            lo = MLOD__DDIV(s_lo, MLOD__DADD(one, c_lo));
+            k = MLOD__DMUL(half, MLOD__DADD(hi, lo));
+            px = MLOD__DADD(MLOD__DSPLAT(sub->x), MLOD__DMUL(MLOD__DMUL(half, MLOD__DSPLAT(sub->width)),
+                                                             MLOD__DADD(one, MLOD__DMUL(k, dir_x))));
+            py = MLOD__DADD(MLOD__DSPLAT(sub->y), MLOD__DMUL(MLOD__DMUL(half, MLOD__DSPLAT(sub->height)),
+                                                             MLOD__DSUB(one, MLOD__DMUL(k, dir_y))));
+            depth = d;
+        }
+        radius = MLOD__DMUL(MLOD__DMUL(MLOD__DSPLAT(sub->scale), half), MLOD__DSUB(hi, lo));
+        MLOD__DSTORE(ox, px);
+        MLOD__DSTORE(oy, py);
+        MLOD__DSTORE(od, depth);
+        MLOD__DSTORE(orad, radius);
+        MLOD__DSTORE(dist, d);
+        MLOD__DSTORE(ch, c_hi);
+        MLOD__DSTORE(sh, s_hi);
+        for (j = 0; j < 2; j++) { /* the scalar steps' tests, lane by lane */
+            bounded[l + j] = dist[j] > r[l + j] && (perspective ? ch[j] > 0.0
+                                                                : 1.0 + ch[j] > 0.0 && (sh[j] > 0.0 || ch[j] > 0.0));
+            if (!bounded[l + j]) continue;
+            out[l + j].x = ox[j];
+            out[l + j].y = oy[j];
+            out[l + j].depth = od[j];
+            out[l + j].radius = orad[j];
+        }
+    }
+    return l;
+}
+#endif
+
 /* The images of n <= MLOD__LANES spheres at once in sub-projection s, step
    by step across them (each lane computes what it would alone):
    bounded[l] says whether out[l] was written (0: the image is unbounded).
@@ -5434,12 +5553,15 @@ static int mlod__image_discs(const mlod__pview *pv, int s, const double (*centre
     double x[MLOD__LANES][3], d[MLOD__LANES], a[MLOD__LANES], b[MLOD__LANES], cos_t[MLOD__LANES];
     double sin_t[MLOD__LANES], sin_b[MLOD__LANES], cos_b[MLOD__LANES];
     double mid_x = sub->x + 0.5 * sub->width, mid_y = sub->y + 0.5 * sub->height;
-    uint32_t l;
+    uint32_t l, first = 0;
     int k;
-    for (l = 0; l < n; l++)
+#ifdef MLOD__VD
+    if (pv->kind[s] != MLOD_VIEW_ORTHOGRAPHIC) first = mlod__image_discs_vd(pv, s, centre, r, out, bounded, n);
+#endif
+    for (l = first; l < n; l++)
         for (k = 0; k < 3; k++) x[l][k] = centre[l][k] - pv->f.eye[k];
     if (pv->kind[s] == MLOD_VIEW_ORTHOGRAPHIC) {
-        for (l = 0; l < n; l++) {
+        for (l = first; l < n; l++) {
             out[l].x = mid_x + sub->scale_x * mlod__dot3(x[l], sub->right);
             out[l].y = mid_y - sub->scale_y * mlod__dot3(x[l], sub->up);
             out[l].radius = r[l] * sub->scale;
@@ -5448,23 +5570,23 @@ static int mlod__image_discs(const mlod__pview *pv, int s, const double (*centre
         }
         return bounded[0];
     }
-    for (l = 0; l < n; l++) {
+    for (l = first; l < n; l++) {
         d[l] = mlod__length3(x[l]);
         bounded[l] = d[l] > r[l];
     }
-    for (l = 0; l < n; l++) {
+    for (l = first; l < n; l++) {
         if (!bounded[l]) continue;
         a[l] = mlod__dot3(x[l], sub->right) / d[l];
         b[l] = mlod__dot3(x[l], sub->up) / d[l];
         cos_t[l] = mlod__dot3(x[l], sub->forward) / d[l];
         sin_b[l] = r[l] / d[l];
     }
-    for (l = 0; l < n; l++) {
+    for (l = first; l < n; l++) {
         if (!bounded[l]) continue;
         sin_t[l] = sqrt(a[l] * a[l] + b[l] * b[l]);
         cos_b[l] = sqrt(1.0 - sin_b[l] * sin_b[l]);
     }
-    for (l = 0; l < n; l++) {
+    for (l = first; l < n; l++) {
         double dir_x = 0.0, dir_y = 0.0, s_hi, c_hi, s_lo, c_lo, hi, lo;
         if (!bounded[l]) continue;
         if (sin_t[l] > 0.0) {
@@ -5808,13 +5930,38 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
     re = y1 > row_end ? row_end : (y1 <= row_begin ? row_begin : (uint32_t)y1);
     cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);
     ce = x1 > col_end ? col_end : (x1 <= col_begin ? col_begin : (uint32_t)x1);
-    for (row = rb; row < re; row++) {
-        double dy = row + 0.5 - disc->y;
-        for (col = cb; col < ce; col++) {
-            double dx = col + 0.5 - disc->x;
-            if (dx * dx + dy * dy <= r2) {
-                hit = 1;
-                mlod__plot(band, row, col, depth, node);
+    if (!band->normal && !band->color) {
+        /* depth (and ids) alone: each pixel's keep-the-nearest as a select,
+           not a branch (whether a pixel centre lies in a small disc, and
+           whether it is nearer, are hard to predict) */
+        uint32_t depth_bits;
+        memcpy(&depth_bits, &depth, sizeof depth_bits);
+        for (row = rb; row < re; row++) {
+            double dy = row + 0.5 - disc->y;
+            float *line = band->depth + (size_t)row * band->stride;
+            uint32_t *ids = band->ids ? band->ids + (size_t)row * band->stride : NULL;
+            for (col = cb; col < ce; col++) {
+                double dx = col + 0.5 - disc->x;
+                uint32_t in = dx * dx + dy * dy <= r2, take, old_bits, mask;
+                float old = line[col];
+                take = in & (depth < old);
+                mask = 0u - take;
+                memcpy(&old_bits, &old, sizeof old_bits);
+                old_bits = (depth_bits & mask) | (old_bits & ~mask);
+                memcpy(&line[col], &old_bits, sizeof old_bits);
+                if (ids) ids[col] = (node & mask) | (ids[col] & ~mask);
+                hit |= (int)in;
+            }
+        }
+    } else {
+        for (row = rb; row < re; row++) {
+            double dy = row + 0.5 - disc->y;
+            for (col = cb; col < ce; col++) {
+                double dx = col + 0.5 - disc->x;
+                if (dx * dx + dy * dy <= r2) {
+                    hit = 1;
+                    mlod__plot(band, row, col, depth, node);
+                }
             }
         }
     }

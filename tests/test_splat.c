@@ -1493,6 +1493,67 @@ static void test_overlap(void)
    <= 0); such a node is not drawn in that sub-projection (it once was, as
    a disc of negative radius, when t + b lay in (pi, 3 pi / 2)).  Just
    below that, it is drawn. */
+/* The images of spheres a batch of lanes at a time (mlod__image_discs,
+   vector lanes where the build has them) equal, bit for bit, the images
+   of the same spheres one at a time (the scalar steps), for every view
+   kind and sub-projection, batches of 1 to 4, spheres anywhere: around
+   the view, on its axis (no direction off it), behind it, holding the eye
+   (unbounded), of radius 0. */
+static void test_image_lanes(void)
+{
+    static const mlod_view_kind kinds[5] = {MLOD_VIEW_PERSPECTIVE, MLOD_VIEW_PARABOLOID, MLOD_VIEW_DUAL_PARABOLOID,
+                                            MLOD_VIEW_CUBE, MLOD_VIEW_ORTHOGRAPHIC};
+    static const double origin[3] = {0.0, 0.0, 0.0};
+    uint64_t rng = 0x1a9e5ull;
+    const char *lanes = "no vector lanes in this build";
+    uint32_t k, trial, wrong = 0, compared = 0, unbounded = 0;
+    for (k = 0; k < 5; k++)
+        for (trial = 0; trial < 200; trial++) {
+            mlod_view view = trial == 0 ? tu_view(kinds[k]) : tu_random_view(&rng, kinds[k], origin, 1.0);
+            mlod__pview pv;
+            double centre[4][3], r[4];
+            uint32_t l, n = trial == 0 ? 4 : 1 + trial % 4, axis = trial == 0 ? 0 : 1;
+            int s, j;
+            if (mlod__view_prepare(&view, &pv, NULL) != MLOD_OK) continue;
+            for (l = 0; l < 4; l++) {
+                double u = scene_rng_double(&rng), dir[3];
+                tu_random_unit(&rng, dir);
+                for (j = 0; j < 3; j++) centre[l][j] = pv.f.eye[j] + (0.01 + 3.0 * u) * dir[j];
+                if ((trial == 0 || trial % 5 == 1) && l == axis) /* on the axis of sub-projection 0 */
+                    for (j = 0; j < 3; j++) centre[l][j] = pv.f.eye[j] + 2.0 * pv.f.subs[0].forward[j];
+                r[l] = (trial % 7 == 2 && l == 2) ? 0.0 : 0.5 * scene_rng_double(&rng) * scene_rng_double(&rng);
+                if (trial % 3 == 0 && l == 3) r[l] = 4.0; /* holds the eye */
+            }
+            for (s = 0; s < pv.sub_count; s++) {
+                mlod__disc batch[MLOD__LANES], one;
+                int bounded[MLOD__LANES];
+                memset(batch, 0, sizeof batch);
+                mlod__image_discs(&pv, s, (const double (*)[3])centre, r, batch, bounded, n);
+                for (l = 0; l < n; l++) {
+                    int alone;
+                    memset(&one, 0, sizeof one);
+                    alone = mlod__image_disc(&pv, s, centre[l], r[l], &one);
+                    compared++;
+                    unbounded += !alone;
+                    if (alone != bounded[l] || (alone && memcmp(&one, &batch[l], sizeof one) != 0)) {
+                        if (wrong++ < 3)
+                            CHECK(0, "image lanes: %s view, sub %d, lane %u of %u: %s (%.17g, %.17g, r %.17g) alone, "
+                                     "%s (%.17g, %.17g, r %.17g) in the batch",
+                                  kind_name(kinds[k]), s, l, n, alone ? "bounded" : "unbounded", one.x, one.y,
+                                  one.radius, bounded[l] ? "bounded" : "unbounded", batch[l].x, batch[l].y,
+                                  batch[l].radius);
+                    }
+                }
+            }
+        }
+#ifdef MLOD__VD
+    lanes = "2 doubles a vector";
+#endif
+    CHECK(wrong == 0 && compared > 3000 && unbounded > 100,
+          "image lanes (%s): %u images in batches equal those one at a time, bit for bit (%u unbounded; %u differ)",
+          lanes, compared, unbounded, wrong);
+}
+
 static void test_unbounded_paraboloid(void)
 {
     /* sphere centres 120 and 170 degrees off w = (0, 0, -1), d = 1: t + b
@@ -3047,6 +3108,7 @@ int main(void)
     test_overlap();
     test_culling_and_clearing();
     test_unbounded_paraboloid();
+    test_image_lanes();
     test_determinism();
     test_disc_scale();
     test_fill_holes();
