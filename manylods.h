@@ -434,11 +434,11 @@
      bytes each, room for four per scene node handed to its root plus 4096
      first, twice as much when short: the walk runs again) and one map
      per level (8 bytes per pixel).  It reports its peak
-     (mlod_megaviews_stats.peak_bytes: 11 to 14 MB for 64 k to 1 M
+     (mlod_megaviews_stats.peak_bytes: 9 to 13 MB for 64 k to 1 M
      lights in README.md's benchmark, against the atlas's 4 bytes per
      pixel) and the most pairs one view node classified
      (stats.node_pairs), for which mlod_megaviews_bound bounds the peak
-     before the call (4 to 6 times above it in that benchmark; with the
+     before the call (3.9 to 5.4 times above it in that benchmark; with the
      scene tree's node count, for any scene: far above);
      mlod_megaviews_render_maps, level by level throughout, keeps
      on top 8 bytes per pixel of every view node that drew anything
@@ -1176,11 +1176,11 @@ typedef struct mlod_megaviews_stats {
    stats.peak_bytes) for this view tree at this resolution, when no view
    node classifies more than node_pairs pairs.  The pairs depend on the
    scene and the views: stats.node_pairs reports them after a render (the
-   next frames of a moving scene need a margin: 6 276 to 6 821 in
+   next frames of a moving scene need a margin: 6 317 to 7 060 in
    README.md's benchmark, 1 k to 1 M lights), and the scene tree's node
    count holds for any render (each scene node meets a view node at most
    once) at the price of a far larger bound.  Maps and tables are counted
-   as allocated, the pair lists at their worst for node_pairs: 4 to 6
+   as allocated, the pair lists at their worst for node_pairs: 3.9 to 5.4
    times the peak in that benchmark.  (mlod_megaviews_render_maps keeps
    every view node's map: up to 16 R^2 bytes per view tree node, beside
    its level-by-level lists.)  0 for views NULL or a resolution of 0,
