@@ -5911,6 +5911,28 @@ static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float
     if (depth < band->depth[at]) mlod__band_set(band, at, depth, node);
 }
 
+/* mlod__plot where cond (0 or 1) holds.  A band of depth (and ids) alone
+   takes it as a select, not a branch: whether a pixel centre lies in a
+   small disc, and whether it is nearer, are hard to predict. */
+static void mlod__plot_if(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node,
+                          uint32_t cond)
+{
+    size_t at = (size_t)row * band->stride + col;
+    float old;
+    uint32_t mask, depth_bits, old_bits;
+    if (band->normal || band->color) {
+        if (cond) mlod__plot(band, row, col, depth, node);
+        return;
+    }
+    old = band->depth[at];
+    mask = 0u - (cond & (depth < old));
+    memcpy(&depth_bits, &depth, sizeof depth_bits);
+    memcpy(&old_bits, &old, sizeof old_bits);
+    old_bits = (depth_bits & mask) | (old_bits & ~mask);
+    memcpy(&band->depth[at], &old_bits, sizeof old_bits);
+    if (band->ids) band->ids[at] = (node & mask) | (band->ids[at] & ~mask);
+}
+
 /* Draw the disc into the band, clipped to tile columns [columns[0],
    columns[1]) and rows [rows[0], rows[1]) (a sub-tile, see mlod_view_sub). */
 static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, uint32_t node, const uint32_t *columns,
@@ -5930,39 +5952,13 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
     re = y1 > row_end ? row_end : (y1 <= row_begin ? row_begin : (uint32_t)y1);
     cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);
     ce = x1 > col_end ? col_end : (x1 <= col_begin ? col_begin : (uint32_t)x1);
-    if (!band->normal && !band->color) {
-        /* depth (and ids) alone: each pixel's keep-the-nearest as a select,
-           not a branch (whether a pixel centre lies in a small disc, and
-           whether it is nearer, are hard to predict) */
-        uint32_t depth_bits;
-        memcpy(&depth_bits, &depth, sizeof depth_bits);
-        for (row = rb; row < re; row++) {
-            double dy = row + 0.5 - disc->y;
-            float *line = band->depth + (size_t)row * band->stride;
-            uint32_t *ids = band->ids ? band->ids + (size_t)row * band->stride : NULL;
-            for (col = cb; col < ce; col++) {
-                double dx = col + 0.5 - disc->x;
-                uint32_t in = dx * dx + dy * dy <= r2, take, old_bits, mask;
-                float old = line[col];
-                take = in & (depth < old);
-                mask = 0u - take;
-                memcpy(&old_bits, &old, sizeof old_bits);
-                old_bits = (depth_bits & mask) | (old_bits & ~mask);
-                memcpy(&line[col], &old_bits, sizeof old_bits);
-                if (ids) ids[col] = (node & mask) | (ids[col] & ~mask);
-                hit |= (int)in;
-            }
-        }
-    } else {
-        for (row = rb; row < re; row++) {
-            double dy = row + 0.5 - disc->y;
-            for (col = cb; col < ce; col++) {
-                double dx = col + 0.5 - disc->x;
-                if (dx * dx + dy * dy <= r2) {
-                    hit = 1;
-                    mlod__plot(band, row, col, depth, node);
-                }
-            }
+    for (row = rb; row < re; row++) {
+        double dy = row + 0.5 - disc->y;
+        for (col = cb; col < ce; col++) {
+            double dx = col + 0.5 - disc->x;
+            uint32_t in = dx * dx + dy * dy <= r2;
+            mlod__plot_if(band, row, col, depth, node, in);
+            hit |= (int)in;
         }
     }
     /* no pixel centre in the disc: at disc_scale 1, the pixel holding its centre */
@@ -8056,7 +8052,8 @@ static double mlod__mv_bound(const mlod_tree *eyes, uint32_t resolution, uint64_
         if (d == walk_level) {
             uint32_t depth = levels - d;
             double inner_maps = depth > 1 ? depth - 1.0 : 1.0, list = 4.0 * p + (double)room;
-            if (2.0 * (depth - 1.0) * p > list) list = 2.0 * (depth - 1.0) * p;
+            double grown = 2.0 * (depth - 1.0) * p; /* twice a path's lists */
+            if (grown > list) list = grown;
             level = prev + C * ((double)sizeof(mlod__mv_walk) + 4.0) + 2.0 +
                     C * (4.0 * list + 8.0 * inner_maps * px + depth * per_level + 5.0);
             return level > most ? level : most;
