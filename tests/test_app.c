@@ -76,8 +76,8 @@ static void test_options(void)
     static const char usage[] = "usage: x --out --mesh --eps --size --samples --views --tile --frames --threads "
                                 "--mode --ism-match --disc-scale --tiny\n";
     static const char narrow[] = "usage: y --out --tiny\n";
-    app_options normal = {"out", NULL, 1.0f, 320, 240, 1000, 10, 32, 3, 2, MLOD_CUT_INCREMENTAL, 0, 0, 1.0f};
-    app_options tiny = {"out", NULL, 1.0f, 80, 60, 100, 4, 32, 1, 2, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f};
+    app_options normal = {"out", NULL, 1.0f, 320, 240, 1000, 10, 32, 3, 2, MLOD_CUT_INCREMENTAL, 0, 0, 1.0f, 0, 0, 0, 0};
+    app_options tiny = {"out", NULL, 1.0f, 80, 60, 100, 4, 32, 1, 2, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f, 0, 0, 0, 0};
     app_options o;
     static const char *all[] = {"x", "--out", "d", "--mesh", "m.obj", "--eps", "0.5", "--size", "64x48",
                                 "--samples", "77", "--views", "5", "--tile", "16", "--frames", "0", "--threads", "1",
