@@ -2235,40 +2235,113 @@ static void mlod__mesh_leaf(mlod_tree *tree, uint32_t node, const mlod_mesh *mes
     }
 }
 
-/* The stratified samples: triangle and (s, t) of each of the n samples. */
-static void mlod__sample_mesh(const mlod_mesh *mesh, const double *cumulative, uint32_t triangles, uint32_t n,
-                              uint64_t seed, uint32_t *tri_out, float *st_out)
+/* The stratified samples: sample i sits at u_i = (i + h_i) / n * A along
+   the running sums of the triangles' areas (h_i a hash in [0, 1), A the
+   total), in triangle tri(i), the first whose running sum passes u_i
+   (the last with area at most; u_i never decreases, so neither does
+   tri(i)).  Its (s, t) follow a jittered rank-1 lattice over the samples
+   that share the triangle, run(i) = i - (the first sample in tri(i)).
+   Each task places MLOD__SAMPLE_CHUNK consecutive samples; the result
+   does not depend on how they are shared out. */
+#define MLOD__SAMPLE_CHUNK 65536u
+typedef struct mlod__mesh_sample_job {
+    const double *cumulative; /* triangles + 1 running sums */
+    uint32_t last_with_area;  /* the last triangle of nonzero area */
+    uint32_t n;
+    uint64_t seed;
+    uint32_t *tri_out;        /* n */
+    float *st_out;            /* 2n */
+    const mlod_mesh *mesh;    /* positions of the samples into pos_out */
+    float *pos_out;           /* 3n */
+} mlod__mesh_sample_job;
+
+static double mlod__mesh_sample_u(const mlod__mesh_sample_job *job, uint32_t i)
 {
-    const double golden = 0.6180339887498948482;
-    double total = cumulative[triangles];
-    uint32_t i = 0, tri = 0, last_with_area = 0, k;
-    for (k = 0; k < triangles; k++)
-        if (cumulative[k + 1] > cumulative[k]) last_with_area = k;
-    (void)mesh;
-    while (i < n) {
-        double u = ((double)i + mlod__hash01(seed, 0, i)) / n * total, area, offset;
-        uint32_t run = 0;
-        while (tri < last_with_area && cumulative[tri + 1] <= u) tri++;
-        area = cumulative[tri + 1] - cumulative[tri];
-        offset = mlod__hash01(seed, 1, tri);
-        /* all consecutive samples in this triangle: a jittered rank-1 lattice */
-        for (;;) {
-            double x = (u - cumulative[tri]) / area, y, r;
-            if (x < 0.0) x = 0.0;
-            if (x > 1.0) x = 1.0;
-            y = offset + run * golden;
-            y -= floor(y);
-            r = sqrt(x);
-            tri_out[i] = tri;
-            st_out[2 * (size_t)i] = (float)(r * (1.0 - y));
-            st_out[2 * (size_t)i + 1] = (float)(r * y);
-            i++;
-            run++;
-            if (i >= n) break;
-            u = ((double)i + mlod__hash01(seed, 0, i)) / n * total;
-            if (tri < last_with_area && cumulative[tri + 1] <= u) break;
+    return ((double)i + mlod__hash01(job->seed, 0, i)) / job->n * job->cumulative[job->last_with_area + 1];
+}
+
+/* tri(i) for the sample at u: the first triangle whose running sum exceeds
+   u, or the last with area. */
+static uint32_t mlod__mesh_sample_triangle(const mlod__mesh_sample_job *job, double u)
+{
+    uint32_t lo = 0, hi = job->last_with_area; /* the answer lies in [lo, hi] */
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (job->cumulative[mid + 1] > u)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+static void mlod__mesh_sample_task(void *context, uint32_t index)
+{
+    const mlod__mesh_sample_job *job = (const mlod__mesh_sample_job *)context;
+    const double golden = 0.6180339887498948482, *cumulative = job->cumulative;
+    uint32_t i = index * MLOD__SAMPLE_CHUNK, end = i + MLOD__SAMPLE_CHUNK, tri, first = 0, lo, run;
+    double u = mlod__mesh_sample_u(job, i), offset;
+    if (end > job->n || end < i) end = job->n;
+    tri = mlod__mesh_sample_triangle(job, u);
+    lo = i; /* the first sample in tri: the least j <= i with tri(j) >= tri */
+    while (first < lo) {
+        uint32_t mid = first + (lo - first) / 2;
+        if (mlod__mesh_sample_triangle(job, mlod__mesh_sample_u(job, mid)) >= tri)
+            lo = mid;
+        else
+            first = mid + 1;
+    }
+    run = i - first;
+    offset = mlod__hash01(job->seed, 1, tri);
+    for (;;) {
+        double area = cumulative[tri + 1] - cumulative[tri], x = (u - cumulative[tri]) / area, y, r, p[3];
+        float *st = job->st_out + 2 * (size_t)i;
+        int k;
+        if (x < 0.0) x = 0.0;
+        if (x > 1.0) x = 1.0;
+        y = offset + run * golden;
+        y -= floor(y);
+        r = sqrt(x);
+        job->tri_out[i] = tri;
+        st[0] = (float)(r * (1.0 - y));
+        st[1] = (float)(r * y);
+        mlod__interpolate(job->mesh->positions, job->mesh->position_stride, job->mesh->indices + 3 * (size_t)tri, st[0],
+                          st[1], p);
+        for (k = 0; k < 3; k++) job->pos_out[3 * (size_t)i + k] = (float)p[k];
+        if (++i >= end) break;
+        u = mlod__mesh_sample_u(job, i);
+        run++;
+        if (tri < job->last_with_area && cumulative[tri + 1] <= u) { /* on to the triangle of u */
+            while (tri < job->last_with_area && cumulative[tri + 1] <= u) tri++;
+            run = 0;
+            offset = mlod__hash01(job->seed, 1, tri);
         }
     }
+}
+
+/* Triangle areas into out[0 .. count - 1], MLOD__AREA_CHUNK a task. */
+#define MLOD__AREA_CHUNK 16384u
+typedef struct mlod__areas_job {
+    const mlod_mesh *mesh;
+    double *out;
+    uint32_t count;
+} mlod__areas_job;
+
+static void mlod__areas_task(void *context, uint32_t index)
+{
+    const mlod__areas_job *job = (const mlod__areas_job *)context;
+    uint32_t i = index * MLOD__AREA_CHUNK, end = i + MLOD__AREA_CHUNK;
+    if (end > job->count || end < i) end = job->count;
+    for (; i < end; i++) job->out[i] = mlod__triangle_area(job->mesh, i);
+}
+
+static void mlod__triangle_areas(const mlod_mesh *mesh, uint32_t count, double *out, const mlod_parallel *parallel)
+{
+    mlod__areas_job job;
+    job.mesh = mesh;
+    job.out = out;
+    job.count = count;
+    if (count > 0) mlod__run(parallel, (count - 1) / MLOD__AREA_CHUNK + 1, mlod__areas_task, &job);
 }
 
 /* ---------------------------------------------------------- the build -- */
@@ -2462,6 +2535,42 @@ static void mlod__split_task(void *context, uint32_t index)
     }
 }
 
+/* Once a depth has this many internal nodes, each task splits whole
+   subtrees below them depth first: a subtree's slots then stay in the
+   cache while it is split down to its leaves, where a pass per depth
+   would stream every slot through memory at every depth. */
+#define MLOD__SPLIT_SUBTREES 256u
+/* The subtrees are split in this many batches, progress reported between. */
+#define MLOD__SPLIT_BATCHES 16u
+
+/* Split every internal node below and including `root`, depth first (a
+   node's split reads only its own slots: the order does not change the
+   result). */
+static void mlod__split_subtree(mlod__order_ctx *c, uint32_t root)
+{
+    uint32_t stack[2 * 33], top = 0; /* at most one pending right child per depth, depth <= 32 */
+    stack[top++] = root;
+    while (top > 0) {
+        uint32_t node = stack[--top];
+        if (node >= c->n - 1) continue; /* a leaf */
+        mlod__split_node(c, node);
+        stack[top++] = 2 * node + 2;
+        stack[top++] = 2 * node + 1;
+    }
+}
+
+/* The subtrees below the nodes of one depth, per_task per task. */
+static void mlod__split_subtrees_task(void *context, uint32_t index)
+{
+    mlod__order_ctx *c = (mlod__order_ctx *)context;
+    uint32_t node = c->first + index * c->per_task, end = node + c->per_task - 1;
+    if (end > c->last || end < node) end = c->last;
+    for (;; node++) {
+        mlod__split_subtree(c, node);
+        if (node == end) break;
+    }
+}
+
 /* Sort axis k's items by their coordinate along it (ties by item), and
    lay out their positions. */
 typedef struct mlod__sort_job {
@@ -2478,13 +2587,32 @@ static void mlod__sort_axis_task(void *context, uint32_t k)
     uint32_t i;
     for (i = 0; i < c->n; i++) pairs[i] = (uint64_t)mlod__sort_key(job->pos[3 * (size_t)i + k]) << 32 | i;
     mlod__radix_sort(pairs, job->scratch[k], c->n);
-    for (i = 0; i < c->n; i++) c->order[k][i] = (uint32_t)job->scratch[k][i];
-    for (i = 0; i < c->n; i++) {
-        const float *p = job->pos + 3 * (size_t)c->order[k][i];
+}
+
+/* Once sorted (the pairs in job->scratch[k]): axis k's items, and their
+   positions gathered, MLOD__SORT_PARTS tasks per axis (the gather, a read
+   at random per item, is most of the time). */
+#define MLOD__SORT_PARTS 8u
+static void mlod__sort_gather_task(void *context, uint32_t index)
+{
+    mlod__sort_job *job = (mlod__sort_job *)context;
+    mlod__order_ctx *c = job->c;
+    uint32_t k = index / MLOD__SORT_PARTS, part = index % MLOD__SORT_PARTS, i, end;
+    i = (uint32_t)((uint64_t)c->n * part / MLOD__SORT_PARTS);
+    end = (uint32_t)((uint64_t)c->n * (part + 1) / MLOD__SORT_PARTS);
+    for (; i < end; i++) {
+        uint32_t item = (uint32_t)job->scratch[k][i];
+        const float *p = job->pos + 3 * (size_t)item;
+        c->order[k][i] = item;
         c->pts[k][3 * (size_t)i] = p[0];
         c->pts[k][3 * (size_t)i + 1] = p[1];
         c->pts[k][3 * (size_t)i + 2] = p[2];
     }
+}
+
+static int mlod__report(const mlod_build_desc *desc, float fraction)
+{
+    return desc->progress && desc->progress(desc->progress_user, fraction);
 }
 
 /* Order n items (positions pos) into the leaves: leaf_item[j] is the item
@@ -2519,6 +2647,7 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
     sort.c = &c;
     sort.pos = pos;
     mlod__run(desc->parallel, 3, mlod__sort_axis_task, &sort);
+    mlod__run(desc->parallel, 3 * MLOD__SORT_PARTS, mlod__sort_gather_task, &sort);
     for (k = 0; k < 3; k++) { /* the splits do not need it: a lower peak */
         mlod__free(a, sort.scratch[k]);
         sort.scratch[k] = NULL;
@@ -2531,8 +2660,25 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
             res = MLOD_ERROR_CANCELLED;
             goto done;
         }
-        c.per_task = count / 256 + 1;
-        mlod__run(desc->parallel, (count - 1) / c.per_task + 1, mlod__split_task, &c);
+        if (count >= MLOD__SPLIT_SUBTREES) { /* the rest, subtree by subtree, in batches between reports */
+            uint32_t first = c.first, batch;
+            float from = (float)first / (float)n;
+            c.per_task = 1;
+            for (batch = 0; batch < MLOD__SPLIT_BATCHES; batch++) {
+                c.first = first + (uint32_t)((uint64_t)count * batch / MLOD__SPLIT_BATCHES);
+                c.last = first + (uint32_t)((uint64_t)count * (batch + 1) / MLOD__SPLIT_BATCHES) - 1;
+                if (batch > 0 &&
+                    mlod__report(desc, progress_from + (progress_to - progress_from) *
+                                                           (from + (1.0f - from) * (float)batch / MLOD__SPLIT_BATCHES))) {
+                    res = MLOD_ERROR_CANCELLED;
+                    goto done;
+                }
+                mlod__run(desc->parallel, c.last - c.first + 1, mlod__split_subtrees_task, &c);
+            }
+            break;
+        }
+        c.per_task = 1;
+        mlod__run(desc->parallel, count, mlod__split_task, &c);
     }
     for (i = 0; i < n; i++) leaf_item[i] = c.order[0][c.begin[(size_t)n - 1 + i]];
 done:
@@ -2614,10 +2760,6 @@ static void mlod__build_leaves_task(void *context, uint32_t index)
     }
 }
 
-static int mlod__report(const mlod_build_desc *desc, float fraction)
-{
-    return desc->progress && desc->progress(desc->progress_user, fraction);
-}
 
 /* The spacing of floats below 2^-126 (denormals): 2^-149. */
 #define MLOD__FLOAT_DENORMAL_SPACING 1.4012984643248171e-45
@@ -2673,8 +2815,10 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
         res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
         goto done;
     }
+    /* each triangle's area, then their running sums in order */
     cumulative[0] = 0.0;
-    for (i = 0; i < triangles; i++) cumulative[i + 1] = cumulative[i] + mlod__triangle_area(mesh, i);
+    mlod__triangle_areas(mesh, triangles, cumulative + 1, desc->parallel);
+    for (i = 0; i < triangles; i++) cumulative[i + 1] += cumulative[i];
     if (!(cumulative[triangles] > 0.0)) {
         double reach = 0.0;
         for (i = 0; i < 3 * mesh->vertex_count; i++) {
@@ -2695,13 +2839,19 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
             goto done;
         }
     }
-    mlod__sample_mesh(mesh, cumulative, triangles, n, desc->seed, tri, st);
-    for (i = 0; i < n; i++) {
-        double p[3];
-        int k;
-        mlod__interpolate(mesh->positions, mesh->position_stride, mesh->indices + 3 * (size_t)tri[i], st[2 * (size_t)i],
-                          st[2 * (size_t)i + 1], p);
-        for (k = 0; k < 3; k++) pos[3 * (size_t)i + k] = (float)p[k];
+    {
+        mlod__mesh_sample_job job;
+        job.cumulative = cumulative;
+        job.last_with_area = 0;
+        for (i = 0; i < triangles; i++)
+            if (cumulative[i + 1] > cumulative[i]) job.last_with_area = i;
+        job.n = n;
+        job.seed = desc->seed;
+        job.tri_out = tri;
+        job.st_out = st;
+        job.mesh = mesh;
+        job.pos_out = pos;
+        mlod__run(desc->parallel, (n - 1) / MLOD__SAMPLE_CHUNK + 1, mlod__mesh_sample_task, &job);
     }
     if (mlod__report(desc, 0.1f)) {
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
@@ -2732,11 +2882,11 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
     }
     if (tree->triangle_areas) {
         double smallest = INFINITY;
+        /* each its own area, as refit will compute it: a difference of the
+           running sums loses a triangle far smaller than the total */
+        mlod__triangle_areas(mesh, triangles, tree->triangle_areas, desc->parallel);
         for (i = 0; i < triangles; i++) {
-            /* its own area, as refit will compute it: a difference of the
-               running sums loses a triangle far smaller than the total */
-            double area = mlod__triangle_area(mesh, i);
-            tree->triangle_areas[i] = area;
+            double area = tree->triangle_areas[i];
             if (area > 0.0 && area < smallest) smallest = area;
         }
         tree->smallest_area = smallest; /* finite: the mesh has area */

@@ -635,6 +635,110 @@ static void test_progress(void)
     scene_free(&s);
 }
 
+/* The documented sampling, one sample after the other (the reference for
+   the build's, which places samples in chunks, each finding where it
+   starts by binary search): sample i at u_i = (i + hash(seed, 0, i)) / N
+   * A along the running areas, in the first triangle whose running sum
+   passes u_i (the last with area at most), at x = (u_i - start) / area,
+   y = frac(hash(seed, 1, tri) + run * golden) where run counts the
+   samples before it in its triangle; (s, t) = sqrt(x) (1 - y, y). */
+typedef struct sample_ref {
+    uint32_t tri;
+    float s, t;
+} sample_ref;
+
+static int sample_ref_order(const void *a, const void *b)
+{
+    const sample_ref *x = (const sample_ref *)a, *y = (const sample_ref *)b;
+    uint32_t xs, ys, xt, yt;
+    memcpy(&xs, &x->s, 4);
+    memcpy(&ys, &y->s, 4);
+    memcpy(&xt, &x->t, 4);
+    memcpy(&yt, &y->t, 4);
+    if (x->tri != y->tri) return x->tri < y->tri ? -1 : 1;
+    if (xs != ys) return xs < ys ? -1 : 1;
+    return xt < yt ? -1 : xt > yt;
+}
+
+static void reference_samples(const mlod_mesh *m, uint32_t n, uint64_t seed, sample_ref *out)
+{
+    uint32_t T = m->index_count / 3, tri = 0, last = 0, i, run = 0, k;
+    double *sum = (double *)malloc(sizeof(double) * (T + 1));
+    sum[0] = 0.0;
+    for (k = 0; k < T; k++) {
+        sum[k + 1] = sum[k] + mlod__triangle_area(m, k);
+        if (sum[k + 1] > sum[k]) last = k;
+    }
+    for (i = 0; i < n; i++) {
+        double u = ((double)i + mlod__hash01(seed, 0, i)) / n * sum[T], x, y;
+        uint32_t was = tri;
+        while (tri < last && sum[tri + 1] <= u) tri++;
+        run = i > 0 && tri == was ? run + 1 : 0;
+        x = (u - sum[tri]) / (sum[tri + 1] - sum[tri]);
+        x = x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x;
+        y = mlod__hash01(seed, 1, tri) + run * 0.6180339887498948482;
+        y -= floor(y);
+        out[i].tri = tri;
+        out[i].s = (float)(sqrt(x) * (1.0 - y));
+        out[i].t = (float)(sqrt(x) * y);
+    }
+    free(sum);
+}
+
+/* The build's samples (the leaves' triangles and barycentrics) are the
+   reference's, as a set, for meshes whose triangles hold runs of samples
+   longer than a chunk and zero-area triangles among them, with and
+   without a pool. */
+static void test_sampling_reference(void)
+{
+    static const float square[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    static const uint32_t two[6] = {0, 1, 2, 0, 2, 3};
+    static const uint32_t holes[15] = {0, 0, 0, 0, 1, 2, 1, 1, 2, 0, 2, 3, 2, 2, 2}; /* zero areas first, between, last */
+    scene_mesh sphere;
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel hook = mlod_pool_parallel(pool);
+    int c, h;
+    scene_uv_sphere(&sphere, 1.0f, 12, 24);
+    for (c = 0; c < 3; c++) {
+        mlod_mesh m;
+        uint32_t n = c == 0 ? 300000u : c == 1 ? 200003u : 140001u, j, differ;
+        sample_ref *ref = (sample_ref *)malloc(sizeof(sample_ref) * n), *got = (sample_ref *)malloc(sizeof(sample_ref) * n);
+        const char *name = c == 0 ? "two triangles" : c == 1 ? "zero-area triangles among two" : "sphere";
+        memset(&m, 0, sizeof m);
+        if (c < 2) {
+            m.positions = square;
+            m.vertex_count = 4;
+            m.indices = c == 0 ? two : holes;
+            m.index_count = c == 0 ? 6 : 15;
+        } else {
+            m = tu_mesh(&sphere);
+        }
+        reference_samples(&m, n, 5, ref);
+        qsort(ref, n, sizeof *ref, sample_ref_order);
+        for (h = 0; h < 2; h++) {
+            mlod_build_desc d = tu_desc(n, 5, MLOD_ATTR_REFIT);
+            mlod_tree *t = NULL;
+            d.parallel = h ? &hook : NULL;
+            CHECK(mlod_build_mesh(&m, &d, &t, NULL) == MLOD_OK && t, "samples, %s: build", name);
+            if (!t) continue;
+            for (j = 0; j < n; j++) {
+                got[j].tri = t->leaf_sources[j];
+                got[j].s = t->leaf_barycentrics[2 * (size_t)j];
+                got[j].t = t->leaf_barycentrics[2 * (size_t)j + 1];
+            }
+            qsort(got, n, sizeof *got, sample_ref_order);
+            for (j = 0, differ = 0; j < n; j++) differ += sample_ref_order(&ref[j], &got[j]) != 0;
+            CHECK(differ == 0, "samples, %s, %s: %u of %u differ from the one-by-one reference", name,
+                  h ? "pool of 2" : "no hook", differ, n);
+            mlod_tree_destroy(t);
+        }
+        free(ref);
+        free(got);
+    }
+    mlod_pool_destroy(pool);
+    scene_free(&sphere);
+}
+
 /* The build through a parallel-for hook (pools of 1, 2 and 3 threads, and
    hooks that run tasks backwards or odds first) gives the tree it gives
    without one, bit for bit, for a mesh and for points with and without
@@ -930,6 +1034,7 @@ int main(void)
     test_triangle_areas();
     test_progress();
     test_parallel_build();
+    test_sampling_reference();
     test_points();
     test_split_rule();
     rc = test_finish();
