@@ -419,7 +419,10 @@
    MEMORY
      Size before you allocate: mlod_build_mesh_bound and
      mlod_build_points_bound give a build's peak bytes (exactly; N = 2^30
-     needs 125 GiB), mlod_cut_bound a cut's bytes for a mean cut size
+     needs 104 GiB: a build allocates its tree first and keeps the scratch
+     of its ordering in the tree's arrays until it writes them, so it
+     touches little more memory than the tree and its samples),
+     mlod_cut_bound a cut's bytes for a mean cut size
      (exactly what mlod_cut_reserve gives it, after which its updates
      allocate nothing; an upper bound otherwise), mlod_atlas_bound an
      atlas's bytes (exactly), mlod_sample_bound what mlod_sample takes for
@@ -450,7 +453,7 @@
      from the calling thread.  On Linux, buffers of 8 MiB or more are
      advised (madvise MADV_HUGEPAGE) to take transparent huge pages where
      the system leaves that to programs: a build of 1.3 M leaves then
-     takes 18 k page faults instead of 65 k, and its process 2/3 of the
+     takes 4 k page faults instead of 34 k, and its process 2/3 of the
      time on the machine the README's figures come from; advice only,
      ignored for memory that cannot have them.  MANYLODS_NO_HUGE_PAGES
      turns it off.
@@ -663,17 +666,20 @@ typedef struct mlod_tree {
 } mlod_tree;
 
 /* Sizing, before a build: the peak bytes mlod_build_mesh takes from its
-   allocator (the high-water mark of its live bytes: scratch, then the
-   tree) for sample_count N, a mesh of triangle_count (index_count / 3)
-   triangles and the MLOD_ATTR_* attributes.  Exact for a build that
-   succeeds; one that fails takes no more.  About 125 bytes per sample (136
-   with every attribute) and 8 per triangle; mlod_tree.bytes is the part
-   the tree keeps.  0 when the build refuses N (0, above
-   MANYLODS_MAX_LEAVES) before allocating, (size_t)-1 beyond size_t.  Pure. */
+   allocator (the high-water mark of its live bytes: the samples, the tree,
+   whose arrays hold the ordering's scratch until they are written, and
+   what of that scratch they cannot hold) for sample_count N, a mesh of
+   triangle_count (index_count / 3) triangles and the MLOD_ATTR_*
+   attributes.  Exact for a build that succeeds; one that fails takes no
+   more.  About 104 bytes per sample (136 with every attribute) and 8 per
+   triangle (48 with MLOD_ATTR_REFIT when N >= triangles); mlod_tree.bytes
+   is the part the tree keeps, in two blocks (the struct, and one for all
+   its arrays).  0 when the build refuses N (0, above MANYLODS_MAX_LEAVES)
+   before allocating, (size_t)-1 beyond size_t.  Pure. */
 MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes);
 
-/* The same for mlod_build_points with point_count points (about 121 bytes
-   per point).  0 for point_count 0.  Pure. */
+/* The same for mlod_build_points with point_count points (about 100 bytes
+   per point, 124 with every attribute).  0 for point_count 0.  Pure. */
 MANYLODS_DEF size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes);
 
 /* Sample desc->sample_count points on the mesh and build the tree.  O(N log N
@@ -1981,17 +1987,9 @@ static mlod_result mlod__check_desc(const mlod_build_desc *desc, mlod_tree **out
 
 /* ------------------------------------------------- tree allocation ---- */
 
-static void mlod__tree_free_arrays(mlod_tree *t)
-{
-    mlod__free(&t->allocator, t->spheres);
-    mlod__free(&t->allocator, t->cones);
-    mlod__free(&t->allocator, t->areas);
-    mlod__free(&t->allocator, t->colors);
-    mlod__free(&t->allocator, t->leaf_sources);
-    mlod__free(&t->allocator, t->leaf_barycentrics);
-    mlod__free(&t->allocator, t->triangle_areas);
-    mlod__free(&t->allocator, t->triangle_leaves);
-}
+/* Every array of a tree lies in one block that starts with its spheres
+   (mlod__tree_layout). */
+static void mlod__tree_free_arrays(mlod_tree *t) { mlod__free(&t->allocator, t->spheres); }
 
 MLOD__PUBLIC void mlod_tree_destroy(mlod_tree *tree)
 {
@@ -2011,23 +2009,51 @@ typedef struct mlod__triangle_leaf {
     float radius, area, cone[4];
 } mlod__triangle_leaf;
 
+/* Offsets in a block and sizes: the next multiple of 16 bytes (any
+   array's alignment, the 8 of a double or uint64 included). */
+#define MLOD__BLOCK_ALIGN 16u
+static uint64_t mlod__block_round(uint64_t bytes) { return (bytes + MLOD__BLOCK_ALIGN - 1) / MLOD__BLOCK_ALIGN * MLOD__BLOCK_ALIGN; }
+
+/* The arrays of a tree of `leaves` leaves, in its one block: spheres,
+   cones, areas, colors, leaf_sources, leaf_barycentrics, triangle_areas,
+   triangle_leaves (MLOD__TREE_* below), each at offsets[i] bytes from the
+   block's start, a multiple of 16, or offsets[i] = UINT64_MAX for an
+   array the attributes do not ask for.  Returns the block's bytes.  A
+   build lends the block to its ordering's scratch before it writes the
+   arrays (mlod__order_layout). */
+enum {
+    MLOD__TREE_SPHERES, MLOD__TREE_CONES, MLOD__TREE_AREAS, MLOD__TREE_COLORS, MLOD__TREE_SOURCES,
+    MLOD__TREE_BARYCENTRICS, MLOD__TREE_TRIANGLE_AREAS, MLOD__TREE_TRIANGLE_LEAVES, MLOD__TREE_ARRAYS
+};
+static uint64_t mlod__tree_layout(uint64_t leaves, uint32_t attributes, int mesh, uint64_t triangles,
+                                  uint64_t offsets[MLOD__TREE_ARRAYS])
+{
+    uint64_t nodes = 2 * leaves - 1, size[MLOD__TREE_ARRAYS], at = 0;
+    int i, refit_mesh = (attributes & MLOD_ATTR_REFIT) && mesh;
+    size[MLOD__TREE_SPHERES] = nodes * 4 * sizeof(float);
+    size[MLOD__TREE_CONES] = attributes & MLOD_ATTR_CONE ? nodes * 4 * sizeof(float) : 0;
+    size[MLOD__TREE_AREAS] = attributes & MLOD_ATTR_AREA ? nodes * sizeof(float) : 0;
+    size[MLOD__TREE_COLORS] = attributes & MLOD_ATTR_COLOR ? nodes * 3 * sizeof(float) : 0;
+    size[MLOD__TREE_SOURCES] = attributes & MLOD_ATTR_REFIT ? leaves * sizeof(uint32_t) : 0;
+    size[MLOD__TREE_BARYCENTRICS] = refit_mesh ? leaves * 2 * sizeof(float) : 0;
+    size[MLOD__TREE_TRIANGLE_AREAS] = refit_mesh ? triangles * sizeof(double) : 0;
+    /* refit shares each triangle's work among its samples */
+    size[MLOD__TREE_TRIANGLE_LEAVES] = refit_mesh && leaves >= triangles ? triangles * sizeof(mlod__triangle_leaf) : 0;
+    for (i = 0; i < MLOD__TREE_ARRAYS; i++) {
+        int present = i == MLOD__TREE_SPHERES || size[i] > 0 ||
+                      (i == MLOD__TREE_TRIANGLE_AREAS && refit_mesh); /* a mesh without triangles is refused earlier */
+        offsets[i] = present ? at : UINT64_MAX;
+        if (present) at += mlod__block_round(size[i]);
+    }
+    return at;
+}
+
 /* mlod_tree.bytes of a tree of `leaves` leaves: what mlod__tree_create
-   allocates. */
+   allocates (the tree and its block). */
 static uint64_t mlod__tree_bytes(uint64_t leaves, uint32_t attributes, int mesh, uint64_t triangles)
 {
-    uint64_t per_node = 4 * sizeof(float), bytes = sizeof(mlod_tree);
-    if (attributes & MLOD_ATTR_CONE) per_node += 4 * sizeof(float);
-    if (attributes & MLOD_ATTR_AREA) per_node += sizeof(float);
-    if (attributes & MLOD_ATTR_COLOR) per_node += 3 * sizeof(float);
-    bytes += (2 * leaves - 1) * per_node;
-    if (attributes & MLOD_ATTR_REFIT) {
-        bytes += leaves * sizeof(uint32_t);
-        if (mesh) {
-            bytes += leaves * 2 * sizeof(float) + triangles * sizeof(double);
-            if (leaves >= triangles) bytes += triangles * sizeof(mlod__triangle_leaf);
-        }
-    }
-    return bytes;
+    uint64_t offsets[MLOD__TREE_ARRAYS];
+    return sizeof(mlod_tree) + mlod__tree_layout(leaves, attributes, mesh, triangles, offsets);
 }
 
 /* A 64-bit mixing function (splitmix64's finaliser). */
@@ -2066,9 +2092,10 @@ static uint64_t mlod__first_revision(void)
 static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, uint32_t attributes, int mesh,
                                     uint32_t triangles)
 {
-    size_t nodes = 2 * (size_t)leaves - 1, per_node = 0;
+    size_t nodes = 2 * (size_t)leaves - 1, per_node;
+    uint64_t offsets[MLOD__TREE_ARRAYS], block;
+    unsigned char *base;
     mlod_tree *t = (mlod_tree *)a->alloc(a->user, sizeof(mlod_tree));
-    int ok;
     if (!t) return NULL;
     memset(t, 0, sizeof *t);
     t->allocator = *a;
@@ -2077,36 +2104,25 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
     t->leaf_count = leaves;
     t->node_count = (uint32_t)nodes;
     t->attributes = attributes;
-    t->spheres = (float *)mlod__alloc_array(a, nodes, 4 * sizeof(float), &t->bytes);
-    ok = t->spheres != NULL;
-    per_node += 4 * sizeof(float);
-    if (attributes & MLOD_ATTR_CONE) {
-        ok = ok && (t->cones = (float *)mlod__alloc_array(a, nodes, 4 * sizeof(float), &t->bytes)) != NULL;
-        per_node += 4 * sizeof(float);
-    }
-    if (attributes & MLOD_ATTR_AREA) {
-        ok = ok && (t->areas = (float *)mlod__alloc_array(a, nodes, sizeof(float), &t->bytes)) != NULL;
-        per_node += sizeof(float);
-    }
-    if (attributes & MLOD_ATTR_COLOR) {
-        ok = ok && (t->colors = (float *)mlod__alloc_array(a, nodes, 3 * sizeof(float), &t->bytes)) != NULL;
-        per_node += 3 * sizeof(float);
-    }
-    if (attributes & MLOD_ATTR_REFIT) {
-        ok = ok && (t->leaf_sources = (uint32_t *)mlod__alloc_array(a, leaves, sizeof(uint32_t), &t->bytes)) != NULL;
-        if (mesh) {
-            ok = ok && (t->leaf_barycentrics = (float *)mlod__alloc_array(a, leaves, 2 * sizeof(float), &t->bytes)) != NULL;
-            ok = ok && (t->triangle_areas = (double *)mlod__alloc_array(a, triangles, sizeof(double), &t->bytes)) != NULL;
-            if (leaves >= triangles) /* refit shares each triangle's work among its samples */
-                ok = ok &&
-                     (t->triangle_leaves = mlod__alloc_array(a, triangles, sizeof(mlod__triangle_leaf), &t->bytes)) != NULL;
-        }
-    }
-    t->bytes_per_node = per_node;
-    if (!ok) {
+    block = mlod__tree_layout(leaves, attributes, mesh, triangles, offsets);
+    base = block <= (uint64_t)(size_t)-1 ? (unsigned char *)mlod__alloc_array(a, (size_t)block, 1, &t->bytes) : NULL;
+    if (!base) {
         mlod_tree_destroy(t);
         return NULL;
     }
+#define MLOD__TREE_ARRAY(i) (offsets[i] == UINT64_MAX ? NULL : (void *)(base + offsets[i]))
+    t->spheres = (float *)MLOD__TREE_ARRAY(MLOD__TREE_SPHERES);
+    t->cones = (float *)MLOD__TREE_ARRAY(MLOD__TREE_CONES);
+    t->areas = (float *)MLOD__TREE_ARRAY(MLOD__TREE_AREAS);
+    t->colors = (float *)MLOD__TREE_ARRAY(MLOD__TREE_COLORS);
+    t->leaf_sources = (uint32_t *)MLOD__TREE_ARRAY(MLOD__TREE_SOURCES);
+    t->leaf_barycentrics = (float *)MLOD__TREE_ARRAY(MLOD__TREE_BARYCENTRICS);
+    t->triangle_areas = (double *)MLOD__TREE_ARRAY(MLOD__TREE_TRIANGLE_AREAS);
+    t->triangle_leaves = MLOD__TREE_ARRAY(MLOD__TREE_TRIANGLE_LEAVES);
+#undef MLOD__TREE_ARRAY
+    per_node = 4 * sizeof(float) + (t->cones ? 4 * sizeof(float) : 0) + (t->areas ? sizeof(float) : 0) +
+               (t->colors ? 3 * sizeof(float) : 0);
+    t->bytes_per_node = per_node;
     MANYLODS_ASSERT(t->bytes == mlod__tree_bytes(leaves, attributes, mesh, triangles));
     return t;
 }
@@ -2615,43 +2631,73 @@ static int mlod__report(const mlod_build_desc *desc, float fraction)
     return desc->progress && desc->progress(desc->progress_user, fraction);
 }
 
+/* The ordering's scratch for n items, seven pieces: a phase block of 24n
+   bytes (the sort's three arrays of n pairs, then the split's scratch_pts
+   (12n), scratch (4n) and begin (4 (2n - 1))), positions along each axis
+   (12n each), items along each axis (4n each).  In this order, each piece
+   that fits in what is left of `lent` bytes (the tree's block, which the
+   build has not written yet) takes the next multiple of 16 there
+   (offsets[i]); the others are allocated (offsets[i] = UINT64_MAX).
+   Returns the bytes allocated. */
+static uint64_t mlod__order_layout(uint64_t n, uint64_t lent, uint64_t offsets[7])
+{
+    uint64_t at = 0, allocated = 0;
+    int i;
+    for (i = 0; i < 7; i++) {
+        uint64_t size = i == 0 ? 24 * n : i <= 3 ? 12 * n : 4 * n;
+        if (at + mlod__block_round(size) <= lent) {
+            offsets[i] = at;
+            at += mlod__block_round(size);
+        } else {
+            offsets[i] = UINT64_MAX;
+            allocated += size;
+        }
+    }
+    return allocated;
+}
+
 /* Order n items (positions pos) into the leaves: leaf_item[j] is the item
-   of leaf j.  Nodes of one depth are split in parallel; the result does
-   not depend on the hook.  Returns MLOD_ERROR_OUT_OF_MEMORY or
-   MLOD_ERROR_CANCELLED. */
+   of leaf j, its scratch in the `lent` bytes at `block` where they suffice
+   (mlod__order_layout).  Nodes of one depth are split in parallel; the
+   result does not depend on the hook.  Returns MLOD_ERROR_OUT_OF_MEMORY
+   or MLOD_ERROR_CANCELLED. */
 static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_desc *desc, const float *pos, uint32_t n,
-                                     uint32_t *leaf_item, float progress_from, float progress_to)
+                                     uint32_t *leaf_item, float progress_from, float progress_to, unsigned char *block,
+                                     uint64_t lent)
 {
     mlod__order_ctx c;
     mlod__sort_job sort;
     uint32_t i, depth;
-    size_t nodes = 2 * (size_t)n - 1;
+    uint64_t offsets[7];
+    unsigned char *piece[7];
     mlod_result res = MLOD_OK;
     int k, ok = 1;
     memset(&c, 0, sizeof c);
     memset(&sort, 0, sizeof sort);
     c.n = n;
-    for (k = 0; k < 3; k++) {
-        ok = ok && (c.order[k] = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL)) != NULL;
-        ok = ok && (c.pts[k] = (float *)mlod__alloc_array(a, n, 3 * sizeof(float), NULL)) != NULL;
+    mlod__order_layout(n, lent, offsets);
+    for (k = 0; k < 7; k++) {
+        size_t size = (size_t)(k == 0 ? 24 : k <= 3 ? 12 : 4) * n;
+        piece[k] = offsets[k] != UINT64_MAX ? block + offsets[k] : NULL;
+        if (!piece[k] && ok) ok = (piece[k] = (unsigned char *)mlod__alloc_array(a, size, 1, NULL)) != NULL;
     }
-    ok = ok && (c.scratch = (uint32_t *)mlod__alloc_array(a, n, sizeof(uint32_t), NULL)) != NULL;
-    ok = ok && (c.scratch_pts = (float *)mlod__alloc_array(a, n, 3 * sizeof(float), NULL)) != NULL;
-    ok = ok && (c.begin = (uint32_t *)mlod__alloc_array(a, nodes, sizeof(uint32_t), NULL)) != NULL;
-    for (k = 0; k < 3; k++)
-        ok = ok && (sort.scratch[k] = (uint64_t *)mlod__alloc_array(a, n, sizeof(uint64_t), NULL)) != NULL;
     if (!ok) {
         res = MLOD_ERROR_OUT_OF_MEMORY;
         goto done;
+    }
+    for (k = 0; k < 3; k++) {
+        sort.scratch[k] = (uint64_t *)(void *)(piece[0] + 8 * (size_t)n * k);
+        c.pts[k] = (float *)(void *)piece[1 + k];
+        c.order[k] = (uint32_t *)(void *)piece[4 + k];
     }
     sort.c = &c;
     sort.pos = pos;
     mlod__run(desc->parallel, 3, mlod__sort_axis_task, &sort);
     mlod__run(desc->parallel, 3 * MLOD__SORT_PARTS, mlod__sort_gather_task, &sort);
-    for (k = 0; k < 3; k++) { /* the splits do not need it: a lower peak */
-        mlod__free(a, sort.scratch[k]);
-        sort.scratch[k] = NULL;
-    }
+    /* the sort is done with the phase block: the split's scratch */
+    c.scratch_pts = (float *)(void *)piece[0];
+    c.scratch = (uint32_t *)(void *)(piece[0] + 12 * (size_t)n);
+    c.begin = (uint32_t *)(void *)(piece[0] + 16 * (size_t)n);
     c.begin[0] = 0;
     for (depth = 0; mlod_tree_depth_nodes(n, depth, &c.first, &c.last); depth++) {
         uint32_t count = c.last - c.first + 1;
@@ -2682,30 +2728,18 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
     }
     for (i = 0; i < n; i++) leaf_item[i] = c.order[0][c.begin[(size_t)n - 1 + i]];
 done:
-    for (k = 0; k < 3; k++) {
-        mlod__free(a, c.order[k]);
-        mlod__free(a, c.pts[k]);
-        mlod__free(a, sort.scratch[k]);
-    }
-    mlod__free(a, c.scratch);
-    mlod__free(a, c.scratch_pts);
-    mlod__free(a, c.begin);
+    for (k = 0; k < 7; k++)
+        if (offsets[k] == UINT64_MAX) mlod__free(a, piece[k]);
     return res;
 }
 
-/* The peak of mlod__order_items' scratch for n items: every array above,
-   the sort's included. */
-static uint64_t mlod__order_bytes(uint64_t n)
+/* A build's peak: its own arrays (`held`), the tree, and the ordering's
+   scratch beyond the tree's block. */
+static size_t mlod__build_peak(uint64_t held, uint64_t n, uint32_t attributes, int mesh, uint64_t triangles)
 {
-    uint64_t per_axis = sizeof(uint32_t) + 3 * sizeof(float) + sizeof(uint64_t); /* order, positions, sort */
-    return n * (3 * per_axis + sizeof(uint32_t) + 3 * sizeof(float)) + (2 * n - 1) * sizeof(uint32_t);
-}
-
-/* A build's peak: its own arrays (`held`), then the largest of the ordering
-   scratch and the tree, which never live at once. */
-static size_t mlod__build_peak(uint64_t held, uint64_t n, uint64_t tree)
-{
-    uint64_t order = mlod__order_bytes(n), peak = held + (order > tree ? order : tree);
+    uint64_t offsets[MLOD__TREE_ARRAYS], order[7];
+    uint64_t block = mlod__tree_layout(n, attributes, mesh, triangles, offsets);
+    uint64_t peak = held + sizeof(mlod_tree) + block + mlod__order_layout(n, block, order);
     return peak > (uint64_t)(size_t)-1 ? (size_t)-1 : (size_t)peak;
 }
 
@@ -2716,7 +2750,7 @@ MLOD__PUBLIC size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triang
     /* cumulative areas, then per sample: triangle, (s, t), position, leaf order */
     held = ((uint64_t)triangle_count + 1) * sizeof(double) +
            n * (sizeof(uint32_t) + 2 * sizeof(float) + 3 * sizeof(float) + sizeof(uint32_t));
-    return mlod__build_peak(held, n, mlod__tree_bytes(n, attributes, 1, triangle_count));
+    return mlod__build_peak(held, n, attributes, 1, triangle_count);
 }
 
 MLOD__PUBLIC size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes)
@@ -2724,8 +2758,7 @@ MLOD__PUBLIC size_t mlod_build_points_bound(uint32_t point_count, uint32_t attri
     uint64_t n = point_count;
     if (n == 0) return 0;
     /* per point: position, leaf order, radius */
-    return mlod__build_peak(n * (3 * sizeof(float) + sizeof(uint32_t) + sizeof(double)), n,
-                            mlod__tree_bytes(n, attributes, 0, 0));
+    return mlod__build_peak(n * (3 * sizeof(float) + sizeof(uint32_t) + sizeof(double)), n, attributes, 0, 0);
 }
 
 #define MLOD__LEAF_CHUNK 4096u
@@ -2857,14 +2890,16 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
         goto done;
     }
-    res = mlod__order_items(&a, desc, pos, n, leaf_item, 0.1f, 0.9f);
-    if (res != MLOD_OK) {
-        res = mlod__build_error(error, res);
-        goto done;
-    }
+    /* the tree first: its arrays, not yet written, hold the ordering's scratch */
     tree = mlod__tree_create(&a, n, desc->attributes, 1, triangles);
     if (!tree) {
         res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
+        goto done;
+    }
+    res = mlod__order_items(&a, desc, pos, n, leaf_item, 0.1f, 0.9f, (unsigned char *)tree->spheres,
+                            tree->bytes - sizeof(mlod_tree));
+    if (res != MLOD_OK) {
+        res = mlod__build_error(error, res);
         goto done;
     }
     tree->radius_scale = desc->radius_scale > 0.0f ? desc->radius_scale : 1.0f;
@@ -2973,14 +3008,16 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
         goto done;
     }
     for (i = 0; i < n; i++) memcpy(pos + 3 * (size_t)i, mlod__at(points->positions, points->position_stride, i), 3 * sizeof(float));
-    res = mlod__order_items(&a, desc, pos, n, leaf_item, 0.0f, 0.9f);
-    if (res != MLOD_OK) {
-        res = mlod__build_error(error, res);
-        goto done;
-    }
+    /* the tree first: its arrays, not yet written, hold the ordering's scratch */
     tree = mlod__tree_create(&a, n, desc->attributes, 0, 0);
     if (!tree) {
         res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
+        goto done;
+    }
+    res = mlod__order_items(&a, desc, pos, n, leaf_item, 0.0f, 0.9f, (unsigned char *)tree->spheres,
+                            tree->bytes - sizeof(mlod_tree));
+    if (res != MLOD_OK) {
+        res = mlod__build_error(error, res);
         goto done;
     }
     tree->radius_scale = desc->radius_scale > 0.0f ? desc->radius_scale : 1.0f;
