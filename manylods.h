@@ -1716,7 +1716,9 @@ static void mlod__cone_enclose(const float *const *a, const float *const *b, flo
             A[l][k] = a[l][k];
             B[l][k] = b[l][k];
         }
-        theta[l] = mlod__angle(A[l], B[l]);
+        /* equal axes (leaves of one flat triangle, often): their cross
+           product is exactly 0, so mlod__angle's atan2(0, |A|^2) is 0 */
+        theta[l] = A[l][0] == B[l][0] && A[l][1] == B[l][1] && A[l][2] == B[l][2] ? 0.0 : mlod__angle(A[l], B[l]);
     }
     for (l = 0; l < n; l++) {
         if (state[l] == DONE) continue;
@@ -2492,6 +2494,7 @@ typedef struct mlod__order_ctx {
     float *scratch_pts;
     uint32_t *begin;     /* per node: its first slot */
     uint32_t first, last, per_task; /* the nodes of one depth, per_task of them per task */
+    uint32_t *leaf_item;            /* at the end: the item of each leaf */
 } mlod__order_ctx;
 
 /* Split node `node` (slots b .. b+count of every axis) between its children:
@@ -2587,6 +2590,16 @@ static void mlod__split_subtrees_task(void *context, uint32_t index)
     }
 }
 
+/* The item of each leaf into leaf_item, MLOD__LEAF_ITEMS leaves a task. */
+#define MLOD__LEAF_ITEMS 65536u
+static void mlod__leaf_items_task(void *context, uint32_t index)
+{
+    const mlod__order_ctx *c = (const mlod__order_ctx *)context;
+    uint32_t i = index * MLOD__LEAF_ITEMS, end = i + MLOD__LEAF_ITEMS;
+    if (end > c->n || end < i) end = c->n;
+    for (; i < end; i++) c->leaf_item[i] = c->order[0][c->begin[(size_t)c->n - 1 + i]];
+}
+
 /* Sort axis k's items by their coordinate along it (ties by item), and
    lay out their positions. */
 typedef struct mlod__sort_job {
@@ -2667,7 +2680,7 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
 {
     mlod__order_ctx c;
     mlod__sort_job sort;
-    uint32_t i, depth;
+    uint32_t depth;
     uint64_t offsets[7];
     unsigned char *piece[7];
     mlod_result res = MLOD_OK;
@@ -2726,7 +2739,8 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
         c.per_task = 1;
         mlod__run(desc->parallel, count, mlod__split_task, &c);
     }
-    for (i = 0; i < n; i++) leaf_item[i] = c.order[0][c.begin[(size_t)n - 1 + i]];
+    c.leaf_item = leaf_item;
+    mlod__run(desc->parallel, (n - 1) / MLOD__LEAF_ITEMS + 1, mlod__leaf_items_task, &c);
 done:
     for (k = 0; k < 7; k++)
         if (offsets[k] == UINT64_MAX) mlod__free(a, piece[k]);
