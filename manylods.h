@@ -2493,7 +2493,8 @@ typedef struct mlod__order_ctx {
     uint32_t *scratch;   /* n items, and scratch_pts 3n floats, at the node's slots */
     float *scratch_pts;
     uint32_t *begin;     /* per node: its first slot */
-    uint32_t first, last, per_task; /* the nodes of one depth, per_task of them per task */
+    uint32_t first, last;           /* the nodes of one depth (or of a batch of it) */
+    int subtrees;                   /* split each of them with its subtree */
     uint32_t *leaf_item;            /* at the end: the item of each leaf */
 } mlod__order_ctx;
 
@@ -2542,18 +2543,6 @@ static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
     c->begin[2 * node + 2] = b + nl;
 }
 
-/* Split the nodes of one depth, per_task per task: disjoint slots and items. */
-static void mlod__split_task(void *context, uint32_t index)
-{
-    mlod__order_ctx *c = (mlod__order_ctx *)context;
-    uint32_t node = c->first + index * c->per_task, end = node + c->per_task - 1;
-    if (end > c->last || end < node) end = c->last;
-    for (;; node++) {
-        mlod__split_node(c, node);
-        if (node == end) break;
-    }
-}
-
 /* Once a depth has this many internal nodes, each task splits whole
    subtrees below them depth first: a subtree's slots then stay in the
    cache while it is split down to its leaves, where a pass per depth
@@ -2578,16 +2567,15 @@ static void mlod__split_subtree(mlod__order_ctx *c, uint32_t root)
     }
 }
 
-/* The subtrees below the nodes of one depth, per_task per task. */
-static void mlod__split_subtrees_task(void *context, uint32_t index)
+/* Split node first + index of one depth, or with c->subtrees its whole
+   subtree: disjoint slots and items. */
+static void mlod__split_task(void *context, uint32_t index)
 {
     mlod__order_ctx *c = (mlod__order_ctx *)context;
-    uint32_t node = c->first + index * c->per_task, end = node + c->per_task - 1;
-    if (end > c->last || end < node) end = c->last;
-    for (;; node++) {
-        mlod__split_subtree(c, node);
-        if (node == end) break;
-    }
+    if (c->subtrees)
+        mlod__split_subtree(c, c->first + index);
+    else
+        mlod__split_node(c, c->first + index);
 }
 
 /* The item of each leaf into leaf_item, MLOD__LEAF_ITEMS leaves a task. */
@@ -2722,7 +2710,7 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
         if (count >= MLOD__SPLIT_SUBTREES) { /* the rest, subtree by subtree, in batches between reports */
             uint32_t first = c.first, batch;
             float from = (float)first / (float)n;
-            c.per_task = 1;
+            c.subtrees = 1;
             for (batch = 0; batch < MLOD__SPLIT_BATCHES; batch++) {
                 c.first = first + (uint32_t)((uint64_t)count * batch / MLOD__SPLIT_BATCHES);
                 c.last = first + (uint32_t)((uint64_t)count * (batch + 1) / MLOD__SPLIT_BATCHES) - 1;
@@ -2732,11 +2720,10 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
                     res = MLOD_ERROR_CANCELLED;
                     goto done;
                 }
-                mlod__run(desc->parallel, c.last - c.first + 1, mlod__split_subtrees_task, &c);
+                mlod__run(desc->parallel, c.last - c.first + 1, mlod__split_task, &c);
             }
             break;
         }
-        c.per_task = 1;
         mlod__run(desc->parallel, count, mlod__split_task, &c);
     }
     c.leaf_item = leaf_item;
