@@ -4012,6 +4012,18 @@ static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphe
 
 /* ------------------------------------------------ vector float filter -- */
 
+/* A function the compiler must inline where it has a way to be told: the
+   float filter's lanes, so that a caller holding a view whose counts are
+   constants gets them unrolled (mlod__classify_list). */
+#if defined(__GNUC__) || defined(__clang__)
+#define MLOD__FORCE_INLINE static inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define MLOD__FORCE_INLINE static __forceinline
+#else
+#define MLOD__FORCE_INLINE static inline
+#endif
+
+
 /* mlod__fast_status on several node-views at once: lanes of 8 floats with
    AVX (-mavx and later), 4 with SSE2 (every x86-64 compiler) or NEON
    (AArch64), none otherwise or with MANYLODS_NO_SIMD defined.  Each lane
@@ -4048,13 +4060,13 @@ typedef __m256 mlod__vf;
 
 /* Rows of four floats, one per lane: lane l gets x, y, z, w of row
    nodes[l] of rows. */
-static __m256 mlod__vrows(const float *rows, uint32_t low, uint32_t high)
+MLOD__FORCE_INLINE __m256 mlod__vrows(const float *rows, uint32_t low, uint32_t high)
 {
     return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(rows + 4 * (size_t)low)),
                                 _mm_loadu_ps(rows + 4 * (size_t)high), 1);
 }
 
-static void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
+MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
 {
     __m256 a = mlod__vrows(rows, nodes[0], nodes[4]), b = mlod__vrows(rows, nodes[1], nodes[5]);
     __m256 c = mlod__vrows(rows, nodes[2], nodes[6]), d = mlod__vrows(rows, nodes[3], nodes[7]);
@@ -4077,7 +4089,7 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
 
 /* Status codes (small whole numbers in float lanes) as bytes, lane l in
    byte l. */
-static __m128i mlod__vpack(__m256 codes)
+MLOD__FORCE_INLINE __m128i mlod__vpack(__m256 codes)
 {
     __m256i i = _mm256_cvttps_epi32(codes);
     __m128i p = _mm_packs_epi32(_mm256_castsi256_si128(i), _mm256_extractf128_si256(i, 1));
@@ -4085,13 +4097,13 @@ static __m128i mlod__vpack(__m256 codes)
 }
 
 /* Status codes to bytes at out. */
-static void mlod__vbytes(__m256 codes, uint8_t *out) { _mm_storel_epi64((__m128i *)(void *)out, mlod__vpack(codes)); }
+MLOD__FORCE_INLINE void mlod__vbytes(__m256 codes, uint8_t *out) { _mm_storel_epi64((__m128i *)(void *)out, mlod__vpack(codes)); }
 
 /* The children of four parents in one load per pair (a pair's rows are
    adjacent): lanes 0 - 3 the left children 2p + 1, lanes 4 - 7 the right
    ones 2p + 2. */
 #define MLOD__VPAIRS 4
-static void mlod__vload_pairs(const float *rows, const uint32_t *parents, __m256 *x, __m256 *y, __m256 *z, __m256 *w)
+MLOD__FORCE_INLINE void mlod__vload_pairs(const float *rows, const uint32_t *parents, __m256 *x, __m256 *y, __m256 *z, __m256 *w)
 {
     __m256 a = _mm256_loadu_ps(rows + 8 * (size_t)parents[0] + 4), b = _mm256_loadu_ps(rows + 8 * (size_t)parents[1] + 4);
     __m256 c = _mm256_loadu_ps(rows + 8 * (size_t)parents[2] + 4), d = _mm256_loadu_ps(rows + 8 * (size_t)parents[3] + 4);
@@ -4104,7 +4116,7 @@ static void mlod__vload_pairs(const float *rows, const uint32_t *parents, __m256
 }
 /* mlod__vbytes with the pairs' order undone: out[2i] the left child of
    parent i, out[2i + 1] its right one. */
-static void mlod__vbytes_pairs(__m256 codes, uint8_t *out)
+MLOD__FORCE_INLINE void mlod__vbytes_pairs(__m256 codes, uint8_t *out)
 {
     __m128i p = mlod__vpack(codes);
     _mm_storel_epi64((__m128i *)(void *)out, _mm_unpacklo_epi8(p, _mm_srli_si128(p, 4)));
@@ -4129,7 +4141,7 @@ typedef __m128 mlod__vf;
 #define MLOD__VEQ _mm_cmpeq_ps
 #define MLOD__VBITS _mm_movemask_ps
 
-static void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
+MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
 {
     __m128 a = _mm_loadu_ps(rows + 4 * (size_t)nodes[0]), b = _mm_loadu_ps(rows + 4 * (size_t)nodes[1]);
     __m128 c = _mm_loadu_ps(rows + 4 * (size_t)nodes[2]), d = _mm_loadu_ps(rows + 4 * (size_t)nodes[3]);
@@ -4150,7 +4162,7 @@ static mlod__vf mlod__vrelative(mlod__vf v, double e)
 }
 
 /* Status codes (small whole numbers in float lanes) to bytes at out. */
-static void mlod__vbytes(__m128 codes, uint8_t *out)
+MLOD__FORCE_INLINE void mlod__vbytes(__m128 codes, uint8_t *out)
 {
     __m128i p = _mm_cvttps_epi32(codes);
     int word;
@@ -4185,7 +4197,7 @@ static int mlod__vbits(mlod__vf mask)
     return (int)vaddvq_u32(vandq_u32(vreinterpretq_u32_f32(mask), vld1q_u32(bit)));
 }
 
-static void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
+MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
 {
     float32x4x2_t ab = vtrnq_f32(vld1q_f32(rows + 4 * (size_t)nodes[0]), vld1q_f32(rows + 4 * (size_t)nodes[1]));
     float32x4x2_t cd = vtrnq_f32(vld1q_f32(rows + 4 * (size_t)nodes[2]), vld1q_f32(rows + 4 * (size_t)nodes[3]));
@@ -4210,7 +4222,7 @@ static float32x4_t mlod__vleaf(const uint32_t *nodes, uint32_t first)
 }
 
 /* Status codes (small whole numbers in float lanes) to bytes at out. */
-static void mlod__vbytes(float32x4_t codes, uint8_t *out)
+MLOD__FORCE_INLINE void mlod__vbytes(float32x4_t codes, uint8_t *out)
 {
     uint16x4_t h = vmovn_u32(vcvtq_u32_f32(codes));
     uint8_t bytes[8];
@@ -4253,7 +4265,7 @@ static __m128 mlod__vleaf(const uint32_t *nodes, uint32_t first) { return mlod__
 
 /* The back-face test of mlod__fast_backfacing on lanes: *culled and
    *unsure as masks, given x (unused orthographic), t and r. */
-static void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf t, mlod__vf r, const mlod__vf *cone,
+MLOD__FORCE_INLINE void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf t, mlod__vf r, const mlod__vf *cone,
                               mlod__vf *culled, mlod__vf *unsure)
 {
     mlod__vf a = cone[3], away, len, a2, sa, ca, e, m1, lm, z1, z2, live, settled, cull, one = MLOD__VSET(1.0f);
@@ -4294,7 +4306,7 @@ static void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf
    lanes: MLOD_STATUS_CULLED, _DRAWN, _COARSE or _OVERSIZE (invalid
    internal node or leaf), 0 (MLOD__UNSURE) where the lane cannot prove
    its status. */
-static mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone, mlod__vf leaf)
+MLOD__FORCE_INLINE mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone, mlod__vf leaf)
 {
     mlod__vf x[3], r = sphere[3], d2, t, twice, reach, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
     mlod__vf all = MLOD__VEQ(zero, zero);
@@ -4608,40 +4620,141 @@ static void mlod__settle_lanes(const mlod__pview *pv, const mlod_tree *tree, mlo
 }
 #endif
 
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute pop
+#endif
+#ifdef MLOD__VLANES
+/* mlod__classify_list's vector path with the float filter fv: pv's own,
+   or a copy whose counts are constants (mlod__fast_fixed), for which the
+   compiler unrolls the plane loops and keeps the view's constants in
+   registers across groups. */
+MLOD__FORCE_INLINE void mlod__classify_lanes(const mlod__fview *fv, const mlod__pview *pv, const mlod_tree *tree,
+                                             const uint32_t *nodes, uint32_t count, double epsilon, uint8_t *status)
+{
+    const int cones = fv->backfaces && tree->cones;
+    uint32_t i;
+    for (i = 0; i < count; i += MLOD__VLANES) {
+        uint32_t pad[MLOD__VLANES], l, valid = count - i < MLOD__VLANES ? count - i : MLOD__VLANES;
+        const uint32_t *lanes = nodes + i;
+        uint8_t part[MLOD__VLANES], *out = valid == MLOD__VLANES ? status + i : part;
+        mlod__vf sphere[4], cone[4], codes;
+        if (valid < MLOD__VLANES) { /* the last group: padded with its last node */
+            for (l = 0; l < MLOD__VLANES; l++) pad[l] = nodes[i + (l < valid ? l : valid - 1)];
+            lanes = pad;
+        } else if (i + MLOD__VLANES + MLOD__LIST_AHEAD <= count) { /* rows a few groups on, for the loads to overlap */
+            for (l = 0; l < MLOD__VLANES; l++) {
+                MLOD__PREFETCH(tree->spheres + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
+                if (cones) MLOD__PREFETCH(tree->cones + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
+            }
+        }
+        mlod__vload(tree->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+        if (cones) mlod__vload(tree->cones, lanes, &cone[0], &cone[1], &cone[2], &cone[3]);
+        codes = mlod__vstatus(fv, sphere, cones ? cone : NULL, mlod__vleaf(lanes, tree->leaf_count - 1));
+        /* statuses stored as bytes at once (they are hard to predict:
+           no branch per lane); an undecided lane (rare) takes the
+           exact path */
+        mlod__vbytes(codes, out);
+        if (mlod__vundecided(codes)) mlod__settle_lanes(pv, tree, codes, lanes, valid, epsilon, out);
+        if (out == part) memcpy(status + i, part, valid);
+    }
+}
+
+/* A view of one sub-projection with one plane (a paraboloid hemisphere,
+   the views of virtual point lights), eye in floats: *fixed gets a copy
+   of its float filter with those counts and flags written as constants
+   (its other sub-projections left unset), and 1; else 0.  The copy is a
+   local of the caller, out of reach of the statuses it stores. */
+MLOD__FORCE_INLINE int mlod__fast_fixed(const mlod__pview *pv, mlod__fview *fixed)
+{
+    if (!(pv->fast.sub_count == 1 && pv->fast.subs[0].plane_count == 1 && !pv->fast.ortho && pv->fast.float_eye))
+        return 0;
+    memcpy(fixed, &pv->fast, offsetof(mlod__fview, subs) + sizeof(mlod__fsub));
+    fixed->sub_count = 1;
+    fixed->subs[0].plane_count = 1;
+    fixed->ortho = 0;
+    fixed->float_eye = 1;
+    return 1;
+}
+
+/* The vector paths of mlod__classify_list and mlod__classify_children,
+   for the view's shape.  Not inlined into the cut's code: where that is
+   built for a target without FMA (MLOD__NO_FMA_TARGET), these keep the
+   caller's target, as the vector filter they inline does. */
+static void mlod__classify_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
+                                  double epsilon, uint8_t *status)
+{
+    mlod__fview fixed;
+    if (mlod__fast_fixed(pv, &fixed))
+        mlod__classify_lanes(&fixed, pv, tree, nodes, count, epsilon, status);
+    else
+        mlod__classify_lanes(&pv->fast, pv, tree, nodes, count, epsilon, status);
+}
+
+#ifdef MLOD__VPAIRS
+/* mlod__classify_children's vector path with the float filter fv (as
+   mlod__classify_lanes): a pair's rows are adjacent, one load each,
+   MLOD__VPAIRS pairs a vector. */
+MLOD__FORCE_INLINE void mlod__classify_pairs(const mlod__fview *fv, const mlod__pview *pv, const mlod_tree *tree,
+                                             const uint32_t *parents, uint32_t count, double epsilon, uint8_t *status)
+{
+    const int cones = fv->backfaces && tree->cones;
+    uint32_t i;
+    for (i = 0; i < count; i += MLOD__VPAIRS) {
+        uint32_t pad[MLOD__VPAIRS], lanes[2 * MLOD__VPAIRS], l, valid = count - i < MLOD__VPAIRS ? count - i : MLOD__VPAIRS;
+        const uint32_t *group = parents + i;
+        uint8_t part[2 * MLOD__VPAIRS], lane_status[2 * MLOD__VPAIRS];
+        mlod__vf sphere[4], cone[4], codes;
+        if (valid < MLOD__VPAIRS) {
+            for (l = 0; l < MLOD__VPAIRS; l++) pad[l] = parents[i + (l < valid ? l : valid - 1)];
+            group = pad;
+        }
+        mlod__vload_pairs(tree->spheres, group, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+        if (cones) mlod__vload_pairs(tree->cones, group, &cone[0], &cone[1], &cone[2], &cone[3]);
+        codes = mlod__vstatus(fv, sphere, cones ? cone : NULL, mlod__vleaf_pairs(group, tree->leaf_count - 1));
+        mlod__vbytes_pairs(codes, valid == MLOD__VPAIRS ? status + 2 * i : part);
+        if (mlod__vundecided(codes)) { /* rare: lanes the filter left undecided */
+            for (l = 0; l < MLOD__VPAIRS; l++) {
+                lanes[l] = 2 * group[l] + 1;
+                lanes[MLOD__VPAIRS + l] = 2 * group[l] + 2;
+            }
+            mlod__vbytes(codes, lane_status);
+            mlod__settle_lanes(pv, tree, codes, lanes, 2 * MLOD__VPAIRS, epsilon, lane_status);
+            for (l = 0; l < valid; l++) {
+                uint8_t *to = valid == MLOD__VPAIRS ? status + 2 * (i + l) : part + 2 * l;
+                to[0] = lane_status[l];
+                to[1] = lane_status[MLOD__VPAIRS + l];
+            }
+        }
+        if (valid < MLOD__VPAIRS) memcpy(status + 2 * i, part, 2 * valid);
+    }
+}
+
+static void mlod__classify_pairs_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
+                                        uint32_t count, double epsilon, uint8_t *status)
+{
+    mlod__fview fixed;
+    if (mlod__fast_fixed(pv, &fixed))
+        mlod__classify_pairs(&fixed, pv, tree, parents, count, epsilon, status);
+    else
+        mlod__classify_pairs(&pv->fast, pv, tree, parents, count, epsilon, status);
+}
+#endif
+#endif
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
+#endif
+
 static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
                                 double epsilon, uint8_t *status)
 {
-    uint32_t i = 0;
+    uint32_t i;
 #ifdef MLOD__VLANES
     if (pv->fast.ok) {
-        const int cones = pv->fast.backfaces && tree->cones;
-        for (; i < count; i += MLOD__VLANES) {
-            uint32_t pad[MLOD__VLANES], l, valid = count - i < MLOD__VLANES ? count - i : MLOD__VLANES;
-            const uint32_t *lanes = nodes + i;
-            uint8_t part[MLOD__VLANES], *out = valid == MLOD__VLANES ? status + i : part;
-            mlod__vf sphere[4], cone[4], codes;
-            if (valid < MLOD__VLANES) { /* the last group: padded with its last node */
-                for (l = 0; l < MLOD__VLANES; l++) pad[l] = nodes[i + (l < valid ? l : valid - 1)];
-                lanes = pad;
-            } else if (i + MLOD__VLANES + MLOD__LIST_AHEAD <= count) { /* rows a few groups on, for the loads to overlap */
-                for (l = 0; l < MLOD__VLANES; l++) {
-                    MLOD__PREFETCH(tree->spheres + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
-                    if (cones) MLOD__PREFETCH(tree->cones + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
-                }
-            }
-            mlod__vload(tree->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
-            if (cones) mlod__vload(tree->cones, lanes, &cone[0], &cone[1], &cone[2], &cone[3]);
-            codes = mlod__vstatus(&pv->fast, sphere, cones ? cone : NULL, mlod__vleaf(lanes, tree->leaf_count - 1));
-            /* statuses stored as bytes at once (they are hard to predict:
-               no branch per lane); an undecided lane (rare) takes the
-               exact path */
-            mlod__vbytes(codes, out);
-            mlod__settle_lanes(pv, tree, codes, lanes, valid, epsilon, out);
-            if (out == part) memcpy(status + i, part, valid);
-        }
+        mlod__classify_vector(pv, tree, nodes, count, epsilon, status);
+        return;
     }
 #endif
-    for (; i < count; i++) status[i] = mlod__classify(pv, tree, nodes[i], epsilon);
+    for (i = 0; i < count; i++) status[i] = mlod__classify(pv, tree, nodes[i], epsilon);
 }
 
 /* The statuses of the children 2p + 1 and 2p + 2 of each of the count
@@ -4655,37 +4768,8 @@ static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree
         if (tree->cones) MLOD__PREFETCH(tree->cones + 8 * (size_t)parents[i] + 4);
     }
 #ifdef MLOD__VPAIRS
-    /* a pair's rows are adjacent: one load each, MLOD__VPAIRS pairs a vector */
     if (pv->fast.ok) {
-        const int cones = pv->fast.backfaces && tree->cones;
-        for (i = 0; i < count; i += MLOD__VPAIRS) {
-            uint32_t pad[MLOD__VPAIRS], lanes[2 * MLOD__VPAIRS], l, valid = count - i < MLOD__VPAIRS ? count - i : MLOD__VPAIRS;
-            const uint32_t *group = parents + i;
-            uint8_t part[2 * MLOD__VPAIRS], lane_status[2 * MLOD__VPAIRS];
-            mlod__vf sphere[4], cone[4], codes;
-            if (valid < MLOD__VPAIRS) {
-                for (l = 0; l < MLOD__VPAIRS; l++) pad[l] = parents[i + (l < valid ? l : valid - 1)];
-                group = pad;
-            }
-            mlod__vload_pairs(tree->spheres, group, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
-            if (cones) mlod__vload_pairs(tree->cones, group, &cone[0], &cone[1], &cone[2], &cone[3]);
-            codes = mlod__vstatus(&pv->fast, sphere, cones ? cone : NULL, mlod__vleaf_pairs(group, tree->leaf_count - 1));
-            mlod__vbytes_pairs(codes, valid == MLOD__VPAIRS ? status + 2 * i : part);
-            if (mlod__vundecided(codes)) { /* rare: lanes the filter left undecided */
-                for (l = 0; l < MLOD__VPAIRS; l++) {
-                    lanes[l] = 2 * group[l] + 1;
-                    lanes[MLOD__VPAIRS + l] = 2 * group[l] + 2;
-                }
-                mlod__vbytes(codes, lane_status);
-                mlod__settle_lanes(pv, tree, codes, lanes, 2 * MLOD__VPAIRS, epsilon, lane_status);
-                for (l = 0; l < valid; l++) {
-                    uint8_t *to = valid == MLOD__VPAIRS ? status + 2 * (i + l) : part + 2 * l;
-                    to[0] = lane_status[l];
-                    to[1] = lane_status[MLOD__VPAIRS + l];
-                }
-            }
-            if (valid < MLOD__VPAIRS) memcpy(status + 2 * i, part, 2 * valid);
-        }
+        mlod__classify_pairs_vector(pv, tree, parents, count, epsilon, status);
         return;
     }
 #endif
