@@ -4659,22 +4659,33 @@ MLOD__FORCE_INLINE void mlod__classify_lanes(const mlod__fview *fv, const mlod__
     }
 }
 
-/* A view of one sub-projection with one plane (a paraboloid hemisphere,
-   the views of virtual point lights), eye in floats: *fixed gets a copy
-   of its float filter with those counts and flags written as constants
-   (its other sub-projections left unset), and 1; else 0.  The copy is a
-   local of the caller, out of reach of the statuses it stores. */
+/* The view shapes whose float filter the vector paths take with its
+   counts as constants: one sub-projection, eye in floats, and either a
+   paraboloid hemisphere (one plane: the views of virtual point lights) or
+   a perspective frustum (six planes). */
+enum { MLOD__SHAPE_OTHER, MLOD__SHAPE_PARABOLOID, MLOD__SHAPE_PERSPECTIVE };
+
+/* The view's shape; for one of the fixed shapes, *fixed gets a copy of its
+   float filter (its one sub-projection; the caller writes the counts as
+   constants, see MLOD__FIX), a local of the caller, out of reach of the
+   statuses it stores. */
 MLOD__FORCE_INLINE int mlod__fast_fixed(const mlod__pview *pv, mlod__fview *fixed)
 {
-    if (!(pv->fast.sub_count == 1 && pv->fast.subs[0].plane_count == 1 && !pv->fast.ortho && pv->fast.float_eye))
-        return 0;
-    memcpy(fixed, &pv->fast, offsetof(mlod__fview, subs) + sizeof(mlod__fsub));
-    fixed->sub_count = 1;
-    fixed->subs[0].plane_count = 1;
-    fixed->ortho = 0;
-    fixed->float_eye = 1;
-    return 1;
+    const mlod__fview *f = &pv->fast;
+    int shape = MLOD__SHAPE_OTHER;
+    if (f->sub_count == 1 && !f->ortho && f->float_eye) {
+        if (f->subs[0].kind == MLOD_VIEW_PARABOLOID && f->subs[0].plane_count == 1) shape = MLOD__SHAPE_PARABOLOID;
+        if (f->subs[0].kind == MLOD_VIEW_PERSPECTIVE && f->subs[0].plane_count == 6) shape = MLOD__SHAPE_PERSPECTIVE;
+    }
+    if (shape != MLOD__SHAPE_OTHER) memcpy(fixed, f, offsetof(mlod__fview, subs) + sizeof(mlod__fsub));
+    return shape;
 }
+
+/* Write the fixed shape's counts and flags into the copy as constants,
+   just before the call that inlines the filter. */
+#define MLOD__FIX(fixed, kind_, planes)                                                                                \
+    ((fixed).sub_count = 1, (fixed).ortho = 0, (fixed).float_eye = 1, (fixed).subs[0].kind = (kind_),                  \
+     (fixed).subs[0].plane_count = (planes))
 
 /* The vector paths of mlod__classify_list and mlod__classify_children,
    for the view's shape.  Not inlined into the cut's code: where that is
@@ -4684,10 +4695,18 @@ static void mlod__classify_vector(const mlod__pview *pv, const mlod_tree *tree, 
                                   double epsilon, uint8_t *status)
 {
     mlod__fview fixed;
-    if (mlod__fast_fixed(pv, &fixed))
+    switch (mlod__fast_fixed(pv, &fixed)) {
+    case MLOD__SHAPE_PARABOLOID:
+        MLOD__FIX(fixed, MLOD_VIEW_PARABOLOID, 1);
         mlod__classify_lanes(&fixed, pv, tree, nodes, count, epsilon, status);
-    else
+        break;
+    case MLOD__SHAPE_PERSPECTIVE:
+        MLOD__FIX(fixed, MLOD_VIEW_PERSPECTIVE, 6);
+        mlod__classify_lanes(&fixed, pv, tree, nodes, count, epsilon, status);
+        break;
+    default:
         mlod__classify_lanes(&pv->fast, pv, tree, nodes, count, epsilon, status);
+    }
 }
 
 #ifdef MLOD__VPAIRS
@@ -4733,10 +4752,18 @@ static void mlod__classify_pairs_vector(const mlod__pview *pv, const mlod_tree *
                                         uint32_t count, double epsilon, uint8_t *status)
 {
     mlod__fview fixed;
-    if (mlod__fast_fixed(pv, &fixed))
+    switch (mlod__fast_fixed(pv, &fixed)) {
+    case MLOD__SHAPE_PARABOLOID:
+        MLOD__FIX(fixed, MLOD_VIEW_PARABOLOID, 1);
         mlod__classify_pairs(&fixed, pv, tree, parents, count, epsilon, status);
-    else
+        break;
+    case MLOD__SHAPE_PERSPECTIVE:
+        MLOD__FIX(fixed, MLOD_VIEW_PERSPECTIVE, 6);
+        mlod__classify_pairs(&fixed, pv, tree, parents, count, epsilon, status);
+        break;
+    default:
         mlod__classify_pairs(&pv->fast, pv, tree, parents, count, epsilon, status);
+    }
 }
 #endif
 #endif
