@@ -4691,25 +4691,32 @@ MLOD__FORCE_INLINE int mlod__fast_fixed(const mlod__pview *pv, mlod__fview *fixe
      (fixed).subs[0].plane_count = (planes))
 
 /* The vector paths of mlod__classify_list and mlod__classify_children,
-   for the view's shape.  Not inlined into the cut's code: where that is
+   for the view's shape (MLOD__BY_SHAPE: fn, mlod__classify_lanes or
+   mlod__classify_pairs, with the view's filter fixed for its shape, else
+   its own).  Not inlined into the cut's code: where that is
    built for a target without FMA (MLOD__NO_FMA_TARGET), these keep the
    caller's target, as the vector filter they inline does. */
+#define MLOD__BY_SHAPE(fn, pv, tree, list, count, epsilon, status)                                                      \
+    do {                                                                                                               \
+        mlod__fview fixed_;                                                                                            \
+        switch (mlod__fast_fixed(pv, &fixed_)) {                                                                       \
+        case MLOD__SHAPE_PARABOLOID:                                                                                   \
+            MLOD__FIX(fixed_, MLOD_VIEW_PARABOLOID, 1);                                                                \
+            fn(&fixed_, pv, tree, list, count, epsilon, status);                                                       \
+            break;                                                                                                     \
+        case MLOD__SHAPE_PERSPECTIVE:                                                                                  \
+            MLOD__FIX(fixed_, MLOD_VIEW_PERSPECTIVE, 6);                                                               \
+            fn(&fixed_, pv, tree, list, count, epsilon, status);                                                       \
+            break;                                                                                                     \
+        default:                                                                                                       \
+            fn(&(pv)->fast, pv, tree, list, count, epsilon, status);                                                   \
+        }                                                                                                              \
+    } while (0)
+
 static void mlod__classify_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
                                   double epsilon, uint8_t *status)
 {
-    mlod__fview fixed;
-    switch (mlod__fast_fixed(pv, &fixed)) {
-    case MLOD__SHAPE_PARABOLOID:
-        MLOD__FIX(fixed, MLOD_VIEW_PARABOLOID, 1);
-        mlod__classify_lanes(&fixed, pv, tree, nodes, count, epsilon, status);
-        break;
-    case MLOD__SHAPE_PERSPECTIVE:
-        MLOD__FIX(fixed, MLOD_VIEW_PERSPECTIVE, 6);
-        mlod__classify_lanes(&fixed, pv, tree, nodes, count, epsilon, status);
-        break;
-    default:
-        mlod__classify_lanes(&pv->fast, pv, tree, nodes, count, epsilon, status);
-    }
+    MLOD__BY_SHAPE(mlod__classify_lanes, pv, tree, nodes, count, epsilon, status);
 }
 
 #ifdef MLOD__VPAIRS
@@ -4754,19 +4761,7 @@ MLOD__FORCE_INLINE void mlod__classify_pairs(const mlod__fview *fv, const mlod__
 static void mlod__classify_pairs_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
                                         uint32_t count, double epsilon, uint8_t *status)
 {
-    mlod__fview fixed;
-    switch (mlod__fast_fixed(pv, &fixed)) {
-    case MLOD__SHAPE_PARABOLOID:
-        MLOD__FIX(fixed, MLOD_VIEW_PARABOLOID, 1);
-        mlod__classify_pairs(&fixed, pv, tree, parents, count, epsilon, status);
-        break;
-    case MLOD__SHAPE_PERSPECTIVE:
-        MLOD__FIX(fixed, MLOD_VIEW_PERSPECTIVE, 6);
-        mlod__classify_pairs(&fixed, pv, tree, parents, count, epsilon, status);
-        break;
-    default:
-        mlod__classify_pairs(&pv->fast, pv, tree, parents, count, epsilon, status);
-    }
+    MLOD__BY_SHAPE(mlod__classify_pairs, pv, tree, parents, count, epsilon, status);
 }
 #endif
 #endif
