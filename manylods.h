@@ -2643,12 +2643,14 @@ static int mlod__report(const mlod_build_desc *desc, float fraction)
    build has not written yet) takes the next multiple of 16 there
    (offsets[i]); the others are allocated (offsets[i] = UINT64_MAX).
    Returns the bytes allocated. */
+static uint64_t mlod__order_piece(uint64_t n, int i) { return (i == 0 ? 24 : i <= 3 ? 12 : 4) * n; }
+
 static uint64_t mlod__order_layout(uint64_t n, uint64_t lent, uint64_t offsets[7])
 {
     uint64_t at = 0, allocated = 0;
     int i;
     for (i = 0; i < 7; i++) {
-        uint64_t size = i == 0 ? 24 * n : i <= 3 ? 12 * n : 4 * n;
+        uint64_t size = mlod__order_piece(n, i);
         if (at + mlod__block_round(size) <= lent) {
             offsets[i] = at;
             at += mlod__block_round(size);
@@ -2681,9 +2683,9 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
     c.n = n;
     mlod__order_layout(n, lent, offsets);
     for (k = 0; k < 7; k++) {
-        size_t size = (size_t)(k == 0 ? 24 : k <= 3 ? 12 : 4) * n;
         piece[k] = offsets[k] != UINT64_MAX ? block + offsets[k] : NULL;
-        if (!piece[k] && ok) ok = (piece[k] = (unsigned char *)mlod__alloc_array(a, size, 1, NULL)) != NULL;
+        if (!piece[k] && ok)
+            ok = (piece[k] = (unsigned char *)mlod__alloc_array(a, (size_t)mlod__order_piece(n, k), 1, NULL)) != NULL;
     }
     if (!ok) {
         res = MLOD_ERROR_OUT_OF_MEMORY;
@@ -2735,6 +2737,21 @@ done:
     for (k = 0; k < 7; k++)
         if (offsets[k] == UINT64_MAX) mlod__free(a, piece[k]);
     return res;
+}
+
+/* A build's tree and its leaves' order: the tree first, its block (which
+   starts with the spheres, and is not written yet) lending the ordering
+   its scratch.  *out_tree is the tree, the caller's to destroy, also when
+   the ordering fails; NULL when there is no memory for it. */
+static mlod_result mlod__tree_ordered(const mlod_allocator *a, const mlod_build_desc *desc, const float *pos, uint32_t n,
+                                      int mesh, uint32_t triangles, uint32_t *leaf_item, float progress_from,
+                                      mlod_tree **out_tree)
+{
+    mlod_tree *tree = mlod__tree_create(a, n, desc->attributes, mesh, triangles);
+    *out_tree = tree;
+    if (!tree) return MLOD_ERROR_OUT_OF_MEMORY;
+    return mlod__order_items(a, desc, pos, n, leaf_item, progress_from, 0.9f, (unsigned char *)tree->spheres,
+                             tree->bytes - sizeof(mlod_tree));
 }
 
 /* A build's peak: its own arrays (`held`), the tree, and the ordering's
@@ -2894,14 +2911,7 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
         goto done;
     }
-    /* the tree first: its arrays, not yet written, hold the ordering's scratch */
-    tree = mlod__tree_create(&a, n, desc->attributes, 1, triangles);
-    if (!tree) {
-        res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
-        goto done;
-    }
-    res = mlod__order_items(&a, desc, pos, n, leaf_item, 0.1f, 0.9f, (unsigned char *)tree->spheres,
-                            tree->bytes - sizeof(mlod_tree));
+    res = mlod__tree_ordered(&a, desc, pos, n, 1, triangles, leaf_item, 0.1f, &tree);
     if (res != MLOD_OK) {
         res = mlod__build_error(error, res);
         goto done;
@@ -3012,14 +3022,7 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
         goto done;
     }
     for (i = 0; i < n; i++) memcpy(pos + 3 * (size_t)i, mlod__at(points->positions, points->position_stride, i), 3 * sizeof(float));
-    /* the tree first: its arrays, not yet written, hold the ordering's scratch */
-    tree = mlod__tree_create(&a, n, desc->attributes, 0, 0);
-    if (!tree) {
-        res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
-        goto done;
-    }
-    res = mlod__order_items(&a, desc, pos, n, leaf_item, 0.0f, 0.9f, (unsigned char *)tree->spheres,
-                            tree->bytes - sizeof(mlod_tree));
+    res = mlod__tree_ordered(&a, desc, pos, n, 0, 0, leaf_item, 0.0f, &tree);
     if (res != MLOD_OK) {
         res = mlod__build_error(error, res);
         goto done;
