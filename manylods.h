@@ -319,7 +319,9 @@
    MANY VIEWS AT ONCE (after MegaViews: T. Kol, P. Bauszat, S. Lee,
    E. Eisemann, Computer Graphics Forum 2018)
      For thousands to millions of views, mlod_megaviews_render shares work
-     among views that would draw the same.  A VIEW TREE
+     among views that would draw the same (manylods_vk.h's
+     mlodvk_megaviews_render runs the same traversal on a Vulkan device,
+     with the same atlas).  A VIEW TREE
      (mlod_view_tree_build) orders the views' eyes as the scene tree orders
      samples (median splits, the implicit heap): each node bounds its
      views' eyes by a sphere (centre c, radius rho; containment as for
@@ -1198,6 +1200,11 @@ MANYLODS_DEF size_t mlod_megaviews_bound(const mlod_view_tree *views, uint32_t r
 
 /* The maps of every view node, unfused (mlod_megaviews_render_maps). */
 typedef struct mlod_megaviews_maps mlod_megaviews_maps;
+
+/* Check the parameters alone: epsilon > 0, delta and group_radius finite
+   and >= 0, resolution in 1 .. 2^31 - 1 (what mlod_megaviews_render and
+   mlodvk_megaviews_render refuse first).  Pure, thread-safe. */
+MANYLODS_DEF mlod_result mlod_megaviews_check(const mlod_megaviews_params *params, mlod_error *error);
 
 /* Render every view's map into the atlas (MANY VIEWS AT ONCE): the pair
    traversal of the scene tree and the view tree, drawing into shared maps
@@ -6986,6 +6993,7 @@ enum { MLOD__PAIR_CULL, MLOD__PAIR_DRAW, MLOD__PAIR_DRAW_LEAF, MLOD__PAIR_SPLIT_
    every eye (the back-face test).  The inner nodes' margin of 2^-30 rad
    keeps their answers implying their views' (margin 0), the
    angles being within 1e-11 rad (mlod__atan2). */
+/* GLSL twin: outside_cone */
 static int mlod__outside_cone(const double *x, double d, double g, const float *cone, double theta, double margin)
 {
     double axis[3], reach;
@@ -7008,6 +7016,7 @@ static int mlod__outside_cone(const double *x, double d, double g, const float *
    scene's normal cone, -x and limit pi/2 + its half-angle: no eye below
    finds it facing away.  What may be shared must be drawn by every view
    below. */
+/* GLSL twin: within_cone */
 static int mlod__within_cone(const double *x, double d, double r, double rho, const float *cone, double spread,
                              double limit)
 {
@@ -7027,6 +7036,7 @@ static int mlod__within_cone(const double *x, double d, double r, double rho, co
    halves some eye reaches (x.w + rho + r >= 0); cmin: over the halves every
    eye reaches (x.w - rho + r >= 0), 0 if none.  2^-40 relative to spare,
    far above the rounding of either side. */
+/* GLSL twin: ball_diameters */
 static void mlod__ball_diameters(double S, const double *x, double d, double r, double rho, double *cmax,
                                  double *cmin)
 {
@@ -7074,6 +7084,7 @@ static void mlod__ball_diameters(double S, const double *x, double d, double r, 
    rho) / d).  Halves no eye sees the sphere in (phi - b > pi / 2) are
    left out; +inf where the bound does not hold (phi + b >= pi).  Sines
    and cosines of phi +- b from their sums: no trigonometry. */
+/* GLSL twin: ball_motion */
 static double mlod__ball_motion(double S, const double *x, double d, double r, double rho)
 {
     /* the largest quotient over the halves is S turn over the least 1 + cos(phi + b) (division being
@@ -7366,6 +7377,7 @@ static int mlod__surely_facing(const double *x, double d, double r, double rho, 
    itself; a group (an inner node within the group radius) culls as an
    inner node and decides the rest as the cut does for one view at its
    centre. */
+/* GLSL twin: pair_action */
 static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uint32_t s)
 {
     const mlod_tree *scene = job->scene;
@@ -7487,6 +7499,7 @@ static int mlod__mv_push(uint32_t *list, size_t *count, size_t capacity, int wit
 /* A scene node's depth in the paraboloid maps of a view node with this
    centre: the distance from it to the node's centre (as mlod__image_discs
    measures it). */
+/* GLSL twin: node_distance */
 static float mlod__node_distance(const mlod_tree *scene, uint32_t node, const double *centre)
 {
     const float *sphere = scene->spheres + 4 * (size_t)node;
@@ -7784,15 +7797,10 @@ static void mlod__mv_free(mlod__mv_memory *m, void *p, size_t count, size_t size
     mlod__free(&m->a, p);
 }
 
-/* The checks of mlod_megaviews_render (atlas NULL: of
-   mlod_megaviews_render_maps, which has none). */
-static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tree *scene,
-                                         const mlod_view_tree *views, const mlod_megaviews_params *params,
-                                         mlod_error *error)
+MLOD__PUBLIC mlod_result mlod_megaviews_check(const mlod_megaviews_params *params, mlod_error *error)
 {
     uint32_t v;
-    if (!scene || !views || !params)
-        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "scene, views and params must not be NULL");
+    if (!params) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "params must not be NULL");
     if (!(params->epsilon > 0.0f))
         return mlod__fail(error, MLOD_ERROR_BAD_EPSILON, "epsilon %g is not > 0", params->epsilon);
     for (v = 0; v < 2; v++) { /* delta, group_radius: finite and >= 0 */
@@ -7804,7 +7812,21 @@ static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tre
     if (params->resolution == 0 || params->resolution > 0x7fffffffu)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "resolution %u is not in 1 .. 2^31 - 1",
                           params->resolution);
-    if (!atlas) return MLOD_OK;
+    return mlod__succeed(error);
+}
+
+/* The checks of mlod_megaviews_render (atlas NULL: of
+   mlod_megaviews_render_maps, which has none). */
+static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tree *scene,
+                                         const mlod_view_tree *views, const mlod_megaviews_params *params,
+                                         mlod_error *error)
+{
+    uint32_t v;
+    mlod_result res;
+    if (!scene || !views || !params)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "scene, views and params must not be NULL");
+    res = mlod_megaviews_check(params, error);
+    if (res != MLOD_OK || !atlas) return res;
     if (atlas->view_count != views->view_count)
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has %u views, the view tree %u", atlas->view_count,
                           views->view_count);

@@ -38,11 +38,36 @@ struct real4 {
 #ifndef MLOD_NO_VIEWS
 // A view's field (MLOD_IF_V_*), and the first double of its sub-projection
 // s, whose fields (MLOD_IF_S_*) sd and sd3 read.
+#ifdef MLOD_MEGAVIEWS
+// MegaViews (mv_layout.glsl): views[] holds one frame per kind of map at
+// the eye (0, 0, 0), moved to mv_eye, which the caller sets: the eye, and
+// each plane's k = n.eye + offset, i.e. n.mv_eye plus the stored k (=
+// offset: n.0 + offset is offset, a zero offset +0), as mlod__plane_set
+// computes it for that eye.
+real3 mv_eye;
+real dot3(real3 a, real3 b);
+real vd(uint view, uint field)
+{
+    if (field == MLOD_IF_V_EYE) return mv_eye.x;
+    if (field == MLOD_IF_V_EYE + 1u) return mv_eye.y;
+    if (field == MLOD_IF_V_EYE + 2u) return mv_eye.z;
+    return r_load(views[view * MLOD_IF_VIEW_STRIDE + field]);
+}
+real sd(uint sub, uint field)
+{
+    uint at = sub + field, f = (at % MLOD_IF_VIEW_STRIDE - MLOD_IF_V_SUBS) % MLOD_IF_SUB_STRIDE;
+    real stored = r_load(views[at]);
+    if (f < MLOD_IF_S_PLANES || (f - MLOD_IF_S_PLANES) % 5u != 3u) return stored;
+    real3 n = real3(r_load(views[at - 3u]), r_load(views[at - 2u]), r_load(views[at - 1u]));
+    return r_add(dot3(n, mv_eye), stored);
+}
+#else
 real vd(uint view, uint field) { return r_load(views[view * MLOD_IF_VIEW_STRIDE + field]); }
+real sd(uint sub, uint field) { return r_load(views[sub + field]); }
+#endif
 real3 vd3(uint view, uint field) { return real3(vd(view, field), vd(view, field + 1), vd(view, field + 2)); }
 uint sub_count(uint view) { return r_to_u(vd(view, MLOD_IF_V_SUB_COUNT)); }
 uint sub_base(uint view, uint s) { return view * MLOD_IF_VIEW_STRIDE + MLOD_IF_V_SUBS + s * MLOD_IF_SUB_STRIDE; }
-real sd(uint sub, uint field) { return r_load(views[sub + field]); }
 real3 sd3(uint sub, uint field) { return real3(sd(sub, field), sd(sub, field + 1), sd(sub, field + 2)); }
 int sub_kind(uint sub) { return int(r_to_u(sd(sub, MLOD_IF_S_KIND))); }
 
@@ -557,5 +582,187 @@ bool image_disc(uint view, uint s, real3 centre, real r, out real4 disc)
     disc = real4(px, py, r_mul(r_mul(scale, R_HALF), r_sub(hi, lo)), depth);
     return true;
 }
+
+#ifdef MLOD_MEGAVIEWS
+// ------------------------------------------------------------ MegaViews --
+//
+// The pair test of mlod_megaviews_render.  The includer (mv_layout.glsl)
+// declares besides the scene tree's buffers the view tree's eye_spheres[]
+// and eye_cones[], the level block level[] (half fields of view as float
+// bits at ctl.off_fovs) and the control block ctl.
+
+#define MV_2M30 RK(0x3E100000u, 0x00000000u, 9.3132257461547852e-10LF) // 2^-30
+#define MV_1E12 RK(0x3D719799u, 0x812DEA11u, 1e-12LF)
+#define MV_PAIR_CULL 0u
+#define MV_PAIR_DRAW 1u
+#define MV_PAIR_DRAW_LEAF 2u
+#define MV_PAIR_SPLIT_SCENE 3u
+#define MV_PAIR_SPLIT_VIEW 4u
+
+// C twin: mlod__outside_cone
+// (its arc tangents from the caller, pair_action: angle, the angle of x to
+// the cone's axis, and spread_g = atan2(g, sqrt((d - g) (d + g))))
+bool outside_cone(real d, real g, vec4 cone, real theta, real margin, real angle, real spread_g)
+{
+    if (!r_gt(d, g) || !r_lt(r_f(cone.w), R_PI)) return false;
+    real reach = r_add(r_add(r_add(r_f(cone.w), theta), spread_g), margin);
+    if (!r_lt(reach, R_PI)) return false;
+    return r_gt(angle, reach);
+}
+
+// C twin: mlod__within_cone
+// (its arc tangents from the caller, pair_action: angle, of x to the
+// cone's axis, turn = atan2(rho, sqrt((d - rho) (d + rho))) and seen =
+// atan2(r, sqrt((d + rho - r) (d + rho + r))), taken where r > 0)
+bool within_cone(real d, real r, real rho, real spread, real limit, real angle, real turn, real seen)
+{
+    if (!r_gt(d, rho)) return false;
+    real seen_r = r_gt(r, R_ZERO) ? seen : R_ZERO;
+    return r_le(r_add(r_add(r_add(angle, spread), turn), MV_2M30), r_add(limit, seen_r));
+}
+
+// C twin: mlod__ball_diameters
+void ball_diameters(real S, real3 x, real d, real r, real rho, out real cmax, out real cmin)
+{
+    real closest = r_sub(d, rho), farthest = r_add(d, rho), least_near = r_inf(), least_far = r_inf();
+    bool some = false, every = false;
+    cmax = R_ZERO;
+    cmin = R_ZERO;
+    if (!r_gt(farthest, r)) {
+        cmax = r_inf();
+        cmin = r_inf();
+        return;
+    }
+    real t_closest = r_gt(closest, r) ? r_sqrt(r_mul(r_sub(closest, r), r_add(closest, r))) : R_ZERO;
+    real t_farthest = r_sqrt(r_mul(r_sub(farthest, r), r_add(farthest, r)));
+    for (int h = 0; h < 2; h++) {
+        real xw = h != 0 ? r_neg(x.z) : x.z;
+        if (r_ge(r_add(r_add(xw, rho), r), R_ZERO)) {
+            real den = r_add(r_sub(xw, rho), t_closest);
+            some = true;
+            if (!r_gt(closest, r) || !r_gt(den, R_ZERO)) den = R_ZERO;
+            if (r_lt(den, least_near)) least_near = den;
+        }
+        if (r_ge(r_add(r_sub(xw, rho), r), R_ZERO)) {
+            real den = r_add(r_add(xw, rho), t_farthest);
+            every = true;
+            if (!r_gt(den, R_ZERO)) den = R_ZERO;
+            if (r_lt(den, least_far)) least_far = den;
+        }
+    }
+    if (some) cmax = r_gt(least_near, R_ZERO) ? r_div(r_mul(r_mul(S, R_TWO), r), least_near) : r_inf();
+    if (every) cmin = r_gt(least_far, R_ZERO) ? r_div(r_mul(r_mul(S, R_TWO), r), least_far) : r_inf();
+    cmax = r_mul(cmax, RK(0x3FF00000u, 0x00001000u, 1.0000000000009095LF)); // 1 + 2^-40
+    cmin = r_mul(cmin, RK(0x3FEFFFFFu, 0xFFFFE000u, 0.99999999999909051LF)); // 1 - 2^-40
+}
+
+// C twin: mlod__ball_motion
+real ball_motion(real S, real3 x, real d, real r, real rho)
+{
+    real closest = r_sub(d, r), g = r_add(r, rho), least = r_inf();
+    if (r_eq(rho, R_ZERO)) return R_ZERO;
+    if (!r_gt(closest, rho) || !r_gt(d, g)) return r_inf();
+    real turn = r_div(rho, r_sqrt(r_mul(r_sub(closest, rho), r_add(closest, rho))));
+    real sin_b = r_div(g, d);
+    real cos_b = r_div(r_sqrt(r_mul(r_sub(d, g), r_add(d, g))), d);
+    real sin_phi = r_div(r_sqrt(r_add(r_mul(x.x, x.x), r_mul(x.y, x.y))), d);
+    real cos_w = r_div(x.z, d);
+    for (int h = 0; h < 2; h++) {
+        real cos_phi = h != 0 ? r_neg(cos_w) : cos_w;
+        if (r_lt(r_add(r_mul(cos_phi, cos_b), r_mul(sin_phi, sin_b)), r_neg(MV_1E12))) continue;
+        real sin_sum = r_add(r_mul(sin_phi, cos_b), r_mul(cos_phi, sin_b));
+        real cos_sum = r_sub(r_mul(cos_phi, cos_b), r_mul(sin_phi, sin_b));
+        if (!(r_gt(sin_sum, MV_1E12) || r_gt(cos_sum, R_ZERO)) || !r_gt(r_add(R_ONE, cos_sum), R_ZERO)) return r_inf();
+        if (r_lt(r_add(R_ONE, cos_sum), least)) least = r_add(R_ONE, cos_sum);
+    }
+    return r_lt(least, r_inf()) ? r_mul(r_div(r_mul(S, turn), least), RK(0x3FF00001u, 0x00000000u, 1.0000009536743164LF))
+                                : R_ZERO; // (1 + 2^-20)
+}
+
+// C twin: mlod__pair_action
+// What the traversal does with (scene node s, view node v), by the exact
+// tests alone: the C function's mlod__surely_* shortcuts answer only where
+// their margins (1e-9, 1e-8) put the answer beyond the exact tests' doubt,
+// so both give the same action.  A view leaf or group classifies with
+// frame 0 or 1 (views[]: the map's frame, with and without back-face
+// culling) moved to its centre.  The five arc tangents the cone tests take
+// (mlod__angle's two among them) are computed first, in one loop that is
+// not unrolled: one copy of the arithmetic, which matters where doubles
+// are emulated (each operation inlined where it is written); those a test
+// does not reach are not read.
+uint pair_action(uint v, uint s)
+{
+    vec4 vs = eye_spheres[v];
+    real3 centre = r3_f(vs.xyz);
+    real radius = r_f(vs.w);
+    real epsilon = r_load(ctl.epsilon), delta = r_load(ctl.delta), group_radius = r_load(ctl.group_radius);
+    bool leaf = v >= ctl.eye_leaves - 1u;
+    bool group = !leaf && r_gt(group_radius, R_ZERO) && r_le(radius, group_radius);
+    bool has_cone = ctl.has_view_cones != 0u;
+    bool backfaces = (ctl.flags & 1u) != 0u && ctl.has_cones != 0u;
+    vec4 vcone = has_cone ? eye_cones[v] : vec4(0.0);
+    vec4 cone = backfaces ? cones[s] : vec4(0.0);
+    real least_fov = R_PI, most_fov = R_PI;
+    if (ctl.has_fovs != 0u) {
+        least_fov = r_f(uintBitsToFloat(level[ctl.off_fovs + 2u * v]));
+        most_fov = r_f(uintBitsToFloat(level[ctl.off_fovs + 2u * v + 1u]));
+    }
+    vec4 sphere = spheres[s];
+    real r = r_f(sphere.w);
+    real3 x = r3_sub(r3_f(sphere.xyz), centre);
+    real3 away = real3(r_neg(x.x), r_neg(x.y), r_neg(x.z));
+    real d = length_d(x), g = r_add(r, radius), reach = r_add(d, radius);
+    // atan2 arguments: angle(x, view axis), angle(away, normal axis), the sphere grown by the ball,
+    // the ball's turn, the sphere seen from the farthest eye
+    real3 va = r3_f(vcone.xyz), na = r3_f(cone.xyz);
+    real ys[5], xs[5], at[5];
+    ys[0] = length_d(cross_d(x, va));
+    xs[0] = dot3(x, va);
+    ys[1] = length_d(cross_d(away, na));
+    xs[1] = dot3(away, na);
+    ys[2] = g;
+    xs[2] = r_sqrt(r_mul(r_sub(d, g), r_add(d, g)));
+    ys[3] = radius;
+    xs[3] = r_sqrt(r_mul(r_sub(d, radius), r_add(d, radius)));
+    ys[4] = r;
+    xs[4] = r_sqrt(r_mul(r_sub(reach, r), r_add(reach, r)));
+    [[dont_unroll]] for (uint k = 0u; k < 5u; k++) at[k] = atan2_d(ys[k], xs[k]);
+    if (has_cone && outside_cone(d, g, vcone, most_fov, leaf ? R_ZERO : MV_2M30, at[0], at[2])) return MV_PAIR_CULL;
+    real half_pi = r_mul(R_HALF, R_PI);
+    if (!leaf && backfaces && outside_cone(d, g, cone, half_pi, MV_2M30, at[1], at[2])) return MV_PAIR_CULL;
+    if (leaf || group) { // (a leaf before the back-face test, which it leaves to its classification)
+        mv_eye = centre;
+        uint st = classify(leaf ? 0u : 1u, s, epsilon, ctl.scene_leaves);
+        if (leaf && st == MLOD_IF_STATUS_CULLED) return MV_PAIR_CULL;
+        return st == MLOD_IF_STATUS_COARSE ? MV_PAIR_SPLIT_SCENE : MV_PAIR_DRAW;
+    }
+    real S = r_load(ctl.scale), cmax, cmin;
+    ball_diameters(S, x, d, r, radius, cmax, cmin);
+    if (r_le(cmax, epsilon) || s >= ctl.scene_leaves - 1u) {
+        if (!r_le(ball_motion(S, x, d, r, radius), delta)) return MV_PAIR_SPLIT_VIEW;
+        if (has_cone && r_eq(delta, R_ZERO) &&
+            !within_cone(d, r, radius, r_f(vcone.w), least_fov, at[0], at[3], at[4]))
+            return MV_PAIR_SPLIT_VIEW;
+        if (backfaces && r_lt(r_f(cone.w), half_pi) &&
+            !within_cone(d, r, radius, R_ZERO, r_add(half_pi, r_f(cone.w)), at[1], at[3], at[4]))
+            return MV_PAIR_SPLIT_VIEW;
+        return r_le(cmax, epsilon) ? MV_PAIR_DRAW : MV_PAIR_DRAW_LEAF;
+    }
+    if (r_gt(cmin, epsilon)) return MV_PAIR_SPLIT_SCENE;
+    if (r_gt(delta, R_ZERO)) {
+        vec4 left = spheres[2u * s + 1u], right = spheres[2u * s + 2u];
+        if (r_ge(r_f(left.w < right.w ? left.w : right.w), radius)) return MV_PAIR_SPLIT_SCENE;
+    }
+    return MV_PAIR_SPLIT_VIEW;
+}
+
+// C twin: mlod__node_distance
+float node_distance(uint node, real3 centre)
+{
+    real3 x = r3_sub(r3_f(spheres[node].xyz), centre);
+    return r_to_f(length_d(x));
+}
+
+#endif // MLOD_MEGAVIEWS
 
 #endif // MLOD_NO_VIEWS

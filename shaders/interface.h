@@ -119,6 +119,37 @@
 #define MLOD_IF_REFIT_FINDINGS 10
 #define MLOD_IF_REFIT_BINDINGS 11
 
+/* The MegaViews render's descriptor set (shaders/mv_layout.glsl): the
+   scene tree, the view tree (its eyes' spheres and cones), the map frames,
+   the pair lists (a round's input and output; the next level's pairs and
+   the level's draws, one buffer), the level block (tiles, the view
+   leaves' sources, half fields of view, per-node counts and map slots),
+   this level's maps and the previous level's, the control block and the
+   atlas's depth, normal and colour. */
+#define MLOD_IF_MV_SCENE_SPHERES 0
+#define MLOD_IF_MV_SCENE_CONES 1
+#define MLOD_IF_MV_SCENE_COLORS 2
+#define MLOD_IF_MV_EYE_SPHERES 3
+#define MLOD_IF_MV_EYE_CONES 4
+#define MLOD_IF_MV_FRAMES 5
+#define MLOD_IF_MV_PAIRS_IN 6
+#define MLOD_IF_MV_PAIRS_OUT 7
+#define MLOD_IF_MV_LISTS 8
+#define MLOD_IF_MV_LEVEL 9
+#define MLOD_IF_MV_MAPS 10
+#define MLOD_IF_MV_PREV_MAPS 11
+#define MLOD_IF_MV_CONTROL 12
+#define MLOD_IF_MV_DEPTH 13
+#define MLOD_IF_MV_NORMAL 14
+#define MLOD_IF_MV_COLOR 15
+#define MLOD_IF_MV_BINDINGS 16
+
+/* An empty map slot, and the words of a map pixel: its depth as an
+   order-preserving pattern, who drew it (0: inherited from the parent's
+   map, else 1 + the drawn node's place from the left), and the node. */
+#define MLOD_IF_MV_NONE 0xffffffffu
+#define MLOD_IF_MV_WORDS 3u
+
 /* The cut's control block (std430): indirect dispatch arguments (a slot
    per round parity, then cut_finish's), the entries each slot's round
    reads, the splits and merges of the running round, whether the last
@@ -197,6 +228,71 @@
     MEMBER(MLOD_IF_U32, max_groups_x)                                                                                  \
     MEMBER(MLOD_IF_U32, pass)
 #define MLOD_IF_REFIT_PUSH_BYTES 56
+
+/* The MegaViews control block (std430), host-visible: the parameters
+   (epsilon, delta, the maps' scale S = resolution / 2, the group radius;
+   the disc scale), the level (its first view node and count, the previous
+   level's first), the trees (scene leaves, view leaves, whether the scene
+   has cones, the view tree cones, half fields of view), the map
+   (resolution, pixels per map, flags, atlas width, channels wanted), the
+   level block's offsets in words (tiles, leaf sources, half fields of
+   view as float bits, this level's pair counts, drawn flags and slots,
+   the previous level's slots, each slot's node), the lists' counts (the
+   round's input and output pairs, the next level's pairs, the level's
+   draws; the draws stand after next_capacity pairs), the slots given out,
+   the most pairs at one view node, and the counts of what the pairs did
+   (shared views: a 64-bit count, low word first), and padding to 8 bytes. */
+#define MLOD_IF_MV_CONTROL_BLOCK(MEMBER)                                                                               \
+    MEMBER(MLOD_IF_F64, epsilon)                                                                                       \
+    MEMBER(MLOD_IF_F64, delta)                                                                                         \
+    MEMBER(MLOD_IF_F64, scale)                                                                                         \
+    MEMBER(MLOD_IF_F64, group_radius)                                                                                  \
+    MEMBER(float, disc_scale)                                                                                          \
+    MEMBER(MLOD_IF_U32, first)                                                                                         \
+    MEMBER(MLOD_IF_U32, count)                                                                                         \
+    MEMBER(MLOD_IF_U32, prev_first)                                                                                    \
+    MEMBER(MLOD_IF_U32, scene_leaves)                                                                                  \
+    MEMBER(MLOD_IF_U32, eye_leaves)                                                                                    \
+    MEMBER(MLOD_IF_U32, has_cones)                                                                                     \
+    MEMBER(MLOD_IF_U32, has_view_cones)                                                                                \
+    MEMBER(MLOD_IF_U32, has_fovs)                                                                                      \
+    MEMBER(MLOD_IF_U32, resolution)                                                                                    \
+    MEMBER(MLOD_IF_U32, pixels)                                                                                        \
+    MEMBER(MLOD_IF_U32, flags)                                                                                         \
+    MEMBER(MLOD_IF_U32, atlas_width)                                                                                   \
+    MEMBER(MLOD_IF_U32, want_normal)                                                                                   \
+    MEMBER(MLOD_IF_U32, want_color)                                                                                    \
+    MEMBER(MLOD_IF_U32, off_tiles)                                                                                     \
+    MEMBER(MLOD_IF_U32, off_sources)                                                                                   \
+    MEMBER(MLOD_IF_U32, off_fovs)                                                                                      \
+    MEMBER(MLOD_IF_U32, off_pairs)                                                                                     \
+    MEMBER(MLOD_IF_U32, off_drawn)                                                                                     \
+    MEMBER(MLOD_IF_U32, off_slots)                                                                                     \
+    MEMBER(MLOD_IF_U32, off_prev_slots)                                                                                \
+    MEMBER(MLOD_IF_U32, off_slot_nodes)                                                                                \
+    MEMBER(MLOD_IF_U32, in_count)                                                                                      \
+    MEMBER(MLOD_IF_U32, out_count)                                                                                     \
+    MEMBER(MLOD_IF_U32, next_count)                                                                                    \
+    MEMBER(MLOD_IF_U32, next_capacity)                                                                                 \
+    MEMBER(MLOD_IF_U32, draw_count)                                                                                    \
+    MEMBER(MLOD_IF_U32, slots)                                                                                         \
+    MEMBER(MLOD_IF_U32, node_pairs)                                                                                    \
+    MEMBER(MLOD_IF_U32, pairs)                                                                                         \
+    MEMBER(MLOD_IF_U32, culled)                                                                                        \
+    MEMBER(MLOD_IF_U32, shared_draws)                                                                                  \
+    MEMBER(MLOD_IF_U32, leaf_draws)                                                                                    \
+    MEMBER(MLOD_IF_U32, shared_leaves)                                                                                 \
+    MEMBER(MLOD_IF_U32, shared_views_low)                                                                              \
+    MEMBER(MLOD_IF_U32, shared_views_high)                                                                             \
+    MEMBER(MLOD_IF_U32, pad)
+#define MLOD_IF_MV_CONTROL_BYTES 184
+
+/* The MegaViews shaders' push constants: the items of the dispatch (pairs,
+   draws, slots, or map pixels) and the draw's pass (mv_draw.comp). */
+#define MLOD_IF_MV_PUSH(MEMBER)                                                                                        \
+    MEMBER(MLOD_IF_U32, items)                                                                                         \
+    MEMBER(MLOD_IF_U32, pass)
+#define MLOD_IF_MV_PUSH_BYTES 8
 
 /* The refit check's findings: flags (1 a non-finite position, 2 a position
    beyond 1e36, 4 a non-finite normal, 8 a non-finite colour), the first

@@ -271,6 +271,29 @@ static void test_cut_parity(void)
 /* The device atlas equals mlod_splat's, pixel for pixel, for every kind,
    with whole discs (disc_scale 1) and with half discs (0.5: no fallback
    pixel for discs that cover no pixel centre). */
+/* The room scene's tree of n leaves with cones and colours, uploaded, and
+   its bounds (c, R); 0, the failure checked and nothing held, on failure. */
+static int room_tree(scene_mesh *s, uint32_t n, const char *what, mlod_tree **tree, mlodvk_tree **vtree, double *c,
+                     double *R)
+{
+    mlod_error e;
+    *tree = NULL;
+    *vtree = NULL;
+    if (!scene_room(s)) {
+        CHECK(0, "%s: scene_room failed", what);
+        return 0;
+    }
+    *tree = tu_build(s, n, 9, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    tu_bounds(s, c, R);
+    if (!*tree || mlodvk_tree_upload(context, *tree, vtree, &e) != MLOD_OK) {
+        CHECK(0, "%s: tree upload: %s", what, *tree ? e.message : "build failed");
+        mlod_tree_destroy(*tree);
+        scene_free(s);
+        return 0;
+    }
+    return 1;
+}
+
 static void test_splat_parity(void)
 {
     scene_mesh s;
@@ -279,18 +302,7 @@ static void test_splat_parity(void)
     mlod_error e;
     double c[3], R;
     int kind, round;
-    if (!scene_room(&s)) {
-        CHECK(0, "scene_room failed");
-        return;
-    }
-    tree = tu_build(&s, lean ? 4000 : 40000, 9, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
-    tu_bounds(&s, c, &R);
-    if (!tree || mlodvk_tree_upload(context, tree, &vtree, &e) != MLOD_OK) {
-        CHECK(0, "splat: tree upload: %s", tree ? e.message : "build failed");
-        mlod_tree_destroy(tree);
-        scene_free(&s);
-        return;
-    }
+    if (!room_tree(&s, lean ? 4000 : 40000, "splat", &tree, &vtree, c, &R)) return;
     for (round = 0; round < (lean ? VIEW_KINDS + 2 : 2 * (VIEW_KINDS + 1)); round++) {
         float disc_scale = round <= VIEW_KINDS ? 0.0f : 0.5f;
         mlod_view views[16];
@@ -1133,6 +1145,137 @@ static void test_arguments(void)
 
 /* Every parity test on the context; prints their processor times after
    label. */
+/* mlodvk_megaviews_render equals mlod_megaviews_render: the atlas bit for
+   bit (depth, normal, colour) and every count of the statistics, over the
+   settings that take different paths: delta 0 and the suggested delta,
+   views with and without directions and fields of view, back-face
+   culling, a group radius, a disc scale below 1, duplicate eyes, eyes
+   outside the scene, odd and even resolutions, one view; and the same
+   refusals as the CPU's. */
+static void test_megaviews_parity(void)
+{
+    scene_mesh s;
+    mlod_tree *tree;
+    mlodvk_tree *vtree = NULL;
+    mlod_error e;
+    double c[3], R;
+    int setting;
+    if (!room_tree(&s, lean ? 4000 : 30000, "megaviews", &tree, &vtree, c, &R)) return;
+    for (setting = 0; setting < 8; setting++) {
+        uint32_t count = setting == 7 ? 1 : (lean ? 24 + 13 * (uint32_t)setting : 160 + 37 * (uint32_t)setting), i;
+        uint64_t rng = 900u + (uint64_t)setting;
+        float *eyes = (float *)malloc(12 * (size_t)count), *dirs = (float *)malloc(12 * (size_t)count);
+        float *fovs = (float *)malloc(4 * (size_t)count);
+        mlod_view *vs = (mlod_view *)malloc(sizeof(mlod_view) * count);
+        mlod_view_set set;
+        mlod_view_tree *vt = NULL;
+        mlod_megaviews_params p;
+        mlod_megaviews_stats cs, gs;
+        mlod_atlas_desc ad;
+        mlod_atlas *cpu_atlas = NULL, *gpu_atlas = NULL;
+        mlodvk_atlas *vatlas = NULL;
+        size_t pixels, k, depth_diff = 0, normal_diff = 0, color_diff = 0, drawn = 0;
+        memset(&p, 0, sizeof p);
+        p.epsilon = setting == 4 ? 3.0f : 1.0f;
+        p.delta = setting == 0 || setting == 3 ? 0.0f : MLOD_MEGAVIEWS_DELTA;
+        p.resolution = setting % 2 ? 5 : 8;
+        p.flags = setting == 2 || setting == 3 || setting == 6 ? MLOD_VIEW_CULL_BACKFACES : 0;
+        p.group_radius = setting == 5 ? (float)(0.05 * R) : 0.0f;
+        for (i = 0; i < count; i++) {
+            double d[3];
+            int j;
+            /* eyes in the room's box, grown by a third for setting 6 (some outside) */
+            for (j = 0; j < 3; j++)
+                eyes[3 * i + j] = (float)(c[j] + (setting == 6 ? 1.3 : 0.8) * R * (2.0 * scene_rng_double(&rng) - 1.0));
+            if (setting == 1 && i % 5 == 2) memcpy(eyes + 3 * i, eyes + 3 * (i - 1), 12);
+            tu_random_unit(&rng, d);
+            for (j = 0; j < 3; j++) dirs[3 * i + j] = (float)d[j];
+            fovs[i] = (float)(0.3 + 2.8 * scene_rng_double(&rng));
+            vs[i] = mlod_megaviews_view(eyes + 3 * i, p.resolution, p.flags);
+        }
+        memset(&set, 0, sizeof set);
+        set.eyes = eyes;
+        set.count = count;
+        if (setting == 2 || setting == 3 || setting == 4) set.directions = dirs;
+        if (setting == 3) set.half_fovs = fovs; /* else each view a hemisphere (half_fov 0: pi/2) */
+        memset(&ad, 0, sizeof ad);
+        ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
+        ad.disc_scale = setting == 4 ? 0.5f : 0.0f;
+        memset(&cs, 0, sizeof cs);
+        memset(&gs, 0, sizeof gs);
+        if (mlod_view_tree_build(&set, NULL, NULL, &vt, &e) != MLOD_OK ||
+            mlod_atlas_create(vs, count, &ad, NULL, &cpu_atlas, &e) != MLOD_OK ||
+            mlod_atlas_create(vs, count, &ad, NULL, &gpu_atlas, &e) != MLOD_OK ||
+            mlodvk_atlas_create(context, cpu_atlas, &vatlas, &e) != MLOD_OK ||
+            mlod_megaviews_render(cpu_atlas, tree, vt, &p, &cs, &e) != MLOD_OK ||
+            mlodvk_megaviews_render(context, vatlas, vtree, vt, &p, &gs, &e) != MLOD_OK ||
+            mlodvk_atlas_download(context, vatlas, gpu_atlas, &e) != MLOD_OK) {
+            CHECK(0, "megaviews parity, setting %d: %s", setting, e.message);
+        } else {
+            pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
+            for (k = 0; k < pixels; k++) {
+                drawn += isfinite(cpu_atlas->depth[k]);
+                depth_diff += memcmp(&cpu_atlas->depth[k], &gpu_atlas->depth[k], sizeof(float)) != 0;
+                normal_diff += memcmp(cpu_atlas->normal + 3 * k, gpu_atlas->normal + 3 * k, 3 * sizeof(float)) != 0;
+                color_diff += memcmp(cpu_atlas->color + 3 * k, gpu_atlas->color + 3 * k, 3 * sizeof(float)) != 0;
+            }
+            CHECK(drawn > pixels / 20, "megaviews parity, setting %d: only %zu of %zu pixels drawn", setting, drawn,
+                  pixels);
+            CHECK(depth_diff == 0 && normal_diff == 0 && color_diff == 0,
+                  "megaviews parity, setting %d: %zu depth, %zu normal, %zu colour pixels of %zu differ", setting,
+                  depth_diff, normal_diff, color_diff, pixels);
+            CHECK(cs.pairs == gs.pairs && cs.culled == gs.culled && cs.shared_draws == gs.shared_draws &&
+                      cs.leaf_draws == gs.leaf_draws && cs.shared_views == gs.shared_views &&
+                      cs.shared_leaves == gs.shared_leaves && cs.levels == gs.levels && cs.node_pairs == gs.node_pairs,
+                  "megaviews parity, setting %d: stats differ: pairs %llu/%llu culled %llu/%llu shared %llu/%llu "
+                  "leaf %llu/%llu views %llu/%llu leaves %llu/%llu levels %u/%u node pairs %llu/%llu",
+                  setting, (unsigned long long)cs.pairs, (unsigned long long)gs.pairs, (unsigned long long)cs.culled,
+                  (unsigned long long)gs.culled, (unsigned long long)cs.shared_draws,
+                  (unsigned long long)gs.shared_draws, (unsigned long long)cs.leaf_draws,
+                  (unsigned long long)gs.leaf_draws, (unsigned long long)cs.shared_views,
+                  (unsigned long long)gs.shared_views, (unsigned long long)cs.shared_leaves,
+                  (unsigned long long)gs.shared_leaves, cs.levels, gs.levels, (unsigned long long)cs.node_pairs,
+                  (unsigned long long)gs.node_pairs);
+            /* the settings exercise what they name: sharing with delta > 0, none with distinct eyes at 0 */
+            if (setting == 0) CHECK(cs.shared_draws == 0, "megaviews parity: delta 0 shares nothing");
+            if (setting == 1 || setting == 2 || setting == 4 || setting == 6) CHECK(cs.shared_draws > 0, "megaviews parity, setting %d: something shared", setting);
+            CHECK(gs.peak_bytes > 0, "megaviews parity, setting %d: device bytes reported", setting);
+            if (setting == 7) { /* the refusals, as the CPU's */
+                mlod_megaviews_params bad = p;
+                mlod_megaviews_render(cpu_atlas, tree, vt, &p, NULL, &e);
+                CHECK(mlodvk_megaviews_render(NULL, vatlas, vtree, vt, &p, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT &&
+                          mlodvk_megaviews_render(context, vatlas, vtree, NULL, &p, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT,
+                      "megaviews: NULL context or views refused");
+                bad.epsilon = 0.0f;
+                CHECK(mlodvk_megaviews_render(context, vatlas, vtree, vt, &bad, NULL, &e) == MLOD_ERROR_BAD_EPSILON &&
+                          mlod_megaviews_render(cpu_atlas, tree, vt, &bad, NULL, &e) == MLOD_ERROR_BAD_EPSILON,
+                      "megaviews: epsilon 0 refused by both");
+                bad = p;
+                bad.delta = -1.0f;
+                CHECK(mlodvk_megaviews_render(context, vatlas, vtree, vt, &bad, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT,
+                      "megaviews: a negative delta refused");
+                bad = p;
+                bad.resolution = p.resolution + 1;
+                CHECK(mlodvk_megaviews_render(context, vatlas, vtree, vt, &bad, NULL, &e) == MLOD_ERROR_MISMATCH &&
+                          mlod_megaviews_render(cpu_atlas, tree, vt, &bad, NULL, &e) == MLOD_ERROR_MISMATCH,
+                      "megaviews: tiles of another resolution refused by both");
+            }
+        }
+        mlodvk_atlas_destroy(context, vatlas);
+        mlod_atlas_destroy(cpu_atlas);
+        mlod_atlas_destroy(gpu_atlas);
+        mlod_view_tree_destroy(vt);
+        free(eyes);
+        free(dirs);
+        free(fovs);
+        free(vs);
+        check_validation("megaviews parity");
+    }
+    mlodvk_tree_destroy(context, vtree);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
 static void run_parity(const char *label)
 {
     double t0 = seconds(), t1, t2;
@@ -1141,8 +1284,9 @@ static void run_parity(const char *label)
     test_splat_parity();
     test_refit_parity();
     test_opposite_cone_parity();
+    test_megaviews_parity();
     t2 = seconds();
-    printf("  %sprocessor time: cut parity %.1f s, splat and refit parity %.1f s\n", label, t1 - t0, t2 - t1);
+    printf("  %sprocessor time: cut parity %.1f s, splat, refit and MegaViews parity %.1f s\n", label, t1 - t0, t2 - t1);
 }
 
 /* The same parity with doubles built from 32-bit integers (f64.glsl):
