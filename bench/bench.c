@@ -1787,6 +1787,67 @@ static void run_vulkan(bench *b, protocol *p, uint32_t n, int emulated)
         }
         free(away);
     }
+    /* MegaViews: the views' eyes (frame 0) as omnidirectional maps of 2 x 8 x 8, epsilon 1, the suggested
+       delta, on the last frame's tree; the device atlas checked equal to the CPU's, bit for bit */
+    if (!emulated) {
+        uint32_t v, res = 8, runs = 3;
+        float *eyes = (float *)checked_malloc(12 * (size_t)p->view_count);
+        mlod_view *maps = (mlod_view *)checked_malloc(sizeof(mlod_view) * p->view_count);
+        mlod_view_set set;
+        mlod_view_tree *vt = NULL;
+        mlod_megaviews_params mp;
+        mlod_megaviews_stats ms;
+        mlod_atlas_desc ad;
+        mlod_atlas *cpu_mv = NULL, *gpu_mv = NULL;
+        mlodvk_atlas *vmv = NULL;
+        double cpu_t[8], gpu_t[8];
+        row *r;
+        for (v = 0; v < p->view_count; v++) {
+            memcpy(eyes + 3 * v, p->views[v].position, 12);
+            maps[v] = mlod_megaviews_view(eyes + 3 * v, res, 0);
+        }
+        memset(&set, 0, sizeof set);
+        set.eyes = eyes;
+        set.count = p->view_count;
+        memset(&mp, 0, sizeof mp);
+        mp.epsilon = 1.0f;
+        mp.delta = MLOD_MEGAVIEWS_DELTA;
+        mp.resolution = res;
+        mp.parallel = &b->parallel;
+        memset(&ad, 0, sizeof ad);
+        if (mlod_view_tree_build(&set, NULL, &b->parallel, &vt, &e) != MLOD_OK ||
+            mlod_atlas_create(maps, p->view_count, &ad, NULL, &cpu_mv, &e) != MLOD_OK ||
+            mlod_atlas_create(maps, p->view_count, &ad, NULL, &gpu_mv, &e) != MLOD_OK ||
+            mlodvk_atlas_create(ctx, cpu_mv, &vmv, &e) != MLOD_OK)
+            fail("vulkan megaviews set-up: %s", e.message);
+        for (k = 0; k < (int)runs; k++) {
+            double t0 = now_ms();
+            if (mlod_megaviews_render(cpu_mv, tree, vt, &mp, &ms, &e) != MLOD_OK) fail("mlod_megaviews_render: %s", e.message);
+            cpu_t[k] = now_ms() - t0;
+            t0 = now_ms();
+            if (mlodvk_megaviews_render(ctx, vmv, vtree, vt, &mp, NULL, &e) != MLOD_OK)
+                fail("mlodvk_megaviews_render: %s", e.message);
+            gpu_t[k] = now_ms() - t0;
+        }
+        if (mlodvk_atlas_download(ctx, vmv, gpu_mv, &e) != MLOD_OK) fail("mlodvk_atlas_download: %s", e.message);
+        if (memcmp(cpu_mv->depth, gpu_mv->depth, sizeof(float) * cpu_mv->width * cpu_mv->height) != 0)
+            fail("vulkan megaviews: the device atlas differs from the CPU's");
+        r = add_row(b, ROW_VULKAN, p->name, "MegaViews, maps 2x8x8");
+        r->n = n;
+        r->eps = 1.0f;
+        r->cpu_ms = median(cpu_t, (int)runs);
+        r->total_ms = median(gpu_t, (int)runs);
+        snprintf(r->note, sizeof r->note, "%u views at frame 0's eyes, delta %.1f: %llu pairs, %llu shared draws", p->view_count,
+                 (double)mp.delta, (unsigned long long)ms.pairs, (unsigned long long)ms.shared_draws);
+        printf("  vulkan  N %8u  MegaViews %u views: %.1f / %.1f ms (CPU / device)\n", n, p->view_count, r->cpu_ms,
+               r->total_ms);
+        mlodvk_atlas_destroy(ctx, vmv);
+        mlod_atlas_destroy(cpu_mv);
+        mlod_atlas_destroy(gpu_mv);
+        mlod_view_tree_destroy(vt);
+        free(eyes);
+        free(maps);
+    }
     for (k = 0; k < VK_STAGES; k++) {
         row *r;
         if (k > VK_BASIC && k < VK_SPLAT && k - VK_BASIC >= mode_count) continue; /* not run (emulated) */
@@ -2822,7 +2883,7 @@ static void write_markdown(const bench *b, FILE *f, protocol *const *protocols, 
             if (any) {
                 fprintf(f, "\n### Vulkan (manylods_vk.h) next to the CPU\n\n"
                            "The same frames, tree and views, epsilon 1 px; every device cut was checked equal to the "
-                           "CPU's node for node and the device atlas to the CPU's bit for bit before its time was kept. "
+                           "CPU's node for node and the device atlases (splat, MegaViews) to the CPU's bit for bit before a time was kept. "
                            "Device times are wall-clock times of the blocking calls (record, submit, wait); the fixed "
                            "cost is a cut update whose every view sees nothing (each cut is the culled root), so the "
                            "rest of a cut's time is shader work.\n\n"
