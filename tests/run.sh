@@ -13,8 +13,8 @@
 # A program that prints a line "SKIPPED: reason" (and counts nothing) is
 # shown as SKIP with its reason.
 #
-# Prints one line per program and ends with the summed plain line
-# "N passed, M failed"; exits 1 when anything failed, 0 otherwise.
+# Prints one line per program, with the seconds it took, and ends with the
+# summed plain line "N passed, M failed"; exits 1 when anything failed, 0 otherwise.
 #
 # Environment: TEST_TIMEOUT  seconds allowed per program (default 600)
 #              VERBOSE=1     show every program's output, not only a failing one's
@@ -58,7 +58,7 @@ describe_status() { # status
 
 # run_one MODE PROGRAM: MODE is "counts" or "check".
 run_one() {
-    local mode=$1 program=$2 out="$log_dir/out" err="$log_dir/err" status line passed failed note=""
+    local mode=$1 program=$2 out="$log_dir/out" err="$log_dir/err" status line passed failed note="" took
     if [ ! -x "$program" ]; then
         total_failed=$((total_failed + 1))
         printf '  FAIL  %-40s not built (missing or not executable)\n' "$program"
@@ -66,17 +66,19 @@ run_one() {
     fi
     # The braces' 2>/dev/null silences the shell's own "Segmentation fault"
     # notice; the program's stderr still goes to $err.
+    local start=$SECONDS
     { ${wrap[@]+"${wrap[@]}"} "$program" </dev/null >"$out" 2>"$err"; } 2>/dev/null
     status=$?
+    took="$((SECONDS - start)) s"
 
     if [ "$mode" = check ]; then
         if [ "$status" = 0 ]; then
             total_passed=$((total_passed + 1))
-            printf '  ok    %-40s ran, exit status 0 (1 check)\n' "$program"
+            printf '  ok    %-40s %5s  ran, exit status 0 (1 check)\n' "$program" "$took"
             [ "$verbose" = 1 ] && { show_tail stdout "$out" 1000; show_tail stderr "$err" 1000; }
         else
             total_failed=$((total_failed + 1))
-            printf '  FAIL  %-40s %s\n' "$program" "$(describe_status "$status")"
+            printf '  FAIL  %-40s %5s  %s\n' "$program" "$took" "$(describe_status "$status")"
             show_tail stdout "$out" 60
             show_tail stderr "$err" 40
         fi
@@ -87,7 +89,7 @@ run_one() {
     if [ -z "$line" ]; then
         total_failed=$((total_failed + 1))
         if [ "$status" = 0 ]; then note="printed no 'N passed, M failed' line"; else note="$(describe_status "$status") before printing its result line"; fi
-        printf '  FAIL  %-40s %s (counted as 1 failure)\n' "$program" "$note"
+        printf '  FAIL  %-40s %5s  %s (counted as 1 failure)\n' "$program" "$took" "$note"
         show_tail stdout "$out" 60
         show_tail stderr "$err" 40
         return
@@ -99,18 +101,18 @@ run_one() {
     total_failed=$((total_failed + failed))
     if [ "$status" != 0 ] && { [ "$failed" = 0 ] || [ "$status" -gt 1 ]; }; then
         total_failed=$((total_failed + 1))
-        printf '  FAIL  %-40s %s, then %s (counted as 1 more failure)\n' "$program" "$line" "$(describe_status "$status")"
+        printf '  FAIL  %-40s %5s  %s, then %s (counted as 1 more failure)\n' "$program" "$took" "$line" "$(describe_status "$status")"
         show_tail stdout "$out" 60
         show_tail stderr "$err" 40
     elif [ "$failed" != 0 ]; then
-        printf '  FAIL  %-40s %s\n' "$program" "$line"
+        printf '  FAIL  %-40s %5s  %s\n' "$program" "$took" "$line"
         show_tail stdout "$out" 60
         show_tail stderr "$err" 40
     elif grep -q '^SKIPPED: ' "$out"; then
         # a skip counts nothing, and says why
-        printf '  SKIP  %-40s %s\n' "$program" "$(grep '^SKIPPED: ' "$out" | head -n 1 | cut -c10-)"
+        printf '  SKIP  %-40s %5s  %s\n' "$program" "$took" "$(grep '^SKIPPED: ' "$out" | head -n 1 | cut -c10-)"
     else
-        printf '  ok    %-40s %s\n' "$program" "$line"
+        printf '  ok    %-40s %5s  %s\n' "$program" "$took" "$line"
         [ "$verbose" = 1 ] && { show_tail stdout "$out" 1000; show_tail stderr "$err" 1000; }
     fi
 }
