@@ -7204,6 +7204,26 @@ static mlod_view mlod__node_map_view(const mlod__mv_job *job, uint32_t node)
     return mlod_megaviews_view(job->views->eyes->spheres + 4 * (size_t)node, job->resolution, job->flags);
 }
 
+/* The fast paths' constants of a view node from its cone, fields of view
+   and leafness (mlod__vnode). */
+static void mlod__vnode_cone_set(mlod__vnode *vn)
+{
+    double axis[3], reach, least;
+    if (!vn->cone) return;
+    axis[0] = vn->cone[0];
+    axis[1] = vn->cone[1];
+    axis[2] = vn->cone[2];
+    reach = vn->cone[3] + vn->most_fov + (vn->leaf ? 0.0 : 1.0 / 1073741824.0);
+    least = vn->least_fov - vn->cone[3] - 1.0 / 1073741824.0;
+    vn->axis_length = mlod__length3(axis);
+    vn->cos_reach = -2.0;
+    vn->sin_reach = 0.0;
+    if (reach < MLOD__PI) mlod__sin_cos(reach, &vn->sin_reach, &vn->cos_reach);
+    vn->cos_least = -2.0;
+    vn->sin_least = 0.0;
+    if (least >= 0.0) mlod__sin_cos(least, &vn->sin_least, &vn->cos_least);
+}
+
 static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode *vn)
 {
     const mlod_tree *t = job->views->eyes;
@@ -7217,18 +7237,7 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     vn->cone = mlod__cone_of(t, node);
     vn->least_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node] : MLOD__PI;
     vn->most_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node + 1] : MLOD__PI;
-    if (vn->cone) {
-        double axis[3] = {vn->cone[0], vn->cone[1], vn->cone[2]};
-        double reach = vn->cone[3] + vn->most_fov + (vn->leaf ? 0.0 : 1.0 / 1073741824.0);
-        double least = vn->least_fov - vn->cone[3] - 1.0 / 1073741824.0;
-        vn->axis_length = mlod__length3(axis);
-        vn->cos_reach = -2.0;
-        vn->sin_reach = 0.0;
-        if (reach < MLOD__PI) mlod__sin_cos(reach, &vn->sin_reach, &vn->cos_reach);
-        vn->cos_least = -2.0;
-        vn->sin_least = 0.0;
-        if (least >= 0.0) mlod__sin_cos(least, &vn->sin_least, &vn->cos_least);
-    }
+    mlod__vnode_cone_set(vn);
     if (vn->leaf || vn->group) {
         mlod_view view = mlod__node_map_view(job, node);
         if (vn->group) view.flags &= ~(uint32_t)MLOD_VIEW_CULL_BACKFACES; /* culled for all eyes, above */
@@ -7241,21 +7250,25 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
    without its arc tangents: within when phi <= psi = L - turn + seen, with
    L from the node (least_fov - alpha - 2^-30), turn = asin(rho / d) and
    seen = asin(r / (d + rho)), i.e. cos phi >= cos psi while psi is in [0,
-   pi]; psi's sine and cosine come from their sums.  psi lies in (-pi / 2,
-   3 pi / 2): below 0 (only when L < turn) nothing is within, above pi
-   everything.  1 within, 0 not, -1 when cos phi lies within 1e-9 of cos psi
-   or psi within 1e-9 of 0 or pi (by its sine), far above both sides'
-   errors (the arc tangents' 1e-11 rad): the exact test decides those. */
+   pi]; psi's sine and cosine come from their sums.  With L >= 0, psi lies
+   in (-pi / 2, 3 pi / 2): below 0 (only when L < turn) nothing is within,
+   above pi everything; with L < 0 it is below 0 where seen < turn (sines
+   1e-9 apart).  1 within, 0 not, -1 when cos phi lies within 1e-9 of cos
+   psi or psi within 1e-9 of 0 or pi (by its sine), far above both sides'
+   errors (the arc tangents' 1e-11 rad): the exact test decides those.
+   Each cosine comes from its sine's two sides (sqrt((d - rho)(d + rho)) /
+   d, not sqrt(1 - sin^2), which keeps only half the digits of a cosine
+   near 0: an eye nearly touching the sphere). */
 static int mlod__surely_within(double cos_phi, double d, double r, const mlod__vnode *vn)
 {
-    double sin_t = vn->radius / d, cos_t, sin_1, cos_1, sin_s, cos_s, sin_psi, cos_psi;
-    if (vn->cos_least < -1.0 || !(sin_t < 1.0)) return -1; /* L < 0, or an eye in reach: the exact test */
-    cos_t = sqrt((1.0 - sin_t) * (1.0 + sin_t));
+    double rho = vn->radius, e = d + rho, sin_t, cos_t, sin_1, cos_1, sin_s, cos_s, sin_psi, cos_psi;
+    if (vn->cos_least < -1.0 || !(d > rho) || !(e > r)) return -1; /* L < 0, or an eye in reach: the exact test */
+    sin_t = rho / d;
+    cos_t = sqrt((d - rho) * (d + rho)) / d;
     sin_1 = vn->sin_least * cos_t - vn->cos_least * sin_t; /* L - turn, in (-pi / 2, pi] */
     cos_1 = vn->cos_least * cos_t + vn->sin_least * sin_t;
-    sin_s = r / (d + vn->radius);
-    if (!(sin_s < 1.0)) return -1;
-    cos_s = sqrt((1.0 - sin_s) * (1.0 + sin_s));
+    sin_s = r / e;
+    cos_s = sqrt((e - r) * (e + r)) / e;
     sin_psi = sin_1 * cos_s + cos_1 * sin_s;
     cos_psi = cos_1 * cos_s - sin_1 * sin_s;
     if (sin_psi > -1e-9 && sin_psi < 1e-9) return -1; /* psi near 0 or pi */
@@ -7268,7 +7281,8 @@ static int mlod__surely_within(double cos_phi, double d, double r, const mlod__v
 /* mlod__outside_cone's answer where cosines settle it, without its arc
    tangents: the sphere (d, grown to g) is outside when phi > psi = A + b,
    b = asin(g / d), i.e. cos phi < cos psi = cos A cos b - sin A sin b with
-   psi < pi (sin psi > 0).  1 outside, 0 not, -1 when cos phi lies within
+   psi < pi (sin psi > 0), cos b = sqrt((d - g)(d + g)) / d (as in
+   mlod__surely_within).  1 outside, 0 not, -1 when cos phi lies within
    1e-9 of cos psi (or psi near pi), far above both sides' errors (the
    arc tangents' 1e-11 rad): the exact test decides those. */
 static int mlod__surely_outside(double cos_phi, double d, double g, const mlod__vnode *vn)
@@ -7276,7 +7290,7 @@ static int mlod__surely_outside(double cos_phi, double d, double g, const mlod__
     double sin_b, cos_b, cos_psi, sin_psi;
     if (vn->cos_reach < -1.0 || !(d > g)) return 0; /* A >= pi, or an eye in the sphere: never culled */
     sin_b = g / d;
-    cos_b = sqrt((1.0 - sin_b) * (1.0 + sin_b));
+    cos_b = sqrt((d - g) * (d + g)) / d;
     cos_psi = vn->cos_reach * cos_b - vn->sin_reach * sin_b;
     sin_psi = vn->sin_reach * cos_b + vn->cos_reach * sin_b;
     if (!(sin_psi > 1e-9)) return -1;
@@ -7309,7 +7323,8 @@ static void mlod__sin_cos_bounds(double a, double *sin_lo, double *sin_hi, doubl
    0, pi/2 + theta)) when gamma + turn + 2^-30 <= pi/2 + theta + seen, turn =
    asin(rho / d), seen = asin(r / (d + rho)): gamma <= pi/2 + delta - 2^-30,
    delta = theta + sigma, sigma = seen - turn in (-pi/2, pi/2); for delta
-   >= pi/2 always.  Sines and cosines from square roots and their sums
+   >= pi/2 always.  Sines and cosines from square roots (each cosine from
+   its sine's two sides, as in mlod__surely_within) and their sums
    (theta's from mlod__sin_cos_bounds); each answer is given only 1e-8 (in cosines:
    as much in angle) clear of its threshold, far above the 2^-30 of the
    definitions and the arc tangents' 1e-11 rad; -1 otherwise (the exact
@@ -7332,7 +7347,7 @@ static int mlod__surely_backfacing(const double *x, double d, double g, const fl
     if (!(d > g)) return 0;
     if (!mlod__cos_gamma(x, d, cone, &cos_gamma)) return -1;
     sin_b = g / d;
-    cos_b = sqrt((1.0 - sin_b) * (1.0 + sin_b));
+    cos_b = sqrt((d - g) * (d + g)) / d;
     mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);
     sum_hi = s_hi * cos_b + c_hi * sin_b;      /* sin(theta + b) at most */
     sum_lo = s_lo * cos_b + c_lo * sin_b;      /* at least */
@@ -7344,15 +7359,16 @@ static int mlod__surely_backfacing(const double *x, double d, double g, const fl
 
 static int mlod__surely_facing(const double *x, double d, double r, double rho, const float *cone)
 {
-    double theta = cone[3], cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
+    double theta = cone[3], e, cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
     double sin_d_lo, sin_d_hi, cos_d_lo, cos_d_hi;
     if (!(theta >= 0.0 && theta < 0.5 * MLOD__PI) || !(d > rho)) return -1;
     if (!mlod__cos_gamma(x, d, cone, &cos_gamma)) return -1;
+    e = d + rho;
+    if (!(e > r)) return -1;
     sin_t = rho / d;
-    cos_t = sqrt((1.0 - sin_t) * (1.0 + sin_t));
-    sin_s = r / (d + rho);
-    if (!(sin_s < 1.0)) return -1;
-    cos_s = sqrt((1.0 - sin_s) * (1.0 + sin_s));
+    cos_t = sqrt((d - rho) * (d + rho)) / d;
+    sin_s = r / e;
+    cos_s = sqrt((e - r) * (e + r)) / e;
     sin_sg = sin_s * cos_t - cos_s * sin_t; /* sigma = seen - turn */
     cos_sg = cos_s * cos_t + sin_s * sin_t;
     mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);

@@ -931,32 +931,41 @@ static void test_walks(const mlod_tree *scene)
    (the sphere grown by rho faces away from every eye), mlod__surely_facing
    against mlod__within_cone (every eye finds a normal facing it), on random
    spheres, balls of eyes and normal cones, the direction to the sphere put
-   10^-10 to 10^-1 rad from the test's threshold; and they decide most of
-   them: 99 % of those 1e-6 rad or more from the threshold. */
+   10^-10 to 10^-1 rad from the test's threshold, a quarter of them nearly
+   tangent (r + rho, or rho and r, within 2^-52 to 2^-40 of d and d + rho,
+   relatively); and they decide most of them: 99 % of those 1e-6 rad or
+   more from the threshold, not nearly tangent. */
 static void test_fast_paths(void)
 {
     uint64_t rng = 5;
-    uint32_t i, n = 400000, wrong[2] = {0, 0}, decided[2] = {0, 0}, tried[2] = {0, 0}, far[2] = {0, 0}, far_decided[2] = {0, 0};
+    uint32_t i, n = 400000, wrong[2] = {0, 0}, decided[2] = {0, 0}, tried[2] = {0, 0}, far[2] = {0, 0}, far_decided[2] = {0, 0},
+                            tangent[2] = {0, 0};
     const double margin = 1.0 / 1073741824.0;
     for (i = 0; i < n; i++) {
         double axis[3], p[3], x[3], away[3], len, d, r, rho, theta, gamma, offset, dot;
         float cone[4];
-        int k, which = (int)(i & 1), fast, exact;
+        int k, which = (int)(i & 1), near = (i >> 1) % 4 == 0, fast, exact;
         tu_random_unit(&rng, axis);
         tu_random_unit(&rng, p);
         theta = i % 5 == 0 ? 0.0 : scene_rng_double(&rng) * 1.7; /* past pi/2 too */
         d = 0.5 + 10.0 * scene_rng_double(&rng);
         r = d * 0.6 * scene_rng_double(&rng);
         rho = i % 7 == 0 ? 0.0 : d * 0.6 * scene_rng_double(&rng);
-        for (k = 0; k < 3; k++) cone[k] = (float)axis[k];
-        cone[3] = (float)theta;
+        if (near && which == 0) { /* r + rho within 2^-52 to 2^-40 of d */
+            rho = d * (1.0 - ldexp(pow(4096.0, scene_rng_double(&rng)), -52)) - r;
+        } else if (near) { /* rho as near d, r sometimes as near d + rho */
+            rho = d * (1.0 - ldexp(pow(4096.0, scene_rng_double(&rng)), -52));
+            if (i % 3 == 0) r = (d + rho) * (1.0 - ldexp(pow(4096.0, scene_rng_double(&rng)), -52));
+        }
+        tu_to_floats(axis, cone, 3);
+        cone[3] = tu_float(theta);
         theta = cone[3];
         len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
         for (k = 0; k < 3; k++) axis[k] = cone[k] / len;
         dot = p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2];
         for (k = 0; k < 3; k++) p[k] -= dot * axis[k];
         len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-        if (!(len > 1e-3) || !(d > r + rho) || !(d + rho > r)) continue;
+        if (!(len > 1e-3) || !(which ? d > rho : d > r + rho) || !(d + rho > r)) continue;
         for (k = 0; k < 3; k++) p[k] /= len;
         gamma = 0.5 * 3.14159265358979323846 + theta +
                 (which ? asin(r / (d + rho)) - asin(rho / d) : asin((r + rho) / d));
@@ -977,19 +986,107 @@ static void test_fast_paths(void)
             exact = mlod__within_cone(away, d, r, rho, cone, 0.0, 0.5 * MLOD__PI + cone[3]);
         }
         tried[which]++;
-        far[which] += fabs(offset) >= 1e-6;
+        tangent[which] += near;
+        far[which] += !near && fabs(offset) >= 1e-6;
         if (fast < 0) continue;
         decided[which]++;
-        far_decided[which] += fabs(offset) >= 1e-6;
+        far_decided[which] += !near && fabs(offset) >= 1e-6;
         if (fast != exact && wrong[which]++ < 3)
             CHECK(0, "%s fast path: %d, exact test: %d (theta %.9g, d %.9g, r %.9g, rho %.9g, %.3g rad off)",
                   which ? "facing" : "back-facing", fast, exact, theta, d, r, rho, offset);
     }
     CHECK(wrong[0] == 0 && wrong[1] == 0, "the back-face fast paths decide as the exact tests (%u and %u of %u and %u "
-                                          "decided, %u and %u wrong)",
-          decided[0], decided[1], tried[0], tried[1], wrong[0], wrong[1]);
+                                          "decided, %u and %u nearly tangent, %u and %u wrong)",
+          decided[0], decided[1], tried[0], tried[1], tangent[0], tangent[1], wrong[0], wrong[1]);
     CHECK(far_decided[0] >= 0.99 * far[0] && far_decided[1] >= 0.99 * far[1],
           "the fast paths decide 99 %% of the cases 1e-6 rad or more from the threshold (%u of %u, %u of %u)",
+          far_decided[0], far[0], far_decided[1], far[1]);
+}
+
+/* The view-cone fast paths (mlod__surely_outside, mlod__surely_within)
+   against the exact tests they stand for (mlod__outside_cone and
+   mlod__within_cone with a view node's constants, mlod__vnode_cone_set):
+   scene spheres placed at 1e-10 to 0.1 rad from each threshold, on either
+   side, a quarter of them nearly tangent to the eyes' ball (d within 2^-40
+   to 2^-52 of g or rho, relatively), where an angle's cosine taken from its
+   sine loses half its digits.  Wherever a fast path answers, it answers as
+   the exact test; it answers nearly every case 1e-6 rad or more away
+   (within: where L = least_fov - alpha >= 0; with L < 0 it answers only
+   "not within"). */
+static void test_cone_fast_paths(void)
+{
+    uint64_t rng = 11;
+    uint32_t i, n = 400000, wrong[2] = {0, 0}, decided[2] = {0, 0}, tried[2] = {0, 0}, far[2] = {0, 0},
+                            far_decided[2] = {0, 0}, tangent[2] = {0, 0};
+    for (i = 0; i < n; i++) {
+        double axis[3], p[3], x[3], len, d, r, rho, g, psi, phi, offset, dot, cos_phi;
+        float cone[4];
+        mlod__vnode vn;
+        int k, which = (int)(i & 1), near = (i >> 1) % 4 == 0, fast, exact, far_now;
+        memset(&vn, 0, sizeof vn);
+        tu_random_unit(&rng, axis);
+        tu_random_unit(&rng, p);
+        tu_to_floats(axis, cone, 3);
+        cone[3] = tu_float(i % 5 == 0 ? 0.0 : 1.4 * scene_rng_double(&rng));
+        vn.cone = cone;
+        vn.leaf = (i >> 2) % 3 == 0;
+        vn.most_fov = tu_float(0.1 + 3.1 * scene_rng_double(&rng));
+        vn.least_fov = tu_float(vn.most_fov * scene_rng_double(&rng));
+        mlod__vnode_cone_set(&vn);
+        len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
+        for (k = 0; k < 3; k++) axis[k] = cone[k] / len;
+        dot = p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2];
+        for (k = 0; k < 3; k++) p[k] -= dot * axis[k];
+        len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        if (!(len > 1e-3)) continue;
+        for (k = 0; k < 3; k++) p[k] /= len;
+        d = 0.5 + 10.0 * scene_rng_double(&rng);
+        if (which == 0) { /* outside: phi > reach + asin(g / d) */
+            g = near ? d * (1.0 - ldexp(pow(4096.0, scene_rng_double(&rng)), -52)) : d * scene_rng_double(&rng);
+            r = g * scene_rng_double(&rng);
+            rho = vn.leaf ? 0.0 : g - r;
+            g = r + rho;
+            psi = vn.cone[3] + vn.most_fov + (vn.leaf ? 0.0 : 1.0 / 1073741824.0) + asin(g / d);
+        } else { /* within: phi <= least - alpha - 2^-30 - asin(rho / d) + asin(r / (d + rho)) */
+            rho = near ? d * (1.0 - ldexp(pow(4096.0, scene_rng_double(&rng)), -52)) : d * scene_rng_double(&rng);
+            r = (d + rho) * (near && i % 3 == 0 ? 1.0 - ldexp(pow(4096.0, scene_rng_double(&rng)), -52)
+                                                : scene_rng_double(&rng));
+            g = r + rho;
+            psi = vn.least_fov - vn.cone[3] - 1.0 / 1073741824.0 - asin(rho / d) + asin(r / (d + rho));
+        }
+        vn.radius = rho;
+        offset = pow(10.0, -10.0 + 9.0 * scene_rng_double(&rng)) * (scene_rng_double(&rng) < 0.5 ? -1.0 : 1.0);
+        phi = psi + offset;
+        if (!(phi > 0.0 && phi < 3.14159265358979323846)) continue;
+        for (k = 0; k < 3; k++) x[k] = d * (cos(phi) * axis[k] + sin(phi) * p[k]);
+        d = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        /* as mlod__pair_action takes it */
+        cos_phi = (x[0] * cone[0] + x[1] * cone[1] + x[2] * cone[2]) / (d * vn.axis_length);
+        if (which == 0) {
+            fast = mlod__surely_outside(cos_phi, d, g, &vn);
+            exact = mlod__outside_cone(x, d, g, cone, vn.most_fov, vn.leaf ? 0.0 : 1.0 / 1073741824.0);
+        } else {
+            fast = mlod__surely_within(cos_phi, d, r, &vn);
+            exact = mlod__within_cone(x, d, r, rho, cone, cone[3], vn.least_fov);
+        }
+        tried[which]++;
+        tangent[which] += near;
+        /* within, L < 0 (psi >= 0 only where seen > turn): the exact test's, by design */
+        far_now = !near && fabs(offset) >= 1e-6 && (which == 0 || vn.cos_least >= -1.0);
+        far[which] += far_now;
+        if (fast < 0) continue;
+        decided[which]++;
+        far_decided[which] += far_now;
+        if (fast != exact && wrong[which]++ < 3)
+            CHECK(0, "%s fast path: %d, exact test: %d (alpha %.9g, fovs %.9g %.9g, d %.17g, r %.17g, rho %.17g, "
+                     "%.3g rad off)",
+                  which ? "within" : "outside", fast, exact, cone[3], vn.least_fov, vn.most_fov, d, r, rho, offset);
+    }
+    CHECK(wrong[0] == 0 && wrong[1] == 0, "the view-cone fast paths decide as the exact tests (%u and %u of %u and %u "
+                                          "decided, %u and %u nearly tangent, %u and %u wrong)",
+          decided[0], decided[1], tried[0], tried[1], tangent[0], tangent[1], wrong[0], wrong[1]);
+    CHECK(far_decided[0] >= 0.99 * far[0] && far_decided[1] >= 0.99 * far[1],
+          "the view-cone fast paths decide 99 %% of the cases 1e-6 rad or more from the threshold (%u of %u, %u of %u)",
           far_decided[0], far[0], far_decided[1], far[1]);
 }
 
@@ -1315,6 +1412,7 @@ int main(void)
     test_culling(scene);
     test_bounds();
     test_fast_paths();
+    test_cone_fast_paths();
     test_threads(scene);
     test_sizing(scene);
     test_walks(scene);

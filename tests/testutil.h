@@ -173,6 +173,26 @@ static inline void tu_random_unit(uint64_t *rng, double *d)
     tu_normalize3(d);
 }
 
+/* (float)x, and f[i] = (float)d[i], in functions of their own.  GCC 12.2
+   at -O2 (its SLP vectoriser) may otherwise take such floats, where they
+   are used as doubles in the same function, as the unrounded doubles they
+   came from (seen in test_megaviews' cone tests: a struct's double field
+   set to (float)y held y, and (double)cone[1] was taken as the axis[1]
+   cone[1] had been rounded from, even through volatile stores). */
+#if defined(__GNUC__)
+__attribute__((noinline, unused))
+#endif
+static float tu_float(double x)
+{
+    return (float)x;
+}
+
+static inline void tu_to_floats(const double *d, float *f, int n)
+{
+    int i;
+    for (i = 0; i < n; i++) f[i] = tu_float(d[i]);
+}
+
 /* A unit vector perpendicular to unit a. */
 static inline void tu_random_perp(uint64_t *rng, const double *a, double *p)
 {
