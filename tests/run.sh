@@ -16,12 +16,18 @@
 # Prints one line per program, with the seconds it took, and ends with the
 # summed plain line "N passed, M failed"; exits 1 when anything failed, 0 otherwise.
 #
+# Programs run TEST_JOBS at a time (default: the number of processors),
+# each reported in the order given, when it and those before it are done.
+#
 # Environment: TEST_TIMEOUT  seconds allowed per program (default 600)
+#              TEST_JOBS     programs run at once (default nproc)
 #              VERBOSE=1     show every program's output, not only a failing one's
 set -u
 
 timeout_s=${TEST_TIMEOUT:-600}
 verbose=${VERBOSE:-0}
+jobs_max=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
+[ "$jobs_max" -ge 1 ] 2>/dev/null || jobs_max=1
 total_passed=0
 total_failed=0
 log_dir=$(mktemp -d "${TMPDIR:-/tmp}/manylods-run.XXXXXX")
@@ -56,20 +62,33 @@ describe_status() { # status
     esac
 }
 
-# run_one MODE PROGRAM: MODE is "counts" or "check".
-run_one() {
-    local mode=$1 program=$2 out="$log_dir/out" err="$log_dir/err" status line passed failed note="" took
+# start_one INDEX PROGRAM: run it in the background, its output, exit
+# status and seconds into $log_dir/INDEX.{out,err,status,time} (status last,
+# so that its presence says the program is done).
+start_one() {
+    local i=$1 program=$2
+    (
+        start=$SECONDS
+        # The braces' 2>/dev/null silences the shell's own "Segmentation
+        # fault" notice; the program's stderr still goes to INDEX.err.
+        { ${wrap[@]+"${wrap[@]}"} "$program" </dev/null >"$log_dir/$i.out" 2>"$log_dir/$i.err"; } 2>/dev/null
+        code=$?
+        echo "$((SECONDS - start))" >"$log_dir/$i.time"
+        echo "$code" >"$log_dir/$i.status.tmp" && mv "$log_dir/$i.status.tmp" "$log_dir/$i.status"
+    ) &
+}
+
+# report_one INDEX MODE PROGRAM: MODE is "counts" or "check"; the program
+# is done (or was not built).
+report_one() {
+    local i=$1 mode=$2 program=$3 out="$log_dir/$1.out" err="$log_dir/$1.err" status line passed failed note="" took
     if [ ! -x "$program" ]; then
         total_failed=$((total_failed + 1))
         printf '  FAIL  %-40s not built (missing or not executable)\n' "$program"
         return
     fi
-    # The braces' 2>/dev/null silences the shell's own "Segmentation fault"
-    # notice; the program's stderr still goes to $err.
-    local start=$SECONDS
-    { ${wrap[@]+"${wrap[@]}"} "$program" </dev/null >"$out" 2>"$err"; } 2>/dev/null
-    status=$?
-    took="$((SECONDS - start)) s"
+    status=$(cat "$log_dir/$i.status")
+    took="$(cat "$log_dir/$i.time") s"
 
     if [ "$mode" = check ]; then
         if [ "$status" = 0 ]; then
@@ -117,14 +136,39 @@ run_one() {
     fi
 }
 
+# The command line as lists: each program's mode and the section printed
+# before it (sections after the last program are printed at the end).
+modes=()
+programs=()
+sections=()
+pending=""
 while [ $# -gt 0 ]; do
     case $1 in
-        --section) shift; printf '%s\n' "${1:-}"; shift ;;
-        --check) shift; [ $# -gt 0 ] && { run_one check "$1"; shift; } ;;
+        --section) shift; pending+="${1:-}"$'\n'; shift ;;
+        --check) shift; [ $# -gt 0 ] && { modes+=(check); programs+=("$1"); sections+=("$pending"); pending=""; shift; } ;;
         -h|--help) sed -n '2,/^set -u/p' "$0" | sed '$d'; exit 0 ;;
-        *) run_one counts "$1"; shift ;;
+        *) modes+=(counts); programs+=("$1"); sections+=("$pending"); pending=""; shift ;;
     esac
 done
+
+count=${#programs[@]}
+next=0    # the next program to start
+running=0 # started and not yet seen done
+for ((i = 0; i < count; i++)); do
+    # Start programs while there is room, then wait for this one.
+    while [ ! -e "$log_dir/$i.status" ] && [ -x "${programs[i]}" ]; do
+        if [ "$next" -lt "$count" ] && [ "$(jobs -rp | wc -l)" -lt "$jobs_max" ]; then
+            [ -x "${programs[next]}" ] && start_one "$next" "${programs[next]}"
+            next=$((next + 1))
+        else
+            wait -n 2>/dev/null || sleep 0.2
+        fi
+    done
+    printf '%s' "${sections[i]}"
+    report_one "$i" "${modes[i]}" "${programs[i]}"
+done
+printf '%s' "$pending"
+wait
 
 echo "$total_passed passed, $total_failed failed"
 [ "$total_failed" = 0 ]

@@ -7,8 +7,12 @@
 #
 #   tests/compile/matrix.sh [NAME-GLOB...]    run every entry, or those named
 #
+# Entries run MATRIX_JOBS at a time (default: the number of processors) and
+# are reported in order once all have run.
+#
 # Environment: CC, CXX (default gcc, g++), CLANG, CLANGXX (default clang,
-# clang++), MATRIX_OUT (default build/matrix), VERBOSE=1 to log every step.
+# clang++), MATRIX_OUT (default build/matrix), MATRIX_JOBS, VERBOSE=1 to log
+# every step.
 set -u
 cd "$(dirname "$0")/../.." || exit 1
 
@@ -22,8 +26,12 @@ LIBS="-lm -pthread"
 SRC=tests/compile
 mkdir -p "$OUT" || exit 1
 
+jobs_max=${MATRIX_JOBS:-$(nproc 2>/dev/null || echo 1)}
+[ "$jobs_max" -ge 1 ] 2>/dev/null || jobs_max=1
 passed=0
 failed=0
+names=()  # the entries started, in order
+titles=()
 
 # steps CMD...: run each command string in turn, echoing it; stop at the
 # first that fails.
@@ -35,7 +43,9 @@ steps() {
     done
 }
 
-# entry NAME TITLE CMD...: one check of the matrix.
+# entry NAME TITLE CMD...: one check of the matrix, started in the
+# background ($OUT/NAME.log, then $OUT/NAME.status: 0 or 1 and the seconds
+# it took); report shows it.
 entry() {
     local name=$1 title=$2 pattern selected=1
     shift 2
@@ -47,16 +57,38 @@ entry() {
         done
     fi
     [ "$selected" = 1 ] || return 0
-    if steps "$@" >"$OUT/$name.log" 2>&1; then
-        passed=$((passed + 1))
-        printf '  ok    %-24s %s\n' "$name" "$title"
-        [ "${VERBOSE:-0}" = 1 ] && sed 's/^/      | /' "$OUT/$name.log"
-    else
-        failed=$((failed + 1))
-        printf '  FAIL  %-24s %s\n' "$name" "$title"
-        tail -n 40 "$OUT/$name.log" | sed 's/^/      | /'
-    fi
+    while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n 2>/dev/null || sleep 0.2; done
+    rm -f "$OUT/$name.status"
+    names+=("$name")
+    titles+=("$title")
+    (
+        entry_name=$name
+        start=$SECONDS
+        if steps "$@" >"$OUT/$name.log" 2>&1; then code=0; else code=1; fi
+        echo "$code $((SECONDS - start))" >"$OUT/$name.status"
+    ) &
     return 0
+}
+
+# report: wait for every entry, then print each in order and count them.
+report() {
+    local i name code took
+    wait
+    for i in "${!names[@]}"; do
+        name=${names[i]}
+        code=1
+        took=?
+        [ -r "$OUT/$name.status" ] && read -r code took <"$OUT/$name.status"
+        if [ "$code" = 0 ]; then
+            passed=$((passed + 1))
+            printf '  ok    %-24s %4s s  %s\n' "$name" "$took" "${titles[i]}"
+            [ "${VERBOSE:-0}" = 1 ] && sed 's/^/      | /' "$OUT/$name.log"
+        else
+            failed=$((failed + 1))
+            printf '  FAIL  %-24s %4s s  %s\n' "$name" "$took" "${titles[i]}"
+            tail -n 40 "$OUT/$name.log" | sed 's/^/      | /'
+        fi
+    done
 }
 
 # Macros that a translation unit defines beyond those of the system headers
@@ -106,8 +138,8 @@ fma_count() { # object
 no_fused_multiply_add() { # compiler
     local cc=$1 tag
     tag=$(basename "$cc")
-    printf 'double fma_probe(double a, double b, double c) { return a * b + c; }\n' >"$OUT/fma_probe.c"
-    $cc -std=gnu11 -O2 -mfma -c "$OUT/fma_probe.c" -o "$OUT/fma_probe-$tag.o" || return 1
+    printf 'double fma_probe(double a, double b, double c) { return a * b + c; }\n' >"$OUT/fma_probe-$tag.c"
+    $cc -std=gnu11 -O2 -mfma -c "$OUT/fma_probe-$tag.c" -o "$OUT/fma_probe-$tag.o" || return 1
     if [ "$(fma_count "$OUT/fma_probe-$tag.o")" = 0 ]; then
         echo "$cc -std=gnu11 -mfma did not fuse a * b + c: the check would see nothing"
         return 1
@@ -191,9 +223,9 @@ fp_same_hash() { # compiler, flags...
     return 1
 }
 fp_refused() { # compiler, flags...: the build fails with the header's message
-    local cc=$1 log="$OUT/fp-refused.log"
+    local cc=$1 log="$OUT/fp-refused-$entry_name.log"
     shift
-    if $cc "$@" -c $SRC/fp_hash.c -o "$OUT/fp-refused.o" >"$log" 2>&1; then
+    if $cc "$@" -c $SRC/fp_hash.c -o "$OUT/fp-refused-$entry_name.o" >"$log" 2>&1; then
         echo "$cc $* compiled the implementation: it must refuse these flags"
         return 1
     fi
@@ -247,7 +279,9 @@ entry cut-native "tests/test_cut.c with $native, $CLANG" \
 
 # The NEON lanes (AArch64), where an AArch64 cross compiler and qemu are
 # here (tests/deps.sh brings them on x86-64): the same hash with and
-# without them, and test_cut on them.  Elsewhere not run, and not counted.
+# without them, and test_cut's groups that check the cut and its float
+# filter against exact references on them (the whole program takes minutes
+# under qemu).  Elsewhere not run, and not counted.
 if command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 && command -v qemu-aarch64 >/dev/null 2>&1; then
     neon_hash() { # flags...: fp_hash.c built for AArch64 with them, run under qemu, against the reference
         local exe="$OUT/fp-aarch64-$(printf '%s' "$*" | tr -c 'a-zA-Z0-9' '_')" hash
@@ -258,9 +292,9 @@ if command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 && command -v qemu-aarch64 >
     }
     entry neon-fp "same hash: aarch64-linux-gnu-gcc -O2 (NEON, 4 lanes) and -DMANYLODS_NO_SIMD, under qemu" \
         "neon_hash -std=c99 -O2" "neon_hash -std=c99 -O2 -DMANYLODS_NO_SIMD"
-    entry neon-cut "tests/test_cut.c for AArch64 (NEON), under qemu" \
+    entry neon-cut "tests/test_cut.c's cut and float filter groups for AArch64 (NEON), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_cut.c -o $OUT/neon-cut $LIBS" \
-        "qemu-aarch64 $OUT/neon-cut"
+        "qemu-aarch64 $OUT/neon-cut random_trees hand_made criterion_reference backface_boundary fast_filter fast_conditioning"
     entry f64-aarch64 "tests/test_f64.c for AArch64 (shaders/f64.glsl against AArch64's doubles), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_f64.c -o $OUT/f64-aarch64 $LIBS" \
         "qemu-aarch64 $OUT/f64-aarch64 300000"
@@ -337,5 +371,6 @@ entry minimal-werror "examples/minimal.c, C99, $CC and $CLANG; README.md quotes 
     "$CLANG -std=c99 $STRICT examples/minimal.c -o $OUT/minimal-clang $LIBS" "$OUT/minimal-clang" \
     "readme_quotes examples/minimal.c"
 
+report
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
