@@ -86,6 +86,10 @@ TEST_NAMES   := $(TEST_SOURCES:tests/%.c=%)
 GCC_TESTS    := $(TEST_NAMES:%=$(BUILD)/gcc/%)
 SAN_TESTS    := $(TEST_NAMES:%=$(BUILD)/san/%)
 TSAN_PROGRAMS := $(TSAN_TESTS:%=$(BUILD)/tsan/%)
+# ThreadSanitizer runs test_megaviews' groups that use threads (its other
+# groups run single-threaded, in the gcc and sanitizer builds).
+TSAN_ARGS_test_megaviews := threads groups
+TSAN_RUN := $(foreach t,$(TSAN_TESTS),$(if $(TSAN_ARGS_$(t)),--args "$(TSAN_ARGS_$(t))") $(BUILD)/tsan/$(t))
 HEADERS      := manylods.h $(wildcard tests/*.h) $(wildcard examples/*.h) shaders/f64.glsl
 
 # LeakSanitizer on, and a readable report from UBSan.
@@ -157,19 +161,21 @@ test:
 # The tests without the check of packages.  Build what can be built (-k),
 # then let tests/run.sh count a program that did not build as a failure: the
 # last line is always the total.
+# The programs start in this order, as many at once as there are processors
+# (tests/run.sh), the longest first: Vulkan on lavapipe, then the matrix.
 test-only:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) test-programs
 	$(Q)tests/run.sh \
+	    --section "Vulkan (manylods_vk.h against the CPU, validation layer on; shaders/ against the embedded SPIR-V)" \
+	    $(VULKAN_TEST) tests/check_shaders.sh tests/check_twins.sh tests/compile/vulkan.sh \
+	    --section "compile matrix" tests/compile/matrix.sh \
 	    --section "tests, $(CC) -O2" $(GCC_TESTS) \
 	    --section "tests, $(CLANG) -fsanitize=address,undefined -O1" $(SAN_TESTS) \
-	    --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_PROGRAMS) \
-	    --section "compile matrix" tests/compile/matrix.sh \
+	    --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_RUN) \
 	    --section "examples (each on a tiny scene: runs, valid PNGs, accuracy)" --check $(BUILD)/examples/minimal \
 	    $(BUILD)/examples/check_examples \
 	    --section "benchmark (bench --selftest: compiles, checks cuts and metrics against Embree)" \
-	    --check $(BUILD)/bench/selftest \
-	    --section "Vulkan (manylods_vk.h against the CPU, validation layer on; shaders/ against the embedded SPIR-V)" \
-	    $(VULKAN_TEST) tests/check_shaders.sh tests/check_twins.sh tests/compile/vulkan.sh
+	    --check $(BUILD)/bench/selftest
 
 # The Vulkan tests alone.
 vulkan: $(VULKAN_PROGRAMS)
@@ -205,7 +211,7 @@ test-fast:
 
 tsan:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) $(TSAN_PROGRAMS)
-	$(Q)tests/run.sh --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_PROGRAMS)
+	$(Q)tests/run.sh --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_RUN)
 
 matrix:
 	$(Q)tests/compile/matrix.sh

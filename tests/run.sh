@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tests/run.sh - run test programs and add up what they report.
 #
-#   tests/run.sh [--section TITLE] PROGRAM... [--check PROGRAM]...
+#   tests/run.sh [--section TITLE] [--args "A B"] PROGRAM... [--check PROGRAM]...
 #
 # Every PROGRAM ends its output with the plain line "N passed, M failed"
 # (tests/harness.h prints it).  A program counts as one extra failure, named
@@ -9,7 +9,8 @@
 # such line, or exits non-zero while reporting no failure (a sanitizer's
 # report at exit, for instance).  "--check PROGRAM" runs a program that
 # prints no counts: exit status 0 is one pass, anything else one failure.
-# "--section TITLE" prints a heading before the programs that follow it.
+# "--section TITLE" prints a heading before the programs that follow it;
+# "--args 'A B'" gives the next program those arguments (split at spaces).
 # A program that prints a line "SKIPPED: reason" (and counts nothing) is
 # shown as SKIP with its reason.
 #
@@ -67,11 +68,13 @@ describe_status() { # status
 # so that its presence says the program is done).
 start_one() {
     local i=$1 program=$2
+    local -a args
+    read -r -a args <<<"${arguments[i]}"
     (
         start=$SECONDS
         # The braces' 2>/dev/null silences the shell's own "Segmentation
         # fault" notice; the program's stderr still goes to INDEX.err.
-        { ${wrap[@]+"${wrap[@]}"} "$program" </dev/null >"$log_dir/$i.out" 2>"$log_dir/$i.err"; } 2>/dev/null
+        { ${wrap[@]+"${wrap[@]}"} "$program" ${args[@]+"${args[@]}"} </dev/null >"$log_dir/$i.out" 2>"$log_dir/$i.err"; } 2>/dev/null
         code=$?
         echo "$((SECONDS - start))" >"$log_dir/$i.time"
         echo "$code" >"$log_dir/$i.status.tmp" && mv "$log_dir/$i.status.tmp" "$log_dir/$i.status"
@@ -79,16 +82,18 @@ start_one() {
 }
 
 # report_one INDEX MODE PROGRAM: MODE is "counts" or "check"; the program
-# is done (or was not built).
+# is done (or was not built).  It is named with its arguments.
 report_one() {
     local i=$1 mode=$2 program=$3 out="$log_dir/$1.out" err="$log_dir/$1.err" status line passed failed note="" took
     if [ ! -x "$program" ]; then
+        program="$program${arguments[i]:+ ${arguments[i]}}"
         total_failed=$((total_failed + 1))
         printf '  FAIL  %-40s not built (missing or not executable)\n' "$program"
         return
     fi
     status=$(cat "$log_dir/$i.status")
     took="$(cat "$log_dir/$i.time") s"
+    program="$program${arguments[i]:+ ${arguments[i]}}"
 
     if [ "$mode" = check ]; then
         if [ "$status" = 0 ]; then
@@ -140,14 +145,17 @@ report_one() {
 # before it (sections after the last program are printed at the end).
 modes=()
 programs=()
+arguments=()
 sections=()
 pending=""
+next_args=""
 while [ $# -gt 0 ]; do
     case $1 in
         --section) shift; pending+="${1:-}"$'\n'; shift ;;
-        --check) shift; [ $# -gt 0 ] && { modes+=(check); programs+=("$1"); sections+=("$pending"); pending=""; shift; } ;;
+        --args) shift; next_args=${1:-}; shift ;;
+        --check) shift; [ $# -gt 0 ] && { modes+=(check); programs+=("$1"); arguments+=("$next_args"); sections+=("$pending"); pending=""; next_args=""; shift; } ;;
         -h|--help) sed -n '2,/^set -u/p' "$0" | sed '$d'; exit 0 ;;
-        *) modes+=(counts); programs+=("$1"); sections+=("$pending"); pending=""; shift ;;
+        *) modes+=(counts); programs+=("$1"); arguments+=("$next_args"); sections+=("$pending"); pending=""; next_args=""; shift ;;
     esac
 done
 

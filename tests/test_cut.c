@@ -2162,44 +2162,25 @@ static void test_threads(void)
     scene_free(&s);
 }
 
-#include <time.h>
-
-/* test_cut [GROUP...]: every group, or those named (test_GROUP below; the
-   compile matrix runs the cut and filter groups under qemu, where the whole
-   program takes minutes).  TEST_TIMES=1 prints each group's processor time. */
-static int group_selected(int argc, char **argv, const char *name)
-{
-    int i;
-    if (argc < 2) return 1;
-    for (i = 1; i < argc; i++)
-        if (strcmp(argv[i], name) == 0) return 1;
-    return 0;
-}
-
-#define GROUP(name)                                                                                                    \
-    do {                                                                                                               \
-        clock_t start_ = clock();                                                                                      \
-        if (!group_selected(argc, argv, #name)) break;                                                                 \
-        test_##name();                                                                                                 \
-        ran++;                                                                                                         \
-        if (getenv("TEST_TIMES")) printf("  %-28s %.2f s\n", #name, (double)(clock() - start_) / CLOCKS_PER_SEC);     \
-    } while (0)
-
+/* test_cut [GROUP...]: every group, or those named (the compile matrix
+   runs the cut and float filter groups under qemu, where the whole program
+   takes minutes). */
 int main(int argc, char **argv)
 {
-    int rc, ran = 0;
-    GROUP(random_trees);
-    GROUP(hand_made);
-    GROUP(restart);
-    GROUP(criterion_reference);
-    GROUP(backface_boundary);
-    GROUP(fast_filter);
-    GROUP(fast_conditioning);
-    GROUP(monotonicity);
-    GROUP(motion);
-    GROUP(threads);
-    GROUP(skip);
-    CHECK(ran == (argc < 2 ? 11 : argc - 1), "every group named ran (%d of %d)", ran, argc < 2 ? 11 : argc - 1);
+    int rc;
+    test_groups_begin(argc, argv);
+    TEST_GROUP("random_trees", test_random_trees());
+    TEST_GROUP("hand_made", test_hand_made());
+    TEST_GROUP("restart", test_restart());
+    TEST_GROUP("criterion_reference", test_criterion_reference());
+    TEST_GROUP("backface_boundary", test_backface_boundary());
+    TEST_GROUP("fast_filter", test_fast_filter());
+    TEST_GROUP("fast_conditioning", test_fast_conditioning());
+    TEST_GROUP("monotonicity", test_monotonicity());
+    TEST_GROUP("motion", test_motion());
+    TEST_GROUP("threads", test_threads());
+    TEST_GROUP("skip", test_skip());
+    test_groups_end();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
     return rc;

@@ -536,6 +536,17 @@ static void test_bounds(void)
    above: with delta > 0 fields of view act only in culling), lies at a
    pixel outside that field of view, but for the angle delta plus the
    pixel holding a disc's centre span there; and the views share. */
+/* The scene's colours set to its node indices (red), so that an atlas says
+   which node each pixel holds. */
+static void colours_are_node_indices(mlod_tree *scene)
+{
+    uint32_t i;
+    for (i = 0; i < scene->node_count; i++) {
+        scene->colors[3 * (size_t)i] = (float)i;
+        scene->colors[3 * (size_t)i + 1] = scene->colors[3 * (size_t)i + 2] = 0.0f;
+    }
+}
+
 static void test_fusion(mlod_tree *scene)
 {
     static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
@@ -543,10 +554,7 @@ static void test_fusion(mlod_tree *scene)
     static const uint32_t resolutions[3] = {8, 8, 24};
     views v = make_views(41, 900, lo, hi, 0);
     uint32_t i, d;
-    for (i = 0; i < scene->node_count; i++) {
-        scene->colors[3 * (size_t)i] = (float)i;
-        scene->colors[3 * (size_t)i + 1] = scene->colors[3 * (size_t)i + 2] = 0.0f;
-    }
+    colours_are_node_indices(scene);
     for (d = 0; d < 3; d++) {
         mlod_view_set s = view_set(&v, d > 0, d > 0);
         mlod_view_tree *t = build_views(&s, NULL);
@@ -649,13 +657,13 @@ static void test_fusion(mlod_tree *scene)
 
 /* ============================================================= groups */
 
-/* The scene's colours are node indices (test_fusion).  With a group radius
+/* The scene's colours set to node indices.  With a group radius
    that holds every eye, the root is one group: every view's tile holds, per
    pixel, the node that one view at the root's centre draws there (its cut
    and splat), at the distance from the view's own eye.  With a smaller
    radius, depths stay exact per eye and the atlas is the same for any
    thread count. */
-static void test_groups(const mlod_tree *scene)
+static void test_groups(mlod_tree *scene)
 {
     static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
     views v = make_views(51, 300, lo, hi, 1);
@@ -671,6 +679,7 @@ static void test_groups(const mlod_tree *scene)
     mlod_error e;
     uint64_t wrong_node = 0, wrong_depth = 0, filled = 0;
     uint32_t i, row, col, g;
+    colours_are_node_indices(scene);
     if (!t || !a) {
         CHECK(0, "groups: set-up");
         return;
@@ -1398,28 +1407,32 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
     free_views(&v);
 }
 
-int main(void)
+/* test_megaviews [GROUP...]: every group, or those named (ThreadSanitizer
+   runs the groups that use threads: threads, groups). */
+int main(int argc, char **argv)
 {
     scene_mesh room;
     mlod_tree *scene, *bare;
+    test_groups_begin(argc, argv);
     if (!scene_room(&room)) return 1;
     scene = tu_build(&room, 8192, 1, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
     bare = tu_build(&room, 3000, 2, 0);
     if (!scene || !bare) return 1;
-    test_view_tree();
-    test_equals_per_view(scene, "room with cones and colours");
-    test_equals_per_view(bare, "room without attributes");
-    test_culling(scene);
-    test_bounds();
-    test_fast_paths();
-    test_cone_fast_paths();
-    test_threads(scene);
-    test_sizing(scene);
-    test_walks(scene);
-    test_fusion(scene); /* it overwrites the scene's colours with node indices */
-    test_groups(scene);
-    test_query(scene);
-    test_errors(scene, bare);
+    TEST_GROUP("view_tree", test_view_tree());
+    TEST_GROUP("equals_per_view", (test_equals_per_view(scene, "room with cones and colours"),
+                                   test_equals_per_view(bare, "room without attributes")));
+    TEST_GROUP("culling", test_culling(scene));
+    TEST_GROUP("bounds", test_bounds());
+    TEST_GROUP("fast_paths", test_fast_paths());
+    TEST_GROUP("cone_fast_paths", test_cone_fast_paths());
+    TEST_GROUP("threads", test_threads(scene));
+    TEST_GROUP("sizing", test_sizing(scene));
+    TEST_GROUP("walks", test_walks(scene));
+    TEST_GROUP("fusion", test_fusion(scene)); /* it overwrites the scene's colours with node indices */
+    TEST_GROUP("groups", test_groups(scene));
+    TEST_GROUP("query", test_query(scene));
+    TEST_GROUP("errors", test_errors(scene, bare));
+    test_groups_end();
     mlod_tree_destroy(scene);
     mlod_tree_destroy(bare);
     scene_free(&room);
