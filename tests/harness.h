@@ -43,13 +43,13 @@ static void test_report(int ok, const char *file, int line, const char *fmt, ...
 static int test_group_argc, test_groups_ran;
 static char **test_group_argv;
 
-static void test_groups_begin(int argc, char **argv)
+static inline void test_groups_begin(int argc, char **argv)
 {
     test_group_argc = argc;
     test_group_argv = argv;
 }
 
-static int test_group_selected(const char *name)
+static inline int test_group_selected(const char *name)
 {
     int i;
     if (test_group_argc < 2) return 1;
@@ -67,7 +67,7 @@ static int test_group_selected(const char *name)
         if (getenv("TEST_TIMES")) printf("  %-24s %.2f s\n", name, (double)(clock() - start_) / CLOCKS_PER_SEC);       \
     } while (0)
 
-static void test_groups_end(void)
+static inline void test_groups_end(void)
 {
     if (test_group_argc >= 2)
         CHECK(test_groups_ran == test_group_argc - 1, "every group named ran (%d of %d)", test_groups_ran,
