@@ -7261,14 +7261,17 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
    near 0: an eye nearly touching the sphere). */
 static int mlod__surely_within(double cos_phi, double d, double r, const mlod__vnode *vn)
 {
-    double rho = vn->radius, e = d + rho, sin_t, cos_t, sin_1, cos_1, sin_s, cos_s, sin_psi, cos_psi;
-    if (vn->cos_least < -1.0 || !(d > rho) || !(e > r)) return -1; /* L < 0, or an eye in reach: the exact test */
-    sin_t = rho / d;
-    cos_t = sqrt((d - rho) * (d + rho)) / d;
+    double rho = vn->radius, e = d + rho, inv_d, inv_e, sin_t, cos_t, sin_1, cos_1, sin_s, cos_s, sin_psi, cos_psi;
+    if (!(d > rho) || !(e > r)) return -1; /* an eye in reach: the exact test */
+    inv_d = 1.0 / d;
+    inv_e = 1.0 / e;
+    sin_t = rho * inv_d;
+    sin_s = r * inv_e;
+    if (vn->cos_least < -1.0) return sin_s < sin_t - 1e-9 ? 0 : -1; /* L < 0: psi < 0 where seen < turn */
+    cos_t = sqrt((d - rho) * (d + rho)) * inv_d;
     sin_1 = vn->sin_least * cos_t - vn->cos_least * sin_t; /* L - turn, in (-pi / 2, pi] */
     cos_1 = vn->cos_least * cos_t + vn->sin_least * sin_t;
-    sin_s = r / e;
-    cos_s = sqrt((e - r) * (e + r)) / e;
+    cos_s = sqrt((e - r) * (e + r)) * inv_e;
     sin_psi = sin_1 * cos_s + cos_1 * sin_s;
     cos_psi = cos_1 * cos_s - sin_1 * sin_s;
     if (sin_psi > -1e-9 && sin_psi < 1e-9) return -1; /* psi near 0 or pi */
@@ -7287,10 +7290,11 @@ static int mlod__surely_within(double cos_phi, double d, double r, const mlod__v
    arc tangents' 1e-11 rad): the exact test decides those. */
 static int mlod__surely_outside(double cos_phi, double d, double g, const mlod__vnode *vn)
 {
-    double sin_b, cos_b, cos_psi, sin_psi;
+    double inv_d, sin_b, cos_b, cos_psi, sin_psi;
     if (vn->cos_reach < -1.0 || !(d > g)) return 0; /* A >= pi, or an eye in the sphere: never culled */
-    sin_b = g / d;
-    cos_b = sqrt((d - g) * (d + g)) / d;
+    inv_d = 1.0 / d;
+    sin_b = g * inv_d;
+    cos_b = sqrt((d - g) * (d + g)) * inv_d;
     cos_psi = vn->cos_reach * cos_b - vn->sin_reach * sin_b;
     sin_psi = vn->sin_reach * cos_b + vn->cos_reach * sin_b;
     if (!(sin_psi > 1e-9)) return -1;
@@ -7341,13 +7345,14 @@ static int mlod__cos_gamma(const double *x, double d, const float *cone, double 
 
 static int mlod__surely_backfacing(const double *x, double d, double g, const float *cone)
 {
-    double theta = cone[3], cos_gamma, sin_b, cos_b, s_lo, s_hi, c_lo, c_hi, sum_hi, sum_lo, cos_sum_lo;
+    double theta = cone[3], cos_gamma, inv_d, sin_b, cos_b, s_lo, s_hi, c_lo, c_hi, sum_hi, sum_lo, cos_sum_lo;
     if (!(theta >= 0.0)) return -1;
     if (!(theta < 0.5 * MLOD__PI)) return 0; /* pi/2 + theta >= pi: never culled */
     if (!(d > g)) return 0;
     if (!mlod__cos_gamma(x, d, cone, &cos_gamma)) return -1;
-    sin_b = g / d;
-    cos_b = sqrt((d - g) * (d + g)) / d;
+    inv_d = 1.0 / d;
+    sin_b = g * inv_d;
+    cos_b = sqrt((d - g) * (d + g)) * inv_d;
     mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);
     sum_hi = s_hi * cos_b + c_hi * sin_b;      /* sin(theta + b) at most */
     sum_lo = s_lo * cos_b + c_lo * sin_b;      /* at least */
@@ -7359,16 +7364,18 @@ static int mlod__surely_backfacing(const double *x, double d, double g, const fl
 
 static int mlod__surely_facing(const double *x, double d, double r, double rho, const float *cone)
 {
-    double theta = cone[3], e, cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
+    double theta = cone[3], e, inv_d, inv_e, cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
     double sin_d_lo, sin_d_hi, cos_d_lo, cos_d_hi;
     if (!(theta >= 0.0 && theta < 0.5 * MLOD__PI) || !(d > rho)) return -1;
     if (!mlod__cos_gamma(x, d, cone, &cos_gamma)) return -1;
     e = d + rho;
     if (!(e > r)) return -1;
-    sin_t = rho / d;
-    cos_t = sqrt((d - rho) * (d + rho)) / d;
-    sin_s = r / e;
-    cos_s = sqrt((e - r) * (e + r)) / e;
+    inv_d = 1.0 / d;
+    inv_e = 1.0 / e;
+    sin_t = rho * inv_d;
+    cos_t = sqrt((d - rho) * (d + rho)) * inv_d;
+    sin_s = r * inv_e;
+    cos_s = sqrt((e - r) * (e + r)) * inv_e;
     sin_sg = sin_s * cos_t - cos_s * sin_t; /* sigma = seen - turn */
     cos_sg = cos_s * cos_t + sin_s * sin_t;
     mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);

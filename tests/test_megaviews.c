@@ -1021,12 +1021,13 @@ static void test_fast_paths(void)
    sine loses half its digits.  Wherever a fast path answers, it answers as
    the exact test; it answers nearly every case 1e-6 rad or more away
    (within: where L = least_fov - alpha >= 0; with L < 0 it answers only
-   "not within"). */
+   "not within", which half the L < 0 cases test with the sphere anywhere,
+   and it answers a quarter of those at least). */
 static void test_cone_fast_paths(void)
 {
     uint64_t rng = 11;
     uint32_t i, n = 400000, wrong[2] = {0, 0}, decided[2] = {0, 0}, tried[2] = {0, 0}, far[2] = {0, 0},
-                            far_decided[2] = {0, 0}, tangent[2] = {0, 0};
+                            far_decided[2] = {0, 0}, tangent[2] = {0, 0}, below = 0, below_decided = 0;
     for (i = 0; i < n; i++) {
         double axis[3], p[3], x[3], len, d, r, rho, g, psi, phi, offset, dot, cos_phi;
         float cone[4];
@@ -1066,6 +1067,8 @@ static void test_cone_fast_paths(void)
         vn.radius = rho;
         offset = pow(10.0, -10.0 + 9.0 * scene_rng_double(&rng)) * (scene_rng_double(&rng) < 0.5 ? -1.0 : 1.0);
         phi = psi + offset;
+        if (which == 1 && vn.cos_least < -1.0 && (i >> 3) % 2) /* L < 0: anywhere, mostly far below psi */
+            phi = 3.14159265358979323846 * scene_rng_double(&rng);
         if (!(phi > 0.0 && phi < 3.14159265358979323846)) continue;
         for (k = 0; k < 3; k++) x[k] = d * (cos(phi) * axis[k] + sin(phi) * p[k]);
         d = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
@@ -1083,9 +1086,11 @@ static void test_cone_fast_paths(void)
         /* within, L < 0 (psi >= 0 only where seen > turn): the exact test's, by design */
         far_now = !near && fabs(offset) >= 1e-6 && (which == 0 || vn.cos_least >= -1.0);
         far[which] += far_now;
+        below += which == 1 && vn.cos_least < -1.0;
         if (fast < 0) continue;
         decided[which]++;
         far_decided[which] += far_now;
+        below_decided += which == 1 && vn.cos_least < -1.0;
         if (fast != exact && wrong[which]++ < 3)
             CHECK(0, "%s fast path: %d, exact test: %d (alpha %.9g, fovs %.9g %.9g, d %.17g, r %.17g, rho %.17g, "
                      "%.3g rad off)",
@@ -1097,6 +1102,7 @@ static void test_cone_fast_paths(void)
     CHECK(far_decided[0] >= 0.99 * far[0] && far_decided[1] >= 0.99 * far[1],
           "the view-cone fast paths decide 99 %% of the cases 1e-6 rad or more from the threshold (%u of %u, %u of %u)",
           far_decided[0], far[0], far_decided[1], far[1]);
+    CHECK(below_decided >= below / 4, "with L < 0 the within fast path answers (%u of %u)", below_decided, below);
 }
 
 /* ============================================================= sizing */
