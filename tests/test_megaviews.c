@@ -951,11 +951,10 @@ static void test_fast_paths(void)
                             tangent[2] = {0, 0};
     const double margin = 1.0 / 1073741824.0;
     for (i = 0; i < n; i++) {
-        double axis[3], p[3], x[3], away[3], len, d, r, rho, theta, gamma, offset, dot;
+        double axis[3], p[3], x[3], away[3], len, d, r, rho, theta, gamma, offset;
         float cone[4];
         int k, which = (int)(i & 1), near = (i >> 1) % 4 == 0, fast, exact;
         tu_random_unit(&rng, axis);
-        tu_random_unit(&rng, p);
         theta = i % 5 == 0 ? 0.0 : scene_rng_double(&rng) * 1.7; /* past pi/2 too */
         d = 0.5 + 10.0 * scene_rng_double(&rng);
         r = d * 0.6 * scene_rng_double(&rng);
@@ -971,11 +970,8 @@ static void test_fast_paths(void)
         theta = cone[3];
         len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
         for (k = 0; k < 3; k++) axis[k] = cone[k] / len;
-        dot = p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2];
-        for (k = 0; k < 3; k++) p[k] -= dot * axis[k];
-        len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-        if (!(len > 1e-3) || !(which ? d > rho : d > r + rho) || !(d + rho > r)) continue;
-        for (k = 0; k < 3; k++) p[k] /= len;
+        if (!(which ? d > rho : d > r + rho) || !(d + rho > r)) continue;
+        tu_random_perp(&rng, axis, p);
         gamma = 0.5 * 3.14159265358979323846 + theta +
                 (which ? asin(r / (d + rho)) - asin(rho / d) : asin((r + rho) / d));
         offset = pow(10.0, -10.0 + 9.0 * scene_rng_double(&rng)) * (scene_rng_double(&rng) < 0.5 ? -1.0 : 1.0);
@@ -1029,13 +1025,12 @@ static void test_cone_fast_paths(void)
     uint32_t i, n = 400000, wrong[2] = {0, 0}, decided[2] = {0, 0}, tried[2] = {0, 0}, far[2] = {0, 0},
                             far_decided[2] = {0, 0}, tangent[2] = {0, 0}, below = 0, below_decided = 0;
     for (i = 0; i < n; i++) {
-        double axis[3], p[3], x[3], len, d, r, rho, g, psi, phi, offset, dot, cos_phi;
+        double axis[3], p[3], x[3], len, d, r, rho, g, psi, phi, offset, cos_phi;
         float cone[4];
         mlod__vnode vn;
         int k, which = (int)(i & 1), near = (i >> 1) % 4 == 0, fast, exact, far_now;
         memset(&vn, 0, sizeof vn);
         tu_random_unit(&rng, axis);
-        tu_random_unit(&rng, p);
         tu_to_floats(axis, cone, 3);
         cone[3] = tu_float(i % 5 == 0 ? 0.0 : 1.4 * scene_rng_double(&rng));
         vn.cone = cone;
@@ -1045,11 +1040,7 @@ static void test_cone_fast_paths(void)
         mlod__vnode_cone_set(&vn);
         len = sqrt((double)cone[0] * cone[0] + (double)cone[1] * cone[1] + (double)cone[2] * cone[2]);
         for (k = 0; k < 3; k++) axis[k] = cone[k] / len;
-        dot = p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2];
-        for (k = 0; k < 3; k++) p[k] -= dot * axis[k];
-        len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-        if (!(len > 1e-3)) continue;
-        for (k = 0; k < 3; k++) p[k] /= len;
+        tu_random_perp(&rng, axis, p);
         d = 0.5 + 10.0 * scene_rng_double(&rng);
         if (which == 0) { /* outside: phi > reach + asin(g / d) */
             g = near ? d * (1.0 - ldexp(pow(4096.0, scene_rng_double(&rng)), -52)) : d * scene_rng_double(&rng);
