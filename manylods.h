@@ -7246,6 +7246,17 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     }
 }
 
+/* Sine and cosine of asin(a / b), 0 <= a < b: a / b, and the cosine from
+   both sides, sqrt((b - a)(b + a)) / b (not sqrt(1 - sin^2), which keeps
+   only half the digits of a cosine near 0: an eye nearly touching a
+   sphere); one division. */
+static void mlod__asin_sin_cos(double a, double b, double *sin_a, double *cos_a)
+{
+    double inv = 1.0 / b;
+    *sin_a = a * inv;
+    *cos_a = sqrt((b - a) * (b + a)) * inv;
+}
+
 /* mlod__within_cone's answer for the views' cone where cosines settle it,
    without its arc tangents: within when phi <= psi = L - turn + seen, with
    L from the node (least_fov - alpha - 2^-30), turn = asin(rho / d) and
@@ -7256,22 +7267,16 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
    1e-9 apart).  1 within, 0 not, -1 when cos phi lies within 1e-9 of cos
    psi or psi within 1e-9 of 0 or pi (by its sine), far above both sides'
    errors (the arc tangents' 1e-11 rad): the exact test decides those.
-   Each cosine comes from its sine's two sides (sqrt((d - rho)(d + rho)) /
-   d, not sqrt(1 - sin^2), which keeps only half the digits of a cosine
-   near 0: an eye nearly touching the sphere). */
+   Sines and cosines of turn and seen from mlod__asin_sin_cos. */
 static int mlod__surely_within(double cos_phi, double d, double r, const mlod__vnode *vn)
 {
-    double rho = vn->radius, e = d + rho, inv_d, inv_e, sin_t, cos_t, sin_1, cos_1, sin_s, cos_s, sin_psi, cos_psi;
+    double rho = vn->radius, e = d + rho, sin_t, cos_t, sin_1, cos_1, sin_s, cos_s, sin_psi, cos_psi;
     if (!(d > rho) || !(e > r)) return -1; /* an eye in reach: the exact test */
-    inv_d = 1.0 / d;
-    inv_e = 1.0 / e;
-    sin_t = rho * inv_d;
-    sin_s = r * inv_e;
+    mlod__asin_sin_cos(rho, d, &sin_t, &cos_t);
+    mlod__asin_sin_cos(r, e, &sin_s, &cos_s);
     if (vn->cos_least < -1.0) return sin_s < sin_t - 1e-9 ? 0 : -1; /* L < 0: psi < 0 where seen < turn */
-    cos_t = sqrt((d - rho) * (d + rho)) * inv_d;
     sin_1 = vn->sin_least * cos_t - vn->cos_least * sin_t; /* L - turn, in (-pi / 2, pi] */
     cos_1 = vn->cos_least * cos_t + vn->sin_least * sin_t;
-    cos_s = sqrt((e - r) * (e + r)) * inv_e;
     sin_psi = sin_1 * cos_s + cos_1 * sin_s;
     cos_psi = cos_1 * cos_s - sin_1 * sin_s;
     if (sin_psi > -1e-9 && sin_psi < 1e-9) return -1; /* psi near 0 or pi */
@@ -7284,17 +7289,15 @@ static int mlod__surely_within(double cos_phi, double d, double r, const mlod__v
 /* mlod__outside_cone's answer where cosines settle it, without its arc
    tangents: the sphere (d, grown to g) is outside when phi > psi = A + b,
    b = asin(g / d), i.e. cos phi < cos psi = cos A cos b - sin A sin b with
-   psi < pi (sin psi > 0), cos b = sqrt((d - g)(d + g)) / d (as in
-   mlod__surely_within).  1 outside, 0 not, -1 when cos phi lies within
+   psi < pi (sin psi > 0), b's sine and cosine from mlod__asin_sin_cos.
+   1 outside, 0 not, -1 when cos phi lies within
    1e-9 of cos psi (or psi near pi), far above both sides' errors (the
    arc tangents' 1e-11 rad): the exact test decides those. */
 static int mlod__surely_outside(double cos_phi, double d, double g, const mlod__vnode *vn)
 {
-    double inv_d, sin_b, cos_b, cos_psi, sin_psi;
+    double sin_b, cos_b, cos_psi, sin_psi;
     if (vn->cos_reach < -1.0 || !(d > g)) return 0; /* A >= pi, or an eye in the sphere: never culled */
-    inv_d = 1.0 / d;
-    sin_b = g * inv_d;
-    cos_b = sqrt((d - g) * (d + g)) * inv_d;
+    mlod__asin_sin_cos(g, d, &sin_b, &cos_b);
     cos_psi = vn->cos_reach * cos_b - vn->sin_reach * sin_b;
     sin_psi = vn->sin_reach * cos_b + vn->cos_reach * sin_b;
     if (!(sin_psi > 1e-9)) return -1;
@@ -7327,8 +7330,7 @@ static void mlod__sin_cos_bounds(double a, double *sin_lo, double *sin_hi, doubl
    0, pi/2 + theta)) when gamma + turn + 2^-30 <= pi/2 + theta + seen, turn =
    asin(rho / d), seen = asin(r / (d + rho)): gamma <= pi/2 + delta - 2^-30,
    delta = theta + sigma, sigma = seen - turn in (-pi/2, pi/2); for delta
-   >= pi/2 always.  Sines and cosines from square roots (each cosine from
-   its sine's two sides, as in mlod__surely_within) and their sums
+   >= pi/2 always.  Sines and cosines from mlod__asin_sin_cos and their sums
    (theta's from mlod__sin_cos_bounds); each answer is given only 1e-8 (in cosines:
    as much in angle) clear of its threshold, far above the 2^-30 of the
    definitions and the arc tangents' 1e-11 rad; -1 otherwise (the exact
@@ -7345,14 +7347,12 @@ static int mlod__cos_gamma(const double *x, double d, const float *cone, double 
 
 static int mlod__surely_backfacing(const double *x, double d, double g, const float *cone)
 {
-    double theta = cone[3], cos_gamma, inv_d, sin_b, cos_b, s_lo, s_hi, c_lo, c_hi, sum_hi, sum_lo, cos_sum_lo;
+    double theta = cone[3], cos_gamma, sin_b, cos_b, s_lo, s_hi, c_lo, c_hi, sum_hi, sum_lo, cos_sum_lo;
     if (!(theta >= 0.0)) return -1;
     if (!(theta < 0.5 * MLOD__PI)) return 0; /* pi/2 + theta >= pi: never culled */
     if (!(d > g)) return 0;
     if (!mlod__cos_gamma(x, d, cone, &cos_gamma)) return -1;
-    inv_d = 1.0 / d;
-    sin_b = g * inv_d;
-    cos_b = sqrt((d - g) * (d + g)) * inv_d;
+    mlod__asin_sin_cos(g, d, &sin_b, &cos_b);
     mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);
     sum_hi = s_hi * cos_b + c_hi * sin_b;      /* sin(theta + b) at most */
     sum_lo = s_lo * cos_b + c_lo * sin_b;      /* at least */
@@ -7364,18 +7364,14 @@ static int mlod__surely_backfacing(const double *x, double d, double g, const fl
 
 static int mlod__surely_facing(const double *x, double d, double r, double rho, const float *cone)
 {
-    double theta = cone[3], e, inv_d, inv_e, cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
+    double theta = cone[3], e, cos_gamma, sin_t, cos_t, sin_s, cos_s, sin_sg, cos_sg, s_lo, s_hi, c_lo, c_hi;
     double sin_d_lo, sin_d_hi, cos_d_lo, cos_d_hi;
     if (!(theta >= 0.0 && theta < 0.5 * MLOD__PI) || !(d > rho)) return -1;
     if (!mlod__cos_gamma(x, d, cone, &cos_gamma)) return -1;
     e = d + rho;
     if (!(e > r)) return -1;
-    inv_d = 1.0 / d;
-    inv_e = 1.0 / e;
-    sin_t = rho * inv_d;
-    cos_t = sqrt((d - rho) * (d + rho)) * inv_d;
-    sin_s = r * inv_e;
-    cos_s = sqrt((e - r) * (e + r)) * inv_e;
+    mlod__asin_sin_cos(rho, d, &sin_t, &cos_t);
+    mlod__asin_sin_cos(r, e, &sin_s, &cos_s);
     sin_sg = sin_s * cos_t - cos_s * sin_t; /* sigma = seen - turn */
     cos_sg = cos_s * cos_t + sin_s * sin_t;
     mlod__sin_cos_bounds(theta, &s_lo, &s_hi, &c_lo, &c_hi);
