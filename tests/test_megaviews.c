@@ -882,7 +882,7 @@ static void test_walks(const mlod_tree *scene)
         for (g = 0; g < 2 && t && ref && a; g++) {
             p.group_radius = g ? 0.3f : 0.0f;
             memset(&counter, 0, sizeof counter);
-            if (mlod__megaviews_run(ref, NULL, scene, t, &p, 64, 0, &st0, &e) != MLOD_OK) {
+            if (mlod__megaviews_run(ref, NULL, scene, t, &p, 64, 0, 0, &st0, &e) != MLOD_OK) {
                 CHECK(0, "walks case %u: level-synchronous render: %s", c, e.message);
                 break;
             }
@@ -895,7 +895,7 @@ static void test_walks(const mlod_tree *scene)
                     int same;
                     runs++;
                     memset(&counter, 0, sizeof counter);
-                    if (mlod__megaviews_run(a, NULL, scene, t, &p, level, room, &st, &e) != MLOD_OK) {
+                    if (mlod__megaviews_run(a, NULL, scene, t, &p, level, room, 0, &st, &e) != MLOD_OK) {
                         CHECK(0, "walks case %u: walk from level %u: %s", c, level, e.message);
                         continue;
                     }
@@ -1096,6 +1096,150 @@ static void test_cone_fast_paths(void)
     CHECK(below_decided >= below / 4, "with L < 0 the within fast path answers (%u of %u)", below_decided, below);
 }
 
+/* The pair filter (mlod__vpair) against the exact pair test.
+   Renders: every setting the filter takes (delta > 0, groups or none,
+   cones or none, per-view fields of view) and one it leaves (back faces
+   culled) render the same atlas, channels and statistics with the filter
+   and without it (mlod__megaviews_run's exact).  Pairs: inner view nodes
+   and scene nodes of every level, with epsilon and delta placed on the
+   pair's own cmax, cmin and motion and the views' cone reach on its own
+   angle, 2^-1 to 2^-50 to either side: every lane the filter decides takes
+   the exact path's action, and it decides most lanes of inner nodes (not
+   groups: those take the cut's filter, which test_cut measures) 2^-6 or
+   more from a finite threshold (else it buys nothing). */
+static void test_pair_filter(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    static const float eps[3] = {0.5f, 1.0f, 4.0f}, deltas[3] = {0.1f, 0.5f, 3.0f};
+    uint32_t c, same = 0, renders = 0;
+    for (c = 0; c < 6; c++) {
+        views v = make_views(501 + c, c == 5 ? 3000 : 300 + 100 * c, lo, hi, c == 2);
+        mlod_view_set s = view_set(&v, c != 1, c == 3);
+        mlod_view_tree *t = build_views(&s, NULL);
+        uint32_t flags = c == 4 ? MLOD_VIEW_CULL_BACKFACES : 0u, channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
+        uint32_t resolution = c % 2 ? 11 : 8;
+        mlod_atlas *a = make_atlas(&v, resolution, channels, NULL, flags), *b = make_atlas(&v, resolution, channels, NULL, flags);
+        mlod_megaviews_params p;
+        mlod_megaviews_stats sa, sb;
+        mlod_error e;
+        size_t first = 0;
+        int ok;
+        memset(&p, 0, sizeof p);
+        p.epsilon = eps[c % 3];
+        p.delta = deltas[(c / 2) % 3];
+        p.resolution = resolution;
+        p.flags = flags;
+        p.group_radius = c % 3 == 2 ? 0.25f : 0.0f;
+        ok = t && a && b && mlod__megaviews_run(a, NULL, scene, t, &p, MLOD__MV_WALK_LEVEL, 64, 0, &sa, &e) == MLOD_OK &&
+             mlod__megaviews_run(b, NULL, scene, t, &p, MLOD__MV_WALK_LEVEL, 64, 1, &sb, &e) == MLOD_OK;
+        renders++;
+        if (ok && same_atlas(a, b, &first) && sa.pairs == sb.pairs && sa.culled == sb.culled &&
+            sa.shared_draws == sb.shared_draws && sa.leaf_draws == sb.leaf_draws && sa.shared_leaves == sb.shared_leaves &&
+            sa.node_pairs == sb.node_pairs)
+            same++;
+        else
+            CHECK(0, "pair filter: render %u (%u views, epsilon %g, delta %g, group %g, flags %u) differs from the exact "
+                     "path (pixel %zu, pairs %llu / %llu)", c, v.count, (double)p.epsilon, (double)p.delta,
+                  (double)p.group_radius, flags, first, (unsigned long long)sa.pairs, (unsigned long long)sb.pairs);
+        mlod_atlas_destroy(a);
+        mlod_atlas_destroy(b);
+        mlod_view_tree_destroy(t);
+        free_views(&v);
+    }
+    CHECK(same == renders, "pair filter: %u of %u renders equal the exact path's bit for bit (atlas, channels, "
+                           "statistics)", same, renders);
+#ifdef MLOD__VLANES
+    {
+        views v = make_views(601, 2000, lo, hi, 0);
+        mlod_view_set s = view_set(&v, 1, 1);
+        mlod_view_tree *t = build_views(&s, NULL);
+        mlod__mv_job job;
+        uint64_t rng = 77;
+        uint32_t trial, wrong = 0, lanes = 0, decided = 0, far = 0, far_decided = 0, kinds[6] = {0, 0, 0, 0, 0, 0};
+        if (!t) return;
+        memset(&job, 0, sizeof job);
+        job.scene = scene;
+        job.views = t;
+        job.resolution = 11;
+        job.S = 5.5;
+        for (trial = 0; trial < 60000 && wrong < 3; trial++) {
+            uint32_t inner = t->eyes->leaf_count - 1, level = (uint32_t)(scene_rng_double(&rng) * 14.0);
+            uint32_t vi = (uint32_t)(scene_rng_double(&rng) * inner), si, lane[MLOD__VLANES], l, which = trial % 4;
+            uint32_t first_s = (1u << (level < 13 ? level : 13)) - 1;
+            double x[3], d, r, rho, cmax, cmin, motion, T = 0.0, off;
+            const float *sphere;
+            mlod__vnode vn;
+            mlod__vf sp[4];
+            uint8_t codes[MLOD__VLANES];
+            int k, exact, fast, placed;
+            si = first_s + (uint32_t)(scene_rng_double(&rng) * (first_s + 1));
+            if (si >= scene->node_count) si = scene->node_count - 1;
+            sphere = scene->spheres + 4 * (size_t)si;
+            job.epsilon = 1.0;
+            job.delta = 0.5;
+            job.group_radius = trial % 5 == 0 ? 0.3 : 0.0;
+            mlod__vnode_set(&job, vi, &vn);
+            for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn.centre[k];
+            d = mlod__length3(x);
+            r = sphere[3];
+            rho = vn.radius;
+            mlod__ball_diameters(job.S, x, d, r, rho, &cmax, &cmin);
+            motion = mlod__ball_motion(job.S, x, d, r, rho);
+            off = ldexp(1.0, -1 - (int)(scene_rng_double(&rng) * 50.0)) * (trial & 4 ? -1.0 : 1.0);
+            if (which == 0) T = cmax;
+            if (which == 1) T = cmin;
+            if (which == 2) T = motion;
+            if (which == 3 && vn.cone) { /* the cone's reach A on this sphere's angle: phi = A + asin(g / d) */
+                double cos_phi = (x[0] * vn.cone[0] + x[1] * vn.cone[1] + x[2] * vn.cone[2]) / (d * vn.axis_length);
+                double g = r + rho;
+                if (d > g) {
+                    vn.most_fov = acos(cos_phi > 1.0 ? 1.0 : cos_phi) - asin(g / d) - 1.0 / 1073741824.0 - vn.cone[3] + off;
+                    if (!(vn.most_fov > 0.0 && vn.most_fov < TU_PI)) continue;
+                    if (vn.least_fov > vn.most_fov) vn.least_fov = vn.most_fov;
+                    mlod__vnode_cone_set(&vn);
+                    mlod__vnode_fast_set(&job, &vn);
+                }
+            } else if (T > 1e-6 && T < 1e6) {
+                if (which == 2)
+                    job.delta = T * (1.0 + off);
+                else
+                    job.epsilon = T * (1.0 + off);
+                mlod__vnode_set(&job, vi, &vn);
+            } else
+                off = 1.0;
+            if (!vn.fast) continue;
+            for (l = 0; l < MLOD__VLANES; l++) lane[l] = si;
+            mlod__vload(scene->spheres, lane, &sp[0], &sp[1], &sp[2], &sp[3]);
+            mlod__vbytes(mlod__vpair(&vn, sp, mlod__vleaf(lane, scene->leaf_count - 1)), codes);
+            exact = mlod__pair_action(&job, &vn, si);
+            fast = mlod__vpair_action(scene, &vn, si, codes[0]);
+            lanes++;
+            placed = !vn.group && fabs(off) >= 1.0 / 64.0 && fabs(off) < 1.0;
+            far += placed;
+            if (fast < 0) continue;
+            decided++;
+            kinds[codes[0] - 1]++;
+            far_decided += placed;
+            if (fast != exact && wrong++ < 3)
+                CHECK(0, "pair filter: view node %u, scene node %u (threshold %u, %.3g off): filter %d, exact %d", vi, si,
+                      which, off, fast, exact);
+        }
+        CHECK(wrong == 0, "pair filter: every decided lane takes the exact action (%u of %u lanes decided; culled %u, "
+                          "drawn %u, leaves drawn %u, scene split %u, view split %u, middle %u)",
+              decided, lanes, kinds[0], kinds[1], kinds[2], kinds[3], kinds[4], kinds[5]);
+        CHECK(far_decided >= 0.9 * far && kinds[0] && kinds[1] && kinds[2] && kinds[3] && kinds[4] && kinds[5],
+              "pair filter: decides %u of %u lanes of inner nodes 2^-6 to 2^-1 from a finite threshold, and every "
+              "kind of action",
+              far_decided, far);
+        mlod_view_tree_destroy(t);
+        free_views(&v);
+    }
+#else
+    printf("note: this build has no float lanes (MANYLODS_NO_SIMD, or no SSE2 / NEON): the pair filter is not built, "
+           "every pair takes the exact path\n");
+#endif
+}
+
 /* ============================================================= sizing */
 
 /* mlod_megaviews_bound: what the render's allocator held at once stays
@@ -1237,7 +1381,7 @@ static uint32_t failing_renders(mlod_atlas *a, const mlod_tree *scene, const mlo
         mlod_error e;
         mlod_result r;
         q.allocator = &al;
-        r = mlod__megaviews_run(a, NULL, scene, t, &q, walk_level, room, NULL, &e);
+        r = mlod__megaviews_run(a, NULL, scene, t, &q, walk_level, room, 0, NULL, &e);
         CHECK(counter.live_blocks == 0, "%s, allocation %u failing: %lu blocks left", what, i, counter.live_blocks);
         if (r == MLOD_OK) {
             CHECK(memcmp(before, a->depth, bytes) == 0, "%s, allocation %u: no failure, the same atlas", what, i);
@@ -1422,6 +1566,7 @@ int main(int argc, char **argv)
     TEST_GROUP("bounds", test_bounds());
     TEST_GROUP("fast_paths", test_fast_paths());
     TEST_GROUP("cone_fast_paths", test_cone_fast_paths());
+    TEST_GROUP("pair_filter", test_pair_filter(scene));
     TEST_GROUP("threads", test_threads(scene));
     TEST_GROUP("sizing", test_sizing(scene));
     TEST_GROUP("walks", test_walks(scene));
