@@ -1162,7 +1162,7 @@ static void test_pair_filter(const mlod_tree *scene)
         job.views = t;
         job.resolution = 11;
         job.S = 5.5;
-        for (trial = 0; trial < 60000 && wrong < 3; trial++) {
+        for (trial = 0; trial < 30000 && wrong < 3; trial++) {
             uint32_t inner = t->eyes->leaf_count - 1, level = (uint32_t)(scene_rng_double(&rng) * 14.0);
             uint32_t vi = (uint32_t)(scene_rng_double(&rng) * inner), si, lane[MLOD__VLANES], l, which = trial % 4;
             uint32_t first_s = (1u << (level < 13 ? level : 13)) - 1;
