@@ -6264,6 +6264,15 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
     int hit = 0;
     if (!(disc->radius < 1e9) || !isfinite(disc->x) || !isfinite(disc->y)) return;
     if (row_begin >= row_end) return;
+    if (band->disc_scale >= 1.0f && radius <= 0.49) {
+        /* A small disc (most of them, at epsilon 1): every pixel centre but the one of the pixel holding the
+           disc's centre is 0.5 or more away along a row or a column, so its squared distance rounds to at
+           least 0.25 - 2^-52 > 0.49^2 >= r2: only that pixel can be in, and when it is not, the rule below
+           plots it all the same (the same pixel, within the same rows and columns).  The loops' result. */
+        if (disc->x >= col_begin && disc->x < col_end && disc->y >= row_begin && disc->y < row_end)
+            mlod__plot(band, (uint32_t)floor(disc->y), (uint32_t)floor(disc->x), depth, node);
+        return;
+    }
     rb = y0 < row_begin ? row_begin : (y0 >= row_end ? row_end : (uint32_t)y0);
     re = y1 > row_end ? row_end : (y1 <= row_begin ? row_begin : (uint32_t)y1);
     cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);

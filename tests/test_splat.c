@@ -1901,6 +1901,81 @@ done:
     scene_free(&s);
 }
 
+/* mlod__raster_disc's shortcut for small discs (radius times disc_scale at
+   most 0.49, disc_scale >= 1: the pixel holding the centre) against the
+   rule it stands for, written out here: every pixel whose centre lies
+   within the radius, else the pixel holding the centre, within the
+   sub-tile's columns and rows and the band's rows.  Discs centred
+   anywhere around and inside a band (on pixel edges and centres too),
+   radii from 0 to 0.49 and a little beyond, three disc scales, each drawn
+   over random depths: the same depths and nodes, pixel for pixel. */
+static void test_small_discs(void)
+{
+    enum { W = 12, H = 10 };
+    static const float scales[3] = {1.0f, 1.5f, 0.75f};
+    static const uint32_t columns[2] = {1, 11}, rows[2] = {2, 9};
+    float depth[W * H], want[W * H];
+    uint32_t ids[W * H], want_ids[W * H], i, differ = 0, plotted = 0, small = 0;
+    uint64_t rng = 4711;
+    mlod__band band;
+    memset(&band, 0, sizeof band);
+    band.depth = depth;
+    band.ids = ids;
+    band.stride = W;
+    for (i = 0; i < 200000; i++) {
+        mlod__disc disc;
+        uint32_t p, row, col, rb, re;
+        double radius, r2;
+        int hit = 0, k = (int)(i % 7);
+        band.disc_scale = scales[i % 3];
+        band.row_begin = i % 2 ? 3u : 0u;
+        band.row_end = i % 2 ? 8u : (uint32_t)H;
+        disc.x = -1.5 + 14.0 * scene_rng_double(&rng);
+        disc.y = -1.5 + 12.0 * scene_rng_double(&rng);
+        if (k == 1) disc.x = floor(disc.x); /* on a pixel edge */
+        if (k == 2) disc.y = floor(disc.y) + 0.5; /* on a pixel centre's row */
+        if (k == 3) disc.x = floor(disc.x) + 0.5;
+        disc.radius = (k == 4 ? 0.0 : k == 5 ? 0.49 : 0.5 * scene_rng_double(&rng)) / band.disc_scale;
+        disc.depth = scene_rng_double(&rng);
+        for (p = 0; p < W * H; p++) {
+            depth[p] = want[p] = (float)scene_rng_double(&rng);
+            ids[p] = want_ids[p] = 7;
+        }
+        /* the rule */
+        radius = disc.radius * (double)band.disc_scale;
+        r2 = radius * radius;
+        rb = rows[0] > band.row_begin ? rows[0] : band.row_begin;
+        re = rows[1] < band.row_end ? rows[1] : band.row_end;
+        for (row = rb; row < re; row++)
+            for (col = columns[0]; col < columns[1]; col++) {
+                double dx = col + 0.5 - disc.x, dy = row + 0.5 - disc.y;
+                if (dx * dx + dy * dy > r2) continue;
+                hit = 1;
+                if ((float)disc.depth < want[row * W + col]) {
+                    want[row * W + col] = (float)disc.depth;
+                    want_ids[row * W + col] = i;
+                }
+            }
+        if (!hit && band.disc_scale >= 1.0f && disc.x >= columns[0] && disc.x < columns[1] && disc.y >= rb &&
+            disc.y < re) {
+            p = (uint32_t)floor(disc.y) * W + (uint32_t)floor(disc.x);
+            if ((float)disc.depth < want[p]) {
+                want[p] = (float)disc.depth;
+                want_ids[p] = i;
+            }
+        }
+        small += band.disc_scale >= 1.0f && radius <= 0.49;
+        mlod__raster_disc(&band, &disc, i, columns, rows);
+        for (p = 0; p < W * H; p++) plotted += ids[p] == i;
+        if ((memcmp(depth, want, sizeof depth) || memcmp(ids, want_ids, sizeof ids)) && differ++ < 3)
+            CHECK(0, "small disc at (%.17g, %.17g), radius %.17g, disc scale %g: not the rule's pixels", disc.x, disc.y,
+                  disc.radius, (double)band.disc_scale);
+    }
+    CHECK(differ == 0 && small > 100000 && plotted > 10000,
+          "small discs: the raster plots the rule's pixels (%u of 200000 took the shortcut, %u pixels plotted, %u differ)",
+          small, plotted, differ);
+}
+
 /* ========================================================== pull-push */
 
 static void test_fill_holes(void)
@@ -3111,6 +3186,7 @@ int main(void)
     test_image_lanes();
     test_determinism();
     test_disc_scale();
+    test_small_discs();
     test_fill_holes();
     show_fill_weighting();
     test_metrics_known();
