@@ -6249,6 +6249,9 @@ static void mlod__plot_if(const mlod__band *band, uint32_t row, uint32_t col, fl
     if (band->ids) band->ids[at] = (node & mask) | (band->ids[at] & ~mask);
 }
 
+/* Discs below this radius (times disc_scale, >= 1) cover one pixel (mlod__raster_disc): 0.5 - 2^-30. */
+#define MLOD__SMALL_DISC (0.5 - 1.0 / 1073741824.0)
+
 /* Draw the disc into the band, clipped to tile columns [columns[0],
    columns[1]) and rows [rows[0], rows[1]) (a sub-tile, see mlod_view_sub). */
 static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, uint32_t node, const uint32_t *columns,
@@ -6264,11 +6267,12 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
     int hit = 0;
     if (!(disc->radius < 1e9) || !isfinite(disc->x) || !isfinite(disc->y)) return;
     if (row_begin >= row_end) return;
-    if (band->disc_scale >= 1.0f && radius <= 0.49) {
+    if (band->disc_scale >= 1.0f && radius < MLOD__SMALL_DISC) {
         /* A small disc (most of them, at epsilon 1): every pixel centre but the one of the pixel holding the
            disc's centre is 0.5 or more away along a row or a column, so its squared distance rounds to at
-           least 0.25 - 2^-52 > 0.49^2 >= r2: only that pixel can be in, and when it is not, the rule below
-           plots it all the same (the same pixel, within the same rows and columns).  The loops' result. */
+           least 0.25 (1 - 2^-50) > r2 (radius below 0.5 - 2^-30): only that pixel can be in, and when it is
+           not, the rule below plots it all the same (the same pixel, within the same rows and columns).  The
+           loops' result. */
         if (disc->x >= col_begin && disc->x < col_end && disc->y >= row_begin && disc->y < row_end)
             mlod__plot(band, (uint32_t)floor(disc->y), (uint32_t)floor(disc->x), depth, node);
         return;
