@@ -94,6 +94,21 @@ static mlod_view_tree *build_views(const mlod_view_set *s, const mlod_parallel *
     return t;
 }
 
+/* A render's job as the pair test (mlod__pair_action) reads it: the scene,
+   the views, maps of 2 x resolution^2 pixels, epsilon 1, flags. */
+static mlod__mv_job pair_job(const mlod_tree *scene, const mlod_view_tree *t, uint32_t resolution, uint32_t flags)
+{
+    mlod__mv_job job;
+    memset(&job, 0, sizeof job);
+    job.scene = scene;
+    job.views = t;
+    job.epsilon = 1.0;
+    job.resolution = resolution;
+    job.S = 0.5 * resolution;
+    job.flags = flags;
+    return job;
+}
+
 static mlod_atlas *make_atlas(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
                               uint32_t flags)
 {
@@ -374,17 +389,10 @@ static void test_culling(const mlod_tree *scene)
     views v = make_views(7, 400, lo, hi, 0);
     mlod_view_set s = view_set(&v, 1, 1);
     mlod_view_tree *t = build_views(&s, NULL);
-    mlod__mv_job job;
+    mlod__mv_job job = pair_job(scene, t, 8, MLOD_VIEW_CULL_BACKFACES);
     uint64_t rng = 5;
     uint32_t trial, culled = 0, wrong = 0, not_implied = 0, back = 0, back_wrong = 0;
     if (!t) return;
-    memset(&job, 0, sizeof job);
-    job.scene = scene;
-    job.views = t;
-    job.epsilon = 1.0;
-    job.resolution = 8;
-    job.S = 4.0;
-    job.flags = MLOD_VIEW_CULL_BACKFACES;
     for (trial = 0; trial < 20000; trial++) {
         uint32_t vn_index = (uint32_t)(scene_rng_double(&rng) * (t->eyes->leaf_count - 1));
         uint32_t s_index = (uint32_t)(scene_rng_double(&rng) * scene->node_count);
@@ -1153,15 +1161,10 @@ static void test_pair_filter(const mlod_tree *scene)
         views v = make_views(601, 2000, lo, hi, 0);
         mlod_view_set s = view_set(&v, 1, 1);
         mlod_view_tree *t = build_views(&s, NULL);
-        mlod__mv_job job;
+        mlod__mv_job job = pair_job(scene, t, 11, 0);
         uint64_t rng = 77;
         uint32_t trial, wrong = 0, lanes = 0, decided = 0, far = 0, far_decided = 0, kinds[6] = {0, 0, 0, 0, 0, 0};
         if (!t) return;
-        memset(&job, 0, sizeof job);
-        job.scene = scene;
-        job.views = t;
-        job.resolution = 11;
-        job.S = 5.5;
         for (trial = 0; trial < 30000 && wrong < 3; trial++) {
             uint32_t inner = t->eyes->leaf_count - 1, level = (uint32_t)(scene_rng_double(&rng) * 14.0);
             uint32_t vi = (uint32_t)(scene_rng_double(&rng) * inner), si, lane[MLOD__VLANES], l, which = trial % 4;
