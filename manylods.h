@@ -408,7 +408,7 @@
      inner view nodes (groups too) are decided several at a time in float
      (4 lanes with SSE2 or NEON, 8 with AVX), each decision taken only
      where it clears its threshold by a margin proven to exceed the float
-     rounding (about 2 % of the pairs in README.md's benchmark fall within
+     rounding (under 1 % of the pairs in README.md's benchmark fall within
      one and take the exact double path); pairs are still listed and drawn
      in depth-first order, so every build, MANYLODS_NO_SIMD included,
      renders the same atlas bit for bit (tests/test_megaviews.c compares
