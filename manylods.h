@@ -7446,6 +7446,16 @@ static int mlod__surely_facing(const double *x, double d, double r, double rho, 
     return -1;
 }
 
+/* With delta > 0, an inner scene node s that some eyes of a view ball of
+   radius rho find within epsilon and others not: the larger splits
+   (MegaViews 3.2.3), s when both its children are at least as large as
+   the ball, else the view node. */
+static int mlod__larger_splits(const mlod_tree *scene, uint32_t s, double rho)
+{
+    const float *left = scene->spheres + 4 * (size_t)(2 * s + 1), *right = left + 4;
+    return (left[3] < right[3] ? left[3] : right[3]) >= rho ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_SPLIT_VIEW;
+}
+
 /* What the traversal does with (s, v).  A leaf decides as the cut does for
    its view (after its own field of view); an inner node culls what every
    view below culls, draws what is within epsilon for every eye of its
@@ -7506,11 +7516,8 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
         return cmax <= job->epsilon ? MLOD__PAIR_DRAW : MLOD__PAIR_DRAW_LEAF;
     }
     if (cmin > job->epsilon) return MLOD__PAIR_SPLIT_SCENE;
-    if (job->delta > 0.0) { /* some eyes find s within epsilon, some not: split the larger (MegaViews 3.2.3) */
-        const float *left = scene->spheres + 4 * (size_t)(2 * s + 1), *right = left + 4;
-        if ((left[3] < right[3] ? left[3] : right[3]) >= vn->radius) return MLOD__PAIR_SPLIT_SCENE;
-    }
-    return MLOD__PAIR_SPLIT_VIEW;
+    /* some eyes find s within epsilon, some not: split the larger (MegaViews 3.2.3) */
+    return job->delta > 0.0 ? mlod__larger_splits(scene, s, vn->radius) : MLOD__PAIR_SPLIT_VIEW;
 }
 
 /* The pair test of inner view nodes in float, several pairs at once
@@ -7569,6 +7576,12 @@ MLOD__FORCE_INLINE mlod__vf mlod__vselect(mlod__vf mask, mlod__vf a, mlod__vf b)
 /* the lesser of a and b, lane by lane */
 MLOD__FORCE_INLINE mlod__vf mlod__vmin(mlod__vf a, mlod__vf b) { return mlod__vselect(MLOD__VLT(a, b), a, b); }
 
+/* the lanes where v's sign is sure: v > m or v < -m (neg_m = -m) */
+MLOD__FORCE_INLINE mlod__vf mlod__vclear(mlod__vf v, mlod__vf m, mlod__vf neg_m)
+{
+    return MLOD__VOR(MLOD__VGT(v, m), MLOD__VLT(v, neg_m));
+}
+
 /* The lanes' codes (see above) for scene spheres (rows x, y, z, r) of
    inner view node vn (vn->fast set), leaf the lanes whose scene node is a
    leaf. */
@@ -7578,7 +7591,7 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
     const mlod__vf m_rel = MLOD__VSET(1.0f / 16384.0f), sixty4 = MLOD__VSET(64.0f);
     mlod__vf x0 = MLOD__VSUB(sphere[0], MLOD__VSET(vn->fc[0])), x1 = MLOD__VSUB(sphere[1], MLOD__VSET(vn->fc[1]));
     mlod__vf x2 = MLOD__VSUB(sphere[2], MLOD__VSET(vn->fc[2])), r = sphere[3], rho = MLOD__VSET(vn->frho);
-    mlod__vf d2, d, U, M, M2, UU, g, dg, Y, C, okY, unsure, cull, keep, kr;
+    mlod__vf d2, d, U, M, nM, M2, UU, g, dg, Y, C, okY, unsure, cull, keep, kr;
     mlod__vf cl, cr, Yc, tc, near_ok, near_none, rp, rm, ln, small, large;
     mlod__vf fa, fr, Yf, tf, far_ok, far_none, ep, em, lf, some, none, cmin_large, cmin_small;
     mlod__vf cm, cmr, Ym, tm, P, m_ok, m_inf, least, lhs, move_ok, move_bad, go, code;
@@ -7589,122 +7602,126 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
     U = MLOD__VADD(d, g);
     UU = MLOD__VMUL(U, U);
     M = MLOD__VMUL(U, m_rel);
+    nM = MLOD__VSUB(zero, M);
     M2 = MLOD__VMUL(M, U);
-    unsure = MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(d2, MLOD__VSET(1.15292150e18f))),
-                           all); /* 2^-40, 2^60 */
-    unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero),
-                                                       MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.31322575e-10f)),
-                                                                  MLOD__VLE(r, MLOD__VSET(1.07374182e9f)))),
-                                             all)); /* 2^-30, 2^30 */
+    unsure =
+        MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(d2, MLOD__VSET(1.15292150e18f))),
+                      all); /* 2^-40, 2^60 */
+    unsure = MLOD__VOR(unsure,
+                       MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero), MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.31322575e-10f)),
+                                                                              MLOD__VLE(r, MLOD__VSET(1.07374182e9f)))),
+                                     all)); /* 2^-30, 2^30 */
     /* Y = (d - g)(d + g) = d^2 cos^2 b, b = asin(g / d); C = d cos b */
     dg = MLOD__VSUB(d, g);
     Y = MLOD__VMUL(dg, MLOD__VADD(d, g));
     okY = MLOD__VAND(MLOD__VGT(dg, M), MLOD__VGE(MLOD__VMUL(sixty4, Y), UU));
     C = MLOD__VSQRT(MLOD__VAND(Y, MLOD__VGT(Y, zero)));
-    /* the views' cone: culled when cos phi < cos(A + b) with sin(A + b) > 0; never where an eye is in the
-       grown sphere (d < g) or A + b passes pi */
+    /* the views' cone: culled when cos phi < cos(A + b) with sin(A + b) > 0;
+       never where an eye is in the grown sphere (d < g) or A + b passes pi */
     cull = zero;
     keep = all;
     if (vn->fast_cull == 1) {
-        mlod__vf p = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
-                                MLOD__VMUL(x2, MLOD__VSET(vn->faxis[2])));
+        mlod__vf p =
+            MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
+                       MLOD__VMUL(x2, MLOD__VSET(vn->faxis[2])));
         mlod__vf ca = MLOD__VSET(vn->fcos_reach), sa = MLOD__VSET(vn->fsin_reach);
-        mlod__vf q = MLOD__VSUB(MLOD__VMUL(ca, C), MLOD__VMUL(sa, g)), sp = MLOD__VADD(MLOD__VMUL(sa, C), MLOD__VMUL(ca, g));
+        mlod__vf q = MLOD__VSUB(MLOD__VMUL(ca, C), MLOD__VMUL(sa, g)),
+                 sp = MLOD__VADD(MLOD__VMUL(sa, C), MLOD__VMUL(ca, g));
         cull = MLOD__VAND(okY, MLOD__VAND(MLOD__VLT(p, MLOD__VSUB(q, M)), MLOD__VGT(sp, M)));
-        keep = MLOD__VOR(MLOD__VLT(dg, MLOD__VSUB(zero, M)),
-                         MLOD__VAND(okY, MLOD__VOR(MLOD__VGT(p, MLOD__VADD(q, M)), MLOD__VLT(sp, MLOD__VSUB(zero, M)))));
+        keep =
+            MLOD__VOR(MLOD__VLT(dg, nM), MLOD__VAND(okY, MLOD__VOR(MLOD__VGT(p, MLOD__VADD(q, M)), MLOD__VLT(sp, nM))));
     }
-    if (vn->fast == 2) { /* a group: as the cut for one view at its centre, coarse splits the scene node, any
-                            other status draws (vn->pv's filter proves it) */
+    if (vn->fast == 2) { /* a group: as the cut for one view at its centre, coarse splits the
+                            scene node, any other status draws (vn->pv's filter proves it) */
         mlod__vf st = mlod__vstatus(&vn->pv.fast, sphere, NULL, leaf);
         code = MLOD__VAND(MLOD__VGT(st, zero), mlod__vselect(MLOD__VEQ(st, MLOD__VSET((float)MLOD_STATUS_COARSE)),
                                                              MLOD__VSET(4.0f), MLOD__VSET(2.0f)));
-        code = mlod__vselect(keep, code, zero);
-        code = mlod__vselect(cull, MLOD__VSET(1.0f), code);
-        return MLOD__VANDNOT(unsure, code);
+    } else {
+        /* cmax: the nearest eye, closest = d - rho; t_closest = sqrt((closest - r)(closest + r)); over the
+           halves some eye reaches (x.w + rho + r >= 0), the least x.w - rho + t_closest (0 when not positive) */
+        kr = MLOD__VMUL(MLOD__VSET(vn->fkc), r);
+        cl = MLOD__VSUB(d, rho);
+        cr = MLOD__VSUB(cl, r);
+        Yc = MLOD__VMUL(cr, MLOD__VADD(cl, r));
+        near_ok = MLOD__VAND(MLOD__VGT(cr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yc), UU));
+        near_none = MLOD__VLT(cr, nM); /* every eye within the sphere's reach: cmax infinite */
+        tc = MLOD__VSQRT(MLOD__VAND(Yc, MLOD__VGT(Yc, zero)));
+        rp = MLOD__VADD(x2, g);
+        rm = MLOD__VSUB(g, x2);
+        ln = mlod__vselect(MLOD__VGT(rp, M), MLOD__VADD(MLOD__VSUB(x2, rho), tc), big);
+        ln = mlod__vmin(ln, mlod__vselect(MLOD__VGT(rm, M), MLOD__VSUB(MLOD__VSUB(tc, x2), rho), big));
+        /* each half's reach decided, and the least denominator unless cmax is surely infinite */
+        go = MLOD__VAND(mlod__vclear(rp, M, nM), mlod__vclear(rm, M, nM));
+        small = MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VAND(MLOD__VGT(ln, M), MLOD__VLE(kr, MLOD__VSUB(ln, M))));
+        large = MLOD__VOR(near_none, MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VGE(kr, MLOD__VADD(ln, M))));
+        /* cmin: the farthest eye, farthest = d + rho; over the halves every eye reaches (x.w - rho + r >= 0),
+           the least x.w + rho + t_farthest; no such half: cmin = 0 */
+        fa = MLOD__VADD(d, rho);
+        fr = MLOD__VSUB(fa, r);
+        Yf = MLOD__VMUL(fr, MLOD__VADD(fa, r));
+        far_ok = MLOD__VAND(MLOD__VGT(fr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yf), UU));
+        far_none = MLOD__VLT(fr, nM);
+        tf = MLOD__VSQRT(MLOD__VAND(Yf, MLOD__VGT(Yf, zero)));
+        ep = MLOD__VADD(MLOD__VSUB(x2, rho), r);
+        em = MLOD__VSUB(MLOD__VSUB(r, rho), x2);
+        lf = mlod__vselect(MLOD__VGT(ep, M), MLOD__VADD(MLOD__VADD(x2, rho), tf), big);
+        lf = mlod__vmin(lf, mlod__vselect(MLOD__VGT(em, M), MLOD__VSUB(MLOD__VADD(rho, tf), x2), big));
+        some = MLOD__VOR(MLOD__VGT(ep, M), MLOD__VGT(em, M));
+        none = MLOD__VAND(MLOD__VLT(ep, nM), MLOD__VLT(em, nM));
+        go = MLOD__VAND(mlod__vclear(ep, M, nM), mlod__vclear(em, M, nM));
+        cmin_large =
+            MLOD__VOR(far_none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(some, MLOD__VGE(kr, MLOD__VADD(lf, M)))));
+        cmin_small = MLOD__VOR(
+            none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(MLOD__VGT(lf, M), MLOD__VLE(kr, MLOD__VSUB(lf, M)))));
+        /* motion (mlod__ball_motion): S turn / least (1 + cos(phi + b)) <= delta, turn = rho / t_m, t_m =
+           sqrt((d - r - rho)(d - r + rho)), compared as S rho d^2 / delta <= (least d^2 (1 + cos)) t_m; with
+           P = d sin phi, per half (x.w = +-x2): d^2 cos(phi - b) = x.w C + P g (the half counts unless below
+           0), d^2 cos(phi + b) = x.w C - P g, d^2 sin(phi + b) = P C + x.w g */
+        cm = MLOD__VSUB(d, r);
+        cmr = MLOD__VSUB(cm, rho);
+        Ym = MLOD__VMUL(cmr, MLOD__VADD(cm, rho));
+        m_ok = MLOD__VAND(okY, MLOD__VAND(MLOD__VGT(cmr, M), MLOD__VGE(MLOD__VMUL(sixty4, Ym), UU)));
+        m_inf = MLOD__VOR(MLOD__VLT(cmr, nM), MLOD__VLT(dg, nM));
+        tm = MLOD__VSQRT(MLOD__VAND(Ym, MLOD__VGT(Ym, zero)));
+        P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)));
+        least = big;
+        for (h = 0; h < 2; h++) {
+            mlod__vf xw = h ? MLOD__VSUB(zero, x2) : x2, xc = MLOD__VMUL(xw, C), pg = MLOD__VMUL(P, g);
+            mlod__vf e = MLOD__VADD(xc, pg), cs = MLOD__VSUB(xc, pg),
+                     sn = MLOD__VADD(MLOD__VMUL(P, C), MLOD__VMUL(xw, g));
+            mlod__vf one = MLOD__VADD(d2, cs), counts = MLOD__VGT(e, M2), mM2 = MLOD__VSUB(zero, M2);
+            mlod__vf bounded = MLOD__VAND(MLOD__VGT(one, M2), MLOD__VOR(MLOD__VGT(cs, M2), MLOD__VGT(sn, M2)));
+            mlod__vf endless = MLOD__VOR(MLOD__VLT(one, mM2), MLOD__VAND(MLOD__VLT(cs, mM2), MLOD__VLT(sn, mM2)));
+            m_ok = MLOD__VAND(m_ok, MLOD__VOR(counts, MLOD__VLT(e, mM2)));
+            m_ok = MLOD__VANDNOT(MLOD__VANDNOT(MLOD__VOR(bounded, endless), counts), m_ok);
+            m_inf = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, counts), endless));
+            least = mlod__vmin(least, mlod__vselect(MLOD__VAND(counts, bounded), one, big));
+        }
+        lhs = MLOD__VMUL(MLOD__VMUL(MLOD__VSET(vn->fkm), rho), d2);
+        move_ok = MLOD__VANDNOT(
+            m_inf, MLOD__VAND(m_ok, MLOD__VOR(MLOD__VEQ(least, big),
+                                              MLOD__VLE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VSUB(least, M2), tm),
+                                                                        MLOD__VSET(1.0f - 1.0f / 8192.0f))))));
+        move_ok = MLOD__VAND(move_ok, MLOD__VGT(least, M2));
+        move_bad = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, MLOD__VLT(least, big)),
+                                               MLOD__VGE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VADD(least, M2), tm),
+                                                                         MLOD__VSET(1.0f + 1.0f / 8192.0f)))));
+        if (vn->frho == 0.0f) { /* every eye at the centre: no motion */
+            move_ok = all;
+            move_bad = zero;
+        }
+        /* scene leaves: drawn (2, 3) or split view (5) by the motion; others: small and moving little drawn,
+           small and moving split view, large split scene (4) or middle (6) */
+        code = mlod__vselect(leaf,
+                             mlod__vselect(move_bad, MLOD__VSET(5.0f),
+                                           MLOD__VAND(move_ok, MLOD__VOR(MLOD__VAND(small, MLOD__VSET(2.0f)),
+                                                                         MLOD__VAND(large, MLOD__VSET(3.0f))))),
+                             MLOD__VOR(MLOD__VAND(small, mlod__vselect(move_bad, MLOD__VSET(5.0f),
+                                                                       MLOD__VAND(move_ok, MLOD__VSET(2.0f)))),
+                                       MLOD__VAND(large, MLOD__VOR(MLOD__VAND(cmin_large, MLOD__VSET(4.0f)),
+                                                                   MLOD__VAND(cmin_small, MLOD__VSET(6.0f))))));
     }
-    /* cmax: the nearest eye, closest = d - rho; t_closest = sqrt((closest - r)(closest + r)); over the halves
-       some eye reaches (x.w + rho + r >= 0), the least x.w - rho + t_closest (0 when not positive) */
-    kr = MLOD__VMUL(MLOD__VSET(vn->fkc), r);
-    cl = MLOD__VSUB(d, rho);
-    cr = MLOD__VSUB(cl, r);
-    Yc = MLOD__VMUL(cr, MLOD__VADD(cl, r));
-    near_ok = MLOD__VAND(MLOD__VGT(cr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yc), UU));
-    near_none = MLOD__VLT(cr, MLOD__VSUB(zero, M)); /* every eye within the sphere's reach: cmax infinite */
-    tc = MLOD__VSQRT(MLOD__VAND(Yc, MLOD__VGT(Yc, zero)));
-    rp = MLOD__VADD(x2, g);
-    rm = MLOD__VSUB(g, x2);
-    ln = mlod__vselect(MLOD__VGT(rp, M), MLOD__VADD(MLOD__VSUB(x2, rho), tc), big);
-    ln = mlod__vmin(ln, mlod__vselect(MLOD__VGT(rm, M), MLOD__VSUB(MLOD__VSUB(tc, x2), rho), big));
-    /* each half's reach decided, and the least denominator unless cmax is surely infinite */
-    go = MLOD__VAND(MLOD__VOR(MLOD__VGT(rp, M), MLOD__VLT(rp, MLOD__VSUB(zero, M))),
-                    MLOD__VOR(MLOD__VGT(rm, M), MLOD__VLT(rm, MLOD__VSUB(zero, M))));
-    small = MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VAND(MLOD__VGT(ln, M), MLOD__VLE(kr, MLOD__VSUB(ln, M))));
-    large = MLOD__VOR(near_none, MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VGE(kr, MLOD__VADD(ln, M))));
-    /* cmin: the farthest eye, farthest = d + rho; over the halves every eye reaches (x.w - rho + r >= 0), the
-       least x.w + rho + t_farthest; no such half: cmin = 0 */
-    fa = MLOD__VADD(d, rho);
-    fr = MLOD__VSUB(fa, r);
-    Yf = MLOD__VMUL(fr, MLOD__VADD(fa, r));
-    far_ok = MLOD__VAND(MLOD__VGT(fr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yf), UU));
-    far_none = MLOD__VLT(fr, MLOD__VSUB(zero, M));
-    tf = MLOD__VSQRT(MLOD__VAND(Yf, MLOD__VGT(Yf, zero)));
-    ep = MLOD__VADD(MLOD__VSUB(x2, rho), r);
-    em = MLOD__VSUB(MLOD__VSUB(r, rho), x2);
-    lf = mlod__vselect(MLOD__VGT(ep, M), MLOD__VADD(MLOD__VADD(x2, rho), tf), big);
-    lf = mlod__vmin(lf, mlod__vselect(MLOD__VGT(em, M), MLOD__VSUB(MLOD__VADD(rho, tf), x2), big));
-    some = MLOD__VOR(MLOD__VGT(ep, M), MLOD__VGT(em, M));
-    none = MLOD__VAND(MLOD__VLT(ep, MLOD__VSUB(zero, M)), MLOD__VLT(em, MLOD__VSUB(zero, M)));
-    go = MLOD__VAND(MLOD__VOR(MLOD__VGT(ep, M), MLOD__VLT(ep, MLOD__VSUB(zero, M))),
-                    MLOD__VOR(MLOD__VGT(em, M), MLOD__VLT(em, MLOD__VSUB(zero, M))));
-    cmin_large = MLOD__VOR(far_none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(some, MLOD__VGE(kr, MLOD__VADD(lf, M)))));
-    cmin_small = MLOD__VOR(none, MLOD__VAND(MLOD__VAND(go, far_ok),
-                                            MLOD__VAND(MLOD__VGT(lf, M), MLOD__VLE(kr, MLOD__VSUB(lf, M)))));
-    /* motion (mlod__ball_motion): S turn / least (1 + cos(phi + b)) <= delta, turn = rho / t_m, t_m =
-       sqrt((d - r - rho)(d - r + rho)), compared as S rho d^2 / delta <= (least d^2 (1 + cos)) t_m; with
-       P = d sin phi, per half (x.w = +-x2): d^2 cos(phi - b) = x.w C + P g (the half counts unless below 0),
-       d^2 cos(phi + b) = x.w C - P g, d^2 sin(phi + b) = P C + x.w g */
-    cm = MLOD__VSUB(d, r);
-    cmr = MLOD__VSUB(cm, rho);
-    Ym = MLOD__VMUL(cmr, MLOD__VADD(cm, rho));
-    m_ok = MLOD__VAND(okY, MLOD__VAND(MLOD__VGT(cmr, M), MLOD__VGE(MLOD__VMUL(sixty4, Ym), UU)));
-    m_inf = MLOD__VOR(MLOD__VLT(cmr, MLOD__VSUB(zero, M)), MLOD__VLT(dg, MLOD__VSUB(zero, M)));
-    tm = MLOD__VSQRT(MLOD__VAND(Ym, MLOD__VGT(Ym, zero)));
-    P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)));
-    least = big;
-    for (h = 0; h < 2; h++) {
-        mlod__vf xw = h ? MLOD__VSUB(zero, x2) : x2, xc = MLOD__VMUL(xw, C), pg = MLOD__VMUL(P, g);
-        mlod__vf e = MLOD__VADD(xc, pg), cs = MLOD__VSUB(xc, pg), sn = MLOD__VADD(MLOD__VMUL(P, C), MLOD__VMUL(xw, g));
-        mlod__vf one = MLOD__VADD(d2, cs), counts = MLOD__VGT(e, M2), mM2 = MLOD__VSUB(zero, M2);
-        mlod__vf bounded = MLOD__VAND(MLOD__VGT(one, M2), MLOD__VOR(MLOD__VGT(cs, M2), MLOD__VGT(sn, M2)));
-        mlod__vf endless = MLOD__VOR(MLOD__VLT(one, mM2), MLOD__VAND(MLOD__VLT(cs, mM2), MLOD__VLT(sn, mM2)));
-        m_ok = MLOD__VAND(m_ok, MLOD__VOR(counts, MLOD__VLT(e, mM2)));
-        m_ok = MLOD__VANDNOT(MLOD__VANDNOT(MLOD__VOR(bounded, endless), counts), m_ok);
-        m_inf = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, counts), endless));
-        least = mlod__vmin(least, mlod__vselect(MLOD__VAND(counts, bounded), one, big));
-    }
-    lhs = MLOD__VMUL(MLOD__VMUL(MLOD__VSET(vn->fkm), rho), d2);
-    move_ok = MLOD__VANDNOT(m_inf, MLOD__VAND(m_ok, MLOD__VOR(MLOD__VEQ(least, big),
-                                                                MLOD__VLE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VSUB(least, M2), tm),
-                                                                                          MLOD__VSET(1.0f - 1.0f / 8192.0f))))));
-    move_ok = MLOD__VAND(move_ok, MLOD__VGT(least, M2));
-    move_bad = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, MLOD__VLT(least, big)),
-                                           MLOD__VGE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VADD(least, M2), tm),
-                                                                     MLOD__VSET(1.0f + 1.0f / 8192.0f)))));
-    if (vn->frho == 0.0f) { /* every eye at the centre: no motion */
-        move_ok = all;
-        move_bad = zero;
-    }
-    /* scene leaves: drawn (2, 3) or split view (5) by the motion; others: small and moving little drawn,
-       small and moving split view, large split scene (4) or middle (6) */
-    code = mlod__vselect(leaf,
-                         mlod__vselect(move_bad, MLOD__VSET(5.0f),
-                                       MLOD__VAND(move_ok, MLOD__VOR(MLOD__VAND(small, MLOD__VSET(2.0f)),
-                                                                     MLOD__VAND(large, MLOD__VSET(3.0f))))),
-                         MLOD__VOR(MLOD__VAND(small, mlod__vselect(move_bad, MLOD__VSET(5.0f),
-                                                                    MLOD__VAND(move_ok, MLOD__VSET(2.0f)))),
-                                   MLOD__VAND(large, MLOD__VOR(MLOD__VAND(cmin_large, MLOD__VSET(4.0f)),
-                                                               MLOD__VAND(cmin_small, MLOD__VSET(6.0f))))));
+    /* culled first; not surely kept: unsure */
     code = mlod__vselect(keep, code, zero);
     code = mlod__vselect(cull, MLOD__VSET(1.0f), code);
     return MLOD__VANDNOT(unsure, code);
@@ -7719,12 +7736,9 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
    deciding MLOD__VPAIR_MIDDLE; -1 for 0 (unsure). */
 static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uint32_t s, uint8_t code)
 {
-    const float *left, *right;
     if (code == 0) return -1;
     if (code != MLOD__VPAIR_MIDDLE) return code - 1;
-    left = scene->spheres + 4 * (size_t)(2 * s + 1); /* an inner scene node: leaves are never middle */
-    right = left + 4;
-    return (left[3] < right[3] ? left[3] : right[3]) >= vn->radius ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_SPLIT_VIEW;
+    return mlod__larger_splits(scene, s, vn->radius); /* an inner scene node: leaves are never middle */
 }
 #endif
 
