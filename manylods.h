@@ -4571,16 +4571,27 @@ static void mlod__emit(mlod__emitter *out, uint32_t node, uint8_t status)
     out->count++;
 }
 
-/* Merge x with its left sibling on top of the output while their parent
-   is valid (the merge goes through the left child).  Returns x's
-   replacement and its status. */
-static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, uint32_t *nodes, uint8_t *status,
-                             uint32_t *count, uint32_t x, uint8_t *xs, uint64_t *evaluated, uint64_t *steps)
+/* Whether x (status xs) and the entry on top of the output (nodes, status,
+   count entries) are valid siblings, x the right one: their parent is
+   worth a look. */
+static inline int mlod__mergeable(const uint32_t *nodes, const uint8_t *status, uint32_t count, uint32_t x, uint8_t xs)
 {
-    while (mlod__is_valid(*xs) && x > 0 && (x & 1u) == 0 && *count > 0 && nodes[*count - 1] == x - 1 &&
-           mlod__is_valid(status[*count - 1])) {
+    return mlod__is_valid(xs) && x > 0 && (x & 1u) == 0 && count > 0 && nodes[count - 1] == x - 1 &&
+           mlod__is_valid(status[count - 1]);
+}
+
+/* Merge x with its left sibling on top of the output while their parent
+   is valid (the merge goes through the left child).  hint: the status of
+   x's parent when the caller classified it already (mlod__merge_hints),
+   else MLOD__PENDING.  Returns x's replacement and its status. */
+static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, uint32_t *nodes, uint8_t *status,
+                             uint32_t *count, uint32_t x, uint8_t *xs, uint8_t hint, uint64_t *evaluated,
+                             uint64_t *steps)
+{
+    while (mlod__mergeable(nodes, status, *count, x, *xs)) {
         uint32_t parent = (x - 1) / 2;
-        uint8_t ps = mlod__classify(pv, job->tree, parent, job->epsilon);
+        uint8_t ps = hint != MLOD__PENDING ? hint : mlod__classify(pv, job->tree, parent, job->epsilon);
+        hint = MLOD__PENDING; /* a merge's own parent is not hinted */
         ++*evaluated;
         if (!mlod__is_valid(ps)) break;
         --*count;
@@ -4848,6 +4859,34 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
     return count;
 }
 
+/* The statuses of the parents a segment's merges will ask for first, in
+   vector lanes together rather than one by one as the merges meet them:
+   hint[k] for each input entry k that is a right child whose left sibling
+   is entry k - 1, both valid (and the left one not marked
+   MLOD__PARENT_INVALID), else MLOD__PENDING.  Such a pair's parent is
+   evaluated exactly once by either mode's merge step, so the counts do
+   not change; statuses (from mlod__classify_input) may carry lazy marks. */
+static void mlod__merge_hints(const mlod__cut_job *job, const mlod__segment *seg, const mlod__pview *pv,
+                              const uint8_t *fresh, uint8_t *hint)
+{
+    const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
+    uint32_t parents[MLOD__SEGMENT_INPUT / 2], at[MLOD__SEGMENT_INPUT / 2], count = 0, k;
+    uint8_t found[MLOD__SEGMENT_INPUT / 2];
+    hint[0] = MLOD__PENDING;
+    for (k = 1; k < seg->in_count; k++) {
+        uint32_t x = in_nodes[k];
+        hint[k] = MLOD__PENDING;
+        if ((x & 1u) == 0 && x > 0 && in_nodes[k - 1] == x - 1 && mlod__is_valid(fresh[k] & MLOD__STATUS_MASK) &&
+            mlod__is_valid(fresh[k - 1] & MLOD__STATUS_MASK) && !(fresh[k - 1] & MLOD__PARENT_INVALID)) {
+            parents[count] = (x - 1) / 2; /* pairs do not overlap: at most in_count / 2 */
+            at[count++] = k;
+        }
+    }
+    if (count == 0) return;
+    mlod__classify_list(pv, job->tree, parents, count, job->epsilon, found);
+    for (k = 0; k < count; k++) hint[at[k]] = found[k];
+}
+
 /* Basic and incremental rounds: split invalid nodes down to the cut within
    the segment's capacity, merge valid sibling pairs.  The split is a
    depth-first search whose stack holds classified entries, the next one
@@ -4860,18 +4899,21 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     mlod__emitter out;
     uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH];
     uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH], fresh[MLOD__SEGMENT_INPUT];
+    uint8_t hint[MLOD__SEGMENT_INPUT];
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
     out.capacity = seg->out_capacity;
     evaluated += mlod__classify_input(job, seg, pv, fresh);
+    if (job->merge) mlod__merge_hints(job, seg, pv, fresh, hint);
     for (k = 0; k < seg->in_count; k++) {
         uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i;
         uint8_t st = fresh[k];
         if (st != MLOD_STATUS_COARSE) {
-            if (job->merge)
-                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, &evaluated, &steps);
+            if (job->merge && mlod__mergeable(out.nodes, out.status, out.count, node, st))
+                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, hint[k], &evaluated,
+                                    &steps);
             mlod__emit(&out, node, st);
             continue;
         }
@@ -4929,15 +4971,24 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
     out.capacity = seg->out_capacity;
-    uint8_t fresh[MLOD__SEGMENT_INPUT];
+    uint8_t fresh[MLOD__SEGMENT_INPUT], hint[MLOD__SEGMENT_INPUT], split[2 * MLOD__SEGMENT_INPUT];
+    uint32_t children[2 * MLOD__SEGMENT_INPUT], splits = 0;
     evaluated += mlod__classify_input(job, seg, pv, fresh);
+    mlod__merge_hints(job, seg, pv, fresh, hint);
+    for (k = 0; k < seg->in_count; k++) /* the children of the entries to split, classified together */
+        if ((fresh[k] & MLOD__STATUS_MASK) == MLOD_STATUS_COARSE) {
+            children[splits++] = 2 * job->in->nodes[seg->in_begin + k] + 1;
+            children[splits++] = 2 * job->in->nodes[seg->in_begin + k] + 2;
+        }
+    mlod__classify_list(pv, tree, children, splits, job->epsilon, split);
+    splits = 0;
     for (k = 0; k < seg->in_count; k++) {
         size_t at = seg->in_begin + k;
         uint32_t node = job->in->nodes[at];
         uint8_t raw = fresh[k], st = raw & MLOD__STATUS_MASK;
         if (st == MLOD_STATUS_COARSE) {
-            mlod__emit(&out, 2 * node + 1, mlod__classify(pv, tree, 2 * node + 1, job->epsilon));
-            mlod__emit(&out, 2 * node + 2, mlod__classify(pv, tree, 2 * node + 2, job->epsilon));
+            mlod__emit(&out, 2 * node + 1, split[splits++]);
+            mlod__emit(&out, 2 * node + 2, split[splits++]);
             evaluated += 2;
             steps++;
             continue;
@@ -4952,7 +5003,9 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
             if (left ? (!(raw & MLOD__PARENT_INVALID) && at + 1 < view_end && job->in->nodes[at + 1] == node + 1)
                      : (k == 0 && at > view_begin && job->in->nodes[at - 1] == node - 1 &&
                         !(job->trust && (job->in->status[at - 1] & MLOD__PARENT_INVALID)))) {
-                uint8_t ps = mlod__classify(pv, tree, parent, job->epsilon);
+                uint8_t ps = left && k + 1 < seg->in_count && hint[k + 1] != MLOD__PENDING
+                                 ? hint[k + 1]
+                                 : mlod__classify(pv, tree, parent, job->epsilon);
                 evaluated++;
                 if (mlod__is_valid(ps)) {
                     if (left) {
@@ -5024,7 +5077,7 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
         if (job->merge && count > 0) {
             for (; i < seg->out_count; i++) {
                 uint8_t xs = src_status[i];
-                uint32_t x = mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, &evaluated, &steps);
+                uint32_t x = mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, MLOD__PENDING, &evaluated, &steps);
                 nodes[count] = x;
                 status[count] = xs;
                 count++;
