@@ -4870,17 +4870,18 @@ static void mlod__merge_hints(const mlod__cut_job *job, const mlod__segment *seg
                               const uint8_t *fresh, uint8_t *hint)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
-    uint32_t parents[MLOD__SEGMENT_INPUT / 2], at[MLOD__SEGMENT_INPUT / 2], count = 0, k;
+    uint32_t parents[MLOD__SEGMENT_INPUT / 2 + 1], at[MLOD__SEGMENT_INPUT / 2 + 1], count = 0, k, n = seg->in_count;
     uint8_t found[MLOD__SEGMENT_INPUT / 2];
     hint[0] = MLOD__PENDING;
-    for (k = 1; k < seg->in_count; k++) {
+    for (k = 1; k < n; k++) { /* without branches: the pairs come and go unpredictably */
         uint32_t x = in_nodes[k];
+        int pair = ((x & 1u) == 0) & (x > 0) & (in_nodes[k - 1] == x - 1) &
+                   mlod__is_valid(fresh[k] & MLOD__STATUS_MASK) & mlod__is_valid(fresh[k - 1] & MLOD__STATUS_MASK) &
+                   !(fresh[k - 1] & MLOD__PARENT_INVALID);
         hint[k] = MLOD__PENDING;
-        if ((x & 1u) == 0 && x > 0 && in_nodes[k - 1] == x - 1 && mlod__is_valid(fresh[k] & MLOD__STATUS_MASK) &&
-            mlod__is_valid(fresh[k - 1] & MLOD__STATUS_MASK) && !(fresh[k - 1] & MLOD__PARENT_INVALID)) {
-            parents[count] = (x - 1) / 2; /* pairs do not overlap: at most in_count / 2 */
-            at[count++] = k;
-        }
+        parents[count] = (x - 1) / 2; /* pairs do not overlap: at most in_count / 2, and one slot to spare */
+        at[count] = k;
+        count += (uint32_t)pair;
     }
     if (count == 0) return;
     mlod__classify_list(pv, job->tree, parents, count, job->epsilon, found);
@@ -5096,15 +5097,24 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     stats->evaluated = evaluated;
     stats->steps = steps;
     job->out->count[view] = count;
-    stats->drawn = stats->culled = stats->oversize = stats->coarse = 0;
-    for (i = 0; i < count; i++) {
-        if (job->last) status[i] &= MLOD__STATUS_MASK;
-        switch (status[i] & MLOD__STATUS_MASK) {
-        case MLOD_STATUS_DRAWN: stats->drawn++; break;
-        case MLOD_STATUS_CULLED: stats->culled++; break;
-        case MLOD_STATUS_OVERSIZE: stats->oversize++; break;
-        default: stats->coarse++; break;
+    {
+        /* counted by tables, not by branches (the statuses alternate
+           unpredictably), four of them so that neighbours' increments do
+           not wait on each other */
+        uint32_t by_status[4][MLOD__STATUS_MASK + 1], k;
+        memset(by_status, 0, sizeof by_status);
+        if (job->last)
+            for (i = 0; i < count; i++) status[i] &= MLOD__STATUS_MASK;
+        for (i = 0; i < count; i++) by_status[i & 3u][status[i] & MLOD__STATUS_MASK]++;
+        for (k = 1; k < 4; k++) {
+            by_status[0][MLOD_STATUS_DRAWN] += by_status[k][MLOD_STATUS_DRAWN];
+            by_status[0][MLOD_STATUS_CULLED] += by_status[k][MLOD_STATUS_CULLED];
+            by_status[0][MLOD_STATUS_OVERSIZE] += by_status[k][MLOD_STATUS_OVERSIZE];
         }
+        stats->drawn = by_status[0][MLOD_STATUS_DRAWN];
+        stats->culled = by_status[0][MLOD_STATUS_CULLED];
+        stats->oversize = by_status[0][MLOD_STATUS_OVERSIZE];
+        stats->coarse = count - stats->drawn - stats->culled - stats->oversize;
     }
 }
 
@@ -5423,15 +5433,38 @@ static int mlod__to_split(uint8_t status, int lazy, int trust)
     return !lazy && (status == MLOD__PENDING || (trust && status == MLOD_STATUS_COARSE));
 }
 
+/* Whether none of the 8 statuses at p is to split (mlod__to_split, not
+   lazy): no byte is PENDING, nor COARSE when trusted.  A byte is zero
+   somewhere in w exactly when (w - 0x01..01) & ~w & 0x80..80 is not zero
+   (a borrow can only start at a zero byte). */
+static int mlod__none_to_split8(const uint8_t *p, int trust)
+{
+    const uint64_t ones = 0x0101010101010101ull, highs = 0x8080808080808080ull;
+    uint64_t w, c;
+    memcpy(&w, p, 8);
+    if ((w - ones) & ~w & highs) return 0;
+    c = w ^ (ones * MLOD_STATUS_COARSE);
+    return !trust || !((c - ones) & ~c & highs);
+}
+
 /* The next segment of a view's list from `at`: its length and how many of
    its entries are to be split.  A segment closes at MLOD__SEGMENT_INPUT
    entries, or once its splits may produce MLOD__SEGMENT_GROWTH entries,
-   so that big expansions spread over many tasks. */
+   so that big expansions spread over many tasks.  Runs of 8 entries with
+   nothing to split are passed over at once. */
 static uint32_t mlod__segment_length(const mlod__list *in, size_t at, size_t end, int lazy, int trust, size_t unit,
                                      uint32_t *splits)
 {
     uint32_t n = 0, c = 0;
+    if (lazy) { /* nothing is split by plan in lazy rounds */
+        *splits = 0;
+        return (uint32_t)(end - at < MLOD__SEGMENT_INPUT ? end - at : MLOD__SEGMENT_INPUT);
+    }
     while (at + n < end && n < MLOD__SEGMENT_INPUT && (size_t)c * unit < MLOD__SEGMENT_GROWTH) {
+        if (n + 8 <= MLOD__SEGMENT_INPUT && at + n + 8 <= end && mlod__none_to_split8(in->status + at + n, trust)) {
+            n += 8;
+            continue;
+        }
         c += (uint32_t)mlod__to_split(in->status[at + n], lazy, trust);
         n++;
     }
@@ -5489,7 +5522,14 @@ static void mlod__plan_splits_task(void *context, uint32_t index)
             cut->view_work[v] = 0;
             continue;
         }
-        for (; at < stop; at++) view_splits += (size_t)mlod__to_split(job->in->status[at], job->lazy, job->trust);
+        if (!job->lazy)
+            for (; at < stop; at++) {
+                if (at + 8 <= stop && mlod__none_to_split8(job->in->status + at, job->trust)) {
+                    at += 7;
+                    continue;
+                }
+                view_splits += (size_t)mlod__to_split(job->in->status[at], 0, job->trust);
+            }
         cut->view_work[v] = view_splits;
         /* later basic and incremental rounds leave finished views alone */
         cut->view_done[v] = (uint8_t)(job->trust && !job->lazy && view_splits == 0);

@@ -2165,6 +2165,78 @@ static void test_threads(void)
 /* test_cut [GROUP...]: every group, or those named (the compile matrix
    runs the cut and float filter groups under qemu, where the whole program
    takes minutes). */
+/* The planning's shortcut over 8 statuses at a time against the plain
+   byte-by-byte rule (mlod__to_split): the word test for every word of
+   statuses with at most two bytes to split, at every position, and whole
+   segments' lengths and split counts against a byte loop. */
+static uint32_t plain_segment_length(const uint8_t *status, size_t at, size_t end, int lazy, int trust, size_t unit,
+                                     uint32_t *splits)
+{
+    uint32_t n = 0, c = 0;
+    while (at + n < end && n < MLOD__SEGMENT_INPUT && (size_t)c * unit < MLOD__SEGMENT_GROWTH) {
+        c += (uint32_t)mlod__to_split(status[at + n], lazy, trust);
+        n++;
+    }
+    *splits = c;
+    return n;
+}
+
+static void test_planning(void)
+{
+    static const uint8_t values[] = {MLOD__PENDING,
+                                     MLOD_STATUS_DRAWN,
+                                     MLOD_STATUS_CULLED,
+                                     MLOD_STATUS_OVERSIZE,
+                                     MLOD_STATUS_COARSE,
+                                     MLOD_STATUS_DRAWN | MLOD__PARENT_INVALID,
+                                     MLOD_STATUS_COARSE | MLOD__PARENT_INVALID,
+                                     0xff};
+    enum { LIST = 20000 };
+    static uint8_t list[LIST + 8];
+    uint64_t rng = 77;
+    unsigned words = 0, wrong = 0, segments = 0, bad = 0;
+    int trust, lazy, i, j, k, a, b;
+    for (trust = 0; trust < 2; trust++)
+        for (i = 0; i < 8; i++)       /* the background value */
+            for (j = 0; j < 8; j++)   /* one odd byte */
+                for (k = 0; k < 8; k++) /* another */
+                    for (a = 0; a < 8; a++)
+                        for (b = 0; b < 8; b++) {
+                            uint8_t w[8];
+                            int want = 1, m;
+                            memset(w, values[i], 8);
+                            w[a] = values[j];
+                            w[b] = values[k];
+                            for (m = 0; m < 8; m++) want &= !mlod__to_split(w[m], 0, trust);
+                            words++;
+                            wrong += (unsigned)(mlod__none_to_split8(w, trust) != want);
+                        }
+    CHECK(wrong == 0, "planning: the 8-status test disagrees with the byte rule on %u of %u words", wrong, words);
+    for (i = 0; i < 40; i++) {
+        /* runs of statuses to split scattered thinly or thickly */
+        unsigned density = 1u + (unsigned)(scene_rng_double(&rng) * 64);
+        size_t at, end = LIST - (size_t)(scene_rng_double(&rng) * 100), unit = 1u + (size_t)(scene_rng_double(&rng) * 100);
+        for (at = 0; at < LIST + 8; at++)
+            list[at] = (unsigned)(scene_rng_double(&rng) * density) == 0 ? values[(int)(scene_rng_double(&rng) * 8)]
+                                                                 : values[1 + (int)(scene_rng_double(&rng) * 3)];
+        for (lazy = 0; lazy < 2; lazy++)
+            for (trust = 0; trust < 2; trust++) {
+                mlod__list in;
+                memset(&in, 0, sizeof in);
+                in.status = list;
+                for (at = (size_t)(scene_rng_double(&rng) * 7); at < end;) {
+                    uint32_t s1, s2, n1 = mlod__segment_length(&in, at, end, lazy, trust, unit, &s1);
+                    uint32_t n2 = plain_segment_length(list, at, end, lazy, trust, unit, &s2);
+                    segments++;
+                    bad += (unsigned)(n1 != n2 || s1 != s2);
+                    if (n2 == 0) break;
+                    at += n2;
+                }
+            }
+    }
+    CHECK(bad == 0 && segments > 1000, "planning: %u of %u segments differ from the byte loop", bad, segments);
+}
+
 int main(int argc, char **argv)
 {
     int rc;
@@ -2180,6 +2252,7 @@ int main(int argc, char **argv)
     TEST_GROUP("motion", test_motion());
     TEST_GROUP("threads", test_threads());
     TEST_GROUP("skip", test_skip());
+    TEST_GROUP("planning", test_planning());
     test_groups_end();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
