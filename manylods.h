@@ -4584,7 +4584,7 @@ static inline int mlod__mergeable(const uint32_t *nodes, const uint8_t *status, 
    is valid (the merge goes through the left child).  hint: the status of
    x's parent when the caller classified it already (mlod__merge_hints),
    else MLOD__PENDING.  Returns x's replacement and its status. */
-static uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, uint32_t *nodes, uint8_t *status,
+MLOD__FORCE_INLINE uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, uint32_t *nodes, uint8_t *status,
                              uint32_t *count, uint32_t x, uint8_t *xs, uint8_t hint, uint64_t *evaluated,
                              uint64_t *steps)
 {
