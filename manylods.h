@@ -259,6 +259,12 @@
      copy of the lanes compiled for its shape, its constants in registers
      (a quarter faster than the lanes for any shape).  MANYLODS_NO_SIMD
      turns them off.  Every build gives the same cuts, bit for bit.
+     manylods_vk.h's cut shaders run the same filter, from the floats of
+     mlod_view_filter_of, before their double path.
+     Incremental and lazy rounds classify the parents their merges ask
+     for, and the children of a lazy round's splits, in the same lanes
+     (a segment's at once), and pass over runs of statuses with nothing
+     to split 8 at a time while planning.
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
@@ -827,6 +833,43 @@ typedef struct mlod_view_frame {
 /* Fill *frame from a view; MLOD_OK, or the error of mlod_view_check.
    Pure, thread-safe. */
 MANYLODS_DEF mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_frame *frame, mlod_error *error);
+
+/* The cut's float filter of a view (see "Fast paths" below), as floats for
+   other backends (manylods_vk.h uploads it beside the frame): its
+   thresholds hold for the cut's epsilon.  MLOD_FILTER_FLOATS floats at
+   the offsets below; OK 0 where the view has no filter (every node-view
+   then takes the exact path); small integers stored as floats; unused
+   entries 0.  A sub-projection s starts at MLOD_FILTER_SUBS + s *
+   MLOD_FILTER_SUB_STRIDE: its kind, plane count, thresholds (valid,
+   invalid: pixels' inverse scale over epsilon, widened by 2^-12), axis w,
+   planes (n, l, k' = k - n.eye: 5 floats each), and each plane's slope
+   and error.  EYE holds the eye in floats; FLOAT_EYE is 1 when those are
+   the eye exactly (the filter needs it on other backends). */
+enum {
+    MLOD_FILTER_OK = 0,
+    MLOD_FILTER_BACKFACES = 1,
+    MLOD_FILTER_ORTHO = 2,
+    MLOD_FILTER_SUB_COUNT = 3,
+    MLOD_FILTER_EYE = 4, /* 3 */
+    MLOD_FILTER_FLOAT_EYE = 7,
+    MLOD_FILTER_SUBS = 8,
+    MLOD_FILTER_SUB_STRIDE = 49,
+    MLOD_FILTER_S_KIND = 0,
+    MLOD_FILTER_S_PLANE_COUNT = 1,
+    MLOD_FILTER_S_VALID = 2,
+    MLOD_FILTER_S_INVALID = 3,
+    MLOD_FILTER_S_W = 4,       /* 3 */
+    MLOD_FILTER_S_PLANES = 7,  /* 6 x 5 */
+    MLOD_FILTER_S_SLOPE = 37,  /* 6 */
+    MLOD_FILTER_S_ERR = 43,    /* 6 */
+    MLOD_FILTER_FLOATS = 304   /* 8 + 6 x 49, rounded up to 16 bytes */
+};
+
+/* Fill out[0 .. MLOD_FILTER_FLOATS - 1] with the float filter of a view
+   for a cut's epsilon (pixels, > 0, may be +inf); MLOD_OK, or the error
+   of mlod_view_check (MLOD_ERROR_INVALID_ARGUMENT for a bad epsilon or a
+   NULL out).  Pure, thread-safe. */
+MANYLODS_DEF mlod_result mlod_view_filter_of(const mlod_view *view, float epsilon, float *out, mlod_error *error);
 
 /* -------------------------------------------------------------------- cut */
 
@@ -3936,6 +3979,7 @@ static void mlod__fast_prepare(mlod__pview *pv, double epsilon)
 /* The back-face test of mlod__backfacing in float: 1 culled, 0 not,
    -1 unsure.  x = centre - eye (float), t the tangent length, r the radius
    ((t, r) = (1, 0) and x unused for an orthographic view, w its axis). */
+/* GLSL twin: fast_backfacing */
 static int mlod__fast_backfacing(const mlod__fview *fv, const float *x, float t, float r, const float *cone)
 {
     float a = cone[3], a2, sa, ca, away, len, e, m1, z1, z2;
@@ -3966,6 +4010,7 @@ static int mlod__fast_backfacing(const mlod__fview *fv, const float *x, float t,
 /* The status of a node-view in float (see above): MLOD_STATUS_CULLED,
    _DRAWN, _COARSE (not valid: the caller tells an oversize leaf) or
    MLOD__UNSURE.  fv->ok must be set. */
+/* GLSL twin: fast_status */
 static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphere, const float *cone)
 {
     float x[3], r = sphere[3], d2, t = 1.0f, twice = r + r, reach;
@@ -4030,6 +4075,41 @@ static inline uint8_t mlod__fast_status(const mlod__fview *fv, const float *sphe
         if (!(lhs * fs->valid <= rhs)) all_valid = 0;
     }
     return all_valid ? (uint8_t)MLOD_STATUS_DRAWN : (uint8_t)MLOD__UNSURE;
+}
+
+MLOD__PUBLIC mlod_result mlod_view_filter_of(const mlod_view *view, float epsilon, float *out, mlod_error *error)
+{
+    mlod__pview pv;
+    mlod_result res;
+    int s, j, k;
+    if (!out) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out is NULL");
+    if (!(epsilon > 0.0f)) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "epsilon must be > 0 (got %g)", epsilon);
+    res = mlod__view_prepare(view, &pv, error);
+    if (res != MLOD_OK) return res;
+    mlod__fast_prepare(&pv, epsilon);
+    memset(out, 0, MLOD_FILTER_FLOATS * sizeof(float));
+    if (!pv.fast.ok) return mlod__succeed(error);
+    out[MLOD_FILTER_OK] = 1.0f;
+    out[MLOD_FILTER_BACKFACES] = (float)pv.fast.backfaces;
+    out[MLOD_FILTER_ORTHO] = (float)pv.fast.ortho;
+    out[MLOD_FILTER_SUB_COUNT] = (float)pv.fast.sub_count;
+    for (k = 0; k < 3; k++) out[MLOD_FILTER_EYE + k] = pv.fast.eye_f[k];
+    out[MLOD_FILTER_FLOAT_EYE] = (float)pv.fast.float_eye;
+    for (s = 0; s < pv.fast.sub_count; s++) {
+        const mlod__fsub *fs = &pv.fast.subs[s];
+        float *o = out + MLOD_FILTER_SUBS + s * MLOD_FILTER_SUB_STRIDE;
+        o[MLOD_FILTER_S_KIND] = (float)fs->kind;
+        o[MLOD_FILTER_S_PLANE_COUNT] = (float)fs->plane_count;
+        o[MLOD_FILTER_S_VALID] = fs->valid;
+        o[MLOD_FILTER_S_INVALID] = fs->invalid;
+        for (k = 0; k < 3; k++) o[MLOD_FILTER_S_W + k] = fs->w[k];
+        for (j = 0; j < fs->plane_count; j++) {
+            for (k = 0; k < 5; k++) o[MLOD_FILTER_S_PLANES + 5 * j + k] = fs->planes[j][k];
+            o[MLOD_FILTER_S_SLOPE + j] = fs->slope[j];
+            o[MLOD_FILTER_S_ERR + j] = fs->err[j];
+        }
+    }
+    return mlod__succeed(error);
 }
 
 /* ------------------------------------------------ vector float filter -- */

@@ -506,6 +506,112 @@ real evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
     return c;
 }
 
+#ifdef MLOD_HAS_FILTERS
+// The float filter (the includer declares float filters[], each view's
+// MLOD_IF_FILTER_STRIDE floats: interface.h).  The C twins' bounds assume
+// correctly rounded float operations; Vulkan rounds +, -, * correctly but
+// lets sqrt err by a few ulp (inherited from 1 / inversesqrt).  That adds
+// about 9 u (u = 2^-24) to t and to the cone axis' length: the diameter
+// thresholds' margin of 4096 u keeps over 3000 u to spare, the planes'
+// 2^-20 margin scales with a reach off by 9 u, and only the back-face
+// test's (40 u against 28 u of error) would not do: the shader takes 80 u
+// there.  A wider margin only leaves more node-views to the exact path, so
+// the cuts stay the CPU's node for node (a decided status is the exact
+// path's on either side).  Fused multiply-adds round less: the bounds hold.
+float fl(uint i) { return filters[i]; }
+
+// C twin: mlod__fast_backfacing
+// 1 culled, 0 not, -1 unsure; x = centre - eye, t the tangent length, r
+// the radius ((t, r) = (1, 0) and x unused for an orthographic view).
+int fast_backfacing(uint f, vec3 x, float t, float r, vec4 cone)
+{
+    float a = cone.w;
+    if (!(a < uintBitsToFloat(0x3FC90FDBu))) return 0; // pi / 2 rounded to float, as the C twin's
+    if (!(a >= 0.0)) return -1;
+    vec3 axis = cone.xyz, w = vec3(fl(f + MLOD_IF_F_SUBS + MLOD_IF_FS_W), fl(f + MLOD_IF_F_SUBS + MLOD_IF_FS_W + 1u),
+                                   fl(f + MLOD_IF_F_SUBS + MLOD_IF_FS_W + 2u));
+    float away = fl(f + MLOD_IF_F_ORTHO) != 0.0 ? -(axis.x * w.x + axis.y * w.y + axis.z * w.z)
+                                                 : -(axis.x * x.x + axis.y * x.y + axis.z * x.z);
+    float len = sqrt(axis.x * axis.x + axis.y * axis.y + axis.z * axis.z);
+    float a2 = a * a;
+    float sa = a * (1.0 - a2 * (uintBitsToFloat(0x3E2AAAABu) - a2 * uintBitsToFloat(0x3C088889u))); // 1/6, 1/120
+    float ca = 1.0 - a2 * (0.5 - a2 * (uintBitsToFloat(0x3D2AAAABu) - a2 * uintBitsToFloat(0x3AB60B61u))); // 1/24, 1/720
+    float e = a2 * a2 * a2 * a * uintBitsToFloat(0x39500D01u) + 80.0 * uintBitsToFloat(0x33800000u); // 1/5040; u
+    float m1 = (t + r) * e;
+    float z2 = away + len * (sa * t + ca * r);
+    if (z2 > len * m1) return 0;
+    float z1 = ca * t - sa * r;
+    if (z1 < -m1) return 0;
+    if (z1 > m1 && z2 < -len * m1) return 1;
+    return -1;
+}
+
+// C twin: mlod__fast_status
+// The status of a node-view by the float filter: MLOD_IF_STATUS_CULLED,
+// _DRAWN, _COARSE (not valid: the caller tells an oversize leaf) or 0
+// (unsure).  Views whose eye is not exactly a float take the exact path.
+uint fast_status(uint view, vec4 sphere, bool use_cone, vec4 cone)
+{
+    uint f = view * MLOD_IF_FILTER_STRIDE;
+    if (fl(f + MLOD_IF_F_OK) == 0.0 || fl(f + MLOD_IF_F_FLOAT_EYE) == 0.0) return 0u;
+    vec3 x = vec3(sphere.x - fl(f + MLOD_IF_F_EYE), sphere.y - fl(f + MLOD_IF_F_EYE + 1u),
+                  sphere.z - fl(f + MLOD_IF_F_EYE + 2u));
+    float r = sphere.w, d2 = x.x * x.x + x.y * x.y + x.z * x.z, t = 1.0, twice = r + r, reach;
+    bool ortho = fl(f + MLOD_IF_F_ORTHO) != 0.0;
+    uint reached = 0u, count = uint(fl(f + MLOD_IF_F_SUB_COUNT));
+    bool all_valid = true;
+    if (!(d2 >= uintBitsToFloat(0x2B800000u) && d2 <= uintBitsToFloat(0x67800000u))) return 0u; // 2^-40, 2^80
+    if (!(r == 0.0 || (r >= uintBitsToFloat(0x2B800000u) && r <= uintBitsToFloat(0x53800000u)))) return 0u; // 2^40
+    if (!ortho) {
+        float t2 = d2 - r * r;
+        if (!(4.0 * t2 >= d2)) return 0u;
+        t = sqrt(t2);
+        reach = t + twice; // >= |x| + r
+    } else {
+        reach = sqrt(d2) + r;
+    }
+    for (uint s = 0u; s < count; s++) {
+        uint fs = f + MLOD_IF_F_SUBS + s * MLOD_IF_F_SUB_STRIDE, planes = uint(fl(fs + MLOD_IF_FS_PLANE_COUNT)), j;
+        for (j = 0u; j < planes; j++) {
+            uint p = fs + MLOD_IF_FS_PLANES + 5u * j;
+            float v = fl(p) * x.x + fl(p + 1u) * x.y + fl(p + 2u) * x.z + fl(p + 3u) * r - fl(p + 4u);
+            float m = fl(fs + MLOD_IF_FS_SLOPE + j) * reach + fl(fs + MLOD_IF_FS_ERR + j);
+            if (v < -m) break;
+            if (!(v > m)) return 0u;
+        }
+        if (j == planes) reached |= 1u << s;
+    }
+    if (reached == 0u) return MLOD_IF_STATUS_CULLED;
+    if (fl(f + MLOD_IF_F_BACKFACES) != 0.0 && use_cone) {
+        int b = fast_backfacing(f, x, t, ortho ? 0.0 : r, cone);
+        if (b != 0) return b > 0 ? MLOD_IF_STATUS_CULLED : 0u;
+    }
+    for (uint s = 0u; s < count; s++) {
+        if (((reached >> s) & 1u) == 0u) continue;
+        uint fs = f + MLOD_IF_F_SUBS + s * MLOD_IF_F_SUB_STRIDE;
+        int kind = int(fl(fs + MLOD_IF_FS_KIND));
+        float xw = x.x * fl(fs + MLOD_IF_FS_W) + x.y * fl(fs + MLOD_IF_FS_W + 1u) + x.z * fl(fs + MLOD_IF_FS_W + 2u);
+        float lhs, rhs;
+        if (kind == MLOD_IF_KIND_PERSPECTIVE) {
+            float near_side = xw - r;
+            if (!(near_side > 0.0 && 256.0 * near_side * near_side >= d2)) return 0u;
+            lhs = twice * t;
+            rhs = near_side * (xw + r);
+        } else if (kind == MLOD_IF_KIND_PARABOLOID) {
+            rhs = xw + t;
+            if (!(rhs > 0.0 && 256.0 * rhs * rhs >= d2)) return 0u;
+            lhs = twice;
+        } else {
+            lhs = twice;
+            rhs = 1.0;
+        }
+        if (lhs * fl(fs + MLOD_IF_FS_INVALID) > rhs) return MLOD_IF_STATUS_COARSE;
+        if (!(lhs * fl(fs + MLOD_IF_FS_VALID) <= rhs)) all_valid = false;
+    }
+    return all_valid ? MLOD_IF_STATUS_DRAWN : 0u;
+}
+#endif
+
 // C twin: mlod__is_valid
 bool status_valid(uint s) { return s == MLOD_IF_STATUS_DRAWN || s == MLOD_IF_STATUS_CULLED; }
 
@@ -514,6 +620,15 @@ uint classify(uint view, uint node, real epsilon, uint leaf_count)
 {
     bool culled;
     vec4 cone = MLOD_HAS_CONES ? cones[node] : vec4(0.0);
+#ifdef MLOD_HAS_FILTERS
+    // the exact path below only where the filter is unsure (rare): asked
+    // of the whole subgroup first, since SIMD devices (lavapipe) run a
+    // divergent branch for every lane
+    uint st = fast_status(view, spheres[node], MLOD_HAS_CONES, cone);
+    if (st == MLOD_IF_STATUS_COARSE && node >= leaf_count - 1u) st = MLOD_IF_STATUS_OVERSIZE;
+    if (!subgroupAny(st == 0u)) return st; // the same for the whole subgroup: a branch it skips together
+    if (st != 0u) return st;
+#endif
     real c = evaluate(view, spheres[node], MLOD_HAS_CONES, cone, culled);
     if (culled) return MLOD_IF_STATUS_CULLED;
     if (r_le(c, epsilon)) return MLOD_IF_STATUS_DRAWN;

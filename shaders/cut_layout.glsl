@@ -3,6 +3,7 @@
 // side is mlodvk__cut_* in manylods_vk.h.  One descriptor set:
 //   0 spheres  1 cones  2 views  3 list in  4 list out  5 status in
 //   6 status out  7 acts  8 block sums  9 control  10 view offsets
+//   11 view filters (floats: the float filter, interface.h)
 // A list entry is uvec2(node, view); its status is a separate uint (low 3
 // bits MLOD_STATUS_* or 0 = pending; bit 3: the merge check already failed
 // in this call).  Rounds alternate list and status buffers A -> B -> A; the
@@ -24,6 +25,8 @@ layout(std430, set = 0, binding = MLOD_IF_CUT_ACTS) buffer acts_buffer { uint ac
 layout(std430, set = 0, binding = MLOD_IF_CUT_BLOCK_SUMS) buffer block_sums_buffer { uint block_sums[]; };
 layout(std430, set = 0, binding = MLOD_IF_CUT_CONTROL) coherent buffer control_block { MLOD_IF_CONTROL(MLOD_IF_DECLARE, MLOD_IF_DECLARE_ARRAY) } ctl;
 layout(std430, set = 0, binding = MLOD_IF_CUT_VIEW_OFFSETS) buffer view_offsets_buffer { uint view_offsets[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_FILTERS) readonly buffer view_filters { float filters[]; };
+#define MLOD_HAS_FILTERS // common.glsl's classify tries the float filter first (fast_status)
 
 layout(push_constant) uniform push_block { MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE) } pc;
 

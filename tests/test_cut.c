@@ -2165,6 +2165,66 @@ static void test_threads(void)
 /* test_cut [GROUP...]: every group, or those named (the compile matrix
    runs the cut and float filter groups under qemu, where the whole program
    takes minutes). */
+/* mlod_view_filter_of, the float filter as manylods_vk.h uploads it: the
+   same values as the cut's own (mlod__fast_prepare) for every kind of
+   view, and refusals. */
+static void test_filter_export(void)
+{
+    uint64_t rng = 91;
+    double c[3] = {0, 0, 0};
+    unsigned views = 0, wrong = 0, with_filter = 0;
+    int i, s, j, k;
+    float out[MLOD_FILTER_FLOATS];
+    mlod_error e;
+    mlod_view bad;
+    for (i = 0; i < 200; i++) {
+        mlod_view v = tu_random_view(&rng, (mlod_view_kind)(i % 5), c, 1.4);
+        float eps = i % 7 == 0 ? INFINITY : (float)(0.25 + 4.0 * scene_rng_double(&rng));
+        mlod__pview pv;
+        const float *o;
+        int bad_here = 0;
+        if (i % 3 == 0) v.position[0] += 0.1f; /* eyes whose floats are not small */
+        if (mlod_view_filter_of(&v, eps, out, &e) != MLOD_OK || mlod__view_prepare(&v, &pv, NULL) != MLOD_OK) {
+            CHECK(0, "filter export: view %d refused: %s", i, e.message);
+            continue;
+        }
+        mlod__fast_prepare(&pv, eps);
+        views++;
+        with_filter += (unsigned)pv.fast.ok;
+        bad_here |= out[MLOD_FILTER_OK] != (float)pv.fast.ok;
+        if (pv.fast.ok) {
+            bad_here |= out[MLOD_FILTER_BACKFACES] != (float)pv.fast.backfaces ||
+                        out[MLOD_FILTER_ORTHO] != (float)pv.fast.ortho ||
+                        out[MLOD_FILTER_SUB_COUNT] != (float)pv.fast.sub_count ||
+                        out[MLOD_FILTER_FLOAT_EYE] != (float)pv.fast.float_eye;
+            for (k = 0; k < 3; k++) bad_here |= out[MLOD_FILTER_EYE + k] != pv.fast.eye_f[k];
+            for (s = 0; s < pv.fast.sub_count; s++) {
+                const mlod__fsub *fs = &pv.fast.subs[s];
+                o = out + MLOD_FILTER_SUBS + s * MLOD_FILTER_SUB_STRIDE;
+                bad_here |= o[MLOD_FILTER_S_KIND] != (float)fs->kind ||
+                            o[MLOD_FILTER_S_PLANE_COUNT] != (float)fs->plane_count ||
+                            o[MLOD_FILTER_S_VALID] != fs->valid || o[MLOD_FILTER_S_INVALID] != fs->invalid;
+                for (k = 0; k < 3; k++) bad_here |= o[MLOD_FILTER_S_W + k] != fs->w[k];
+                for (j = 0; j < fs->plane_count; j++) {
+                    for (k = 0; k < 5; k++) bad_here |= o[MLOD_FILTER_S_PLANES + 5 * j + k] != fs->planes[j][k];
+                    bad_here |= o[MLOD_FILTER_S_SLOPE + j] != fs->slope[j] || o[MLOD_FILTER_S_ERR + j] != fs->err[j];
+                }
+            }
+        }
+        wrong += (unsigned)bad_here;
+    }
+    CHECK(wrong == 0 && views == 200 && with_filter > 100,
+          "filter export: %u of %u views differ from the cut's filter (%u with one)", wrong, views, with_filter);
+    bad = tu_random_view(&rng, MLOD_VIEW_PERSPECTIVE, c, 1.4);
+    CHECK(mlod_view_filter_of(&bad, 1.0f, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "filter export: NULL out refused");
+    CHECK(mlod_view_filter_of(&bad, 0.0f, out, &e) == MLOD_ERROR_INVALID_ARGUMENT &&
+              mlod_view_filter_of(&bad, NAN, out, &e) == MLOD_ERROR_INVALID_ARGUMENT,
+          "filter export: epsilon 0 and NaN refused");
+    bad.fov_y = 4.0f;
+    CHECK(mlod_view_filter_of(&bad, 1.0f, out, &e) == MLOD_ERROR_BAD_VIEW, "filter export: a bad view refused (%s)",
+          e.message);
+}
+
 /* The planning's shortcut over 8 statuses at a time against the plain
    byte-by-byte rule (mlod__to_split): the word test for every word of
    statuses with at most two bytes to split, at every position, and whole
@@ -2253,6 +2313,7 @@ int main(int argc, char **argv)
     TEST_GROUP("threads", test_threads());
     TEST_GROUP("skip", test_skip());
     TEST_GROUP("planning", test_planning());
+    TEST_GROUP("filter_export", test_filter_export());
     test_groups_end();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
