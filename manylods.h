@@ -4083,7 +4083,8 @@ MLOD__PUBLIC mlod_result mlod_view_filter_of(const mlod_view *view, float epsilo
     mlod_result res;
     int s, j, k;
     if (!out) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out is NULL");
-    if (!(epsilon > 0.0f)) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "epsilon must be > 0 (got %g)", epsilon);
+    if (!(epsilon > 0.0f))
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "epsilon must be > 0 (got %g)", epsilon);
     res = mlod__view_prepare(view, &pv, error);
     if (res != MLOD_OK) return res;
     mlod__fast_prepare(&pv, epsilon);
@@ -4664,9 +4665,9 @@ static inline int mlod__mergeable(const uint32_t *nodes, const uint8_t *status, 
    is valid (the merge goes through the left child).  hint: the status of
    x's parent when the caller classified it already (mlod__merge_hints),
    else MLOD__PENDING.  Returns x's replacement and its status. */
-MLOD__FORCE_INLINE uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, uint32_t *nodes, uint8_t *status,
-                             uint32_t *count, uint32_t x, uint8_t *xs, uint8_t hint, uint64_t *evaluated,
-                             uint64_t *steps)
+MLOD__FORCE_INLINE uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__pview *pv, uint32_t *nodes,
+                                         uint8_t *status, uint32_t *count, uint32_t x, uint8_t *xs, uint8_t hint,
+                                         uint64_t *evaluated, uint64_t *steps)
 {
     while (mlod__mergeable(nodes, status, *count, x, *xs)) {
         uint32_t parent = (x - 1) / 2;
@@ -5158,7 +5159,8 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
         if (job->merge && count > 0) {
             for (; i < seg->out_count; i++) {
                 uint8_t xs = src_status[i];
-                uint32_t x = mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, MLOD__PENDING, &evaluated, &steps);
+                uint32_t x =
+                    mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, MLOD__PENDING, &evaluated, &steps);
                 nodes[count] = x;
                 status[count] = xs;
                 count++;

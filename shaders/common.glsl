@@ -535,7 +535,8 @@ int fast_backfacing(uint f, vec3 x, float t, float r, vec4 cone)
     float len = sqrt(axis.x * axis.x + axis.y * axis.y + axis.z * axis.z);
     float a2 = a * a;
     float sa = a * (1.0 - a2 * (uintBitsToFloat(0x3E2AAAABu) - a2 * uintBitsToFloat(0x3C088889u))); // 1/6, 1/120
-    float ca = 1.0 - a2 * (0.5 - a2 * (uintBitsToFloat(0x3D2AAAABu) - a2 * uintBitsToFloat(0x3AB60B61u))); // 1/24, 1/720
+    // 1/24, 1/720
+    float ca = 1.0 - a2 * (0.5 - a2 * (uintBitsToFloat(0x3D2AAAABu) - a2 * uintBitsToFloat(0x3AB60B61u)));
     float e = a2 * a2 * a2 * a * uintBitsToFloat(0x39500D01u) + 80.0 * uintBitsToFloat(0x33800000u); // 1/5040; u
     float m1 = (t + r) * e;
     float z2 = away + len * (sa * t + ca * r);

@@ -2275,7 +2275,8 @@ static void test_planning(void)
     for (i = 0; i < 40; i++) {
         /* runs of statuses to split scattered thinly or thickly */
         unsigned density = 1u + (unsigned)(scene_rng_double(&rng) * 64);
-        size_t at, end = LIST - (size_t)(scene_rng_double(&rng) * 100), unit = 1u + (size_t)(scene_rng_double(&rng) * 100);
+        size_t at, end = LIST - (size_t)(scene_rng_double(&rng) * 100);
+        size_t unit = 1u + (size_t)(scene_rng_double(&rng) * 100);
         for (at = 0; at < LIST + 8; at++)
             list[at] = (unsigned)(scene_rng_double(&rng) * density) == 0 ? values[(int)(scene_rng_double(&rng) * 8)]
                                                                  : values[1 + (int)(scene_rng_double(&rng) * 3)];
