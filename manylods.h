@@ -4934,7 +4934,7 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
     }
     for (k = 0; k < seg->in_count; k++)
         if ((in_status[k] & MLOD__STATUS_MASK) == MLOD__PENDING) todo[count++] = in_nodes[k];
-    mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
+    if (count) mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
     for (k = 0, count = 0; k < seg->in_count; k++)
         status[k] = (in_status[k] & MLOD__STATUS_MASK) == MLOD__PENDING ? found[count++] : in_status[k];
     return count;
@@ -5062,7 +5062,7 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
             children[splits++] = 2 * job->in->nodes[seg->in_begin + k] + 1;
             children[splits++] = 2 * job->in->nodes[seg->in_begin + k] + 2;
         }
-    mlod__classify_list(pv, tree, children, splits, job->epsilon, split);
+    if (splits) mlod__classify_list(pv, tree, children, splits, job->epsilon, split);
     splits = 0;
     for (k = 0; k < seg->in_count; k++) {
         size_t at = seg->in_begin + k;
