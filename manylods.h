@@ -5529,29 +5529,34 @@ static int mlod__none_to_split8(const uint8_t *p, int trust)
     return !trust || !((c - ones) & ~c & highs);
 }
 
+/* The first entry at or after `at`, before `end`, to be split in a round
+   that is not lazy (mlod__to_split), else end: runs of 8 statuses with
+   nothing to split are passed over at once. */
+static size_t mlod__next_to_split(const uint8_t *status, size_t at, size_t end, int trust)
+{
+    while (at + 8 <= end && mlod__none_to_split8(status + at, trust)) at += 8;
+    while (at < end && !mlod__to_split(status[at], 0, trust)) at++;
+    return at;
+}
+
 /* The next segment of a view's list from `at`: its length and how many of
    its entries are to be split.  A segment closes at MLOD__SEGMENT_INPUT
    entries, or once its splits may produce MLOD__SEGMENT_GROWTH entries,
-   so that big expansions spread over many tasks.  Runs of 8 entries with
-   nothing to split are passed over at once. */
+   so that big expansions spread over many tasks. */
 static uint32_t mlod__segment_length(const mlod__list *in, size_t at, size_t end, int lazy, int trust, size_t unit,
                                      uint32_t *splits)
 {
-    uint32_t n = 0, c = 0;
-    if (lazy) { /* nothing is split by plan in lazy rounds */
-        *splits = 0;
-        return (uint32_t)(end - at < MLOD__SEGMENT_INPUT ? end - at : MLOD__SEGMENT_INPUT);
-    }
-    while (at + n < end && n < MLOD__SEGMENT_INPUT && (size_t)c * unit < MLOD__SEGMENT_GROWTH) {
-        if (n + 8 <= MLOD__SEGMENT_INPUT && at + n + 8 <= end && mlod__none_to_split8(in->status + at + n, trust)) {
-            n += 8;
-            continue;
+    size_t limit = end - at < MLOD__SEGMENT_INPUT ? end : at + MLOD__SEGMENT_INPUT, next = at;
+    uint32_t c = 0;
+    if (!lazy) /* nothing is split by plan in lazy rounds */
+        while ((size_t)c * unit < MLOD__SEGMENT_GROWTH) {
+            next = mlod__next_to_split(in->status, next, limit, trust);
+            if (next == limit) break;
+            c++;
+            next++; /* the segment ends after this split if its growth is spent */
         }
-        c += (uint32_t)mlod__to_split(in->status[at + n], lazy, trust);
-        n++;
-    }
     *splits = c;
-    return n;
+    return (uint32_t)((size_t)c * unit < MLOD__SEGMENT_GROWTH ? limit - at : next - at);
 }
 
 /* Output room of a segment: lazy steps at most double it; splits may add
@@ -5605,12 +5610,9 @@ static void mlod__plan_splits_task(void *context, uint32_t index)
             continue;
         }
         if (!job->lazy)
-            for (; at < stop; at++) {
-                if (at + 8 <= stop && mlod__none_to_split8(job->in->status + at, job->trust)) {
-                    at += 7;
-                    continue;
-                }
-                view_splits += (size_t)mlod__to_split(job->in->status[at], 0, job->trust);
+            while ((at = mlod__next_to_split(job->in->status, at, stop, job->trust)) < stop) {
+                view_splits++;
+                at++;
             }
         cut->view_work[v] = view_splits;
         /* later basic and incremental rounds leave finished views alone */
