@@ -1554,6 +1554,188 @@ static void test_image_lanes(void)
           lanes, compared, unbounded, wrong);
 }
 
+/* The splat's float filter (mlod__fast_discs, mlod__disc_pixel): wherever
+   it decides a node's pixel, or that it draws nothing, the double path
+   (mlod__image_disc, the small-disc rule of mlod__raster_disc) agrees; and
+   tiles drawn through it equal tiles drawn by the double path alone, bit
+   for bit (depths and node indices, and normals on some trials), one
+   chunk at a time and in batches of MLOD__LANES.  Spheres aimed at pixel
+   edges and centres, with images near the small-disc radius, on the axis,
+   behind the eye, holding it, of radius 0; views of every kind with
+   paraboloid or perspective sub-projections, bands of a few rows, disc
+   scales 1, 1.25 and 0.75 (below 1: the filter stays out). */
+static void test_filtered_discs(void)
+{
+    enum { NODES = 64, W = 160, H = 160 };
+    static const mlod_view_kind kinds[4] = {MLOD_VIEW_PARABOLOID, MLOD_VIEW_PERSPECTIVE, MLOD_VIEW_DUAL_PARABOLOID,
+                                            MLOD_VIEW_CUBE};
+    static const float scales[3] = {1.0f, 1.25f, 0.75f};
+    static const double origin[3] = {0.0, 0.0, 0.0};
+    static float spheres[4 * NODES], cones[4 * NODES];
+    static float depth[3][W * H], normal[3][3 * W * H];
+    static uint32_t ids[3][W * H];
+    uint64_t rng = 0xf17e5ull;
+    uint32_t nodes[NODES], trial, i, l, k, wrong = 0, differ = 0, plotted = 0, outside = 0, unsure = 0, views = 0;
+    uint32_t clear = 0, clear_decided = 0;
+    mlod_tree tree;
+    memset(&tree, 0, sizeof tree);
+    tree.spheres = spheres;
+    tree.cones = cones;
+    tree.node_count = NODES;
+    for (i = 0; i < NODES; i++) nodes[i] = i;
+    for (trial = 0; trial < 1200; trial++) {
+        mlod_view view = tu_random_view(&rng, kinds[trial % 4], origin, 1.0);
+        mlod__pview pv;
+        mlod__fdiscs fd;
+        mlod__band band;
+        int s, with_normals = trial % 5 == 3;
+        if (view.width > W) view.width = W;
+        if (view.height > H) view.height = H;
+        if (mlod__view_prepare(&view, &pv, NULL) != MLOD_OK || !mlod__disc_prepare(&pv, &fd)) continue;
+        views++;
+        memset(&band, 0, sizeof band);
+        band.tree = &tree;
+        band.stride = W;
+        band.disc_scale = scales[trial % 3];
+        band.row_begin = trial % 4 == 1 ? (uint32_t)(scene_rng_double(&rng) * view.height) : 0u;
+        band.row_end = trial % 4 == 1 ? band.row_begin + 1 + (uint32_t)(scene_rng_double(&rng) * 8) : view.height;
+        if (band.row_end > view.height) band.row_end = view.height;
+        for (s = 0; s < pv.sub_count; s++) {
+            const mlod_view_sub *sub = &pv.f.subs[s];
+            float box[4 * NODES];
+            uint32_t clip[4], padded = NODES;
+            if (!fd.subs[s].kind) continue;
+            clip[0] = pv.columns[s][0];
+            clip[1] = pv.columns[s][1];
+            clip[2] = pv.rows[s][0] < band.row_begin ? band.row_begin : pv.rows[s][0];
+            clip[3] = pv.rows[s][1] > band.row_end ? band.row_end : pv.rows[s][1];
+            for (i = 0; i < NODES; i++) { /* a sphere for this sub-projection */
+                double px, py, dir[3], dist = 0.05 + 4.0 * scene_rng_double(&rng), target, r1, c[3];
+                float o[3], d[3];
+                mlod__disc one;
+                int kind = (int)(i % 8);
+                px = sub->x + sub->width * (-0.1 + 1.2 * scene_rng_double(&rng));
+                py = sub->y + sub->height * (-0.1 + 1.2 * scene_rng_double(&rng));
+                if (kind == 1) px = floor(px) + ldexp(scene_rng_double(&rng) - 0.5, -18 - (int)(i % 7)); /* a column edge */
+                if (kind == 2) py = floor(py) + ldexp(scene_rng_double(&rng) - 0.5, -18 - (int)(i % 5)); /* a row edge */
+                if (kind == 3) px = floor(px) + 0.5; /* a pixel centre */
+                if (mlod_view_pixel_ray(&view, (float)px, (float)py, o, d)) {
+                    for (k = 0; k < 3; k++) dir[k] = d[k];
+                } else {
+                    tu_random_unit(&rng, dir); /* anywhere, behind the eye too */
+                }
+                if (kind == 4) /* on the axis */
+                    for (k = 0; k < 3; k++) dir[k] = sub->forward[k];
+                for (k = 0; k < 3; k++) {
+                    c[k] = (double)pv.f.eye[k] + dist * dir[k];
+                    spheres[4 * i + k] = (float)c[k];
+                    c[k] = spheres[4 * i + k];
+                    cones[4 * i + k] = (float)dir[k];
+                }
+                cones[4 * i + 3] = 0.0f;
+                /* the radius whose image has about this radius (in pixels, at disc scale 1) */
+                target = kind == 5   ? 0.5 / band.disc_scale * (1.0 + ldexp(scene_rng_double(&rng) - 0.5, -10 - (int)(i % 13)))
+                         : kind == 6 ? 0.0
+                                     : 0.7 * scene_rng_double(&rng);
+                r1 = 1e-3 * dist;
+                if (mlod__image_disc(&pv, s, c, r1, &one) && one.radius > 0.0)
+                    spheres[4 * i + 3] = (float)(r1 * target / one.radius);
+                else
+                    spheres[4 * i + 3] = (float)(dist * 0.01 * scene_rng_double(&rng));
+                if (kind == 7 && i % 16 == 7) spheres[4 * i + 3] = (float)(2.0 * dist); /* holds the eye */
+            }
+            /* each decision against the double path */
+#ifdef MLOD__VLANES
+            padded = (NODES + MLOD__VLANES - 1) / MLOD__VLANES * MLOD__VLANES;
+#endif
+            MANYLODS_ASSERT(padded == NODES);
+            mlod__fast_discs(&fd, &fd.subs[s], spheres, nodes, padded, band.disc_scale, box);
+            for (i = 0; i < NODES; i++) {
+                uint32_t col = 0, row = 0;
+                int code = band.disc_scale >= 1.0f
+                               ? mlod__disc_pixel(box[4 * i], box[4 * i + 1], box[4 * i + 2], box[4 * i + 3], clip, &col, &row)
+                               : MLOD__DISC_UNSURE;
+                double c[3];
+                mlod__disc one;
+                int bounded, small, inside, clear_candidate;
+                for (k = 0; k < 3; k++) c[k] = spheres[4 * i + k];
+                bounded = mlod__image_disc(&pv, s, c, spheres[4 * i + 3], &one);
+                small = bounded && one.radius * (double)band.disc_scale < MLOD__SMALL_DISC;
+                inside = bounded && one.x >= clip[0] && one.x < clip[1] && one.y >= clip[2] && one.y < clip[3];
+                {
+                    double x[3], dist, t, b, in_domain;
+                    for (k = 0; k < 3; k++) x[k] = c[k] - pv.f.eye[k];
+                    dist = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+                    t = acos(fmax(-1.0, fmin(1.0, (x[0] * sub->forward[0] + x[1] * sub->forward[1] +
+                                                   x[2] * sub->forward[2]) / dist)));
+                    b = asin(fmin(1.0, spheres[4 * i + 3] / dist));
+                    /* the filter's domain: off the axis, the sphere small beside its distance, its far edge
+                       well before the paraboloid's pole behind the eye or a perspective view's side plane */
+                    in_domain = sin(t) > 1e-4 && b < 0.45 &&
+                                (pv.kind[s] == MLOD_VIEW_PARABOLOID ? 1.0 + cos(t + b) > 0.2 : cos(t + b) > 0.2);
+                    clear_candidate = in_domain && band.disc_scale >= 1.0f && small &&
+                                      one.radius * (double)band.disc_scale < 0.49 &&
+                                      fabs(one.x - floor(one.x + 0.5)) > 1e-3 && fabs(one.y - floor(one.y + 0.5)) > 1e-3;
+                }
+                if (clear_candidate) {
+                    clear++; /* a disc well inside the filter's domain, away from the small radius and pixel edges */
+                    clear_decided += code != MLOD__DISC_UNSURE;
+                }
+                if (code == MLOD__DISC_UNSURE) {
+                    unsure++;
+                    continue;
+                }
+                if (code == MLOD__DISC_PLOT ? !(small && inside && floor(one.x) == col && floor(one.y) == row)
+                                            : !(small && !inside)) {
+                    if (wrong++ < 3)
+                        CHECK(0, "filtered discs: %s view, sub %d, node %u: the filter %s (%u, %u), the double path "
+                                 "%s disc at (%.17g, %.17g) radius %.17g (clip %u-%u x %u-%u)",
+                              kind_name(view.kind), s, i, code == MLOD__DISC_PLOT ? "plots" : "draws nothing", col, row,
+                              bounded ? "a" : "no", one.x, one.y, one.radius, clip[0], clip[1], clip[2], clip[3]);
+                }
+                plotted += code == MLOD__DISC_PLOT;
+                outside += code == MLOD__DISC_NONE;
+            }
+        }
+        /* whole tiles: the double path alone [0], through the filter in
+           batches [1], and in chunks where the view has one sub-projection [2] */
+        for (k = 0; k < 3; k++) {
+            for (i = 0; i < W * H; i++) {
+                depth[k][i] = INFINITY;
+                ids[k][i] = 7u;
+            }
+            memset(normal[k], 0, sizeof normal[k]);
+            band.depth = depth[k];
+            band.ids = ids[k];
+            band.normal = with_normals ? normal[k] : NULL;
+            band.fast = k == 0 ? NULL : &fd;
+            if (k == 2 && pv.sub_count == 1) {
+                if (mlod__filtered(&band, 0)) mlod__draw_filtered(&band, &pv, 0, nodes, NODES);
+                else
+                    for (l = 0; l < NODES; l += MLOD__LANES) mlod__draw_nodes(&band, &pv, nodes + l, MLOD__LANES);
+            } else {
+                for (l = 0; l < NODES; l += MLOD__LANES) mlod__draw_nodes(&band, &pv, nodes + l, MLOD__LANES);
+            }
+            if (k > 0 && (memcmp(depth[k], depth[0], sizeof depth[0]) || memcmp(ids[k], ids[0], sizeof ids[0]) ||
+                          memcmp(normal[k], normal[0], sizeof normal[0]))) {
+                if (differ++ < 3)
+                    CHECK(0, "filtered discs: %s view %ux%u, disc scale %g: the tile drawn %s differs from the double "
+                             "path's",
+                          kind_name(view.kind), view.width, view.height, (double)band.disc_scale,
+                          k == 1 ? "in batches through the filter" : "in one chunk through the filter");
+            }
+        }
+    }
+    CHECK(wrong == 0 && differ == 0 && plotted > 10000 && outside > 2000 && unsure > 5000,
+          "filtered discs: over %u views, %u pixels the filter plotted and %u discs it found outside the clip agree with "
+          "the double path (%u wrong); %u left to it; tiles drawn through it equal the double path's (%u differ)",
+          views, plotted, outside, wrong, unsure, differ);
+    CHECK(clear > 5000 && clear_decided >= 0.99 * clear,
+          "filtered discs: the filter decides %u of the %u small discs in its domain whose centres lie 1e-3 px or more "
+          "from a pixel edge and whose radii are below 0.49 px (>= 99%%)",
+          clear_decided, clear);
+}
+
 static void test_unbounded_paraboloid(void)
 {
     /* sphere centres 120 and 170 degrees off w = (0, 0, -1), d = 1: t + b
@@ -3180,24 +3362,27 @@ done:
     scene_free(&s);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
-    test_projection();
-    test_cube_world_axes();
-    test_single_node();
-    test_overlap();
-    test_culling_and_clearing();
-    test_unbounded_paraboloid();
-    test_image_lanes();
-    test_determinism();
-    test_disc_scale();
-    test_small_discs();
-    test_fill_holes();
-    show_fill_weighting();
-    test_metrics_known();
-    test_metrics_reference();
-    test_end_to_end();
-    test_suggest();
-    test_errors();
+    test_groups_begin(argc, argv);
+    TEST_GROUP("projection", test_projection());
+    TEST_GROUP("cube_world_axes", test_cube_world_axes());
+    TEST_GROUP("single_node", test_single_node());
+    TEST_GROUP("overlap", test_overlap());
+    TEST_GROUP("culling_and_clearing", test_culling_and_clearing());
+    TEST_GROUP("unbounded_paraboloid", test_unbounded_paraboloid());
+    TEST_GROUP("image_lanes", test_image_lanes());
+    TEST_GROUP("filtered_discs", test_filtered_discs());
+    TEST_GROUP("determinism", test_determinism());
+    TEST_GROUP("disc_scale", test_disc_scale());
+    TEST_GROUP("small_discs", test_small_discs());
+    TEST_GROUP("fill_holes", test_fill_holes());
+    TEST_GROUP("fill_weighting", show_fill_weighting());
+    TEST_GROUP("metrics_known", test_metrics_known());
+    TEST_GROUP("metrics_reference", test_metrics_reference());
+    TEST_GROUP("end_to_end", test_end_to_end());
+    TEST_GROUP("suggest", test_suggest());
+    TEST_GROUP("errors", test_errors());
+    test_groups_end();
     return test_finish();
 }
