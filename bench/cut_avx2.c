@@ -1,6 +1,6 @@
 /* bench/cut_avx2.c - the library compiled a second time, privately
    (MANYLODS_STATIC), with the flags the Makefile gives this file
-   (-mavx2 -mfma: the cut's float filter in 8 lanes); see cut_avx2.h. */
+   (-mavx2 -mfma: the cut's and the splat's float filters in 8 lanes); see cut_avx2.h. */
 #define MANYLODS_STATIC
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
@@ -45,6 +45,12 @@ mlod_result bench_avx2_cut_update(bench_avx2_cut *cut, const mlod_tree *tree, co
                                   const mlod_cut_params *params, mlod_error *error)
 {
     return mlod_cut_update(cut->cut, tree, views, params, error);
+}
+
+mlod_result bench_avx2_splat(const bench_avx2_cut *cut, mlod_atlas *atlas, const mlod_tree *tree,
+                             const mlod_view *views, const mlod_parallel *parallel, mlod_error *error)
+{
+    return mlod_splat(atlas, tree, cut->cut, views, parallel, error);
 }
 
 uint64_t bench_avx2_cut_hash(const bench_avx2_cut *cut)
