@@ -292,15 +292,17 @@
      mlod_suggest_sample_count() gives the smallest N whose leaves are at
      most epsilon pixels in the closest view: sample only what views resolve.
      Drawing is exact and fast like the cut: a node whose disc is smaller
-     than a pixel (most of them at epsilon ~1) plots the one pixel that
-     holds the disc's centre; a float filter finds that pixel from the
-     disc's formulas in float, with a bound on each step's rounding (the
-     proof is beside mlod__fast_disc), wherever the disc's centre, widened
-     by the bound, lies inside one pixel and its radius below the small
-     disc's, in vector lanes (64 nodes at a time), the depth still computed
-     as the double path does; every other node takes the double path.  The
-     atlas is the same bit for bit (tests/test_splat.c, filtered_discs);
-     the object protocol's splat takes 0.55x the double path's time.
+     than a pixel (most of them at epsilon ~1) can only draw the one pixel
+     that holds the disc's centre (at a disc scale below 1, only where that
+     pixel's centre lies in the disc); a float filter finds that pixel from
+     the disc's formulas in float, with a bound on each step's rounding
+     (the proof is beside mlod__fast_disc), wherever the disc's centre,
+     widened by the bound, lies inside one pixel and its radius below the
+     small disc's, in vector lanes (64 nodes at a time), the depth still
+     computed as the double path does; every other node takes the double
+     path.  The atlas is the same bit for bit (tests/test_splat.c,
+     filtered_discs); the object protocol's splat takes 0.55x the double
+     path's time (0.75x with half discs, disc_scale 0.5).
 
    CHOOSING THE VIEWS (importance sampling, e.g. of virtual point lights)
      mlod_sample() draws N samples from a discrete domain of D candidates
@@ -6148,7 +6150,8 @@ static int mlod__image_disc(const mlod__pview *pv, int s, const double *centre, 
 /* ------------------------------------------------ the splat's float filter -- */
 
 /* Most nodes a cut draws at epsilon ~1 have images smaller than a pixel:
-   mlod__raster_disc plots the one pixel holding the disc's centre.  Which
+   mlod__raster_disc plots the one pixel holding the disc's centre (below
+   a disc scale of 1, where that pixel's centre lies in the disc).  Which
    pixel that is, and whether the disc is small, follow from the disc's
    centre (X, Y) and radius R, which mlod__image_discs computes in double
    (8 divisions and 3 square roots a node).  The filter computes them in
@@ -6243,10 +6246,14 @@ enum {
     MLOD__DISC_NONE    /* a small disc whose centre lies outside the clip: nothing drawn */
 };
 
-/* A small disc whose centre lies in [xl, xh] x [yl, yh]: the pixel that
-   holds it when that is one pixel inside the clip (columns [clip[0],
-   clip[1]), rows [clip[2], clip[3]), each below 2^24: floats), nothing
-   when the box lies outside the clip, else unsure. */
+/* A small disc (its radius times the disc scale ds below 0.5 - 2^-30)
+   whose centre lies in [xl, xh] x [yl, yh]: the one pixel that can draw
+   it (any other pixel's centre lies 0.5 or more away), clipped to columns
+   [clip[0], clip[1]) and rows [clip[2], clip[3]) (each below 2^24:
+   floats): MLOD__DISC_PLOT with the pixel holding the centre, which
+   mlod__raster_disc draws at ds >= 1 (below, see mlod__disc_inside);
+   MLOD__DISC_NONE when the centre lies outside the clip; else
+   MLOD__DISC_UNSURE (a NAN box is). */
 static int mlod__disc_pixel(float xl, float xh, float yl, float yh, const uint32_t *clip, uint32_t *col, uint32_t *row)
 {
     if (xh < (float)clip[0] || xl >= (float)clip[1] || yh < (float)clip[2] || yl >= (float)clip[3])
@@ -6258,13 +6265,49 @@ static int mlod__disc_pixel(float xl, float xh, float yl, float yh, const uint32
     return *col == (uint32_t)xh && *row == (uint32_t)yh ? MLOD__DISC_PLOT : MLOD__DISC_UNSURE;
 }
 
-#ifndef MLOD__VLANES
-/* The filter for one sphere in sub-projection f at disc scale ds >= 1
-   (mlod_atlas.disc_scale): where the disc is small for sure, box[0 .. 3] =
-   the bounds xl, xh, yl, yh of its centre (the box the caller hands to
-   mlod__disc_pixel), else NAN. */
-static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *sphere, float ds, float *box)
+/* Below a disc scale of 1, whether the pixel (col, row) that
+   mlod__disc_pixel found is drawn: whether its centre lies in the disc of
+   centre in b[0 .. 3] (as there) and radius times ds in [b[4], b[5]].
+   MLOD__DISC_PLOT, _NONE or _UNSURE; 2^-20 of the squares covers every
+   rounding here and in the double path's test. */
+static int mlod__disc_inside(const float *b, uint32_t col, uint32_t row)
 {
+    float dx0 = ((float)col + 0.5f) - b[1], dx1 = ((float)col + 0.5f) - b[0];
+    float dy0 = ((float)row + 0.5f) - b[3], dy1 = ((float)row + 0.5f) - b[2];
+    float far_x = fabsf(dx0) > fabsf(dx1) ? fabsf(dx0) : fabsf(dx1);
+    float far_y = fabsf(dy0) > fabsf(dy1) ? fabsf(dy0) : fabsf(dy1);
+    float near_x = dx0 > 0.0f ? dx0 : dx1 < 0.0f ? -dx1 : 0.0f;
+    float near_y = dy0 > 0.0f ? dy0 : dy1 < 0.0f ? -dy1 : 0.0f;
+    if ((far_x * far_x + far_y * far_y) * (1.0f + 1.0f / 1048576.0f) <= b[4] * b[4]) return MLOD__DISC_PLOT;
+    if ((near_x * near_x + near_y * near_y) * (1.0f - 1.0f / 1048576.0f) > b[5] * b[5]) return MLOD__DISC_NONE;
+    return MLOD__DISC_UNSURE;
+}
+
+/* What the filter's box (mlod__fast_disc; box[k * stride], k = 0 .. 5)
+   tells of the disc at disc scale ds: MLOD__DISC_* and the pixel. */
+static int mlod__disc_decide(const float *box, size_t stride, float ds, const uint32_t *clip, uint32_t *col,
+                             uint32_t *row)
+{
+    int code = mlod__disc_pixel(box[0], box[stride], box[2 * stride], box[3 * stride], clip, col, row);
+    if (code == MLOD__DISC_PLOT && ds < 1.0f) {
+        float b[6];
+        int k;
+        for (k = 0; k < 6; k++) b[k] = box[k * stride];
+        code = mlod__disc_inside(b, *col, *row);
+    }
+    return code;
+}
+
+#ifndef MLOD__VLANES
+/* The filter for one sphere in sub-projection f at disc scale ds > 0
+   (mlod_atlas.disc_scale): where the disc is small for sure, box[k *
+   stride], k = 0 .. 5 = the bounds xl, xh, yl, yh of its centre and rl, rh
+   of its radius times ds (the box the caller hands to mlod__disc_pixel),
+   else NAN. */
+static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *sphere, float ds, float *box,
+                            size_t stride)
+{
+    int k;
     const float u = MLOD__DISC_U, widen = 1.0f + 1.0f / 256.0f;
     float x0 = sphere[0] - fd->eye[0], x1 = sphere[1] - fd->eye[1], x2 = sphere[2] - fd->eye[2], r = sphere[3];
     float d = sqrtf(x0 * x0 + x1 * x1 + x2 * x2);
@@ -6327,19 +6370,21 @@ static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const 
     e_X = e_X * widen + 2.0f * u * fabsf(X); /* and the rounding of X +- e_X below */
     e_Y = e_Y * widen + 2.0f * u * fabsf(Y);
     box[0] = X - e_X;
-    box[1] = X + e_X;
-    box[2] = Y - e_Y;
-    box[3] = Y + e_Y;
+    box[stride] = X + e_X;
+    box[2 * stride] = Y - e_Y;
+    box[3 * stride] = Y + e_Y;
+    box[4 * stride] = (R - e_R * widen) * ds;
+    box[5 * stride] = (R + e_R * widen) * ds;
     return;
 unsure:
-    box[0] = box[1] = box[2] = box[3] = NAN;
+    for (k = 0; k < 6; k++) box[k * stride] = NAN;
 }
 
 static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres, const uint32_t *nodes,
-                             uint32_t count, float ds, float *box)
+                             uint32_t count, float ds, float *box, size_t stride)
 {
     uint32_t i;
-    for (i = 0; i < count; i++) mlod__fast_disc(fd, f, spheres + 4 * (size_t)nodes[i], ds, box + 4 * (size_t)i);
+    for (i = 0; i < count; i++) mlod__fast_disc(fd, f, spheres + 4 * (size_t)nodes[i], ds, box + i, stride);
 }
 #endif
 
@@ -6349,11 +6394,12 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
 #endif
 /* mlod__fast_disc for the spheres of nodes[0 .. count - 1] (count a
    multiple of MLOD__VLANES), in vector lanes, step for step as it (the
-   same bounds): for node l, box[4l .. 4l + 3] = the bounds xl, xh, yl, yh
-   of its disc's centre, or NAN where the node must take the double path
-   (the box the caller hands to mlod__disc_pixel). */
+   same bounds): for node l, box[k * stride + l], k = 0 .. 5 = the bounds
+   xl, xh, yl, yh of its disc's centre and rl, rh of its radius times ds,
+   or NAN where the node must take the double path (the box the caller
+   hands to mlod__disc_pixel). */
 static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres, const uint32_t *nodes,
-                             uint32_t count, float ds, float *box)
+                             uint32_t count, float ds, float *box, size_t stride)
 {
     uint32_t i;
     for (i = 0; i < count; i += MLOD__VLANES) {
@@ -6365,8 +6411,6 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
     const mlod__vf e_s = MLOD__VSET(42.0f * uf), two_u = MLOD__VSET(2.0f * uf);
     mlod__vf x0, x1, x2, r, d, a, b, c, rho, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo;
     mlod__vf g, e_g, R, e_R, X, Y, e_X, e_Y, ok, nan = MLOD__VSET(NAN);
-    float lo_x[MLOD__VLANES], hi_x[MLOD__VLANES], lo_y[MLOD__VLANES], hi_y[MLOD__VLANES];
-    uint32_t l;
     mlod__vload(spheres, nodes + i, &x0, &x1, &x2, &r);
     x0 = MLOD__VSUB(x0, MLOD__VSET(fd->eye[0]));
     x1 = MLOD__VSUB(x1, MLOD__VSET(fd->eye[1]));
@@ -6447,18 +6491,13 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
     e_Y = MLOD__VADD(MLOD__VMUL(e_Y, widen), MLOD__VMUL(two_u, MLOD__VABS(Y)));
     /* unsure lanes: a NAN box, which mlod__disc_pixel finds unsure */
 #define MLOD__VKEEP(v) MLOD__VOR(MLOD__VAND(ok, v), MLOD__VANDNOT(ok, nan))
-    MLOD__VSTORE(lo_x, MLOD__VKEEP(MLOD__VSUB(X, e_X)));
-    MLOD__VSTORE(hi_x, MLOD__VKEEP(MLOD__VADD(X, e_X)));
-    MLOD__VSTORE(lo_y, MLOD__VKEEP(MLOD__VSUB(Y, e_Y)));
-    MLOD__VSTORE(hi_y, MLOD__VKEEP(MLOD__VADD(Y, e_Y)));
+    MLOD__VSTORE(box + i, MLOD__VKEEP(MLOD__VSUB(X, e_X)));
+    MLOD__VSTORE(box + stride + i, MLOD__VKEEP(MLOD__VADD(X, e_X)));
+    MLOD__VSTORE(box + 2 * stride + i, MLOD__VKEEP(MLOD__VSUB(Y, e_Y)));
+    MLOD__VSTORE(box + 3 * stride + i, MLOD__VKEEP(MLOD__VADD(Y, e_Y)));
+    MLOD__VSTORE(box + 4 * stride + i, MLOD__VKEEP(MLOD__VMUL(MLOD__VSUB(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
+    MLOD__VSTORE(box + 5 * stride + i, MLOD__VKEEP(MLOD__VMUL(MLOD__VADD(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
 #undef MLOD__VKEEP
-    for (l = 0; l < MLOD__VLANES; l++) {
-        float *to = box + 4 * (size_t)(i + l);
-        to[0] = lo_x[l];
-        to[1] = hi_x[l];
-        to[2] = lo_y[l];
-        to[3] = hi_y[l];
-    }
     }
 #undef MLOD__VABS
 #undef MLOD__VDOT
@@ -6815,6 +6854,7 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
    independent lanes for the processor to overlap their long chains of
    divisions and square roots. */
 #define MLOD__DRAW_CHUNK 64u
+#define MLOD__BOX_STRIDE (MLOD__DRAW_CHUNK + 8u) /* room for the padding of the last lanes */
 
 /* Draw nodes[0 .. count - 1] (count <= MLOD__DRAW_CHUNK), each of which
    reaches sub-projection s, in order, through the band's float filter: a
@@ -6827,7 +6867,7 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
     const mlod_view_sub *sub = &pv->f.subs[s];
     const float *spheres = band->tree->spheres;
     uint32_t clip[4], ids[MLOD__DRAW_CHUNK + 8], padded = count, l;
-    float box[4 * (MLOD__DRAW_CHUNK + 8)], depth[MLOD__DRAW_CHUNK];
+    float box[6 * MLOD__BOX_STRIDE], depth[MLOD__DRAW_CHUNK];
     clip[0] = pv->columns[s][0];
     clip[1] = pv->columns[s][1];
     clip[2] = pv->rows[s][0] < band->row_begin ? band->row_begin : pv->rows[s][0];
@@ -6838,9 +6878,9 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
     for (; padded % MLOD__VLANES; padded++) ids[padded] = nodes[count - 1];
 #endif
     if (clip[1] <= 16777216u && clip[3] <= 16777216u) /* (the clip's bounds are floats) */
-        mlod__fast_discs(band->fast, &band->fast->subs[s], spheres, ids, padded, band->disc_scale, box);
+        mlod__fast_discs(band->fast, &band->fast->subs[s], spheres, ids, padded, band->disc_scale, box, MLOD__BOX_STRIDE);
     else
-        for (l = 0; l < 4 * count; l++) box[l] = NAN;
+        for (l = 0; l < 6 * MLOD__BOX_STRIDE; l++) box[l] = NAN;
     l = 0;
 #ifdef MLOD__VD
     /* the double path's depths, as it computes them, two at a time (no
@@ -6865,14 +6905,13 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
     }
     for (l = 0; l < count; l++) {
         uint32_t col = 0, row = 0;
-        int code = mlod__disc_pixel(box[4 * l], box[4 * l + 1], box[4 * l + 2], box[4 * l + 3], clip, &col, &row);
+        int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale, clip, &col, &row), k;
         if (code == MLOD__DISC_PLOT) {
             mlod__plot_if(band, row, col, depth[l], nodes[l], 1u);
         } else if (code == MLOD__DISC_UNSURE) {
             const float *sphere = spheres + 4 * (size_t)nodes[l];
             double c[3];
             mlod__disc disc;
-            int k;
             for (k = 0; k < 3; k++) c[k] = sphere[k];
             if (mlod__image_disc(pv, s, c, sphere[3], &disc))
                 mlod__raster_disc(band, &disc, nodes[l], pv->columns[s], pv->rows[s]);
@@ -6883,7 +6922,7 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
 /* Whether the band draws sub-projection s through its float filter. */
 static int mlod__filtered(const mlod__band *band, int s)
 {
-    return band->fast && band->fast->subs[s].kind && band->disc_scale >= 1.0f;
+    return band->fast && band->fast->subs[s].kind && band->disc_scale > 0.0f;
 }
 
 /* Draw n <= MLOD__DRAW_CHUNK nodes into the band, in order, in each

@@ -1554,7 +1554,7 @@ static void test_image_lanes(void)
           lanes, compared, unbounded, wrong);
 }
 
-/* The splat's float filter (mlod__fast_discs, mlod__disc_pixel): wherever
+/* The splat's float filter (mlod__fast_discs, mlod__disc_decide): wherever
    it decides a node's pixel, or that it draws nothing, the double path
    (mlod__image_disc, the small-disc rule of mlod__raster_disc) agrees; and
    tiles drawn through it equal tiles drawn by the double path alone, bit
@@ -1563,17 +1563,19 @@ static void test_image_lanes(void)
    edges and centres, with images near the small-disc radius, on the axis,
    behind the eye, holding it, of radius 0; views of every kind with
    paraboloid or perspective sub-projections, bands of a few rows, disc
-   scales 1, 1.25 and 0.75 (below 1: the filter stays out). */
+   scales 1, 1.25, 0.75 and 0.5 (below 1 the pixel holding the disc's
+   centre is drawn only where its centre lies in the disc). */
 static void test_filtered_discs(void)
 {
     enum { NODES = 64, W = 160, H = 160 };
     static const mlod_view_kind kinds[4] = {MLOD_VIEW_PARABOLOID, MLOD_VIEW_PERSPECTIVE, MLOD_VIEW_DUAL_PARABOLOID,
                                             MLOD_VIEW_CUBE};
-    static const float scales[3] = {1.0f, 1.25f, 0.75f};
+    static const float scales[4] = {1.0f, 1.25f, 0.75f, 0.5f};
     static const double origin[3] = {0.0, 0.0, 0.0};
     static float spheres[4 * NODES], cones[4 * NODES];
     static float depth[3][W * H], normal[3][3 * W * H];
     static uint32_t ids[3][W * H];
+    static float scratch[W * H];
     uint64_t rng = 0xf17e5ull;
     uint32_t nodes[NODES], trial, i, l, k, wrong = 0, differ = 0, plotted = 0, outside = 0, unsure = 0, views = 0;
     uint32_t clear = 0, clear_decided = 0;
@@ -1583,6 +1585,7 @@ static void test_filtered_discs(void)
     tree.cones = cones;
     tree.node_count = NODES;
     for (i = 0; i < NODES; i++) nodes[i] = i;
+    for (i = 0; i < W * H; i++) scratch[i] = INFINITY;
     for (trial = 0; trial < 1200; trial++) {
         mlod_view view = tu_random_view(&rng, kinds[trial % 4], origin, 1.0);
         mlod__pview pv;
@@ -1596,13 +1599,13 @@ static void test_filtered_discs(void)
         memset(&band, 0, sizeof band);
         band.tree = &tree;
         band.stride = W;
-        band.disc_scale = scales[trial % 3];
+        band.disc_scale = scales[trial / 4 % 4];
         band.row_begin = trial % 4 == 1 ? (uint32_t)(scene_rng_double(&rng) * view.height) : 0u;
         band.row_end = trial % 4 == 1 ? band.row_begin + 1 + (uint32_t)(scene_rng_double(&rng) * 8) : view.height;
         if (band.row_end > view.height) band.row_end = view.height;
         for (s = 0; s < pv.sub_count; s++) {
             const mlod_view_sub *sub = &pv.f.subs[s];
-            float box[4 * NODES];
+            float box[6 * NODES];
             uint32_t clip[4], padded = NODES;
             if (!fd.subs[s].kind) continue;
             clip[0] = pv.columns[s][0];
@@ -1649,19 +1652,16 @@ static void test_filtered_discs(void)
             padded = (NODES + MLOD__VLANES - 1) / MLOD__VLANES * MLOD__VLANES;
 #endif
             MANYLODS_ASSERT(padded == NODES);
-            mlod__fast_discs(&fd, &fd.subs[s], spheres, nodes, padded, band.disc_scale, box);
+            mlod__fast_discs(&fd, &fd.subs[s], spheres, nodes, padded, band.disc_scale, box, NODES);
             for (i = 0; i < NODES; i++) {
                 uint32_t col = 0, row = 0;
-                int code = band.disc_scale >= 1.0f
-                               ? mlod__disc_pixel(box[4 * i], box[4 * i + 1], box[4 * i + 2], box[4 * i + 3], clip, &col, &row)
-                               : MLOD__DISC_UNSURE;
+                int code = mlod__disc_decide(box + i, NODES, band.disc_scale, clip, &col, &row);
                 double c[3];
                 mlod__disc one;
-                int bounded, small, inside, clear_candidate;
+                int bounded, small, clear_candidate;
                 for (k = 0; k < 3; k++) c[k] = spheres[4 * i + k];
                 bounded = mlod__image_disc(&pv, s, c, spheres[4 * i + 3], &one);
                 small = bounded && one.radius * (double)band.disc_scale < MLOD__SMALL_DISC;
-                inside = bounded && one.x >= clip[0] && one.x < clip[1] && one.y >= clip[2] && one.y < clip[3];
                 {
                     double x[3], dist, t, b, in_domain;
                     for (k = 0; k < 3; k++) x[k] = c[k] - pv.f.eye[k];
@@ -1685,13 +1685,40 @@ static void test_filtered_discs(void)
                     unsure++;
                     continue;
                 }
-                if (code == MLOD__DISC_PLOT ? !(small && inside && floor(one.x) == col && floor(one.y) == row)
-                                            : !(small && !inside)) {
-                    if (wrong++ < 3)
-                        CHECK(0, "filtered discs: %s view, sub %d, node %u: the filter %s (%u, %u), the double path "
-                                 "%s disc at (%.17g, %.17g) radius %.17g (clip %u-%u x %u-%u)",
-                              kind_name(view.kind), s, i, code == MLOD__DISC_PLOT ? "plots" : "draws nothing", col, row,
-                              bounded ? "a" : "no", one.x, one.y, one.radius, clip[0], clip[1], clip[2], clip[3]);
+                { /* what the double path draws of this node alone */
+                    mlod__band alone = band;
+                    uint32_t written = 0, wc = 0, wr = 0, p;
+                    alone.fast = NULL;
+                    alone.depth = scratch;
+                    alone.ids = NULL;
+                    alone.normal = NULL;
+                    if (bounded) mlod__raster_disc(&alone, &one, i, pv.columns[s], pv.rows[s]);
+                    double reach = bounded ? one.radius * band.disc_scale + 2.0 : 0.0; /* where it can draw */
+                    uint32_t x0 = 0, x1 = W, y0 = 0, y1 = H, px, py;
+                    if (bounded && reach < 64.0 && fabs(one.x) < 1e6 && fabs(one.y) < 1e6) {
+                        x0 = one.x - reach < 0.0 ? 0u : (uint32_t)(one.x - reach);
+                        y0 = one.y - reach < 0.0 ? 0u : (uint32_t)(one.y - reach);
+                        x1 = one.x + reach < 0.0 ? 0u : one.x + reach >= W ? (uint32_t)W : (uint32_t)(one.x + reach) + 1;
+                        y1 = one.y + reach < 0.0 ? 0u : one.y + reach >= H ? (uint32_t)H : (uint32_t)(one.y + reach) + 1;
+                    }
+                    for (py = y0; py < y1; py++)
+                        for (px = x0; px < x1; px++) {
+                            p = py * W + px;
+                            if (scratch[p] == INFINITY) continue;
+                            written++;
+                            wc = px;
+                            wr = py;
+                            scratch[p] = INFINITY;
+                        }
+                    if (code == MLOD__DISC_PLOT ? !(written == 1 && wc == col && wr == row) : written != 0) {
+                        if (wrong++ < 3)
+                            CHECK(0, "filtered discs: %s view, sub %d, node %u, disc scale %g: the filter %s (%u, %u), "
+                                     "the double path draws %u pixels (%u, %u) of a disc at (%.17g, %.17g) radius "
+                                     "%.17g (clip %u-%u x %u-%u)",
+                                  kind_name(view.kind), s, i, (double)band.disc_scale,
+                                  code == MLOD__DISC_PLOT ? "plots" : "draws nothing", col, row, written, wc, wr, one.x,
+                                  one.y, one.radius, clip[0], clip[1], clip[2], clip[3]);
+                    }
                 }
                 plotted += code == MLOD__DISC_PLOT;
                 outside += code == MLOD__DISC_NONE;
