@@ -6315,7 +6315,7 @@ static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const 
     float b = (x0 * f->up[0] + x1 * f->up[1] + x2 * f->up[2]) / d;
     float c = (x0 * f->forward[0] + x1 * f->forward[1] + x2 * f->forward[2]) / d;
     float rho = r / d, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo, g, e_g, R, e_R;
-    float X, Y, e_X, e_Y;
+    float X, Y, e_X, e_Y, q_hi, q_lo, e_q;
     const float e_s = 42.0f * u;
     if (!(rho + 7.0f * u * rho <= 0.5f)) goto unsure; /* also d = 0 or not finite */
     st = sqrtf(a * a + b * b);
@@ -6328,13 +6328,19 @@ static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const 
     dx = a / st;
     dy = b / st;
     e_dir = 33.0f * u / (st - 20.0f * u) + u;
+    /* the denominators: 1 + cos (paraboloid, tan of half the angle) or
+       cos (perspective), each at least 1/8 */
+    q_hi = f->kind == MLOD_VIEW_PARABOLOID ? 1.0f + c_hi : c_hi;
+    q_lo = f->kind == MLOD_VIEW_PARABOLOID ? 1.0f + c_lo : c_lo;
+    e_q = f->kind == MLOD_VIEW_PARABOLOID ? 44.0f * u : e_s;
+    if (!(q_hi >= 0.125f && q_lo >= 0.125f)) goto unsure;
+    if (f->kind == MLOD_VIEW_PARABOLOID && !(s_hi > e_s || c_hi > e_s)) goto unsure;
+    hi = s_hi / q_hi;
+    lo = s_lo / q_lo;
+    e_hi = (e_s + fabsf(hi) * e_q) / (q_hi - e_q) + u * fabsf(hi);
+    e_lo = (e_s + fabsf(lo) * e_q) / (q_lo - e_q) + u * fabsf(lo);
     if (f->kind == MLOD_VIEW_PARABOLOID) {
-        float q_hi = 1.0f + c_hi, q_lo = 1.0f + c_lo, e_q = 44.0f * u, k, e_k, mx, my, e_mx, e_my, nx, ny;
-        if (!(q_hi >= 0.125f && q_lo >= 0.125f && (s_hi > e_s || c_hi > e_s))) goto unsure;
-        hi = s_hi / q_hi;
-        lo = s_lo / q_lo;
-        e_hi = (e_s + fabsf(hi) * e_q) / (q_hi - e_q) + u * fabsf(hi);
-        e_lo = (e_s + fabsf(lo) * e_q) / (q_lo - e_q) + u * fabsf(lo);
+        float k, e_k, mx, my, e_mx, e_my, nx, ny;
         k = 0.5f * (hi + lo);
         e_k = 0.5f * (e_hi + e_lo) + u * fabsf(k);
         mx = k * dx;
@@ -6349,11 +6355,6 @@ static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const 
         e_Y = f->half_h * (e_my + u * fabsf(ny)) + u * fabsf(f->half_h * ny) + u * fabsf(Y);
     } else {
         float kk, e_kk;
-        if (!(c_hi >= 0.125f && c_lo >= 0.125f)) goto unsure;
-        hi = s_hi / c_hi;
-        lo = s_lo / c_lo;
-        e_hi = (e_s + fabsf(hi) * e_s) / (c_hi - e_s) + u * fabsf(hi);
-        e_lo = (e_s + fabsf(lo) * e_s) / (c_lo - e_s) + u * fabsf(lo);
         kk = f->half_scale * (hi + lo);
         e_kk = f->half_scale * (e_hi + e_lo + u * fabsf(hi + lo)) + 2.0f * u * fabsf(kk);
         X = f->x0 + kk * dx;
@@ -6410,6 +6411,7 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
     const mlod__vf u = MLOD__VSET(uf), one = MLOD__VSET(1.0f), widen = MLOD__VSET(1.0f + 1.0f / 256.0f);
     const mlod__vf e_s = MLOD__VSET(42.0f * uf), two_u = MLOD__VSET(2.0f * uf);
     mlod__vf x0, x1, x2, r, d, a, b, c, rho, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo;
+    mlod__vf q_hi, q_lo, e_q;
     mlod__vf g, e_g, R, e_R, X, Y, e_X, e_Y, ok, nan = MLOD__VSET(NAN);
     mlod__vload(spheres, nodes + i, &x0, &x1, &x2, &r);
     x0 = MLOD__VSUB(x0, MLOD__VSET(fd->eye[0]));
@@ -6431,18 +6433,27 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
     dx = MLOD__VDIV(a, st);
     dy = MLOD__VDIV(b, st);
     e_dir = MLOD__VADD(MLOD__VDIV(MLOD__VSET(33.0f * uf), MLOD__VSUB(st, MLOD__VSET(20.0f * uf))), u);
+    /* the denominators: 1 + cos (paraboloid, tan of half the angle) or
+       cos (perspective), each at least 1/8 */
     if (f->kind == MLOD_VIEW_PARABOLOID) {
-        mlod__vf q_hi = MLOD__VADD(one, c_hi), q_lo = MLOD__VADD(one, c_lo), e_q = MLOD__VSET(44.0f * uf);
-        mlod__vf eighth = MLOD__VSET(0.125f), k, e_k, mx, my, e_mx, e_my, nx, ny, hw = MLOD__VSET(f->half_w);
-        mlod__vf hh = MLOD__VSET(f->half_h);
-        ok = MLOD__VAND(ok, MLOD__VAND(MLOD__VGE(q_hi, eighth), MLOD__VGE(q_lo, eighth)));
+        q_hi = MLOD__VADD(one, c_hi);
+        q_lo = MLOD__VADD(one, c_lo);
+        e_q = MLOD__VSET(44.0f * uf);
         ok = MLOD__VAND(ok, MLOD__VOR(MLOD__VGT(s_hi, e_s), MLOD__VGT(c_hi, e_s)));
-        hi = MLOD__VDIV(s_hi, q_hi);
-        lo = MLOD__VDIV(s_lo, q_lo);
-        e_hi = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(hi), e_q)), MLOD__VSUB(q_hi, e_q)),
-                          MLOD__VMUL(u, MLOD__VABS(hi)));
-        e_lo = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(lo), e_q)), MLOD__VSUB(q_lo, e_q)),
-                          MLOD__VMUL(u, MLOD__VABS(lo)));
+    } else {
+        q_hi = c_hi;
+        q_lo = c_lo;
+        e_q = e_s;
+    }
+    ok = MLOD__VAND(ok, MLOD__VAND(MLOD__VGE(q_hi, MLOD__VSET(0.125f)), MLOD__VGE(q_lo, MLOD__VSET(0.125f))));
+    hi = MLOD__VDIV(s_hi, q_hi);
+    lo = MLOD__VDIV(s_lo, q_lo);
+    e_hi = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(hi), e_q)), MLOD__VSUB(q_hi, e_q)),
+                      MLOD__VMUL(u, MLOD__VABS(hi)));
+    e_lo = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(lo), e_q)), MLOD__VSUB(q_lo, e_q)),
+                      MLOD__VMUL(u, MLOD__VABS(lo)));
+    if (f->kind == MLOD_VIEW_PARABOLOID) {
+        mlod__vf k, e_k, mx, my, e_mx, e_my, nx, ny, hw = MLOD__VSET(f->half_w), hh = MLOD__VSET(f->half_h);
         k = MLOD__VMUL(MLOD__VSET(0.5f), MLOD__VADD(hi, lo));
         e_k = MLOD__VADD(MLOD__VMUL(MLOD__VSET(0.5f), MLOD__VADD(e_hi, e_lo)), MLOD__VMUL(u, MLOD__VABS(k)));
         mx = MLOD__VMUL(k, dx);
@@ -6460,14 +6471,7 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
         e_Y = MLOD__VADD(MLOD__VMUL(hh, MLOD__VADD(e_my, MLOD__VMUL(u, MLOD__VABS(ny)))),
                          MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(MLOD__VMUL(hh, ny)), MLOD__VABS(Y))));
     } else {
-        mlod__vf eighth = MLOD__VSET(0.125f), hs = MLOD__VSET(f->half_scale), kk, e_kk, sum, px, py;
-        ok = MLOD__VAND(ok, MLOD__VAND(MLOD__VGE(c_hi, eighth), MLOD__VGE(c_lo, eighth)));
-        hi = MLOD__VDIV(s_hi, c_hi);
-        lo = MLOD__VDIV(s_lo, c_lo);
-        e_hi = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(hi), e_s)), MLOD__VSUB(c_hi, e_s)),
-                          MLOD__VMUL(u, MLOD__VABS(hi)));
-        e_lo = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(lo), e_s)), MLOD__VSUB(c_lo, e_s)),
-                          MLOD__VMUL(u, MLOD__VABS(lo)));
+        mlod__vf hs = MLOD__VSET(f->half_scale), kk, e_kk, sum, px, py;
         sum = MLOD__VADD(hi, lo);
         kk = MLOD__VMUL(hs, sum);
         e_kk = MLOD__VADD(MLOD__VMUL(hs, MLOD__VADD(MLOD__VADD(e_hi, e_lo), MLOD__VMUL(u, MLOD__VABS(sum)))),
