@@ -6178,8 +6178,10 @@ static int mlod__image_disc(const mlod__pview *pv, int s, const double *centre, 
    the exact values is the same bound with 2^-53 for u: 2^-29 of the
    float's.  The bounds, themselves computed in float (a few roundings
    each), are widened by 2^-8 of themselves, which covers both.  The
-   conditions the bounds need (rho <= 1/2, sin t well above its bound, the
-   denominators 1 + c (paraboloid) or c (perspective) at least 1/8) also
+   conditions the bounds need (|x|^2 in [2^-100, 2^100], so that the
+   products that count stay normal floats, whose rounding is relative;
+   rho <= 1/2, sin t well above its bound, the denominators 1 + c
+   (paraboloid) or c (perspective) at least 1/8) also
    give the double path's own tests (the sphere does not hold the eye, the
    image is bounded); a node that fails them takes the double path. */
 #define MLOD__DISC_U (1.0f / 16777216.0f)
@@ -6310,13 +6312,16 @@ static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const 
     int k;
     const float u = MLOD__DISC_U, widen = 1.0f + 1.0f / 256.0f;
     float x0 = sphere[0] - fd->eye[0], x1 = sphere[1] - fd->eye[1], x2 = sphere[2] - fd->eye[2], r = sphere[3];
-    float d = sqrtf(x0 * x0 + x1 * x1 + x2 * x2);
+    float d2 = x0 * x0 + x1 * x1 + x2 * x2, d = sqrtf(d2);
     float a = (x0 * f->right[0] + x1 * f->right[1] + x2 * f->right[2]) / d;
     float b = (x0 * f->up[0] + x1 * f->up[1] + x2 * f->up[2]) / d;
     float c = (x0 * f->forward[0] + x1 * f->forward[1] + x2 * f->forward[2]) / d;
     float rho = r / d, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo, g, e_g, R, e_R;
     float X, Y, e_X, e_Y, q_hi, q_lo, e_q;
     const float e_s = 42.0f * u;
+    /* |x|^2 in [2^-100, 2^100]: no product that counts rounds below the
+       normal floats (whose error is absolute) or overflows */
+    if (!(d2 >= 7.88860905e-31f && d2 <= 1.26765060e30f)) goto unsure;
     if (!(rho + 7.0f * u * rho <= 0.5f)) goto unsure; /* also d = 0 or not finite */
     st = sqrtf(a * a + b * b);
     if (!(st > 40.0f * u)) goto unsure;
@@ -6417,12 +6422,14 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
     x0 = MLOD__VSUB(x0, MLOD__VSET(fd->eye[0]));
     x1 = MLOD__VSUB(x1, MLOD__VSET(fd->eye[1]));
     x2 = MLOD__VSUB(x2, MLOD__VSET(fd->eye[2]));
-    d = MLOD__VSQRT(MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)), MLOD__VMUL(x2, x2)));
+    d = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)), MLOD__VMUL(x2, x2)); /* |x|^2 first */
+    ok = MLOD__VAND(MLOD__VGE(d, MLOD__VSET(7.88860905e-31f)), MLOD__VLE(d, MLOD__VSET(1.26765060e30f)));
+    d = MLOD__VSQRT(d);
     a = MLOD__VDIV(MLOD__VDOT(f->right), d);
     b = MLOD__VDIV(MLOD__VDOT(f->up), d);
     c = MLOD__VDIV(MLOD__VDOT(f->forward), d);
     rho = MLOD__VDIV(r, d);
-    ok = MLOD__VLE(MLOD__VADD(rho, MLOD__VMUL(MLOD__VSET(7.0f * uf), rho)), MLOD__VSET(0.5f));
+    ok = MLOD__VAND(ok, MLOD__VLE(MLOD__VADD(rho, MLOD__VMUL(MLOD__VSET(7.0f * uf), rho)), MLOD__VSET(0.5f)));
     st = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(a, a), MLOD__VMUL(b, b)));
     ok = MLOD__VAND(ok, MLOD__VGT(st, MLOD__VSET(40.0f * uf)));
     cb = MLOD__VSQRT(MLOD__VSUB(one, MLOD__VMUL(rho, rho)));

@@ -1592,6 +1592,10 @@ static void test_filtered_discs(void)
         mlod__fdiscs fd;
         mlod__band band;
         int s, with_normals = trial % 5 == 3;
+        /* some scenes scaled down to around an eye at the origin, where
+           squares of coordinates leave the normal floats (2^-126) */
+        double scale = trial % 16 == 5 ? ldexp(1.0, -58 - (int)(trial % 7)) : trial % 16 == 13 ? ldexp(1.0, 40) : 1.0;
+        if (scale != 1.0) view.position[0] = view.position[1] = view.position[2] = 0.0f;
         if (view.width > W) view.width = W;
         if (view.height > H) view.height = H;
         if (mlod__view_prepare(&view, &pv, NULL) != MLOD_OK || !mlod__disc_prepare(&pv, &fd)) continue;
@@ -1613,7 +1617,7 @@ static void test_filtered_discs(void)
             clip[2] = pv.rows[s][0] < band.row_begin ? band.row_begin : pv.rows[s][0];
             clip[3] = pv.rows[s][1] > band.row_end ? band.row_end : pv.rows[s][1];
             for (i = 0; i < NODES; i++) { /* a sphere for this sub-projection */
-                double px, py, dir[3], dist = 0.05 + 4.0 * scene_rng_double(&rng), target, r1, c[3];
+                double px, py, dir[3], dist = (0.05 + 4.0 * scene_rng_double(&rng)) * scale, target, r1, c[3];
                 float o[3], d[3];
                 mlod__disc one;
                 int kind = (int)(i % 8);
