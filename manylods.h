@@ -6177,11 +6177,12 @@ static int mlod__image_disc(const mlod__pview *pv, int s, const double *centre, 
    u |z|.  The double path follows the same steps, so its own distance to
    the exact values is the same bound with 2^-53 for u: 2^-29 of the
    float's.  The bounds, themselves computed in float (a few roundings
-   each), are widened by 2^-8 of themselves, which covers both.  The
-   conditions the bounds need (|x|^2 in [2^-100, 2^100], so that the
-   products that count stay normal floats, whose rounding is relative;
-   rho <= 1/2, sin t well above its bound, the denominators 1 + c
-   (paraboloid) or c (perspective) at least 1/8) also
+   each), are widened by 2^-8 of themselves, which covers both.  (A
+   compiler that fuses a multiply and an add rounds once where the bounds
+   count twice: they hold.)  The conditions the bounds need (|x|^2 in
+   [2^-100, 2^100], so that the products that count stay normal floats,
+   whose rounding is relative; rho <= 1/2, sin t well above its bound, the
+   denominators 1 + c (paraboloid) or c (perspective) at least 1/8) also
    give the double path's own tests (the sphere does not hold the eye, the
    image is bounded); a node that fails them takes the double path. */
 #define MLOD__DISC_U (1.0f / 16777216.0f)
