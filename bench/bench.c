@@ -3261,7 +3261,20 @@ static int selftest(bench *b, protocol *p)
             fail("selftest: the AVX2 copy's cut: %s", wide ? error.message : "out of memory");
         for (v = 0; v < p->view_count; v++) hash = bench_hash_cut_view(hash, mlod_cut_get(cut, v));
         if (hash != bench_avx2_cut_hash(wide)) fail("selftest: the AVX2 copy's cuts differ from this build's");
-        printf("selftest: the copy built with -mavx2 -mfma (%d lanes) gives the same cuts\n", bench_avx2_lanes());
+        { /* and draws the same atlas (its splat's float filter in its own lanes) */
+            mlod_atlas *wide_atlas = NULL;
+            mlod_atlas_desc desc;
+            memset(&desc, 0, sizeof desc);
+            if (mlod_atlas_create(frame_views(p, last), p->view_count, &desc, NULL, &wide_atlas, &error) != MLOD_OK ||
+                bench_avx2_splat(wide, wide_atlas, tree, frame_views(p, last), &b->parallel, &error) != MLOD_OK ||
+                mlod_splat(p->atlas, tree, cut, frame_views(p, last), &b->parallel, &error) != MLOD_OK)
+                fail("selftest: the AVX2 copy's splat: %s", error.message);
+            if (memcmp(wide_atlas->depth, p->atlas->depth, sizeof(float) * pixels) != 0)
+                fail("selftest: the AVX2 copy's atlas differs from this build's");
+            mlod_atlas_destroy(wide_atlas);
+        }
+        printf("selftest: the copy built with -mavx2 -mfma (%d lanes) gives the same cuts and atlas\n",
+               bench_avx2_lanes());
         bench_avx2_cut_destroy(wide);
     }
 #endif
