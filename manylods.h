@@ -3939,8 +3939,16 @@ static float mlod__float_above(double x)
     return (double)f >= x ? f : nextafterf(f, INFINITY);
 }
 
+/* Whether v is a float: *out = v rounded to float, equal to v. */
+static int mlod__float_exact(double v, float *out)
+{
+    *out = (float)v;
+    return (double)*out == v;
+}
+
 /* Fill pv->fast for the cut's epsilon (pv from mlod__view_prepare): no
    filter (ok = 0) where a value leaves the guarded range. */
+
 static void mlod__fast_prepare(mlod__pview *pv, double epsilon)
 {
     mlod__fview *fv = &pv->fast;
@@ -3954,8 +3962,7 @@ static void mlod__fast_prepare(mlod__pview *pv, double epsilon)
     for (k = 0; k < 3; k++) {
         fv->eye[k] = pv->f.eye[k];
         if (!(fabs(fv->eye[k]) <= 18446744073709551616.0)) return; /* 2^64: centre - eye rounds into float range */
-        fv->eye_f[k] = (float)fv->eye[k];
-        if ((double)fv->eye_f[k] != fv->eye[k]) fv->float_eye = 0;
+        if (!mlod__float_exact(fv->eye[k], &fv->eye_f[k])) fv->float_eye = 0;
     }
     for (s = 0; s < pv->sub_count; s++) {
         const mlod_view_sub *sub = &pv->f.subs[s];
@@ -6202,12 +6209,6 @@ typedef struct mlod__fdiscs {
     mlod__fdisc subs[MLOD_VIEW_MAX_SUBS];
 } mlod__fdiscs;
 
-static int mlod__float_exact(double v, float *out)
-{
-    *out = (float)v;
-    return (double)*out == v;
-}
-
 /* The filter's constants for the view; 0 (every node takes the double
    path) when its eye or sub-tile origins are not floats, or no
    sub-projection is a paraboloid or perspective one. */
@@ -6270,19 +6271,21 @@ static int mlod__disc_pixel(float xl, float xh, float yl, float yh, const uint32
 
 /* Below a disc scale of 1, whether the pixel (col, row) that
    mlod__disc_pixel found is drawn: whether its centre lies in the disc of
-   centre in b[0 .. 3] (as there) and radius times ds in [b[4], b[5]].
+   the filter's box (box[k * stride]: the centre's bounds for k = 0 .. 3,
+   as there, the radius times ds within [box[4 stride], box[5 stride]]).
    MLOD__DISC_PLOT, _NONE or _UNSURE; 2^-20 of the squares covers every
    rounding here and in the double path's test. */
-static int mlod__disc_inside(const float *b, uint32_t col, uint32_t row)
+static int mlod__disc_inside(const float *box, size_t stride, uint32_t col, uint32_t row)
 {
-    float dx0 = ((float)col + 0.5f) - b[1], dx1 = ((float)col + 0.5f) - b[0];
-    float dy0 = ((float)row + 0.5f) - b[3], dy1 = ((float)row + 0.5f) - b[2];
+    float dx0 = ((float)col + 0.5f) - box[stride], dx1 = ((float)col + 0.5f) - box[0];
+    float dy0 = ((float)row + 0.5f) - box[3 * stride], dy1 = ((float)row + 0.5f) - box[2 * stride];
+    float r_lo = box[4 * stride], r_hi = box[5 * stride];
     float far_x = fabsf(dx0) > fabsf(dx1) ? fabsf(dx0) : fabsf(dx1);
     float far_y = fabsf(dy0) > fabsf(dy1) ? fabsf(dy0) : fabsf(dy1);
     float near_x = dx0 > 0.0f ? dx0 : dx1 < 0.0f ? -dx1 : 0.0f;
     float near_y = dy0 > 0.0f ? dy0 : dy1 < 0.0f ? -dy1 : 0.0f;
-    if ((far_x * far_x + far_y * far_y) * (1.0f + 1.0f / 1048576.0f) <= b[4] * b[4]) return MLOD__DISC_PLOT;
-    if ((near_x * near_x + near_y * near_y) * (1.0f - 1.0f / 1048576.0f) > b[5] * b[5]) return MLOD__DISC_NONE;
+    if ((far_x * far_x + far_y * far_y) * (1.0f + 1.0f / 1048576.0f) <= r_lo * r_lo) return MLOD__DISC_PLOT;
+    if ((near_x * near_x + near_y * near_y) * (1.0f - 1.0f / 1048576.0f) > r_hi * r_hi) return MLOD__DISC_NONE;
     return MLOD__DISC_UNSURE;
 }
 
@@ -6292,20 +6295,14 @@ static int mlod__disc_decide(const float *box, size_t stride, float ds, const ui
                              uint32_t *row)
 {
     int code = mlod__disc_pixel(box[0], box[stride], box[2 * stride], box[3 * stride], clip, col, row);
-    if (code == MLOD__DISC_PLOT && ds < 1.0f) {
-        float b[6];
-        int k;
-        for (k = 0; k < 6; k++) b[k] = box[k * stride];
-        code = mlod__disc_inside(b, *col, *row);
-    }
-    return code;
+    return code == MLOD__DISC_PLOT && ds < 1.0f ? mlod__disc_inside(box, stride, *col, *row) : code;
 }
 
 #ifndef MLOD__VLANES
 /* The filter for one sphere in sub-projection f at disc scale ds > 0
    (mlod_atlas.disc_scale): where the disc is small for sure, box[k *
    stride], k = 0 .. 5 = the bounds xl, xh, yl, yh of its centre and rl, rh
-   of its radius times ds (the box the caller hands to mlod__disc_pixel),
+   of its radius times ds (the box the caller hands to mlod__disc_decide),
    else NAN. */
 static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *sphere, float ds, float *box,
                             size_t stride)
@@ -6399,17 +6396,15 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute pop
 #endif
-/* mlod__fast_disc for the spheres of nodes[0 .. count - 1] (count a
-   multiple of MLOD__VLANES), in vector lanes, step for step as it (the
-   same bounds): for node l, box[k * stride + l], k = 0 .. 5 = the bounds
-   xl, xh, yl, yh of its disc's centre and rl, rh of its radius times ds,
-   or NAN where the node must take the double path (the box the caller
-   hands to mlod__disc_pixel). */
-static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres, const uint32_t *nodes,
-                             uint32_t count, float ds, float *box, size_t stride)
+/* mlod__fast_disc for the spheres of nodes[0 .. MLOD__VLANES - 1], in
+   vector lanes, step for step as it (the same bounds): for lane l,
+   box[k * stride + l], k = 0 .. 5 = the bounds xl, xh, yl, yh of its
+   disc's centre and rl, rh of its radius times ds, or NAN where the node
+   must take the double path (the box the caller hands to
+   mlod__disc_decide). */
+static void mlod__fast_disc_lanes(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres,
+                                  const uint32_t *nodes, float ds, float *box, size_t stride)
 {
-    uint32_t i;
-    for (i = 0; i < count; i += MLOD__VLANES) {
 #define MLOD__VABS(v) MLOD__VANDNOT(MLOD__VSET(-0.0f), v)
 #define MLOD__VDOT(v) MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET((v)[0])), MLOD__VMUL(x1, MLOD__VSET((v)[1]))), \
                              MLOD__VMUL(x2, MLOD__VSET((v)[2])))
@@ -6419,7 +6414,7 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
     mlod__vf x0, x1, x2, r, d, a, b, c, rho, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo;
     mlod__vf q_hi, q_lo, e_q;
     mlod__vf g, e_g, R, e_R, X, Y, e_X, e_Y, ok, nan = MLOD__VSET(NAN);
-    mlod__vload(spheres, nodes + i, &x0, &x1, &x2, &r);
+    mlod__vload(spheres, nodes, &x0, &x1, &x2, &r);
     x0 = MLOD__VSUB(x0, MLOD__VSET(fd->eye[0]));
     x1 = MLOD__VSUB(x1, MLOD__VSET(fd->eye[1]));
     x2 = MLOD__VSUB(x2, MLOD__VSET(fd->eye[2]));
@@ -6503,16 +6498,23 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
     e_Y = MLOD__VADD(MLOD__VMUL(e_Y, widen), MLOD__VMUL(two_u, MLOD__VABS(Y)));
     /* unsure lanes: a NAN box, which mlod__disc_pixel finds unsure */
 #define MLOD__VKEEP(v) MLOD__VOR(MLOD__VAND(ok, v), MLOD__VANDNOT(ok, nan))
-    MLOD__VSTORE(box + i, MLOD__VKEEP(MLOD__VSUB(X, e_X)));
-    MLOD__VSTORE(box + stride + i, MLOD__VKEEP(MLOD__VADD(X, e_X)));
-    MLOD__VSTORE(box + 2 * stride + i, MLOD__VKEEP(MLOD__VSUB(Y, e_Y)));
-    MLOD__VSTORE(box + 3 * stride + i, MLOD__VKEEP(MLOD__VADD(Y, e_Y)));
-    MLOD__VSTORE(box + 4 * stride + i, MLOD__VKEEP(MLOD__VMUL(MLOD__VSUB(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
-    MLOD__VSTORE(box + 5 * stride + i, MLOD__VKEEP(MLOD__VMUL(MLOD__VADD(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
+    MLOD__VSTORE(box, MLOD__VKEEP(MLOD__VSUB(X, e_X)));
+    MLOD__VSTORE(box + stride, MLOD__VKEEP(MLOD__VADD(X, e_X)));
+    MLOD__VSTORE(box + 2 * stride, MLOD__VKEEP(MLOD__VSUB(Y, e_Y)));
+    MLOD__VSTORE(box + 3 * stride, MLOD__VKEEP(MLOD__VADD(Y, e_Y)));
+    MLOD__VSTORE(box + 4 * stride, MLOD__VKEEP(MLOD__VMUL(MLOD__VSUB(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
+    MLOD__VSTORE(box + 5 * stride, MLOD__VKEEP(MLOD__VMUL(MLOD__VADD(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
 #undef MLOD__VKEEP
-    }
 #undef MLOD__VABS
 #undef MLOD__VDOT
+}
+
+/* The lanes over nodes[0 .. count - 1], count a multiple of MLOD__VLANES. */
+static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres, const uint32_t *nodes,
+                             uint32_t count, float ds, float *box, size_t stride)
+{
+    uint32_t i;
+    for (i = 0; i < count; i += MLOD__VLANES) mlod__fast_disc_lanes(fd, f, spheres, nodes + i, ds, box + i, stride);
 }
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
@@ -6862,6 +6864,28 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
         mlod__plot(band, (uint32_t)floor(disc->y), (uint32_t)floor(disc->x), depth, node);
 }
 
+/* Draw nodes[0 .. count - 1], each of which reaches sub-projection s, in
+   order, by the double path: MLOD__LANES images at a time. */
+static void mlod__draw_exact(const mlod__band *band, const mlod__pview *pv, int s, const uint32_t *nodes,
+                             uint32_t count)
+{
+    double c[MLOD__LANES][3], r[MLOD__LANES];
+    mlod__disc disc[MLOD__LANES];
+    int bounded[MLOD__LANES], k;
+    uint32_t i, l;
+    for (i = 0; i < count; i += MLOD__LANES) {
+        uint32_t lanes = count - i < MLOD__LANES ? count - i : MLOD__LANES;
+        for (l = 0; l < lanes; l++) {
+            const float *sphere = band->tree->spheres + 4 * (size_t)nodes[i + l];
+            for (k = 0; k < 3; k++) c[l][k] = sphere[k];
+            r[l] = sphere[3];
+        }
+        mlod__image_discs(pv, s, (const double (*)[3])c, r, disc, bounded, lanes);
+        for (l = 0; l < lanes; l++)
+            if (bounded[l]) mlod__raster_disc(band, &disc[l], nodes[i + l], pv->columns[s], pv->rows[s]);
+    }
+}
+
 /* Nodes a filtered draw takes at once (mlod__draw_filtered): enough
    independent lanes for the processor to overlap their long chains of
    divisions and square roots. */
@@ -6878,7 +6902,7 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
 {
     const mlod_view_sub *sub = &pv->f.subs[s];
     const float *spheres = band->tree->spheres;
-    uint32_t clip[4], ids[MLOD__DRAW_CHUNK + 8], padded = count, l;
+    uint32_t clip[4], ids[MLOD__BOX_STRIDE], padded = count, l;
     float box[6 * MLOD__BOX_STRIDE], depth[MLOD__DRAW_CHUNK];
     clip[0] = pv->columns[s][0];
     clip[1] = pv->columns[s][1];
@@ -6917,17 +6941,11 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
     }
     for (l = 0; l < count; l++) {
         uint32_t col = 0, row = 0;
-        int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale, clip, &col, &row), k;
-        if (code == MLOD__DISC_PLOT) {
+        int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale, clip, &col, &row);
+        if (code == MLOD__DISC_PLOT)
             mlod__plot_if(band, row, col, depth[l], nodes[l], 1u);
-        } else if (code == MLOD__DISC_UNSURE) {
-            const float *sphere = spheres + 4 * (size_t)nodes[l];
-            double c[3];
-            mlod__disc disc;
-            for (k = 0; k < 3; k++) c[k] = sphere[k];
-            if (mlod__image_disc(pv, s, c, sphere[3], &disc))
-                mlod__raster_disc(band, &disc, nodes[l], pv->columns[s], pv->rows[s]);
-        }
+        else if (code == MLOD__DISC_UNSURE)
+            mlod__draw_exact(band, pv, s, nodes + l, 1);
     }
 }
 
@@ -6945,11 +6963,9 @@ static int mlod__filtered(const mlod__band *band, int s)
    reaches it (shaders/splat_draw.comp does the same). */
 static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, const uint32_t *nodes, uint32_t n)
 {
-    double c[MLOD__LANES][3], r[MLOD__LANES] = {0.0};
-    mlod__disc disc[MLOD__LANES];
-    int bounded[MLOD__LANES], k, s;
+    int s;
     unsigned reached[MLOD__DRAW_CHUNK];
-    uint32_t l, i, m, reaching[MLOD__DRAW_CHUNK];
+    uint32_t l, m, reaching[MLOD__DRAW_CHUNK];
     const uint32_t *ids = nodes;
     MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK);
     for (l = 0; l < n && pv->sub_count > 1; l++)
@@ -6962,21 +6978,10 @@ static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, cons
             ids = reaching;
         }
         if (m == 0) continue;
-        if (mlod__filtered(band, s)) {
+        if (mlod__filtered(band, s))
             mlod__draw_filtered(band, pv, s, ids, m);
-            continue;
-        }
-        for (i = 0; i < m; i += MLOD__LANES) {
-            uint32_t lanes = m - i < MLOD__LANES ? m - i : MLOD__LANES;
-            for (l = 0; l < lanes; l++) {
-                const float *sphere = band->tree->spheres + 4 * (size_t)ids[i + l];
-                for (k = 0; k < 3; k++) c[l][k] = sphere[k];
-                r[l] = sphere[3];
-            }
-            mlod__image_discs(pv, s, (const double (*)[3])c, r, disc, bounded, lanes);
-            for (l = 0; l < lanes; l++)
-                if (bounded[l]) mlod__raster_disc(band, &disc[l], ids[i + l], pv->columns[s], pv->rows[s]);
-        }
+        else
+            mlod__draw_exact(band, pv, s, ids, m);
     }
 }
 
