@@ -1083,7 +1083,11 @@ MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
    atlas, then draw into each view points_per_view leaves of the tree chosen
    at random for that view (with replacement, from (seed, view, k): the same
    subset every call), each as the disc of its own sphere, as mlod_splat
-   draws nodes (disc_scale included).  Parallel as mlod_splat. */
+   draws nodes (disc_scale included), unless the cut's criterion culls it
+   (outside the view, or back-facing where the view culls back faces).
+   The points go through the same float filters as the cut and the splat,
+   64 at a time: the atlas is the one drawing them one by one in double
+   would give, bit for bit.  Parallel as mlod_splat. */
 MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views,
                                         uint32_t points_per_view, uint64_t seed, const mlod_parallel *parallel,
                                         mlod_error *error);
@@ -7056,20 +7060,32 @@ static void mlod__splat_task(void *context, uint32_t index)
     mlod__draw_nodes(&band, &pv, batch, n);
 }
 
+/* ISM's points for a view, MLOD__DRAW_CHUNK at a time: each classified
+   (the float filter decides most, the exact path the rest; epsilon plays
+   no part in whether a leaf is culled), those not culled drawn in order,
+   as a cut's drawn entries are. */
 static void mlod__ism_task(void *context, uint32_t index)
 {
     const mlod__splat_job *job = (const mlod__splat_job *)context;
     const mlod_tree *tree = job->tree;
     mlod__band band;
     mlod__pview pv;
-    uint32_t view = mlod__band_begin(job, index, &band), k;
+    mlod__fdiscs fast;
+    uint32_t view = mlod__band_begin(job, index, &band), k, l, n, m, points[MLOD__DRAW_CHUNK];
+    uint8_t status[MLOD__DRAW_CHUNK];
     mlod__view_prepare(&job->views[view], &pv, NULL);
-    for (k = 0; k < job->points_per_view; k++) {
-        uint32_t leaf = (uint32_t)(mlod__hash01(job->seed, 2 + (uint64_t)view, k) * tree->leaf_count);
-        uint32_t node = tree->leaf_count - 1 + (leaf < tree->leaf_count ? leaf : tree->leaf_count - 1);
-        int culled;
-        mlod__evaluate(&pv, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node), &culled);
-        if (!culled) mlod__draw_nodes(&band, &pv, &node, 1);
+    mlod__fast_prepare(&pv, 1.0);
+    if (mlod__disc_prepare(&pv, &fast)) band.fast = &fast;
+    for (k = 0; k < job->points_per_view; k += n) {
+        n = job->points_per_view - k < MLOD__DRAW_CHUNK ? job->points_per_view - k : MLOD__DRAW_CHUNK;
+        for (l = 0; l < n; l++) {
+            uint32_t leaf = (uint32_t)(mlod__hash01(job->seed, 2 + (uint64_t)view, k + l) * tree->leaf_count);
+            points[l] = tree->leaf_count - 1 + (leaf < tree->leaf_count ? leaf : tree->leaf_count - 1);
+        }
+        mlod__classify_list(&pv, tree, points, n, 1.0, status);
+        for (l = m = 0; l < n; l++)
+            if (status[l] != MLOD_STATUS_CULLED) points[m++] = points[l];
+        mlod__draw_nodes(&band, &pv, points, m);
     }
 }
 
