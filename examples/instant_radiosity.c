@@ -442,20 +442,28 @@ static double splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_vie
     return app_now_ms() - t0;
 }
 
-/* ISM given about target_ms: starting from `points` per view, three rounds
-   of points in proportion to the time; returns the points, the time in
-   *ism_ms. */
+/* ISM given about target_ms: starting from `points` per view, up to five
+   rounds of points in proportion to the time, until one lands within 3 %
+   of it; returns the points of the round closest to target_ms (drawn
+   last, so that the atlas is theirs), its time in *ism_ms.  On a shared
+   machine one slow round would otherwise leave ISM far from equal time. */
 static uint32_t ism_at_time(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views, uint32_t points,
                             double target_ms, const app_threads *threads, mlod_error *error, int *ok, double *ism_ms)
 {
-    uint32_t round;
-    *ism_ms = splat_ism(atlas, tree, views, points, threads, error, ok);
-    for (round = 0; *ok && round < 3; round++) {
-        double scaled = (double)points * target_ms / (*ism_ms > 0.01 ? *ism_ms : 0.01);
-        points = scaled < 1.0 ? 1u : scaled > 1048576.0 ? 1048576u : (uint32_t)scaled;
-        *ism_ms = splat_ism(atlas, tree, views, points, threads, error, ok);
+    uint32_t round, best = points, last = points;
+    double ms = splat_ism(atlas, tree, views, points, threads, error, ok), best_ms = ms;
+    for (round = 0; *ok && round < 5 && fabs(ms - target_ms) > 0.03 * target_ms; round++) {
+        double scaled = (double)last * target_ms / (ms > 0.01 ? ms : 0.01);
+        last = scaled < 1.0 ? 1u : scaled > 1048576.0 ? 1048576u : (uint32_t)scaled;
+        ms = splat_ism(atlas, tree, views, last, threads, error, ok);
+        if (fabs(ms - target_ms) < fabs(best_ms - target_ms)) {
+            best = last;
+            best_ms = ms;
+        }
     }
-    return points;
+    if (*ok && best != last) best_ms = splat_ism(atlas, tree, views, best, threads, error, ok);
+    *ism_ms = best_ms;
+    return best;
 }
 
 /* ------------------------------------------- choosing the VPLs (--sampling) */
