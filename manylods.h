@@ -2082,8 +2082,9 @@ MLOD__PUBLIC void mlod_tree_destroy(mlod_tree *tree)
 
 /* What the samples of one triangle share: the growth of its area since the
    build (area now / at build), the leaf radius and area that follow, and
-   the cone of its face normal (with cones).  Refit computes it once per
-   triangle (mlod_tree.triangle_leaves), the build once per sample. */
+   the cone of its face normal (with cones).  Where the tree has
+   mlod_tree.triangle_leaves, the build and refit compute it once per
+   triangle into it, else once per sample. */
 typedef struct mlod__triangle_leaf {
     double growth;
     float radius, area, cone[4];
@@ -2867,20 +2868,40 @@ typedef struct mlod__build_leaves_job {
     const float *st;
 } mlod__build_leaves_job;
 
+/* What the samples of triangle t share at build (growth 1). */
+static void mlod__build_triangle(const mlod_tree *tree, const mlod_mesh *mesh, uint32_t t, mlod__triangle_leaf *out)
+{
+    double normal[3];
+    mlod__face_normal(mesh, t, normal);
+    mlod__triangle_leaf_of(tree, normal, 1.0, out);
+}
+
+/* A tree with mlod_tree.triangle_leaves: each triangle's share, once (the
+   leaves then read it), MLOD__LEAF_CHUNK triangles per task.  Refit
+   overwrites them with its own. */
+static void mlod__build_triangles_task(void *context, uint32_t index)
+{
+    const mlod__build_leaves_job *job = (const mlod__build_leaves_job *)context;
+    const mlod_tree *tree = job->tree;
+    mlod__triangle_leaf *shared = (mlod__triangle_leaf *)tree->triangle_leaves;
+    uint32_t t = index * MLOD__LEAF_CHUNK, end = t + MLOD__LEAF_CHUNK;
+    if (end > tree->triangle_count || end < t) end = tree->triangle_count;
+    for (; t < end; t++) mlod__build_triangle(tree, job->mesh, t, &shared[t]);
+}
+
 static void mlod__build_leaves_task(void *context, uint32_t index)
 {
     const mlod__build_leaves_job *job = (const mlod__build_leaves_job *)context;
     mlod_tree *tree = job->tree;
+    const mlod__triangle_leaf *shared = (const mlod__triangle_leaf *)tree->triangle_leaves;
     uint32_t i = index * MLOD__LEAF_CHUNK, end = i + MLOD__LEAF_CHUNK, n = tree->leaf_count;
     if (end > n) end = n;
     for (; i < end; i++) {
         uint32_t item = job->leaf_item[i], tri = job->tri[item];
         float s = job->st[2 * (size_t)item], t = job->st[2 * (size_t)item + 1];
-        mlod__triangle_leaf shared;
-        double normal[3];
-        mlod__face_normal(job->mesh, tri, normal);
-        mlod__triangle_leaf_of(tree, normal, 1.0, &shared);
-        mlod__mesh_leaf(tree, n - 1 + i, job->mesh, tri, s, t, &shared);
+        mlod__triangle_leaf own;
+        if (!shared) mlod__build_triangle(tree, job->mesh, tri, &own);
+        mlod__mesh_leaf(tree, n - 1 + i, job->mesh, tri, s, t, shared ? &shared[tri] : &own);
         if (tree->leaf_sources) {
             tree->leaf_sources[i] = tri;
             tree->leaf_barycentrics[2 * (size_t)i] = s;
@@ -3002,6 +3023,8 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
         job.leaf_item = leaf_item;
         job.tri = tri;
         job.st = st;
+        if (tree->triangle_leaves)
+            mlod__run(desc->parallel, (triangles - 1) / MLOD__LEAF_CHUNK + 1, mlod__build_triangles_task, &job);
         mlod__run(desc->parallel, (n - 1) / MLOD__LEAF_CHUNK + 1, mlod__build_leaves_task, &job);
     }
     if (tree->triangle_areas) {
