@@ -283,12 +283,12 @@ entry cut-simd-off "tests/test_cut.c with -DMANYLODS_NO_SIMD, $CC" \
 entry cut-native "tests/test_cut.c with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_cut.c -o $OUT/cut-native $LIBS" "$OUT/cut-native"
 # The splat's float filter (mlod__fast_discs) on 8 lanes and on none: each decision and each tile as the double path's.
-entry splat-native "tests/test_splat.c's filtered discs with $native, $CLANG" \
+entry splat-native "tests/test_splat.c's filtered discs and ISM with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_splat.c -o $OUT/splat-native $LIBS" \
-    "$OUT/splat-native filtered_discs image_lanes small_discs determinism"
-entry splat-simd-off "tests/test_splat.c's filtered discs with -DMANYLODS_NO_SIMD, $CC" \
+    "$OUT/splat-native filtered_discs image_lanes small_discs ism_exact determinism"
+entry splat-simd-off "tests/test_splat.c's filtered discs and ISM with -DMANYLODS_NO_SIMD, $CC" \
     "$CC -std=c99 $STRICT -DMANYLODS_NO_SIMD tests/test_splat.c -o $OUT/splat-simd-off $LIBS" \
-    "$OUT/splat-simd-off filtered_discs image_lanes small_discs determinism"
+    "$OUT/splat-simd-off filtered_discs image_lanes small_discs ism_exact determinism"
 # MegaViews' pair filter (mlod__vpair) on 8 lanes and on none: the same renders as the exact path.
 entry megaviews-native "tests/test_megaviews.c's pair filter, walks and groups with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_megaviews.c -o $OUT/megaviews-native $LIBS" \
@@ -315,9 +315,9 @@ if command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 && command -v qemu-aarch64 >
     entry neon-cut "tests/test_cut.c's cut and float filter groups for AArch64 (NEON), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_cut.c -o $OUT/neon-cut $LIBS" \
         "qemu-aarch64 $OUT/neon-cut random_trees hand_made backface_boundary fast_filter fast_conditioning"
-    entry neon-splat "tests/test_splat.c's filtered discs for AArch64 (NEON), under qemu" \
+    entry neon-splat "tests/test_splat.c's filtered discs and ISM for AArch64 (NEON), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_splat.c -o $OUT/neon-splat $LIBS" \
-        "qemu-aarch64 $OUT/neon-splat filtered_discs image_lanes"
+        "qemu-aarch64 $OUT/neon-splat filtered_discs image_lanes ism_exact"
     entry neon-megaviews "tests/test_megaviews.c's pair filter for AArch64 (NEON), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_megaviews.c -o $OUT/neon-megaviews $LIBS" \
         "qemu-aarch64 $OUT/neon-megaviews pair_filter"
