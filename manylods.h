@@ -3975,7 +3975,6 @@ static int mlod__float_exact(double v, float *out)
 
 /* Fill pv->fast for the cut's epsilon (pv from mlod__view_prepare): no
    filter (ok = 0) where a value leaves the guarded range. */
-
 static void mlod__fast_prepare(mlod__pview *pv, double epsilon)
 {
     mlod__fview *fv = &pv->fast;
@@ -7062,16 +7061,25 @@ static uint32_t mlod__band_begin(const mlod__splat_job *job, uint32_t index, mlo
     return view;
 }
 
+/* A draw task's band (mlod__band_begin), its view prepared and the
+   splat's float filter set up for it in *fast; returns the view. */
+static uint32_t mlod__draw_begin(const mlod__splat_job *job, uint32_t index, mlod__band *band, mlod__pview *pv,
+                                 mlod__fdiscs *fast)
+{
+    uint32_t view = mlod__band_begin(job, index, band);
+    mlod__view_prepare(&job->views[view], pv, NULL);
+    if (mlod__disc_prepare(pv, fast)) band->fast = fast;
+    return view;
+}
+
 static void mlod__splat_task(void *context, uint32_t index)
 {
     const mlod__splat_job *job = (const mlod__splat_job *)context;
     mlod__band band;
     mlod__pview pv;
-    uint32_t view = mlod__band_begin(job, index, &band), i, batch[MLOD__DRAW_CHUNK], n = 0;
-    mlod_cut_view cv = mlod_cut_get(job->cut, view);
     mlod__fdiscs fast;
-    mlod__view_prepare(&job->views[view], &pv, NULL);
-    if (mlod__disc_prepare(&pv, &fast)) band.fast = &fast;
+    uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), i, batch[MLOD__DRAW_CHUNK], n = 0;
+    mlod_cut_view cv = mlod_cut_get(job->cut, view);
     for (i = 0; i < cv.count; i++) { /* MLOD__DRAW_CHUNK drawn nodes at a time, in order */
         if (cv.status[i] == MLOD_STATUS_CULLED) continue;
         batch[n++] = cv.nodes[i];
@@ -7081,6 +7089,14 @@ static void mlod__splat_task(void *context, uint32_t index)
         }
     }
     mlod__draw_nodes(&band, &pv, batch, n);
+}
+
+/* ISM's point k of view `view` (mlod_splat_ism): the node of the leaf
+   that (seed, view, k) picks, uniformly. */
+static uint32_t mlod__ism_node(const mlod_tree *tree, uint64_t seed, uint32_t view, uint32_t k)
+{
+    uint32_t leaf = (uint32_t)(mlod__hash01(seed, 2 + (uint64_t)view, k) * tree->leaf_count);
+    return tree->leaf_count - 1 + (leaf < tree->leaf_count ? leaf : tree->leaf_count - 1);
 }
 
 /* ISM's points for a view, MLOD__DRAW_CHUNK at a time: each classified
@@ -7094,17 +7110,12 @@ static void mlod__ism_task(void *context, uint32_t index)
     mlod__band band;
     mlod__pview pv;
     mlod__fdiscs fast;
-    uint32_t view = mlod__band_begin(job, index, &band), k, l, n, m, points[MLOD__DRAW_CHUNK];
+    uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), k, l, n, m, points[MLOD__DRAW_CHUNK];
     uint8_t status[MLOD__DRAW_CHUNK];
-    mlod__view_prepare(&job->views[view], &pv, NULL);
     mlod__fast_prepare(&pv, 1.0);
-    if (mlod__disc_prepare(&pv, &fast)) band.fast = &fast;
     for (k = 0; k < job->points_per_view; k += n) {
         n = job->points_per_view - k < MLOD__DRAW_CHUNK ? job->points_per_view - k : MLOD__DRAW_CHUNK;
-        for (l = 0; l < n; l++) {
-            uint32_t leaf = (uint32_t)(mlod__hash01(job->seed, 2 + (uint64_t)view, k + l) * tree->leaf_count);
-            points[l] = tree->leaf_count - 1 + (leaf < tree->leaf_count ? leaf : tree->leaf_count - 1);
-        }
+        for (l = 0; l < n; l++) points[l] = mlod__ism_node(tree, job->seed, view, k + l);
         mlod__classify_list(&pv, tree, points, n, 1.0, status);
         for (l = m = 0; l < n; l++)
             if (status[l] != MLOD_STATUS_CULLED) points[m++] = points[l];

@@ -1961,8 +1961,8 @@ static uint32_t mixed_views(uint64_t *rng, const double *c, double R, mlod_view 
 
 /* ISM */
 
-/* ISM as the definition says, one point at a time: leaf k of view v is
-   the one mlod__hash01(seed, 2 + v, k) picks; it is drawn unless the exact
+/* ISM as the definition says, one point at a time: point k of view v is
+   the leaf mlod__ism_node picks; it is drawn unless the exact
    criterion (mlod__evaluate) culls it, by the double path alone (no float
    filter, neither the cut's nor the splat's).  Whole tiles at once. */
 static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views, uint32_t points,
@@ -1976,10 +1976,8 @@ static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_v
         mlod__band_clear(&band, atlas->tiles[4 * (size_t)v + 2]);
         if (mlod__view_prepare(&views[v], &pv, NULL) != MLOD_OK) continue;
         for (k = 0; k < points; k++) {
-            uint32_t leaf = (uint32_t)(mlod__hash01(seed, 2 + (uint64_t)v, k) * tree->leaf_count), node;
+            uint32_t node = mlod__ism_node(tree, seed, v, k);
             int culled;
-            if (leaf >= tree->leaf_count) leaf = tree->leaf_count - 1;
-            node = tree->leaf_count - 1 + leaf;
             mlod__evaluate(&pv, tree->spheres + 4 * (size_t)node, mlod__cone_of(tree, node), &culled);
             if (!culled) mlod__draw_nodes(&band, &pv, &node, 1);
         }
