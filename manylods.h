@@ -238,6 +238,19 @@
      other views change.  A tree is known by its address and revision,
      which starts at a number no earlier tree of the process had: a tree
      built where a destroyed one stood is another tree to the cut.
+     Unchanged nodes are not evaluated either, in incremental and lazy
+     updates: when only refits changed the tree since such a view's exact
+     list (the same view bytes, epsilon and tree, its revision moved on by
+     mlod_refit_* alone, fewer than 2^32 times), an entry whose node and
+     parent no refit changed since (mlod_tree.changes: their sphere and
+     cone are the same bits) keeps its status unevaluated, and its parent,
+     invalid in that list, is still invalid: no merge is tried.  Only the
+     entries in or next to what moved are evaluated, so an animated part
+     of a static scene costs in proportion to its share of the cut; the
+     result is what the update computes without the record (every entry
+     evaluated), entry for entry (tests/test_cut.c, group skip).  Moving a
+     view, another epsilon or a revision counted up by other code
+     evaluates every entry of the views concerned.
      Decisions are exact, and fast: each node-view first goes through a
      float filter (the criterion in float, x = centre - eye subtracted in
      double, or in float where the eye's coordinates are floats, with
@@ -623,7 +636,9 @@ enum {
     MLOD_ATTR_AREA = 1u << 1,  /* surface area below the node: 4 bytes per node */
     MLOD_ATTR_COLOR = 1u << 2, /* mean leaf colour: 12 bytes per node */
     MLOD_ATTR_REFIT = 1u << 3  /* what refit needs: 12 bytes per leaf, 8 per triangle (40 when
-                                  the tree has at least as many leaves as triangles) */
+                                  the tree has at least as many leaves as triangles), and 4
+                                  per node: which refit last changed the node (mlod_tree.changes),
+                                  so that cuts re-evaluate only what moved */
 };
 
 typedef struct mlod_build_desc {
@@ -695,6 +710,14 @@ typedef struct mlod_tree {
                                     and mlodvk_tree_download add 1.  A cut knows an unchanged tree
                                     by its address and revision (THE CUT): code that writes the
                                     arrays otherwise adds 1 itself */
+    uint32_t *changes;           /* private, trees with MLOD_ATTR_REFIT: per node, the low 32 bits of
+                                    the revision whose refit last changed its sphere or cone (0:
+                                    the build), so that a cut re-evaluates only what moved; NULL
+                                    without MLOD_ATTR_REFIT */
+    uint64_t changes_revision;   /* private: the revision changes[] describes; another (code that
+                                    wrote the arrays and added 1 to revision itself, or
+                                    mlodvk_tree_download): changes[] unknown, the next refit marks
+                                    every node */
 } mlod_tree;
 
 /* Sizing, before a build: the peak bytes mlod_build_mesh takes from its
@@ -703,7 +726,7 @@ typedef struct mlod_tree {
    what of that scratch they cannot hold) for sample_count N, a mesh of
    triangle_count (index_count / 3) triangles and the MLOD_ATTR_*
    attributes.  Exact for a build that succeeds; one that fails takes no
-   more.  About 104 bytes per sample (136 with every attribute) and 8 per
+   more.  About 104 bytes per sample (144 with every attribute) and 8 per
    triangle (48 with MLOD_ATTR_REFIT when N >= triangles); mlod_tree.bytes
    is the part the tree keeps, in two blocks (the struct, and one for all
    its arrays).  0 when the build refuses N (0, above MANYLODS_MAX_LEAVES)
@@ -711,7 +734,7 @@ typedef struct mlod_tree {
 MANYLODS_DEF size_t mlod_build_mesh_bound(uint32_t sample_count, uint32_t triangle_count, uint32_t attributes);
 
 /* The same for mlod_build_points with point_count points (about 100 bytes
-   per point, 124 with every attribute).  0 for point_count 0.  Pure. */
+   per point, 132 with every attribute).  0 for point_count 0.  Pure. */
 MANYLODS_DEF size_t mlod_build_points_bound(uint32_t point_count, uint32_t attributes);
 
 /* Sample desc->sample_count points on the mesh and build the tree.  O(N log N
@@ -738,12 +761,20 @@ MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod
    triangles, one pass over the triangles computes what their samples share
    (with fewer, each leaf computes its own triangle's, and the triangles get
    a pass of their own only when the bound cannot rule out a growth out of
-   float range).  Results are the same bits either way. */
+   float range).  Results are the same bits either way.  Each node whose
+   sphere or cone bits change (compared before and after) gets the new
+   revision in mlod_tree.changes; the others keep theirs, so that an
+   incremental or lazy cut of unchanged views re-evaluates only what moved
+   (THE CUT).  When the revision was counted up by other code since the
+   last refit (arrays written otherwise, mlodvk_tree_download), every node
+   is marked. */
 MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
                                          const mlod_parallel *parallel, mlod_error *error);
 
 /* The same for a tree built from points: same count, new positions (and
-   normals, radii, colours when the tree has them). */
+   normals, radii, colours when the tree has them).  Without radii (each
+   leaf's radius estimated again from the new density) every node is
+   marked as changed. */
 MANYLODS_DEF mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *points,
                                            const mlod_parallel *parallel, mlod_error *error);
 
@@ -2104,7 +2135,8 @@ static uint64_t mlod__block_round(uint64_t bytes) { return (bytes + MLOD__BLOCK_
    arrays (mlod__order_layout). */
 enum {
     MLOD__TREE_SPHERES, MLOD__TREE_CONES, MLOD__TREE_AREAS, MLOD__TREE_COLORS, MLOD__TREE_SOURCES,
-    MLOD__TREE_BARYCENTRICS, MLOD__TREE_TRIANGLE_AREAS, MLOD__TREE_TRIANGLE_LEAVES, MLOD__TREE_ARRAYS
+    MLOD__TREE_BARYCENTRICS, MLOD__TREE_TRIANGLE_AREAS, MLOD__TREE_TRIANGLE_LEAVES, MLOD__TREE_CHANGES,
+    MLOD__TREE_ARRAYS
 };
 static uint64_t mlod__tree_layout(uint64_t leaves, uint32_t attributes, int mesh, uint64_t triangles,
                                   uint64_t offsets[MLOD__TREE_ARRAYS])
@@ -2120,6 +2152,8 @@ static uint64_t mlod__tree_layout(uint64_t leaves, uint32_t attributes, int mesh
     size[MLOD__TREE_TRIANGLE_AREAS] = refit_mesh ? triangles * sizeof(double) : 0;
     /* refit shares each triangle's work among its samples */
     size[MLOD__TREE_TRIANGLE_LEAVES] = refit_mesh && leaves >= triangles ? triangles * sizeof(mlod__triangle_leaf) : 0;
+    /* which nodes each refit changed (the cut skips the others) */
+    size[MLOD__TREE_CHANGES] = attributes & MLOD_ATTR_REFIT ? nodes * sizeof(uint32_t) : 0;
     for (i = 0; i < MLOD__TREE_ARRAYS; i++) {
         int present = i == MLOD__TREE_SPHERES || size[i] > 0 ||
                       (i == MLOD__TREE_TRIANGLE_AREAS && refit_mesh); /* a mesh without triangles is refused earlier */
@@ -2200,19 +2234,58 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
     t->leaf_barycentrics = (float *)MLOD__TREE_ARRAY(MLOD__TREE_BARYCENTRICS);
     t->triangle_areas = (double *)MLOD__TREE_ARRAY(MLOD__TREE_TRIANGLE_AREAS);
     t->triangle_leaves = MLOD__TREE_ARRAY(MLOD__TREE_TRIANGLE_LEAVES);
+    t->changes = (uint32_t *)MLOD__TREE_ARRAY(MLOD__TREE_CHANGES);
 #undef MLOD__TREE_ARRAY
     per_node = 4 * sizeof(float) + (t->cones ? 4 * sizeof(float) : 0) + (t->areas ? sizeof(float) : 0) +
-               (t->colors ? 3 * sizeof(float) : 0);
+               (t->colors ? 3 * sizeof(float) : 0) + (t->changes ? sizeof(uint32_t) : 0);
     t->bytes_per_node = per_node;
     MANYLODS_ASSERT(t->bytes == mlod__tree_bytes(leaves, attributes, mesh, triangles));
     return t;
 }
 
-/* Merge all internal bounds bottom-up, one depth at a time (in parallel
-   within a depth). */
+/* How a pass that writes nodes records the ones it changed in
+   mlod_tree.changes: not at all (changes NULL: a build, which clears the
+   array after), with value (the refit's revision, low 32 bits) on each
+   leaf whose sphere and cone bits (what a cut's status reads) differ
+   before and after and on each internal node a child of which got it (a
+   refit that knows changes[]), or on every node written (`all`: a refit
+   after the arrays were written otherwise).  An internal node neither of
+   whose children changed keeps its bits: it holds the merge of its
+   children (mlod__merge_all, the last writer of every internal node in
+   builds and refits), which are the same bits, merged the same way. */
+typedef struct mlod__stamp {
+    uint32_t *changes;
+    uint32_t value;
+    int all;
+} mlod__stamp;
+
+#define MLOD__NODE_BITS 8
+/* The bits of a node's sphere and cone (zeros without cones). */
+static void mlod__node_bits(const mlod_tree *tree, uint32_t node, uint32_t out[MLOD__NODE_BITS])
+{
+    memcpy(out, tree->spheres + 4 * (size_t)node, 4 * sizeof(float));
+    if (tree->cones)
+        memcpy(out + 4, tree->cones + 4 * (size_t)node, 4 * sizeof(float));
+    else
+        out[4] = out[5] = out[6] = out[7] = 0;
+}
+
+/* Record that the pass wrote leaf `node`, which held `before`. */
+static void mlod__stamp_leaf(const mlod_tree *tree, const mlod__stamp *stamp, uint32_t node,
+                             const uint32_t before[MLOD__NODE_BITS])
+{
+    uint32_t after[MLOD__NODE_BITS], differ = 0;
+    int k;
+    if (!stamp->changes) return;
+    mlod__node_bits(tree, node, after);
+    for (k = 0; k < MLOD__NODE_BITS; k++) differ |= before[k] ^ after[k];
+    if (stamp->all || differ) stamp->changes[node] = stamp->value;
+}
+
 typedef struct mlod__merge_job {
     mlod_tree *tree;
     uint32_t first, last;
+    const mlod__stamp *stamp;
 } mlod__merge_job;
 
 #define MLOD__MERGE_CHUNK 2048u
@@ -2223,20 +2296,58 @@ static void mlod__merge_task(void *context, uint32_t index)
     uint32_t i = job->first + index * MLOD__MERGE_CHUNK, end = i + MLOD__MERGE_CHUNK - 1;
     if (end > job->last || end < i) end = job->last;
     for (;;) {
-        uint32_t n = end - i + 1 < MLOD__LANES ? end - i + 1 : MLOD__LANES;
+        uint32_t n = end - i + 1 < MLOD__LANES ? end - i + 1 : MLOD__LANES, j;
+        const mlod__stamp *stamp = job->stamp;
         mlod__merge_nodes(job->tree, i, n);
+        if (stamp->changes)
+            for (j = 0; j < n; j++) {
+                uint32_t node = i + j;
+                if (stamp->all || stamp->changes[2 * node + 1] == stamp->value ||
+                    stamp->changes[2 * node + 2] == stamp->value)
+                    stamp->changes[node] = stamp->value;
+            }
         if (end - i < MLOD__LANES) break;
         i += MLOD__LANES;
     }
 }
 
-static void mlod__merge_all(mlod_tree *tree, const mlod_parallel *parallel)
+/* A built tree's record of changes: every node as built (revision's low
+   bits are 0 at build). */
+static void mlod__changes_built(mlod_tree *tree)
 {
+    if (tree->changes) memset(tree->changes, 0, (size_t)tree->node_count * sizeof(uint32_t));
+    tree->changes_revision = tree->revision;
+}
+
+/* A refit's stamp (tree->revision not yet counted up): compare where
+   changes[] describes the tree as it is, else mark every node. */
+static mlod__stamp mlod__refit_stamp(const mlod_tree *tree)
+{
+    mlod__stamp stamp;
+    stamp.changes = tree->changes;
+    stamp.value = (uint32_t)(tree->revision + 1);
+    stamp.all = tree->changes_revision != tree->revision;
+    return stamp;
+}
+
+/* After a refit stamped with mlod__refit_stamp: the new revision. */
+static void mlod__refit_done(mlod_tree *tree)
+{
+    tree->revision++; /* cuts recompute the views, each node that changed */
+    tree->changes_revision = tree->revision;
+}
+
+/* Merge all internal bounds bottom-up, one depth at a time (in parallel
+   within a depth), recording changes as `stamp` says (NULL: not at all). */
+static void mlod__merge_all(mlod_tree *tree, const mlod_parallel *parallel, const mlod__stamp *stamp)
+{
+    static const mlod__stamp none = {NULL, 0, 0};
     uint32_t depth, deepest = mlod__depth_of(2 * (uint64_t)tree->leaf_count - 2);
     for (depth = deepest; depth-- > 0;) {
         mlod__merge_job job;
         if (!mlod_tree_depth_nodes(tree->leaf_count, depth, &job.first, &job.last)) continue;
         job.tree = tree;
+        job.stamp = stamp ? stamp : &none;
         mlod__run(parallel, (job.last - job.first) / MLOD__MERGE_CHUNK + 1, mlod__merge_task, &job);
     }
 }
@@ -3038,7 +3149,8 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
         }
         tree->smallest_area = smallest; /* finite: the mesh has area */
     }
-    mlod__merge_all(tree, desc->parallel);
+    mlod__merge_all(tree, desc->parallel, NULL);
+    mlod__changes_built(tree);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
     if (mlod__report(desc, 1.0f)) {
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
@@ -3133,7 +3245,7 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
         float scale = tree->radius_scale;
         tree->radius_scale = 0.0f; /* a first tree of bare points gives the density */
         for (i = 0; i < n; i++) mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], 0.0);
-        mlod__merge_all(tree, desc->parallel);
+        mlod__merge_all(tree, desc->parallel, NULL);
         for (i = 0; i < n; i++) radius[i] = mlod__density_radius(tree, i);
         tree->radius_scale = scale;
     }
@@ -3150,7 +3262,8 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
         mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], radius[i]);
         if (tree->leaf_sources) tree->leaf_sources[i] = leaf_item[i];
     }
-    mlod__merge_all(tree, desc->parallel);
+    mlod__merge_all(tree, desc->parallel, NULL);
+    mlod__changes_built(tree);
     mlod__set_precision(tree, tree->radius_scale * sqrt(mean_area));
     if (mlod__report(desc, 1.0f)) {
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
@@ -3195,6 +3308,7 @@ typedef struct mlod__refit_job {
     mlod_tree *tree;
     const mlod_mesh *mesh;
     const mlod_points *points;
+    mlod__stamp stamp; /* the leaves' writes recorded */
     double slice_growth[MLOD__REFIT_SLICES];
 } mlod__refit_job;
 
@@ -3246,11 +3360,14 @@ static void mlod__refit_mesh_task(void *context, uint32_t index)
     uint32_t j = index * MLOD__LEAF_CHUNK, end = j + MLOD__LEAF_CHUNK;
     if (end > tree->leaf_count) end = tree->leaf_count;
     for (; j < end; j++) {
-        uint32_t tri = tree->leaf_sources[j];
+        uint32_t tri = tree->leaf_sources[j], node = tree->leaf_count - 1 + j;
         mlod__triangle_leaf own;
+        uint32_t before[MLOD__NODE_BITS];
         if (!shared) mlod__refit_triangle(tree, job->mesh, tri, &own); /* fewer leaves than triangles */
-        mlod__mesh_leaf(tree, tree->leaf_count - 1 + j, job->mesh, tri, tree->leaf_barycentrics[2 * (size_t)j],
+        mlod__node_bits(tree, node, before);
+        mlod__mesh_leaf(tree, node, job->mesh, tri, tree->leaf_barycentrics[2 * (size_t)j],
                         tree->leaf_barycentrics[2 * (size_t)j + 1], shared ? &shared[tri] : &own);
+        mlod__stamp_leaf(tree, &job->stamp, node, before);
     }
 }
 
@@ -3306,10 +3423,11 @@ MLOD__PUBLIC mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
         res = mlod_refit_check_growth(tree->radius_scale, tree->area_unit, tree->leaf_count, growth, error);
         if (res != MLOD_OK) return res;
     }
+    job.stamp = mlod__refit_stamp(tree);
     mlod__run(parallel, (tree->leaf_count - 1) / MLOD__LEAF_CHUNK + 1, mlod__refit_mesh_task, &job);
-    mlod__merge_all(tree, parallel);
+    mlod__merge_all(tree, parallel, &job.stamp);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
-    tree->revision++; /* cuts recompute every view: the spheres moved (or may have) */
+    mlod__refit_done(tree);
     return mlod__succeed(error);
 }
 
@@ -3320,9 +3438,12 @@ static void mlod__refit_points_task(void *context, uint32_t index)
     uint32_t j = index * MLOD__LEAF_CHUNK, end = j + MLOD__LEAF_CHUNK;
     if (end > tree->leaf_count) end = tree->leaf_count;
     for (; j < end; j++) {
-        uint32_t item = tree->leaf_sources[j];
+        uint32_t item = tree->leaf_sources[j], node = tree->leaf_count - 1 + j;
         double radius = job->points->radii ? mlod__point_radius(job->points, item) : 0.0;
-        mlod__point_leaf(tree, tree->leaf_count - 1 + j, job->points, item, radius);
+        uint32_t before[MLOD__NODE_BITS];
+        mlod__node_bits(tree, node, before);
+        mlod__point_leaf(tree, node, job->points, item, radius);
+        mlod__stamp_leaf(tree, &job->stamp, node, before);
     }
 }
 
@@ -3359,24 +3480,28 @@ MLOD__PUBLIC mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *p
     job.tree = tree;
     job.mesh = NULL;
     job.points = points;
+    job.stamp = mlod__refit_stamp(tree);
     chunks = (tree->leaf_count - 1) / MLOD__LEAF_CHUNK + 1;
     if (!points->radii) {
         /* radii from the density of the new positions, as at build: a tree
            of bare points first; each leaf then reads only nodes above it */
         uint32_t j, n = tree->leaf_count;
         float scale = tree->radius_scale;
+        /* every node is written twice (bare, then with its radius): each
+           marked as changed */
+        job.stamp.all = 1;
         tree->radius_scale = 0.0f;
         mlod__run(parallel, chunks, mlod__refit_points_task, &job);
-        mlod__merge_all(tree, parallel);
+        mlod__merge_all(tree, parallel, NULL);
         tree->radius_scale = scale;
         for (j = 0; j < n; j++)
             mlod__point_leaf(tree, n - 1 + j, points, tree->leaf_sources[j], mlod__density_radius(tree, j));
     } else {
         mlod__run(parallel, chunks, mlod__refit_points_task, &job);
     }
-    mlod__merge_all(tree, parallel);
+    mlod__merge_all(tree, parallel, &job.stamp);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
-    tree->revision++; /* cuts recompute every view: the spheres moved (or may have) */
+    mlod__refit_done(tree);
     return mlod__succeed(error);
 }
 
@@ -4560,6 +4685,9 @@ static uint32_t mlod__vundecided(mlod__vf codes) { return (uint32_t)MLOD__VBITS(
    Or-ed into the status between rounds, cleared by the last round. */
 #define MLOD__PARENT_INVALID 8u
 #define MLOD__STATUS_MASK 7u
+/* A merge hint (never a list status): the parent is known invalid without
+   an evaluation (an entry of the pair is unchanged, MLOD__STAMPED). */
+#define MLOD__KNOWN_INVALID 5u
 /* A segment (a run of one view's list handled by one task) holds at most
    this many input entries. */
 #define MLOD__SEGMENT_INPUT 1024u
@@ -4589,6 +4717,8 @@ typedef struct mlod__segment {
     size_t out_begin;
     uint32_t out_capacity;
     uint32_t out_count;
+    uint8_t ends_unchanged; /* bit 0: the first output entry is an unchanged input entry (see
+                               mlod__classify_input), bit 1: the last one is */
     uint64_t evaluated, steps;
 } mlod__segment;
 
@@ -4640,6 +4770,12 @@ struct mlod_cut {
    of seen[v] in seen_tree at seen_epsilon. */
 #define MLOD__SEEN 1u
 #define MLOD__EXACT 2u
+/* For this update (set by mlod__skip_views): the view and epsilon are
+   those of its exact committed list, and the tree is the same but was
+   refitted since, with its record of changes kept (mlod_tree.changes): an
+   entry whose node and parent no refit changed since keeps its status, and
+   its parent stays invalid (mlod__unchanged). */
+#define MLOD__STAMPED 4u
 /* cut->view_done[v] for a view the update skips. */
 #define MLOD__SKIPPED 2u
 
@@ -4680,6 +4816,7 @@ typedef struct mlod__cut_job {
     int merge;  /* look for sibling pairs to merge */
     int lazy;   /* one step per entry */
     int last;   /* the call's last round: clear MLOD__PARENT_INVALID */
+    uint32_t age; /* refits since the committed lists (low 32 bits), for MLOD__STAMPED views */
     const mlod__list *in;
     mlod__list *out;
     const mlod__list *done_in; /* where the views done this round are copied from: in, or in
@@ -4722,7 +4859,9 @@ MLOD__FORCE_INLINE uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__p
 {
     while (mlod__mergeable(nodes, status, *count, x, *xs)) {
         uint32_t parent = (x - 1) / 2;
-        uint8_t ps = hint != MLOD__PENDING ? hint : mlod__classify(pv, job->tree, parent, job->epsilon);
+        uint8_t ps;
+        if (hint == MLOD__KNOWN_INVALID) break;
+        ps = hint != MLOD__PENDING ? hint : mlod__classify(pv, job->tree, parent, job->epsilon);
         hint = MLOD__PENDING; /* a merge's own parent is not hinted */
         ++*evaluated;
         if (!mlod__is_valid(ps)) break;
@@ -4967,18 +5106,45 @@ static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree
     mlod__classify_list(pv, tree, children, 2 * count, epsilon, status);
 }
 
+/* Whether no refit changed `node` since the committed lists (job->age
+   refits ago; MLOD__STAMPED views only): its sphere and cone hold the bits
+   they held then, so its status for an unchanged view is the same.  A
+   node unchanged for 2^32 refits or more may read as changed: only more
+   work. */
+static int mlod__unchanged(const mlod__cut_job *job, uint32_t node)
+{
+    return (uint32_t)((uint32_t)job->tree->revision - job->tree->changes[node]) >= job->age;
+}
+
 /* The statuses of a segment's input entries into status[]: those whose
    status is not current (all, unless the job trusts the input; else the
    pending ones) classified, in vector lanes together, the others copied
-   (with their lazy marks).  Returns how many were classified. */
+   (with their lazy marks).  In the first round of a MLOD__STAMPED view,
+   an entry whose node and parent are unchanged (mlod__unchanged) keeps its
+   committed status unevaluated, and unchanged[k] = 1 says so (its parent,
+   invalid in an exact cut, is still invalid); else unchanged[k] = 0.
+   Returns how many were classified. */
 static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segment *seg, const mlod__pview *pv,
-                                     uint8_t *status)
+                                     uint8_t *status, uint8_t *unchanged)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
     const uint8_t *in_status = job->in->status + seg->in_begin;
     uint32_t todo[MLOD__SEGMENT_INPUT], count = 0, k;
     uint8_t found[MLOD__SEGMENT_INPUT];
     MANYLODS_ASSERT(seg->in_count <= MLOD__SEGMENT_INPUT);
+    memset(unchanged, 0, seg->in_count);
+    if (!job->trust && (job->cut->known[seg->view] & MLOD__STAMPED)) {
+        for (k = 0; k < seg->in_count; k++) {
+            uint32_t x = in_nodes[k];
+            unchanged[k] = (uint8_t)(mlod__unchanged(job, x) && (x == 0 || mlod__unchanged(job, (x - 1) / 2)));
+            todo[count] = x;
+            count += !unchanged[k];
+        }
+        if (count) mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
+        for (k = 0, count = 0; k < seg->in_count; k++)
+            status[k] = unchanged[k] ? (uint8_t)(in_status[k] & MLOD__STATUS_MASK) : found[count++];
+        return count;
+    }
     if (!job->trust) {
         mlod__classify_list(pv, job->tree, in_nodes, seg->in_count, job->epsilon, status);
         return seg->in_count;
@@ -4997,9 +5163,10 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
    is entry k - 1, both valid (and the left one not marked
    MLOD__PARENT_INVALID), else MLOD__PENDING.  Such a pair's parent is
    evaluated exactly once by either mode's merge step, so the counts do
-   not change; statuses (from mlod__classify_input) may carry lazy marks. */
+   not change; statuses (from mlod__classify_input) may carry lazy marks.
+   A pair with an unchanged entry gets MLOD__KNOWN_INVALID, unevaluated. */
 static void mlod__merge_hints(const mlod__cut_job *job, const mlod__segment *seg, const mlod__pview *pv,
-                              const uint8_t *fresh, uint8_t *hint)
+                              const uint8_t *fresh, const uint8_t *unchanged, uint8_t *hint)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
     uint32_t parents[MLOD__SEGMENT_INPUT / 2 + 1], at[MLOD__SEGMENT_INPUT / 2 + 1], count = 0, k, n = seg->in_count;
@@ -5010,10 +5177,11 @@ static void mlod__merge_hints(const mlod__cut_job *job, const mlod__segment *seg
         int pair = ((x & 1u) == 0) & (x > 0) & (in_nodes[k - 1] == x - 1) &
                    mlod__is_valid(fresh[k] & MLOD__STATUS_MASK) & mlod__is_valid(fresh[k - 1] & MLOD__STATUS_MASK) &
                    !(fresh[k - 1] & MLOD__PARENT_INVALID);
-        hint[k] = MLOD__PENDING;
+        int known = pair & (unchanged[k] | unchanged[k - 1]);
+        hint[k] = (uint8_t)(known ? MLOD__KNOWN_INVALID : MLOD__PENDING);
         parents[count] = (x - 1) / 2; /* pairs do not overlap: at most in_count / 2, and one slot to spare */
         at[count] = k;
-        count += (uint32_t)pair;
+        count += (uint32_t)(pair & !known);
     }
     if (count == 0) return;
     mlod__classify_list(pv, job->tree, parents, count, job->epsilon, found);
@@ -5032,21 +5200,24 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     mlod__emitter out;
     uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH];
     uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH], fresh[MLOD__SEGMENT_INPUT];
-    uint8_t hint[MLOD__SEGMENT_INPUT];
+    uint8_t hint[MLOD__SEGMENT_INPUT], unchanged[MLOD__SEGMENT_INPUT];
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
     out.capacity = seg->out_capacity;
-    evaluated += mlod__classify_input(job, seg, pv, fresh);
-    if (job->merge) mlod__merge_hints(job, seg, pv, fresh, hint);
+    evaluated += mlod__classify_input(job, seg, pv, fresh, unchanged);
+    if (job->merge) mlod__merge_hints(job, seg, pv, fresh, unchanged, hint);
+    /* an unchanged entry is never split, nor merged: the first and last
+       input entries, unchanged, are the first and last output entries */
+    seg->ends_unchanged = (uint8_t)(seg->in_count ? (unchanged[0] ? 1u : 0u) | (unchanged[seg->in_count - 1] ? 2u : 0u) : 0u);
     for (k = 0; k < seg->in_count; k++) {
         uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i;
         uint8_t st = fresh[k];
         if (st != MLOD_STATUS_COARSE) {
             if (job->merge && mlod__mergeable(out.nodes, out.status, out.count, node, st))
-                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, hint[k], &evaluated,
-                                    &steps);
+                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st,
+                                    unchanged[k] ? (uint8_t)MLOD__KNOWN_INVALID : hint[k], &evaluated, &steps);
             mlod__emit(&out, node, st);
             continue;
         }
@@ -5105,9 +5276,10 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
     out.count = 0;
     out.capacity = seg->out_capacity;
     uint8_t fresh[MLOD__SEGMENT_INPUT], hint[MLOD__SEGMENT_INPUT], split[2 * MLOD__SEGMENT_INPUT];
+    uint8_t unchanged[MLOD__SEGMENT_INPUT];
     uint32_t children[2 * MLOD__SEGMENT_INPUT], splits = 0;
-    evaluated += mlod__classify_input(job, seg, pv, fresh);
-    mlod__merge_hints(job, seg, pv, fresh, hint);
+    evaluated += mlod__classify_input(job, seg, pv, fresh, unchanged);
+    mlod__merge_hints(job, seg, pv, fresh, unchanged, hint);
     for (k = 0; k < seg->in_count; k++) /* the children of the entries to split, classified together */
         if ((fresh[k] & MLOD__STATUS_MASK) == MLOD_STATUS_COARSE) {
             children[splits++] = 2 * job->in->nodes[seg->in_begin + k] + 1;
@@ -5136,10 +5308,11 @@ static void mlod__lazy_segment(const mlod__cut_job *job, mlod__segment *seg, con
             if (left ? (!(raw & MLOD__PARENT_INVALID) && at + 1 < view_end && job->in->nodes[at + 1] == node + 1)
                      : (k == 0 && at > view_begin && job->in->nodes[at - 1] == node - 1 &&
                         !(job->trust && (job->in->status[at - 1] & MLOD__PARENT_INVALID)))) {
-                uint8_t ps = left && k + 1 < seg->in_count && hint[k + 1] != MLOD__PENDING
-                                 ? hint[k + 1]
-                                 : mlod__classify(pv, tree, parent, job->epsilon);
-                evaluated++;
+                /* an unchanged entry's parent is still invalid */
+                uint8_t ps = unchanged[k]                                                     ? MLOD__KNOWN_INVALID
+                             : left && k + 1 < seg->in_count && hint[k + 1] != MLOD__PENDING ? hint[k + 1]
+                                                                                             : mlod__classify(pv, tree, parent, job->epsilon);
+                evaluated += ps != MLOD__KNOWN_INVALID;
                 if (mlod__is_valid(ps)) {
                     if (left) {
                         mlod__emit(&out, parent, ps);
@@ -5188,6 +5361,7 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     uint32_t *nodes = job->out->nodes + job->out->offset[view], count = 0, s, i;
     uint8_t *status = job->out->status + job->out->offset[view];
     uint64_t evaluated, steps;
+    int left_unchanged = 0; /* the entry on top of the output is an unchanged input entry */
     if (cut->view_done[view]) { /* nothing to split this round: copied as it is, its counts stand */
         const mlod__list *in = job->done_in;
         count = in->count[view];
@@ -5209,9 +5383,12 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
         i = 0;
         if (job->merge && count > 0) {
             for (; i < seg->out_count; i++) {
-                uint8_t xs = src_status[i];
-                uint32_t x =
-                    mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, MLOD__PENDING, &evaluated, &steps);
+                /* a pair across the boundary with an unchanged entry: its
+                   parent is still invalid */
+                uint8_t xs = src_status[i], hint = i == 0 && ((seg->ends_unchanged & 1u) || left_unchanged)
+                                                       ? (uint8_t)MLOD__KNOWN_INVALID
+                                                       : (uint8_t)MLOD__PENDING;
+                uint32_t x = mlod__reduce(job, pv, nodes, status, &count, src[i], &xs, hint, &evaluated, &steps);
                 nodes[count] = x;
                 status[count] = xs;
                 count++;
@@ -5224,6 +5401,7 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
         memcpy(nodes + count, src + i, (seg->out_count - i) * sizeof(uint32_t));
         memcpy(status + count, src_status + i, seg->out_count - i);
         count += seg->out_count - i;
+        left_unchanged = (seg->ends_unchanged & 2u) && seg->out_count > 0 && nodes[count - 1] == src[seg->out_count - 1];
         evaluated += seg->evaluated;
         steps += seg->steps;
     }
@@ -5827,18 +6005,28 @@ static mlod_result mlod__check_cut_params(mlod_cut *cut, const mlod_tree *tree, 
    and incremental updates give the basic cut, and a lazy update makes no
    move on it (it is a partition of valid nodes and oversize leaves with
    no sibling pair under a valid parent).  Sets view_done[v] to
-   MLOD__SKIPPED for them and 0 for the others; returns their count. */
-static uint32_t mlod__skip_views(mlod_cut *cut, const mlod_tree *tree, const mlod_cut_params *params)
+   MLOD__SKIPPED for them and 0 for the others; returns their count.
+   Where the tree was refitted since (fewer than 2^32 times) and kept its
+   record of changes, an incremental or lazy update marks those views
+   MLOD__STAMPED instead, and *age = the refits since. */
+static uint32_t mlod__skip_views(mlod_cut *cut, const mlod_tree *tree, const mlod_cut_params *params, uint32_t *age)
 {
     uint32_t v, skipped = 0;
-    int same = cut->seen_tree == tree && cut->tree_nodes == tree->node_count && cut->seen_revision == tree->revision &&
-               cut->seen_spheres == tree->spheres && cut->seen_cones == tree->cones &&
-               cut->seen_epsilon == params->epsilon;
+    int same_tree = cut->seen_tree == tree && cut->tree_nodes == tree->node_count &&
+                    cut->seen_spheres == tree->spheres && cut->seen_cones == tree->cones &&
+                    cut->seen_epsilon == params->epsilon;
+    int same = same_tree && cut->seen_revision == tree->revision;
+    uint64_t refits = tree->revision - cut->seen_revision;
+    int stamped = same_tree && params->mode != MLOD_CUT_BASIC && tree->changes &&
+                  tree->changes_revision == tree->revision && refits > 0 && refits < ((uint64_t)1 << 32);
+    *age = stamped ? (uint32_t)refits : 0;
     for (v = 0; v < cut->view_count; v++) {
         /* coarse == 0 follows from MLOD__EXACT; tested again, as the
            rounds end only once no view holds a coarse entry */
-        int skip = same && cut->view_done[v] && (cut->known[v] & MLOD__EXACT) && cut->stats[0][v].coarse == 0;
+        int exact = cut->view_done[v] && (cut->known[v] & MLOD__EXACT) && cut->stats[0][v].coarse == 0;
+        int skip = same && exact;
         cut->view_done[v] = (uint8_t)(skip ? MLOD__SKIPPED : 0);
+        cut->known[v] = (uint8_t)((cut->known[v] & ~MLOD__STAMPED) | (stamped && exact ? MLOD__STAMPED : 0u));
         skipped += (uint32_t)skip;
     }
     return skipped;
@@ -5875,7 +6063,8 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     const uint32_t *hint;
     mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
     if (res != MLOD_OK) return res;
-    skipped = mlod__skip_views(cut, tree, params);
+    memset(&job, 0, sizeof job);
+    skipped = mlod__skip_views(cut, tree, params, &job.age);
     if (skipped == cut->view_count) {
         /* nothing changed: the lists stand, and nothing was evaluated */
         for (v = 0; v < cut->view_count; v++) cut->stats[0][v].evaluated = cut->stats[0][v].steps = 0;
@@ -5884,7 +6073,6 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     from_root = params->mode == MLOD_CUT_BASIC || cut->tree_nodes != tree->node_count;
     /* a basic cut's first round is sized by the previous cut of the tree */
     hint = params->mode == MLOD_CUT_BASIC && cut->tree_nodes == tree->node_count ? cut->lists[cut->committed].count : NULL;
-    memset(&job, 0, sizeof job);
     job.tree = tree;
     job.views = views;
     job.epsilon = params->epsilon;

@@ -32,7 +32,7 @@ static void test_sizes(void)
         CHECK(t->leaf_count == N && t->node_count == 2 * N - 1, "%s: %u leaves, %u nodes", what, t->leaf_count,
               t->node_count);
         CHECK(t->attributes == all, "%s: attributes 0x%x, asked 0x%x", what, t->attributes, all);
-        CHECK(t->bytes_per_node == 48, "%s: bytes_per_node %u, expected 16 + 16 + 4 + 12", what,
+        CHECK(t->bytes_per_node == 52, "%s: bytes_per_node %u, expected 16 + 16 + 4 + 12 + 4", what,
               (unsigned)t->bytes_per_node);
         CHECK(t->triangle_count == T && t->vertex_count == s.vertex_count, "%s: triangle_count %u vertex_count %u", what,
               t->triangle_count, t->vertex_count);
@@ -291,9 +291,9 @@ static void test_attributes(void)
                  {MLOD_ATTR_CONE, 32},
                  {MLOD_ATTR_AREA, 20},
                  {MLOD_ATTR_COLOR, 28},
-                 {MLOD_ATTR_REFIT, 16},
+                 {MLOD_ATTR_REFIT, 20}, /* the record of changes */
                  {MLOD_ATTR_CONE | MLOD_ATTR_COLOR, 44},
-                 {MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT, 48}};
+                 {MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT, 52}};
     const uint32_t N = 1000;
     scene_mesh s;
     mlod_tree *base, *t;
@@ -316,7 +316,8 @@ static void test_attributes(void)
               "attributes 0x%x: arrays cones %p areas %p colors %p", a, (void *)t->cones, (void *)t->areas,
               (void *)t->colors);
         CHECK(!(a & MLOD_ATTR_REFIT) == !t->leaf_sources && !(a & MLOD_ATTR_REFIT) == !t->leaf_barycentrics &&
-                  !(a & MLOD_ATTR_REFIT) == !t->triangle_areas && !(a & MLOD_ATTR_REFIT) == !t->triangle_leaves,
+                  !(a & MLOD_ATTR_REFIT) == !t->triangle_areas && !(a & MLOD_ATTR_REFIT) == !t->triangle_leaves &&
+                  !(a & MLOD_ATTR_REFIT) == !t->changes,
               "attributes 0x%x: refit arrays present iff asked", a);
         CHECK(same_array(t->spheres, base->spheres, 16 * (size_t)N * 2 - 16),
               "attributes 0x%x: the spheres depend on the attributes", a);
@@ -336,7 +337,8 @@ static void test_attributes(void)
         t = tu_build(&s, few, 1, MLOD_ATTR_REFIT);
         CHECK(base && t && few < triangles, "attributes, %u leaves on %u triangles: builds", few, triangles);
         if (base && t) {
-            size_t lo = 12 * (size_t)few + 8 * (size_t)triangles;
+            /* source and barycentrics per leaf, the record of changes per node, an area per triangle */
+            size_t lo = 12 * (size_t)few + 4 * (2 * (size_t)few - 1) + 8 * (size_t)triangles;
             CHECK(t->triangle_areas && !t->triangle_leaves, "attributes, %u leaves: refit scratch %p, expected none", few,
                   t->triangle_leaves);
             CHECK(t->bytes >= base->bytes + lo && t->bytes <= base->bytes + lo + 256,

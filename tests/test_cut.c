@@ -1806,12 +1806,35 @@ static void skip_mode(skip_env *env, mlod_tree *twin, mlod_tree *other, const ml
         }
     skip_copy_take(&before, cut);
 
-    /* 4. a refit to the same positions: a new revision, every view evaluated */
+    /* 4. a refit to the same positions: a new revision.  A basic update
+       evaluates every view; an incremental or lazy one only the entries
+       whose nodes the refit changed (the first refit after the build may
+       round some leaves otherwise than the build did), and after a second
+       such refit nothing at all.  A write the tree did not record (its
+       revision counted up by hand) makes the next update, and the update
+       after the next refit, evaluate every view again. */
     revision = env->tree->revision;
     CHECK(mlod_refit_mesh(env->tree, rest, NULL, NULL) == MLOD_OK, "skip %s: refit", m);
     CHECK(env->tree->revision == revision + 1, "skip %s: a refit took the revision from %llu to %llu", m,
           (unsigned long long)revision, (unsigned long long)env->tree->revision);
-    skip_all_changed(env, cut, views, p, m, "after a refit to the same positions");
+    if (mode == MLOD_CUT_BASIC) {
+        skip_all_changed(env, cut, views, p, m, "after a refit to the same positions");
+    } else {
+        CHECK(skip_settle(env, cut, env->tree, views, p) > 0, "skip %s: update", m);
+        snprintf(what, sizeof what, "skip %s, after a refit to the same positions", m);
+        skip_reference(env, env->tree, views, p.epsilon, cut, what);
+        skip_copy_take(&before, cut);
+        CHECK(mlod_refit_mesh(env->tree, rest, NULL, NULL) == MLOD_OK, "skip %s: refit", m);
+        mask = skip_update(cut, env->tree, views, &p);
+        CHECK(mask == 0, "skip %s, a second refit to the same positions: views 0x%x evaluated, expected none", m,
+              mask);
+        CHECK(skip_copy_differs(&before, cut) == 0, "skip %s, a second refit to the same positions: %u lists changed",
+              m, skip_copy_differs(&before, cut));
+        env->tree->revision++;
+        skip_all_changed(env, cut, views, p, m, "after a write the tree did not record");
+        CHECK(mlod_refit_mesh(env->tree, rest, NULL, NULL) == MLOD_OK, "skip %s: refit", m);
+        skip_all_changed(env, cut, views, p, m, "after the refit that follows a write the tree did not record");
+    }
 
     /* 5. another epsilon, then the same again */
     p.epsilon = 2.5f;
@@ -1855,6 +1878,114 @@ static void skip_mode(skip_env *env, mlod_tree *twin, mlod_tree *other, const ml
     }
     skip_copy_free(&before);
     mlod_cut_destroy(cut);
+}
+
+/* Rest positions, and those of the vertices within `radius` of `centre`
+   moved by `offset`, into out. */
+static void skip_move_region(const scene_mesh *s, const float *centre, float radius, const float *offset, float *out)
+{
+    uint32_t i;
+    int k;
+    for (i = 0; i < s->vertex_count; i++) {
+        const float *q = s->positions + 3 * (size_t)i;
+        float d2 = 0.0f;
+        for (k = 0; k < 3; k++) d2 += (q[k] - centre[k]) * (q[k] - centre[k]);
+        for (k = 0; k < 3; k++) out[3 * (size_t)i + k] = q[k] + (d2 <= radius * radius ? offset[k] : 0.0f);
+    }
+}
+
+/* Skipping unchanged nodes: with the views unchanged and the tree
+   refitted, an incremental or lazy update evaluates only the entries
+   whose node or parent a refit changed.  The torus with one region of it
+   moved at a time (from a single vertex to a third of it), frame after
+   frame: every update's lists equal, entry for entry, those of the same
+   update of a twin tree that lost its record of changes (its revision
+   counted up by hand: every entry evaluated), each view evaluates no more
+   nodes than the twin's, fewer in all, and the cuts are the reference's.
+   With and without a pool of threads. */
+static void skip_nodes(skip_env *env, mlod_tree *twin, const scene_mesh *s, const mlod_view *views)
+{
+    static const float radii[4] = {0.0f, 0.25f, 0.6f, 1.0f};
+    float *moved = (float *)malloc(sizeof(float) * 3 * s->vertex_count);
+    mlod_pool *pool = NULL;
+    mlod_parallel hook;
+    mlod_mesh mesh = tu_mesh(s);
+    uint64_t rng = 77;
+    int mode, threaded;
+    memset(&hook, 0, sizeof hook);
+#ifdef MANYLODS_PTHREADS
+    pool = mlod_pool_create(2);
+    if (pool) hook = mlod_pool_parallel(pool);
+#endif
+    for (threaded = 0; threaded < 2; threaded++)
+        for (mode = 0; mode < 2; mode++) {
+            mlod_cut_params p = params(mode ? MLOD_CUT_LAZY : MLOD_CUT_INCREMENTAL, 1.5f, 1,
+                                       threaded && pool ? &hook : NULL);
+            const char *m = mode ? "lazy q=1" : "incremental";
+            mlod_cut *a = NULL, *b = NULL;
+            uint64_t evaluated[2] = {0, 0};
+            uint32_t frame, v, differ = 0, more = 0;
+            char what[160], first[160] = "";
+            if (threaded && !pool) continue;
+            CHECK(mlod_cut_create(SKIP_NV, NULL, &a, NULL) == MLOD_OK &&
+                      mlod_cut_create(SKIP_NV, NULL, &b, NULL) == MLOD_OK,
+                  "skip nodes: create");
+            mesh.positions = s->positions;
+            CHECK(mlod_refit_mesh(env->tree, &mesh, NULL, NULL) == MLOD_OK &&
+                      mlod_refit_mesh(twin, &mesh, NULL, NULL) == MLOD_OK,
+                  "skip nodes: refit");
+            CHECK(skip_settle(env, a, env->tree, views, p) > 0 && skip_settle(env, b, twin, views, p) > 0,
+                  "skip nodes: first updates");
+            for (frame = 0; frame < 12; frame++) {
+                const float *centre = s->positions + 3 * (size_t)(scene_rng_next(&rng) % s->vertex_count);
+                float offset[3];
+                int k;
+                for (k = 0; k < 3; k++) offset[k] = (float)(0.15 * (scene_rng_double(&rng) - 0.5));
+                skip_move_region(s, centre, radii[frame % 4], offset, moved);
+                mesh.positions = moved;
+                CHECK(mlod_refit_mesh(env->tree, &mesh, NULL, NULL) == MLOD_OK &&
+                          mlod_refit_mesh(twin, &mesh, NULL, NULL) == MLOD_OK,
+                      "skip nodes: refit");
+                twin->revision++; /* as if written otherwise: the twin's record of changes is lost */
+                CHECK(mlod_cut_update(a, env->tree, views, &p, NULL) == MLOD_OK &&
+                          mlod_cut_update(b, twin, views, &p, NULL) == MLOD_OK,
+                      "skip nodes: update");
+                for (v = 0; v < SKIP_NV; v++) {
+                    mlod_cut_view ca = mlod_cut_get(a, v), cb = mlod_cut_get(b, v);
+                    evaluated[0] += ca.evaluated;
+                    evaluated[1] += cb.evaluated;
+                    more += ca.evaluated > cb.evaluated;
+                    if (!tu_same_cut(&ca, &cb) && !differ++)
+                        snprintf(first, sizeof first, "frame %u, view %u (kind %d): %u and %u entries", frame, v,
+                                 (int)views[v].kind, ca.count, cb.count);
+                }
+                if (mode == 0) {
+                    snprintf(what, sizeof what, "skip nodes, %s%s, frame %u", m, threaded ? ", 2 threads" : "",
+                             frame);
+                    skip_reference(env, env->tree, views, p.epsilon, a, what);
+                }
+            }
+            CHECK(differ == 0, "skip nodes, %s%s: %u view-updates differ from the twin's; first: %s", m,
+                  threaded ? ", 2 threads" : "", differ, first);
+            CHECK(more == 0 && evaluated[0] < evaluated[1],
+                  "skip nodes, %s%s: %llu nodes evaluated against the twin's %llu (%u view-updates evaluated more)",
+                  m, threaded ? ", 2 threads" : "", (unsigned long long)evaluated[0],
+                  (unsigned long long)evaluated[1], more);
+            if (mode == 1) {
+                CHECK(skip_settle(env, a, env->tree, views, p) > 0, "skip nodes: settle");
+                snprintf(what, sizeof what, "skip nodes, %s%s, settled", m, threaded ? ", 2 threads" : "");
+                skip_reference(env, env->tree, views, p.epsilon, a, what);
+            }
+            if (!threaded)
+                printf("  skip nodes, %s: %llu nodes evaluated in 12 frames, %llu without the record of changes\n", m,
+                       (unsigned long long)evaluated[0], (unsigned long long)evaluated[1]);
+            mlod_cut_destroy(a);
+            mlod_cut_destroy(b);
+        }
+    mesh.positions = s->positions; /* back to rest for what follows */
+    CHECK(mlod_refit_mesh(env->tree, &mesh, NULL, NULL) == MLOD_OK, "skip nodes: refit");
+    if (pool) mlod_pool_destroy(pool);
+    free(moved);
 }
 
 /* A lazy cut that has not converged is not skipped: from the root, call
@@ -2007,6 +2138,7 @@ static void test_skip(void)
     }
     for (mode = 0; mode < 4; mode++) /* basic, incremental, lazy with 1 and 3 steps */
         skip_mode(&env, twin, other, &rest, views, (mlod_cut_mode)(mode < 3 ? mode : 2), mode < 3 ? 1 : 3);
+    skip_nodes(&env, twin, &s, views);
     skip_lazy_converging(&env, views);
     skip_threads(&env, views);
     skip_rebuilt(&s, views);

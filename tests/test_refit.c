@@ -29,7 +29,7 @@ static void snapshot_arrays(const mlod_tree *t, const void **ptr, size_t *size)
     ptr[4] = t->leaf_sources, size[4] = 4 * leaves;
     ptr[5] = t->leaf_barycentrics, size[5] = 8 * leaves;
     ptr[6] = t->triangle_areas, size[6] = 8 * (size_t)t->triangle_count;
-    ptr[7] = NULL, size[7] = 0;
+    ptr[7] = t->changes, size[7] = t->changes ? 4 * nodes : 0;
 }
 
 static void snapshot_take(snapshot *s, const mlod_tree *t)
@@ -449,6 +449,133 @@ static void test_points(void)
     free(col);
 }
 
+/* ------------------------------------------------ the record of changes */
+
+/* What a refit's record of changes is checked against: the spheres,
+   cones and changes[] before it. */
+typedef struct changes_before {
+    float *spheres, *cones;
+    uint32_t *changes;
+} changes_before;
+
+static void changes_take(changes_before *b, const mlod_tree *t)
+{
+    size_t n = t->node_count;
+    b->spheres = (float *)malloc(16 * n);
+    b->cones = t->cones ? (float *)malloc(16 * n) : NULL;
+    b->changes = (uint32_t *)malloc(4 * n);
+    memcpy(b->spheres, t->spheres, 16 * n);
+    if (t->cones) memcpy(b->cones, t->cones, 16 * n);
+    memcpy(b->changes, t->changes, 4 * n);
+}
+
+/* After a refit (all: one that must mark every node): exactly the nodes
+   whose sphere or cone bits differ from before carry the new revision's
+   low bits, the others what they carried, compared node by node.  Returns
+   how many changed. */
+static uint32_t changes_check(changes_before *b, const mlod_tree *t, int all, const char *what)
+{
+    uint32_t n, changed = 0, wrong = 0, first = 0;
+    CHECK(t->changes_revision == t->revision, "%s: the record describes revision %llx, the tree is at %llx", what,
+          (unsigned long long)t->changes_revision, (unsigned long long)t->revision);
+    for (n = 0; n < t->node_count; n++) {
+        int differ = memcmp(b->spheres + 4 * (size_t)n, t->spheres + 4 * (size_t)n, 16) != 0 ||
+                     (t->cones && memcmp(b->cones + 4 * (size_t)n, t->cones + 4 * (size_t)n, 16) != 0);
+        uint32_t expected = all || differ ? (uint32_t)t->revision : b->changes[n];
+        changed += differ;
+        if (t->changes[n] != expected && !wrong++) first = n;
+    }
+    CHECK(wrong == 0, "%s: %u of %u nodes recorded wrongly; first node %u: %u, expected %s", what, wrong,
+          t->node_count, first, t->changes[first], all ? "all marked" : "its own");
+    free(b->spheres);
+    free(b->cones);
+    free(b->changes);
+    return changed;
+}
+
+/* mlod_tree.changes, which lets a cut skip what no refit moved: zero
+   after a build; after each refit, the new revision on exactly the nodes
+   whose bounds changed (a region of a mesh moved, one point moved, on one
+   and two threads), nothing after a refit to the same positions, every
+   node after a write the tree did not record (revision counted up by
+   hand) and after a point refit that estimates its radii. */
+static void test_changes(void)
+{
+    scene_mesh s;
+    mlod_mesh mesh;
+    mlod_tree *t;
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel hook = mlod_pool_parallel(pool);
+    changes_before b;
+    float *moved;
+    uint32_t i, n, changed;
+    int pass;
+    scene_torus(&s, 1.0f, 0.35f, 24, 12);
+    mesh = tu_mesh(&s);
+    t = tu_build(&s, 3000, 5, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
+    moved = (float *)malloc(sizeof(float) * 3 * s.vertex_count);
+    CHECK(t != NULL && t->changes != NULL, "changes: build");
+    if (!t || !t->changes) return;
+    for (n = 0, changed = 0; n < t->node_count; n++) changed += t->changes[n] != 0;
+    CHECK(changed == 0 && t->changes_revision == t->revision, "changes: %u nodes marked after the build", changed);
+    for (pass = 0; pass < 2; pass++) {
+        const mlod_parallel *par = pass ? &hook : NULL;
+        char what[96];
+        memcpy(moved, s.positions, sizeof(float) * 3 * s.vertex_count);
+        for (i = 0; i < s.vertex_count; i++)
+            if (moved[3 * i] > 0.8f) moved[3 * i + 1] += 0.05f * (float)(pass + 1); /* one end of the torus */
+        mesh.positions = moved;
+        changes_take(&b, t);
+        CHECK(mlod_refit_mesh(t, &mesh, par, NULL) == MLOD_OK, "changes: refit");
+        snprintf(what, sizeof what, "changes, a region moved (%d thread%s)", pass + 1, pass ? "s" : "");
+        changed = changes_check(&b, t, 0, what);
+        CHECK(changed > 0 && changed < t->node_count / 2, "%s: %u of %u nodes changed", what, changed, t->node_count);
+        changes_take(&b, t);
+        CHECK(mlod_refit_mesh(t, &mesh, par, NULL) == MLOD_OK, "changes: refit");
+        snprintf(what, sizeof what, "changes, the same positions again (%d thread%s)", pass + 1, pass ? "s" : "");
+        CHECK(changes_check(&b, t, 0, what) == 0, "%s: nodes changed", what);
+    }
+    t->revision++; /* as a user who wrote the arrays does */
+    changes_take(&b, t);
+    CHECK(mlod_refit_mesh(t, &mesh, NULL, NULL) == MLOD_OK, "changes: refit");
+    changes_check(&b, t, 1, "changes, after a write the tree did not record");
+    mlod_tree_destroy(t);
+    {
+        const uint32_t N = 500;
+        float *pos = (float *)malloc(sizeof(float) * 3 * N), *rad = (float *)malloc(sizeof(float) * N);
+        uint64_t rng = 31;
+        mlod_points pts;
+        mlod_build_desc d = tu_desc(0, 1, MLOD_ATTR_REFIT);
+        for (i = 0; i < N; i++) {
+            scene_set3(pos, i, scene_rng_range(&rng, -1, 1), scene_rng_range(&rng, -1, 1), scene_rng_range(&rng, -1, 1));
+            rad[i] = scene_rng_range(&rng, 0.01f, 0.05f);
+        }
+        memset(&pts, 0, sizeof pts);
+        pts.positions = pos;
+        pts.radii = rad;
+        pts.count = N;
+        t = NULL;
+        CHECK(mlod_build_points(&pts, &d, &t, NULL) == MLOD_OK && t, "changes, points: build");
+        if (t) {
+            pos[3 * 123] += 0.2f; /* one point */
+            changes_take(&b, t);
+            CHECK(mlod_refit_points(t, &pts, NULL, NULL) == MLOD_OK, "changes, points: refit");
+            changed = changes_check(&b, t, 0, "changes, one point moved");
+            CHECK(changed >= 1 && changed <= 12, "changes, one point moved: %u nodes changed", changed);
+            pts.radii = NULL;
+            changes_take(&b, t);
+            CHECK(mlod_refit_points(t, &pts, NULL, NULL) == MLOD_OK, "changes, points: refit");
+            changes_check(&b, t, 1, "changes, points without radii");
+            mlod_tree_destroy(t);
+        }
+        free(pos);
+        free(rad);
+    }
+    mlod_pool_destroy(pool);
+    free(moved);
+    scene_free(&s);
+}
+
 int main(void)
 {
     int rc;
@@ -460,6 +587,7 @@ int main(void)
     test_errors(2000); /* 256 triangles */
     test_errors(100);
     test_points();
+    test_changes();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
     return rc;
