@@ -5106,24 +5106,18 @@ static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree
     mlod__classify_list(pv, tree, children, 2 * count, epsilon, status);
 }
 
-/* Whether no refit changed `node` since the committed lists (job->age
-   refits ago; MLOD__STAMPED views only): its sphere and cone hold the bits
-   they held then, so its status for an unchanged view is the same.  A
-   node unchanged for 2^32 refits or more may read as changed: only more
-   work. */
-static int mlod__unchanged(const mlod__cut_job *job, uint32_t node)
-{
-    return (uint32_t)((uint32_t)job->tree->revision - job->tree->changes[node]) >= job->age;
-}
-
 /* The statuses of a segment's input entries into status[]: those whose
    status is not current (all, unless the job trusts the input; else the
    pending ones) classified, in vector lanes together, the others copied
    (with their lazy marks).  In the first round of a MLOD__STAMPED view,
-   an entry whose node and parent are unchanged (mlod__unchanged) keeps its
-   committed status unevaluated, and unchanged[k] = 1 says so (its parent,
-   invalid in an exact cut, is still invalid); else unchanged[k] = 0.
-   Returns how many were classified. */
+   an entry whose node and parent no refit changed since the committed
+   lists (job->age refits ago: their spheres and cones hold the bits they
+   held then) keeps its committed status unevaluated, and unchanged[k] = 1
+   says so (its parent, invalid in an exact cut, is still invalid); else
+   unchanged[k] = 0.  The parent's record says it for both: a refit marks
+   an internal node whenever it marks a child.  A node unchanged for 2^32
+   refits or more may read as changed: only more work.  Returns how many
+   were classified. */
 static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segment *seg, const mlod__pview *pv,
                                      uint8_t *status, uint8_t *unchanged)
 {
@@ -5134,11 +5128,12 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
     MANYLODS_ASSERT(seg->in_count <= MLOD__SEGMENT_INPUT);
     memset(unchanged, 0, seg->in_count);
     if (!job->trust && (job->cut->known[seg->view] & MLOD__STAMPED)) {
+        const uint32_t *changes = job->tree->changes, now = (uint32_t)job->tree->revision, age = job->age;
         for (k = 0; k < seg->in_count; k++) {
-            uint32_t x = in_nodes[k];
-            unchanged[k] = (uint8_t)(mlod__unchanged(job, x) && (x == 0 || mlod__unchanged(job, (x - 1) / 2)));
+            uint32_t x = in_nodes[k], same = now - changes[x > 0 ? (x - 1) / 2 : 0] >= age;
+            unchanged[k] = (uint8_t)same;
             todo[count] = x;
-            count += !unchanged[k];
+            count += !same;
         }
         if (count) mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
         for (k = 0, count = 0; k < seg->in_count; k++)
@@ -6065,9 +6060,19 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     if (res != MLOD_OK) return res;
     memset(&job, 0, sizeof job);
     skipped = mlod__skip_views(cut, tree, params, &job.age);
+    if (job.age && (uint32_t)tree->revision - tree->changes[0] >= job.age) {
+        /* the refits since changed no node (a changed leaf marks every
+           node above it, the root included): the MLOD__STAMPED views are
+           skipped as a whole; their lists are the basic cuts of this
+           revision too */
+        for (v = 0; v < cut->view_count; v++)
+            if (cut->known[v] & MLOD__STAMPED) cut->view_done[v] = MLOD__SKIPPED;
+        for (v = 0, skipped = 0; v < cut->view_count; v++) skipped += cut->view_done[v] == MLOD__SKIPPED;
+    }
     if (skipped == cut->view_count) {
         /* nothing changed: the lists stand, and nothing was evaluated */
         for (v = 0; v < cut->view_count; v++) cut->stats[0][v].evaluated = cut->stats[0][v].steps = 0;
+        cut->seen_revision = tree->revision;
         return mlod__succeed(error);
     }
     from_root = params->mode == MLOD_CUT_BASIC || cut->tree_nodes != tree->node_count;
