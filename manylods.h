@@ -5202,6 +5202,16 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     out.count = 0;
     out.capacity = seg->out_capacity;
     evaluated += mlod__classify_input(job, seg, pv, fresh, unchanged);
+    if (evaluated == 0 && seg->in_count > 0 && unchanged[0]) {
+        /* every entry unchanged: none splits or merges, the output is the
+           input (the room holds it) */
+        memcpy(out.nodes, in_nodes, seg->in_count * sizeof(uint32_t));
+        memcpy(out.status, fresh, seg->in_count);
+        seg->out_count = seg->in_count;
+        seg->ends_unchanged = 3u;
+        seg->evaluated = seg->steps = 0;
+        return;
+    }
     if (job->merge) mlod__merge_hints(job, seg, pv, fresh, unchanged, hint);
     /* an unchanged entry is never split, nor merged: the first and last
        input entries, unchanged, are the first and last output entries */
