@@ -2259,27 +2259,23 @@ typedef struct mlod__stamp {
     int all;
 } mlod__stamp;
 
-#define MLOD__NODE_BITS 8
-/* The bits of a node's sphere and cone (zeros without cones). */
-static void mlod__node_bits(const mlod_tree *tree, uint32_t node, uint32_t out[MLOD__NODE_BITS])
+/* Store leaf `node`'s sphere (bounds[0..3]) and, in a tree with cones,
+   its cone (bounds[4..7]), recording a change of their bits as `stamp`
+   says (NULL: not at all). */
+static void mlod__store_leaf(mlod_tree *tree, uint32_t node, const float bounds[8], const mlod__stamp *stamp)
 {
-    memcpy(out, tree->spheres + 4 * (size_t)node, 4 * sizeof(float));
-    if (tree->cones)
-        memcpy(out + 4, tree->cones + 4 * (size_t)node, 4 * sizeof(float));
-    else
-        out[4] = out[5] = out[6] = out[7] = 0;
-}
-
-/* Record that the pass wrote leaf `node`, which held `before`. */
-static void mlod__stamp_leaf(const mlod_tree *tree, const mlod__stamp *stamp, uint32_t node,
-                             const uint32_t before[MLOD__NODE_BITS])
-{
-    uint32_t after[MLOD__NODE_BITS], differ = 0;
-    int k;
-    if (!stamp->changes) return;
-    mlod__node_bits(tree, node, after);
-    for (k = 0; k < MLOD__NODE_BITS; k++) differ |= before[k] ^ after[k];
-    if (stamp->all || differ) stamp->changes[node] = stamp->value;
+    float *sphere = tree->spheres + 4 * (size_t)node, *cone = tree->cones ? tree->cones + 4 * (size_t)node : NULL;
+    if (stamp && stamp->changes) {
+        uint32_t was[8], now[8], differ = 0;
+        int k, words = cone ? 8 : 4;
+        memcpy(was, sphere, 4 * sizeof(float));
+        if (cone) memcpy(was + 4, cone, 4 * sizeof(float));
+        memcpy(now, bounds, (size_t)words * sizeof(float));
+        for (k = 0; k < words; k++) differ |= was[k] ^ now[k];
+        if (stamp->all || differ) stamp->changes[node] = stamp->value;
+    }
+    memcpy(sphere, bounds, 4 * sizeof(float));
+    if (cone) memcpy(cone, bounds + 4, 4 * sizeof(float));
 }
 
 typedef struct mlod__merge_job {
@@ -2415,26 +2411,29 @@ static void mlod__triangle_leaf_of(const mlod_tree *tree, const double *n, doubl
 }
 
 /* Write leaf `node` of the tree from the mesh sample (tri, s, t) and what
-   its triangle's samples share: the one function build and refit share. */
+   its triangle's samples share: the one function build and refit share
+   (stamp: see mlod__store_leaf). */
 static void mlod__mesh_leaf(mlod_tree *tree, uint32_t node, const mlod_mesh *mesh, uint32_t tri, float s, float t,
-                            const mlod__triangle_leaf *shared)
+                            const mlod__triangle_leaf *shared, const mlod__stamp *stamp)
 {
     const uint32_t *corner = mesh->indices + 3 * (size_t)tri;
     double p[3];
-    float *sphere = tree->spheres + 4 * (size_t)node;
+    float bounds[8];
     int k;
     mlod__interpolate(mesh->positions, mesh->position_stride, corner, s, t, p);
-    for (k = 0; k < 3; k++) sphere[k] = (float)p[k];
-    sphere[3] = shared->radius;
+    for (k = 0; k < 3; k++) bounds[k] = (float)p[k];
+    bounds[3] = shared->radius;
     if (tree->cones) {
         double n[3] = {0.0, 0.0, 0.0};
-        float *cone = tree->cones + 4 * (size_t)node;
         if (mesh->normals) mlod__interpolate(mesh->normals, mesh->normal_stride, corner, s, t, n);
         if (mlod__dot3(n, n) > 0.0)
-            mlod__cone_from_normal(n, cone);
+            mlod__cone_from_normal(n, bounds + 4);
         else
-            for (k = 0; k < 4; k++) cone[k] = shared->cone[k];
+            for (k = 0; k < 4; k++) bounds[4 + k] = shared->cone[k];
+    } else { /* never read then, but a compiler may not see that */
+        bounds[4] = bounds[5] = bounds[6] = bounds[7] = 0.0f;
     }
+    mlod__store_leaf(tree, node, bounds, stamp);
     if (tree->areas) tree->areas[node] = shared->area;
     if (tree->colors) {
         double c[3];
@@ -3012,7 +3011,7 @@ static void mlod__build_leaves_task(void *context, uint32_t index)
         float s = job->st[2 * (size_t)item], t = job->st[2 * (size_t)item + 1];
         mlod__triangle_leaf own;
         if (!shared) mlod__build_triangle(tree, job->mesh, tri, &own);
-        mlod__mesh_leaf(tree, n - 1 + i, job->mesh, tri, s, t, shared ? &shared[tri] : &own);
+        mlod__mesh_leaf(tree, n - 1 + i, job->mesh, tri, s, t, shared ? &shared[tri] : &own, NULL);
         if (tree->leaf_sources) {
             tree->leaf_sources[i] = tri;
             tree->leaf_barycentrics[2 * (size_t)i] = s;
@@ -3175,21 +3174,25 @@ static float mlod__point_radius(const mlod_points *points, uint32_t i)
 }
 
 /* Write leaf `node` from point `item`.  radius: before radius_scale. */
-static void mlod__point_leaf(mlod_tree *tree, uint32_t node, const mlod_points *points, uint32_t item, double radius)
+static void mlod__point_leaf(mlod_tree *tree, uint32_t node, const mlod_points *points, uint32_t item, double radius,
+                             const mlod__stamp *stamp)
 {
     const float *p = mlod__at(points->positions, points->position_stride, item);
-    float *sphere = tree->spheres + 4 * (size_t)node;
+    float bounds[8];
     int k;
-    for (k = 0; k < 3; k++) sphere[k] = p[k];
-    sphere[3] = mlod__float_up(tree->radius_scale * radius);
+    for (k = 0; k < 3; k++) bounds[k] = p[k];
+    bounds[3] = mlod__float_up(tree->radius_scale * radius);
     if (tree->cones) {
         double n[3] = {0.0, 0.0, 0.0};
         if (points->normals) {
             const float *q = mlod__at(points->normals, points->normal_stride, item);
             for (k = 0; k < 3; k++) n[k] = q[k];
         }
-        mlod__cone_from_normal(n, tree->cones + 4 * (size_t)node);
+        mlod__cone_from_normal(n, bounds + 4);
+    } else { /* never read then, but a compiler may not see that */
+        bounds[4] = bounds[5] = bounds[6] = bounds[7] = 0.0f;
     }
+    mlod__store_leaf(tree, node, bounds, stamp);
     if (tree->areas) tree->areas[node] = (float)(radius * radius / tree->area_unit);
     if (tree->colors) {
         const float *c = mlod__at(points->colors, points->color_stride, item);
@@ -3244,7 +3247,7 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
     } else {
         float scale = tree->radius_scale;
         tree->radius_scale = 0.0f; /* a first tree of bare points gives the density */
-        for (i = 0; i < n; i++) mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], 0.0);
+        for (i = 0; i < n; i++) mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], 0.0, NULL);
         mlod__merge_all(tree, desc->parallel, NULL);
         for (i = 0; i < n; i++) radius[i] = mlod__density_radius(tree, i);
         tree->radius_scale = scale;
@@ -3259,7 +3262,7 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
     }
     tree->area_unit = mean_area > 0.0 ? mean_area : 1.0;
     for (i = 0; i < n; i++) {
-        mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], radius[i]);
+        mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], radius[i], NULL);
         if (tree->leaf_sources) tree->leaf_sources[i] = leaf_item[i];
     }
     mlod__merge_all(tree, desc->parallel, NULL);
@@ -3362,12 +3365,9 @@ static void mlod__refit_mesh_task(void *context, uint32_t index)
     for (; j < end; j++) {
         uint32_t tri = tree->leaf_sources[j], node = tree->leaf_count - 1 + j;
         mlod__triangle_leaf own;
-        uint32_t before[MLOD__NODE_BITS];
         if (!shared) mlod__refit_triangle(tree, job->mesh, tri, &own); /* fewer leaves than triangles */
-        mlod__node_bits(tree, node, before);
         mlod__mesh_leaf(tree, node, job->mesh, tri, tree->leaf_barycentrics[2 * (size_t)j],
-                        tree->leaf_barycentrics[2 * (size_t)j + 1], shared ? &shared[tri] : &own);
-        mlod__stamp_leaf(tree, &job->stamp, node, before);
+                        tree->leaf_barycentrics[2 * (size_t)j + 1], shared ? &shared[tri] : &own, &job->stamp);
     }
 }
 
@@ -3440,10 +3440,7 @@ static void mlod__refit_points_task(void *context, uint32_t index)
     for (; j < end; j++) {
         uint32_t item = tree->leaf_sources[j], node = tree->leaf_count - 1 + j;
         double radius = job->points->radii ? mlod__point_radius(job->points, item) : 0.0;
-        uint32_t before[MLOD__NODE_BITS];
-        mlod__node_bits(tree, node, before);
-        mlod__point_leaf(tree, node, job->points, item, radius);
-        mlod__stamp_leaf(tree, &job->stamp, node, before);
+        mlod__point_leaf(tree, node, job->points, item, radius, &job->stamp);
     }
 }
 
@@ -3495,7 +3492,7 @@ MLOD__PUBLIC mlod_result mlod_refit_points(mlod_tree *tree, const mlod_points *p
         mlod__merge_all(tree, parallel, NULL);
         tree->radius_scale = scale;
         for (j = 0; j < n; j++)
-            mlod__point_leaf(tree, n - 1 + j, points, tree->leaf_sources[j], mlod__density_radius(tree, j));
+            mlod__point_leaf(tree, n - 1 + j, points, tree->leaf_sources[j], mlod__density_radius(tree, j), NULL);
     } else {
         mlod__run(parallel, chunks, mlod__refit_points_task, &job);
     }
