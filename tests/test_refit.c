@@ -487,6 +487,22 @@ static uint32_t changes_check(changes_before *b, const mlod_tree *t, int all, co
     }
     CHECK(wrong == 0, "%s: %u of %u nodes recorded wrongly; first node %u: %u, expected %s", what, wrong,
           t->node_count, first, t->changes[first], all ? "all marked" : "its own");
+    {
+        /* changes_share: the share of the internal nodes at depth 10 (or
+           the deepest that has some) this refit changed */
+        uint32_t depth = 0, lo = 0, hi = 0, marked = 0, d;
+        for (d = 0; d <= 10; d++) {
+            uint64_t a = ((uint64_t)1 << d) - 1, b = ((uint64_t)1 << (d + 1)) - 2;
+            if (a > (uint64_t)t->leaf_count - 2 || t->leaf_count < 2) break;
+            depth = d;
+            lo = (uint32_t)a;
+            hi = (uint32_t)(b < (uint64_t)t->leaf_count - 2 ? b : (uint64_t)t->leaf_count - 2);
+        }
+        for (n = lo; n <= hi; n++) marked += t->changes[n] == (uint32_t)t->revision;
+        CHECK(fabs(t->changes_share - (double)marked / (hi - lo + 1)) < 1e-6,
+              "%s: changes_share %g, %u of the %u internal nodes at depth %u changed", what, t->changes_share, marked,
+              hi - lo + 1, depth);
+    }
     free(b->spheres);
     free(b->cones);
     free(b->changes);
