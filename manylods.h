@@ -2004,6 +2004,16 @@ MLOD__PUBLIC int mlod_tree_depth_nodes(uint32_t leaf_count, uint32_t depth, uint
 }
 
 
+/* A hint that the cache line at p is wanted soon (nothing where the
+   compiler has no way to say it). */
+#if defined(__GNUC__) || defined(__clang__)
+#define MLOD__PREFETCH(p) __builtin_prefetch(p)
+#define MLOD__PREFETCH_WRITE(p) __builtin_prefetch(p, 1)
+#else
+#define MLOD__PREFETCH(p) ((void)(p))
+#define MLOD__PREFETCH_WRITE(p) ((void)(p))
+#endif
+
 /* ------------------------------------------------------- parallel run -- */
 
 static void mlod__run(const mlod_parallel *parallel, uint32_t count, mlod_task_fn *task, void *context)
@@ -3448,6 +3458,8 @@ MLOD__PUBLIC mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
     return mlod__succeed(error);
 }
 
+/* How many leaves ahead refit asks for a point's position and normal. */
+#define MLOD__POINT_AHEAD 8u
 static void mlod__refit_points_task(void *context, uint32_t index)
 {
     mlod__refit_job *job = (mlod__refit_job *)context;
@@ -3456,7 +3468,14 @@ static void mlod__refit_points_task(void *context, uint32_t index)
     if (end > tree->leaf_count) end = tree->leaf_count;
     for (; j < end; j++) {
         uint32_t item = tree->leaf_sources[j], node = tree->leaf_count - 1 + j;
-        double radius = job->points->radii ? mlod__point_radius(job->points, item) : 0.0;
+        double radius;
+        if (j + MLOD__POINT_AHEAD < end) { /* the points come in tree order, scattered in memory */
+            uint32_t ahead = tree->leaf_sources[j + MLOD__POINT_AHEAD];
+            MLOD__PREFETCH(mlod__at(job->points->positions, job->points->position_stride, ahead));
+            if (tree->cones && job->points->normals)
+                MLOD__PREFETCH(mlod__at(job->points->normals, job->points->normal_stride, ahead));
+        }
+        radius = job->points->radii ? mlod__point_radius(job->points, item) : 0.0;
         mlod__point_leaf(tree, node, job->points, item, radius, &job->stamp);
     }
 }
@@ -4889,16 +4908,6 @@ MLOD__FORCE_INLINE uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__p
     }
     return x;
 }
-
-/* A hint that the cache line at p is wanted soon (nothing where the
-   compiler has no way to say it). */
-#if defined(__GNUC__) || defined(__clang__)
-#define MLOD__PREFETCH(p) __builtin_prefetch(p)
-#define MLOD__PREFETCH_WRITE(p) __builtin_prefetch(p, 1)
-#else
-#define MLOD__PREFETCH(p) ((void)(p))
-#define MLOD__PREFETCH_WRITE(p) ((void)(p))
-#endif
 
 #ifdef MLOD__VLANES
 /* The index of the lowest set bit of x (x != 0). */
