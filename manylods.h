@@ -5150,31 +5150,33 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
     const uint8_t *in_status = job->in->status + seg->in_begin;
     uint32_t todo[MLOD__SEGMENT_INPUT], count = 0, k;
-    uint8_t found[MLOD__SEGMENT_INPUT];
+    uint8_t found[MLOD__SEGMENT_INPUT], kept[MLOD__SEGMENT_INPUT];
+    const uint8_t *keep;
     MANYLODS_ASSERT(seg->in_count <= MLOD__SEGMENT_INPUT);
     memset(unchanged, 0, seg->in_count);
-    if (!job->trust && (job->cut->known[seg->view] & MLOD__STAMPED)) {
-        const uint32_t *changes = job->tree->changes, now = (uint32_t)job->tree->revision, age = job->age;
-        for (k = 0; k < seg->in_count; k++) {
-            uint32_t x = in_nodes[k], same = now - changes[x > 0 ? (x - 1) / 2 : 0] >= age;
-            unchanged[k] = (uint8_t)same;
-            todo[count] = x;
-            count += !same;
-        }
-        if (count) mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
-        for (k = 0, count = 0; k < seg->in_count; k++)
-            status[k] = unchanged[k] ? (uint8_t)(in_status[k] & MLOD__STATUS_MASK) : found[count++];
-        return count;
-    }
-    if (!job->trust) {
+    if (!job->trust && !(job->cut->known[seg->view] & MLOD__STAMPED)) {
         mlod__classify_list(pv, job->tree, in_nodes, seg->in_count, job->epsilon, status);
         return seg->in_count;
     }
-    for (k = 0; k < seg->in_count; k++)
-        if ((in_status[k] & MLOD__STATUS_MASK) == MLOD__PENDING) todo[count++] = in_nodes[k];
+    /* keep[k]: entry k's input status stands (the committed lists hold no
+       lazy marks) */
+    if (!job->trust) {
+        const uint32_t *changes = job->tree->changes, now = (uint32_t)job->tree->revision, age = job->age;
+        for (k = 0; k < seg->in_count; k++) {
+            uint32_t x = in_nodes[k];
+            unchanged[k] = (uint8_t)(now - changes[x > 0 ? (x - 1) / 2 : 0] >= age);
+        }
+        keep = unchanged;
+    } else {
+        for (k = 0; k < seg->in_count; k++) kept[k] = (uint8_t)((in_status[k] & MLOD__STATUS_MASK) != MLOD__PENDING);
+        keep = kept;
+    }
+    for (k = 0; k < seg->in_count; k++) {
+        todo[count] = in_nodes[k];
+        count += !keep[k];
+    }
     if (count) mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
-    for (k = 0, count = 0; k < seg->in_count; k++)
-        status[k] = (in_status[k] & MLOD__STATUS_MASK) == MLOD__PENDING ? found[count++] : in_status[k];
+    for (k = 0, count = 0; k < seg->in_count; k++) status[k] = keep[k] ? in_status[k] : found[count++];
     return count;
 }
 
