@@ -1075,18 +1075,26 @@ static void time_threads(bench *b, protocol *p, mlod_tree *tree, const mlod_view
     }
 }
 
-/* The rest positions of the object, and those of frame f for the eighth
-   of its vertices highest along y (ties included): a part moving in a
-   still scene.  out: 3 floats per vertex. */
-static void part_positions(const protocol *p, int frame, float *out)
+/* The rest height (y) from which the object's vertices are the highest
+   eighth of them. */
+static double part_limit(const protocol *p)
 {
     uint32_t i, n = p->rest.vertex_count;
-    const float *moved = frame_positions(p, frame);
     double *y = (double *)checked_malloc(sizeof(double) * n), limit;
     for (i = 0; i < n; i++) y[i] = p->rest.positions[3 * (size_t)i + 1];
     qsort(y, n, sizeof(double), compare_doubles);
     limit = y[n - 1 - n / 8];
     free(y);
+    return limit;
+}
+
+/* The rest positions of the object, and those of frame f for its vertices
+   at rest height limit or above (part_limit): a part moving in a still
+   scene.  out: 3 floats per vertex. */
+static void part_positions(const protocol *p, int frame, double limit, float *out)
+{
+    uint32_t i, n = p->rest.vertex_count;
+    const float *moved = frame_positions(p, frame);
     for (i = 0; i < n; i++) {
         const float *from = p->rest.positions[3 * (size_t)i + 1] >= limit ? moved : p->rest.positions;
         memcpy(out + 3 * (size_t)i, from + 3 * (size_t)i, 3 * sizeof(float));
@@ -1112,6 +1120,7 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
     const config *c = &b->cfg;
     mlod_view *views = (mlod_view *)checked_malloc(sizeof(mlod_view) * p->view_count);
     float *part = (float *)checked_malloc(sizeof(float) * 3 * p->rest.vertex_count);
+    double limit = part_limit(p);
     mlod_cut *cuts[BENCH_RIGS][2];
     mlod_cut_params params;
     mlod_error error;
@@ -1135,7 +1144,7 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
         mlod_mesh mesh = frame_mesh(p, f % p->frame_count);
         int first = f < p->frame_count ? 0 : 2, last = f < p->frame_count ? 1 : 2;
         if (f >= p->frame_count) {
-            part_positions(p, f % p->frame_count, part);
+            part_positions(p, f % p->frame_count, limit, part);
             mesh.positions = part;
         }
         if (mlod_refit_mesh(tree, &mesh, &b->parallel, &error) != MLOD_OK) fail("mlod_refit_mesh: %s", error.message);
