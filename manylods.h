@@ -9254,9 +9254,21 @@ typedef struct mlod__mv_walk {
     mlod__vnode *vn;                    /* one per level */
     mlod__pview *pv;                    /* one per level: the inner maps' views */
     int overflow;
+    /* where a walk that ran out of room stopped (MLOD__NO_MAP: none): the
+       subtrees before it, depth first, are done (their tiles drawn, their
+       statistics counted), so the walk runs again only along the path to
+       it and from there on */
+    uint32_t resume;
     uint64_t pairs, culled, leaf_draws, shared_draws, shared_views, shared_leaves;
     uint64_t node_pairs; /* the most pairs of one view node */
 } mlod__mv_walk;
+
+/* Whether view node `node` is `below` or one of its ancestors. */
+static int mlod__mv_on_path(uint32_t node, uint32_t below)
+{
+    while (below > node) below = (below - 1) / 2;
+    return below == node;
+}
 
 /* One view node of a walk (level: below the subtree's root) and its
    subtree; the scene nodes in[0 .. n) handed to it, the list stack free
@@ -9269,21 +9281,24 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
     mlod__vnode *vn = &w->vn[level];
     mlod__mv_drawer dr;
     mlod__mv_out out;
+    uint64_t leaf_draws = 0, shared_draws = 0, shared_leaves = 0;
     memset(&out, 0, sizeof out);
     out.split = w->list + top;
     out.capacity = w->capacity - top;
     vn->node = node;
+    if (node == w->resume) w->resume = MLOD__NO_MAP; /* from here on, all again */
     if (n) mlod__vnode_set(job, node, vn);
     if (node >= eyes->leaf_count - 1) {
         mlod__mv_leaf_drawer(job, vn, parent_depth, parent_ids, &dr);
         mlod__mv_descend(job, vn, in, n, &out, &dr); /* a leaf splits no view */
         mlod__mv_flush(&dr);
-        w->leaf_draws += out.drawn;
+        leaf_draws = out.drawn;
     } else {
         float *map_depth = w->depth + (size_t)level * job->pixels; /* this node's map, begun at the first draw */
         uint32_t *map_ids = w->ids + (size_t)level * job->pixels;
         const float *child_depth;
         const uint32_t *child_ids;
+        uint32_t c;
         dr.lazy_depth = map_depth;
         dr.lazy_ids = map_ids;
         dr.lazy_parent_depth = parent_depth;
@@ -9295,24 +9310,29 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
         dr.n = 0;
         if (!mlod__mv_descend(job, vn, in, n, &out, &dr)) {
             w->overflow = 1;
+            w->resume = node;
             return;
         }
         mlod__mv_flush(&dr);
-        w->shared_draws += out.drawn;
-        w->shared_views += out.drawn * mlod__leaves_below(node, eyes->leaf_count);
-        w->shared_leaves += out.leaves;
+        shared_draws = out.drawn;
+        shared_leaves = out.leaves;
         /* a map that drew nothing would be the parent's, each pixel measured again from this node's
            centre: the children measure again from theirs anyway, so they begin from the parent's */
         child_depth = out.drawn ? map_depth : parent_depth;
         child_ids = out.drawn ? map_ids : parent_ids;
-        mlod__mv_walk_node(job, w, 2 * node + 1, level + 1, out.split, out.split_count, top + out.split_count,
-                           child_depth, child_ids);
-        if (w->overflow) return;
-        mlod__mv_walk_node(job, w, 2 * node + 2, level + 1, out.split, out.split_count, top + out.split_count,
-                           child_depth, child_ids);
+        for (c = 2 * node + 1; c <= 2 * node + 2; c++) {
+            if (w->resume != MLOD__NO_MAP && !mlod__mv_on_path(c, w->resume)) continue; /* done before */
+            mlod__mv_walk_node(job, w, c, level + 1, out.split, out.split_count, top + out.split_count, child_depth,
+                               child_ids);
+            if (w->overflow) return; /* counted when run again */
+        }
     }
     w->pairs += out.pairs;
     w->culled += out.culled;
+    w->leaf_draws += leaf_draws;
+    w->shared_draws += shared_draws;
+    w->shared_views += shared_draws * mlod__leaves_below(node, eyes->leaf_count);
+    w->shared_leaves += shared_leaves;
     if (out.pairs > w->node_pairs) w->node_pairs = out.pairs;
 }
 
@@ -9321,15 +9341,17 @@ static void mlod__mv_walk_task(void *context, uint32_t index)
     const mlod__mv_job *job = (const mlod__mv_job *)context;
     mlod__mv_walk *w = &job->walks[job->redo ? job->redo[index] : index];
     w->overflow = 0;
-    w->pairs = w->culled = w->leaf_draws = w->shared_draws = w->shared_views = w->shared_leaves = w->node_pairs = 0;
+    if (w->resume == MLOD__NO_MAP) /* the first run (a run again keeps what the done subtrees counted) */
+        w->pairs = w->culled = w->leaf_draws = w->shared_draws = w->shared_views = w->shared_leaves = w->node_pairs = 0;
     mlod__mv_walk_node(job, w, w->root, 0, w->in, w->in_count, 0, w->parent_depth, w->parent_ids);
 }
 
 /* The levels from the walk level down: one walk per view node of that
    level, from the scene nodes and maps the level above handed down (the
    job's in, in_off and parent maps), in parallel; walks whose list stack
-   ran out get one twice as large and run again (a walk's result does not
-   depend on its room).  0 when memory failed. */
+   ran out get one twice as large and go on from where they stopped, the
+   path to it classified again (a walk's result does not depend on its
+   room).  0 when memory failed. */
 static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_parallel *parallel,
                           mlod_megaviews_stats *st)
 {
@@ -9342,6 +9364,7 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
         mlod__mv_walk *w = &walks[i];
         static const uint32_t scene_root = 0;
         w->root = job->first + i;
+        w->resume = MLOD__NO_MAP;
         if (job->in_off) {
             uint32_t p = (w->root - 1) / 2 - job->prev_first;
             w->in = job->in + job->in_off[p];
