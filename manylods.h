@@ -8545,7 +8545,7 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
     mlod__vf d2, d, U, M, nM, M2, UU, g, dg, Y, C, okY, unsure, cull, keep, kr;
     mlod__vf cl, cr, Yc, tc, near_ok, near_none, rp, rm, ln, small, large;
     mlod__vf fa, fr, Yf, tf, far_ok, far_none, ep, em, lf, some, none, cmin_large, cmin_small;
-    mlod__vf cm, cmr, Ym, tm, P, m_ok, m_inf, least, lhs, move_ok, move_bad, go, code;
+    mlod__vf cm, cmr, Ym, tm, P, m_ok, m_inf, least, lhs, move_ok, move_bad, go, code, live;
     int h;
     d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)), MLOD__VMUL(x2, x2));
     d = MLOD__VSQRT(d2);
@@ -8605,61 +8605,68 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
         go = MLOD__VAND(mlod__vclear(rp, M, nM), mlod__vclear(rm, M, nM));
         small = MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VAND(MLOD__VGT(ln, M), MLOD__VLE(kr, MLOD__VSUB(ln, M))));
         large = MLOD__VOR(near_none, MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VGE(kr, MLOD__VADD(ln, M))));
-        /* cmin: the farthest eye, farthest = d + rho; over the halves every eye reaches (x.w - rho + r >= 0),
-           the least x.w + rho + t_farthest; no such half: cmin = 0 */
-        fa = MLOD__VADD(d, rho);
-        fr = MLOD__VSUB(fa, r);
-        Yf = MLOD__VMUL(fr, MLOD__VADD(fa, r));
-        far_ok = MLOD__VAND(MLOD__VGT(fr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yf), UU));
-        far_none = MLOD__VLT(fr, nM);
-        tf = MLOD__VSQRT(MLOD__VAND(Yf, MLOD__VGT(Yf, zero)));
-        ep = MLOD__VADD(MLOD__VSUB(x2, rho), r);
-        em = MLOD__VSUB(MLOD__VSUB(r, rho), x2);
-        lf = mlod__vselect(MLOD__VGT(ep, M), MLOD__VADD(MLOD__VADD(x2, rho), tf), big);
-        lf = mlod__vmin(lf, mlod__vselect(MLOD__VGT(em, M), MLOD__VSUB(MLOD__VADD(rho, tf), x2), big));
-        some = MLOD__VOR(MLOD__VGT(ep, M), MLOD__VGT(em, M));
-        none = MLOD__VAND(MLOD__VLT(ep, nM), MLOD__VLT(em, nM));
-        go = MLOD__VAND(mlod__vclear(ep, M, nM), mlod__vclear(em, M, nM));
-        cmin_large =
-            MLOD__VOR(far_none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(some, MLOD__VGE(kr, MLOD__VADD(lf, M)))));
-        cmin_small = MLOD__VOR(
-            none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(MLOD__VGT(lf, M), MLOD__VLE(kr, MLOD__VSUB(lf, M)))));
-        /* motion (mlod__ball_motion): S turn / least (1 + cos(phi + b)) <= delta, turn = rho / t_m, t_m =
-           sqrt((d - r - rho)(d - r + rho)), compared as S rho d^2 / delta <= (least d^2 (1 + cos)) t_m; with
-           P = d sin phi, per half (x.w = +-x2): d^2 cos(phi - b) = x.w C + P g (the half counts unless below
-           0), d^2 cos(phi + b) = x.w C - P g, d^2 sin(phi + b) = P C + x.w g */
-        cm = MLOD__VSUB(d, r);
-        cmr = MLOD__VSUB(cm, rho);
-        Ym = MLOD__VMUL(cmr, MLOD__VADD(cm, rho));
-        m_ok = MLOD__VAND(okY, MLOD__VAND(MLOD__VGT(cmr, M), MLOD__VGE(MLOD__VMUL(sixty4, Ym), UU)));
-        m_inf = MLOD__VOR(MLOD__VLT(cmr, nM), MLOD__VLT(dg, nM));
-        tm = MLOD__VSQRT(MLOD__VAND(Ym, MLOD__VGT(Ym, zero)));
-        P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)));
-        least = big;
-        for (h = 0; h < 2; h++) {
-            mlod__vf xw = h ? MLOD__VSUB(zero, x2) : x2, xc = MLOD__VMUL(xw, C), pg = MLOD__VMUL(P, g);
-            mlod__vf e = MLOD__VADD(xc, pg), cs = MLOD__VSUB(xc, pg),
-                     sn = MLOD__VADD(MLOD__VMUL(P, C), MLOD__VMUL(xw, g));
-            mlod__vf one = MLOD__VADD(d2, cs), counts = MLOD__VGT(e, M2), mM2 = MLOD__VSUB(zero, M2);
-            mlod__vf bounded = MLOD__VAND(MLOD__VGT(one, M2), MLOD__VOR(MLOD__VGT(cs, M2), MLOD__VGT(sn, M2)));
-            mlod__vf endless = MLOD__VOR(MLOD__VLT(one, mM2), MLOD__VAND(MLOD__VLT(cs, mM2), MLOD__VLT(sn, mM2)));
-            m_ok = MLOD__VAND(m_ok, MLOD__VOR(counts, MLOD__VLT(e, mM2)));
-            m_ok = MLOD__VANDNOT(MLOD__VANDNOT(MLOD__VOR(bounded, endless), counts), m_ok);
-            m_inf = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, counts), endless));
-            least = mlod__vmin(least, mlod__vselect(MLOD__VAND(counts, bounded), one, big));
+        /* what the lanes that count (kept, not culled) need below: the far side for inner scene nodes
+           surely too large for the nearest eye, the motion for leaves and for nodes surely small enough;
+           what no such lane needs is left out (its masks 0: no lane reads them) */
+        live = MLOD__VANDNOT(cull, keep);
+        cmin_large = cmin_small = move_ok = move_bad = zero;
+        if (MLOD__VBITS(MLOD__VANDNOT(leaf, MLOD__VAND(large, live)))) {
+            /* cmin: the farthest eye, farthest = d + rho; over the halves every eye reaches (x.w - rho + r >= 0),
+               the least x.w + rho + t_farthest; no such half: cmin = 0 */
+            fa = MLOD__VADD(d, rho);
+            fr = MLOD__VSUB(fa, r);
+            Yf = MLOD__VMUL(fr, MLOD__VADD(fa, r));
+            far_ok = MLOD__VAND(MLOD__VGT(fr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yf), UU));
+            far_none = MLOD__VLT(fr, nM);
+            tf = MLOD__VSQRT(MLOD__VAND(Yf, MLOD__VGT(Yf, zero)));
+            ep = MLOD__VADD(MLOD__VSUB(x2, rho), r);
+            em = MLOD__VSUB(MLOD__VSUB(r, rho), x2);
+            lf = mlod__vselect(MLOD__VGT(ep, M), MLOD__VADD(MLOD__VADD(x2, rho), tf), big);
+            lf = mlod__vmin(lf, mlod__vselect(MLOD__VGT(em, M), MLOD__VSUB(MLOD__VADD(rho, tf), x2), big));
+            some = MLOD__VOR(MLOD__VGT(ep, M), MLOD__VGT(em, M));
+            none = MLOD__VAND(MLOD__VLT(ep, nM), MLOD__VLT(em, nM));
+            go = MLOD__VAND(mlod__vclear(ep, M, nM), mlod__vclear(em, M, nM));
+            cmin_large =
+                MLOD__VOR(far_none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(some, MLOD__VGE(kr, MLOD__VADD(lf, M)))));
+            cmin_small = MLOD__VOR(
+                none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(MLOD__VGT(lf, M), MLOD__VLE(kr, MLOD__VSUB(lf, M)))));
         }
-        lhs = MLOD__VMUL(MLOD__VMUL(MLOD__VSET(vn->fkm), rho), d2);
-        move_ok = MLOD__VANDNOT(
-            m_inf, MLOD__VAND(m_ok, MLOD__VOR(MLOD__VEQ(least, big),
-                                              MLOD__VLE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VSUB(least, M2), tm),
-                                                                        MLOD__VSET(1.0f - 1.0f / 8192.0f))))));
-        move_ok = MLOD__VAND(move_ok, MLOD__VGT(least, M2));
-        move_bad = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, MLOD__VLT(least, big)),
-                                               MLOD__VGE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VADD(least, M2), tm),
-                                                                         MLOD__VSET(1.0f + 1.0f / 8192.0f)))));
         if (vn->frho == 0.0f) { /* every eye at the centre: no motion */
             move_ok = all;
-            move_bad = zero;
+        } else if (MLOD__VBITS(MLOD__VAND(MLOD__VOR(leaf, small), live))) {
+            /* motion (mlod__ball_motion): S turn / least (1 + cos(phi + b)) <= delta, turn = rho / t_m, t_m =
+               sqrt((d - r - rho)(d - r + rho)), compared as S rho d^2 / delta <= (least d^2 (1 + cos)) t_m; with
+               P = d sin phi, per half (x.w = +-x2): d^2 cos(phi - b) = x.w C + P g (the half counts unless below
+               0), d^2 cos(phi + b) = x.w C - P g, d^2 sin(phi + b) = P C + x.w g */
+            cm = MLOD__VSUB(d, r);
+            cmr = MLOD__VSUB(cm, rho);
+            Ym = MLOD__VMUL(cmr, MLOD__VADD(cm, rho));
+            m_ok = MLOD__VAND(okY, MLOD__VAND(MLOD__VGT(cmr, M), MLOD__VGE(MLOD__VMUL(sixty4, Ym), UU)));
+            m_inf = MLOD__VOR(MLOD__VLT(cmr, nM), MLOD__VLT(dg, nM));
+            tm = MLOD__VSQRT(MLOD__VAND(Ym, MLOD__VGT(Ym, zero)));
+            P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)));
+            least = big;
+            for (h = 0; h < 2; h++) {
+                mlod__vf xw = h ? MLOD__VSUB(zero, x2) : x2, xc = MLOD__VMUL(xw, C), pg = MLOD__VMUL(P, g);
+                mlod__vf e = MLOD__VADD(xc, pg), cs = MLOD__VSUB(xc, pg),
+                         sn = MLOD__VADD(MLOD__VMUL(P, C), MLOD__VMUL(xw, g));
+                mlod__vf one = MLOD__VADD(d2, cs), counts = MLOD__VGT(e, M2), mM2 = MLOD__VSUB(zero, M2);
+                mlod__vf bounded = MLOD__VAND(MLOD__VGT(one, M2), MLOD__VOR(MLOD__VGT(cs, M2), MLOD__VGT(sn, M2)));
+                mlod__vf endless = MLOD__VOR(MLOD__VLT(one, mM2), MLOD__VAND(MLOD__VLT(cs, mM2), MLOD__VLT(sn, mM2)));
+                m_ok = MLOD__VAND(m_ok, MLOD__VOR(counts, MLOD__VLT(e, mM2)));
+                m_ok = MLOD__VANDNOT(MLOD__VANDNOT(MLOD__VOR(bounded, endless), counts), m_ok);
+                m_inf = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, counts), endless));
+                least = mlod__vmin(least, mlod__vselect(MLOD__VAND(counts, bounded), one, big));
+            }
+            lhs = MLOD__VMUL(MLOD__VMUL(MLOD__VSET(vn->fkm), rho), d2);
+            move_ok = MLOD__VANDNOT(
+                m_inf, MLOD__VAND(m_ok, MLOD__VOR(MLOD__VEQ(least, big),
+                                                  MLOD__VLE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VSUB(least, M2), tm),
+                                                                            MLOD__VSET(1.0f - 1.0f / 8192.0f))))));
+            move_ok = MLOD__VAND(move_ok, MLOD__VGT(least, M2));
+            move_bad = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, MLOD__VLT(least, big)),
+                                                   MLOD__VGE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VADD(least, M2), tm),
+                                                                             MLOD__VSET(1.0f + 1.0f / 8192.0f)))));
         }
         /* scene leaves: drawn (2, 3) or split view (5) by the motion; others: small and moving little drawn,
            small and moving split view, large split scene (4) or middle (6) */
