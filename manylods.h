@@ -8203,18 +8203,18 @@ static void mlod__vnode_cone_set(mlod__vnode *vn)
     if (least >= 0.0) mlod__sin_cos(least, &vn->sin_least, &vn->cos_least);
 }
 
-/* The pair filter's constants of an inner view node (mlod__vpair): only
-   where delta > 0 and back faces are not culled (those pairs take the
-   exact path), and every constant lies within its guarded range; fast = 2
-   for a group, whose centre's view has a float filter (vn->pv, set
-   before). */
+/* The pair filter's constants of a view node (mlod__vpair): only where
+   delta > 0 and back faces are not culled (those pairs take the exact
+   path), and every constant lies within its guarded range; fast = 2 for a
+   group or a leaf, whose view (at its centre, its eye) has a float filter
+   (vn->pv, set before). */
 static void mlod__vnode_fast_set(const mlod__mv_job *job, mlod__vnode *vn)
 {
     const double lo = 1.0 / 1073741824.0, hi = 1073741824.0; /* 2^-30, 2^30 */
     double kc = 2.0 * job->S / job->epsilon, km = job->delta > 0.0 ? job->S / job->delta : 0.0;
     int k;
     vn->fast = 0;
-    if (job->exact || vn->leaf || !(job->delta > 0.0) || (vn->group && !vn->pv.fast.ok)) return;
+    if (job->exact || !(job->delta > 0.0) || ((vn->group || vn->leaf) && !vn->pv.fast.ok)) return;
     if (job->flags & MLOD_VIEW_CULL_BACKFACES && job->scene->cones) return;
     if (!(kc >= lo && kc <= hi && km >= lo && km <= hi && vn->radius <= hi)) return;
     if (vn->radius != 0.0 && !(vn->radius >= lo)) return;
@@ -8230,7 +8230,7 @@ static void mlod__vnode_fast_set(const mlod__mv_job *job, mlod__vnode *vn)
         vn->fcos_reach = (float)vn->cos_reach;
         vn->fsin_reach = (float)vn->sin_reach;
     }
-    vn->fast = vn->group ? 2 : 1;
+    vn->fast = vn->group || vn->leaf ? 2 : 1;
 }
 
 static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode *vn)
@@ -8476,12 +8476,12 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
    lane gives mlod__pair_action's answer where it can prove it, or says it
    is unsure; only then does the exact path run, so every build, with or
    without lanes, gives the same actions bit for bit (tests/test_megaviews.c
-   compares them).  It takes inner nodes, with delta > 0 and back faces
-   not culled (mlod__vnode_fast_set); it decides every step of
+   compares them).  It takes view nodes with delta > 0 and back faces not
+   culled (mlod__vnode_fast_set); it decides every step of
    mlod__pair_action but the last, the children's radii against the view
-   node's (MLOD__VPAIR_MIDDLE, done by the caller).  A group's pairs, once
-   not culled, take the cut's vector filter (mlod__vstatus) for the view at
-   its centre.
+   node's (MLOD__VPAIR_MIDDLE, done by the caller).  The pairs of a group
+   or a leaf, once not culled by the views' cone, take the cut's vector
+   filter (mlod__vstatus) for the view at its centre (a leaf's: its eye).
 
    The proof, with u = 2^-24 (float rounding) and each quantity's exact
    counterpart the real number that the double path approximates (within
@@ -8582,11 +8582,13 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
         keep =
             MLOD__VOR(MLOD__VLT(dg, nM), MLOD__VAND(okY, MLOD__VOR(MLOD__VGT(p, MLOD__VADD(q, M)), MLOD__VLT(sp, nM))));
     }
-    if (vn->fast == 2) { /* a group: as the cut for one view at its centre, coarse splits the
-                            scene node, any other status draws (vn->pv's filter proves it) */
+    if (vn->fast == 2) { /* a group or a leaf: as the cut for one view at its centre, coarse splits the
+                            scene node, any other status draws (vn->pv's filter proves it), but culled
+                            culls at a leaf (its map's view culls nothing here: back faces are not culled) */
         mlod__vf st = mlod__vstatus(&vn->pv.fast, sphere, NULL, leaf);
         code = MLOD__VAND(MLOD__VGT(st, zero), mlod__vselect(MLOD__VEQ(st, MLOD__VSET((float)MLOD_STATUS_COARSE)),
                                                              MLOD__VSET(4.0f), MLOD__VSET(2.0f)));
+        if (vn->leaf) code = mlod__vselect(MLOD__VEQ(st, MLOD__VSET((float)MLOD_STATUS_CULLED)), MLOD__VSET(1.0f), code);
     } else {
         /* cmax: the nearest eye, closest = d - rho; t_closest = sqrt((closest - r)(closest + r)); over the
            halves some eye reaches (x.w + rho + r >= 0), the least x.w - rho + t_closest (0 when not positive) */

@@ -1109,12 +1109,14 @@ static void test_cone_fast_paths(void)
    cones or none, per-view fields of view) and one it leaves (back faces
    culled) render the same atlas, channels and statistics with the filter
    and without it (mlod__megaviews_run's exact).  Pairs: inner view nodes
-   and scene nodes of every level, with epsilon and delta placed on the
-   pair's own cmax, cmin and motion and the views' cone reach on its own
-   angle, 2^-1 to 2^-50 to either side: every lane the filter decides takes
-   the exact path's action, and it decides most lanes of inner nodes (not
-   groups: those take the cut's filter, which test_cut measures) 2^-6 or
-   more from a finite threshold (else it buys nothing). */
+   and leaves and scene nodes of every level, with epsilon and delta placed
+   on the pair's own cmax, cmin and motion and the views' cone reach on its
+   own angle, 2^-1 to 2^-50 to either side: every lane the filter decides
+   takes the exact path's action, and it decides most lanes of inner nodes
+   (not groups: those take the cut's filter, which test_cut measures) 2^-6
+   or more from a finite threshold (else it buys nothing), and a quarter
+   of the lanes of leaves or more (their thresholds are placed as close by:
+   most lanes of a render's leaves are decided). */
 static void test_pair_filter(const mlod_tree *scene)
 {
     static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
@@ -1164,10 +1166,12 @@ static void test_pair_filter(const mlod_tree *scene)
         mlod__mv_job job = pair_job(scene, t, 11, 0);
         uint64_t rng = 77;
         uint32_t trial, wrong = 0, lanes = 0, decided = 0, far = 0, far_decided = 0, kinds[6] = {0, 0, 0, 0, 0, 0};
+        uint32_t leaves = 0, leaves_decided = 0;
         if (!t) return;
         for (trial = 0; trial < 30000 && wrong < 3; trial++) {
             uint32_t inner = t->eyes->leaf_count - 1, level = (uint32_t)(scene_rng_double(&rng) * 14.0);
             uint32_t vi = (uint32_t)(scene_rng_double(&rng) * inner), si, lane[MLOD__VLANES], l, which = trial % 4;
+            if (trial % 7 == 3) vi = inner + (uint32_t)(scene_rng_double(&rng) * t->eyes->leaf_count); /* a leaf */
             uint32_t first_s = (1u << (level < 13 ? level : 13)) - 1;
             double x[3], d, r, rho, cmax, cmin, motion, T = 0.0, off;
             const float *sphere;
@@ -1217,10 +1221,12 @@ static void test_pair_filter(const mlod_tree *scene)
             exact = mlod__pair_action(&job, &vn, si);
             fast = mlod__vpair_action(scene, &vn, si, codes[0]);
             lanes++;
-            placed = !vn.group && fabs(off) >= 1.0 / 64.0 && fabs(off) < 1.0;
+            placed = !vn.group && !vn.leaf && fabs(off) >= 1.0 / 64.0 && fabs(off) < 1.0;
+            leaves += vn.leaf;
             far += placed;
             if (fast < 0) continue;
             decided++;
+            leaves_decided += vn.leaf;
             kinds[codes[0] - 1]++;
             far_decided += placed;
             if (fast != exact && wrong++ < 3)
@@ -1234,6 +1240,9 @@ static void test_pair_filter(const mlod_tree *scene)
               "pair filter: decides %u of %u lanes of inner nodes 2^-6 to 2^-1 from a finite threshold, and every "
               "kind of action",
               far_decided, far);
+        CHECK(leaves > 1000 && leaves_decided >= 0.25 * leaves,
+              "pair filter: decides %u of %u lanes of view leaves (the cut's filter for the leaf's eye)", leaves_decided,
+              leaves);
         mlod_view_tree_destroy(t);
         free_views(&v);
     }
