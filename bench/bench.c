@@ -103,6 +103,10 @@
 #endif
 
 #define BENCH_MAX_LIST 8
+/* Grouping radii the views section sweeps at its most views, as fractions
+   of the room's diameter (1/200 is the scaling table's). */
+static const double group_sweep_fractions[] = {0.0, 1.0 / 400.0, 1.0 / 200.0, 1.0 / 100.0, 1.0 / 50.0, 1.0 / 25.0};
+#define BENCH_GROUP_SWEEP ((int)(sizeof group_sweep_fractions / sizeof group_sweep_fractions[0]))
 #define BENCH_MODES 4
 #define BENCH_MAX_FRAMES 16
 #define BENCH_BIAS 0.002      /* shadow test bias: this fraction of the scene diameter */
@@ -324,6 +328,16 @@ typedef struct bench {
         metrics mega_m, per_m, group_m;
     } views[BENCH_MAX_LIST];
     int views_rows;
+    /* the grouping radius's cost and accuracy at the most views: radii as fractions of the room's diameter
+       (0: ungrouped), the first render's time, pairs, peak bytes and errors */
+    struct group_sweep_row {
+        double fraction, ms, pairs, peak;
+        metrics m;
+    } group_sweep[BENCH_GROUP_SWEEP];
+    int group_sweep_rows;
+    uint32_t group_sweep_views;
+    double views_leaf_radius;    /* the median radius of the room's scene leaves */
+    double views_scene_diameter; /* the room's diameter */
     char views_note[240];
     double views_scene_bytes; /* the room's tree the views render */
     double views_scene_nodes; /* its node count */
@@ -2101,6 +2115,57 @@ static void views_mask_reference(const mlod_atlas *atlas, const mlod_view *views
     }
 }
 
+static int compare_floats(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The median radius of a tree's leaves. */
+static double median_leaf_radius(const mlod_tree *tree)
+{
+    float *r = (float *)checked_malloc(sizeof(float) * tree->leaf_count);
+    uint32_t i;
+    double m;
+    for (i = 0; i < tree->leaf_count; i++) r[i] = tree->spheres[4 * ((size_t)tree->leaf_count - 1 + i) + 3];
+    qsort(r, tree->leaf_count, sizeof(float), compare_floats);
+    m = r[tree->leaf_count / 2];
+    free(r);
+    return m;
+}
+
+/* The grouping radius's cost and accuracy at one view count: one render
+   per radius (after the scaling table's renders of the same views, which
+   warm it up), its errors against the exact maps (reference). */
+static void views_group_sweep(bench *b, mlod_atlas *atlas, const mlod_tree *tree, const mlod_view_tree *vt,
+                              const mlod_megaviews_params *params, const float *reference, const mlod_view *views,
+                              double diameter, const float *receivers)
+{
+    const config *c = &b->cfg;
+    int k;
+    b->group_sweep_views = vt->view_count;
+    b->group_sweep_rows = 0;
+    for (k = 0; k < BENCH_GROUP_SWEEP; k++) {
+        struct group_sweep_row *g = &b->group_sweep[b->group_sweep_rows++];
+        mlod_megaviews_params mp = *params;
+        mlod_megaviews_stats st;
+        mlod_error e;
+        double t0;
+        mp.group_radius = (float)(group_sweep_fractions[k] * diameter);
+        t0 = now_ms();
+        if (mlod_megaviews_render(atlas, tree, vt, &mp, &st, &e) != MLOD_OK) fail("megaviews: %s", e.message);
+        g->ms = now_ms() - t0;
+        g->fraction = group_sweep_fractions[k];
+        g->pairs = (double)st.pairs;
+        g->peak = (double)st.peak_bytes;
+        metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
+                        &g->m, NULL);
+        printf("views %7u, group radius %.4g of the diameter: %.0f ms, %.0f pairs, depth RMS %.2f%%, shadow %.2f%%\n",
+               vt->view_count, g->fraction, g->ms, g->pairs, 100.0 * g->m.depth_rms, 100.0 * g->m.shadow_disagreement);
+        fflush(stdout);
+    }
+}
+
 static void run_views(bench *b)
 {
     const config *c = &b->cfg;
@@ -2146,6 +2211,8 @@ static void run_views(bench *b)
     group_radius = (float)(diameter / 200.0);
     b->views_scene_bytes = (double)tree->bytes;
     b->views_scene_nodes = (double)tree->node_count;
+    b->views_leaf_radius = median_leaf_radius(tree);
+    b->views_scene_diameter = diameter;
     views_check_exact(b, tree, eyes, c->view_counts[0] < 1024 ? c->view_counts[0] : 1024, eps);
     snprintf(b->views_note, sizeof b->views_note,
              "room (%u triangles), N = %u, epsilon %g px, delta %g px; lights %.3g above random surface points, "
@@ -2275,6 +2342,10 @@ static void run_views(bench *b)
                    100.0 * row->per_m.shadow_disagreement);
         printf("\n");
         fflush(stdout);
+        if (v == c->view_count_n - 1) {
+            mp.group_radius = 0.0f;
+            views_group_sweep(b, atlas, tree, vt, &mp, reference, views, diameter, receivers);
+        }
         free(reference);
         mlod_atlas_destroy(atlas);
         mlod_view_tree_destroy(vt);
@@ -2755,6 +2826,26 @@ static void write_views_markdown(const bench *b, FILE *f)
         fprintf(f, "| %u | %.0f | %.0f | %.0f | %.2f | %.2f | %.2f |\n", r->views, r->group_ms, r->group_peak / 1048576.0,
                 r->group_pairs / r->views, 100.0 * r->group_m.depth_rms, 100.0 * r->group_m.hole_rate,
                 100.0 * r->group_m.shadow_disagreement);
+    }
+    if (b->group_sweep_rows) {
+        fprintf(f, "\nThe grouping radius (group_radius) at %u lights, what it costs and what it buys: one render each, "
+                   "right after the table's renders of the same lights; radii in fractions of the room's diameter and "
+                   "in the median radius of its scene leaves (%.3g); errors as above:\n\n| group radius | in scene "
+                   "leaves | ms | pairs per view | peak MB | depth RMS %% | holes %% | shadow %% |\n"
+                   "|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+                b->group_sweep_views, b->views_leaf_radius);
+        for (k = 0; k < b->group_sweep_rows; k++) {
+            const struct group_sweep_row *g = &b->group_sweep[k];
+            char radius[32];
+            if (g->fraction > 0.0)
+                snprintf(radius, sizeof radius, "1/%.0f", 1.0 / g->fraction);
+            else
+                snprintf(radius, sizeof radius, "0 (ungrouped)");
+            fprintf(f, "| %s | %.1f | %.0f | %.0f | %.1f | %.2f | %.2f | %.2f |\n", radius,
+                    g->fraction * b->views_scene_diameter / b->views_leaf_radius, g->ms, g->pairs / b->group_sweep_views,
+                    g->peak / 1048576.0, 100.0 * g->m.depth_rms, 100.0 * g->m.hole_rate,
+                    100.0 * g->m.shadow_disagreement);
+        }
     }
     fprintf(f, "\nSizing (mlod_megaviews_bound, before a render): the render's peak beside the bound for the most pairs "
                "one view node classified (stats.node_pairs, as a program reads it after a frame) and the bound for any "
