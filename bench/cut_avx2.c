@@ -1,6 +1,7 @@
 /* bench/cut_avx2.c - the library compiled a second time, privately
    (MANYLODS_STATIC), with the flags the Makefile gives this file
-   (-mavx2 -mfma: the cut's and the splat's float filters in 8 lanes); see cut_avx2.h. */
+   (-mavx2 -mfma: the cut's, the splat's and MegaViews' float filters in 8
+   lanes); see cut_avx2.h. */
 #define MANYLODS_STATIC
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
@@ -51,6 +52,13 @@ mlod_result bench_avx2_splat(const bench_avx2_cut *cut, mlod_atlas *atlas, const
                              const mlod_view *views, const mlod_parallel *parallel, mlod_error *error)
 {
     return mlod_splat(atlas, tree, cut->cut, views, parallel, error);
+}
+
+mlod_result bench_avx2_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
+                                        const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
+                                        mlod_error *error)
+{
+    return mlod_megaviews_render(atlas, scene, views, params, stats, error);
 }
 
 uint64_t bench_avx2_cut_hash(const bench_avx2_cut *cut)

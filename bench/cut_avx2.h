@@ -1,4 +1,4 @@
-/* bench/cut_avx2.h - the cut and splat of a second, private copy of the library
+/* bench/cut_avx2.h - the cut, splat and MegaViews of a second, private copy of the library
    compiled with -mavx2 -mfma (bench/cut_avx2.c), for the Targets row that
    says what those flags buy on the same frames as the portable build.  The
    tree and the parallel hook are the main copy's: plain data and a
@@ -36,6 +36,11 @@ mlod_result bench_avx2_cut_update(bench_avx2_cut *cut, const mlod_tree *tree, co
    (plain data); fills error on failure. */
 mlod_result bench_avx2_splat(const bench_avx2_cut *cut, mlod_atlas *atlas, const mlod_tree *tree,
                              const mlod_view *views, const mlod_parallel *parallel, mlod_error *error);
+/* mlod_megaviews_render of this copy, over the main copy's trees, into an
+   atlas of the main copy; fills error on failure. */
+mlod_result bench_avx2_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
+                                        const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
+                                        mlod_error *error);
 /* bench_hash_cut_view over every view, from 1469598103934665603. */
 uint64_t bench_avx2_cut_hash(const bench_avx2_cut *cut);
 void bench_avx2_cut_destroy(bench_avx2_cut *cut);
