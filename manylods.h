@@ -7147,6 +7147,41 @@ static void mlod__draw_exact(const mlod__band *band, const mlod__pview *pv, int 
     }
 }
 
+/* A scene node's depth in the paraboloid maps of a view node with this
+   centre: the distance from it to the node's centre (as mlod__image_discs
+   measures it). */
+/* GLSL twin: node_distance */
+static float mlod__node_distance(const mlod_tree *scene, uint32_t node, const double *centre)
+{
+    const float *sphere = scene->spheres + 4 * (size_t)node;
+    double x[3];
+    int k;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - centre[k];
+    return (float)mlod__length3(x);
+}
+
+/* mlod__node_distance of nodes[0 .. n) into out, two at a time where the
+   build has double lanes (each lane the same operations in the same order:
+   the same bits). */
+static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, uint32_t n, const double *centre,
+                                 float *out)
+{
+    uint32_t l = 0;
+#ifdef MLOD__VD
+    for (; l + 2 <= n; l += 2) {
+        const float *a = scene->spheres + 4 * (size_t)nodes[l], *b = scene->spheres + 4 * (size_t)nodes[l + 1];
+        mlod__vd x = MLOD__DSUB(MLOD__DPAIR(a[0], b[0]), MLOD__DSPLAT(centre[0]));
+        mlod__vd y = MLOD__DSUB(MLOD__DPAIR(a[1], b[1]), MLOD__DSPLAT(centre[1]));
+        mlod__vd z = MLOD__DSUB(MLOD__DPAIR(a[2], b[2]), MLOD__DSPLAT(centre[2]));
+        double d[2];
+        MLOD__DSTORE(d, MLOD__DSQRT(MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, x), MLOD__DMUL(y, y)), MLOD__DMUL(z, z))));
+        out[l] = (float)d[0];
+        out[l + 1] = (float)d[1];
+    }
+#endif
+    for (; l < n; l++) out[l] = mlod__node_distance(scene, nodes[l], centre);
+}
+
 /* Nodes a filtered draw takes at once (mlod__draw_filtered): enough
    independent lanes for the processor to overlap their long chains of
    divisions and square roots. */
@@ -7178,28 +7213,17 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
         mlod__fast_discs(band->fast, &band->fast->subs[s], spheres, ids, padded, band->disc_scale, box, MLOD__BOX_STRIDE);
     else
         for (l = 0; l < 6 * MLOD__BOX_STRIDE; l++) box[l] = NAN;
-    l = 0;
-#ifdef MLOD__VD
-    /* the double path's depths, as it computes them, two at a time (no
-       branch: the square roots overlap) */
-    for (; l + 2 <= count && pv->kind[s] == MLOD_VIEW_PARABOLOID; l += 2) {
-        const float *a = spheres + 4 * (size_t)nodes[l], *b = spheres + 4 * (size_t)nodes[l + 1];
-        mlod__vd x = MLOD__DSUB(MLOD__DPAIR(a[0], b[0]), MLOD__DSPLAT(pv->f.eye[0]));
-        mlod__vd y = MLOD__DSUB(MLOD__DPAIR(a[1], b[1]), MLOD__DSPLAT(pv->f.eye[1]));
-        mlod__vd z = MLOD__DSUB(MLOD__DPAIR(a[2], b[2]), MLOD__DSPLAT(pv->f.eye[2]));
-        double d[2];
-        MLOD__DSTORE(d, MLOD__DSQRT(MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, x), MLOD__DMUL(y, y)), MLOD__DMUL(z, z))));
-        depth[l] = (float)d[0];
-        depth[l + 1] = (float)d[1];
-    }
-#endif
-    for (; l < count; l++) {
-        const float *sphere = spheres + 4 * (size_t)nodes[l];
-        double x[3];
-        int k;
-        for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
-        depth[l] = (float)(pv->kind[s] == MLOD_VIEW_PERSPECTIVE ? mlod__dot3(x, sub->forward) : mlod__length3(x));
-    }
+    /* the double path's depths, as it computes them */
+    if (pv->kind[s] == MLOD_VIEW_PARABOLOID)
+        mlod__node_distances(band->tree, nodes, count, pv->f.eye, depth);
+    else
+        for (l = 0; l < count; l++) {
+            const float *sphere = spheres + 4 * (size_t)nodes[l];
+            double x[3];
+            int k;
+            for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+            depth[l] = (float)(pv->kind[s] == MLOD_VIEW_PERSPECTIVE ? mlod__dot3(x, sub->forward) : mlod__length3(x));
+        }
     for (l = 0; l < count; l++) {
         uint32_t col = 0, row = 0;
         int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale, clip, &col, &row);
@@ -8792,19 +8816,6 @@ static int mlod__mv_push(uint32_t *list, size_t *count, size_t capacity, int wit
     return 1;
 }
 
-/* A scene node's depth in the paraboloid maps of a view node with this
-   centre: the distance from it to the node's centre (as mlod__image_discs
-   measures it). */
-/* GLSL twin: node_distance */
-static float mlod__node_distance(const mlod_tree *scene, uint32_t node, const double *centre)
-{
-    const float *sphere = scene->spheres + 4 * (size_t)node;
-    double x[3];
-    int k;
-    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - centre[k];
-    return (float)mlod__length3(x);
-}
-
 static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *centre)
 {
     int k;
@@ -8817,15 +8828,21 @@ static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *cent
 static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, const float *parent_depth,
                              const uint32_t *parent_ids, uint32_t node)
 {
-    uint32_t width = 2 * job->resolution, row, col;
+    uint32_t width = 2 * job->resolution, row, col, n, l, cols[MLOD__DRAW_CHUNK], ids[MLOD__DRAW_CHUNK];
+    float depth[MLOD__DRAW_CHUNK];
     double centre[3];
     mlod__mv_centre(job, node, centre);
     for (row = 0; row < job->resolution; row++)
-        for (col = 0; col < width; col++) {
-            size_t from = (size_t)row * width + col;
-            uint32_t id = parent_ids[from];
-            if (parent_depth[from] < INFINITY)
-                mlod__band_set(band, (size_t)row * band->stride + col, mlod__node_distance(job->scene, id, centre), id);
+        for (col = 0; col < width;) { /* the row's drawn pixels, up to a chunk at a time */
+            for (n = 0; col < width && n < MLOD__DRAW_CHUNK; col++) {
+                size_t from = (size_t)row * width + col;
+                if (parent_depth[from] < INFINITY) {
+                    cols[n] = col;
+                    ids[n++] = parent_ids[from];
+                }
+            }
+            mlod__node_distances(job->scene, ids, n, centre, depth);
+            for (l = 0; l < n; l++) mlod__band_set(band, (size_t)row * band->stride + cols[l], depth[l], ids[l]);
         }
 }
 
