@@ -440,8 +440,8 @@
      g away, with the parallax that brings, and no delta bound holds
      within a group.  README.md measures the error against exact maps.
      Speed: with delta > 0 and without back-face culling, the pairs of
-     inner view nodes (groups too) are decided several at a time in float
-     (4 lanes with SSE2 or NEON, 8 with AVX), each decision taken only
+     every view node (inner, group or leaf) are decided several at a time
+     in float (4 lanes with SSE2 or NEON, 8 with AVX), each decision taken only
      where it clears its threshold by a margin proven to exceed the float
      rounding (under 1 % of the pairs in README.md's benchmark fall within
      one and take the exact double path); pairs are still listed and drawn
@@ -484,7 +484,8 @@
      anything (8 bytes per pixel), two levels at a time; below, each of the
      64 subtree walks holds the scene nodes handed down along its path (4
      bytes each, room for four per scene node handed to its root plus 4096
-     first, twice as much when short: the walk runs again) and one map
+     first, twice as much when short: the walk goes on from where it
+     stopped, the path to it classified again) and one map
      per level (8 bytes per pixel).  It reports its peak
      (mlod_megaviews_stats.peak_bytes: 9 to 13 MB for 64 k to 1 M
      lights in README.md's benchmark, against the atlas's 4 bytes per
