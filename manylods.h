@@ -7148,40 +7148,10 @@ static void mlod__draw_exact(const mlod__band *band, const mlod__pview *pv, int 
     }
 }
 
-/* A scene node's depth in the paraboloid maps of a view node with this
-   centre: the distance from it to the node's centre (as mlod__image_discs
-   measures it). */
-/* GLSL twin: node_distance */
-static float mlod__node_distance(const mlod_tree *scene, uint32_t node, const double *centre)
-{
-    const float *sphere = scene->spheres + 4 * (size_t)node;
-    double x[3];
-    int k;
-    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - centre[k];
-    return (float)mlod__length3(x);
-}
-
-/* mlod__node_distance of nodes[0 .. n) into out, two at a time where the
-   build has double lanes (each lane the same operations in the same order:
-   the same bits). */
+/* mlod__node_distance of a list of nodes (defined with MegaViews, below,
+   where its GLSL twin's order puts it). */
 static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, uint32_t n, const double *centre,
-                                 float *out)
-{
-    uint32_t l = 0;
-#ifdef MLOD__VD
-    for (; l + 2 <= n; l += 2) {
-        const float *a = scene->spheres + 4 * (size_t)nodes[l], *b = scene->spheres + 4 * (size_t)nodes[l + 1];
-        mlod__vd x = MLOD__DSUB(MLOD__DPAIR(a[0], b[0]), MLOD__DSPLAT(centre[0]));
-        mlod__vd y = MLOD__DSUB(MLOD__DPAIR(a[1], b[1]), MLOD__DSPLAT(centre[1]));
-        mlod__vd z = MLOD__DSUB(MLOD__DPAIR(a[2], b[2]), MLOD__DSPLAT(centre[2]));
-        double d[2];
-        MLOD__DSTORE(d, MLOD__DSQRT(MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, x), MLOD__DMUL(y, y)), MLOD__DMUL(z, z))));
-        out[l] = (float)d[0];
-        out[l + 1] = (float)d[1];
-    }
-#endif
-    for (; l < n; l++) out[l] = mlod__node_distance(scene, nodes[l], centre);
-}
+                                 float *out);
 
 /* Nodes a filtered draw takes at once (mlod__draw_filtered): enough
    independent lanes for the processor to overlap their long chains of
@@ -8815,6 +8785,41 @@ static int mlod__mv_push(uint32_t *list, size_t *count, size_t capacity, int wit
         list[*count] = scene;
     ++*count;
     return 1;
+}
+
+/* A scene node's depth in the paraboloid maps of a view node with this
+   centre: the distance from it to the node's centre (as mlod__image_discs
+   measures it). */
+/* GLSL twin: node_distance */
+static float mlod__node_distance(const mlod_tree *scene, uint32_t node, const double *centre)
+{
+    const float *sphere = scene->spheres + 4 * (size_t)node;
+    double x[3];
+    int k;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - centre[k];
+    return (float)mlod__length3(x);
+}
+
+/* mlod__node_distance of nodes[0 .. n) into out, two at a time where the
+   build has double lanes (each lane the same operations in the same order:
+   the same bits). */
+static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, uint32_t n, const double *centre,
+                                 float *out)
+{
+    uint32_t l = 0;
+#ifdef MLOD__VD
+    for (; l + 2 <= n; l += 2) {
+        const float *a = scene->spheres + 4 * (size_t)nodes[l], *b = scene->spheres + 4 * (size_t)nodes[l + 1];
+        mlod__vd x = MLOD__DSUB(MLOD__DPAIR(a[0], b[0]), MLOD__DSPLAT(centre[0]));
+        mlod__vd y = MLOD__DSUB(MLOD__DPAIR(a[1], b[1]), MLOD__DSPLAT(centre[1]));
+        mlod__vd z = MLOD__DSUB(MLOD__DPAIR(a[2], b[2]), MLOD__DSPLAT(centre[2]));
+        double d[2];
+        MLOD__DSTORE(d, MLOD__DSQRT(MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, x), MLOD__DMUL(y, y)), MLOD__DMUL(z, z))));
+        out[l] = (float)d[0];
+        out[l + 1] = (float)d[1];
+    }
+#endif
+    for (; l < n; l++) out[l] = mlod__node_distance(scene, nodes[l], centre);
 }
 
 static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *centre)
