@@ -334,6 +334,10 @@ typedef struct bench {
     struct group_sweep_row {
         double fraction, ms, pairs, peak;
         metrics m;
+        /* against the ungrouped render (the first row), over each light's hemisphere: depth RMS relative to the
+           diameter over pixels both drew, and the pixels whose depth differs by more than 1 % of the diameter
+           or that only one drew */
+        double rms_ungrouped, off_ungrouped;
     } group_sweep[BENCH_GROUP_SWEEP];
     int group_sweep_rows;
     uint32_t group_sweep_views;
@@ -2152,11 +2156,38 @@ static double median_leaf_radius(const mlod_tree *tree)
 /* The grouping radius's cost and accuracy at one view count: one render
    per radius (after the scaling table's renders of the same views, which
    warm it up), its errors against the exact maps (reference). */
+/* What grouping alone moves: the atlas against the ungrouped render's
+   depths (ungrouped), over the pixels the exact maps keep (reference not
+   NaN: each light's hemisphere); see struct group_sweep_row. */
+static void views_against_ungrouped(const mlod_atlas *atlas, const float *ungrouped, const float *reference,
+                                    double diameter, double *rms, double *off)
+{
+    size_t p, pixels = (size_t)atlas->width * atlas->height, both = 0, counted = 0, differ = 0;
+    double sum = 0.0;
+    for (p = 0; p < pixels; p++) {
+        float a = atlas->depth[p], u = ungrouped[p];
+        int has_a = a < INFINITY, has_u = u < INFINITY;
+        if (reference[p] != reference[p] || (!has_a && !has_u)) continue;
+        counted++;
+        if (has_a && has_u) {
+            double d = ((double)a - u) / diameter;
+            both++;
+            sum += d * d;
+            differ += fabs(d) > 0.01;
+        } else
+            differ++;
+    }
+    *rms = both ? sqrt(sum / (double)both) : 0.0;
+    *off = counted ? (double)differ / (double)counted : 0.0;
+}
+
 static void views_group_sweep(bench *b, mlod_atlas *atlas, const mlod_tree *tree, const mlod_view_tree *vt,
                               const mlod_megaviews_params *params, const float *reference, const mlod_view *views,
                               double diameter, const float *receivers)
 {
     const config *c = &b->cfg;
+    size_t pixels = (size_t)atlas->width * atlas->height;
+    float *ungrouped = (float *)checked_malloc(sizeof(float) * pixels);
     int k;
     b->group_sweep_views = vt->view_count;
     b->group_sweep_rows = 0;
@@ -2175,10 +2206,16 @@ static void views_group_sweep(bench *b, mlod_atlas *atlas, const mlod_tree *tree
         g->peak = (double)st.peak_bytes;
         metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
                         &g->m, NULL);
-        printf("views %7u, group radius %.4g of the diameter: %.0f ms, %.0f pairs, depth RMS %.2f%%, shadow %.2f%%\n",
-               vt->view_count, g->fraction, g->ms, g->pairs, 100.0 * g->m.depth_rms, 100.0 * g->m.shadow_disagreement);
+        if (k == 0) /* group_sweep_fractions[0] is 0: the ungrouped render */
+            memcpy(ungrouped, atlas->depth, sizeof(float) * pixels);
+        views_against_ungrouped(atlas, ungrouped, reference, diameter, &g->rms_ungrouped, &g->off_ungrouped);
+        printf("views %7u, group radius %.4g of the diameter: %.0f ms, %.0f pairs, depth RMS %.2f%%, shadow %.2f%%; "
+               "against ungrouped: depth RMS %.3f%%, pixels off %.2f%%\n",
+               vt->view_count, g->fraction, g->ms, g->pairs, 100.0 * g->m.depth_rms, 100.0 * g->m.shadow_disagreement,
+               100.0 * g->rms_ungrouped, 100.0 * g->off_ungrouped);
         fflush(stdout);
     }
+    free(ungrouped);
 }
 
 static void run_views(bench *b)
@@ -2863,9 +2900,12 @@ static void write_views_markdown(const bench *b, FILE *f)
     if (b->group_sweep_rows) {
         fprintf(f, "\nThe grouping radius (group_radius) at %u lights, what it costs and what it buys: one render each, "
                    "right after the table's renders of the same lights; radii in fractions of the room's diameter and "
-                   "in the median radius of its scene leaves (%.3g); errors as above:\n\n| group radius | in scene "
-                   "leaves | ms | pairs per view | peak MB | depth RMS %% | holes %% | shadow %% |\n"
-                   "|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+                   "in the median radius of its scene leaves (%.3g); errors against the exact maps as above, and "
+                   "against the ungrouped render (over each light's hemisphere: depth RMS over the pixels both drew, "
+                   "and the pixels whose depth differs by more than 1 %% of the diameter or that only one drew), which "
+                   "isolates what grouping moves from what the maps' resolution and epsilon do:\n\n| group radius | "
+                   "in scene leaves | ms | pairs per view | peak MB | depth RMS %% | holes %% | shadow %% | against "
+                   "ungrouped: depth RMS %% | pixels off %% |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
                 b->group_sweep_views, b->views_leaf_radius);
         for (k = 0; k < b->group_sweep_rows; k++) {
             const struct group_sweep_row *g = &b->group_sweep[k];
@@ -2874,10 +2914,10 @@ static void write_views_markdown(const bench *b, FILE *f)
                 snprintf(radius, sizeof radius, "1/%.0f", 1.0 / g->fraction);
             else
                 snprintf(radius, sizeof radius, "0 (ungrouped)");
-            fprintf(f, "| %s | %.1f | %.0f | %.0f | %.1f | %.2f | %.2f | %.2f |\n", radius,
+            fprintf(f, "| %s | %.1f | %.0f | %.0f | %.1f | %.2f | %.2f | %.2f | %.3f | %.2f |\n", radius,
                     g->fraction * b->views_scene_diameter / b->views_leaf_radius, g->ms, g->pairs / b->group_sweep_views,
                     g->peak / 1048576.0, 100.0 * g->m.depth_rms, 100.0 * g->m.hole_rate,
-                    100.0 * g->m.shadow_disagreement);
+                    100.0 * g->m.shadow_disagreement, 100.0 * g->rms_ungrouped, 100.0 * g->off_ungrouped);
         }
     }
     fprintf(f, "\nSizing (mlod_megaviews_bound, before a render): the render's peak beside the bound for the most pairs "
