@@ -2153,9 +2153,6 @@ static double median_leaf_radius(const mlod_tree *tree)
     return m;
 }
 
-/* The grouping radius's cost and accuracy at one view count: one render
-   per radius (after the scaling table's renders of the same views, which
-   warm it up), its errors against the exact maps (reference). */
 /* What grouping alone moves: the atlas against the ungrouped render's
    depths (ungrouped), over the pixels the exact maps keep (reference not
    NaN: each light's hemisphere); see struct group_sweep_row. */
@@ -2181,6 +2178,10 @@ static void views_against_ungrouped(const mlod_atlas *atlas, const float *ungrou
     *off = counted ? (double)differ / (double)counted : 0.0;
 }
 
+/* The grouping radius's cost and accuracy at one view count: one render
+   per radius (after the scaling table's renders of the same views, which
+   warm it up), its errors against the exact maps (reference) and against the
+   ungrouped render (the first radius, 0). */
 static void views_group_sweep(bench *b, mlod_atlas *atlas, const mlod_tree *tree, const mlod_view_tree *vt,
                               const mlod_megaviews_params *params, const float *reference, const mlod_view *views,
                               double diameter, const float *receivers)
