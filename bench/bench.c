@@ -2120,12 +2120,6 @@ static void views_mask_reference(const mlod_atlas *atlas, const mlod_view *views
     }
 }
 
-static int compare_floats(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* FNV-1a over the bits of n floats (equal hashes: equal arrays, but for a
    one in 2^64 chance). */
 static uint64_t hash_floats(const float *x, size_t n)
@@ -2143,11 +2137,10 @@ static uint64_t hash_floats(const float *x, size_t n)
 /* The median radius of a tree's leaves. */
 static double median_leaf_radius(const mlod_tree *tree)
 {
-    float *r = (float *)checked_malloc(sizeof(float) * tree->leaf_count);
+    double *r = (double *)checked_malloc(sizeof(double) * tree->leaf_count), m;
     uint32_t i;
-    double m;
     for (i = 0; i < tree->leaf_count; i++) r[i] = tree->spheres[4 * ((size_t)tree->leaf_count - 1 + i) + 3];
-    qsort(r, tree->leaf_count, sizeof(float), compare_floats);
+    qsort(r, tree->leaf_count, sizeof(double), compare_doubles);
     m = r[tree->leaf_count / 2];
     free(r);
     return m;
