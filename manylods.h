@@ -586,7 +586,11 @@ MANYLODS_DEF mlod_allocator mlod_default_allocator(void);
 /* A parallel-for: run(user, count, task, context) must call
    task(context, i) once for every i in [0, count), from any threads in any
    order, and return when all calls have returned.  Tasks never allocate and
-   never call back into the hook. */
+   never call back into the hook.  A task takes up to about 80 KiB of stack
+   (mlod_megaviews_render's: 60 KiB at a million views, 1 KiB more for
+   each doubling of them), which every usual thread has (glibc's default
+   is 8 MiB, musl's 128 KiB): only a fiber or a thread created with a
+   small stack needs to mind it. */
 typedef void mlod_task_fn(void *context, uint32_t index);
 typedef struct mlod_parallel {
     void (*run)(void *user, uint32_t count, mlod_task_fn *task, void *context);
@@ -8160,6 +8164,7 @@ typedef struct mlod__mv_job {
     struct mlod__mv_walk *walks;
     uint32_t walk_level, levels;
     size_t walk_room; /* a walk's first list stack: 4 entries per scene node handed to it, and this */
+    uint32_t descend_room; /* the most pairs a descent's group of roots takes (mlod__mv_descend) */
     int exact;        /* no float filter (mlod__vpair): every pair by the exact path (the tests compare) */
 } mlod__mv_job;
 
@@ -8697,9 +8702,21 @@ static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uin
 }
 #endif
 
-/* The actions of n pairs (scene nodes nodes[0 .. n) with view node vn),
-   as mlod__pair_action gives them: through the float filter where vn has
-   one and the build has lanes, the exact path for the lanes it leaves. */
+/* A descent's room (mlod__mv_descend): the most pairs one group of roots
+   takes, all its levels (15 bytes of stack each), and the most roots in a
+   group. */
+#define MLOD__MV_ROOM 2048u
+#define MLOD__MV_GROUP 256u
+#define MLOD__MV_LEVELS 40u /* the scene tree's depth (< 33) and more */
+
+/* The actions of n <= MLOD__MV_ROOM pairs (scene nodes nodes[0 .. n) with
+   view node vn), as mlod__pair_action gives them: through the float
+   filter where vn has one and the build has lanes, the exact path for the
+   lanes it leaves.  The lanes' codes first, for all the pairs, then the
+   codes as actions, then the few codes that need more (the children's
+   radii, or the exact path): no loop over all the pairs branches on one
+   pair's code, so the processor runs ahead through a level's batches
+   instead of stopping at each mispredicted branch. */
 static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, const uint32_t *nodes, uint32_t n,
                                uint8_t *actions)
 {
@@ -8707,18 +8724,28 @@ static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, c
 #ifdef MLOD__VLANES
     if (vn->fast && n > 1) {
         const mlod_tree *scene = job->scene;
-        uint32_t lanes[MLOD__VLANES], l;
+        uint32_t lanes[MLOD__VLANES], l, m = 0;
+        uint16_t odd[MLOD__MV_ROOM];
         uint8_t codes[MLOD__VLANES];
+        MANYLODS_ASSERT(n <= MLOD__MV_ROOM);
         for (; i < n; i += MLOD__VLANES) {
             mlod__vf sphere[4];
-            uint32_t m = n - i < MLOD__VLANES ? n - i : MLOD__VLANES;
-            for (l = 0; l < MLOD__VLANES; l++) lanes[l] = nodes[i + (l < m ? l : 0)];
+            uint32_t k = n - i < MLOD__VLANES ? n - i : MLOD__VLANES;
+            for (l = 0; l < MLOD__VLANES; l++) lanes[l] = nodes[i + (l < k ? l : 0)];
             mlod__vload(scene->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
             mlod__vbytes(mlod__vpair(vn, sphere, mlod__vleaf(lanes, scene->leaf_count - 1)), codes);
-            for (l = 0; l < m; l++) {
-                int a = mlod__vpair_action(scene, vn, lanes[l], codes[l]);
-                actions[i + l] = (uint8_t)(a >= 0 ? a : mlod__pair_action(job, vn, lanes[l]));
-            }
+            memcpy(actions + i, codes, k);
+        }
+        for (i = 0; i < n; i++) { /* code - 1, and the unsure (0) and middle codes listed */
+            uint32_t code = actions[i];
+            odd[m] = (uint16_t)i;
+            m += code == 0 || code == MLOD__VPAIR_MIDDLE;
+            actions[i] = (uint8_t)(code - 1);
+        }
+        for (l = 0; l < m; l++) {
+            uint32_t k = odd[l];
+            int a = mlod__vpair_action(scene, vn, nodes[k], (uint8_t)(actions[k] + 1));
+            actions[k] = (uint8_t)(a >= 0 ? a : mlod__pair_action(job, vn, nodes[k]));
         }
         return;
     }
@@ -8771,20 +8798,6 @@ static void mlod__mv_next(const mlod__mv_job *job, mlod__mv_cursor *at, uint32_t
         do at->parent++;
         while (job->in_off[at->parent + 1] == job->in_off[at->parent]);
     }
-}
-
-/* Append (view, scene) to a list of pairs, or the scene node alone
-   (with_view 0); 0 when the list is full. */
-static int mlod__mv_push(uint32_t *list, size_t *count, size_t capacity, int with_view, uint32_t view, uint32_t scene)
-{
-    if (*count == capacity) return 0;
-    if (with_view) {
-        list[2 * *count] = view;
-        list[2 * *count + 1] = scene;
-    } else
-        list[*count] = scene;
-    ++*count;
-    return 1;
 }
 
 /* A scene node's depth in the paraboloid maps of a view node with this
@@ -8898,21 +8911,11 @@ static void mlod__mv_map_begin(const mlod__mv_job *job, uint32_t node, float *de
     if (parent_depth) mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
 }
 
-/* Draw the drawer's waiting nodes. */
-static void mlod__mv_flush(mlod__mv_drawer *dr)
+/* Draw the drawer's waiting nodes; at the first, begin the map and
+   prepare the view. */
+static void mlod__mv_flush(const mlod__mv_job *job, mlod__mv_drawer *dr)
 {
     if (!dr->n) return;
-    if (!dr->filter_ready) { /* the band and the view are set by now */
-        dr->band.fast = mlod__disc_prepare(dr->pv, &dr->filter) ? &dr->filter : NULL;
-        dr->filter_ready = 1;
-    }
-    mlod__draw_nodes(&dr->band, dr->pv, dr->batch, dr->n);
-    dr->n = 0;
-}
-
-/* Draw a scene node into the drawer's band, in turn with the others. */
-static void mlod__mv_draw(const mlod__mv_job *job, mlod__mv_drawer *dr, uint32_t s)
-{
     if (dr->lazy_depth) {
         mlod__mv_map_begin(job, dr->node, dr->lazy_depth, dr->lazy_ids, dr->lazy_parent_depth, dr->lazy_parent_ids,
                            &dr->band);
@@ -8923,98 +8926,151 @@ static void mlod__mv_draw(const mlod__mv_job *job, mlod__mv_drawer *dr, uint32_t
         mlod__view_prepare(&view, dr->pv, NULL);
         dr->ready = 1;
     }
-    dr->batch[dr->n++] = s;
-    if (dr->n == MLOD__DRAW_CHUNK) mlod__mv_flush(dr);
+    if (!dr->filter_ready) { /* the band and the view are set by now */
+        dr->band.fast = mlod__disc_prepare(dr->pv, &dr->filter) ? &dr->filter : NULL;
+        dr->filter_ready = 1;
+    }
+    mlod__draw_nodes(&dr->band, dr->pv, dr->batch, dr->n);
+    dr->n = 0;
 }
 
-/* Pairs waiting in a descent (mlod__mv_descend): room, and the most the
-   stack may hold before it classifies one pair at a time. */
-#define MLOD__MV_STACK 512u
-#define MLOD__MV_STACK_BATCH (MLOD__MV_STACK - 64u)
-#define MLOD__MV_ROOTS 16u
-#define MLOD__PAIR_UNKNOWN 0xffu
-#ifdef MLOD__VLANES
-#define MLOD__MV_BATCH ((uint32_t)MLOD__VLANES)
-#else
-#define MLOD__MV_BATCH 1u
-#endif
+/* Draw scene nodes[0 .. n) into the drawer's band, in turn with the
+   others. */
+static void mlod__mv_draw(const mlod__mv_job *job, mlod__mv_drawer *dr, const uint32_t *nodes, size_t n)
+{
+    while (n) {
+        uint32_t k = MLOD__DRAW_CHUNK - dr->n < n ? MLOD__DRAW_CHUNK - dr->n : (uint32_t)n;
+        memcpy(dr->batch + dr->n, nodes, k * sizeof *nodes);
+        dr->n += k;
+        nodes += k;
+        n -= k;
+        if (dr->n == MLOD__DRAW_CHUNK) mlod__mv_flush(job, dr);
+    }
+}
+
+/* Scene nodes given to a view node at once in the level-synchronous
+   traversal (mlod__mv_classify_task). */
+#define MLOD__MV_ROOTS 64u
 
 /* Classify the pairs (roots[i], the view node), i < n, and, depth first,
    the scene nodes below them that split: culled pairs are counted, drawn
    ones drawn at once (dr) or listed, view splits listed, each in depth-
-   first order.  The pairs are classified ahead of that order, several at
-   once (mlod__pair_actions): the stack holds the pairs to come, the
-   nearest on top, each with its action once known; a scene split is
-   replaced by its children as soon as it is known (it lists nothing, so
-   the order of what is listed and drawn stays the depth-first one).  A
-   batch takes the topmost unclassified pairs within 4 batches' reach of
-   the top; past MLOD__MV_STACK_BATCH pairs, only the top one, so that the
-   stack grows by at most the scene tree's depth (< 32) from there.  0
-   when a list is full. */
+   first order.  Level by level: a group of roots, then the children of
+   those that split the scene node, and so on, each level classified at
+   once (mlod__pair_actions: full batches of lanes, independent of each
+   other); then the draws and view splits below each pair are counted
+   (deepest level first), which gives each its place in the depth-first
+   order (top level first), where it is written.  A group whose levels
+   outgrow the room (job->descend_room pairs) is taken again with half
+   the roots; a root alone that outgrows it is classified by itself and
+   its children wait first in line (pending, the next on top).  Each pair
+   is counted once, whatever the room.  0 when a list is full. */
 static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, const uint32_t *roots, size_t n,
                             mlod__mv_out *out, mlod__mv_drawer *dr)
 {
-    uint32_t node[MLOD__MV_STACK], top = 0, batch[MLOD__MV_BATCH], at[MLOD__MV_BATCH], b, j;
-    uint8_t act[MLOD__MV_STACK], actions[MLOD__MV_BATCH];
+    /* node[i], act[i]: the pairs, level after level (level k: lb[k] .. lb[k + 1] - 1, the children of a level's
+       scene splits in their order); draws[i], views[i]: the draws and view splits below pair i, then the place
+       of the first of them in the group's depth-first order; list: the draws in that order */
+    uint32_t node[MLOD__MV_ROOM + 2], lb[MLOD__MV_LEVELS + 1], pend[2 * MLOD__MV_LEVELS], list[MLOD__MV_ROOM + 1];
+    uint16_t draws[MLOD__MV_ROOM + 2], views[MLOD__MV_ROOM + 2];
+    uint8_t act[MLOD__MV_ROOM];
+    const uint32_t room = job->descend_room, zero = room; /* draws[zero], [zero + 1]: a non-split's "children" */
+    uint32_t most = room / 2 < MLOD__MV_GROUP ? room / 2 : MLOD__MV_GROUP; /* roots in a group */
+    uint32_t npend = 0, group = most, step = out->with_view ? 2u : 1u, unused[2];
     size_t next = 0;
-    for (;;) {
-        uint32_t s;
-        if (top == 0) { /* the next roots, the first on top */
-            uint32_t k = n - next < MLOD__MV_ROOTS ? (uint32_t)(n - next) : MLOD__MV_ROOTS;
-            if (k == 0) break;
-            for (j = 0; j < k; j++) {
-                node[j] = roots[next + k - 1 - j];
-                act[j] = MLOD__PAIR_UNKNOWN;
-            }
-            top = k;
-            next += k;
+    uint64_t culled = 0, leaves = 0, pairs = 0;
+    MANYLODS_ASSERT(room >= 4 && room <= MLOD__MV_ROOM);
+    while (npend || next < n) {
+        uint32_t g = 0, levels = 0, k, i, w, ns = 0, nd, nv;
+        int from_pend = npend > 0;
+        if (from_pend) /* the group: pending nodes first, in order */
+            while (g < group && npend) node[g++] = pend[--npend];
+        else {
+            g = n - next < group ? (uint32_t)(n - next) : group;
+            memcpy(node, roots + next, g * sizeof *node);
         }
-        if (act[top - 1] == MLOD__PAIR_UNKNOWN) {
-            uint32_t reach = top > MLOD__MV_STACK_BATCH ? 1u : 4u * MLOD__MV_BATCH, i;
-            for (i = top, b = 0; i > 0 && top - i < reach && b < MLOD__MV_BATCH; i--)
-                if (act[i - 1] == MLOD__PAIR_UNKNOWN) {
-                    at[b] = i - 1;
-                    batch[b++] = node[i - 1];
-                }
-            mlod__pair_actions(job, vn, batch, b, actions);
-            out->pairs += b;
-            for (j = 0; j < b; j++) { /* the highest first: a split below moves those above it up */
-                uint32_t p = at[j];
-                if (actions[j] != MLOD__PAIR_SPLIT_SCENE) {
-                    act[p] = actions[j];
-                    continue;
-                }
-                s = node[p];
-                for (i = top; i > p + 1; i--) { /* the few above it, up one */
-                    node[i] = node[i - 1];
-                    act[i] = act[i - 1];
-                }
-                node[p] = 2 * s + 2; /* the left child above its right one */
-                node[p + 1] = 2 * s + 1;
-                act[p] = act[p + 1] = MLOD__PAIR_UNKNOWN;
-                top++;
+        lb[0] = 0;
+        lb[1] = g;
+        for (k = 0;; k++) { /* classify level k, then list the children of its scene splits as level k + 1 */
+            uint32_t b = lb[k], e = lb[k + 1];
+            mlod__pair_actions(job, vn, node + b, e - b, act + b);
+            for (i = b, ns = 0; i < e; i++) ns += act[i] == MLOD__PAIR_SPLIT_SCENE;
+            if (ns == 0 || e + 2 * ns > room || k + 2 > MLOD__MV_LEVELS) {
+                levels = k + 1;
+                break;
             }
+            for (i = b, w = e; i < e; i++) {
+                uint32_t s = node[i];
+                node[w] = 2 * s + 1;
+                node[w + 1] = 2 * s + 2;
+                w += act[i] == MLOD__PAIR_SPLIT_SCENE ? 2u : 0u;
+            }
+            lb[k + 2] = w;
+        }
+        if (ns) { /* out of room: fewer roots, or this root one level down */
+            if (g > 1) {
+                if (from_pend)
+                    for (i = g; i-- > 0;) pend[npend++] = node[i];
+                group = g / 2;
+                continue;
+            }
+            MANYLODS_ASSERT(npend + 2 <= 2 * MLOD__MV_LEVELS);
+            pairs++;
+            next += !from_pend;
+            pend[npend++] = 2 * node[0] + 2;
+            pend[npend++] = 2 * node[0] + 1;
             continue;
         }
-        s = node[--top];
-        switch (act[top]) {
-        case MLOD__PAIR_CULL:
-            out->culled++;
-            break;
-        case MLOD__PAIR_DRAW_LEAF:
-            out->leaves++;
-            /* fall through */
-        case MLOD__PAIR_DRAW:
-            if (dr) {
-                out->drawn++;
-                mlod__mv_draw(job, dr, s);
-            } else if (!mlod__mv_push(out->draw, &out->draw_count, out->capacity, 1, vn->node, s))
-                return 0;
-            break;
-        default:
-            if (!mlod__mv_push(out->split, &out->split_count, out->capacity, out->with_view, vn->node, s)) return 0;
+        draws[zero] = draws[zero + 1] = views[zero] = views[zero + 1] = 0;
+        for (k = levels; k-- > 0;) /* the counts below each pair, deepest level first */
+            for (i = lb[k], w = lb[k + 1]; i < lb[k + 1]; i++) {
+                uint32_t a = act[i], split = a == MLOD__PAIR_SPLIT_SCENE, c = split ? w : zero;
+                w += 2 * split;
+                draws[i] = (uint16_t)(draws[c] + draws[c + 1] + (a == MLOD__PAIR_DRAW || a == MLOD__PAIR_DRAW_LEAF));
+                views[i] = (uint16_t)(views[c] + views[c + 1] + (a == MLOD__PAIR_SPLIT_VIEW));
+            }
+        for (i = 0, nd = nv = 0; i < g; i++) { /* the roots' places, in order */
+            uint32_t d = draws[i], v = views[i];
+            draws[i] = (uint16_t)nd;
+            views[i] = (uint16_t)nv;
+            nd += d;
+            nv += v;
         }
+        if ((dr ? 0 : out->capacity - out->draw_count < nd) || out->capacity - out->split_count < nv) return 0;
+        for (k = 0; k < levels; k++) /* each pair's children placed (the left's first), and each pair written */
+            for (i = lb[k], w = lb[k + 1]; i < lb[k + 1]; i++) {
+                uint32_t a = act[i], split = a == MLOD__PAIR_SPLIT_SCENE, c = split ? w : zero;
+                uint32_t left_draws = draws[c], left_views = views[c];
+                uint32_t *to = a == MLOD__PAIR_SPLIT_VIEW ? out->split + step * (out->split_count + views[i]) : unused;
+                w += 2 * split;
+                draws[c] = draws[i]; /* (a non-split: into the zero counts, no longer read) */
+                draws[c + 1] = (uint16_t)(draws[i] + left_draws);
+                views[c] = views[i];
+                views[c + 1] = (uint16_t)(views[i] + left_views);
+                list[a == MLOD__PAIR_DRAW || a == MLOD__PAIR_DRAW_LEAF ? draws[i] : room] = node[i];
+                to[0] = vn->node;
+                to[step - 1] = node[i];
+                culled += a == MLOD__PAIR_CULL;
+                leaves += a == MLOD__PAIR_DRAW_LEAF;
+            }
+        pairs += lb[levels];
+        out->split_count += nv;
+        if (dr) {
+            out->drawn += nd;
+            mlod__mv_draw(job, dr, list, nd);
+        } else {
+            for (i = 0; i < nd; i++) {
+                out->draw[2 * (out->draw_count + i)] = vn->node;
+                out->draw[2 * (out->draw_count + i) + 1] = list[i];
+            }
+            out->draw_count += nd;
+        }
+        next += from_pend ? 0 : g;
+        if (2 * group <= most && 2 * lb[levels] <= room) group *= 2;
     }
+    out->pairs += pairs;
+    out->culled += culled;
+    out->leaves += leaves;
     return 1;
 }
 
@@ -9105,7 +9161,7 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
         if (view != vn.node) {
             if (vn.node != MLOD__NO_MAP) mlod__mv_node_pairs(out, vn.node, out->pairs - node_start);
             node_start = out->pairs;
-            if (drawing) mlod__mv_flush(drawing);
+            if (drawing) mlod__mv_flush(job, drawing);
             mlod__vnode_set(job, view, &vn);
             drawing = NULL;
             if (vn.leaf && !job->keep) {
@@ -9119,7 +9175,7 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
         roots[count++] = s0;
     }
     if (vn.node != MLOD__NO_MAP) mlod__mv_node_pairs(out, vn.node, out->pairs - node_start);
-    if (drawing) mlod__mv_flush(drawing);
+    if (drawing) mlod__mv_flush(job, drawing);
 }
 
 /* Draw a chunk of the level's nodes: each map (or leaf tile) starts from
@@ -9131,7 +9187,7 @@ static void mlod__mv_draw_task(void *context, uint32_t index)
     uint32_t i = index * MLOD__MV_DRAW_NODES, end = i + MLOD__MV_DRAW_NODES > job->count ? job->count : i + MLOD__MV_DRAW_NODES;
     for (; i < end; i++) {
         uint32_t node = job->first + i;
-        size_t k, n = job->draw_off[i + 1] - job->draw_off[i];
+        size_t n = job->draw_off[i + 1] - job->draw_off[i];
         const float *parent_depth = NULL;
         const uint32_t *parent_ids = NULL;
         mlod__pview pv;
@@ -9152,8 +9208,8 @@ static void mlod__mv_draw_task(void *context, uint32_t index)
         dr.node = node;
         dr.n = 0;
         dr.lazy_depth = NULL;
-        for (k = 0; k < n; k++) mlod__mv_draw(job, &dr, job->draws[job->draw_off[i] + k]);
-        mlod__mv_flush(&dr);
+        mlod__mv_draw(job, &dr, job->draws + job->draw_off[i], n);
+        mlod__mv_flush(job, &dr);
     }
 }
 
@@ -9323,7 +9379,7 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
     if (node >= eyes->leaf_count - 1) {
         mlod__mv_leaf_drawer(job, vn, parent_depth, parent_ids, &dr);
         mlod__mv_descend(job, vn, in, n, &out, &dr); /* a leaf splits no view */
-        mlod__mv_flush(&dr);
+        mlod__mv_flush(job, &dr);
         leaf_draws = out.drawn;
     } else {
         float *map_depth = w->depth + (size_t)level * job->pixels; /* this node's map, begun at the first draw */
@@ -9345,7 +9401,7 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
             w->resume = node;
             return;
         }
-        mlod__mv_flush(&dr);
+        mlod__mv_flush(job, &dr);
         shared_draws = out.drawn;
         shared_leaves = out.leaves;
         /* a map that drew nothing would be the parent's, each pixel measured again from this node's
@@ -9545,8 +9601,8 @@ static uint32_t mlod__mv_chunks(const mlod__mv_job *job, int whole_parents, size
 /* The render: fused into the atlas, or (keep) every node's own map kept. */
 static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **keep, const mlod_tree *scene,
                                        const mlod_view_tree *views, const mlod_megaviews_params *params,
-                                       uint32_t walk_level, size_t walk_room, int exact, mlod_megaviews_stats *stats,
-                                       mlod_error *error)
+                                       uint32_t walk_level, size_t walk_room, uint32_t descend_room, int exact,
+                                       mlod_megaviews_stats *stats, mlod_error *error)
 {
     mlod_result res = mlod__check_megaviews(atlas, scene, views, params, error);
     const mlod_tree *eyes;
@@ -9581,6 +9637,7 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     job.levels = levels;
     job.walk_level = keep || levels <= walk_level ? levels : walk_level;
     job.walk_room = walk_room;
+    job.descend_room = descend_room ? descend_room : MLOD__MV_ROOM;
     job.exact = exact;
     for (d = 0; d < levels && !m.failed; d++) {
         uint32_t first = (uint32_t)((1ull << d) - 1), count, chunks, c;
@@ -9818,7 +9875,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
                                                mlod_error *error)
 {
     if (!atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas is NULL");
-    return mlod__megaviews_run(atlas, NULL, scene, views, params, MLOD__MV_WALK_LEVEL, MLOD__MV_WALK_ROOM, 0, stats,
+    return mlod__megaviews_run(atlas, NULL, scene, views, params, MLOD__MV_WALK_LEVEL, MLOD__MV_WALK_ROOM, 0, 0, stats,
                                error);
 }
 
@@ -9828,7 +9885,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render_maps(const mlod_tree *scene, cons
 {
     if (!out) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "out is NULL");
     *out = NULL;
-    return mlod__megaviews_run(NULL, out, scene, views, params, 0, 0, 0, stats, error);
+    return mlod__megaviews_run(NULL, out, scene, views, params, 0, 0, 0, 0, stats, error);
 }
 
 MLOD__PUBLIC int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlod_tree *scene,

@@ -890,20 +890,24 @@ static void test_walks(const mlod_tree *scene)
         for (g = 0; g < 2 && t && ref && a; g++) {
             p.group_radius = g ? 0.3f : 0.0f;
             memset(&counter, 0, sizeof counter);
-            if (mlod__megaviews_run(ref, NULL, scene, t, &p, 64, 0, 0, &st0, &e) != MLOD_OK) {
+            if (mlod__megaviews_run(ref, NULL, scene, t, &p, 64, 0, 0, 0, &st0, &e) != MLOD_OK) {
                 CHECK(0, "walks case %u: level-synchronous render: %s", c, e.message);
                 break;
             }
             levels = st0.levels;
             over += counter.peak_bytes > mlod__mv_bound(t->eyes, p.resolution, st0.node_pairs, 64, 0);
             for (level = 0; level <= levels; level++) {
-                size_t room;
-                for (room = 1; room <= 4096; room *= 4096) {
-                    size_t first = 0;
+                uint32_t variant;
+                /* a walk's list room of 1 (every walk outgrows it) with a descent's full room, and a large
+                   list room with descents of 4 and 37 pairs (groups and single roots outgrow them) */
+                for (variant = 0; variant < 4; variant++) {
+                    static const uint32_t descend_rooms[4] = {0, 0, 4, 37};
+                    size_t first = 0, room = variant == 0 ? 1 : 4096;
                     int same;
                     runs++;
                     memset(&counter, 0, sizeof counter);
-                    if (mlod__megaviews_run(a, NULL, scene, t, &p, level, room, 0, &st, &e) != MLOD_OK) {
+                    if (mlod__megaviews_run(a, NULL, scene, t, &p, level, room, descend_rooms[variant], 0, &st, &e) !=
+                        MLOD_OK) {
                         CHECK(0, "walks case %u: walk from level %u: %s", c, level, e.message);
                         continue;
                     }
@@ -921,14 +925,14 @@ static void test_walks(const mlod_tree *scene)
                            st.shared_leaves == st0.shared_leaves && st.node_pairs == st0.node_pairs &&
                            st.leaf_draws == st0.leaf_draws && st.levels == st0.levels;
                     if (!same && differ++ < 3)
-                        CHECK(0, "walks case %u, group %u: walking from level %u (room %zu) differs (pixel %zu, pairs %llu / %llu)",
-                              c, g, level, room, first, (unsigned long long)st.pairs, (unsigned long long)st0.pairs);
+                        CHECK(0, "walks case %u, group %u: walking from level %u (room %zu, descent variant %u) differs (pixel %zu, pairs %llu / %llu)",
+                              c, g, level, room, variant, first, (unsigned long long)st.pairs, (unsigned long long)st0.pairs);
                 }
             }
             CHECK(c == 1 || st0.shared_draws > (g ? 100u : 1000u), "walks case %u: shares (%llu shared draws)", c,
                   (unsigned long long)st0.shared_draws);
         }
-        CHECK(differ == 0 && runs == 2 * 2 * (levels + 1), "walks case %u: %u walk levels x 2 rooms x 2 group radii equal the level-synchronous render (%u differ)",
+        CHECK(differ == 0 && runs == 2 * 4 * (levels + 1), "walks case %u: %u walk levels x 4 list and descent rooms x 2 group radii equal the level-synchronous render (%u differ)",
               c, levels + 1, differ);
         CHECK(over == 0 && st0.node_pairs > 0 && st0.node_pairs <= st0.pairs && st0.node_pairs <= scene->node_count,
               "walks case %u: every render's peak within the sizing bound for its pairs per view node (%llu; %u above)",
@@ -1117,6 +1121,123 @@ static void test_cone_fast_paths(void)
    or more from a finite threshold (else it buys nothing), and a quarter
    of the lanes of leaves or more (their thresholds are placed as close by:
    most lanes of a render's leaves are decided). */
+/* The plain recursion the descent (mlod__mv_descend) must equal: the pairs
+   in depth-first order, each through the exact path, scene splits
+   recursed into. */
+typedef struct ref_out {
+    uint32_t *draw, *split;
+    size_t draws, splits;
+    uint64_t pairs, culled, leaves;
+} ref_out;
+
+static void ref_descend(const mlod__mv_job *job, const mlod__vnode *vn, uint32_t s, ref_out *o)
+{
+    int a = mlod__pair_action(job, vn, s);
+    o->pairs++;
+    if (a == MLOD__PAIR_SPLIT_SCENE) {
+        ref_descend(job, vn, 2 * s + 1, o);
+        ref_descend(job, vn, 2 * s + 2, o);
+        return;
+    }
+    o->culled += a == MLOD__PAIR_CULL;
+    o->leaves += a == MLOD__PAIR_DRAW_LEAF;
+    if (a == MLOD__PAIR_DRAW || a == MLOD__PAIR_DRAW_LEAF) o->draw[o->draws++] = s;
+    if (a == MLOD__PAIR_SPLIT_VIEW) o->split[o->splits++] = s;
+}
+
+/* The descent level by level against that recursion: from the same roots
+   (the scene root, or up to 300 distinct nodes of one level in random
+   order) and view node (inner, group or leaf; with and without the float
+   filter, back faces culled or not), its lists of draws and of view
+   splits (with and without the view node beside each) equal the
+   recursion's, in order, and so do its counts of pairs, culled pairs and
+   leaves, with its full room and with rooms of 4 to 300 pairs, where
+   groups of roots are halved and single roots taken one level down. */
+static void test_descend(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    static const uint32_t rooms[5] = {0, 4, 5, 37, 300};
+    size_t cap = 2 * (size_t)scene->node_count;
+    uint32_t *roots = (uint32_t *)malloc(sizeof(uint32_t) * scene->node_count);
+    uint32_t *rd = (uint32_t *)malloc(sizeof(uint32_t) * cap), *rs = (uint32_t *)malloc(sizeof(uint32_t) * cap);
+    uint32_t *od = (uint32_t *)malloc(sizeof(uint32_t) * 2 * cap), *os = (uint32_t *)malloc(sizeof(uint32_t) * 2 * cap);
+    uint64_t rng = 4141, pairs = 0;
+    uint32_t c, trial, runs = 0, wrong = 0, small_roots = 0, overflowed = 0;
+    if (!roots || !rd || !rs || !od || !os) {
+        CHECK(0, "descent: out of memory");
+        return;
+    }
+    for (c = 0; c < 4; c++) {
+        views v = make_views(801 + c, c == 3 ? 2000 : 300, lo, hi, c == 1);
+        mlod_view_set set = view_set(&v, c != 2, c == 1);
+        mlod_view_tree *t = build_views(&set, NULL);
+        mlod__mv_job job = pair_job(scene, t, 8, c == 1 ? MLOD_VIEW_CULL_BACKFACES : 0u);
+        job.delta = c == 2 ? 0.0 : 0.5;
+        job.group_radius = c == 3 ? 0.3 : 0.0;
+        for (trial = 0; t && trial < 60; trial++) {
+            uint32_t nodes = t->eyes->node_count, vi = (uint32_t)(scene_rng_double(&rng) * nodes), n, i, k, r;
+            uint32_t level = 1 + (uint32_t)(scene_rng_double(&rng) * 11.0), begin = (1u << level) - 1;
+            mlod__vnode vn;
+            ref_out ref;
+            if (vi >= nodes) vi = nodes - 1;
+            mlod__vnode_set(&job, vi, &vn);
+            if (trial % 3 == 0) {
+                roots[0] = 0;
+                n = 1;
+            } else { /* distinct nodes of one level, shuffled */
+                uint32_t width = begin + 1 < scene->node_count - begin ? begin + 1 : scene->node_count - begin;
+                for (i = 0; i < width; i++) roots[i] = begin + i;
+                for (i = width; i > 1; i--) {
+                    uint32_t j = (uint32_t)(scene_rng_double(&rng) * i), x = roots[i - 1];
+                    if (j >= i) j = i - 1;
+                    roots[i - 1] = roots[j];
+                    roots[j] = x;
+                }
+                n = width < 300 ? width : 300;
+            }
+            small_roots += n <= 4;
+            memset(&ref, 0, sizeof ref);
+            ref.draw = rd;
+            ref.split = rs;
+            for (i = 0; i < n; i++) ref_descend(&job, &vn, roots[i], &ref);
+            pairs += ref.pairs;
+            for (r = 0; r < 5; r++) {
+                mlod__mv_out out;
+                int with_view = (int)((trial + r) % 2), same;
+                memset(&out, 0, sizeof out);
+                out.draw = od;
+                out.split = os;
+                out.capacity = cap;
+                out.with_view = with_view;
+                job.descend_room = rooms[r] ? rooms[r] : MLOD__MV_ROOM;
+                runs++;
+                overflowed += rooms[r] && ref.pairs > rooms[r];
+                same = mlod__mv_descend(&job, &vn, roots, n, &out, NULL) && out.pairs == ref.pairs &&
+                       out.culled == ref.culled && out.leaves == ref.leaves && out.draw_count == ref.draws &&
+                       out.split_count == ref.splits;
+                for (k = 0; same && k < ref.draws; k++) same = od[2 * k] == vi && od[2 * k + 1] == rd[k];
+                for (k = 0; same && k < ref.splits; k++)
+                    same = (!with_view || os[2 * k] == vi) && os[with_view ? 2 * k + 1 : k] == rs[k];
+                if (!same && wrong++ < 3)
+                    CHECK(0, "descent: case %u, view node %u, %u roots, room %u: %llu pairs, %zu draws, %zu view splits; "
+                             "the recursion %llu, %zu, %zu (or the order differs)",
+                          c, vi, n, rooms[r], (unsigned long long)out.pairs, out.draw_count, out.split_count,
+                          (unsigned long long)ref.pairs, ref.draws, ref.splits);
+            }
+        }
+        mlod_view_tree_destroy(t);
+        free_views(&v);
+    }
+    CHECK(wrong == 0 && runs == 4 * 60 * 5 && overflowed > 300 && small_roots > 50,
+          "descent: %u descents (%llu pairs; %u outgrow a small room) equal the depth-first recursion, lists in order",
+          runs, (unsigned long long)pairs, overflowed);
+    free(roots);
+    free(rd);
+    free(rs);
+    free(od);
+    free(os);
+}
+
 static void test_pair_filter(const mlod_tree *scene)
 {
     static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
@@ -1140,8 +1261,8 @@ static void test_pair_filter(const mlod_tree *scene)
         p.resolution = resolution;
         p.flags = flags;
         p.group_radius = c % 3 == 2 ? 0.25f : 0.0f;
-        ok = t && a && b && mlod__megaviews_run(a, NULL, scene, t, &p, MLOD__MV_WALK_LEVEL, 64, 0, &sa, &e) == MLOD_OK &&
-             mlod__megaviews_run(b, NULL, scene, t, &p, MLOD__MV_WALK_LEVEL, 64, 1, &sb, &e) == MLOD_OK;
+        ok = t && a && b && mlod__megaviews_run(a, NULL, scene, t, &p, MLOD__MV_WALK_LEVEL, 64, 0, 0, &sa, &e) == MLOD_OK &&
+             mlod__megaviews_run(b, NULL, scene, t, &p, MLOD__MV_WALK_LEVEL, 64, 0, 1, &sb, &e) == MLOD_OK;
         renders++;
         if (ok && same_atlas(a, b, &first) && sa.pairs == sb.pairs && sa.culled == sb.culled &&
             sa.shared_draws == sb.shared_draws && sa.leaf_draws == sb.leaf_draws && sa.shared_leaves == sb.shared_leaves &&
@@ -1393,7 +1514,7 @@ static uint32_t failing_renders(mlod_atlas *a, const mlod_tree *scene, const mlo
         mlod_error e;
         mlod_result r;
         q.allocator = &al;
-        r = mlod__megaviews_run(a, NULL, scene, t, &q, walk_level, room, 0, NULL, &e);
+        r = mlod__megaviews_run(a, NULL, scene, t, &q, walk_level, room, 0, 0, NULL, &e);
         CHECK(counter.live_blocks == 0, "%s, allocation %u failing: %lu blocks left", what, i, counter.live_blocks);
         if (r == MLOD_OK) {
             CHECK(memcmp(before, a->depth, bytes) == 0, "%s, allocation %u: no failure, the same atlas", what, i);
@@ -1582,6 +1703,7 @@ int main(int argc, char **argv)
     TEST_GROUP("threads", test_threads(scene));
     TEST_GROUP("sizing", test_sizing(scene));
     TEST_GROUP("walks", test_walks(scene));
+    TEST_GROUP("descend", test_descend(scene));
     TEST_GROUP("fusion", test_fusion(scene)); /* it overwrites the scene's colours with node indices */
     TEST_GROUP("groups", test_groups(scene));
     TEST_GROUP("query", test_query(scene));

@@ -290,12 +290,12 @@ entry splat-simd-off "tests/test_splat.c's filtered discs and ISM with -DMANYLOD
     "$CC -std=c99 $STRICT -DMANYLODS_NO_SIMD tests/test_splat.c -o $OUT/splat-simd-off $LIBS" \
     "$OUT/splat-simd-off filtered_discs image_lanes small_discs ism_exact determinism"
 # MegaViews' pair filter (mlod__vpair) on 8 lanes and on none: the same renders as the exact path.
-entry megaviews-native "tests/test_megaviews.c's pair filter, walks and groups with $native, $CLANG" \
+entry megaviews-native "tests/test_megaviews.c's pair filter, descent, walks and groups with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_megaviews.c -o $OUT/megaviews-native $LIBS" \
-    "$OUT/megaviews-native pair_filter walks groups"
-entry megaviews-simd-off "tests/test_megaviews.c's pair filter and walks with -DMANYLODS_NO_SIMD, $CC" \
+    "$OUT/megaviews-native pair_filter descend walks groups"
+entry megaviews-simd-off "tests/test_megaviews.c's pair filter, descent and walks with -DMANYLODS_NO_SIMD, $CC" \
     "$CC -std=c99 $STRICT -DMANYLODS_NO_SIMD tests/test_megaviews.c -o $OUT/megaviews-simd-off $LIBS" \
-    "$OUT/megaviews-simd-off pair_filter walks"
+    "$OUT/megaviews-simd-off pair_filter descend walks"
 
 # The NEON lanes (AArch64), where an AArch64 cross compiler and qemu are
 # here (tests/deps.sh brings them on x86-64): the same hash with and
@@ -318,9 +318,9 @@ if command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 && command -v qemu-aarch64 >
     entry neon-splat "tests/test_splat.c's filtered discs and ISM for AArch64 (NEON), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_splat.c -o $OUT/neon-splat $LIBS" \
         "qemu-aarch64 $OUT/neon-splat filtered_discs image_lanes ism_exact"
-    entry neon-megaviews "tests/test_megaviews.c's pair filter for AArch64 (NEON), under qemu" \
+    entry neon-megaviews "tests/test_megaviews.c's pair filter and descent for AArch64 (NEON), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_megaviews.c -o $OUT/neon-megaviews $LIBS" \
-        "qemu-aarch64 $OUT/neon-megaviews pair_filter"
+        "qemu-aarch64 $OUT/neon-megaviews pair_filter descend"
     entry f64-aarch64 "tests/test_f64.c for AArch64 (shaders/f64.glsl against AArch64's doubles), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_f64.c -o $OUT/f64-aarch64 $LIBS" \
         "qemu-aarch64 $OUT/f64-aarch64 300000"
