@@ -444,10 +444,14 @@
      in float (4 lanes with SSE2 or NEON, 8 with AVX), each decision taken only
      where it clears its threshold by a margin proven to exceed the float
      rounding (under 1 % of the pairs in README.md's benchmark fall within
-     one and take the exact double path); pairs are still listed and drawn
-     in depth-first order, so every build, MANYLODS_NO_SIMD included,
-     renders the same atlas bit for bit (tests/test_megaviews.c compares
-     renders with and without the filter).
+     one and take the exact double path).  A view node's pairs are
+     classified a level of the scene tree at a time (the scene nodes
+     handed to it, then the children of those that split, and so on: each
+     level's pairs in full batches of lanes that wait on no other pair's
+     answer), then listed and drawn in depth-first order, so every build,
+     MANYLODS_NO_SIMD included, renders the same atlas bit for bit
+     (tests/test_megaviews.c compares renders with and without the filter,
+     and the lists with a plain depth-first recursion).
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes,
