@@ -8718,9 +8718,11 @@ static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uin
    filter where vn has one and the build has lanes, the exact path for the
    lanes it leaves.  The lanes' codes first, for all the pairs, then the
    codes as actions, then the few codes that need more (the children's
-   radii, or the exact path): no loop over all the pairs branches on one
-   pair's code, so the processor runs ahead through a level's batches
-   instead of stopping at each mispredicted branch. */
+   radii, or the exact path): the batches of a level depend on no other
+   pair's answer, and no loop over all the pairs branches on one pair's
+   code.  (What that buys was measured: a tenth with 8 lanes, which the
+   descent now fills; about nothing with 4, where the filter's arithmetic
+   sets the pace, README.md's Changes.) */
 static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, const uint32_t *nodes, uint32_t n,
                                uint8_t *actions)
 {
