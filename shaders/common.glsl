@@ -616,20 +616,31 @@ uint fast_status(uint view, vec4 sphere, bool use_cone, vec4 cone)
 // C twin: mlod__is_valid
 bool status_valid(uint s) { return s == MLOD_IF_STATUS_DRAWN || s == MLOD_IF_STATUS_CULLED; }
 
+#ifdef MLOD_HAS_FILTERS
+// classify's first step, the float filter alone: the status, or 0 where
+// the filter is unsure (cut_step defers its block to cut_exact then).
+uint classify_fast(uint view, uint node, uint leaf_count)
+{
+    vec4 cone = MLOD_HAS_CONES ? cones[node] : vec4(0.0);
+    uint st = fast_status(view, spheres[node], MLOD_HAS_CONES, cone);
+    if (st == MLOD_IF_STATUS_COARSE && node >= leaf_count - 1u) st = MLOD_IF_STATUS_OVERSIZE;
+    return st;
+}
+#endif
+
 // C twin: mlod__classify
 uint classify(uint view, uint node, real epsilon, uint leaf_count)
 {
     bool culled;
-    vec4 cone = MLOD_HAS_CONES ? cones[node] : vec4(0.0);
 #ifdef MLOD_HAS_FILTERS
     // the exact path below only where the filter is unsure (rare): asked
     // of the whole subgroup first, since SIMD devices (lavapipe) run a
     // divergent branch for every lane
-    uint st = fast_status(view, spheres[node], MLOD_HAS_CONES, cone);
-    if (st == MLOD_IF_STATUS_COARSE && node >= leaf_count - 1u) st = MLOD_IF_STATUS_OVERSIZE;
+    uint st = classify_fast(view, node, leaf_count);
     if (!subgroupAny(st == 0u)) return st; // the same for the whole subgroup: a branch it skips together
     if (st != 0u) return st;
 #endif
+    vec4 cone = MLOD_HAS_CONES ? cones[node] : vec4(0.0);
     real c = evaluate(view, spheres[node], MLOD_HAS_CONES, cone, culled);
     if (culled) return MLOD_IF_STATUS_CULLED;
     if (r_le(c, epsilon)) return MLOD_IF_STATUS_DRAWN;

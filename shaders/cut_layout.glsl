@@ -38,6 +38,11 @@ layout(push_constant) uniform push_block { MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE) } p
         if (was_ + add_ < was_) atomicAdd(count[1], 1u);                                                               \
     }
 
+// The k-th workgroup cut_step deferred to cut_exact in this round: listed
+// after the block sums, in the same buffer (capacity / MLOD_IF_GROUP + 2
+// words each).
+#define DEFERRED_BLOCK(k) block_sums[pc.capacity / MLOD_IF_GROUP + 2u + (k)]
+
 #define ACT_KEEP 0u
 #define ACT_SPLIT 1u
 #define ACT_PARENT 2u

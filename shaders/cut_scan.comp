@@ -17,6 +17,8 @@ shared uint chunk_sum[MLOD_IF_GROUP];
 
 void main()
 {
+    // cut_exact has run: its list starts empty for the next round
+    if (gl_LocalInvocationID.x == 0u) ctl.args[3] = uvec4(0u, 1u, 1u, 0u);
     if (ctl.done != 0u || ctl.overflow != 0u) return; // the loop has ended
     uint n = ctl.count[pc.slot];
     uint blocks = (n + MLOD_IF_GROUP - 1u) / MLOD_IF_GROUP;

@@ -19,11 +19,11 @@ trap 'rm -rf "$tmp"' EXIT
     # double), and those that include common.glsl a second time with
     # -DMLOD_F64_EMULATED (doubles from 32-bit integers: real.glsl), as
     # mlodvk__spv_NAME_emulated
-    for name in cut_init cut_step cut_scan cut_write cut_finish splat_clear splat_draw splat_resolve refit_check refit_leaves refit_merge mv_pairs mv_slots mv_inherit mv_draw mv_resolve; do
+    for name in cut_init cut_step cut_exact cut_scan cut_write cut_finish splat_clear splat_draw splat_resolve refit_check refit_leaves refit_merge mv_pairs mv_slots mv_inherit mv_draw mv_resolve; do
         src=shaders/$name.comp
         variants="-"
-        # (directly, or through mv_layout.glsl)
-        if grep -q '#include "common.glsl"\|#include "mv_layout.glsl"' "$src"; then variants="- emulated"; fi
+        # (directly, or through mv_layout.glsl or cut_step.glsl)
+        if grep -q '#include "common.glsl"\|#include "mv_layout.glsl"\|#include "cut_step.glsl"' "$src"; then variants="- emulated"; fi
         for variant in $variants; do
             if [ "$variant" = - ]; then flags= spv=$name; else flags=-DMLOD_F64_EMULATED spv=${name}_emulated; fi
             $GLSLANG -V --target-env vulkan1.1 $flags -Ishaders "$src" -o "$tmp/$spv.spv" >"$tmp/log" || { cat "$tmp/log" >&2; exit 1; }

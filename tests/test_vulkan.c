@@ -128,10 +128,12 @@ static uint32_t compare_cuts(mlodvk_cut *gpu, const mlod_cut *cpu, uint32_t view
 }
 
 /* Frames of one mode on the device and on the CPU; every frame's cuts
-   must be equal.  Returns the total number of entries compared. */
+   must be equal.  Returns the total number of entries compared; adds the
+   workgroups the device's float filter deferred to cut_exact to
+   *deferred (when not NULL). */
 static uint64_t run_mode(const mlod_tree *tree, mlodvk_tree *vtree, mlod_view *views, uint32_t view_count,
                          mlod_cut_mode mode, uint32_t lazy_steps, float epsilon, uint32_t initial_capacity,
-                         const char *name, uint32_t *grows)
+                         const char *name, uint32_t *grows, uint64_t *deferred)
 {
     mlod_cut *cpu = NULL;
     mlodvk_cut *gpu = NULL;
@@ -161,6 +163,7 @@ static uint64_t run_mode(const mlod_tree *tree, mlodvk_tree *vtree, mlod_view *v
             CHECK(0, "%s: mlodvk_cut_update: %s", what, e.message);
             break;
         }
+        if (deferred) *deferred += mlodvk_cut_get_info(gpu).deferred;
         differ = compare_cuts(gpu, cpu, view_count, what);
         CHECK(differ == 0, "%s: %u of %u views differ from the CPU cut", what, differ, view_count);
         for (v = 0; v < view_count; v++) compared += mlod_cut_get(cpu, v).count;
@@ -184,7 +187,7 @@ static void test_cut_parity(void)
     mlod_error e;
     double c[3], R;
     int kind, m, ei;
-    uint64_t compared = 0;
+    uint64_t compared = 0, deferred = 0;
     if (!scene_torus(&s, 1.0f, 0.35f, 48, 24)) {
         CHECK(0, "scene_torus failed");
         return;
@@ -207,22 +210,40 @@ static void test_cut_parity(void)
                            views, 24);
                 snprintf(name, sizeof name, "%s, %s, eps %g", kinds[kind], modes[m], (double)epsilons[ei]);
                 compared += run_mode(tree, vtree, views, lean ? 4 : 24, mode_of[m], m == 3 ? 3u : 1u, epsilons[ei], 0,
-                                     name, NULL);
+                                     name, NULL, &deferred);
                 check_validation(name);
             }
-    printf("  cut parity: %llu cut entries compared over %d view sets x %d modes x %d epsilons x 4 frames\n",
-           (unsigned long long)compared, VIEW_KINDS + 1, lean ? 2 : 4, lean ? 1 : 2);
+    printf("  cut parity: %llu cut entries compared over %d view sets x %d modes x %d epsilons x 4 frames; "
+           "%llu workgroups took the exact path (cut_exact)\n",
+           (unsigned long long)compared, VIEW_KINDS + 1, lean ? 2 : 4, lean ? 1 : 2, (unsigned long long)deferred);
+    /* the equal cuts above went through both passes: workgroups the float
+       filter decided alone, and workgroups it deferred */
+    CHECK(deferred > 0, "cut parity: no workgroup took the exact path (cut_exact untested)");
+    /* every dispatch folded into rows of one workgroup: cut_exact's single
+       workgroup takes every deferred one in turn; the same cuts */
+    {
+        mlod_view views[24];
+        uint32_t *max_x = &context->properties.limits.maxComputeWorkGroupCount[0], kept = *max_x;
+        uint64_t folded = 0;
+        *max_x = 1;
+        make_views(96, -1, c, R, views, 24);
+        run_mode(tree, vtree, views, 24, MLOD_CUT_INCREMENTAL, 1, 1.0f, 0, "rows of one workgroup, incremental", NULL,
+                 &folded);
+        *max_x = kept;
+        CHECK(folded > 4, "rows of one workgroup: %llu workgroups deferred (expected several)", (unsigned long long)folded);
+        check_validation("rows of one workgroup");
+    }
     /* a list that outgrows its buffers: start with room for one entry per
        view; the loop stops, grows and resumes, with the same cuts */
     {
         mlod_view views[24];
         uint32_t grows = 0;
         make_views(99, -1, c, R, views, 24);
-        run_mode(tree, vtree, views, 24, MLOD_CUT_INCREMENTAL, 1, 1.0f, 24, "growing lists, incremental", &grows);
+        run_mode(tree, vtree, views, 24, MLOD_CUT_INCREMENTAL, 1, 1.0f, 24, "growing lists, incremental", &grows, NULL);
         CHECK(grows >= 3, "growing lists: %u grows (expected several from a capacity of 24 entries)", grows);
         make_views(98, -1, c, R, views, 24);
         grows = 0;
-        run_mode(tree, vtree, views, 24, MLOD_CUT_LAZY, 2, 1.0f, 30, "growing lists, lazy q=2", &grows);
+        run_mode(tree, vtree, views, 24, MLOD_CUT_LAZY, 2, 1.0f, 30, "growing lists, lazy q=2", &grows, NULL);
         CHECK(grows >= 1, "growing lists, lazy: %u grows (expected at least one)", grows);
         check_validation("growing lists");
     }
