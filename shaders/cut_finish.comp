@@ -1,10 +1,13 @@
 #version 450
 // shaders/cut_finish.comp - after the last round of a submission: move the
 // current list to buffers A if it lives in B, classify entries still
-// pending (the children of a lazy call's last splits), clear the working
-// bits, and record where each view's list begins (every view has at least
-// one entry; the list is grouped by view, in view order): view_offsets[v]
-// .. view_offsets[v + 1].  Dispatched with args[2].
+// pending (the children of a lazy call's last splits) by the float filter,
+// clear the working bits, and record where each view's list begins (every
+// view has at least one entry; the list is grouped by view, in view
+// order): view_offsets[v] .. view_offsets[v + 1].  Dispatched with
+// args[2].  An entry the filter is unsure of stays pending, and its
+// workgroup is listed for cut_settle (as cut_step's for cut_exact: the
+// exact path is kept out of a pass that every workgroup takes).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
@@ -14,21 +17,23 @@ layout(local_size_x = MLOD_IF_GROUP) in;
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
 
+// per invocation: evaluated (low 16 bits) + unsure << 16, summed
 shared uint sum_evaluated[MLOD_IF_GROUP];
 
 void main()
 {
     uint n = ctl.current;
     bool in_b = ctl.input_is_b != 0u;
-    uint i = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
+    uint group = group_index();
+    uint i = group * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     uint evaluated = 0u;
     if (i < n) {
         uvec2 e = in_b ? list_out[i] : list_in[i];
         uint s = (in_b ? status_out[i] : status_in[i]) & 7u;
         uint previous_view = i == 0u ? 0xffffffffu : (in_b ? list_out[i - 1u].y : list_in[i - 1u].y);
         if (s == MLOD_IF_STATUS_PENDING) {
-            s = classify(e.y, e.x, r_f(pc.epsilon), pc.leaf_count);
-            evaluated = 1u;
+            s = classify_fast(e.y, e.x, pc.leaf_count); // 0 (still pending) when unsure
+            evaluated = s == 0u ? 0x10001u : 1u;
         }
         if (in_b) list_in[i] = e;
         status_in[i] = s;
@@ -41,5 +46,9 @@ void main()
         if (gl_LocalInvocationID.x < stride) sum_evaluated[gl_LocalInvocationID.x] += sum_evaluated[gl_LocalInvocationID.x + stride];
         barrier();
     }
-    if (gl_LocalInvocationID.x == 0u && sum_evaluated[0] != 0u) MLOD_IF_COUNT64(ctl.evaluated, sum_evaluated[0]);
+    if (gl_LocalInvocationID.x == 0u) {
+        uint total = sum_evaluated[0];
+        if ((total & 0xffffu) != 0u) MLOD_IF_COUNT64(ctl.evaluated, total & 0xffffu);
+        if ((total >> 16) != 0u) defer_block(group);
+    }
 }

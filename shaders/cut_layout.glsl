@@ -43,6 +43,17 @@ layout(push_constant) uniform push_block { MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE) } p
 // words each).
 #define DEFERRED_BLOCK(k) block_sums[pc.capacity / MLOD_IF_GROUP + 2u + (k)]
 
+// List workgroup `group` for the exact pass that follows (cut_exact after
+// cut_step, cut_settle after cut_finish), which runs args[3].x workgroups
+// over the args[3].w listed.  One invocation of the workgroup calls it.
+void defer_block(uint group)
+{
+    uint k = atomicAdd(ctl.args[3].w, 1u);
+    DEFERRED_BLOCK(k) = group;
+    if (k < pc.max_groups_x) atomicMax(ctl.args[3].x, k + 1u);
+    atomicAdd(ctl.deferred, 1u);
+}
+
 #define ACT_KEEP 0u
 #define ACT_SPLIT 1u
 #define ACT_PARENT 2u

@@ -93,12 +93,7 @@ void step_block(uint group)
         uint any_unsure = 0u;
         for (uint k = 0u; k < gl_NumSubgroups; k++) any_unsure |= sum_unsure[k];
         if (any_unsure != 0u) { // the whole workgroup alike: listed for cut_exact
-            if (gl_LocalInvocationID.x == 0u) {
-                uint k = atomicAdd(ctl.args[3].w, 1u);
-                DEFERRED_BLOCK(k) = group;
-                if (k < pc.max_groups_x) atomicMax(ctl.args[3].x, k + 1u);
-                atomicAdd(ctl.deferred, 1u);
-            }
+            if (gl_LocalInvocationID.x == 0u) defer_block(group);
             return;
         }
     }
