@@ -1784,6 +1784,7 @@ static void run_vulkan(bench *b, protocol *p, uint32_t n, int emulated)
     double build_ms, overhead[BENCH_MAX_FRAMES];
     int f, m, k, measured = 0;
     uint32_t rounds = 0, submissions = 0, entries = 0, differing = 0;
+    uint64_t deferred = 0;
     memset(st, 0, sizeof st);
     memset(&dd, 0, sizeof dd);
     dd.get_instance_proc_addr = vkGetInstanceProcAddr;
@@ -1842,6 +1843,7 @@ static void run_vulkan(bench *b, protocol *p, uint32_t n, int emulated)
             if (m == 0) {
                 mlodvk_cut_info info = mlodvk_cut_get_info(vcut[0]);
                 rounds = info.rounds;
+                deferred = info.deferred;
                 submissions = info.submissions;
                 entries = info.entries;
             }
@@ -1974,8 +1976,10 @@ static void run_vulkan(bench *b, protocol *p, uint32_t n, int emulated)
         while (((uint64_t)1 << depth) < 2 * (uint64_t)n) depth++;
         r->n = n;
         r->total_ms = r->cut_ms = median(overhead, measured);
-        snprintf(r->note, sizeof r->note, "%u rounds recorded in %u submission(s); the basic cut: %u rounds, %u entries",
-                 2 * depth + 4, submissions, rounds, entries);
+        snprintf(r->note, sizeof r->note,
+                 "%u rounds recorded in %u submission(s); the basic cut: %u rounds, %u entries, %llu workgroups "
+                 "through the exact path",
+                 2 * depth + 4, submissions, rounds, entries, (unsigned long long)deferred);
     }
     printf("  vulkan%s  N %8u  %s: refit %.1f / %.1f ms, basic cut %.1f / %.1f ms, splat %.1f / %.1f ms (CPU / device)\n",
            emulated ? " (emulated doubles)" : "", n, mlodvk_context_device_name(ctx), median(st[VK_REFIT].cpu, measured), median(st[VK_REFIT].gpu, measured),
