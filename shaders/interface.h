@@ -176,16 +176,17 @@
 #define MLOD_IF_MV_WORDS 3u
 
 /* The cut's control block (std430): indirect dispatch arguments (a slot
-   per round parity, then cut_finish's, then cut_exact's: x the workgroups
-   it runs, w the workgroups cut_step deferred to it in this round, listed
-   after the block sums), the entries each slot's round
+   per round parity, then cut_finish's, then the exact pass's: x the
+   workgroups it runs, w those cut_step or cut_finish deferred to it,
+   listed after the block sums), the entries each slot's round
    reads, the splits and merges of the running round, whether the last
    round needed more than capacity entries, converged, rounds that changed
    the list, whether the current list is in buffer B, the entries the
    overflowing round needed, the entries of the current list, the
-   workgroups cut_step deferred to cut_exact in all rounds (the float
-   filter unsure of some status in them), and the criterion evaluations and the steps of
-   the call (64-bit counts: low word, high word). */
+   workgroups deferred to the exact pass in all rounds and cut_finish
+   (the float filter unsure of some status in them), and the criterion
+   evaluations and the steps of the call (64-bit counts: low word, high
+   word). */
 #define MLOD_IF_CONTROL(MEMBER, ARRAY)                                                                                 \
     ARRAY(MLOD_IF_UVEC4, args, 4)                                                                                      \
     ARRAY(MLOD_IF_U32, count, 2)                                                                                       \
