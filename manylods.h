@@ -896,14 +896,16 @@ MANYLODS_DEF mlod_result mlod_view_frame_of(const mlod_view *view, mlod_view_fra
 /* The cut's float filter of a view (see "Fast paths" below), as floats for
    other backends (manylods_vk.h uploads it beside the frame): its
    thresholds hold for the cut's epsilon.  MLOD_FILTER_FLOATS floats at
-   the offsets below; OK 0 where the view has no filter (every node-view
-   then takes the exact path); small integers stored as floats; unused
-   entries 0.  A sub-projection s starts at MLOD_FILTER_SUBS + s *
-   MLOD_FILTER_SUB_STRIDE: its kind, plane count, thresholds (valid,
-   invalid: pixels' inverse scale over epsilon, widened by 2^-12), axis w,
-   planes (n, l, k' = k - n.eye: 5 floats each), and each plane's slope
-   and error.  EYE holds the eye in floats; FLOAT_EYE is 1 when those are
-   the eye exactly (the filter needs it on other backends). */
+   the offsets below, in groups of four that start on a multiple of four
+   (a shader reads each group as one vec4); OK 0 where the view has no
+   filter (every node-view then takes the exact path); small integers
+   stored as floats; unused entries 0.  A sub-projection s starts at
+   MLOD_FILTER_SUBS + s * MLOD_FILTER_SUB_STRIDE: its kind, plane count,
+   thresholds (valid, invalid: pixels' inverse scale over epsilon, widened
+   by 2^-12), axis w, then its planes, plane j at MLOD_FILTER_S_PLANES + j
+   * MLOD_FILTER_PLANE_STRIDE: n, l, k' = k - n.eye, its slope and its
+   error.  EYE holds the eye in floats; FLOAT_EYE is 1 when those are the
+   eye exactly (the filter needs it on other backends). */
 enum {
     MLOD_FILTER_OK = 0,
     MLOD_FILTER_BACKFACES = 1,
@@ -912,16 +914,18 @@ enum {
     MLOD_FILTER_EYE = 4, /* 3 */
     MLOD_FILTER_FLOAT_EYE = 7,
     MLOD_FILTER_SUBS = 8,
-    MLOD_FILTER_SUB_STRIDE = 49,
+    MLOD_FILTER_SUB_STRIDE = 56,
     MLOD_FILTER_S_KIND = 0,
     MLOD_FILTER_S_PLANE_COUNT = 1,
     MLOD_FILTER_S_VALID = 2,
     MLOD_FILTER_S_INVALID = 3,
     MLOD_FILTER_S_W = 4,       /* 3 */
-    MLOD_FILTER_S_PLANES = 7,  /* 6 x 5 */
-    MLOD_FILTER_S_SLOPE = 37,  /* 6 */
-    MLOD_FILTER_S_ERR = 43,    /* 6 */
-    MLOD_FILTER_FLOATS = 304   /* 8 + 6 x 49, rounded up to 16 bytes */
+    MLOD_FILTER_S_PLANES = 8,  /* 6 planes */
+    MLOD_FILTER_PLANE_STRIDE = 8,
+    MLOD_FILTER_P_N = 0,       /* 3, then l and k' */
+    MLOD_FILTER_P_SLOPE = 5,
+    MLOD_FILTER_P_ERR = 6,
+    MLOD_FILTER_FLOATS = 344   /* 8 + 6 x 56 */
 };
 
 /* Fill out[0 .. MLOD_FILTER_FLOATS - 1] with the float filter of a view
@@ -4317,9 +4321,10 @@ MLOD__PUBLIC mlod_result mlod_view_filter_of(const mlod_view *view, float epsilo
         o[MLOD_FILTER_S_INVALID] = fs->invalid;
         for (k = 0; k < 3; k++) o[MLOD_FILTER_S_W + k] = fs->w[k];
         for (j = 0; j < fs->plane_count; j++) {
-            for (k = 0; k < 5; k++) o[MLOD_FILTER_S_PLANES + 5 * j + k] = fs->planes[j][k];
-            o[MLOD_FILTER_S_SLOPE + j] = fs->slope[j];
-            o[MLOD_FILTER_S_ERR + j] = fs->err[j];
+            float *plane = o + MLOD_FILTER_S_PLANES + j * MLOD_FILTER_PLANE_STRIDE;
+            for (k = 0; k < 5; k++) plane[MLOD_FILTER_P_N + k] = fs->planes[j][k];
+            plane[MLOD_FILTER_P_SLOPE] = fs->slope[j];
+            plane[MLOD_FILTER_P_ERR] = fs->err[j];
         }
     }
     return mlod__succeed(error);

@@ -507,7 +507,7 @@ real evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
 }
 
 #ifdef MLOD_HAS_FILTERS
-// The float filter (the includer declares float filters[], each view's
+// The float filter (the includer declares vec4 filters[], each view's
 // MLOD_IF_FILTER_STRIDE floats: interface.h).  The C twins' bounds assume
 // correctly rounded float operations; Vulkan rounds +, -, * correctly but
 // lets sqrt err by a few ulp (inherited from 1 / inversesqrt).  That adds
@@ -518,20 +518,23 @@ real evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
 // there.  A wider margin only leaves more node-views to the exact path, so
 // the cuts stay the CPU's node for node (a decided status is the exact
 // path's on either side).  Fused multiply-adds round less: the bounds hold.
-float fl(uint i) { return filters[i]; }
+// The filter is read four floats at a time: a SIMD device (lavapipe) loads
+// a buffer word lane by lane, so each load costs it a loop over the lanes.
+
+// The four floats of the filters buffer from float i on (i a multiple of 4).
+vec4 fl4(uint i) { return filters[i >> 2]; }
 
 // C twin: mlod__fast_backfacing
 // 1 culled, 0 not, -1 unsure; x = centre - eye, t the tangent length, r
-// the radius ((t, r) = (1, 0) and x unused for an orthographic view).
-int fast_backfacing(uint f, vec3 x, float t, float r, vec4 cone)
+// the radius ((t, r) = (1, 0) and x unused for an orthographic view, w its
+// axis).
+int fast_backfacing(bool ortho, vec3 w, vec3 x, float t, float r, vec4 cone)
 {
     float a = cone.w;
     if (!(a < uintBitsToFloat(0x3FC90FDBu))) return 0; // pi / 2 rounded to float, as the C twin's
     if (!(a >= 0.0)) return -1;
-    vec3 axis = cone.xyz, w = vec3(fl(f + MLOD_IF_F_SUBS + MLOD_IF_FS_W), fl(f + MLOD_IF_F_SUBS + MLOD_IF_FS_W + 1u),
-                                   fl(f + MLOD_IF_F_SUBS + MLOD_IF_FS_W + 2u));
-    float away = fl(f + MLOD_IF_F_ORTHO) != 0.0 ? -(axis.x * w.x + axis.y * w.y + axis.z * w.z)
-                                                 : -(axis.x * x.x + axis.y * x.y + axis.z * x.z);
+    vec3 axis = cone.xyz;
+    float away = ortho ? -(axis.x * w.x + axis.y * w.y + axis.z * w.z) : -(axis.x * x.x + axis.y * x.y + axis.z * x.z);
     float len = sqrt(axis.x * axis.x + axis.y * axis.y + axis.z * axis.z);
     float a2 = a * a;
     float sa = a * (1.0 - a2 * (uintBitsToFloat(0x3E2AAAABu) - a2 * uintBitsToFloat(0x3C088889u))); // 1/6, 1/120
@@ -551,16 +554,19 @@ int fast_backfacing(uint f, vec3 x, float t, float r, vec4 cone)
 // The status of a node-view by the float filter: MLOD_IF_STATUS_CULLED,
 // _DRAWN, _COARSE (not valid: the caller tells an oversize leaf) or 0
 // (unsure).  Views whose eye is not exactly a float take the exact path.
+// One pass over the sub-projections decides what the C twin's two do, in
+// its order: a plane the filter is unsure of first, then culled (no
+// sub-projection reached, or back-facing), then the first reached
+// sub-projection whose size test is unsure or too large, then drawn.
 uint fast_status(uint view, vec4 sphere, bool use_cone, vec4 cone)
 {
     uint f = view * MLOD_IF_FILTER_STRIDE;
-    if (fl(f + MLOD_IF_F_OK) == 0.0 || fl(f + MLOD_IF_F_FLOAT_EYE) == 0.0) return 0u;
-    vec3 x = vec3(sphere.x - fl(f + MLOD_IF_F_EYE), sphere.y - fl(f + MLOD_IF_F_EYE + 1u),
-                  sphere.z - fl(f + MLOD_IF_F_EYE + 2u));
+    vec4 head = fl4(f + MLOD_IF_F_OK), eye = fl4(f + MLOD_IF_F_EYE); // OK, BACKFACES, ORTHO, SUB_COUNT; EYE, FLOAT_EYE
+    if (head.x == 0.0 || eye.w == 0.0) return 0u;
+    vec3 x = vec3(sphere.x - eye.x, sphere.y - eye.y, sphere.z - eye.z), w0 = vec3(0.0);
     float r = sphere.w, d2 = x.x * x.x + x.y * x.y + x.z * x.z, t = 1.0, twice = r + r, reach;
-    bool ortho = fl(f + MLOD_IF_F_ORTHO) != 0.0;
-    uint reached = 0u, count = uint(fl(f + MLOD_IF_F_SUB_COUNT));
-    bool all_valid = true;
+    bool ortho = head.z != 0.0, all_valid = true;
+    uint reached = 0u, count = uint(head.w), size_status = MLOD_IF_STATUS_DRAWN;
     if (!(d2 >= uintBitsToFloat(0x2B800000u) && d2 <= uintBitsToFloat(0x67800000u))) return 0u; // 2^-40, 2^80
     if (!(r == 0.0 || (r >= uintBitsToFloat(0x2B800000u) && r <= uintBitsToFloat(0x53800000u)))) return 0u; // 2^40
     if (!ortho) {
@@ -572,43 +578,53 @@ uint fast_status(uint view, vec4 sphere, bool use_cone, vec4 cone)
         reach = sqrt(d2) + r;
     }
     for (uint s = 0u; s < count; s++) {
-        uint fs = f + MLOD_IF_F_SUBS + s * MLOD_IF_F_SUB_STRIDE, planes = uint(fl(fs + MLOD_IF_FS_PLANE_COUNT)), j;
+        uint fs = f + MLOD_IF_F_SUBS + s * MLOD_IF_F_SUB_STRIDE, j;
+        vec4 sub = fl4(fs + MLOD_IF_FS_KIND); // KIND, PLANE_COUNT, VALID, INVALID
+        vec3 w = fl4(fs + MLOD_IF_FS_W).xyz;
+        uint planes = uint(sub.y);
+        if (s == 0u) w0 = w;
         for (j = 0u; j < planes; j++) {
-            uint p = fs + MLOD_IF_FS_PLANES + 5u * j;
-            float v = fl(p) * x.x + fl(p + 1u) * x.y + fl(p + 2u) * x.z + fl(p + 3u) * r - fl(p + 4u);
-            float m = fl(fs + MLOD_IF_FS_SLOPE + j) * reach + fl(fs + MLOD_IF_FS_ERR + j);
+            uint p = fs + MLOD_IF_FS_PLANES + j * MLOD_IF_FP_STRIDE;
+            vec4 n = fl4(p + MLOD_IF_FP_N), k = fl4(p + MLOD_IF_FP_N + 4u); // n, l; k - n.eye, slope, error
+            float v = n.x * x.x + n.y * x.y + n.z * x.z + n.w * r - k.x;
+            float m = k.y * reach + k.z;
             if (v < -m) break;
             if (!(v > m)) return 0u;
         }
-        if (j == planes) reached |= 1u << s;
-    }
-    if (reached == 0u) return MLOD_IF_STATUS_CULLED;
-    if (fl(f + MLOD_IF_F_BACKFACES) != 0.0 && use_cone) {
-        int b = fast_backfacing(f, x, t, ortho ? 0.0 : r, cone);
-        if (b != 0) return b > 0 ? MLOD_IF_STATUS_CULLED : 0u;
-    }
-    for (uint s = 0u; s < count; s++) {
-        if (((reached >> s) & 1u) == 0u) continue;
-        uint fs = f + MLOD_IF_F_SUBS + s * MLOD_IF_F_SUB_STRIDE;
-        int kind = int(fl(fs + MLOD_IF_FS_KIND));
-        float xw = x.x * fl(fs + MLOD_IF_FS_W) + x.y * fl(fs + MLOD_IF_FS_W + 1u) + x.z * fl(fs + MLOD_IF_FS_W + 2u);
+        if (j < planes) continue; // missed
+        reached |= 1u << s;
+        if (size_status != MLOD_IF_STATUS_DRAWN) continue; // decided by an earlier sub-projection
+        int kind = int(sub.x);
+        float xw = x.x * w.x + x.y * w.y + x.z * w.z;
         float lhs, rhs;
         if (kind == MLOD_IF_KIND_PERSPECTIVE) {
             float near_side = xw - r;
-            if (!(near_side > 0.0 && 256.0 * near_side * near_side >= d2)) return 0u;
+            if (!(near_side > 0.0 && 256.0 * near_side * near_side >= d2)) {
+                size_status = 0u;
+                continue;
+            }
             lhs = twice * t;
             rhs = near_side * (xw + r);
         } else if (kind == MLOD_IF_KIND_PARABOLOID) {
             rhs = xw + t;
-            if (!(rhs > 0.0 && 256.0 * rhs * rhs >= d2)) return 0u;
+            if (!(rhs > 0.0 && 256.0 * rhs * rhs >= d2)) {
+                size_status = 0u;
+                continue;
+            }
             lhs = twice;
         } else {
             lhs = twice;
             rhs = 1.0;
         }
-        if (lhs * fl(fs + MLOD_IF_FS_INVALID) > rhs) return MLOD_IF_STATUS_COARSE;
-        if (!(lhs * fl(fs + MLOD_IF_FS_VALID) <= rhs)) all_valid = false;
+        if (lhs * sub.w > rhs) size_status = MLOD_IF_STATUS_COARSE;
+        else if (!(lhs * sub.z <= rhs)) all_valid = false;
     }
+    if (reached == 0u) return MLOD_IF_STATUS_CULLED;
+    if (head.y != 0.0 && use_cone) {
+        int b = fast_backfacing(ortho, w0, x, t, ortho ? 0.0 : r, cone);
+        if (b != 0) return b > 0 ? MLOD_IF_STATUS_CULLED : 0u;
+    }
+    if (size_status != MLOD_IF_STATUS_DRAWN) return size_status;
     return all_valid ? MLOD_IF_STATUS_DRAWN : 0u;
 }
 #endif

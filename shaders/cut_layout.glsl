@@ -3,7 +3,7 @@
 // side is mlodvk__cut_* in manylods_vk.h.  One descriptor set:
 //   0 spheres  1 cones  2 views  3 list in  4 list out  5 status in
 //   6 status out  7 acts  8 block sums  9 control  10 view offsets
-//   11 view filters (floats: the float filter, interface.h)
+//   11 view filters (vec4s: the float filter, interface.h)
 // A list entry is uvec2(node, view); its status is a separate uint (low 3
 // bits MLOD_STATUS_* or 0 = pending; bit 3: the merge check already failed
 // in this call).  Rounds alternate list and status buffers A -> B -> A; the
@@ -25,7 +25,7 @@ layout(std430, set = 0, binding = MLOD_IF_CUT_ACTS) buffer acts_buffer { uint ac
 layout(std430, set = 0, binding = MLOD_IF_CUT_BLOCK_SUMS) buffer block_sums_buffer { uint block_sums[]; };
 layout(std430, set = 0, binding = MLOD_IF_CUT_CONTROL) coherent buffer control_block { MLOD_IF_CONTROL(MLOD_IF_DECLARE, MLOD_IF_DECLARE_ARRAY) } ctl;
 layout(std430, set = 0, binding = MLOD_IF_CUT_VIEW_OFFSETS) buffer view_offsets_buffer { uint view_offsets[]; };
-layout(std430, set = 0, binding = MLOD_IF_CUT_FILTERS) readonly buffer view_filters { float filters[]; };
+layout(std430, set = 0, binding = MLOD_IF_CUT_FILTERS) readonly buffer view_filters { vec4 filters[]; };
 #define MLOD_HAS_FILTERS // common.glsl's classify tries the float filter first (fast_status)
 
 layout(push_constant) uniform push_block { MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE) } pc;
@@ -53,6 +53,20 @@ void defer_block(uint group)
     if (k < pc.max_groups_x) atomicMax(ctl.args[3].x, k + 1u);
     atomicAdd(ctl.deferred, 1u);
 }
+
+// The sum of words[k] over k < limit, words a shared array with a word
+// per subgroup, in every invocation of the calling subgroup, all of whose
+// invocations must call it.  The subgroup's invocations read the words
+// together, each every gl_SubgroupSize-th one, and add them with one
+// subgroupAdd: a loop over every word in every invocation costs a SIMD
+// device (lavapipe) a load per invocation and word, which was a fifth of
+// the cut's time there.
+#define SUBGROUP_WORDS_SUM(words, limit, sum)                                                                          \
+    {                                                                                                                  \
+        uint part_ = 0u;                                                                                               \
+        for (uint k_ = gl_SubgroupInvocationID; k_ < (limit); k_ += gl_SubgroupSize) part_ += words[k_];               \
+        sum = subgroupAdd(part_);                                                                                      \
+    }
 
 #define ACT_KEEP 0u
 #define ACT_SPLIT 1u

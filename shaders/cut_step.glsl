@@ -90,8 +90,8 @@ void step_block(uint group)
     barrier();
 #ifdef MLOD_CUT_PASS_FILTER
     {
-        uint any_unsure = 0u;
-        for (uint k = 0u; k < gl_NumSubgroups; k++) any_unsure |= sum_unsure[k];
+        uint any_unsure;
+        SUBGROUP_WORDS_SUM(sum_unsure, gl_NumSubgroups, any_unsure);
         if (any_unsure != 0u) { // the whole workgroup alike: listed for cut_exact
             if (gl_LocalInvocationID.x == 0u) defer_block(group);
             return;
@@ -102,17 +102,18 @@ void step_block(uint group)
         status_in[i] = raw;
         acts[i] = act;
     }
-    if (gl_LocalInvocationID.x == 0u) {
-        for (uint k = 1u; k < gl_NumSubgroups; k++) {
-            sum_count[0] += sum_count[k];
-            sum_evaluated[0] += sum_evaluated[k];
-            sum_steps[0] += sum_steps[k];
-        }
-        block_sums[group] = sum_count[0];
-        if (sum_evaluated[0] != 0u) MLOD_IF_COUNT64(ctl.evaluated, sum_evaluated[0]);
-        if (sum_steps[0] != 0u) {
-            MLOD_IF_COUNT64(ctl.steps, sum_steps[0]);
-            atomicAdd(ctl.changed, sum_steps[0]);
+    if (gl_SubgroupID == 0u) { // the first subgroup adds the sums up
+        uint count_wg, evaluated_wg, steps_wg;
+        SUBGROUP_WORDS_SUM(sum_count, gl_NumSubgroups, count_wg);
+        SUBGROUP_WORDS_SUM(sum_evaluated, gl_NumSubgroups, evaluated_wg);
+        SUBGROUP_WORDS_SUM(sum_steps, gl_NumSubgroups, steps_wg);
+        if (subgroupElect()) {
+            block_sums[group] = count_wg;
+            if (evaluated_wg != 0u) MLOD_IF_COUNT64(ctl.evaluated, evaluated_wg);
+            if (steps_wg != 0u) {
+                MLOD_IF_COUNT64(ctl.steps, steps_wg);
+                atomicAdd(ctl.changed, steps_wg);
+            }
         }
     }
 }

@@ -24,8 +24,8 @@ void main()
     uint count = act & 3u, before = subgroupExclusiveAdd(count), total = subgroupAdd(count);
     if (subgroupElect()) prefix[gl_SubgroupID] = total;
     barrier();
-    uint base = 0u;
-    for (uint k = 0u; k < gl_SubgroupID; k++) base += prefix[k];
+    uint base;
+    SUBGROUP_WORDS_SUM(prefix, gl_SubgroupID, base);
     if (i >= n) return;
     uint at = block_sums[group] + base + before;
     uvec2 e = list_in[i];

@@ -60,13 +60,15 @@
 #define MLOD_IF_S_PLANE_COUNT 17
 #define MLOD_IF_S_PLANES 18     /* 6 planes of 5: n, k, l */
 
-/* One view's float filter in the cut's filters buffer: MLOD_IF_FILTER_STRIDE
-   floats as mlod_view_filter_of (manylods.h) writes them, a head of
+/* One view's float filter in the cut's filters buffer (vec4s):
+   MLOD_IF_FILTER_STRIDE floats as mlod_view_filter_of (manylods.h) writes
+   them, in groups of four that the shaders read as one vec4: a head of
    MLOD_IF_F_SUBS floats, then a sub-projection every MLOD_IF_F_SUB_STRIDE
-   floats; offsets from the view's first float (F_) or from its
-   sub-projection's (FS_); manylods_vk.h checks them against manylods.h's
-   MLOD_FILTER_* at compile time. */
-#define MLOD_IF_FILTER_STRIDE 304
+   floats, its planes from MLOD_IF_FS_PLANES on, MLOD_IF_FP_STRIDE floats
+   each; offsets from the view's first float (F_), its sub-projection's
+   (FS_) or its plane's (FP_); manylods_vk.h checks them against
+   manylods.h's MLOD_FILTER_* at compile time. */
+#define MLOD_IF_FILTER_STRIDE 344
 #define MLOD_IF_F_OK 0
 #define MLOD_IF_F_BACKFACES 1
 #define MLOD_IF_F_ORTHO 2
@@ -74,15 +76,17 @@
 #define MLOD_IF_F_EYE 4         /* 3 */
 #define MLOD_IF_F_FLOAT_EYE 7
 #define MLOD_IF_F_SUBS 8
-#define MLOD_IF_F_SUB_STRIDE 49
+#define MLOD_IF_F_SUB_STRIDE 56
 #define MLOD_IF_FS_KIND 0
 #define MLOD_IF_FS_PLANE_COUNT 1
 #define MLOD_IF_FS_VALID 2
 #define MLOD_IF_FS_INVALID 3
 #define MLOD_IF_FS_W 4          /* 3 */
-#define MLOD_IF_FS_PLANES 7     /* 6 planes of 5: n, l, k - n.eye */
-#define MLOD_IF_FS_SLOPE 37     /* 6 */
-#define MLOD_IF_FS_ERR 43       /* 6 */
+#define MLOD_IF_FS_PLANES 8     /* 6 planes */
+#define MLOD_IF_FP_STRIDE 8
+#define MLOD_IF_FP_N 0          /* 3, then l and k - n.eye */
+#define MLOD_IF_FP_SLOPE 5
+#define MLOD_IF_FP_ERR 6
 
 /* mlod_view_kind and the statuses of a cut entry (MLOD_STATUS_*; 0: not
    yet classified). */

@@ -2338,8 +2338,9 @@ static void test_filter_export(void)
                             o[MLOD_FILTER_S_VALID] != fs->valid || o[MLOD_FILTER_S_INVALID] != fs->invalid;
                 for (k = 0; k < 3; k++) bad_here |= o[MLOD_FILTER_S_W + k] != fs->w[k];
                 for (j = 0; j < fs->plane_count; j++) {
-                    for (k = 0; k < 5; k++) bad_here |= o[MLOD_FILTER_S_PLANES + 5 * j + k] != fs->planes[j][k];
-                    bad_here |= o[MLOD_FILTER_S_SLOPE + j] != fs->slope[j] || o[MLOD_FILTER_S_ERR + j] != fs->err[j];
+                    const float *plane = o + MLOD_FILTER_S_PLANES + j * MLOD_FILTER_PLANE_STRIDE;
+                    for (k = 0; k < 5; k++) bad_here |= plane[MLOD_FILTER_P_N + k] != fs->planes[j][k];
+                    bad_here |= plane[MLOD_FILTER_P_SLOPE] != fs->slope[j] || plane[MLOD_FILTER_P_ERR] != fs->err[j];
                 }
             }
         }
