@@ -1977,8 +1977,8 @@ static void run_vulkan(bench *b, protocol *p, uint32_t n, int emulated)
         r->n = n;
         r->total_ms = r->cut_ms = median(overhead, measured);
         snprintf(r->note, sizeof r->note,
-                 "%u rounds recorded in %u submission(s); the basic cut: %u rounds, %u entries, %llu workgroups "
-                 "through the exact path",
+                 "%u rounds recorded in %u submission(s); the basic cut: %u rounds, %u entries, %llu of them "
+                 "through the exact pass",
                  2 * depth + 4, submissions, rounds, entries, (unsigned long long)deferred);
     }
     printf("  vulkan%s  N %8u  %s: refit %.1f / %.1f ms, basic cut %.1f / %.1f ms, splat %.1f / %.1f ms (CPU / device)\n",

@@ -634,8 +634,8 @@ bool status_valid(uint s) { return s == MLOD_IF_STATUS_DRAWN || s == MLOD_IF_STA
 
 #ifdef MLOD_HAS_FILTERS
 // classify's first step, the float filter alone: the status, or 0 where
-// the filter is unsure (cut_step and cut_finish then list the workgroup
-// for their exact pass: defer_block).
+// the filter is unsure (cut_step and cut_finish then list the entry for
+// their exact pass: defer_entry).
 uint classify_fast(uint view, uint node, uint leaf_count)
 {
     vec4 cone = MLOD_HAS_CONES ? cones[node] : vec4(0.0);

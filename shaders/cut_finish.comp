@@ -5,11 +5,12 @@
 // clear the working bits, and record where each view's list begins (every
 // view has at least one entry; the list is grouped by view, in view
 // order): view_offsets[v] .. view_offsets[v + 1].  Dispatched with
-// args[2].  An entry the filter is unsure of stays pending, and its
-// workgroup is listed for cut_settle (as cut_step's for cut_exact: the
-// exact path is kept out of a pass that every workgroup takes).
+// args[2].  An entry the filter is unsure of stays pending and is listed
+// for cut_settle (as cut_step's for cut_exact: the exact path is kept out
+// of a pass that every entry takes).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_EXT_control_flow_attributes : require
 #include "interface.h"
 layout(local_size_x = MLOD_IF_GROUP) in;
@@ -17,8 +18,7 @@ layout(local_size_x = MLOD_IF_GROUP) in;
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
 
-// per invocation: evaluated (low 16 bits) + unsure << 16, summed
-shared uint sum_evaluated[MLOD_IF_GROUP];
+shared uint sum_evaluated[MLOD_IF_GROUP]; // per subgroup
 
 void main()
 {
@@ -33,22 +33,20 @@ void main()
         uint previous_view = i == 0u ? 0xffffffffu : (in_b ? list_out[i - 1u].y : list_in[i - 1u].y);
         if (s == MLOD_IF_STATUS_PENDING) {
             s = classify_fast(e.y, e.x, pc.leaf_count); // 0 (still pending) when unsure
-            evaluated = s == 0u ? 0x10001u : 1u;
+            evaluated = 1u; // cut_settle does not count it again
+            if (s == 0u) acts[defer_entry()] = i;
         }
         if (in_b) list_in[i] = e;
         status_in[i] = s;
         if (previous_view != e.y) view_offsets[e.y] = i;
         if (i + 1u == n) view_offsets[pc.view_count] = n;
     }
-    sum_evaluated[gl_LocalInvocationID.x] = evaluated;
+    uint evaluated_sg = subgroupAdd(evaluated);
+    if (subgroupElect()) sum_evaluated[gl_SubgroupID] = evaluated_sg;
     barrier();
-    for (uint stride = MLOD_IF_GROUP / 2u; stride > 0u; stride >>= 1) {
-        if (gl_LocalInvocationID.x < stride) sum_evaluated[gl_LocalInvocationID.x] += sum_evaluated[gl_LocalInvocationID.x + stride];
-        barrier();
-    }
-    if (gl_LocalInvocationID.x == 0u) {
-        uint total = sum_evaluated[0];
-        if ((total & 0xffffu) != 0u) MLOD_IF_COUNT64(ctl.evaluated, total & 0xffffu);
-        if ((total >> 16) != 0u) defer_block(group);
+    if (gl_SubgroupID == 0u) {
+        uint total;
+        SUBGROUP_WORDS_SUM(sum_evaluated, gl_NumSubgroups, total);
+        if (subgroupElect() && total != 0u) MLOD_IF_COUNT64(ctl.evaluated, total);
     }
 }

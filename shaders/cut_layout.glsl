@@ -38,20 +38,17 @@ layout(push_constant) uniform push_block { MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE) } p
         if (was_ + add_ < was_) atomicAdd(count[1], 1u);                                                               \
     }
 
-// The k-th workgroup cut_step deferred to cut_exact in this round: listed
-// after the block sums, in the same buffer (capacity / MLOD_IF_GROUP + 2
-// words each).
-#define DEFERRED_BLOCK(k) block_sums[pc.capacity / MLOD_IF_GROUP + 2u + (k)]
-
-// List workgroup `group` for the exact pass that follows (cut_exact after
-// cut_step, cut_settle after cut_finish), which runs args[3].x workgroups
-// over the args[3].w listed.  One invocation of the workgroup calls it.
-void defer_block(uint group)
+// List an entry for the exact pass that follows (cut_exact after cut_step,
+// cut_settle after cut_finish), which runs args[3].x workgroups over the
+// args[3].w entries listed.  Returns the entry's place in the list, which
+// the caller writes: status_out[k] in a round (free until cut_write
+// fills it), acts[k] in cut_finish (free after the last round).
+uint defer_entry()
 {
     uint k = atomicAdd(ctl.args[3].w, 1u);
-    DEFERRED_BLOCK(k) = group;
-    if (k < pc.max_groups_x) atomicMax(ctl.args[3].x, k + 1u);
+    if (k % MLOD_IF_GROUP == 0u && k / MLOD_IF_GROUP < pc.max_groups_x) atomicMax(ctl.args[3].x, k / MLOD_IF_GROUP + 1u);
     atomicAdd(ctl.deferred, 1u);
+    return k;
 }
 
 // The sum of words[k] over k < limit, words a shared array with a word

@@ -7,16 +7,18 @@
 // left child emits it, the right one emits nothing); anything else keeps
 // its place.
 //   cut_step.comp (MLOD_CUT_PASS_FILTER): statuses by the float filter
-//     alone.  A workgroup with a status the filter is unsure of writes
-//     nothing: it leaves its entries as they were and lists itself for
-//     cut_exact (DEFERRED_BLOCK, ctl.args[3]).
-//   cut_exact.comp: only the listed workgroups, each taken again whole
-//     with classify (the filter, then the exact path where it is unsure).
+//     alone.  An entry with a status the filter is unsure of (its own or
+//     its parent's) writes nothing and counts nothing: it lists itself for
+//     cut_exact (defer_entry, ctl.args[3]; the list in status_out).
+//   cut_exact.comp: only the listed entries, each taken again with
+//     classify (the filter, then the exact path where it is unsure); it
+//     adds their outputs to their blocks' sums.
 // The exact path's double arithmetic is most of a shader that has it: kept
-// out of the pass that every workgroup takes, it costs only where it is
-// used.  On lavapipe its mere presence tripled the pass's time, and even
-// an empty dispatch of it costs about 20 us a workgroup: cut_exact runs
-// only as many workgroups as were deferred.
+// out of the pass that every entry takes, it costs only where it is used.
+// On lavapipe its mere presence tripled the pass's time; taking again
+// only the entries the filter is unsure of (about 0.2 % of them), not
+// their whole workgroups, took the exact pass from a third of the cut's
+// time to a small share.
 #include "interface.h"
 layout(local_size_x = MLOD_IF_GROUP) in;
 #include "cut_layout.glsl"
@@ -26,7 +28,6 @@ layout(local_size_x = MLOD_IF_GROUP) in;
 shared uint sum_count[MLOD_IF_GROUP];
 shared uint sum_evaluated[MLOD_IF_GROUP];
 shared uint sum_steps[MLOD_IF_GROUP];
-shared uint sum_unsure[MLOD_IF_GROUP];
 
 #ifdef MLOD_CUT_PASS_FILTER
 #define STATUS_OF(view, node) classify_fast(view, node, pc.leaf_count)
@@ -34,81 +35,74 @@ shared uint sum_unsure[MLOD_IF_GROUP];
 #define STATUS_OF(view, node) classify(view, node, epsilon, pc.leaf_count)
 #endif
 
-// The entries of workgroup `group` of the round's input (its block).
-void step_block(uint group)
+// Entry i of the round's n input entries: its status and action written
+// (status_in[i], acts[i]), and its output entries, evaluations and steps
+// added to the counts.  Returns false, writing and counting nothing, when
+// the float filter (MLOD_CUT_PASS_FILTER) is unsure of a status it needs.
+bool step_entry(uint i, uint n, inout uint out_count, inout uint evaluated, inout uint steps)
 {
-    uint n = ctl.count[pc.slot];
 #ifndef MLOD_CUT_PASS_FILTER
     real epsilon = r_f(pc.epsilon);
 #endif
-    uint i = group * MLOD_IF_GROUP + gl_LocalInvocationID.x;
-    uint out_count = 0u, evaluated = 0u, steps = 0u, raw = 0u, act = 0u;
-    bool unsure = false;
-    if (i < n) {
-        uvec2 e = list_in[i];
-        uint node = e.x, view = e.y, s;
-        raw = status_in[i];
-        s = raw & 7u;
-        if (s == MLOD_IF_STATUS_PENDING || pc.trust == 0u) {
-            s = STATUS_OF(view, node);
-            unsure = s == 0u;
-            evaluated++;
-            raw = s;
-        }
-        act = (ACT_KEEP << 2) | 1u | (raw << 4);
-        if (s == MLOD_IF_STATUS_COARSE) {
-            act = (ACT_SPLIT << 2) | 2u;
-            steps++;
-        } else if (pc.merge != 0u && status_valid(s) && node > 0u && (raw & 8u) == 0u) {
-            bool left = (node & 1u) != 0u;
-            bool paired = left ? (i + 1u < n && list_in[i + 1u] == uvec2(node + 1u, view))
-                               : (i > 0u && list_in[i - 1u] == uvec2(node - 1u, view));
-            if (paired) {
-                uint ps = STATUS_OF(view, (node - 1u) / 2u);
-                unsure = unsure || ps == 0u;
-                evaluated++;
-                if (status_valid(ps)) {
-                    act = left ? ((ACT_PARENT << 2) | 1u | (ps << 4)) : (ACT_DROP << 2);
-                    if (left) steps++;
-                } else {
-                    raw |= 8u; // the parent stays invalid for the rest of this call
-                    act = (ACT_KEEP << 2) | 1u | (raw << 4);
-                }
+    uvec2 e = list_in[i];
+    uint node = e.x, view = e.y, raw = status_in[i], s = raw & 7u, act, evals = 0u, moves = 0u;
+    if (s == MLOD_IF_STATUS_PENDING || pc.trust == 0u) {
+        s = STATUS_OF(view, node);
+        if (s == 0u) return false;
+        evals++;
+        raw = s;
+    }
+    act = (ACT_KEEP << 2) | 1u | (raw << 4);
+    if (s == MLOD_IF_STATUS_COARSE) {
+        act = (ACT_SPLIT << 2) | 2u;
+        moves++;
+    } else if (pc.merge != 0u && status_valid(s) && node > 0u && (raw & 8u) == 0u) {
+        bool left = (node & 1u) != 0u;
+        bool paired = left ? (i + 1u < n && list_in[i + 1u] == uvec2(node + 1u, view))
+                           : (i > 0u && list_in[i - 1u] == uvec2(node - 1u, view));
+        if (paired) {
+            uint ps = STATUS_OF(view, (node - 1u) / 2u);
+            if (ps == 0u) return false;
+            evals++;
+            if (status_valid(ps)) {
+                act = left ? ((ACT_PARENT << 2) | 1u | (ps << 4)) : (ACT_DROP << 2);
+                if (left) moves++;
+            } else {
+                raw |= 8u; // the parent stays invalid for the rest of this call
+                act = (ACT_KEEP << 2) | 1u | (raw << 4);
             }
         }
-        out_count = act & 3u;
     }
-    // workgroup sums: subgroup sums, then the first invocation adds those
+    status_in[i] = raw;
+    acts[i] = act;
+    out_count += act & 3u;
+    evaluated += evals;
+    steps += moves;
+    return true;
+}
+
+// Add the workgroup's evaluations and steps to the call's counts (and the
+// steps to the round's changes); the output entries to block_sums[block]
+// where block is a workgroup of the input (cut_step; cut_exact adds its
+// outputs entry by entry).  Every invocation calls it.
+void count_workgroup(uint out_count, uint evaluated, uint steps, uint block)
+{
     uint count_sg = subgroupAdd(out_count), evaluated_sg = subgroupAdd(evaluated), steps_sg = subgroupAdd(steps);
-    bool unsure_sg = subgroupAny(unsure);
     if (subgroupElect()) {
         sum_count[gl_SubgroupID] = count_sg;
         sum_evaluated[gl_SubgroupID] = evaluated_sg;
         sum_steps[gl_SubgroupID] = steps_sg;
-        sum_unsure[gl_SubgroupID] = unsure_sg ? 1u : 0u;
     }
     barrier();
-#ifdef MLOD_CUT_PASS_FILTER
-    {
-        uint any_unsure;
-        SUBGROUP_WORDS_SUM(sum_unsure, gl_NumSubgroups, any_unsure);
-        if (any_unsure != 0u) { // the whole workgroup alike: listed for cut_exact
-            if (gl_LocalInvocationID.x == 0u) defer_block(group);
-            return;
-        }
-    }
-#endif
-    if (i < n) {
-        status_in[i] = raw;
-        acts[i] = act;
-    }
     if (gl_SubgroupID == 0u) { // the first subgroup adds the sums up
         uint count_wg, evaluated_wg, steps_wg;
         SUBGROUP_WORDS_SUM(sum_count, gl_NumSubgroups, count_wg);
         SUBGROUP_WORDS_SUM(sum_evaluated, gl_NumSubgroups, evaluated_wg);
         SUBGROUP_WORDS_SUM(sum_steps, gl_NumSubgroups, steps_wg);
         if (subgroupElect()) {
-            block_sums[group] = count_wg;
+#ifdef MLOD_CUT_PASS_FILTER
+            block_sums[block] = count_wg;
+#endif
             if (evaluated_wg != 0u) MLOD_IF_COUNT64(ctl.evaluated, evaluated_wg);
             if (steps_wg != 0u) {
                 MLOD_IF_COUNT64(ctl.steps, steps_wg);
@@ -120,14 +114,24 @@ void step_block(uint group)
 
 void main()
 {
+    uint n = ctl.count[pc.slot], out_count = 0u, evaluated = 0u, steps = 0u;
 #ifdef MLOD_CUT_PASS_FILTER
     uint group = group_index();
-    if (group * MLOD_IF_GROUP < ctl.count[pc.slot]) step_block(group);
+    if (group * MLOD_IF_GROUP >= n) return; // the whole workgroup alike
+    uint i = group * MLOD_IF_GROUP + gl_LocalInvocationID.x;
+    if (i < n && !step_entry(i, n, out_count, evaluated, steps)) status_out[defer_entry()] = i;
+    count_workgroup(out_count, evaluated, steps, group);
 #else
-    // the deferred workgroups, args[3].x of them at a time
-    for (uint k = gl_WorkGroupID.x; k < ctl.args[3].w; k += gl_NumWorkGroups.x) {
-        step_block(DEFERRED_BLOCK(k));
-        barrier(); // the shared sums are free again
+    // the deferred entries, args[3].x workgroups of them at a time
+    uint listed = ctl.args[3].w;
+    for (uint g = gl_WorkGroupID.x; g * MLOD_IF_GROUP < listed; g += gl_NumWorkGroups.x) {
+        uint k = g * MLOD_IF_GROUP + gl_LocalInvocationID.x, block_count = 0u;
+        if (k < listed) {
+            uint i = status_out[k];
+            step_entry(i, n, block_count, evaluated, steps);
+            if (block_count != 0u) atomicAdd(block_sums[i / MLOD_IF_GROUP], block_count);
+        }
     }
+    count_workgroup(0u, evaluated, steps, 0u);
 #endif
 }

@@ -129,7 +129,7 @@ static uint32_t compare_cuts(mlodvk_cut *gpu, const mlod_cut *cpu, uint32_t view
 
 /* Frames of one mode on the device and on the CPU; every frame's cuts
    must be equal.  Returns the total number of entries compared; adds the
-   workgroups the device's float filter deferred to cut_exact to
+   entries the device's float filter deferred to the exact pass to
    *deferred (when not NULL). */
 static uint64_t run_mode(const mlod_tree *tree, mlodvk_tree *vtree, mlod_view *views, uint32_t view_count,
                          mlod_cut_mode mode, uint32_t lazy_steps, float epsilon, uint32_t initial_capacity,
@@ -214,13 +214,14 @@ static void test_cut_parity(void)
                 check_validation(name);
             }
     printf("  cut parity: %llu cut entries compared over %d view sets x %d modes x %d epsilons x 4 frames; "
-           "%llu workgroups took the exact path (cut_exact)\n",
+           "%llu entries took the exact pass (cut_exact, cut_settle)\n",
            (unsigned long long)compared, VIEW_KINDS + 1, lean ? 2 : 4, lean ? 1 : 2, (unsigned long long)deferred);
-    /* the equal cuts above went through both passes: workgroups the float
-       filter decided alone, and workgroups it deferred */
-    CHECK(deferred > 0, "cut parity: no workgroup took the exact path (cut_exact untested)");
-    /* every dispatch folded into rows of one workgroup: cut_exact's single
-       workgroup takes every deferred one in turn; the same cuts */
+    /* the equal cuts above went through both passes: entries the float
+       filter decided alone, and entries it deferred */
+    CHECK(deferred > 0, "cut parity: no entry took the exact pass (cut_exact untested)");
+    /* every dispatch folded into rows of one workgroup: the exact pass's
+       single workgroup takes the deferred entries a workgroup's worth at a
+       time; the same cuts */
     {
         mlod_view views[24];
         uint32_t *max_x = &context->properties.limits.maxComputeWorkGroupCount[0], kept = *max_x;
@@ -229,9 +230,37 @@ static void test_cut_parity(void)
         make_views(96, -1, c, R, views, 24);
         run_mode(tree, vtree, views, 24, MLOD_CUT_INCREMENTAL, 1, 1.0f, 0, "rows of one workgroup, incremental", NULL,
                  &folded);
-        *max_x = kept;
-        CHECK(folded > 4, "rows of one workgroup: %llu workgroups deferred (expected several)", (unsigned long long)folded);
+        CHECK(folded > 4, "rows of one workgroup: %llu entries deferred (expected several)", (unsigned long long)folded);
         check_validation("rows of one workgroup");
+        /* an epsilon so far below a pixel that no view has a float filter
+           (mlod_view_filter_of's OK 0): every entry a round evaluates is
+           deferred, rounds list more of them than a workgroup holds, and
+           the single workgroup of each exact pass takes them a workgroup's
+           worth at a time; the same cuts.  With the device's doubles only
+           (the emulated ones would take minutes) */
+        if (!lean) {
+            mlod_tree *small = tu_build(&s, 600, 7, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
+            mlodvk_tree *vsmall = NULL;
+            uint64_t unfiltered = 0;
+            if (!small || mlodvk_tree_upload(context, small, &vsmall, &e) != MLOD_OK) {
+                CHECK(0, "rows of one workgroup, no filter: tree upload: %s", small ? e.message : "build failed");
+            } else {
+                run_mode(small, vsmall, views, 24, MLOD_CUT_BASIC, 1, 1e-13f, 0, "rows of one workgroup, no filter",
+                         NULL, &unfiltered);
+                /* 4 frames of at most depth + 4 rounds each: more than a
+                   workgroup's worth in some round */
+                uint64_t bound = 4 * (uint64_t)(tu_depth(small->node_count - 1) + 4) * 256;
+                CHECK(unfiltered > bound,
+                      "rows of one workgroup, no filter: %llu entries deferred (expected more than %llu)",
+                      (unsigned long long)unfiltered, (unsigned long long)bound);
+                printf("  rows of one workgroup, no filter: %llu entries deferred (%u leaves, 24 views, 4 frames)\n",
+                       (unsigned long long)unfiltered, small->leaf_count);
+                check_validation("rows of one workgroup, no filter");
+            }
+            mlodvk_tree_destroy(context, vsmall);
+            mlod_tree_destroy(small);
+        }
+        *max_x = kept;
     }
     /* a list that outgrows its buffers: start with room for one entry per
        view; the loop stops, grows and resumes, with the same cuts */
