@@ -182,15 +182,15 @@
 /* The cut's control block (std430): indirect dispatch arguments (a slot
    per round parity, then cut_finish's, then the exact pass's: x the
    workgroups it runs, w the entries cut_step or cut_finish deferred to
-   it, listed in status_out or acts: defer_entry), the entries each slot's round
-   reads, the splits and merges of the running round, whether the last
-   round needed more than capacity entries, converged, rounds that changed
-   the list, whether the current list is in buffer B, the entries the
-   overflowing round needed, the entries of the current list, the
-   entries deferred to the exact pass in all rounds and cut_finish (the
-   float filter unsure of a status they need), and the criterion
-   evaluations and the steps of the call (64-bit counts: low word, high
-   word). */
+   it, listed in status_out or acts: defer_entry), the entries each
+   slot's round reads, the splits and merges of the running round,
+   whether the last round needed more than capacity entries, converged,
+   rounds that changed the list, whether the current list is in buffer
+   B, the entries the overflowing round needed, the entries of the
+   current list, the entries deferred to the exact pass in all rounds and
+   cut_finish (the float filter unsure of a status they need), and the
+   criterion evaluations and the steps of the call (64-bit counts: low
+   word, high word). */
 #define MLOD_IF_CONTROL(MEMBER, ARRAY)                                                                                 \
     ARRAY(MLOD_IF_UVEC4, args, 4)                                                                                      \
     ARRAY(MLOD_IF_U32, count, 2)                                                                                       \
