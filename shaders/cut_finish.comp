@@ -14,11 +14,10 @@
 #extension GL_EXT_control_flow_attributes : require
 #include "interface.h"
 layout(local_size_x = MLOD_IF_GROUP) in;
+#define MLOD_CUT_COUNTS
 #include "cut_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
-
-shared uint sum_evaluated[MLOD_IF_GROUP]; // per subgroup
 
 void main()
 {
@@ -41,12 +40,5 @@ void main()
         if (previous_view != e.y) view_offsets[e.y] = i;
         if (i + 1u == n) view_offsets[pc.view_count] = n;
     }
-    uint evaluated_sg = subgroupAdd(evaluated);
-    if (subgroupElect()) sum_evaluated[gl_SubgroupID] = evaluated_sg;
-    barrier();
-    if (gl_SubgroupID == 0u) {
-        uint total;
-        SUBGROUP_WORDS_SUM(sum_evaluated, gl_NumSubgroups, total);
-        if (subgroupElect() && total != 0u) MLOD_IF_COUNT64(ctl.evaluated, total);
-    }
+    count_workgroup(0u, evaluated, 0u, MLOD_NO_BLOCK);
 }

@@ -65,6 +65,44 @@ uint defer_entry()
         sum = subgroupAdd(part_);                                                                                      \
     }
 
+#ifdef MLOD_CUT_COUNTS
+// The workgroup's counts, a word per subgroup (count_workgroup).
+shared uint sum_count[MLOD_IF_GROUP];
+shared uint sum_evaluated[MLOD_IF_GROUP];
+shared uint sum_steps[MLOD_IF_GROUP];
+
+#define MLOD_NO_BLOCK 0xffffffffu
+
+// Add the workgroup's evaluations and steps to the call's counts (and the
+// steps to the round's changes), and its output entries to
+// block_sums[block] unless block is MLOD_NO_BLOCK (cut_exact adds its
+// outputs entry by entry; cut_finish has none).  Every invocation calls it.
+void count_workgroup(uint out_count, uint evaluated, uint steps, uint block)
+{
+    uint count_sg = subgroupAdd(out_count), evaluated_sg = subgroupAdd(evaluated), steps_sg = subgroupAdd(steps);
+    if (subgroupElect()) {
+        sum_count[gl_SubgroupID] = count_sg;
+        sum_evaluated[gl_SubgroupID] = evaluated_sg;
+        sum_steps[gl_SubgroupID] = steps_sg;
+    }
+    barrier();
+    if (gl_SubgroupID == 0u) { // the first subgroup adds the sums up
+        uint count_wg, evaluated_wg, steps_wg;
+        SUBGROUP_WORDS_SUM(sum_count, gl_NumSubgroups, count_wg);
+        SUBGROUP_WORDS_SUM(sum_evaluated, gl_NumSubgroups, evaluated_wg);
+        SUBGROUP_WORDS_SUM(sum_steps, gl_NumSubgroups, steps_wg);
+        if (subgroupElect()) {
+            if (block != MLOD_NO_BLOCK) block_sums[block] = count_wg;
+            if (evaluated_wg != 0u) MLOD_IF_COUNT64(ctl.evaluated, evaluated_wg);
+            if (steps_wg != 0u) {
+                MLOD_IF_COUNT64(ctl.steps, steps_wg);
+                atomicAdd(ctl.changed, steps_wg);
+            }
+        }
+    }
+}
+#endif
+
 #define ACT_KEEP 0u
 #define ACT_SPLIT 1u
 #define ACT_PARENT 2u

@@ -21,13 +21,10 @@
 // time to a small share.
 #include "interface.h"
 layout(local_size_x = MLOD_IF_GROUP) in;
+#define MLOD_CUT_COUNTS
 #include "cut_layout.glsl"
 #define MLOD_HAS_CONES (pc.has_cones != 0u)
 #include "common.glsl"
-
-shared uint sum_count[MLOD_IF_GROUP];
-shared uint sum_evaluated[MLOD_IF_GROUP];
-shared uint sum_steps[MLOD_IF_GROUP];
 
 #ifdef MLOD_CUT_PASS_FILTER
 #define STATUS_OF(view, node) classify_fast(view, node, pc.leaf_count)
@@ -81,37 +78,6 @@ bool step_entry(uint i, uint n, inout uint out_count, inout uint evaluated, inou
     return true;
 }
 
-// Add the workgroup's evaluations and steps to the call's counts (and the
-// steps to the round's changes); the output entries to block_sums[block]
-// where block is a workgroup of the input (cut_step; cut_exact adds its
-// outputs entry by entry).  Every invocation calls it.
-void count_workgroup(uint out_count, uint evaluated, uint steps, uint block)
-{
-    uint count_sg = subgroupAdd(out_count), evaluated_sg = subgroupAdd(evaluated), steps_sg = subgroupAdd(steps);
-    if (subgroupElect()) {
-        sum_count[gl_SubgroupID] = count_sg;
-        sum_evaluated[gl_SubgroupID] = evaluated_sg;
-        sum_steps[gl_SubgroupID] = steps_sg;
-    }
-    barrier();
-    if (gl_SubgroupID == 0u) { // the first subgroup adds the sums up
-        uint count_wg, evaluated_wg, steps_wg;
-        SUBGROUP_WORDS_SUM(sum_count, gl_NumSubgroups, count_wg);
-        SUBGROUP_WORDS_SUM(sum_evaluated, gl_NumSubgroups, evaluated_wg);
-        SUBGROUP_WORDS_SUM(sum_steps, gl_NumSubgroups, steps_wg);
-        if (subgroupElect()) {
-#ifdef MLOD_CUT_PASS_FILTER
-            block_sums[block] = count_wg;
-#endif
-            if (evaluated_wg != 0u) MLOD_IF_COUNT64(ctl.evaluated, evaluated_wg);
-            if (steps_wg != 0u) {
-                MLOD_IF_COUNT64(ctl.steps, steps_wg);
-                atomicAdd(ctl.changed, steps_wg);
-            }
-        }
-    }
-}
-
 void main()
 {
     uint n = ctl.count[pc.slot], out_count = 0u, evaluated = 0u, steps = 0u;
@@ -132,6 +98,6 @@ void main()
             if (block_count != 0u) atomicAdd(block_sums[i / MLOD_IF_GROUP], block_count);
         }
     }
-    count_workgroup(0u, evaluated, steps, 0u);
+    count_workgroup(0u, evaluated, steps, MLOD_NO_BLOCK); // the outputs went to their blocks above
 #endif
 }
