@@ -10,6 +10,11 @@
 //     alone.  An entry with a status the filter is unsure of (its own or
 //     its parent's) writes nothing and counts nothing: it lists itself for
 //     cut_exact (defer_entry, ctl.args[3]; the list in status_out).
+//   cut_step_basic.comp (MLOD_CUT_PASS_FILTER, MLOD_CUT_NO_MERGE): the
+//     same for updates that merge nothing (basic mode), with the merge
+//     check left out: a SIMD device (lavapipe) runs every branch a
+//     workgroup's code has, taken or not, and the check's second filter
+//     was an eighth of the basic cut's time there.
 //   cut_exact.comp: only the listed entries, each taken again with
 //     classify (the filter, then the exact path where it is unsure); it
 //     adds their outputs to their blocks' sums.
@@ -53,7 +58,9 @@ bool step_entry(uint i, uint n, inout uint out_count, inout uint evaluated, inou
     if (s == MLOD_IF_STATUS_COARSE) {
         act = (ACT_SPLIT << 2) | 2u;
         moves++;
-    } else if (pc.merge != 0u && status_valid(s) && node > 0u && (raw & 8u) == 0u) {
+    }
+#ifndef MLOD_CUT_NO_MERGE
+    else if (pc.merge != 0u && status_valid(s) && node > 0u && (raw & 8u) == 0u) {
         bool left = (node & 1u) != 0u;
         bool paired = left ? (i + 1u < n && list_in[i + 1u] == uvec2(node + 1u, view))
                            : (i > 0u && list_in[i - 1u] == uvec2(node - 1u, view));
@@ -70,6 +77,7 @@ bool step_entry(uint i, uint n, inout uint out_count, inout uint evaluated, inou
             }
         }
     }
+#endif
     status_in[i] = raw;
     acts[i] = act;
     out_count += act & 3u;

@@ -30,16 +30,16 @@ void main()
     uint at = block_sums[group] + base + before;
     uvec2 e = list_in[i];
     uint kind = (act >> 2) & 3u;
-    if (kind == ACT_KEEP) {
-        list_out[at] = e;
-        status_out[at] = act >> 4;
-    } else if (kind == ACT_SPLIT) {
-        list_out[at] = uvec2(2u * e.x + 1u, e.y);
-        status_out[at] = 0u;
-        list_out[at + 1u] = uvec2(2u * e.x + 2u, e.y);
+    // the first output of any kind but a drop by one store, the second
+    // (a split's right child) by another: a SIMD device (lavapipe) runs
+    // every branch, and each store is a loop over its lanes there
+    uint first = kind == ACT_SPLIT ? 2u * e.x + 1u : kind == ACT_PARENT ? (e.x - 1u) / 2u : e.x;
+    if (kind != ACT_DROP) {
+        list_out[at] = uvec2(first, e.y);
+        status_out[at] = kind == ACT_SPLIT ? 0u : act >> 4;
+    }
+    if (kind == ACT_SPLIT) {
+        list_out[at + 1u] = uvec2(first + 1u, e.y);
         status_out[at + 1u] = 0u;
-    } else if (kind == ACT_PARENT) {
-        list_out[at] = uvec2((e.x - 1u) / 2u, e.y);
-        status_out[at] = act >> 4;
     }
 }
