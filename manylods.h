@@ -2338,10 +2338,21 @@ static void mlod__merge_task(void *context, uint32_t index)
 }
 
 /* A built tree's record of changes: every node as built (revision's low
-   bits are 0 at build). */
-static void mlod__changes_built(mlod_tree *tree)
+   bits are 0 at build), MLOD__CHANGES_CHUNK nodes a task (the record's
+   first touch: on 2 threads its pages' faults took 6-9 ms at N = 1.3 M,
+   in one task). */
+#define MLOD__CHANGES_CHUNK 65536u
+static void mlod__changes_zero_task(void *context, uint32_t index)
 {
-    if (tree->changes) memset(tree->changes, 0, (size_t)tree->node_count * sizeof(uint32_t));
+    mlod_tree *tree = (mlod_tree *)context;
+    size_t first = (size_t)index * MLOD__CHANGES_CHUNK, count = tree->node_count - first;
+    memset(tree->changes + first, 0, (count < MLOD__CHANGES_CHUNK ? count : MLOD__CHANGES_CHUNK) * sizeof(uint32_t));
+}
+
+static void mlod__changes_built(mlod_tree *tree, const mlod_parallel *parallel)
+{
+    if (tree->changes)
+        mlod__run(parallel, (tree->node_count - 1) / MLOD__CHANGES_CHUNK + 1, mlod__changes_zero_task, tree);
     tree->changes_revision = tree->revision;
     tree->changes_share = 0.0f;
 }
@@ -2713,6 +2724,17 @@ static double mlod__box_volume_of(const float *pts, uint32_t count)
     return d2 * sqrt(d2);
 }
 
+/* The top depths, of fewer than MLOD__SPLIT_FINE nodes, are split in
+   pieces (mlod__split_fine): each node's halves' boxes, a task each, then
+   each of its other axes' items in MLOD__SPLIT_PARTS parts at once, so
+   that the first splits, each of a half or more of the items, take all
+   the threads too.  (Measured, N = 1.3 M: on 2 threads the root's split
+   from 18 to 11 ms, the next depth's, two nodes, as fast as a task per
+   node; on one thread that depth about 1 ms slower in pieces, which move
+   the right items back one by one.) */
+#define MLOD__SPLIT_FINE 4u
+#define MLOD__SPLIT_PARTS 8u
+
 /* The items in the order of each axis, each with its position alongside
    (so that a node's boxes are read front to back), split node by node. */
 typedef struct mlod__order_ctx {
@@ -2725,51 +2747,171 @@ typedef struct mlod__order_ctx {
     uint32_t first, last;           /* the nodes of one depth (or of a batch of it) */
     int subtrees;                   /* split each of them with its subtree */
     uint32_t *leaf_item;            /* at the end: the item of each leaf */
+    /* mlod__split_fine, per node of the depth (node - first): */
+    double volumes[MLOD__SPLIT_FINE][3][2]; /* of the halves' boxes, per axis */
+    int axis[MLOD__SPLIT_FINE];
+    uint64_t pivot[MLOD__SPLIT_FINE];
+    uint32_t lefts[MLOD__SPLIT_FINE][MLOD__SPLIT_PARTS]; /* left items per part of the axis being moved */
+    int other, step; /* which of a node's other axes is moved; 0 boxes, 1 into the scratch, 2 back */
 } mlod__order_ctx;
 
-/* Split node `node` (slots b .. b+count of every axis) between its children:
-   along the axis whose two halves' boxes have the smaller summed sphere
-   volume (halves by leaf count); the other axes keep their order within
-   each half. */
-static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
+/* Node `node`'s first slot b, its count items, nl of them its left
+   child's (the halves by leaf count). */
+static void mlod__split_slots(const mlod__order_ctx *c, uint32_t node, uint32_t *b, uint32_t *count, uint32_t *nl)
 {
-    uint32_t b = c->begin[node], count = mlod__leaves_below(node, c->n);
-    uint32_t nl = mlod__leaves_below(2 * node + 1, c->n), i;
-    uint64_t pivot;
+    *b = c->begin[node];
+    *count = mlod__leaves_below(node, c->n);
+    *nl = mlod__leaves_below(2 * node + 1, c->n);
+}
+
+/* The volume of the box of a node's half (right: 1 the right one) along
+   axis k; the node's slots from mlod__split_slots. */
+static double mlod__half_volume(const mlod__order_ctx *c, uint32_t b, uint32_t count, uint32_t nl, int k, int right)
+{
+    const float *p = c->pts[k] + 3 * (size_t)b;
+    return right ? mlod__box_volume_of(p + 3 * (size_t)nl, count - nl) : mlod__box_volume_of(p, nl);
+}
+
+/* The axis whose two halves' boxes have the smaller summed volume, the
+   first on a tie. */
+static int mlod__split_axis(const double volumes[3][2])
+{
     double best = 0.0;
     int axis = 0, k;
     for (k = 0; k < 3; k++) {
-        const float *p = c->pts[k] + 3 * (size_t)b;
-        double v = mlod__box_volume_of(p, nl) + mlod__box_volume_of(p + 3 * (size_t)nl, count - nl);
+        double v = volumes[k][0] + volumes[k][1];
         if (k == 0 || v < best) {
             best = v;
             axis = k;
         }
     }
-    /* the left child takes the first nl items of the node along the axis,
-       which is sorted by (key, item): those below the (nl + 1)-th, found
-       from each item's own position (no lookup by item) */
-    pivot = (uint64_t)mlod__sort_key(c->pts[axis][3 * ((size_t)b + nl) + (size_t)axis]) << 32 | c->order[axis][b + nl];
+    return axis;
+}
+
+/* The left child takes the first nl items of the node along the axis,
+   which is sorted by (key, item): those below the (nl + 1)-th, found from
+   each item's own position (no lookup by item). */
+static uint64_t mlod__split_pivot(const mlod__order_ctx *c, uint32_t b, uint32_t nl, int axis)
+{
+    return (uint64_t)mlod__sort_key(c->pts[axis][3 * ((size_t)b + nl) + (size_t)axis]) << 32 | c->order[axis][b + nl];
+}
+
+/* Axis k's slots i .. end of the node at slot b into the scratch, the
+   left ones (by the pivot along `axis`) at slots l, l + 1, ..., the right
+   ones at r, r + step, ... (step 1, or -1 as an unsigned); returns how
+   many are left. */
+static uint32_t mlod__split_move(mlod__order_ctx *c, uint32_t b, int k, int axis, uint64_t pivot, uint32_t i,
+                                 uint32_t end, uint32_t l, uint32_t r, uint32_t step)
+{
+    const uint32_t *o = c->order[k] + b, first = l;
+    const float *p = c->pts[k] + 3 * (size_t)b;
+    uint32_t *so = c->scratch + b;
+    float *sp = c->scratch_pts + 3 * (size_t)b;
+    for (; i < end; i++) { /* branch-free: left and right are a coin toss */
+        uint32_t item = o[i], to;
+        uint32_t is_left = ((uint64_t)mlod__sort_key(p[3 * (size_t)i + (size_t)axis]) << 32 | item) < pivot;
+        to = is_left ? l : r;
+        l += is_left;
+        r += step & (is_left - 1u);
+        so[to] = item;
+        sp[3 * (size_t)to] = p[3 * (size_t)i];
+        sp[3 * (size_t)to + 1] = p[3 * (size_t)i + 1];
+        sp[3 * (size_t)to + 2] = p[3 * (size_t)i + 2];
+    }
+    return l - first;
+}
+
+/* Split node `node` (slots b .. b+count of every axis) between its
+   children: along mlod__split_axis's axis, halves by leaf count; the
+   other axes keep their order within each half. */
+static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
+{
+    uint32_t b, count, nl;
+    double volumes[3][2];
+    uint64_t pivot;
+    int axis, k, right;
+    mlod__split_slots(c, node, &b, &count, &nl);
+    for (k = 0; k < 3; k++)
+        for (right = 0; right < 2; right++) volumes[k][right] = mlod__half_volume(c, b, count, nl, k, right);
+    axis = mlod__split_axis((const double(*)[2])volumes);
+    pivot = mlod__split_pivot(c, b, nl, axis);
     for (k = 0; k < 3; k++) {
-        uint32_t *o = c->order[k] + b, *so = c->scratch + b, l = 0, r = nl;
-        float *p = c->pts[k] + 3 * (size_t)b, *sp = c->scratch_pts + 3 * (size_t)b;
         if (k == axis) continue;
-        for (i = 0; i < count; i++) { /* branch-free: left and right are a coin toss */
-            uint32_t item = o[i], to;
-            uint32_t is_left = ((uint64_t)mlod__sort_key(p[3 * (size_t)i + (size_t)axis]) << 32 | item) < pivot;
-            to = is_left ? l : r;
-            l += is_left;
-            r += 1u - is_left;
-            so[to] = item;
-            sp[3 * (size_t)to] = p[3 * (size_t)i];
-            sp[3 * (size_t)to + 1] = p[3 * (size_t)i + 1];
-            sp[3 * (size_t)to + 2] = p[3 * (size_t)i + 2];
-        }
-        memcpy(o, so, count * sizeof(uint32_t));
-        memcpy(p, sp, 3 * (size_t)count * sizeof(float));
+        mlod__split_move(c, b, k, axis, pivot, 0, count, 0, nl, 1);
+        memcpy(c->order[k] + b, c->scratch + b, count * sizeof(uint32_t));
+        memcpy(c->pts[k] + 3 * (size_t)b, c->scratch_pts + 3 * (size_t)b, 3 * (size_t)count * sizeof(float));
     }
     c->begin[2 * node + 1] = b;
     c->begin[2 * node + 2] = b + nl;
+}
+
+/* One piece of mlod__split_fine (c->step): a half's box (index 6 j + 2 k
+   + right, node first + j), or part `part` of node first + j (index
+   MLOD__SPLIT_PARTS j + part) of its other axis c->other moved into the
+   scratch (the right ones last first, from the part's end), or back:
+   its left ones after the parts' before it, its right ones after nl and
+   the parts' before it.  The same slots as mlod__split_node's. */
+static void mlod__split_fine_task(void *context, uint32_t index)
+{
+    mlod__order_ctx *c = (mlod__order_ctx *)context;
+    uint32_t j, part, b, count, nl, lo, hi, at, left, right, q, i;
+    int axis, k;
+    if (c->step == 0) {
+        j = index / 6;
+        mlod__split_slots(c, c->first + j, &b, &count, &nl);
+        c->volumes[j][index % 6 / 2][index % 2] = mlod__half_volume(c, b, count, nl, (int)(index % 6 / 2), (int)(index % 2));
+        return;
+    }
+    j = index / MLOD__SPLIT_PARTS;
+    part = index % MLOD__SPLIT_PARTS;
+    axis = c->axis[j];
+    k = (axis + 1 + c->other) % 3;
+    mlod__split_slots(c, c->first + j, &b, &count, &nl);
+    lo = (uint32_t)((uint64_t)count * part / MLOD__SPLIT_PARTS);
+    hi = (uint32_t)((uint64_t)count * (part + 1) / MLOD__SPLIT_PARTS);
+    if (c->step == 1) {
+        c->lefts[j][part] = mlod__split_move(c, b, k, axis, c->pivot[j], lo, hi, lo, hi - 1, 0xffffffffu);
+        return;
+    }
+    left = 0;
+    right = nl;
+    for (q = 0; q < part; q++) {
+        left += c->lefts[j][q];
+        right += (uint32_t)((uint64_t)count * (q + 1) / MLOD__SPLIT_PARTS - (uint64_t)count * q / MLOD__SPLIT_PARTS) -
+                 c->lefts[j][q];
+    }
+    memcpy(c->order[k] + b + left, c->scratch + b + lo, c->lefts[j][part] * sizeof(uint32_t));
+    memcpy(c->pts[k] + 3 * ((size_t)b + left), c->scratch_pts + 3 * ((size_t)b + lo),
+           3 * (size_t)c->lefts[j][part] * sizeof(float));
+    for (i = lo + c->lefts[j][part], at = hi; i < hi; i++) { /* the right ones, last first in the scratch */
+        size_t to = (size_t)b + right++, from = (size_t)b + --at;
+        c->order[k][to] = c->scratch[from];
+        c->pts[k][3 * to] = c->scratch_pts[3 * from];
+        c->pts[k][3 * to + 1] = c->scratch_pts[3 * from + 1];
+        c->pts[k][3 * to + 2] = c->scratch_pts[3 * from + 2];
+    }
+}
+
+/* Split the count < MLOD__SPLIT_FINE nodes of one depth (c->first on) as
+   mlod__split_node does, in pieces: the halves' boxes, each node's axis
+   and pivot, then each other axis into the scratch and back. */
+static void mlod__split_fine(mlod__order_ctx *c, const mlod_parallel *parallel, uint32_t count)
+{
+    uint32_t j, b, n, nl;
+    c->step = 0;
+    mlod__run(parallel, 6 * count, mlod__split_fine_task, c);
+    for (j = 0; j < count; j++) {
+        mlod__split_slots(c, c->first + j, &b, &n, &nl);
+        c->axis[j] = mlod__split_axis((const double(*)[2])c->volumes[j]);
+        c->pivot[j] = mlod__split_pivot(c, b, nl, c->axis[j]);
+    }
+    for (c->other = 0; c->other < 2; c->other++)
+        for (c->step = 1; c->step <= 2; c->step++) mlod__run(parallel, MLOD__SPLIT_PARTS * count, mlod__split_fine_task, c);
+    for (j = 0; j < count; j++) {
+        mlod__split_slots(c, c->first + j, &b, &n, &nl);
+        c->begin[2 * (c->first + j) + 1] = b;
+        c->begin[2 * (c->first + j) + 2] = b + nl;
+    }
 }
 
 /* Once a depth has this many internal nodes, each task splits whole
@@ -2955,7 +3097,10 @@ static mlod_result mlod__order_items(const mlod_allocator *a, const mlod_build_d
             }
             break;
         }
-        mlod__run(desc->parallel, count, mlod__split_task, &c);
+        if (count < MLOD__SPLIT_FINE)
+            mlod__split_fine(&c, desc->parallel, count);
+        else
+            mlod__run(desc->parallel, count, mlod__split_task, &c);
     }
     c.leaf_item = leaf_item;
     mlod__run(desc->parallel, (n - 1) / MLOD__LEAF_ITEMS + 1, mlod__leaf_items_task, &c);
@@ -3189,7 +3334,7 @@ MLOD__PUBLIC mlod_result mlod_build_mesh(const mlod_mesh *mesh, const mlod_build
         tree->smallest_area = smallest; /* finite: the mesh has area */
     }
     mlod__merge_all(tree, desc->parallel, NULL);
-    mlod__changes_built(tree);
+    mlod__changes_built(tree, desc->parallel);
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
     if (mlod__report(desc, 1.0f)) {
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);
@@ -3252,6 +3397,43 @@ static double mlod__density_radius(const mlod_tree *tree, uint32_t j)
     return tree->spheres[4 * (size_t)node + 3] * sqrt(MLOD__PI / leaves);
 }
 
+/* The leaves of a points build, MLOD__LEAF_CHUNK per task, in one of its
+   passes over them (step): 0 each leaf's radius from its point, 1 the
+   leaves bare (radius 0: a first tree, whose density gives the radii), 2
+   each leaf's radius from that density, 3 the leaves with their radii
+   (and their points). */
+typedef struct mlod__point_leaves_job {
+    mlod_tree *tree;
+    const mlod_points *points;
+    const uint32_t *leaf_item;
+    double *radius;
+    int step;
+} mlod__point_leaves_job;
+
+static void mlod__point_leaves_task(void *context, uint32_t index)
+{
+    const mlod__point_leaves_job *job = (const mlod__point_leaves_job *)context;
+    mlod_tree *tree = job->tree;
+    uint32_t n = tree->leaf_count, i = index * MLOD__LEAF_CHUNK, end = i + MLOD__LEAF_CHUNK;
+    if (end > n || end < i) end = n;
+    for (; i < end; i++) {
+        if (job->step == 0)
+            job->radius[i] = mlod__point_radius(job->points, job->leaf_item[i]);
+        else if (job->step == 2)
+            job->radius[i] = mlod__density_radius(tree, i);
+        else
+            mlod__point_leaf(tree, n - 1 + i, job->points, job->leaf_item[i], job->step == 1 ? 0.0 : job->radius[i], NULL);
+        if (job->step == 3 && tree->leaf_sources) tree->leaf_sources[i] = job->leaf_item[i];
+    }
+}
+
+/* Run step `step` of mlod__point_leaves_task over every leaf. */
+static void mlod__point_leaves(mlod__point_leaves_job *job, int step, const mlod_parallel *parallel)
+{
+    job->step = step;
+    mlod__run(parallel, (job->tree->leaf_count - 1) / MLOD__LEAF_CHUNK + 1, mlod__point_leaves_task, job);
+}
+
 MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod_build_desc *desc, mlod_tree **out_tree,
                                            mlod_error *error)
 {
@@ -3261,6 +3443,7 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
     float *pos = NULL;
     double *radius = NULL, mean_area = 0.0;
     mlod_tree *tree = NULL;
+    mlod__point_leaves_job leaves;
     if (res != MLOD_OK) return res;
     if ((res = mlod__check_points(points, error)) != MLOD_OK) return res;
     if (desc->attributes & MLOD_ATTR_COLOR && !points->colors)
@@ -3282,14 +3465,18 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
     }
     tree->radius_scale = desc->radius_scale > 0.0f ? desc->radius_scale : 1.0f;
     tree->area_unit = 1.0;
+    leaves.tree = tree;
+    leaves.points = points;
+    leaves.leaf_item = leaf_item;
+    leaves.radius = radius;
     if (points->radii) {
-        for (i = 0; i < n; i++) radius[i] = mlod__point_radius(points, leaf_item[i]);
+        mlod__point_leaves(&leaves, 0, desc->parallel);
     } else {
         float scale = tree->radius_scale;
         tree->radius_scale = 0.0f; /* a first tree of bare points gives the density */
-        for (i = 0; i < n; i++) mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], 0.0, NULL);
+        mlod__point_leaves(&leaves, 1, desc->parallel);
         mlod__merge_all(tree, desc->parallel, NULL);
-        for (i = 0; i < n; i++) radius[i] = mlod__density_radius(tree, i);
+        mlod__point_leaves(&leaves, 2, desc->parallel);
         tree->radius_scale = scale;
     }
     for (i = 0; i < n; i++) {
@@ -3301,12 +3488,9 @@ MLOD__PUBLIC mlod_result mlod_build_points(const mlod_points *points, const mlod
         }
     }
     tree->area_unit = mean_area > 0.0 ? mean_area : 1.0;
-    for (i = 0; i < n; i++) {
-        mlod__point_leaf(tree, n - 1 + i, points, leaf_item[i], radius[i], NULL);
-        if (tree->leaf_sources) tree->leaf_sources[i] = leaf_item[i];
-    }
+    mlod__point_leaves(&leaves, 3, desc->parallel);
     mlod__merge_all(tree, desc->parallel, NULL);
-    mlod__changes_built(tree);
+    mlod__changes_built(tree, desc->parallel);
     mlod__set_precision(tree, tree->radius_scale * sqrt(mean_area));
     if (mlod__report(desc, 1.0f)) {
         res = mlod__build_error(error, MLOD_ERROR_CANCELLED);

@@ -887,36 +887,50 @@ static void ref_order(uint32_t *items, uint32_t count, uint32_t node, uint32_t n
     ref_order(items + nl, count - nl, 2 * node + 2, n, leaf_item);
 }
 
+/* The build's order against the reference's, with and without a pool of
+   3 threads: sizes below and above the split's pieces (the top depths
+   move each axis in MLOD__SPLIT_PARTS parts: fewer items than parts at
+   the smallest sizes, uneven parts and nodes at the larger) and the depth
+   whose subtrees are split whole (MLOD__SPLIT_SUBTREES nodes: 40000
+   leaves reach it). */
 static void test_split_rule(void)
 {
-    static const uint32_t sizes[] = {2, 3, 7, 8, 9, 64, 257, 1000, 3001};
+    static const uint32_t sizes[] = {2, 3, 7, 8, 9, 17, 64, 257, 1000, 3001, 40000, 40001};
     uint64_t rng = 0x5b1175ull;
     uint32_t si;
+    mlod_pool *pool = mlod_pool_create(3);
+    mlod_parallel hook = mlod_pool_parallel(pool);
     for (si = 0; si < sizeof sizes / sizeof sizes[0]; si++) {
-        uint32_t n = sizes[si], i, bad = 0, grid = si % 2 ? 8 : 1u << 20;
+        uint32_t n = sizes[si], i, grid = si % 2 ? 8 : 1u << 20;
         float *pos = (float *)malloc(sizeof(float) * 3 * n);
         uint32_t *items = (uint32_t *)malloc(sizeof(uint32_t) * n), *leaf_item = (uint32_t *)malloc(sizeof(uint32_t) * n);
         mlod_points pts;
-        mlod_build_desc d = tu_desc(0, 1, MLOD_ATTR_REFIT);
-        mlod_tree *t = NULL;
+        int h;
         /* a coarse grid (every other size): many equal coordinates */
         for (i = 0; i < 3 * n; i++) pos[i] = (float)((uint32_t)(scene_rng_double(&rng) * grid) + 1) / (float)grid;
         memset(&pts, 0, sizeof pts);
         pts.positions = pos;
         pts.count = n;
-        CHECK(mlod_build_points(&pts, &d, &t, NULL) == MLOD_OK && t && t->leaf_sources, "split rule: build of %u points",
-              n);
         for (i = 0; i < n; i++) items[i] = i;
         ref_pos = pos;
         ref_order(items, n, 0, n, leaf_item);
-        for (i = 0; t && t->leaf_sources && i < n; i++) bad += t->leaf_sources[i] != leaf_item[i];
-        CHECK(t && bad == 0, "split rule: %u of %u leaves (grid %u) hold another item than the reference's", bad, n,
-              grid);
-        mlod_tree_destroy(t);
+        for (h = 0; h < 2; h++) {
+            mlod_build_desc d = tu_desc(0, 1, MLOD_ATTR_REFIT);
+            mlod_tree *t = NULL;
+            uint32_t bad = 0;
+            d.parallel = h ? &hook : NULL;
+            CHECK(mlod_build_points(&pts, &d, &t, NULL) == MLOD_OK && t && t->leaf_sources,
+                  "split rule: build of %u points (%s)", n, h ? "3 threads" : "no pool");
+            for (i = 0; t && t->leaf_sources && i < n; i++) bad += t->leaf_sources[i] != leaf_item[i];
+            CHECK(t && bad == 0, "split rule: %u of %u leaves (grid %u, %s) hold another item than the reference's", bad,
+                  n, grid, h ? "3 threads" : "no pool");
+            mlod_tree_destroy(t);
+        }
         free(pos);
         free(items);
         free(leaf_item);
     }
+    mlod_pool_destroy(pool);
 }
 
 /* --------------------------------------------------------------- points */
