@@ -2338,9 +2338,9 @@ static void mlod__merge_task(void *context, uint32_t index)
 }
 
 /* A built tree's record of changes: every node as built (revision's low
-   bits are 0 at build), MLOD__CHANGES_CHUNK nodes a task (the record's
-   first touch: on 2 threads its pages' faults took 6-9 ms at N = 1.3 M,
-   in one task). */
+   bits are 0 at build), MLOD__CHANGES_CHUNK nodes a task (at N = 1.3 M on
+   2 threads, 1 to 9 ms in one task: its first touch in a build, where its
+   pages may be fresh). */
 #define MLOD__CHANGES_CHUNK 65536u
 static void mlod__changes_zero_task(void *context, uint32_t index)
 {
@@ -2857,9 +2857,11 @@ static void mlod__split_fine_task(void *context, uint32_t index)
     uint32_t j, part, b, count, nl, lo, hi, at, left, right, q, i;
     int axis, k;
     if (c->step == 0) {
+        int right = (int)(index % 2);
         j = index / 6;
+        k = (int)(index % 6 / 2);
         mlod__split_slots(c, c->first + j, &b, &count, &nl);
-        c->volumes[j][index % 6 / 2][index % 2] = mlod__half_volume(c, b, count, nl, (int)(index % 6 / 2), (int)(index % 2));
+        c->volumes[j][k][right] = mlod__half_volume(c, b, count, nl, k, right);
         return;
     }
     j = index / MLOD__SPLIT_PARTS;
@@ -2906,7 +2908,8 @@ static void mlod__split_fine(mlod__order_ctx *c, const mlod_parallel *parallel, 
         c->pivot[j] = mlod__split_pivot(c, b, nl, c->axis[j]);
     }
     for (c->other = 0; c->other < 2; c->other++)
-        for (c->step = 1; c->step <= 2; c->step++) mlod__run(parallel, MLOD__SPLIT_PARTS * count, mlod__split_fine_task, c);
+        for (c->step = 1; c->step <= 2; c->step++)
+            mlod__run(parallel, MLOD__SPLIT_PARTS * count, mlod__split_fine_task, c);
     for (j = 0; j < count; j++) {
         mlod__split_slots(c, c->first + j, &b, &n, &nl);
         c->begin[2 * (c->first + j) + 1] = b;
@@ -3422,7 +3425,8 @@ static void mlod__point_leaves_task(void *context, uint32_t index)
         else if (job->step == 2)
             job->radius[i] = mlod__density_radius(tree, i);
         else
-            mlod__point_leaf(tree, n - 1 + i, job->points, job->leaf_item[i], job->step == 1 ? 0.0 : job->radius[i], NULL);
+            mlod__point_leaf(tree, n - 1 + i, job->points, job->leaf_item[i], job->step == 1 ? 0.0 : job->radius[i],
+                             NULL);
         if (job->step == 3 && tree->leaf_sources) tree->leaf_sources[i] = job->leaf_item[i];
     }
 }
