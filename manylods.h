@@ -2803,8 +2803,9 @@ static uint64_t mlod__split_pivot(const mlod__order_ctx *c, uint32_t b, uint32_t
 static uint32_t mlod__split_move(mlod__order_ctx *c, uint32_t b, int k, int axis, uint64_t pivot, uint32_t i,
                                  uint32_t end, uint32_t l, uint32_t r, uint32_t step)
 {
-    const uint32_t *o = c->order[k] + b, first = l;
+    const uint32_t *o = c->order[k] + b;
     const float *p = c->pts[k] + 3 * (size_t)b;
+    uint32_t first = l;
     uint32_t *so = c->scratch + b;
     float *sp = c->scratch_pts + 3 * (size_t)b;
     for (; i < end; i++) { /* branch-free: left and right are a coin toss */
@@ -2849,8 +2850,9 @@ static void mlod__split_node(mlod__order_ctx *c, uint32_t node)
    + right, node first + j), or part `part` of node first + j (index
    MLOD__SPLIT_PARTS j + part) of its other axis c->other moved into the
    scratch (the right ones last first, from the part's end), or back:
-   its left ones after the parts' before it, its right ones after nl and
-   the parts' before it.  The same slots as mlod__split_node's. */
+   its left ones after the parts' before it (left of the lo items
+   before it), its right ones after nl and theirs (the lo - left
+   others).  The same slots as mlod__split_node's. */
 static void mlod__split_fine_task(void *context, uint32_t index)
 {
     mlod__order_ctx *c = (mlod__order_ctx *)context;
@@ -2875,13 +2877,8 @@ static void mlod__split_fine_task(void *context, uint32_t index)
         c->lefts[j][part] = mlod__split_move(c, b, k, axis, c->pivot[j], lo, hi, lo, hi - 1, 0xffffffffu);
         return;
     }
-    left = 0;
-    right = nl;
-    for (q = 0; q < part; q++) {
-        left += c->lefts[j][q];
-        right += (uint32_t)((uint64_t)count * (q + 1) / MLOD__SPLIT_PARTS - (uint64_t)count * q / MLOD__SPLIT_PARTS) -
-                 c->lefts[j][q];
-    }
+    for (q = 0, left = 0; q < part; q++) left += c->lefts[j][q];
+    right = nl + (lo - left);
     memcpy(c->order[k] + b + left, c->scratch + b + lo, c->lefts[j][part] * sizeof(uint32_t));
     memcpy(c->pts[k] + 3 * ((size_t)b + left), c->scratch_pts + 3 * ((size_t)b + lo),
            3 * (size_t)c->lefts[j][part] * sizeof(float));
@@ -2895,26 +2892,24 @@ static void mlod__split_fine_task(void *context, uint32_t index)
 }
 
 /* Split the count < MLOD__SPLIT_FINE nodes of one depth (c->first on) as
-   mlod__split_node does, in pieces: the halves' boxes, each node's axis
-   and pivot, then each other axis into the scratch and back. */
+   mlod__split_node does, in pieces: the halves' boxes, each node's axis,
+   pivot and children's first slots, then each other axis into the
+   scratch and back. */
 static void mlod__split_fine(mlod__order_ctx *c, const mlod_parallel *parallel, uint32_t count)
 {
     uint32_t j, b, n, nl;
     c->step = 0;
     mlod__run(parallel, 6 * count, mlod__split_fine_task, c);
-    for (j = 0; j < count; j++) {
+    for (j = 0; j < count; j++) { /* the children's first slots too: the pieces read only this depth's */
         mlod__split_slots(c, c->first + j, &b, &n, &nl);
         c->axis[j] = mlod__split_axis((const double(*)[2])c->volumes[j]);
         c->pivot[j] = mlod__split_pivot(c, b, nl, c->axis[j]);
+        c->begin[2 * (c->first + j) + 1] = b;
+        c->begin[2 * (c->first + j) + 2] = b + nl;
     }
     for (c->other = 0; c->other < 2; c->other++)
         for (c->step = 1; c->step <= 2; c->step++)
             mlod__run(parallel, MLOD__SPLIT_PARTS * count, mlod__split_fine_task, c);
-    for (j = 0; j < count; j++) {
-        mlod__split_slots(c, c->first + j, &b, &n, &nl);
-        c->begin[2 * (c->first + j) + 1] = b;
-        c->begin[2 * (c->first + j) + 2] = b + nl;
-    }
 }
 
 /* Once a depth has this many internal nodes, each task splits whole
