@@ -4922,10 +4922,16 @@ static uint32_t mlod__vundecided(mlod__vf codes) { return (uint32_t)MLOD__VBITS(
    this many input entries. */
 #define MLOD__SEGMENT_INPUT 1024u
 /* Scratch entries a round may spend on splits, shared among the entries to
-   split (at least MLOD__MIN_SHARE each, at most MLOD__SEGMENT_GROWTH). */
+   split (at least MLOD__MIN_SHARE each, at most MLOD__SEGMENT_GROWTH).
+   Internal; tests/compile/matrix.sh builds the cut's tests with smaller
+   ones, where small trees take every path of the planning. */
+#ifndef MLOD__ROUND_BUDGET
 #define MLOD__ROUND_BUDGET ((size_t)1 << 21)
+#endif
 #define MLOD__MIN_SHARE 16u
+#ifndef MLOD__SEGMENT_GROWTH
 #define MLOD__SEGMENT_GROWTH 8192u
+#endif
 
 typedef struct mlod__list {
     uint32_t *nodes;
@@ -4949,6 +4955,8 @@ typedef struct mlod__segment {
     uint32_t out_count;
     uint8_t ends_unchanged; /* bit 0: the first output entry is an unchanged input entry (see
                                mlod__classify_input), bit 1: the last one is */
+    uint32_t depth_room;    /* 0, or: an entry with more leaves below it than this is split at most
+                               log2(depth_room) levels deep this round (mlod__depth_limit) */
     uint64_t evaluated, steps;
 } mlod__segment;
 
@@ -5408,11 +5416,27 @@ static void mlod__merge_hints(const mlod__cut_job *job, const mlod__segment *seg
     for (k = 0; k < count; k++) hint[at[k]] = found[k];
 }
 
+/* The depth below which the split of an input entry of the segment stops
+   this round (MLOD__NO_LIMIT: none): where its room may not hold the cut
+   below it, so few levels that the frontier fits the room (2^levels <=
+   depth_room), rather than a depth-first search that fills the room on
+   the left and leaves the nodes beside its path, each larger than the
+   last, to the next rounds.  The frontier's nodes are alike in size, so
+   the next round's shares fit them. */
+#define MLOD__NO_LIMIT ((uint32_t)-1)
+static uint32_t mlod__depth_limit(const mlod__segment *seg, const mlod_tree *tree, uint32_t node)
+{
+    uint32_t levels = 0;
+    if (!seg->depth_room || mlod__leaves_below(node, tree->leaf_count) <= seg->depth_room) return MLOD__NO_LIMIT;
+    while (levels < 31 && ((uint32_t)2 << levels) <= seg->depth_room) levels++;
+    return mlod__depth_of(node) + levels;
+}
+
 /* Basic and incremental rounds: split invalid nodes down to the cut within
-   the segment's capacity, merge valid sibling pairs.  The split is a
-   depth-first search whose stack holds classified entries, the next one
-   left to right on top; the run of coarse entries on top is split
-   together. */
+   the segment's capacity (and mlod__depth_limit), merge valid sibling
+   pairs.  The split is a depth-first search whose stack holds classified
+   entries, the next one left to right on top; the run of coarse entries
+   on top is split together. */
 static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, const mlod__pview *pv)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
@@ -5442,7 +5466,7 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
        input entries, unchanged, are the first and last output entries */
     seg->ends_unchanged = (uint8_t)(seg->in_count ? (unchanged[0] ? 1u : 0u) | (unchanged[seg->in_count - 1] ? 2u : 0u) : 0u);
     for (k = 0; k < seg->in_count; k++) {
-        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i;
+        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i, limit;
         uint8_t st = fresh[k];
         if (st != MLOD_STATUS_COARSE) {
             if (job->merge && mlod__mergeable(out.nodes, out.status, out.count, node, st))
@@ -5454,6 +5478,7 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
         stack[0] = node;
         stack_status[0] = st;
         top = 1;
+        limit = mlod__depth_limit(seg, tree, node);
         while (top > 0) {
             if (stack_status[top - 1] != MLOD_STATUS_COARSE) {
                 --top;
@@ -5467,7 +5492,8 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
                for the children */
             n = 0;
             while (n < MLOD__BATCH && n < top && stack_status[top - 1 - n] == MLOD_STATUS_COARSE &&
-                   out.count + top + n + 1 + remaining <= seg->out_capacity && top + n + 1 <= MLOD__STACK) {
+                   out.count + top + n + 1 + remaining <= seg->out_capacity && top + n + 1 <= MLOD__STACK &&
+                   (limit == MLOD__NO_LIMIT || mlod__depth_of(stack[top - 1 - n]) < limit)) {
                 parents[n] = stack[top - 1 - n];
                 n++;
             }
@@ -5913,10 +5939,14 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
    least MLOD__MIN_SHARE, at most MLOD__SEGMENT_GROWTH), plus, for a basic
    cut, 1.25 times each view's previous cut and MLOD__MIN_SHARE; an
    incremental one reads the previous cuts with a quarter more and
-   MLOD__MIN_SHARE per segment; later rounds share max(budget, input) among
-   their splits; a lazy round at most doubles its input.  Segments: one per
-   view, per MLOD__SEGMENT_INPUT / 4 entries, per MLOD__SEGMENT_GROWTH
-   entries of the budget's room.  Each buffer with the eighth it grows by. */
+   MLOD__MIN_SHARE per segment; later rounds give their splits max(budget,
+   input) in all (the leaves below each, or rooms from the previous cut,
+   where those fit it, else equal shares; see mlod__plan_round; a wide
+   view's roots take less in the first round, see mlod__root_room); a
+   lazy round at most doubles its input.
+   Segments: one per view, per MLOD__SEGMENT_INPUT / 4 entries, per
+   MLOD__SEGMENT_GROWTH entries of the budget's room.  Each buffer with
+   the eighth it grows by. */
 static double mlod__cut_capacities(uint32_t view_count, uint32_t mean_cut_nodes, double capacity[MLOD__WORK_COUNT])
 {
     double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v;
@@ -5998,33 +6028,93 @@ static size_t mlod__next_to_split(const uint8_t *status, size_t at, size_t end, 
     return at;
 }
 
-/* The next segment of a view's list from `at`: its length and how many of
-   its entries are to be split.  A segment closes at MLOD__SEGMENT_INPUT
-   entries, or once its splits may produce MLOD__SEGMENT_GROWTH entries,
-   so that big expansions spread over many tasks. */
-static uint32_t mlod__segment_length(const mlod__list *in, size_t at, size_t end, int lazy, int trust, size_t unit,
-                                     uint32_t *splits)
+/* Leaf order.  A node's key, (node + 1) * 2^(deepest - depth), orders
+   the nodes of a cut as their leaves (the order of the lists), and the
+   nodes below it (itself included) are those whose keys lie in
+   [key, key + 2^(deepest - depth)); deepest: the depth of the last node. */
+static uint64_t mlod__order_key(uint32_t node, uint32_t deepest)
 {
-    size_t limit = end - at < MLOD__SEGMENT_INPUT ? end : at + MLOD__SEGMENT_INPUT, next = at;
-    uint32_t c = 0;
+    return ((uint64_t)node + 1) << (deepest - mlod__depth_of(node));
+}
+
+/* The first of the cut entries nodes[at .. end - 1] whose key is key or
+   more, else end: a galloping search forward from at. */
+static size_t mlod__gallop(const uint32_t *nodes, size_t at, size_t end, uint64_t key, uint32_t deepest)
+{
+    size_t lo = at, hi, step = 1;
+    if (at >= end || mlod__order_key(nodes[at], deepest) >= key) return at;
+    /* key(nodes[lo]) < key; hi: end, or an entry whose key is key or more */
+    while (lo + step < end && mlod__order_key(nodes[lo + step], deepest) < key) {
+        lo += step;
+        step *= 2;
+    }
+    hi = lo + step < end ? lo + step : end;
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (mlod__order_key(nodes[mid], deepest) < key)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return hi;
+}
+
+/* The entries of a split's room, walked along one view's entries to split
+   in list order: from the view's previous cut (prev, the committed list of
+   the same tree) where the round takes those, else `unit`; never more than
+   the leaves below the entry, which bound its cut (the room is then sure
+   to hold it). */
+typedef struct mlod__room_walk {
+    const uint32_t *prev; /* NULL: the share */
+    size_t prev_count, cursor;
+    size_t unit;
+    uint32_t leaf_count, deepest;
+} mlod__room_walk;
+
+static size_t mlod__split_room(mlod__room_walk *w, uint32_t node)
+{
+    size_t room = w->unit, leaves = mlod__leaves_below(node, w->leaf_count);
+    if (w->prev) {
+        /* the previous cut's entries below node, a quarter more; 1 where
+           one entry held it; the next entry to split comes after them */
+        uint64_t key = mlod__order_key(node, w->deepest);
+        uint64_t span = (uint64_t)1 << (w->deepest - mlod__depth_of(node));
+        size_t first = mlod__gallop(w->prev, w->cursor, w->prev_count, key, w->deepest);
+        size_t past = mlod__gallop(w->prev, first, w->prev_count, key + span, w->deepest);
+        size_t held = past > first ? past - first : 1;
+        w->cursor = past;
+        room = held + held / 4 + MLOD__MIN_SHARE;
+    }
+    return room < leaves ? room : leaves;
+}
+
+/* The next segment of a view's list from `at`: its length, and in *grow
+   the entries its splits may add (mlod__split_room).  A segment closes at
+   MLOD__SEGMENT_INPUT entries, or once its splits may produce
+   MLOD__SEGMENT_GROWTH entries, so that big expansions spread over many
+   tasks. */
+static uint32_t mlod__segment_length(const mlod__list *in, size_t at, size_t end, int lazy, int trust,
+                                     mlod__room_walk *w, size_t *grow)
+{
+    size_t limit = end - at < MLOD__SEGMENT_INPUT ? end : at + MLOD__SEGMENT_INPUT, next = at, g = 0;
     if (!lazy) /* nothing is split by plan in lazy rounds */
-        while ((size_t)c * unit < MLOD__SEGMENT_GROWTH) {
+        while (g < MLOD__SEGMENT_GROWTH) {
             next = mlod__next_to_split(in->status, next, limit, trust);
             if (next == limit) break;
-            c++;
+            g += mlod__split_room(w, in->nodes[next]);
             next++; /* the segment ends after this split if its growth is spent */
         }
-    *splits = c;
-    return (uint32_t)((size_t)c * unit < MLOD__SEGMENT_GROWTH ? limit - at : next - at);
+    *grow = g;
+    return (uint32_t)(g < MLOD__SEGMENT_GROWTH ? limit - at : next - at);
 }
 
 /* Output room of a segment: lazy steps at most double it; splits may add
-   `unit` entries each; entries of unknown status (the first round from a
+   `grow` entries in all; entries of unknown status (the first round from a
    previous cut) get a quarter more. */
-static size_t mlod__segment_room(uint32_t n, uint32_t splits, int lazy, int trust, size_t unit)
+static size_t mlod__segment_room(uint32_t n, size_t grow, int lazy, int trust)
 {
     if (lazy) return 2 * (size_t)n;
-    if (splits) return n + splits * unit;
+    if (grow) return n + grow;
     return trust ? n : n + n / 4 + MLOD__MIN_SHARE;
 }
 
@@ -6035,7 +6125,16 @@ static size_t mlod__segment_room(uint32_t n, uint32_t splits, int lazy, int trus
    writes every unfinished view's whole list, so a view whose cut does not
    fit pays for it again: the room is not held to MLOD__SEGMENT_GROWTH
    (the room's 1024 views of 13.6 k nodes took four rounds when it was).
-   The scratch this takes is 1.25 times the previous cut's. */
+   The scratch this takes is 1.25 times the previous cut's.
+   But a root's split is one task: a view whose room is more than
+   MLOD__SEGMENT_GROWTH and more than 1 / MLOD__WIDE_SHARE of all the
+   roots' rooms (one large view beside few or none) is split only
+   MLOD__SEGMENT_GROWTH entries wide in the first round, and its entries
+   in the next one with rooms sized to hold the cut below each (the
+   leaves below, or the previous cut's entries: mlod__plan_round): two
+   rounds, the second in many tasks.  Only where those rooms fit the
+   round's budget (MLOD__ROUND_BUDGET). */
+#define MLOD__WIDE_SHARE 16u
 #define MLOD__ROOT_ROOM ((size_t)1 << 26)
 static size_t mlod__root_room(size_t unit, uint32_t previous)
 {
@@ -6052,27 +6151,67 @@ typedef struct mlod__plan_job {
     const mlod__list *in;
     int lazy, trust;
     const uint32_t *hint; /* see mlod__plan_round */
+    const mlod__list *prev; /* rooms from the previous cut (mlod__split_room), else NULL */
+    uint32_t leaf_count;
     size_t unit;
-    int fill; /* segments pass: 0 counts, 1 writes */
+    size_t wide; /* the first round from the roots: root rooms above this are MLOD__SEGMENT_GROWTH */
+    int fill;    /* segments pass: 0 counts, 1 writes */
 } mlod__plan_job;
 
-/* Pass 1: each view's entries to split (view_work), and whether it is done. */
+/* The room walk of view v's splits in this round, and the depth room of
+   its segments (mlod__segment): the share where the rooms may not hold
+   the cuts below them, 0 where they were sized to. */
+static mlod__room_walk mlod__plan_walk(const mlod__plan_job *job, uint32_t v, uint32_t *depth_room)
+{
+    mlod__room_walk w;
+    w.prev = NULL;
+    w.prev_count = w.cursor = 0;
+    w.unit = job->unit;
+    w.leaf_count = job->leaf_count;
+    w.deepest = mlod__depth_of(2 * (uint64_t)job->leaf_count - 2);
+    /* only where a split has a segment's room to itself: where many share
+       a segment, its search finishes many small cuts in one pooled room,
+       and in long runs of coarse nodes that it classifies together */
+    *depth_room = job->unit >= MLOD__SEGMENT_GROWTH ? (uint32_t)job->unit : 0;
+    if (job->prev) {
+        w.prev = job->prev->nodes + job->prev->offset[v];
+        w.prev_count = job->prev->count[v];
+        *depth_room = 0;
+    } else if (job->hint) {
+        w.unit = mlod__root_room(job->unit, job->hint[v]);
+        *depth_room = 0;
+        if (w.unit > job->wide) *depth_room = (uint32_t)(w.unit = MLOD__SEGMENT_GROWTH);
+    }
+    return w;
+}
+
+/* Pass 1: each view's entries to split (view_work), whether it is done,
+   and the leaves below its entries to split (view_segment: a partition's,
+   at most the leaf count); with rooms from the previous cut (job->prev),
+   only the sum of those rooms (view_segment, at most the leaves). */
 static void mlod__plan_splits_task(void *context, uint32_t index)
 {
     const mlod__plan_job *job = (const mlod__plan_job *)context;
     mlod_cut *cut = job->cut;
     uint32_t end, v = mlod__view_chunk(cut, index, &end);
     for (; v < end; v++) {
-        size_t at = job->in->offset[v], stop = at + job->in->count[v], view_splits = 0;
+        size_t at = job->in->offset[v], stop = at + job->in->count[v], view_splits = 0, sum = 0;
+        uint32_t depth_room;
+        mlod__room_walk w = mlod__plan_walk(job, v, &depth_room);
         if (cut->view_done[v] == MLOD__SKIPPED) { /* in every round of the update */
             cut->view_work[v] = 0;
+            cut->view_segment[v] = 0;
             continue;
         }
         if (!job->lazy)
             while ((at = mlod__next_to_split(job->in->status, at, stop, job->trust)) < stop) {
                 view_splits++;
+                sum += w.prev ? mlod__split_room(&w, job->in->nodes[at])
+                              : mlod__leaves_below(job->in->nodes[at], job->leaf_count);
                 at++;
             }
+        cut->view_segment[v] = (uint32_t)sum;
+        if (w.prev) continue;
         cut->view_work[v] = view_splits;
         /* later basic and incremental rounds leave finished views alone */
         cut->view_done[v] = (uint8_t)(job->trust && !job->lazy && view_splits == 0);
@@ -6086,11 +6225,13 @@ static void mlod__plan_view(const mlod__plan_job *job, uint32_t v)
     int fill = job->fill;
     mlod_cut *cut = job->cut;
     size_t at = job->in->offset[v], end = cut->view_done[v] ? at : at + job->in->count[v];
-    size_t unit = job->hint ? mlod__root_room(job->unit, job->hint[v]) : job->unit;
     size_t s = fill ? cut->view_segment[v] : 0, capacity = fill ? cut->view_work[v] : 0;
+    uint32_t depth_room;
+    mlod__room_walk w = mlod__plan_walk(job, v, &depth_room);
     while (at < end) {
-        uint32_t splits, n = mlod__segment_length(job->in, at, end, job->lazy, job->trust, unit, &splits);
-        size_t room = mlod__segment_room(n, splits, job->lazy, job->trust, unit);
+        size_t grow;
+        uint32_t n = mlod__segment_length(job->in, at, end, job->lazy, job->trust, &w, &grow);
+        size_t room = mlod__segment_room(n, grow, job->lazy, job->trust);
         if (fill) {
             mlod__segment *seg = &cut->segments[s];
             seg->view = v;
@@ -6099,6 +6240,7 @@ static void mlod__plan_view(const mlod__plan_job *job, uint32_t v)
             seg->out_begin = capacity;
             seg->out_capacity = (uint32_t)room;
             seg->out_count = 0;
+            seg->depth_room = depth_room;
             seg->evaluated = seg->steps = 0;
         }
         capacity += room;
@@ -6122,31 +6264,61 @@ static void mlod__plan_segments_task(void *context, uint32_t index)
 
 /* Cut the input lists into segments and the segments into tasks, place
    every segment's output in scratch.  hint: the previous cut's count per
-   view when this round splits the roots, else NULL.  Returns 0 when out of
-   memory (or too many segments). */
+   view when this round splits the roots, else NULL; prev: in the later
+   rounds of a cut from the roots, the previous cut of the same tree, else
+   NULL.  Returns 0 when out of memory (or too many segments). */
 static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int trust, const uint32_t *hint,
-                            const mlod_parallel *parallel, uint32_t *task_count)
+                            const mlod__list *prev, uint32_t leaf_count, const mlod_parallel *parallel,
+                            uint32_t *task_count)
 {
     mlod__plan_job job;
-    size_t total = 0, to_split = 0, segments = 0, capacity = 0, work = 0, s;
+    size_t total = 0, to_split = 0, leaves = 0, rooms = 0, segments = 0, capacity = 0, work = 0, s, budget;
     uint32_t v, tasks = 0, chunks = mlod__view_chunks(cut);
     job.cut = cut;
     job.in = in;
     job.lazy = lazy;
     job.trust = trust;
     job.hint = hint;
+    job.prev = NULL;
+    job.leaf_count = leaf_count;
     job.unit = 0;
+    job.wide = (size_t)-1;
     job.fill = 0;
     mlod__run(parallel, chunks, mlod__plan_splits_task, &job);
     for (v = 0; v < cut->view_count; v++) {
         total += in->count[v];
         to_split += cut->view_work[v];
+        leaves += cut->view_segment[v];
     }
-    /* the entries to split share a budget of scratch: at least the input */
-    if (to_split) {
-        job.unit = (MLOD__ROUND_BUDGET > total ? MLOD__ROUND_BUDGET : total) / to_split;
+    /* the entries to split share a budget of scratch, at least the input:
+       where the leaves below them fit it, each split's room is its leaves
+       (sure to hold its cut) up to a segment's growth; else rooms from the
+       previous cut where those fit it; else equal shares */
+    budget = MLOD__ROUND_BUDGET > total ? MLOD__ROUND_BUDGET : total;
+    if (to_split && leaves <= budget) {
+        job.unit = MLOD__SEGMENT_GROWTH;
+    } else if (to_split) {
+        if (prev && !lazy) {
+            job.prev = prev;
+            mlod__run(parallel, chunks, mlod__plan_splits_task, &job);
+            for (v = 0; v < cut->view_count; v++) rooms += cut->view_segment[v];
+            if (rooms > budget) job.prev = NULL;
+        }
+        job.unit = budget / to_split;
         if (job.unit < MLOD__MIN_SHARE) job.unit = MLOD__MIN_SHARE;
         if (job.unit > MLOD__SEGMENT_GROWTH) job.unit = MLOD__SEGMENT_GROWTH;
+    }
+    if (hint) { /* the wide views (see mlod__root_room), where their next round's rooms fit */
+        double all = 0.0, wide = 0.0, least;
+        for (v = 0; v < cut->view_count; v++)
+            if (cut->view_done[v] != MLOD__SKIPPED) all += (double)mlod__root_room(job.unit, hint[v]);
+        least = all / MLOD__WIDE_SHARE > MLOD__SEGMENT_GROWTH ? all / MLOD__WIDE_SHARE : MLOD__SEGMENT_GROWTH;
+        for (v = 0; v < cut->view_count; v++) {
+            size_t room = mlod__root_room(job.unit, hint[v]);
+            if (cut->view_done[v] != MLOD__SKIPPED && (double)room > least)
+                wide += (double)room + (double)MLOD__MIN_SHARE * MLOD__SEGMENT_GROWTH;
+        }
+        if (wide <= (double)MLOD__ROUND_BUDGET) job.wide = (size_t)least;
     }
     mlod__run(parallel, chunks, mlod__plan_segments_task, &job);
     for (v = 0; v < cut->view_count; v++) { /* counts to first segments and scratch entries */
@@ -6295,6 +6467,7 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     uint64_t round_steps = 0; /* steps up to the last round */
     int from_root, idle = 0;
     const uint32_t *hint;
+    const mlod__list *hint_list;
     mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
     if (res != MLOD_OK) return res;
     memset(&job, 0, sizeof job);
@@ -6317,6 +6490,8 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     from_root = params->mode == MLOD_CUT_BASIC || cut->tree_nodes != tree->node_count;
     /* a basic cut's first round is sized by the previous cut of the tree */
     hint = params->mode == MLOD_CUT_BASIC && cut->tree_nodes == tree->node_count ? cut->lists[cut->committed].count : NULL;
+    /* ... and its later rounds by the previous cut below each entry to split */
+    hint_list = hint ? &cut->lists[cut->committed] : NULL;
     job.tree = tree;
     job.views = views;
     job.epsilon = params->epsilon;
@@ -6354,7 +6529,8 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         job.in = in;
         job.out = out;
         job.done_in = round == 0 ? &cut->lists[cut->committed] : in;
-        if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, params->parallel, &tasks))
+        if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, round > 0 ? hint_list : NULL,
+                              tree->leaf_count, params->parallel, &tasks))
             goto out_of_memory;
         mlod__run(params->parallel, tasks, mlod__segment_task, &job);
         if (!mlod__place_output(cut, job.done_in, out)) goto out_of_memory;

@@ -130,6 +130,32 @@ static mlod_tree *random_points_tree(uint32_t N, uint64_t seed, double radius_lo
     return t;
 }
 
+/* N points on the unit sphere, facing out, of radius `radius`: a surface,
+   whose cuts coarsen with epsilon as its image's area. */
+static mlod_tree *sphere_points_tree(uint32_t N, uint64_t seed, double radius)
+{
+    float *pos = (float *)malloc(sizeof(float) * 3 * N), *rad = (float *)malloc(sizeof(float) * N);
+    uint32_t i;
+    mlod_points pts;
+    mlod_build_desc d = tu_desc(0, seed, MLOD_ATTR_CONE);
+    mlod_tree *t = NULL;
+    for (i = 0; i < N; i++) {
+        double n[3];
+        tu_random_unit(&seed, n);
+        scene_set3(pos, i, n[0], n[1], n[2]);
+        rad[i] = (float)radius;
+    }
+    memset(&pts, 0, sizeof pts);
+    pts.positions = pos;
+    pts.normals = pos;
+    pts.radii = rad;
+    pts.count = N;
+    if (mlod_build_points(&pts, &d, &t, NULL) != MLOD_OK) t = NULL;
+    free(pos);
+    free(rad);
+    return t;
+}
+
 /* -------------------------------------------------- cuts vs reference */
 
 static void test_random_trees(void)
@@ -2294,6 +2320,97 @@ static void test_threads(void)
     scene_free(&s);
 }
 
+/* A parallel hook that runs the tasks in order on the calling thread and
+   keeps the largest task count of one call. */
+static void run_counting(void *user, uint32_t count, mlod_task_fn *task, void *context)
+{
+    uint32_t *most = (uint32_t *)user, i;
+    if (count > *most) *most = count;
+    for (i = 0; i < count; i++) task(context, i);
+}
+
+/* One large view alone, updated from frame to frame in basic mode: its
+   first update from nothing, then from its previous cut as the eye
+   glides, closes in (the previous cut too small below the entries it
+   gets nearer to), backs off, and at a coarser epsilon.  Every cut equals the reference and
+   those of a pool of 2 threads; a cut of tens of thousands of nodes is
+   spread over many tasks in every update (the root's split alone was one
+   task when its room came from the previous cut). */
+static void test_one_view(void)
+{
+    enum { FRAMES = 10 };
+    static const double distance[FRAMES] = {1.6, 1.6, 1.58, 1.2, 1.21, 2.5, 2.5, 2.5, 2.4, 1.9};
+    static const float eps[FRAMES] = {1, 1, 1, 1, 1, 1, 1, 4, 4, 4}; /* coarse cuts: fewer nodes than leaves */
+    mlod_tree *tree = sphere_points_tree(60000, 41, 0.003);
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel counting, pooled;
+    mlod_cut *cut = NULL, *cut2 = NULL;
+    uint32_t most = 0, f, smallest_spread = (uint32_t)-1, largest_cut = 0, previous = 0, spread = 0;
+    uint64_t rng = 5;
+    tu_layout L;
+    workspace w;
+    tally t;
+    CHECK(tree && pool, "one view: tree and pool");
+    if (!tree || !pool) {
+        mlod_tree_destroy(tree);
+        mlod_pool_destroy(pool);
+        return;
+    }
+    counting.run = run_counting;
+    counting.user = &most;
+    pooled = mlod_pool_parallel(pool);
+    tu_layout_init(&L, tree->leaf_count);
+    ws_init(&w, tree->node_count);
+    memset(&t, 0, sizeof t);
+    CHECK(mlod_cut_create(1, NULL, &cut, NULL) == MLOD_OK && mlod_cut_create(1, NULL, &cut2, NULL) == MLOD_OK,
+          "one view: create");
+    for (f = 0; cut && cut2 && f < FRAMES; f++) {
+        double eye[3] = {0.2 * f / FRAMES, 0.1, distance[f]}, target[3] = {0, 0, 0};
+        mlod_view view = tu_view(MLOD_VIEW_PERSPECTIVE);
+        mlod_cut_params p = params(MLOD_CUT_BASIC, eps[f], 1, &counting);
+        mlod_cut_params p2 = params(MLOD_CUT_BASIC, eps[f], 1, &pooled);
+        mlod_cut_view a, b;
+        tu_look(&rng, &view, eye, target);
+        view.width = view.height = 1024;
+        view.near_plane = 0.05f;
+        view.flags = f % 2 ? MLOD_VIEW_CULL_BACKFACES : 0;
+        most = 0;
+        CHECK(mlod_cut_update(cut, tree, &view, &p, NULL) == MLOD_OK &&
+                  mlod_cut_update(cut2, tree, &view, &p2, NULL) == MLOD_OK,
+              "one view, frame %u: update", f);
+        a = mlod_cut_get(cut, 0);
+        b = mlod_cut_get(cut2, 0);
+        CHECK(tu_same_cut(&a, &b), "one view, frame %u: a pool of 2 gives another cut", f);
+        check_against_reference(tree, &L, &view, 0, 1, eps[f], cut, &w, &t);
+        if (a.count > largest_cut) largest_cut = a.count;
+        /* a large cut is spread over tasks: from nothing (its first split
+           stops at a frontier of MLOD__SEGMENT_GROWTH nodes alike in
+           size), and from a previous cut whose room (a quarter more) is
+           wide, where the next round's rooms fit the budget (see
+           mlod__root_room) */
+        if (a.count >= 4 * MLOD__SEGMENT_GROWTH &&
+            (f == 0 || (previous + previous / 4 + MLOD__MIN_SHARE > MLOD__SEGMENT_GROWTH &&
+                        previous + previous / 4 + MLOD__MIN_SHARE + (double)MLOD__MIN_SHARE * MLOD__SEGMENT_GROWTH <=
+                            (double)MLOD__ROUND_BUDGET))) {
+            CHECK(most >= 4, "one view, frame %u: a cut of %u nodes (%u before), its update's largest parallel call %u "
+                  "tasks", f, a.count, previous, most);
+            if (most < smallest_spread) smallest_spread = most;
+            spread++;
+        }
+        previous = a.count;
+    }
+    tally_report(&t, "one view");
+    CHECK(spread >= 3, "one view: only %u updates of a large cut (largest %u nodes)", spread, largest_cut);
+    printf("  one view: cuts up to %u nodes; %u updates of large cuts, each with a call of %u tasks or more\n",
+           largest_cut, spread, smallest_spread);
+    mlod_cut_destroy(cut);
+    mlod_cut_destroy(cut2);
+    ws_free(&w);
+    tu_layout_free(&L);
+    mlod_pool_destroy(pool);
+    mlod_tree_destroy(tree);
+}
+
 /* test_cut [GROUP...]: every group, or those named (the compile matrix
    runs the cut and float filter groups under qemu, where the whole program
    takes minutes). */
@@ -2362,16 +2479,74 @@ static void test_filter_export(void)
    byte-by-byte rule (mlod__to_split): the word test for every word of
    statuses with at most two bytes to split, at every position, and whole
    segments' lengths and split counts against a byte loop. */
-static uint32_t plain_segment_length(const uint8_t *status, size_t at, size_t end, int lazy, int trust, size_t unit,
-                                     uint32_t *splits)
+/* The leaves below node i of the implicit tree of n leaves, level by
+   level: the nodes below i at each depth form a range, and the leaves
+   are the nodes n - 1 .. 2n - 2. */
+static uint32_t plain_leaves_below(uint32_t i, uint32_t n)
 {
-    uint32_t n = 0, c = 0;
-    while (at + n < end && n < MLOD__SEGMENT_INPUT && (size_t)c * unit < MLOD__SEGMENT_GROWTH) {
-        c += (uint32_t)mlod__to_split(status[at + n], lazy, trust);
-        n++;
+    uint64_t lo = i, hi = i, last = 2 * (uint64_t)n - 2, count = 0;
+    while (lo <= last) {
+        uint64_t top = hi < last ? hi : last, first = lo > n - 1 ? lo : n - 1;
+        if (top >= first) count += top - first + 1;
+        lo = 2 * lo + 1;
+        hi = 2 * hi + 2;
     }
-    *splits = c;
-    return n;
+    return (uint32_t)count;
+}
+
+/* Whether node a is node m or above it, by m's chain of parents. */
+static int plain_at_or_above(uint32_t a, uint32_t m)
+{
+    while (m > a) m = (m - 1) / 2;
+    return m == a;
+}
+
+static unsigned plain_rooms_below_leaves; /* rooms from a previous cut, below the leaves' bound */
+
+/* A split's room by its definition: the previous cut's entries below
+   the node (1 where one of them holds it), a quarter more and
+   MLOD__MIN_SHARE, or the unit; at most the leaves below. */
+static size_t plain_split_room(const uint32_t *prev, size_t prev_count, size_t unit, uint32_t node, uint32_t n)
+{
+    size_t room = unit, leaves = plain_leaves_below(node, n), held = 0, k;
+    if (prev) {
+        for (k = 0; k < prev_count; k++) held += (size_t)plain_at_or_above(node, prev[k]);
+        if (held == 0) held = 1;
+        room = held + held / 4 + MLOD__MIN_SHARE;
+    }
+    plain_rooms_below_leaves += (unsigned)(prev && room < leaves);
+    return room < leaves ? room : leaves;
+}
+
+/* mlod__segment_length by a byte loop: entries to split by the rule, the
+   segment closed at MLOD__SEGMENT_INPUT entries or once its rooms reach
+   MLOD__SEGMENT_GROWTH. */
+static uint32_t plain_segment_length(const uint32_t *nodes, const uint8_t *status, size_t at, size_t end, int lazy,
+                                     int trust, const uint32_t *prev, size_t prev_count, size_t unit, uint32_t n,
+                                     size_t *grow)
+{
+    uint32_t count = 0;
+    size_t g = 0;
+    while (at + count < end && count < MLOD__SEGMENT_INPUT && g < MLOD__SEGMENT_GROWTH) {
+        if (mlod__to_split(status[at + count], lazy, trust))
+            g += plain_split_room(prev, prev_count, unit, nodes[at + count], n);
+        count++;
+    }
+    *grow = g;
+    return count;
+}
+
+/* A random cut of the tree of n leaves below node, of at most `room`
+   entries, in leaf order, appended to out. */
+static void random_cut(uint64_t *rng, uint32_t node, uint32_t n, double split, uint32_t *out, size_t *count,
+                       size_t room)
+{
+    if (node < n - 1 && room >= 2 && scene_rng_double(rng) < split) {
+        random_cut(rng, 2 * node + 1, n, split, out, count, room / 2);
+        random_cut(rng, 2 * node + 2, n, split, out, count, room - room / 2);
+        return;
+    }
+    out[(*count)++] = node;
 }
 
 static void test_planning(void)
@@ -2386,9 +2561,10 @@ static void test_planning(void)
                                      0xff};
     enum { LIST = 20000 };
     static uint8_t list[LIST + 8];
+    static uint32_t cut_nodes[LIST], prev_nodes[LIST];
     uint64_t rng = 77;
     unsigned words = 0, wrong = 0, segments = 0, bad = 0;
-    int trust, lazy, i, j, k, a, b;
+    int trust, lazy, from_prev, i, j, k, a, b;
     for (trust = 0; trust < 2; trust++)
         for (i = 0; i < 8; i++)       /* the background value */
             for (j = 0; j < 8; j++)   /* one odd byte */
@@ -2406,29 +2582,51 @@ static void test_planning(void)
                         }
     CHECK(wrong == 0, "planning: the 8-status test disagrees with the byte rule on %u of %u words", wrong, words);
     for (i = 0; i < 40; i++) {
-        /* runs of statuses to split scattered thinly or thickly */
-        unsigned density = 1u + (unsigned)(scene_rng_double(&rng) * 64);
-        size_t at, end = LIST - (size_t)(scene_rng_double(&rng) * 100);
-        size_t unit = 1u + (size_t)(scene_rng_double(&rng) * 100);
+        /* runs of statuses to split scattered thinly or thickly, over the
+           entries of a random cut (its nodes give the rooms) and with rooms
+           from another random cut of the same tree (a previous cut) */
+        unsigned density = i % 2 ? 1u : 1u + (unsigned)(scene_rng_double(&rng) * 64);
+        uint32_t n = 2u + (uint32_t)(scene_rng_double(&rng) * 60000);
+        size_t at, end, cut_count = 0, prev_count = 0;
+        size_t unit = 1u + (size_t)(scene_rng_double(&rng) * (i % 2 ? 100 : 9000));
+        /* the cut: long (many segments), or coarse beside a fine previous
+           cut (rooms below the leaves' bound) */
+        size_t coarse = i % 2 ? 20u + (size_t)(scene_rng_double(&rng) * 2000) : LIST;
+        random_cut(&rng, 0, n, 0.85 + 0.15 * scene_rng_double(&rng), cut_nodes, &cut_count, coarse);
+        random_cut(&rng, 0, n, 0.8 + 0.2 * scene_rng_double(&rng), prev_nodes, &prev_count, LIST);
+        end = cut_count - (size_t)(scene_rng_double(&rng) * (double)(cut_count < 100 ? cut_count : 100));
         for (at = 0; at < LIST + 8; at++)
             list[at] = (unsigned)(scene_rng_double(&rng) * density) == 0 ? values[(int)(scene_rng_double(&rng) * 8)]
                                                                  : values[1 + (int)(scene_rng_double(&rng) * 3)];
         for (lazy = 0; lazy < 2; lazy++)
-            for (trust = 0; trust < 2; trust++) {
-                mlod__list in;
-                memset(&in, 0, sizeof in);
-                in.status = list;
-                for (at = (size_t)(scene_rng_double(&rng) * 7); at < end;) {
-                    uint32_t s1, s2, n1 = mlod__segment_length(&in, at, end, lazy, trust, unit, &s1);
-                    uint32_t n2 = plain_segment_length(list, at, end, lazy, trust, unit, &s2);
-                    segments++;
-                    bad += (unsigned)(n1 != n2 || s1 != s2);
-                    if (n2 == 0) break;
-                    at += n2;
+            for (trust = 0; trust < 2; trust++)
+                for (from_prev = 0; from_prev < 2; from_prev++) {
+                    mlod__list in;
+                    mlod__room_walk w;
+                    memset(&in, 0, sizeof in);
+                    in.status = list;
+                    in.nodes = cut_nodes;
+                    w.prev = from_prev ? prev_nodes : NULL;
+                    w.prev_count = from_prev ? prev_count : 0;
+                    w.cursor = 0;
+                    w.unit = unit;
+                    w.leaf_count = n;
+                    w.deepest = mlod__depth_of(2 * (uint64_t)n - 2);
+                    for (at = (size_t)(scene_rng_double(&rng) * 7); at < end;) {
+                        size_t g1, g2;
+                        uint32_t n1 = mlod__segment_length(&in, at, end, lazy, trust, &w, &g1);
+                        uint32_t n2 = plain_segment_length(cut_nodes, list, at, end, lazy, trust, w.prev, prev_count,
+                                                           unit, n, &g2);
+                        segments++;
+                        bad += (unsigned)(n1 != n2 || g1 != g2);
+                        if (n2 == 0) break;
+                        at += n2;
+                    }
                 }
-            }
     }
-    CHECK(bad == 0 && segments > 1000, "planning: %u of %u segments differ from the byte loop", bad, segments);
+    CHECK(bad == 0 && segments > 1000 && plain_rooms_below_leaves > 1000,
+          "planning: %u of %u segments differ from the byte loop (%u rooms from a previous cut below the leaves' "
+          "bound)", bad, segments, plain_rooms_below_leaves);
 }
 
 int main(int argc, char **argv)
@@ -2445,6 +2643,7 @@ int main(int argc, char **argv)
     TEST_GROUP("monotonicity", test_monotonicity());
     TEST_GROUP("motion", test_motion());
     TEST_GROUP("threads", test_threads());
+    TEST_GROUP("one_view", test_one_view());
     TEST_GROUP("skip", test_skip());
     TEST_GROUP("planning", test_planning());
     TEST_GROUP("filter_export", test_filter_export());

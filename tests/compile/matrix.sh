@@ -280,6 +280,11 @@ if grep -qw avx2 /proc/cpuinfo 2>/dev/null; then
 fi
 entry cut-simd-off "tests/test_cut.c with -DMANYLODS_NO_SIMD, $CC" \
     "$CC -std=c99 $STRICT -DMANYLODS_NO_SIMD tests/test_cut.c -o $OUT/cut-simd-off $LIBS" "$OUT/cut-simd-off"
+# The cut's planning with a small round budget and segment growth: small trees take the paths of
+# large ones (a wide view's rooms from its previous cut, rounds that outgrow their shares).
+entry cut-small-budget "tests/test_cut.c's cut groups with a round budget of 2^14 and segments of 256, $CC" \
+    "$CC -std=c99 $STRICT '-DMLOD__ROUND_BUDGET=((size_t)1 << 14)' -DMLOD__SEGMENT_GROWTH=256u tests/test_cut.c -o $OUT/cut-small-budget $LIBS" \
+    "$OUT/cut-small-budget random_trees hand_made restart motion threads skip one_view"
 entry cut-native "tests/test_cut.c with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_cut.c -o $OUT/cut-native $LIBS" "$OUT/cut-native"
 # The splat's float filter (mlod__fast_discs) on 8 lanes and on none: each decision and each tile as the double path's.
