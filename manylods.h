@@ -459,7 +459,8 @@
      optional mlod_parallel hook (a parallel-for), the builds one in
      mlod_build_desc.parallel; with none they run on the calling thread.
      Work is split into tasks of bounded size within and among views, so one
-     view with a cut 100x the others does not serialise the frame.  Results
+     view with a cut 100x the others does not serialise the frame, nor does
+     one large view alone (its cut in tasks of about 8192 entries).  Results
      are identical for any thread count.  Distinct objects may be used from
      distinct threads; one object must not be used by two calls at once.
 
@@ -6132,8 +6133,9 @@ static size_t mlod__segment_room(uint32_t n, size_t grow, int lazy, int trust)
    MLOD__SEGMENT_GROWTH entries wide in the first round, and its entries
    in the next one with rooms sized to hold the cut below each (the
    leaves below, or the previous cut's entries: mlod__plan_round): two
-   rounds, the second in many tasks.  Only where those rooms fit the
-   round's budget (MLOD__ROUND_BUDGET). */
+   rounds, the second in many tasks.  Where those rooms do not fit (wide
+   views of a few million nodes side by side), the next rounds share the
+   budget: more rounds, each in many tasks. */
 #define MLOD__WIDE_SHARE 16u
 #define MLOD__ROOT_ROOM ((size_t)1 << 26)
 static size_t mlod__root_room(size_t unit, uint32_t previous)
@@ -6299,26 +6301,29 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
         job.unit = MLOD__SEGMENT_GROWTH;
     } else if (to_split) {
         if (prev && !lazy) {
+            /* the previous cuts hold P entries: rooms from them may take
+               P + max(budget, P) less the input, so that the round's
+               scratch stays within what mlod_cut_bound counts for a later
+               round of cuts of P entries (its input and max(budget, it)) */
+            size_t held = 0, cap;
+            for (v = 0; v < cut->view_count; v++) held += prev->count[v];
+            cap = held + (MLOD__ROUND_BUDGET > held ? MLOD__ROUND_BUDGET : held);
+            cap = cap > total + budget ? cap - total : budget;
             job.prev = prev;
             mlod__run(parallel, chunks, mlod__plan_splits_task, &job);
             for (v = 0; v < cut->view_count; v++) rooms += cut->view_segment[v];
-            if (rooms > budget) job.prev = NULL;
+            if (rooms > cap) job.prev = NULL;
         }
         job.unit = budget / to_split;
         if (job.unit < MLOD__MIN_SHARE) job.unit = MLOD__MIN_SHARE;
         if (job.unit > MLOD__SEGMENT_GROWTH) job.unit = MLOD__SEGMENT_GROWTH;
     }
-    if (hint) { /* the wide views (see mlod__root_room), where their next round's rooms fit */
-        double all = 0.0, wide = 0.0, least;
+    if (hint) { /* the wide views (see mlod__root_room) */
+        double all = 0.0;
         for (v = 0; v < cut->view_count; v++)
             if (cut->view_done[v] != MLOD__SKIPPED) all += (double)mlod__root_room(job.unit, hint[v]);
-        least = all / MLOD__WIDE_SHARE > MLOD__SEGMENT_GROWTH ? all / MLOD__WIDE_SHARE : MLOD__SEGMENT_GROWTH;
-        for (v = 0; v < cut->view_count; v++) {
-            size_t room = mlod__root_room(job.unit, hint[v]);
-            if (cut->view_done[v] != MLOD__SKIPPED && (double)room > least)
-                wide += (double)room + (double)MLOD__MIN_SHARE * MLOD__SEGMENT_GROWTH;
-        }
-        if (wide <= (double)MLOD__ROUND_BUDGET) job.wide = (size_t)least;
+        job.wide = all / MLOD__WIDE_SHARE > MLOD__SEGMENT_GROWTH ? (size_t)(all / MLOD__WIDE_SHARE)
+                                                                : (size_t)MLOD__SEGMENT_GROWTH;
     }
     mlod__run(parallel, chunks, mlod__plan_segments_task, &job);
     for (v = 0; v < cut->view_count; v++) { /* counts to first segments and scratch entries */
