@@ -831,19 +831,6 @@ static int ref_compare(const void *a, const void *b)
     return x < y ? -1 : x > y ? 1 : (i > j) - (i < j);
 }
 
-/* Leaves below `node` of the implicit tree of n leaves, level by level. */
-static uint32_t ref_leaves_below(uint64_t node, uint64_t n)
-{
-    uint64_t lo = node, hi = node, last = 2 * n - 2, count = 0;
-    while (lo <= last) {
-        uint64_t b = hi < last ? hi : last, a = lo > n - 1 ? lo : n - 1;
-        if (b >= a) count += b - a + 1;
-        lo = 2 * lo + 1;
-        hi = 2 * hi + 2;
-    }
-    return (uint32_t)count;
-}
-
 static double ref_box_volume(const uint32_t *items, uint32_t count)
 {
     float lo[3], hi[3];
@@ -870,7 +857,7 @@ static void ref_order(uint32_t *items, uint32_t count, uint32_t node, uint32_t n
         leaf_item[node - (n - 1)] = items[0];
         return;
     }
-    nl = ref_leaves_below(2 * (uint64_t)node + 1, n);
+    nl = tu_leaves_below(2 * (uint64_t)node + 1, n);
     for (k = 0; k < 3; k++) {
         double v;
         ref_axis = k;

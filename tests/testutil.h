@@ -62,6 +62,21 @@ typedef struct tu_layout {
     uint32_t *first, *count;
 } tu_layout;
 
+/* Leaves below `node` of the implicit tree of n leaves, level by level:
+   the nodes below it at each depth form a range, and the leaves are the
+   nodes n - 1 .. 2n - 2 (a reference for mlod__leaves_below). */
+static inline uint32_t tu_leaves_below(uint64_t node, uint64_t n)
+{
+    uint64_t lo = node, hi = node, last = 2 * n - 2, count = 0;
+    while (lo <= last) {
+        uint64_t b = hi < last ? hi : last, a = lo > n - 1 ? lo : n - 1;
+        if (b >= a) count += b - a + 1;
+        lo = 2 * lo + 1;
+        hi = 2 * hi + 2;
+    }
+    return (uint32_t)count;
+}
+
 static inline uint32_t tu_depth(uint32_t node)
 {
     uint32_t d = 0;
