@@ -1415,6 +1415,42 @@ static void single_cast_task(void *context, uint32_t row_index)
             metrics_reference_pixel(job->view, (float)i + 0.5f, y, rt_cast, (void *)job->scene);
 }
 
+/* Six updates of the one view's cut, checked, the median of the last five
+   in a new row `method`: each from nothing (moved 0: the cut reset, as the
+   same view again would be skipped), or each from the previous cut with
+   the eye `moved` to one side and back. */
+static row *single_row(bench *b, const protocol *p, const mlod_tree *tree, const ranks *rk, mlod_cut *cut,
+                       const mlod_view *view, const mlod_cut_params *params, double moved, const char *method)
+{
+    double times[5], t0, e, n;
+    char what[96];
+    mlod_error error;
+    row *r;
+    int i;
+    for (i = 0; i < 6; i++) {
+        mlod_view v = *view;
+        if (moved == 0.0)
+            mlod_cut_reset(cut);
+        else
+            v.position[0] += (float)(i % 2 ? moved : -moved);
+        t0 = now_ms();
+        if (mlod_cut_update(cut, tree, &v, params, &error) != MLOD_OK) fail("mlod_cut_update: %s", error.message);
+        if (i > 0) times[i - 1] = now_ms() - t0;
+    }
+    t0 = now_ms();
+    snprintf(what, sizeof what, "object, %s, c = %g", method, (double)params->epsilon);
+    check_cut(rk, cut, what, 0);
+    b->spent_checks += now_ms() - t0;
+    cut_totals(cut, &e, &n);
+    r = add_row(b, ROW_TARGET, p->name, method);
+    r->eps = params->epsilon;
+    r->n = tree->leaf_count;
+    r->cut_ms = r->total_ms = median(times, 5);
+    r->evaluated = e;
+    r->per_view = n;
+    return r;
+}
+
 static void target_single(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
 {
     static const float c_px[3] = {1, 2, 4};
@@ -1465,58 +1501,15 @@ static void target_single(bench *b, protocol *p, mlod_tree *tree, const ranks *r
     params.mode = MLOD_CUT_BASIC;
     params.parallel = &b->parallel;
     for (k = 0; k < 3; k++) {
-        double e, n;
-        char what[64];
         params.epsilon = c_px[k];
-        for (i = 0; i < 6; i++) {
-            mlod_cut_reset(cut); /* a whole cut each time: the same view again would be skipped */
-            t0 = now_ms();
-            if (mlod_cut_update(cut, tree, &view, &params, &error) != MLOD_OK)
-                fail("mlod_cut_update: %s", error.message);
-            if (i > 0) times[i - 1] = now_ms() - t0;
-        }
-        t0 = now_ms();
-        snprintf(what, sizeof what, "object, one %ux%u perspective view, c = %g", BENCH_SINGLE_SIZE, BENCH_SINGLE_SIZE,
-                 (double)c_px[k]);
-        check_cut(rk, cut, what, 0);
-        b->spent_checks += now_ms() - t0;
-        cut_totals(cut, &e, &n);
-        r = add_row(b, ROW_TARGET, p->name, "one 1024x1024 perspective view: basic");
-        r->eps = c_px[k];
-        r->n = tree->leaf_count;
-        r->cut_ms = r->total_ms = median(times, 5);
-        r->evaluated = e;
-        r->per_view = n;
+        r = single_row(b, p, tree, rk, cut, &view, &params, 0.0, "one 1024x1024 perspective view: basic");
         snprintf(r->note, sizeof r->note,
                  "fov_y 60 deg, the object's bounding sphere (radius %.3g) filling the height; %u drawn, %u of them "
                  "oversize leaves",
                  radius, mlod_cut_get(cut, 0).drawn + mlod_cut_get(cut, 0).oversize, mlod_cut_get(cut, 0).oversize);
         if (k > 0) continue;
-        /* the same view frame after frame, as a renderer updates it: each
-           update from the previous cut, the eye 1e-4 of the radius to one
-           side and back (a view equal to the last is skipped) */
-        for (i = 0; i < 6; i++) {
-            mlod_view moved = view;
-            moved.position[0] += (float)((i % 2 ? 1e-4 : -1e-4) * radius);
-            t0 = now_ms();
-            if (mlod_cut_update(cut, tree, &moved, &params, &error) != MLOD_OK)
-                fail("mlod_cut_update: %s", error.message);
-            if (i > 0) times[i - 1] = now_ms() - t0;
-            if (i == 5) {
-                t0 = now_ms();
-                snprintf(what, sizeof what, "object, one %ux%u perspective view from its previous cut",
-                         BENCH_SINGLE_SIZE, BENCH_SINGLE_SIZE);
-                check_cut(rk, cut, what, 0);
-                b->spent_checks += now_ms() - t0;
-            }
-        }
-        cut_totals(cut, &e, &n);
-        r = add_row(b, ROW_TARGET, p->name, "one 1024x1024 view: from previous cut");
-        r->eps = c_px[k];
-        r->n = tree->leaf_count;
-        r->cut_ms = r->total_ms = median(times, 5);
-        r->evaluated = e;
-        r->per_view = n;
+        /* the same view frame after frame, as a renderer updates it */
+        r = single_row(b, p, tree, rk, cut, &view, &params, 1e-4 * radius, "one 1024x1024 view: from previous cut");
         snprintf(r->note, sizeof r->note,
                  "the view above updated frame after frame (its eye moved by 1e-4 of the radius), each cut from "
                  "the previous one");
