@@ -4816,7 +4816,24 @@ MLOD__FORCE_INLINE void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf 
    lanes: MLOD_STATUS_CULLED, _DRAWN, _COARSE or _OVERSIZE (invalid
    internal node or leaf), 0 (MLOD__UNSURE) where the lane cannot prove
    its status. */
-MLOD__FORCE_INLINE mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone, mlod__vf leaf)
+/* mlod__vstatus below, with what is known of the planes of a view of one
+   sub-projection.  track 1: *inside gets the lanes whose sphere surely
+   lies wholly inside every plane of it (else none); known 1 (and track
+   1): every lane's sphere is known to, and the plane tests are left out.
+   A plane's test reached (mlod__fast_status) is n.x + l r - k' > m: the
+   sphere reaches into the half-space, m bounding the float rounding of
+   the sum (by the magnitudes of its terms, l >= |n|).  The same sum with
+   - l r, over m, proves n.x - l r - k' > 0 in exact arithmetic: the whole
+   sphere lies inside, and a child's sphere lies inside its parent's
+   exactly (the build and the refit round radii up, DESIGN.md), so every
+   node below lies wholly inside too and reaches into every half-space:
+   its plane tests pass, known without them.  Its status, by the other
+   tests (size, back faces), is what the full filter or the exact path
+   gives: the same bits on every path (tests/test_cut.c checks the
+   children of nodes proved inside against the exact path).  Only lanes
+   the filter decided (their guards passed) are proved inside. */
+MLOD__FORCE_INLINE mlod__vf mlod__vstatus_known(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone,
+                                              mlod__vf leaf, int known, int track, mlod__vf *inside)
 {
     mlod__vf x[3], r = sphere[3], d2, t, twice, reach, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
     mlod__vf all = MLOD__VEQ(zero, zero);
@@ -4843,17 +4860,21 @@ MLOD__FORCE_INLINE mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf 
     none = all;
     coarse = zero;
     small = all;
+    *inside = track ? all : zero;
     for (s = 0; s < fv->sub_count; s++) {
         const mlod__fsub *fs = &fv->subs[s];
         mlod__vf out = zero, in = all, xw, lhs, rhs, ok;
-        for (j = 0; j < fs->plane_count; j++) {
+        for (j = 0; j < (known ? 0 : fs->plane_count); j++) {
             const float *p = fs->planes[j];
             mlod__vf a0 = MLOD__VMUL(MLOD__VSET(p[0]), x[0]), a1 = MLOD__VMUL(MLOD__VSET(p[1]), x[1]);
             mlod__vf a2 = MLOD__VMUL(MLOD__VSET(p[2]), x[2]), a3 = MLOD__VMUL(MLOD__VSET(p[3]), r);
-            mlod__vf v = MLOD__VSUB(MLOD__VADD(MLOD__VADD(MLOD__VADD(a0, a1), a2), a3), MLOD__VSET(p[4]));
+            mlod__vf centre = MLOD__VADD(MLOD__VADD(a0, a1), a2);
+            mlod__vf v = MLOD__VSUB(MLOD__VADD(centre, a3), MLOD__VSET(p[4]));
             mlod__vf m = MLOD__VADD(MLOD__VMUL(MLOD__VSET(fs->slope[j]), reach), MLOD__VSET(fs->err[j]));
             out = MLOD__VOR(out, MLOD__VLT(v, MLOD__VSUB(zero, m)));
             in = MLOD__VAND(in, MLOD__VGT(v, m));
+            if (track && s == 0)
+                *inside = MLOD__VAND(*inside, MLOD__VGT(MLOD__VSUB(MLOD__VSUB(centre, a3), MLOD__VSET(p[4])), m));
         }
         /* a sub-projection neither surely reached nor surely missed */
         unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VOR(out, in), all));
@@ -4892,11 +4913,18 @@ MLOD__FORCE_INLINE mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf 
        exclusive, so or selects */
     coarse = MLOD__VANDNOT(culled, coarse);
     small = MLOD__VANDNOT(MLOD__VOR(culled, coarse), small);
+    if (track && !known) *inside = MLOD__VANDNOT(unsure, *inside);
     return MLOD__VANDNOT(unsure,
                          MLOD__VOR(MLOD__VOR(MLOD__VAND(culled, MLOD__VSET((float)MLOD_STATUS_CULLED)),
                                              MLOD__VAND(small, MLOD__VSET((float)MLOD_STATUS_DRAWN))),
                                    MLOD__VAND(coarse, MLOD__VOR(MLOD__VAND(leaf, MLOD__VSET((float)MLOD_STATUS_OVERSIZE)),
                                                                 MLOD__VANDNOT(leaf, MLOD__VSET((float)MLOD_STATUS_COARSE))))));
+}
+
+MLOD__FORCE_INLINE mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone, mlod__vf leaf)
+{
+    mlod__vf inside;
+    return mlod__vstatus_known(fv, sphere, cone, leaf, 0, 0, &inside);
 }
 
 /* The lanes of status codes that the filter left undecided (0), as bits. */
@@ -5160,20 +5188,38 @@ static void mlod__settle_lanes(const mlod__pview *pv, const mlod_tree *tree, mlo
 #pragma clang attribute pop
 #endif
 #ifdef MLOD__VLANES
+/* Whether the vector paths track which nodes lie inside every plane of
+   fv's view (mlod__vstatus_known): one sub-projection of more than one
+   plane (a frustum or a box; a paraboloid's one plane is not worth it). */
+MLOD__FORCE_INLINE int mlod__known_planes(const mlod__fview *fv)
+{
+    return fv->sub_count == 1 && fv->subs[0].plane_count > 1;
+}
+
+/* Whether flags[0 .. n - 1] are all set. */
+static int mlod__all_set(const uint8_t *flags, uint32_t n)
+{
+    uint32_t i, all = 1;
+    for (i = 0; i < n; i++) all &= flags[i];
+    return (int)all;
+}
+
 /* mlod__classify_list's vector path with the float filter fv: pv's own,
    or a copy whose counts are constants (mlod__fast_fixed), for which the
    compiler unrolls the plane loops and keeps the view's constants in
    registers across groups. */
 MLOD__FORCE_INLINE void mlod__classify_lanes(const mlod__fview *fv, const mlod__pview *pv, const mlod_tree *tree,
-                                             const uint32_t *nodes, uint32_t count, double epsilon, uint8_t *status)
+                                             const uint32_t *nodes, uint32_t count, double epsilon, uint8_t *status,
+                                             const uint8_t *known, uint8_t *inside)
 {
-    const int cones = fv->backfaces && tree->cones;
+    const int cones = fv->backfaces && tree->cones, planes = mlod__known_planes(fv);
     uint32_t i;
     for (i = 0; i < count; i += MLOD__VLANES) {
         uint32_t pad[MLOD__VLANES], l, valid = count - i < MLOD__VLANES ? count - i : MLOD__VLANES;
         const uint32_t *lanes = nodes + i;
         uint8_t part[MLOD__VLANES], *out = valid == MLOD__VLANES ? status + i : part;
-        mlod__vf sphere[4], cone[4], codes;
+        mlod__vf sphere[4], cone[4], codes, in, leaf;
+        int all_known = planes && known != NULL && mlod__all_set(known + i, valid);
         if (valid < MLOD__VLANES) { /* the last group: padded with its last node */
             for (l = 0; l < MLOD__VLANES; l++) pad[l] = nodes[i + (l < valid ? l : valid - 1)];
             lanes = pad;
@@ -5185,7 +5231,15 @@ MLOD__FORCE_INLINE void mlod__classify_lanes(const mlod__fview *fv, const mlod__
         }
         mlod__vload(tree->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
         if (cones) mlod__vload(tree->cones, lanes, &cone[0], &cone[1], &cone[2], &cone[3]);
-        codes = mlod__vstatus(fv, sphere, cones ? cone : NULL, mlod__vleaf(lanes, tree->leaf_count - 1));
+        leaf = mlod__vleaf(lanes, tree->leaf_count - 1);
+        /* two calls, each with its own constant: the plane loop compiled out of one */
+        codes = all_known ? mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 1, 1, &in)
+                          : mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 0, planes, &in);
+        if (inside) {
+            uint8_t flags[MLOD__VLANES];
+            mlod__vbytes(MLOD__VAND(in, MLOD__VSET(1.0f)), valid == MLOD__VLANES ? inside + i : flags);
+            if (valid < MLOD__VLANES) memcpy(inside + i, flags, valid);
+        }
         /* statuses stored as bytes at once (they are hard to predict:
            no branch per lane); an undecided lane (rare) takes the
            exact path */
@@ -5229,27 +5283,27 @@ MLOD__FORCE_INLINE int mlod__fast_fixed(const mlod__pview *pv, mlod__fview *fixe
    its own).  Not inlined into the cut's code: where that is
    built for a target without FMA (MLOD__NO_FMA_TARGET), these keep the
    caller's target, as the vector filter they inline does. */
-#define MLOD__BY_SHAPE(fn, pv, tree, list, count, epsilon, status)                                                      \
+#define MLOD__BY_SHAPE(fn, pv, ...)                                                                                    \
     do {                                                                                                               \
         mlod__fview fixed_;                                                                                            \
         switch (mlod__fast_fixed(pv, &fixed_)) {                                                                       \
         case MLOD__SHAPE_PARABOLOID:                                                                                   \
             MLOD__FIX(fixed_, MLOD_VIEW_PARABOLOID, 1);                                                                \
-            fn(&fixed_, pv, tree, list, count, epsilon, status);                                                       \
+            fn(&fixed_, pv, __VA_ARGS__);                                                                              \
             break;                                                                                                     \
         case MLOD__SHAPE_PERSPECTIVE:                                                                                  \
             MLOD__FIX(fixed_, MLOD_VIEW_PERSPECTIVE, 6);                                                               \
-            fn(&fixed_, pv, tree, list, count, epsilon, status);                                                       \
+            fn(&fixed_, pv, __VA_ARGS__);                                                                              \
             break;                                                                                                     \
         default:                                                                                                       \
-            fn(&(pv)->fast, pv, tree, list, count, epsilon, status);                                                   \
+            fn(&(pv)->fast, pv, __VA_ARGS__);                                                                          \
         }                                                                                                              \
     } while (0)
 
 static void mlod__classify_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
-                                  double epsilon, uint8_t *status)
+                                  double epsilon, uint8_t *status, const uint8_t *known, uint8_t *inside)
 {
-    MLOD__BY_SHAPE(mlod__classify_lanes, pv, tree, nodes, count, epsilon, status);
+    MLOD__BY_SHAPE(mlod__classify_lanes, pv, tree, nodes, count, epsilon, status, known, inside);
 }
 
 #ifdef MLOD__VPAIRS
@@ -5257,22 +5311,31 @@ static void mlod__classify_vector(const mlod__pview *pv, const mlod_tree *tree, 
    mlod__classify_lanes): a pair's rows are adjacent, one load each,
    MLOD__VPAIRS pairs a vector. */
 MLOD__FORCE_INLINE void mlod__classify_pairs(const mlod__fview *fv, const mlod__pview *pv, const mlod_tree *tree,
-                                             const uint32_t *parents, uint32_t count, double epsilon, uint8_t *status)
+                                             const uint32_t *parents, uint32_t count, double epsilon, uint8_t *status,
+                                             const uint8_t *known, uint8_t *inside)
 {
-    const int cones = fv->backfaces && tree->cones;
+    const int cones = fv->backfaces && tree->cones, planes = mlod__known_planes(fv);
     uint32_t i;
     for (i = 0; i < count; i += MLOD__VPAIRS) {
         uint32_t pad[MLOD__VPAIRS], lanes[2 * MLOD__VPAIRS], l, valid = count - i < MLOD__VPAIRS ? count - i : MLOD__VPAIRS;
         const uint32_t *group = parents + i;
         uint8_t part[2 * MLOD__VPAIRS], lane_status[2 * MLOD__VPAIRS];
-        mlod__vf sphere[4], cone[4], codes;
+        mlod__vf sphere[4], cone[4], codes, in, leaf;
+        int all_known = planes && known != NULL && mlod__all_set(known + i, valid);
         if (valid < MLOD__VPAIRS) {
             for (l = 0; l < MLOD__VPAIRS; l++) pad[l] = parents[i + (l < valid ? l : valid - 1)];
             group = pad;
         }
         mlod__vload_pairs(tree->spheres, group, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
         if (cones) mlod__vload_pairs(tree->cones, group, &cone[0], &cone[1], &cone[2], &cone[3]);
-        codes = mlod__vstatus(fv, sphere, cones ? cone : NULL, mlod__vleaf_pairs(group, tree->leaf_count - 1));
+        leaf = mlod__vleaf_pairs(group, tree->leaf_count - 1);
+        codes = all_known ? mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 1, 1, &in)
+                          : mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 0, planes, &in);
+        if (inside) { /* in the order of the statuses: each parent's left child, then its right one */
+            uint8_t flags[2 * MLOD__VPAIRS];
+            mlod__vbytes_pairs(MLOD__VAND(in, MLOD__VSET(1.0f)), valid == MLOD__VPAIRS ? inside + 2 * i : flags);
+            if (valid < MLOD__VPAIRS) memcpy(inside + 2 * i, flags, 2 * valid);
+        }
         mlod__vbytes_pairs(codes, valid == MLOD__VPAIRS ? status + 2 * i : part);
         if (mlod__vundecided(codes)) { /* rare: lanes the filter left undecided */
             for (l = 0; l < MLOD__VPAIRS; l++) {
@@ -5292,9 +5355,10 @@ MLOD__FORCE_INLINE void mlod__classify_pairs(const mlod__fview *fv, const mlod__
 }
 
 static void mlod__classify_pairs_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
-                                        uint32_t count, double epsilon, uint8_t *status)
+                                        uint32_t count, double epsilon, uint8_t *status, const uint8_t *known,
+                                        uint8_t *inside)
 {
-    MLOD__BY_SHAPE(mlod__classify_pairs, pv, tree, parents, count, epsilon, status);
+    MLOD__BY_SHAPE(mlod__classify_pairs, pv, tree, parents, count, epsilon, status, known, inside);
 }
 #endif
 #endif
@@ -5302,32 +5366,49 @@ static void mlod__classify_pairs_vector(const mlod__pview *pv, const mlod_tree *
 #pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
 #endif
 
-static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
-                                double epsilon, uint8_t *status)
+/* mlod__classify_list with, per node, whether it is known to lie inside
+   every plane of the view's one sub-projection (known, NULL: none), and
+   into inside[] (NULL: not wanted) whether it surely does (known, or
+   proved by the vector filter; 0 where unsure, or without lanes). */
+MLOD__FORCE_INLINE void mlod__classify_known(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes,
+                                             uint32_t count, double epsilon, uint8_t *status, const uint8_t *known,
+                                             uint8_t *inside)
 {
     uint32_t i;
 #ifdef MLOD__VLANES
     if (pv->fast.ok) {
-        mlod__classify_vector(pv, tree, nodes, count, epsilon, status);
+        mlod__classify_vector(pv, tree, nodes, count, epsilon, status, known, inside);
         return;
     }
 #endif
     for (i = 0; i < count; i++) status[i] = mlod__classify(pv, tree, nodes[i], epsilon);
+    if (inside) memset(inside, 0, count);
+    (void)known;
+}
+
+static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
+                                double epsilon, uint8_t *status)
+{
+    mlod__classify_known(pv, tree, nodes, count, epsilon, status, NULL, NULL);
 }
 
 /* The statuses of the children 2p + 1 and 2p + 2 of each of the count
-   (<= MLOD__BATCH) parents p, into status[2i] and status[2i + 1]. */
-static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
-                                    uint32_t count, double epsilon, uint8_t *status)
+   (<= MLOD__BATCH) parents p, into status[2i] and status[2i + 1]; known[i]:
+   parent i surely lies inside every plane (mlod__classify_known), and so
+   its children; their own such flags into inside[2i], inside[2i + 1]. */
+MLOD__FORCE_INLINE void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
+                                                uint32_t count, double epsilon, uint8_t *status, const uint8_t *known,
+                                                uint8_t *inside)
 {
     uint32_t children[2 * MLOD__BATCH], i;
+    uint8_t child_known[2 * MLOD__BATCH];
     for (i = 0; i < count; i++) { /* ask for every pair's rows first: their loads overlap */
         MLOD__PREFETCH(tree->spheres + 8 * (size_t)parents[i] + 4);
         if (tree->cones) MLOD__PREFETCH(tree->cones + 8 * (size_t)parents[i] + 4);
     }
 #ifdef MLOD__VPAIRS
     if (pv->fast.ok) {
-        mlod__classify_pairs_vector(pv, tree, parents, count, epsilon, status);
+        mlod__classify_pairs_vector(pv, tree, parents, count, epsilon, status, known, inside);
         return;
     }
 #endif
@@ -5335,7 +5416,9 @@ static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree
         children[2 * i] = 2 * parents[i] + 1;
         children[2 * i + 1] = 2 * parents[i] + 2;
     }
-    mlod__classify_list(pv, tree, children, 2 * count, epsilon, status);
+    if (known)
+        for (i = 0; i < count; i++) child_known[2 * i] = child_known[2 * i + 1] = known[i];
+    mlod__classify_known(pv, tree, children, 2 * count, epsilon, status, known ? child_known : NULL, inside);
 }
 
 /* The statuses of a segment's input entries into status[]: those whose
@@ -5433,19 +5516,75 @@ static uint32_t mlod__depth_limit(const mlod__segment *seg, const mlod_tree *tre
     return mlod__depth_of(node) + levels;
 }
 
-/* Basic and incremental rounds: split invalid nodes down to the cut within
-   the segment's capacity (and mlod__depth_limit), merge valid sibling
-   pairs.  The split is a depth-first search whose stack holds classified
+/* The split of one coarse input entry (node, status st) of a segment down
+   to the cut, into out, a depth-first search whose stack holds classified
    entries, the next one left to right on top; the run of coarse entries
-   on top is split together. */
+   on top is split together.  remaining: the segment's input entries after
+   it, whose room it keeps.  track (a constant in each copy): the stack
+   keeps which nodes lie wholly inside every plane (mlod__vstatus_known),
+   so that their children skip the plane tests. */
+MLOD__FORCE_INLINE void mlod__split_down(const mlod__cut_job *job, const mlod__segment *seg, const mlod__pview *pv,
+                                         mlod__emitter *out, uint32_t node, uint8_t st, uint32_t remaining, int track,
+                                         uint64_t *evaluated, uint64_t *steps)
+{
+    const mlod_tree *tree = job->tree;
+    uint32_t stack[MLOD__STACK], parents[MLOD__BATCH], top = 1, n, i, limit = mlod__depth_limit(seg, tree, node);
+    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH];
+    uint8_t stack_inside[MLOD__STACK], parent_inside[MLOD__BATCH], child_inside[2 * MLOD__BATCH];
+    stack[0] = node;
+    stack_status[0] = st;
+    stack_inside[0] = 0; /* an input entry: not known */
+    while (top > 0) {
+        if (stack_status[top - 1] != MLOD_STATUS_COARSE) {
+            --top;
+            mlod__emit(out, stack[top], stack_status[top]);
+            continue;
+        }
+        /* the run of coarse entries on top, up to MLOD__BATCH of them,
+           split together (their children's loads overlap) while the
+           output still has room for every entry pending (a coarse entry
+           without room waits for the next round) and the stack for the
+           children */
+        n = 0;
+        while (n < MLOD__BATCH && n < top && stack_status[top - 1 - n] == MLOD_STATUS_COARSE &&
+               out->count + top + n + 1 + remaining <= seg->out_capacity && top + n + 1 <= MLOD__STACK &&
+               (limit == MLOD__NO_LIMIT || mlod__depth_of(stack[top - 1 - n]) < limit)) {
+            parents[n] = stack[top - 1 - n];
+            if (track) parent_inside[n] = stack_inside[top - 1 - n];
+            n++;
+        }
+        if (n == 0) {
+            --top;
+            mlod__emit(out, stack[top], stack_status[top]);
+            continue;
+        }
+        mlod__classify_children(pv, tree, parents, n, job->epsilon, children, track ? parent_inside : NULL,
+                                track ? child_inside : NULL);
+        top -= n;
+        for (i = n; i-- > 0;) { /* a split entry becomes its right child with its left one above */
+            stack[top] = 2 * parents[i] + 2;
+            if (track) stack_inside[top] = child_inside[2 * i + 1];
+            stack_status[top++] = children[2 * i + 1];
+            stack[top] = 2 * parents[i] + 1;
+            if (track) stack_inside[top] = child_inside[2 * i];
+            stack_status[top++] = children[2 * i];
+        }
+        *evaluated += 2 * n;
+        *steps += n;
+    }
+}
+
+/* Basic and incremental rounds: split invalid nodes down to the cut within
+   the segment's capacity (and mlod__depth_limit, mlod__split_down), merge
+   valid sibling pairs. */
 static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, const mlod__pview *pv)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
-    const mlod_tree *tree = job->tree;
     mlod__emitter out;
-    uint32_t k, stack[MLOD__STACK], parents[MLOD__BATCH];
-    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH], fresh[MLOD__SEGMENT_INPUT];
-    uint8_t hint[MLOD__SEGMENT_INPUT], unchanged[MLOD__SEGMENT_INPUT];
+    uint32_t k;
+    uint8_t fresh[MLOD__SEGMENT_INPUT], hint[MLOD__SEGMENT_INPUT], unchanged[MLOD__SEGMENT_INPUT];
+    /* the nodes wholly inside every plane, where the vector filter tracks them */
+    const int track = pv->fast.ok && pv->fast.sub_count == 1 && pv->fast.subs[0].plane_count > 1;
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
@@ -5467,52 +5606,17 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
        input entries, unchanged, are the first and last output entries */
     seg->ends_unchanged = (uint8_t)(seg->in_count ? (unchanged[0] ? 1u : 0u) | (unchanged[seg->in_count - 1] ? 2u : 0u) : 0u);
     for (k = 0; k < seg->in_count; k++) {
-        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k, top, n, i, limit;
+        uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k;
         uint8_t st = fresh[k];
         if (st != MLOD_STATUS_COARSE) {
             if (job->merge && mlod__mergeable(out.nodes, out.status, out.count, node, st))
                 node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st,
                                     unchanged[k] ? (uint8_t)MLOD__KNOWN_INVALID : hint[k], &evaluated, &steps);
             mlod__emit(&out, node, st);
-            continue;
-        }
-        stack[0] = node;
-        stack_status[0] = st;
-        top = 1;
-        limit = mlod__depth_limit(seg, tree, node);
-        while (top > 0) {
-            if (stack_status[top - 1] != MLOD_STATUS_COARSE) {
-                --top;
-                mlod__emit(&out, stack[top], stack_status[top]);
-                continue;
-            }
-            /* the run of coarse entries on top, up to MLOD__BATCH of
-               them, split together (their children's loads overlap) while
-               the output still has room for every entry pending (a coarse
-               entry without room waits for the next round) and the stack
-               for the children */
-            n = 0;
-            while (n < MLOD__BATCH && n < top && stack_status[top - 1 - n] == MLOD_STATUS_COARSE &&
-                   out.count + top + n + 1 + remaining <= seg->out_capacity && top + n + 1 <= MLOD__STACK &&
-                   (limit == MLOD__NO_LIMIT || mlod__depth_of(stack[top - 1 - n]) < limit)) {
-                parents[n] = stack[top - 1 - n];
-                n++;
-            }
-            if (n == 0) {
-                --top;
-                mlod__emit(&out, stack[top], stack_status[top]);
-                continue;
-            }
-            mlod__classify_children(pv, tree, parents, n, job->epsilon, children);
-            top -= n;
-            for (i = n; i-- > 0;) { /* a split entry becomes its right child with its left one above */
-                stack[top] = 2 * parents[i] + 2;
-                stack_status[top++] = children[2 * i + 1];
-                stack[top] = 2 * parents[i] + 1;
-                stack_status[top++] = children[2 * i];
-            }
-            evaluated += 2 * n;
-            steps += n;
+        } else if (track) {
+            mlod__split_down(job, seg, pv, &out, node, st, remaining, 1, &evaluated, &steps);
+        } else {
+            mlod__split_down(job, seg, pv, &out, node, st, remaining, 0, &evaluated, &steps);
         }
     }
     seg->out_count = out.count;

@@ -869,12 +869,16 @@ static void test_criterion_reference(void)
 /* The float filter against the definition for one node-view at epsilon:
    the scalar filter (mlod__fast_status), where it decides, and the vector
    path (mlod__classify_children, on the node's parent), always, must give
-   the exact path's status.  0 when they do (or the view has no filter),
-   1 scalar, 2 vector otherwise; *decided counts the scalar decisions. */
+   the exact path's status; so must the vector path told that the parent
+   lies inside every plane, where the vector path proves it (the plane
+   tests left out below it; fast_known counts those).  0 when they do (or
+   the view has no filter), 1 scalar, 2 vector, 3 vector below a parent
+   inside otherwise; *decided counts the scalar decisions. */
+static uint32_t fast_known;
 static int fast_disagrees(const mlod_tree *t, uint32_t node, const mlod_view *v, double eps, uint32_t *decided)
 {
     mlod__pview pv;
-    uint8_t exact, fast, kids[2 * MLOD__BATCH];
+    uint8_t exact, fast, kids[2 * MLOD__BATCH], inside[2 * MLOD__BATCH], known[5] = {1, 1, 1, 1, 1}, parent_status;
     if (mlod__view_prepare(v, &pv, NULL) != MLOD_OK) return 0;
     mlod__fast_prepare(&pv, eps);
     if (!pv.fast.ok) return 0;
@@ -890,11 +894,20 @@ static int fast_disagrees(const mlod_tree *t, uint32_t node, const mlod_view *v,
            one): every copy as the exact path */
         uint32_t parents[5], i, side = (node - 1) & 1u;
         for (i = 0; i < 5; i++) parents[i] = (node - 1) / 2;
-        mlod__classify_children(&pv, t, parents, 1, eps, kids);
+        mlod__classify_children(&pv, t, parents, 1, eps, kids, NULL, NULL);
         if (kids[side] != exact) return 2;
-        mlod__classify_children(&pv, t, parents, 5, eps, kids);
+        mlod__classify_children(&pv, t, parents, 5, eps, kids, NULL, NULL);
         for (i = 0; i < 5; i++)
             if (kids[2 * i + side] != exact) return 2;
+        mlod__classify_known(&pv, t, parents, 1, eps, &parent_status, NULL, inside);
+        if (inside[0]) {
+            fast_known++;
+            mlod__classify_children(&pv, t, parents, 1, eps, kids, known, inside);
+            if (kids[side] != exact || !inside[side]) return 3;
+            mlod__classify_children(&pv, t, parents, 5, eps, kids, known, inside);
+            for (i = 0; i < 5; i++)
+                if (kids[2 * i + side] != exact || !inside[2 * i + side]) return 3;
+        }
     }
     return 0;
 }
@@ -958,8 +971,12 @@ static void test_fast_filter(void)
     CHECK(on_tried > 10000 && on_decided < on_tried / 100,
           "float filter: decided %u of %u node-views at epsilon on their criterion (within its margin: expected none)",
           on_decided, on_tried);
+#ifdef MLOD__VLANES
+    CHECK(fast_known > 1000, "float filter: only %u node-views below a parent proved inside every plane", fast_known);
+#endif
     printf("  float filter: %u node-views, %.3f %% left to the exact path; %u at epsilon on their criterion, %u "
-           "decided\n", tried, 100.0 * (tried - decided) / tried, on_tried, on_decided);
+           "decided; %u below a parent proved inside every plane\n", tried, 100.0 * (tried - decided) / tried,
+           on_tried, on_decided, fast_known);
     mlod_tree_destroy(trees[0]);
     mlod_tree_destroy(trees[1]);
     scene_free(&s);
