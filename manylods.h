@@ -5187,15 +5187,21 @@ static void mlod__settle_lanes(const mlod__pview *pv, const mlod_tree *tree, mlo
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute pop
 #endif
-#ifdef MLOD__VLANES
-/* Whether the vector paths track which nodes lie inside every plane of
-   fv's view (mlod__vstatus_known): one sub-projection of more than one
-   plane (a frustum or a box; a paraboloid's one plane is not worth it). */
+/* Whether the vector paths track which nodes lie wholly inside every
+   plane of fv's view (mlod__vstatus_known): one sub-projection of more
+   than one plane (a frustum or a box; a paraboloid's one plane is not
+   worth it), where the build has lanes. */
 MLOD__FORCE_INLINE int mlod__known_planes(const mlod__fview *fv)
 {
+#ifdef MLOD__VLANES
     return fv->sub_count == 1 && fv->subs[0].plane_count > 1;
+#else
+    (void)fv;
+    return 0;
+#endif
 }
 
+#ifdef MLOD__VLANES
 /* Whether flags[0 .. n - 1] are all set. */
 static int mlod__all_set(const uint8_t *flags, uint32_t n)
 {
@@ -5584,7 +5590,7 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     uint32_t k;
     uint8_t fresh[MLOD__SEGMENT_INPUT], hint[MLOD__SEGMENT_INPUT], unchanged[MLOD__SEGMENT_INPUT];
     /* the nodes wholly inside every plane, where the vector filter tracks them */
-    const int track = pv->fast.ok && pv->fast.sub_count == 1 && pv->fast.subs[0].plane_count > 1;
+    const int track = pv->fast.ok && mlod__known_planes(&pv->fast);
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
