@@ -5516,10 +5516,9 @@ static void mlod__merge_hints(const mlod__cut_job *job, const mlod__segment *seg
 #define MLOD__NO_LIMIT ((uint32_t)-1)
 static uint32_t mlod__depth_limit(const mlod__segment *seg, const mlod_tree *tree, uint32_t node)
 {
-    uint32_t levels = 0;
     if (!seg->depth_room || mlod__leaves_below(node, tree->leaf_count) <= seg->depth_room) return MLOD__NO_LIMIT;
-    while (levels < 31 && ((uint32_t)2 << levels) <= seg->depth_room) levels++;
-    return mlod__depth_of(node) + levels;
+    /* levels: floor(log2(depth_room)), the depth of node depth_room - 1 */
+    return mlod__depth_of(node) + mlod__depth_of(seg->depth_room - 1);
 }
 
 /* The split of one coarse input entry (node, status st) of a segment down
@@ -6264,7 +6263,7 @@ typedef struct mlod__plan_job {
     int lazy, trust;
     const uint32_t *hint; /* see mlod__plan_round */
     const mlod__list *prev; /* rooms from the previous cut (mlod__split_room), else NULL */
-    uint32_t leaf_count;
+    uint32_t leaf_count, deepest; /* the tree's, and the depth of its last node */
     size_t unit;
     size_t wide; /* the first round from the roots: root rooms above this are MLOD__SEGMENT_GROWTH */
     int fill;    /* segments pass: 0 counts, 1 writes */
@@ -6280,7 +6279,7 @@ static mlod__room_walk mlod__plan_walk(const mlod__plan_job *job, uint32_t v, ui
     w.prev_count = w.cursor = 0;
     w.unit = job->unit;
     w.leaf_count = job->leaf_count;
-    w.deepest = mlod__depth_of(2 * (uint64_t)job->leaf_count - 2);
+    w.deepest = job->deepest;
     /* only where a split has a segment's room to itself: where many share
        a segment, its search finishes many small cuts in one pooled room,
        and in long runs of coarse nodes that it classifies together */
@@ -6393,6 +6392,7 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
     job.hint = hint;
     job.prev = NULL;
     job.leaf_count = leaf_count;
+    job.deepest = mlod__depth_of(2 * (uint64_t)leaf_count - 2);
     job.unit = 0;
     job.wide = (size_t)-1;
     job.fill = 0;
