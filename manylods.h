@@ -5398,23 +5398,36 @@ static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, co
     mlod__classify_known(pv, tree, nodes, count, epsilon, status, NULL, NULL);
 }
 
+/* Room for the padding of a batch of children (below): a vector's lanes. */
+#define MLOD__BATCH_PAD 8u
+
 /* The statuses of the children 2p + 1 and 2p + 2 of each of the count
    (<= MLOD__BATCH) parents p, into status[2i] and status[2i + 1]; known[i]:
    parent i surely lies inside every plane (mlod__classify_known), and so
-   its children; their own such flags into inside[2i], inside[2i + 1]. */
-MLOD__FORCE_INLINE void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
-                                                uint32_t count, double epsilon, uint8_t *status, const uint8_t *known,
+   its children; their own such flags into inside[2i], inside[2i + 1].
+   The vector paths take whole vectors: parents[] and known[] have room
+   for MLOD__BATCH_PAD more entries, status[] and inside[] for 2
+   MLOD__BATCH_PAD more, which the lanes past the batch fill (padding
+   with the last parent, whose statuses the caller does not read: no
+   partial vector, whose extra copies cost a small batch more than a
+   whole one). */
+MLOD__FORCE_INLINE void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, uint32_t *parents,
+                                                uint32_t count, double epsilon, uint8_t *status, uint8_t *known,
                                                 uint8_t *inside)
 {
-    uint32_t children[2 * MLOD__BATCH], i;
-    uint8_t child_known[2 * MLOD__BATCH];
+    uint32_t children[2 * (MLOD__BATCH + MLOD__BATCH_PAD)], i, padded = 2 * count;
+    uint8_t child_known[2 * (MLOD__BATCH + MLOD__BATCH_PAD)];
     for (i = 0; i < count; i++) { /* ask for every pair's rows first: their loads overlap */
         MLOD__PREFETCH(tree->spheres + 8 * (size_t)parents[i] + 4);
         if (tree->cones) MLOD__PREFETCH(tree->cones + 8 * (size_t)parents[i] + 4);
     }
 #ifdef MLOD__VPAIRS
     if (pv->fast.ok) {
-        mlod__classify_pairs_vector(pv, tree, parents, count, epsilon, status, known, inside);
+        for (padded = count; padded % MLOD__VPAIRS; padded++) {
+            parents[padded] = parents[count - 1];
+            if (known) known[padded] = known[count - 1];
+        }
+        mlod__classify_pairs_vector(pv, tree, parents, padded, epsilon, status, known, inside);
         return;
     }
 #endif
@@ -5424,7 +5437,14 @@ MLOD__FORCE_INLINE void mlod__classify_children(const mlod__pview *pv, const mlo
     }
     if (known)
         for (i = 0; i < count; i++) child_known[2 * i] = child_known[2 * i + 1] = known[i];
-    mlod__classify_known(pv, tree, children, 2 * count, epsilon, status, known ? child_known : NULL, inside);
+#ifdef MLOD__VLANES
+    if (pv->fast.ok)
+        for (; padded % MLOD__VLANES; padded++) {
+            children[padded] = children[2 * count - 1];
+            if (known) child_known[padded] = known[count - 1];
+        }
+#endif
+    mlod__classify_known(pv, tree, children, padded, epsilon, status, known ? child_known : NULL, inside);
 }
 
 /* The statuses of a segment's input entries into status[]: those whose
@@ -5533,9 +5553,11 @@ MLOD__FORCE_INLINE void mlod__split_down(const mlod__cut_job *job, const mlod__s
                                          uint64_t *evaluated, uint64_t *steps)
 {
     const mlod_tree *tree = job->tree;
-    uint32_t stack[MLOD__STACK], parents[MLOD__BATCH], top = 1, n, i, limit = mlod__depth_limit(seg, tree, node);
-    uint8_t stack_status[MLOD__STACK], children[2 * MLOD__BATCH];
-    uint8_t stack_inside[MLOD__STACK], parent_inside[MLOD__BATCH], child_inside[2 * MLOD__BATCH];
+    uint32_t stack[MLOD__STACK], parents[MLOD__BATCH + MLOD__BATCH_PAD], top = 1, n, i;
+    uint32_t limit = mlod__depth_limit(seg, tree, node);
+    uint8_t stack_status[MLOD__STACK], children[2 * (MLOD__BATCH + MLOD__BATCH_PAD)];
+    uint8_t stack_inside[MLOD__STACK], parent_inside[MLOD__BATCH + MLOD__BATCH_PAD];
+    uint8_t child_inside[2 * (MLOD__BATCH + MLOD__BATCH_PAD)];
     stack[0] = node;
     stack_status[0] = st;
     stack_inside[0] = 0; /* an input entry: not known */
