@@ -5400,6 +5400,9 @@ static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, co
 
 /* Room for the padding of a batch of children (below): a vector's lanes. */
 #define MLOD__BATCH_PAD 8u
+#if (defined(MLOD__VLANES) && MLOD__VLANES > MLOD__BATCH_PAD) || (defined(MLOD__VPAIRS) && MLOD__VPAIRS > MLOD__BATCH_PAD)
+#error "manylods.h: MLOD__BATCH_PAD must hold a vector's lanes"
+#endif
 
 /* The statuses of the children 2p + 1 and 2p + 2 of each of the count
    (<= MLOD__BATCH) parents p, into status[2i] and status[2i + 1]; known[i]:
