@@ -5404,6 +5404,22 @@ static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, co
 #error "manylods.h: MLOD__BATCH_PAD must hold a vector's lanes"
 #endif
 
+#ifdef MLOD__VLANES
+/* Pad items[0 .. count) (count > 0) up to a multiple of `multiple` by
+   repeating its last item, and flags[] (NULL: none) alike; the caller's
+   arrays have the room.  Returns the padded count: whole vectors for the
+   lanes, whose extra statuses nobody reads. */
+static uint32_t mlod__pad_last(uint32_t *items, uint8_t *flags, uint32_t count, uint32_t multiple)
+{
+    uint32_t padded = count;
+    for (; padded % multiple; padded++) {
+        items[padded] = items[count - 1];
+        if (flags) flags[padded] = flags[count - 1];
+    }
+    return padded;
+}
+#endif
+
 /* The statuses of the children 2p + 1 and 2p + 2 of each of the count
    (<= MLOD__BATCH) parents p, into status[2i] and status[2i + 1]; known[i]:
    parent i surely lies inside every plane (mlod__classify_known), and so
@@ -5426,10 +5442,7 @@ MLOD__FORCE_INLINE void mlod__classify_children(const mlod__pview *pv, const mlo
     }
 #ifdef MLOD__VPAIRS
     if (pv->fast.ok) {
-        for (padded = count; padded % MLOD__VPAIRS; padded++) {
-            parents[padded] = parents[count - 1];
-            if (known) known[padded] = known[count - 1];
-        }
+        padded = mlod__pad_last(parents, known, count, MLOD__VPAIRS);
         mlod__classify_pairs_vector(pv, tree, parents, padded, epsilon, status, known, inside);
         return;
     }
@@ -5441,11 +5454,7 @@ MLOD__FORCE_INLINE void mlod__classify_children(const mlod__pview *pv, const mlo
     if (known)
         for (i = 0; i < count; i++) child_known[2 * i] = child_known[2 * i + 1] = known[i];
 #ifdef MLOD__VLANES
-    if (pv->fast.ok)
-        for (; padded % MLOD__VLANES; padded++) {
-            children[padded] = children[2 * count - 1];
-            if (known) child_known[padded] = known[count - 1];
-        }
+    if (pv->fast.ok) padded = mlod__pad_last(children, known ? child_known : NULL, padded, MLOD__VLANES);
 #endif
     mlod__classify_known(pv, tree, children, padded, epsilon, status, known ? child_known : NULL, inside);
 }
@@ -7690,7 +7699,7 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
     MANYLODS_ASSERT(count > 0 && count <= MLOD__DRAW_CHUNK);
     memcpy(ids, nodes, count * sizeof *ids);
 #ifdef MLOD__VLANES
-    for (; padded % MLOD__VLANES; padded++) ids[padded] = nodes[count - 1];
+    padded = mlod__pad_last(ids, NULL, count, MLOD__VLANES);
 #endif
     if (clip[1] <= 16777216u && clip[3] <= 16777216u) /* (the clip's bounds are floats) */
         mlod__fast_discs(band->fast, &band->fast->subs[s], spheres, ids, padded, band->disc_scale, box, MLOD__BOX_STRIDE);

@@ -878,7 +878,9 @@ static uint32_t fast_known;
 static int fast_disagrees(const mlod_tree *t, uint32_t node, const mlod_view *v, double eps, uint32_t *decided)
 {
     mlod__pview pv;
-    uint8_t exact, fast, kids[2 * MLOD__BATCH], inside[2 * MLOD__BATCH], known[5] = {1, 1, 1, 1, 1}, parent_status;
+    /* mlod__classify_children's buffers: a vector's lanes of room past the batch */
+    uint8_t exact, fast, kids[2 * (MLOD__BATCH + MLOD__BATCH_PAD)], inside[2 * (MLOD__BATCH + MLOD__BATCH_PAD)];
+    uint8_t known[5 + MLOD__BATCH_PAD] = {1, 1, 1, 1, 1}, parent_status;
     if (mlod__view_prepare(v, &pv, NULL) != MLOD_OK) return 0;
     mlod__fast_prepare(&pv, eps);
     if (!pv.fast.ok) return 0;
@@ -892,7 +894,7 @@ static int fast_disagrees(const mlod_tree *t, uint32_t node, const mlod_view *v,
         /* the parent alone (a partial vector), and five times over (a
            whole vector of pairs where the build has them, then a partial
            one): every copy as the exact path */
-        uint32_t parents[5], i, side = (node - 1) & 1u;
+        uint32_t parents[5 + MLOD__BATCH_PAD], i, side = (node - 1) & 1u;
         for (i = 0; i < 5; i++) parents[i] = (node - 1) / 2;
         mlod__classify_children(&pv, t, parents, 1, eps, kids, NULL, NULL);
         if (kids[side] != exact) return 2;

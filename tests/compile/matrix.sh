@@ -287,6 +287,11 @@ entry cut-small-budget "tests/test_cut.c's cut groups with a round budget of 2^1
     "$OUT/cut-small-budget random_trees hand_made restart motion threads skip one_view"
 entry cut-native "tests/test_cut.c with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_cut.c -o $OUT/cut-native $LIBS" "$OUT/cut-native"
+# The same under the address and undefined-behaviour sanitizers: the vector paths' widest lanes (make
+# test's sanitized tests run SSE2's 4) within the buffers their callers give them.
+entry cut-native-asan "tests/test_cut.c with $native, $CLANG -fsanitize=address,undefined -O1" \
+    "$CLANG -std=c99 $STRICT $native -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined tests/test_cut.c -o $OUT/cut-native-asan $LIBS" \
+    "$OUT/cut-native-asan"
 # The splat's float filter (mlod__fast_discs) on 8 lanes and on none: each decision and each tile as the double path's.
 entry splat-native "tests/test_splat.c's filtered discs and ISM with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_splat.c -o $OUT/splat-native $LIBS" \
