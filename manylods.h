@@ -9188,7 +9188,9 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
                                                                              MLOD__VSET(1.0f + 1.0f / 8192.0f)))));
         }
         /* scene leaves: drawn (2, 3) or split view (5) by the motion; others: small and moving little drawn,
-           small and moving split view, large split scene (4) or middle (6) */
+           small and moving split view, large split scene (4) or middle (6), which splits the view (5) at once
+           where r < rho: the children's spheres lie within the node's (the tree's containment), so their
+           radii are r or less, and mlod__larger_splits would split the view without reading them */
         code = mlod__vselect(leaf,
                              mlod__vselect(move_bad, MLOD__VSET(5.0f),
                                            MLOD__VAND(move_ok, MLOD__VOR(MLOD__VAND(small, MLOD__VSET(2.0f)),
@@ -9196,7 +9198,8 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
                              MLOD__VOR(MLOD__VAND(small, mlod__vselect(move_bad, MLOD__VSET(5.0f),
                                                                        MLOD__VAND(move_ok, MLOD__VSET(2.0f)))),
                                        MLOD__VAND(large, MLOD__VOR(MLOD__VAND(cmin_large, MLOD__VSET(4.0f)),
-                                                                   MLOD__VAND(cmin_small, MLOD__VSET(6.0f))))));
+                                                                   MLOD__VAND(cmin_small, mlod__vselect(MLOD__VLT(r, rho), MLOD__VSET(5.0f),
+                                                                                                        MLOD__VSET(6.0f)))))));
     }
     /* culled first; not surely kept: unsure */
     code = mlod__vselect(keep, code, zero);
