@@ -379,7 +379,14 @@
        at an inner view node:
          culled when no view below can see s: s's sphere grown by rho lies
            outside the views' cone widened by the largest half field of
-           view, or (MLOD_VIEW_CULL_BACKFACES, with scene cones) faces away
+           view, or it lies behind every eye's field of view by the view
+           tree's floors (mlod_view_tree.floors: with a the cone's unit
+           axis, every eye below is at least `floor` above c along a, so
+           a point p of s has (p - eye).n <= x.a + r - floor + (|x| + r +
+           rho) spread for each eye's unit direction n, x = s's centre -
+           c; below 0, no view below sees p: this culls what lies under
+           lights on a wall or floor, where the ball's reach would not),
+           or (MLOD_VIEW_CULL_BACKFACES, with scene cones) faces away
            from every eye of the ball;
          drawn into v's map, as seen from c, when c(s, eye) <= epsilon for
            every eye of v's ball, or s is a scene leaf (nothing finer to
@@ -1234,11 +1241,19 @@ typedef struct mlod_view_set {
    scene tree's slack) and their directions by its cone (cones NULL
    without directions); leaf j holds view eyes->leaf_sources[j].
    half_fovs[2i], half_fovs[2i + 1]: the smallest and the largest half
-   field of view below node i, or NULL without directions.  Owned by the
-   view tree. */
+   field of view below node i, or NULL without directions.  floors[2i]:
+   the least height of node i's eyes along its cone's unit axis, above the
+   node's centre (world units, a lower bound; -inf where the cone or a
+   field of view below reaches pi), and floors[2i + 1]: 2 sin(alpha / 2)
+   of the cone's half-angle alpha, plus sin(phi - pi/2) of the largest
+   half field of view phi below where it passes pi/2 (an upper bound), or
+   NULL without directions: MegaViews culls with them what lies behind
+   every eye's field of view (mlod_megaviews_render).  Owned by the view
+   tree. */
 typedef struct mlod_view_tree {
     mlod_tree *eyes;
     float *half_fovs;
+    float *floors;
     float *radii;              /* private: the leaves' radii, 0 (for refits) */
     uint32_t view_count;
     size_t bytes;              /* everything the view tree allocated */
@@ -1249,7 +1264,7 @@ typedef struct mlod_view_tree {
    through the hook (NULL: the calling thread), memory from the allocator
    (NULL: the default); mlod_build_points_bound(count, MLOD_ATTR_REFIT |
    (directions ? MLOD_ATTR_CONE : 0)) bounds its peak, plus 4 bytes per
-   view for the radii and, with directions, 16 per view.  On error *out is
+   view for the radii and, with directions, 32 per view.  On error *out is
    NULL.  Reentrant. */
 MANYLODS_DEF mlod_result mlod_view_tree_build(const mlod_view_set *views, const mlod_allocator *allocator,
                                               const mlod_parallel *parallel, mlod_view_tree **out,
@@ -8363,6 +8378,80 @@ static void mlod__view_tree_fovs(mlod_view_tree *tree, const mlod_view_set *view
     }
 }
 
+/* The largest float <= x (x finite). */
+static float mlod__float_down(double x)
+{
+    float f = (float)x;
+    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+}
+
+/* Each node's floor and spread (mlod_view_tree.floors), children first.
+   With a the node's unit axis and c its centre, every eye e below has
+   (e - c).a >= floor: a leaf's eye lies within its ball (-rho); an inner
+   node's eyes lie, for each child (centre c', unit axis a', radius rho',
+   floor h'), at (c' - c).a + (e - c').a' + (e - c').(a - a') >= (c' -
+   c).a + h' - rho' |a - a'|, each computed in double with 2^-40 of its
+   terms to spare, rounded down.  -inf where the node's cone or largest
+   half field of view phi reaches pi, or an axis has no length (no
+   floor).  The spread: 2 sin(alpha / 2) bounds |a - n| over the unit
+   directions n within the cone, and a view of half field phi > pi/2 sees
+   p only where (p - e).n >= -|p - e| sin(phi - pi/2); both rounded up.
+   O(nodes); deterministic (no libm trigonometry). */
+static void mlod__view_tree_floors(mlod_view_tree *tree)
+{
+    const mlod_tree *t = tree->eyes;
+    float *f = tree->floors;
+    uint32_t n = t->leaf_count, i;
+    for (i = 2 * n - 1; i-- > 0;) {
+        const float *sphere = t->spheres + 4 * (size_t)i, *cone = t->cones + 4 * (size_t)i;
+        double axis[3], len, h = INFINITY, sin_half, cos_half, fov = tree->half_fovs[2 * (size_t)i + 1], spread = 2.0;
+        int j, k;
+        for (k = 0; k < 3; k++) axis[k] = cone[k];
+        len = mlod__length3(axis);
+        if (cone[3] < MLOD__PI) {
+            mlod__sin_cos(0.5 * (double)cone[3], &sin_half, &cos_half);
+            spread = 2.0 * sin_half;
+        }
+        if (fov > 0.5 * MLOD__PI && fov < MLOD__PI) {
+            mlod__sin_cos(fov - 0.5 * MLOD__PI, &sin_half, &cos_half);
+            spread += sin_half;
+        }
+        f[2 * i + 1] = mlod__float_up(spread + 1e-15);
+        if (!(len > 0.0) || !(cone[3] < MLOD__PI) || !(fov < MLOD__PI)) {
+            f[2 * i] = -INFINITY;
+            continue;
+        }
+        if (i >= n - 1) { /* a leaf: its eye within its ball */
+            f[2 * i] = -sphere[3];
+            continue;
+        }
+        for (j = 1; j <= 2 && h > -INFINITY; j++) {
+            uint32_t c = 2 * i + (uint32_t)j;
+            const float *cs = t->spheres + 4 * (size_t)c, *cc = t->cones + 4 * (size_t)c;
+            double off[3], caxis[3], clen, turn = 0.0, up, v;
+            if (!(f[2 * c] > -INFINITY)) {
+                h = -INFINITY;
+                break;
+            }
+            for (k = 0; k < 3; k++) {
+                off[k] = (double)cs[k] - sphere[k];
+                caxis[k] = cc[k];
+            }
+            clen = mlod__length3(caxis);
+            up = mlod__dot3(off, axis) / len;
+            if (cs[3] > 0.0f) {
+                double diff[3];
+                for (k = 0; k < 3; k++) diff[k] = axis[k] / len - caxis[k] / clen;
+                turn = (double)cs[3] * mlod__length3(diff);
+            }
+            v = up + (double)f[2 * c] - turn;
+            v -= (fabs(up) + fabs((double)f[2 * c]) + turn + mlod__length3(off) + cs[3]) / 1099511627776.0;
+            if (v < h) h = v;
+        }
+        f[2 * i] = h > -INFINITY ? mlod__float_down(h) : -INFINITY;
+    }
+}
+
 /* The view set as radius-0 points with the directions as normals. */
 static mlod_points mlod__view_points(const mlod_view_set *views, const float *zeros)
 {
@@ -8409,13 +8498,18 @@ MLOD__PUBLIC mlod_result mlod_view_tree_build(const mlod_view_set *views, const 
     res = mlod_build_points(&points, &desc, &tree->eyes, error);
     if (res == MLOD_OK && views->directions) {
         tree->half_fovs = (float *)mlod__alloc_array(&a, tree->eyes->node_count, 2 * sizeof(float), &bytes);
-        if (!tree->half_fovs) res = mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the view tree");
+        tree->floors = (float *)mlod__alloc_array(&a, tree->eyes->node_count, 2 * sizeof(float), &bytes);
+        if (!tree->half_fovs || !tree->floors)
+            res = mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the view tree");
     }
     if (res != MLOD_OK) {
         mlod_view_tree_destroy(tree);
         return res;
     }
-    if (tree->half_fovs) mlod__view_tree_fovs(tree, views);
+    if (tree->half_fovs) {
+        mlod__view_tree_fovs(tree, views);
+        mlod__view_tree_floors(tree);
+    }
     tree->view_count = views->count;
     tree->bytes = bytes + tree->eyes->bytes;
     *out = tree;
@@ -8437,7 +8531,10 @@ MLOD__PUBLIC mlod_result mlod_view_tree_refit(mlod_view_tree *tree, const mlod_v
                           tree->half_fovs ? "with" : "without");
     points = mlod__view_points(views, tree->radii);
     res = mlod_refit_points(tree->eyes, &points, parallel, error);
-    if (res == MLOD_OK && tree->half_fovs) mlod__view_tree_fovs(tree, views);
+    if (res == MLOD_OK && tree->half_fovs) {
+        mlod__view_tree_fovs(tree, views);
+        mlod__view_tree_floors(tree);
+    }
     return res;
 }
 
@@ -8448,6 +8545,7 @@ MLOD__PUBLIC void mlod_view_tree_destroy(mlod_view_tree *tree)
     a = tree->allocator;
     mlod_tree_destroy(tree->eyes);
     mlod__free(&a, tree->half_fovs);
+    mlod__free(&a, tree->floors);
     mlod__free(&a, tree->radii);
     a.free(a.user, tree);
 }
@@ -8606,12 +8704,18 @@ typedef struct mlod__vnode {
     /* the fast paths' constants (mlod__pair_action): |axis|, A = alpha + most_fov + the culling margin
        (cos, sin; cos -2 when A reaches pi), and L = least_fov - alpha - 2^-30 (cos, sin; L < 0: none) */
     double axis_length, cos_reach, sin_reach, cos_least, sin_least;
+    /* inner nodes whose views see no wider than a hemisphere: the eyes' floor along the unit axis and the
+       cone's spread (mlod_view_tree.floors), slab 0: none (mlod__below_floor) */
+    int slab;
+    double floor, spread;
     mlod__pview pv;      /* leaves: the view's map, its float filter for epsilon */
     /* inner nodes: the pair filter's constants (mlod__vpair), fast = 0: none.  cull: 0 no cone, 1 the
        cone test, 2 never culled (A reaches pi); axis the cone's unit axis, cos_reach and sin_reach A's,
        kc = 2 S / epsilon, km = S / delta, all rounded to float */
     int fast, fast_cull;
     float fc[3], frho, faxis[3], fcos_reach, fsin_reach, fkc, fkm;
+    int fslab;        /* the floor's test, floor and spread (floats: exact) */
+    float ffloor, fspread;
 } mlod__vnode;
 
 /* One task's output: pairs (inner view node, scene node) to draw and to
@@ -8747,6 +8851,9 @@ static void mlod__vnode_fast_set(const mlod__mv_job *job, mlod__vnode *vn)
         vn->fcos_reach = (float)vn->cos_reach;
         vn->fsin_reach = (float)vn->sin_reach;
     }
+    vn->fslab = vn->slab && fabs(vn->floor) <= hi;
+    vn->ffloor = (float)vn->floor;
+    vn->fspread = (float)vn->spread;
     vn->fast = vn->group || vn->leaf ? 2 : 1;
 }
 
@@ -8764,6 +8871,13 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     vn->least_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node] : MLOD__PI;
     vn->most_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node + 1] : MLOD__PI;
     mlod__vnode_cone_set(vn);
+    vn->slab = 0;
+    if (!vn->leaf && vn->cone && job->views->floors && vn->axis_length > 0.0 &&
+        job->views->floors[2 * (size_t)node] >= -FLT_MAX) {
+        vn->slab = 1;
+        vn->floor = job->views->floors[2 * (size_t)node];
+        vn->spread = job->views->floors[2 * (size_t)node + 1];
+    }
     if (vn->leaf || vn->group) {
         mlod_view view = mlod__node_map_view(job, node);
         if (vn->group) view.flags &= ~(uint32_t)MLOD_VIEW_CULL_BACKFACES; /* culled for all eyes, above */
@@ -8914,6 +9028,26 @@ static int mlod__surely_facing(const double *x, double d, double r, double rho, 
     return -1;
 }
 
+/* Whether scene sphere (x = its centre - the view node's, d = |x|, radius
+   r) lies outside the field of view of every view below inner view node
+   vn (vn->slab): for an eye e and a point p of the sphere, (p - e).n <=
+   (p - e).a + |p - e| |n - a| <= x.a + r - floor + (d + r + rho) 2
+   sin(alpha / 2), n the eye's unit direction and a the cone's unit axis,
+   and the view sees p only where (p - e).n >= -|p - e| sin(phi - pi/2)
+   (phi > pi/2; else 0): culled when x.a + r - floor + (d + r + rho)
+   spread (mlod_view_tree.floors) is below 0 by 2^-30 of d + r + rho +
+   |floor|, far beyond the double's rounding.  A bound the views' cone
+   test (mlod__outside_cone) does not give: that one lets any point of the
+   ball be an eye. */
+/* GLSL twin: below_floor */
+static int mlod__below_floor(const double *x, double d, double r, const mlod__vnode *vn)
+{
+    double g = r + vn->radius;
+    double up = (x[0] * vn->cone[0] + x[1] * vn->cone[1] + x[2] * vn->cone[2]) / vn->axis_length;
+    double high = ((up + r) - vn->floor) + (d + g) * vn->spread;
+    return high + ((d + g) + fabs(vn->floor)) / 1073741824.0 < 0.0;
+}
+
 /* With delta > 0, an inner scene node s that some eyes of a view ball of
    radius rho find within epsilon and others not: the larger splits
    (MegaViews 3.2.3), s when both its children are at least as large as
@@ -8950,6 +9084,7 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
                                                   vn->leaf ? 0.0 : 1.0 / 1073741824.0)))
             return MLOD__PAIR_CULL;
     }
+    if (vn->slab && mlod__below_floor(x, d, r, vn)) return MLOD__PAIR_CULL;
     if (vn->leaf) {
         uint8_t st = mlod__classify(&vn->pv, scene, s, job->epsilon);
         return st == MLOD_STATUS_CULLED ? MLOD__PAIR_CULL
@@ -9098,6 +9233,16 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
         cull = MLOD__VAND(okY, MLOD__VAND(MLOD__VLT(p, MLOD__VSUB(q, M)), MLOD__VGT(sp, M)));
         keep =
             MLOD__VOR(MLOD__VLT(dg, nM), MLOD__VAND(okY, MLOD__VOR(MLOD__VGT(p, MLOD__VADD(q, M)), MLOD__VLT(sp, nM))));
+    }
+    if (vn->fslab) { /* behind every eye's hemisphere (mlod__below_floor), decided (U + |floor|) 2^-14 clear */
+        mlod__vf up =
+            MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
+                       MLOD__VMUL(x2, MLOD__VSET(vn->faxis[2])));
+        mlod__vf fl = MLOD__VSET(vn->ffloor), high, clear;
+        high = MLOD__VADD(MLOD__VSUB(MLOD__VADD(up, r), fl), MLOD__VMUL(U, MLOD__VSET(vn->fspread)));
+        clear = MLOD__VMUL(MLOD__VADD(U, MLOD__VSET(fabsf(vn->ffloor))), m_rel);
+        cull = MLOD__VOR(cull, MLOD__VLT(high, MLOD__VSUB(zero, clear)));
+        keep = MLOD__VAND(keep, MLOD__VGT(high, clear));
     }
     if (vn->fast == 2) { /* a group or a leaf: as the cut for one view at its centre, coarse splits the
                             scene node, any other status draws (vn->pv's filter proves it), but culled

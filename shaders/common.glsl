@@ -823,6 +823,19 @@ real ball_motion(real S, real3 x, real d, real r, real rho)
                                 : R_ZERO; // (1 + 2^-20)
 }
 
+// C twin: mlod__below_floor (the floors at ctl.off_floors, two per view node; none where -inf)
+bool below_floor(uint v, real3 x, real d, real r, real radius, real3 va)
+{
+    float fl = uintBitsToFloat(level[ctl.off_floors + 2u * v]);
+    real len = length_d(va);
+    if (!(fl >= -3.40282347e38) || !r_gt(len, R_ZERO)) return false;
+    real floor_h = r_f(fl), spread = r_f(uintBitsToFloat(level[ctl.off_floors + 2u * v + 1u]));
+    real g = r_add(r, radius);
+    real up = r_div(dot3(x, va), len);
+    real high = r_add(r_sub(r_add(up, r), floor_h), r_mul(r_add(d, g), spread));
+    return r_lt(r_add(high, r_mul(r_add(r_add(d, g), r_abs(floor_h)), MV_2M30)), R_ZERO);
+}
+
 // C twin: mlod__pair_action
 // What the traversal does with (scene node s, view node v), by the exact
 // tests alone: the C function's mlod__surely_* shortcuts answer only where
@@ -872,6 +885,7 @@ uint pair_action(uint v, uint s)
     xs[4] = r_sqrt(r_mul(r_sub(reach, r), r_add(reach, r)));
     [[dont_unroll]] for (uint k = 0u; k < 5u; k++) at[k] = atan2_d(ys[k], xs[k]);
     if (has_cone && outside_cone(d, g, vcone, most_fov, leaf ? R_ZERO : MV_2M30, at[0], at[2])) return MV_PAIR_CULL;
+    if (!leaf && has_cone && ctl.has_fovs != 0u && below_floor(v, x, d, r, radius, va)) return MV_PAIR_CULL;
     real half_pi = r_mul(R_HALF, R_PI);
     if (!leaf && backfaces && outside_cone(d, g, cone, half_pi, MV_2M30, at[1], at[2])) return MV_PAIR_CULL;
     if (leaf || group) { // (a leaf before the back-face test, which it leaves to its classification)

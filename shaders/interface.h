@@ -269,12 +269,13 @@
    has cones, the view tree cones, half fields of view), the map
    (resolution, pixels per map, flags, atlas width, channels wanted), the
    level block's offsets in words (tiles, leaf sources, half fields of
-   view as float bits, this level's pair counts, drawn flags and slots,
+   view and the view tree's floors as float bits, this level's pair
+   counts, drawn flags and slots,
    the previous level's slots, each slot's node), the lists' counts (the
    round's input and output pairs, the next level's pairs, the level's
    draws; the draws stand after next_capacity pairs), the slots given out,
    the most pairs at one view node, and the counts of what the pairs did
-   (shared views: a 64-bit count, low word first), and padding to 8 bytes. */
+   (shared views: a 64-bit count, low word first): 8-byte aligned. */
 #define MLOD_IF_MV_CONTROL_BLOCK(MEMBER)                                                                               \
     MEMBER(MLOD_IF_F64, epsilon)                                                                                       \
     MEMBER(MLOD_IF_F64, delta)                                                                                         \
@@ -298,6 +299,7 @@
     MEMBER(MLOD_IF_U32, off_tiles)                                                                                     \
     MEMBER(MLOD_IF_U32, off_sources)                                                                                   \
     MEMBER(MLOD_IF_U32, off_fovs)                                                                                      \
+    MEMBER(MLOD_IF_U32, off_floors)                                                                                    \
     MEMBER(MLOD_IF_U32, off_pairs)                                                                                     \
     MEMBER(MLOD_IF_U32, off_drawn)                                                                                     \
     MEMBER(MLOD_IF_U32, off_slots)                                                                                     \
@@ -316,8 +318,7 @@
     MEMBER(MLOD_IF_U32, leaf_draws)                                                                                    \
     MEMBER(MLOD_IF_U32, shared_leaves)                                                                                 \
     MEMBER(MLOD_IF_U32, shared_views_low)                                                                              \
-    MEMBER(MLOD_IF_U32, shared_views_high)                                                                             \
-    MEMBER(MLOD_IF_U32, pad)
+    MEMBER(MLOD_IF_U32, shared_views_high)
 #define MLOD_IF_MV_CONTROL_BYTES 184
 
 /* The MegaViews shaders' push constants: the items of the dispatch (pairs,

@@ -195,7 +195,7 @@ static void reference_render(mlod_atlas *ref, const mlod_tree *scene, const mlod
 static void check_view_tree(const mlod_view_tree *t, const views *v, int directions, int per_view, const char *what)
 {
     const mlod_tree *eyes = t->eyes;
-    uint32_t n = eyes->leaf_count, i, bad_eye = 0, bad_dir = 0, bad_fov = 0, bad_perm = 0;
+    uint32_t n = eyes->leaf_count, i, bad_eye = 0, bad_dir = 0, bad_fov = 0, bad_perm = 0, bad_floor = 0, floors = 0;
     char *seen = (char *)calloc(v->count, 1);
     tu_check_containment(eyes, what);
     CHECK(t->view_count == v->count && n == v->count, "%s: %u leaves for %u views", what, n, v->count);
@@ -230,10 +230,37 @@ static void check_view_tree(const mlod_view_tree *t, const views *v, int directi
                 }
             }
             if (t->half_fovs[2 * i + 1] != most || t->half_fovs[2 * i] != least) bad_fov++;
+            /* the floor: every eye below at least that high along the unit axis, in long double; the spread at
+               least 2 sin(alpha / 2) + sin(most - pi/2) where most > pi/2 */
+            {
+                const float *c = eyes->cones + 4 * (size_t)i, *sphere = eyes->spheres + 4 * (size_t)i;
+                long double len = sqrtl((long double)c[0] * c[0] + (long double)c[1] * c[1] + (long double)c[2] * c[2]);
+                long double spread = c[3] < TU_PI ? 2.0L * sinl(0.5L * c[3]) : 2.0L;
+                if (most > 0.5L * TU_PI && most < TU_PI) spread += sinl(most - 0.5L * TU_PI);
+                if (!(t->floors[2 * i + 1] >= spread)) bad_floor++;
+                if (t->floors[2 * i] > -INFINITY) {
+                    floors++;
+                    for (j = 0; j < n; j++) {
+                        uint32_t node = n - 1 + j;
+                        const float *e = v->eyes + 3 * (size_t)eyes->leaf_sources[j];
+                        long double up = 0.0L;
+                        int k;
+                        while (node > i) node = (node - 1) / 2;
+                        if (node != i) continue;
+                        for (k = 0; k < 3; k++) up += ((long double)e[k] - sphere[k]) * c[k];
+                        if (!(up / len >= t->floors[2 * i])) bad_floor++;
+                    }
+                } else if (c[3] < TU_PI && most < TU_PI && len > 0) {
+                    bad_floor++; /* a floor where the cone and the fields of view leave room for one */
+                }
+            }
             if (eyes->node_count > 300) i += 37; /* a sample of nodes beyond small trees */
         }
+        CHECK(bad_floor == 0, "%s: %u nodes' floors or spreads do not bound their eyes and cones (%u floors)", what,
+              bad_floor, floors);
     } else {
-        CHECK(t->half_fovs == NULL && eyes->cones == NULL, "%s: no directions, yet fovs or cones", what);
+        CHECK(t->half_fovs == NULL && t->floors == NULL && eyes->cones == NULL, "%s: no directions, yet fovs or cones",
+              what);
     }
     CHECK(bad_perm == 0, "%s: %u leaves do not hold a distinct view", what, bad_perm);
     CHECK(bad_eye == 0, "%s: %u leaves are not their view's eye with radius 0", what, bad_eye);
@@ -383,16 +410,21 @@ static int faces_eye(const float *e, const float *sphere, const float *cone)
     return ang <= TU_PI / 2 + (long double)cone[3] + asinl((long double)sphere[3] / d);
 }
 
-static void test_culling(const mlod_tree *scene)
+/* Culled pairs of views v (per-view fields of view, or half_fov for all)
+   sampled against brute force; floor: how many were culled by the eyes'
+   floor (mlod__below_floor) alone, at least. */
+static void check_culling(const mlod_tree *scene, views *v, int per_view_fov, float half_fov, const char *name,
+                          uint32_t floor_least)
 {
-    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
-    views v = make_views(7, 400, lo, hi, 0);
-    mlod_view_set s = view_set(&v, 1, 1);
-    mlod_view_tree *t = build_views(&s, NULL);
-    mlod__mv_job job = pair_job(scene, t, 8, MLOD_VIEW_CULL_BACKFACES);
+    mlod_view_set s = view_set(v, 1, per_view_fov);
+    mlod_view_tree *t;
+    mlod__mv_job job;
     uint64_t rng = 5;
-    uint32_t trial, culled = 0, wrong = 0, not_implied = 0, back = 0, back_wrong = 0;
+    uint32_t trial, culled = 0, wrong = 0, not_implied = 0, back = 0, back_wrong = 0, by_floor_only = 0;
+    s.half_fov = half_fov;
+    t = build_views(&s, NULL);
     if (!t) return;
+    job = pair_job(scene, t, 8, MLOD_VIEW_CULL_BACKFACES);
     for (trial = 0; trial < 20000; trial++) {
         uint32_t vn_index = (uint32_t)(scene_rng_double(&rng) * (t->eyes->leaf_count - 1));
         uint32_t s_index = (uint32_t)(scene_rng_double(&rng) * scene->node_count);
@@ -406,20 +438,25 @@ static void test_culling(const mlod_tree *scene)
         if (mlod__pair_action(&job, &vn, s_index) != MLOD__PAIR_CULL) continue;
         culled++;
         by_fov = mlod__outside_cone(x, d, sphere[3] + vn.radius, vn.cone, vn.most_fov, 1.0 / 1073741824.0);
+        if (!by_fov && vn.slab && mlod__below_floor(x, d, sphere[3], &vn)) { /* the eyes' floor: as the field of view */
+            by_fov = 1;
+            by_floor_only++;
+        }
         if (!by_fov) back++;
         {
             uint32_t n = t->eyes->leaf_count, j;
             for (j = 0; j < n; j++) { /* every view below vn_index */
                 uint32_t node = n - 1 + j, view = t->eyes->leaf_sources[j], leaves = 0;
-                const float *e = v.eyes + 3 * view;
+                const float *e = v->eyes + 3 * view;
                 const float *cone = t->eyes->cones + 4 * (size_t)(n - 1 + j);
                 double y[3];
                 while (node > vn_index) node = (node - 1) / 2;
                 if (node != vn_index) continue;
                 for (k = 0; k < 3; k++) y[k] = (double)sphere[k] - e[k];
                 if (by_fov) {
-                    if (!mlod__outside_cone(y, mlod__length3(y), sphere[3], cone, v.fovs[view], 0.0)) not_implied++;
-                    if (sees_sphere(e, v.directions + 3 * view, v.fovs[view], sphere)) wrong++;
+                    float fov = per_view_fov ? v->fovs[view] : half_fov;
+                    if (!mlod__outside_cone(y, mlod__length3(y), sphere[3], cone, fov, 0.0)) not_implied++;
+                    if (sees_sphere(e, v->directions + 3 * view, fov, sphere)) wrong++;
                 } else {
                     /* back-face culled: no leaf below the scene node (up to 64) faces the eye */
                     uint32_t stack[64], top = 0;
@@ -447,12 +484,43 @@ static void test_culling(const mlod_tree *scene)
             }
         }
     }
-    CHECK(culled > 200 && back > 20, "culling: %u culled pairs sampled (%u back-facing): enough to test", culled, back);
-    CHECK(wrong == 0, "culling: %u culled (view, scene node) pairs where the view sees the sphere", wrong);
-    CHECK(back_wrong == 0, "culling: %u back-face culled pairs where a leaf below faces the eye", back_wrong);
-    CHECK(not_implied == 0, "culling: %u culled pairs a view below would not cull itself", not_implied);
+    CHECK(culled > 200 && back > 20 && by_floor_only >= floor_least,
+          "culling, %s: %u culled pairs sampled (%u back-facing, %u by the eyes' floor alone): enough to test", name,
+          culled, back, by_floor_only);
+    CHECK(wrong == 0, "culling, %s: %u culled (view, scene node) pairs where the view sees the sphere", name, wrong);
+    CHECK(back_wrong == 0, "culling, %s: %u back-face culled pairs where a leaf below faces the eye", name, back_wrong);
+    CHECK(not_implied == 0, "culling, %s: %u culled pairs a view below would not cull itself", name, not_implied);
     mlod_view_tree_destroy(t);
+}
+
+/* count virtual point lights just above the room's floor, facing up (a
+   quarter tilted by up to 0.3 rad): the eyes' floor (mlod__below_floor)
+   culls the floor's own nodes for them, with hemispheres (half_fov 0: pi/2
+   rounded to float, a hair above). */
+static views make_floor_lights(uint64_t seed, uint32_t count)
+{
+    static const float lo[3] = {-1.9f, 0.05f, -1.9f}, hi[3] = {1.9f, 0.15f, 1.9f};
+    views v = make_views(seed, count, lo, hi, 0);
+    uint64_t rng = seed + 1;
+    uint32_t i;
+    for (i = 0; i < v.count; i++) {
+        float *n = v.directions + 3 * i;
+        double tilt = i % 4 == 0 ? 0.3 * scene_rng_double(&rng) : 0.0, turn = 2.0 * TU_PI * scene_rng_double(&rng);
+        n[0] = (float)(sin(tilt) * cos(turn));
+        n[1] = (float)cos(tilt);
+        n[2] = (float)(sin(tilt) * sin(turn));
+    }
+    return v;
+}
+
+static void test_culling(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    views v = make_views(7, 400, lo, hi, 0), lights = make_floor_lights(8, 400);
+    check_culling(scene, &v, 1, 0.0f, "random views", 0);
+    check_culling(scene, &lights, 0, 0.0f, "lights above the floor", 50);
     free_views(&v);
+    free_views(&lights);
 }
 
 /* ============================================ the bounds sharing rests on */
@@ -1243,8 +1311,8 @@ static void test_pair_filter(const mlod_tree *scene)
     static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
     static const float eps[3] = {0.5f, 1.0f, 4.0f}, deltas[3] = {0.1f, 0.5f, 3.0f};
     uint32_t c, same = 0, renders = 0;
-    for (c = 0; c < 6; c++) {
-        views v = make_views(501 + c, c == 5 ? 3000 : 300 + 100 * c, lo, hi, c == 2);
+    for (c = 0; c < 7; c++) { /* 6: lights above the floor, which their floor culls (mlod__below_floor) */
+        views v = c == 6 ? make_floor_lights(507, 1500) : make_views(501 + c, c == 5 ? 3000 : 300 + 100 * c, lo, hi, c == 2);
         mlod_view_set s = view_set(&v, c != 1, c == 3);
         mlod_view_tree *t = build_views(&s, NULL);
         uint32_t flags = c == 4 ? MLOD_VIEW_CULL_BACKFACES : 0u, channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;

@@ -1199,7 +1199,8 @@ static void test_arguments(void)
    bit (depth, normal, colour) and every count of the statistics, over the
    settings that take different paths: delta 0 and the suggested delta,
    views with and without directions and fields of view, back-face
-   culling, a group radius, a disc scale below 1, duplicate eyes, eyes
+   culling, a group radius (with lights in a layer, which the view tree's
+   floors cull below), a disc scale below 1, duplicate eyes, eyes
    outside the scene, odd and even resolutions, one view; and the same
    refusals as the CPU's. */
 static void test_megaviews_parity(void)
@@ -1241,6 +1242,12 @@ static void test_megaviews_parity(void)
                 eyes[3 * i + j] = (float)(c[j] + (setting == 6 ? 1.3 : 0.8) * R * (2.0 * scene_rng_double(&rng) - 1.0));
             if (setting == 1 && i % 5 == 2) memcpy(eyes + 3 * i, eyes + 3 * (i - 1), 12);
             tu_random_unit(&rng, d);
+            if (setting == 5) { /* lights in a thin layer facing up (some tilted): the view tree's floors cull */
+                eyes[3 * i + 1] = (float)(c[1] - 0.3 * R + 0.02 * R * scene_rng_double(&rng));
+                d[0] = i % 4 ? 0.0 : 0.2 * d[0];
+                d[2] = i % 4 ? 0.0 : 0.2 * d[2];
+                d[1] = 1.0;
+            }
             for (j = 0; j < 3; j++) dirs[3 * i + j] = (float)d[j];
             fovs[i] = (float)(0.3 + 2.8 * scene_rng_double(&rng));
             vs[i] = mlod_megaviews_view(eyes + 3 * i, p.resolution, p.flags);
@@ -1248,7 +1255,7 @@ static void test_megaviews_parity(void)
         memset(&set, 0, sizeof set);
         set.eyes = eyes;
         set.count = count;
-        if (setting == 2 || setting == 3 || setting == 4) set.directions = dirs;
+        if (setting >= 2 && setting <= 5) set.directions = dirs;
         if (setting == 3) set.half_fovs = fovs; /* else each view a hemisphere (half_fov 0: pi/2) */
         memset(&ad, 0, sizeof ad);
         ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
@@ -1291,6 +1298,16 @@ static void test_megaviews_parity(void)
             /* the settings exercise what they name: sharing with delta > 0, none with distinct eyes at 0 */
             if (setting == 0) CHECK(cs.shared_draws == 0, "megaviews parity: delta 0 shares nothing");
             if (setting == 1 || setting == 2 || setting == 4 || setting == 6) CHECK(cs.shared_draws > 0, "megaviews parity, setting %d: something shared", setting);
+            if (setting == 5) { /* the floors cull pairs the views' cones leave (without them, more pairs) */
+                float *floors = vt->floors;
+                mlod_megaviews_stats without;
+                memset(&without, 0, sizeof without);
+                vt->floors = NULL;
+                CHECK(mlod_megaviews_render(cpu_atlas, tree, vt, &p, &without, &e) == MLOD_OK && without.pairs > cs.pairs,
+                      "megaviews parity, setting 5: the floors cull (%llu pairs, %llu without them)",
+                      (unsigned long long)cs.pairs, (unsigned long long)without.pairs);
+                vt->floors = floors;
+            }
             CHECK(gs.peak_bytes > 0, "megaviews parity, setting %d: device bytes reported", setting);
             if (setting == 7) { /* the refusals, as the CPU's */
                 mlod_megaviews_params bad = p;
