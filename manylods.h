@@ -9508,28 +9508,48 @@ static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *cent
     for (k = 0; k < 3; k++) centre[k] = job->views->eyes->spheres[4 * (size_t)node + k];
 }
 
-/* Initialise a map (or a leaf's tile) from its parent's map, depths
-   measured again from this node's centre (the eye, for a leaf): the
-   parent's node keeps a pixel until a nearer one is drawn. */
+/* Begin a map (or a leaf's tile) from its parent's map (NULL: empty),
+   depths measured again from this node's centre (the eye, for a leaf):
+   the parent's node keeps a pixel until a nearer one is drawn; the other
+   pixels are cleared.  Without channels each pixel is written once, the
+   parent's drawn pixels gathered without a branch. */
 static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, const float *parent_depth,
                              const uint32_t *parent_ids, uint32_t node)
 {
     uint32_t width = 2 * job->resolution, row, col, n, l, cols[MLOD__DRAW_CHUNK], ids[MLOD__DRAW_CHUNK];
     float depth[MLOD__DRAW_CHUNK];
     double centre[3];
+    if (band->normal || band->color || !parent_depth) {
+        mlod__band_clear(band, width);
+        if (!parent_depth) return;
+    }
     mlod__mv_centre(job, node, centre);
-    for (row = 0; row < job->resolution; row++)
+    for (row = 0; row < job->resolution; row++) {
+        float *out = band->depth + (size_t)row * band->stride;
+        uint32_t *out_ids = band->ids ? band->ids + (size_t)row * band->stride : NULL;
         for (col = 0; col < width;) { /* the row's drawn pixels, up to a chunk at a time */
+            const size_t at = (size_t)row * width;
+            if (band->normal || band->color) {
+                for (n = 0; col < width && n < MLOD__DRAW_CHUNK; col++)
+                    if (parent_depth[at + col] < INFINITY) {
+                        cols[n] = col;
+                        ids[n++] = parent_ids[at + col];
+                    }
+                mlod__node_distances(job->scene, ids, n, centre, depth);
+                for (l = 0; l < n; l++) mlod__band_set(band, (size_t)row * band->stride + cols[l], depth[l], ids[l]);
+                continue;
+            }
             for (n = 0; col < width && n < MLOD__DRAW_CHUNK; col++) {
-                size_t from = (size_t)row * width + col;
-                if (parent_depth[from] < INFINITY) {
-                    cols[n] = col;
-                    ids[n++] = parent_ids[from];
-                }
+                out[col] = INFINITY;
+                cols[n] = col;
+                ids[n] = parent_ids[at + col];
+                n += parent_depth[at + col] < INFINITY;
             }
             mlod__node_distances(job->scene, ids, n, centre, depth);
-            for (l = 0; l < n; l++) mlod__band_set(band, (size_t)row * band->stride + cols[l], depth[l], ids[l]);
+            for (l = 0; l < n; l++) out[cols[l]] = depth[l];
+            for (l = 0; out_ids && l < n; l++) out_ids[cols[l]] = ids[l];
         }
+    }
 }
 
 /* A view node's parent's map in the level-synchronous traversal (NULL:
@@ -9557,16 +9577,14 @@ static void mlod__mv_leaf_begin(const mlod__mv_job *job, uint32_t node, mlod__ba
             MLOD__PREFETCH_WRITE(next + (size_t)row * job->atlas->width + tile[2] - 1);
         }
     }
-    mlod__band_clear(band, 2 * job->resolution);
-    if (parent_depth) mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
+    mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
 }
 
-/* An inner view node's map (depth and ids, pixels each) as a band, cleared,
-   then initialised from its parent's map (NULL: none). */
+/* An inner view node's map (depth and ids, pixels each) as a band, begun
+   from its parent's map (NULL: none; mlod__mv_inherit). */
 static void mlod__mv_map_begin(const mlod__mv_job *job, uint32_t node, float *depth, uint32_t *ids,
                                const float *parent_depth, const uint32_t *parent_ids, mlod__band *band)
 {
-    uint32_t k;
     memset(band, 0, sizeof *band);
     band->tree = job->scene;
     band->depth = depth;
@@ -9574,8 +9592,7 @@ static void mlod__mv_map_begin(const mlod__mv_job *job, uint32_t node, float *de
     band->stride = 2 * job->resolution;
     band->disc_scale = job->disc_scale;
     band->row_end = job->resolution;
-    for (k = 0; k < job->pixels; k++) depth[k] = INFINITY;
-    if (parent_depth) mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
+    mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
 }
 
 /* Draw the drawer's waiting nodes; at the first, begin the map and
