@@ -324,6 +324,7 @@ typedef struct bench {
         double cast_ms;                                     /* Embree's exact maps */
         double group_ms, group_peak, group_pairs;           /* grouped within a scene leaf's radius */
         double group_avx2_ms; /* the same grouped render by the -mavx2 -mfma copy (NAN: not run) */
+        double mega_avx2_ms;  /* and the ungrouped one */
         /* sizing: the most pairs of one view node and mlod_megaviews_bound for it (and for any scene) */
         double node_pairs, bound, bound_any, group_node_pairs, group_bound;
         metrics mega_m, per_m, group_m;
@@ -2376,7 +2377,7 @@ static void run_views(bench *b)
             fail("megaviews, grouped: peak %.0f bytes above the sizing bound %.0f", row->group_peak, row->group_bound);
         metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
                         &row->group_m, NULL);
-        row->group_avx2_ms = NAN;
+        row->group_avx2_ms = row->mega_avx2_ms = NAN;
 #ifdef BENCH_AVX2
         if (v == c->view_count_n - 1 && bench_avx2_supported()) { /* the most lights, grouped, by the AVX2 copy */
             uint64_t before = hash_floats(atlas->depth, (size_t)atlas->width * atlas->height);
@@ -2387,6 +2388,14 @@ static void run_views(bench *b)
             mp.group_radius = 0.0f;
             if (hash_floats(atlas->depth, (size_t)atlas->width * atlas->height) != before)
                 fail("megaviews: the AVX2 build's atlas differs from this build's");
+            /* and ungrouped, its atlas against this build's ungrouped one */
+            if (mlod_megaviews_render(atlas, tree, vt, &mp, &st, &e) != MLOD_OK) fail("megaviews: %s", e.message);
+            before = hash_floats(atlas->depth, (size_t)atlas->width * atlas->height);
+            t0 = now_ms();
+            if (bench_avx2_megaviews_render(atlas, tree, vt, &mp, &st, &e) != MLOD_OK) fail("megaviews (AVX2): %s", e.message);
+            row->mega_avx2_ms = now_ms() - t0;
+            if (hash_floats(atlas->depth, (size_t)atlas->width * atlas->height) != before)
+                fail("megaviews: the AVX2 build's ungrouped atlas differs from this build's");
         }
 #endif
         if (count <= c->views_per_view_max) {
@@ -2423,6 +2432,7 @@ static void run_views(bench *b)
         printf("; grouped %.0f ms, %.0f pairs, depth RMS %.2f%%, shadow %.2f%%", row->group_ms, row->group_pairs,
                100.0 * row->group_m.depth_rms, 100.0 * row->group_m.shadow_disagreement);
         if (row->group_avx2_ms < INFINITY) printf(" (AVX2 build: %.0f ms, the same atlas)", row->group_avx2_ms);
+        if (row->mega_avx2_ms < INFINITY) printf("; AVX2 build ungrouped: %.0f ms, the same atlas", row->mega_avx2_ms);
         if (row->per_ms == row->per_ms)
             printf("; per-view %.0f ms, depth RMS %.2f%%, shadow %.2f%%", row->per_ms, 100.0 * row->per_m.depth_rms,
                    100.0 * row->per_m.shadow_disagreement);
@@ -2844,8 +2854,12 @@ static void write_views_targets(const bench *b, FILE *f)
                  m->atlas_bytes / 1048576.0, m->mega_peak / 1048576.0, m->group_peak / 1048576.0);
         target_line(f, "memory for 1 M lights (everything the library holds)", ours, "<= 1.5 GiB", anchor,
                     (total + (m->group_peak > m->mega_peak ? m->group_peak : m->mega_peak)) / (1.5 * 1073741824.0), NULL);
-        snprintf(anchor, sizeof anchor, "%.3g pairs (%.0f per light); Embree's exact maps %s", m->pairs,
-                 m->pairs / m->views, ms_text(m->cast_ms));
+        wide[0] = '\0';
+        if (m->mega_avx2_ms < INFINITY)
+            snprintf(wide, sizeof wide, "; the same render built with -mavx2 -mfma (the same atlas): %s",
+                     ms_text(m->mega_avx2_ms));
+        snprintf(anchor, sizeof anchor, "%.3g pairs (%.0f per light); Embree's exact maps %s%s", m->pairs,
+                 m->pairs / m->views, ms_text(m->cast_ms), wide);
         target_line(f, "1 M lights, one view leaf per light", ms_text(m->mega_ms), "<= 5 s", anchor, m->mega_ms / 5000.0,
                     NULL);
     } else {
