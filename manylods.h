@@ -8704,8 +8704,8 @@ typedef struct mlod__vnode {
     /* the fast paths' constants (mlod__pair_action): |axis|, A = alpha + most_fov + the culling margin
        (cos, sin; cos -2 when A reaches pi), and L = least_fov - alpha - 2^-30 (cos, sin; L < 0: none) */
     double axis_length, cos_reach, sin_reach, cos_least, sin_least;
-    /* inner nodes whose views see no wider than a hemisphere: the eyes' floor along the unit axis and the
-       cone's spread (mlod_view_tree.floors), slab 0: none (mlod__below_floor) */
+    /* inner nodes with a floor: the eyes' least height along the unit axis and the spread of their
+       directions and fields of view (mlod_view_tree.floors), slab 0: none (mlod__below_floor) */
     int slab;
     double floor, spread;
     mlod__pview pv;      /* leaves: the view's map, its float filter for epsilon */
@@ -8872,6 +8872,7 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     vn->most_fov = job->views->half_fovs ? job->views->half_fovs[2 * (size_t)node + 1] : MLOD__PI;
     mlod__vnode_cone_set(vn);
     vn->slab = 0;
+    vn->floor = vn->spread = 0.0;
     if (!vn->leaf && vn->cone && job->views->floors && vn->axis_length > 0.0 &&
         job->views->floors[2 * (size_t)node] >= -FLT_MAX) {
         vn->slab = 1;
@@ -9162,6 +9163,10 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
      double path's errors and margins; the cone's cosines are lengths over
      d, with U <= 2 d where they are compared, and an angle is at least as
      far from its threshold as its cosine.
+   - The floor's test (mlod__below_floor: x.a + r - floor + U spread, a
+     the float unit axis, floor and spread floats, |floor| <= 2^30) errs
+     by at most 20 u (U + |floor|), and is decided 2^-14 (U + |floor|)
+     clear.
    Codes: 0 unsure, else 1 + the action (MLOD__VPAIR_MIDDLE: cmax above
    epsilon and cmin not, so the children's radii decide). */
 #define MLOD__VPAIR_MIDDLE 6
@@ -9234,7 +9239,7 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
         keep =
             MLOD__VOR(MLOD__VLT(dg, nM), MLOD__VAND(okY, MLOD__VOR(MLOD__VGT(p, MLOD__VADD(q, M)), MLOD__VLT(sp, nM))));
     }
-    if (vn->fslab) { /* behind every eye's hemisphere (mlod__below_floor), decided (U + |floor|) 2^-14 clear */
+    if (vn->fslab) { /* outside every eye's field of view (mlod__below_floor), decided (U + |floor|) 2^-14 clear */
         mlod__vf up =
             MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
                        MLOD__VMUL(x2, MLOD__VSET(vn->faxis[2])));
