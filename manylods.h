@@ -4329,13 +4329,6 @@ MLOD__PUBLIC double mlod_criterion(const mlod_tree *tree, uint32_t node, const m
 #define MLOD__UNSURE 0u
 #define MLOD__FAST_U (1.0f / 16777216.0f)
 
-/* Round a non-negative double up to a float. */
-static float mlod__float_above(double x)
-{
-    float f = (float)x;
-    return (double)f >= x ? f : nextafterf(f, INFINITY);
-}
-
 /* Whether v is a float: *out = v rounded to float, equal to v. */
 static int mlod__float_exact(double v, float *out)
 {
@@ -4383,8 +4376,8 @@ static void mlod__fast_prepare(mlod__pview *pv, double epsilon)
             fs->planes[j][3] = (float)p[4];
             fs->planes[j][4] = (float)kp;
             /* the margin 2^-20 (l (|x| + r) + |k'|) + err: 2^-48, 2^-100 */
-            fs->slope[j] = mlod__float_above(p[4] * (1.0 / 1048576.0));
-            fs->err[j] = mlod__float_above(fabs(kp) * (1.0 / 1048576.0) + mag * (1.0 / 281474976710656.0)) +
+            fs->slope[j] = mlod__float_up(p[4] * (1.0 / 1048576.0));
+            fs->err[j] = mlod__float_up(fabs(kp) * (1.0 / 1048576.0) + mag * (1.0 / 281474976710656.0)) +
                          7.88860905e-31f;
         }
     }
