@@ -9192,7 +9192,7 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
     const mlod__vf m_rel = MLOD__VSET(1.0f / 16384.0f), sixty4 = MLOD__VSET(64.0f);
     mlod__vf x0 = MLOD__VSUB(sphere[0], MLOD__VSET(vn->fc[0])), x1 = MLOD__VSUB(sphere[1], MLOD__VSET(vn->fc[1]));
     mlod__vf x2 = MLOD__VSUB(sphere[2], MLOD__VSET(vn->fc[2])), r = sphere[3], rho = MLOD__VSET(vn->frho);
-    mlod__vf d2, d, U, M, nM, M2, UU, g, dg, Y, C, okY, unsure, cull, keep, kr;
+    mlod__vf d2, d, U, M, nM, M2, UU, g, dg, Y, C, okY, unsure, cull, keep, kr, p;
     mlod__vf cl, cr, Yc, tc, near_ok, near_none, rp, rm, ln, small, large;
     mlod__vf fa, fr, Yf, tf, far_ok, far_none, ep, em, lf, some, none, cmin_large, cmin_small;
     mlod__vf cm, cmr, Ym, tm, P, m_ok, m_inf, least, lhs, move_ok, move_bad, go, code, live;
@@ -9221,10 +9221,11 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
        never where an eye is in the grown sphere (d < g) or A + b passes pi */
     cull = zero;
     keep = all;
-    if (vn->fast_cull == 1) {
-        mlod__vf p =
-            MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
+    p = zero; /* x.a, a the views' unit axis: the cone's test and the floor's */
+    if (vn->fast_cull == 1 || vn->fslab)
+        p = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
                        MLOD__VMUL(x2, MLOD__VSET(vn->faxis[2])));
+    if (vn->fast_cull == 1) {
         mlod__vf ca = MLOD__VSET(vn->fcos_reach), sa = MLOD__VSET(vn->fsin_reach);
         mlod__vf q = MLOD__VSUB(MLOD__VMUL(ca, C), MLOD__VMUL(sa, g)),
                  sp = MLOD__VADD(MLOD__VMUL(sa, C), MLOD__VMUL(ca, g));
@@ -9233,11 +9234,8 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
             MLOD__VOR(MLOD__VLT(dg, nM), MLOD__VAND(okY, MLOD__VOR(MLOD__VGT(p, MLOD__VADD(q, M)), MLOD__VLT(sp, nM))));
     }
     if (vn->fslab) { /* outside every eye's field of view (mlod__below_floor), decided (U + |floor|) 2^-14 clear */
-        mlod__vf up =
-            MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
-                       MLOD__VMUL(x2, MLOD__VSET(vn->faxis[2])));
         mlod__vf fl = MLOD__VSET(vn->ffloor), high, clear;
-        high = MLOD__VADD(MLOD__VSUB(MLOD__VADD(up, r), fl), MLOD__VMUL(U, MLOD__VSET(vn->fspread)));
+        high = MLOD__VADD(MLOD__VSUB(MLOD__VADD(p, r), fl), MLOD__VMUL(U, MLOD__VSET(vn->fspread)));
         clear = MLOD__VMUL(MLOD__VADD(U, MLOD__VSET(fabsf(vn->ffloor))), m_rel);
         cull = MLOD__VOR(cull, MLOD__VLT(high, MLOD__VSUB(zero, clear)));
         keep = MLOD__VAND(keep, MLOD__VGT(high, clear));
@@ -9509,8 +9507,8 @@ static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *cent
 /* Begin a map (or a leaf's tile) from its parent's map (NULL: empty),
    depths measured again from this node's centre (the eye, for a leaf):
    the parent's node keeps a pixel until a nearer one is drawn; the other
-   pixels are cleared.  Without channels each pixel is written once, the
-   parent's drawn pixels gathered without a branch. */
+   pixels are cleared.  The parent's drawn pixels are gathered without a
+   branch; without channels each pixel is written once. */
 static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, const float *parent_depth,
                              const uint32_t *parent_ids, uint32_t node)
 {
@@ -9527,16 +9525,6 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
         uint32_t *out_ids = band->ids ? band->ids + (size_t)row * band->stride : NULL;
         for (col = 0; col < width;) { /* the row's drawn pixels, up to a chunk at a time */
             const size_t at = (size_t)row * width;
-            if (band->normal || band->color) {
-                for (n = 0; col < width && n < MLOD__DRAW_CHUNK; col++)
-                    if (parent_depth[at + col] < INFINITY) {
-                        cols[n] = col;
-                        ids[n++] = parent_ids[at + col];
-                    }
-                mlod__node_distances(job->scene, ids, n, centre, depth);
-                for (l = 0; l < n; l++) mlod__band_set(band, (size_t)row * band->stride + cols[l], depth[l], ids[l]);
-                continue;
-            }
             for (n = 0; col < width && n < MLOD__DRAW_CHUNK; col++) {
                 out[col] = INFINITY;
                 cols[n] = col;
@@ -9544,6 +9532,10 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
                 n += parent_depth[at + col] < INFINITY;
             }
             mlod__node_distances(job->scene, ids, n, centre, depth);
+            if (band->normal || band->color) { /* the node's channels too */
+                for (l = 0; l < n; l++) mlod__band_set(band, (size_t)row * band->stride + cols[l], depth[l], ids[l]);
+                continue;
+            }
             for (l = 0; l < n; l++) out[cols[l]] = depth[l];
             for (l = 0; out_ids && l < n; l++) out_ids[cols[l]] = ids[l];
         }
