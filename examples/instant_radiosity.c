@@ -794,7 +794,7 @@ static int per_view_vpls(const char *program, const app_options *o, const app_sc
     mlod_atlas *cut_atlas = NULL, *ism_atlas = NULL;
     mlod_cut *cut = NULL;
     mlod_cut_params cp;
-    mlod_atlas_desc desc = {0, 0, 0.0f};
+    mlod_atlas_desc desc = {0, 0, 0.0f, NULL};
     mlod_error error;
     uint64_t nodes, drawn;
     int ok = 0;
@@ -867,7 +867,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     mlod_view_set set;
     mlod_megaviews_params mp;
     mlod_megaviews_stats st;
-    mlod_atlas_desc desc = {0, 0, 0.0f};
+    mlod_atlas_desc desc = {0, 0, 0.0f, NULL};
     mlod_error error;
     app_gbuffer g;
     app_image direct, raw, mv, exact, per_view, ism, exact_few, per_view_eq, ism_eq, panels[3];
@@ -917,8 +917,10 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     if (mlod_view_tree_build(&set, NULL, threads->parallel, &vtree, &error) != MLOD_OK) goto failed;
     tree_ms = app_now_ms() - t0;
     desc.disc_scale = o->disc_scale;
+    desc.order = vtree->eyes->leaf_sources; /* the tiles side by side in the order the render writes them */
     if (mlod_atlas_create(duals, many, &desc, NULL, &mv_atlas, &error) != MLOD_OK) goto failed;
     desc.disc_scale = 0.0f;
+    desc.order = NULL;
     memset(&mp, 0, sizeof mp);
     mp.epsilon = o->epsilon;
     mp.delta = MLOD_MEGAVIEWS_DELTA;
@@ -1057,7 +1059,7 @@ int main(int argc, char **argv)
     app_counter build_memory = {0, 0};
     mlod_allocator build_allocator = app_counting(&build_memory);
     size_t build_bound;
-    mlod_atlas_desc atlas_desc = {0, 0, 0.0f};
+    mlod_atlas_desc atlas_desc = {0, 0, 0.0f, NULL};
     uint32_t frame, compare_width = 0;
     int status = 1, parsed;
 

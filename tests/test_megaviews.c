@@ -109,8 +109,10 @@ static mlod__mv_job pair_job(const mlod_tree *scene, const mlod_view_tree *t, ui
     return job;
 }
 
-static mlod_atlas *make_atlas(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
-                              uint32_t flags)
+/* An atlas of the views' MegaViews maps, cells in `order` (NULL: view
+   order). */
+static mlod_atlas *make_atlas_ordered(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
+                                      uint32_t flags, const uint32_t *order)
 {
     mlod_view *vs = (mlod_view *)malloc(sizeof(mlod_view) * v->count);
     mlod_atlas_desc desc;
@@ -120,12 +122,19 @@ static mlod_atlas *make_atlas(const views *v, uint32_t resolution, uint32_t chan
     for (i = 0; i < v->count; i++) vs[i] = mlod_megaviews_view(v->eyes + 3 * i, resolution, flags);
     memset(&desc, 0, sizeof desc);
     desc.channels = channels;
+    desc.order = order;
     if (mlod_atlas_create(vs, v->count, &desc, NULL, &a, &e) != MLOD_OK) fprintf(stderr, "atlas: %s\n", e.message);
     if (out_views)
         *out_views = vs;
     else
         free(vs);
     return a;
+}
+
+static mlod_atlas *make_atlas(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
+                              uint32_t flags)
+{
+    return make_atlas_ordered(v, resolution, channels, out_views, flags, NULL);
 }
 
 static int same_atlas(const mlod_atlas *a, const mlod_atlas *b, size_t *first)
@@ -1557,6 +1566,127 @@ static mlod_allocator failing_at(tu_counter *counter, unsigned long i)
 }
 
 
+/* ======================================================== atlas order */
+
+/* Whether view i's tile holds the same pixels (depth, normal, colour, bit
+   for bit) in atlases a and b, wherever each placed it; the first view
+   that differs in *first. */
+static int same_tiles(const mlod_atlas *a, const mlod_atlas *b, uint32_t *first)
+{
+    uint32_t i, row;
+    for (i = 0; i < a->view_count; i++) {
+        const uint32_t *ta = a->tiles + 4 * (size_t)i, *tb = b->tiles + 4 * (size_t)i;
+        if (ta[2] != tb[2] || ta[3] != tb[3]) {
+            *first = i;
+            return 0;
+        }
+        for (row = 0; row < ta[3]; row++) {
+            size_t pa = ((size_t)ta[1] + row) * a->width + ta[0], pb = ((size_t)tb[1] + row) * b->width + tb[0];
+            if (memcmp(a->depth + pa, b->depth + pb, 4 * (size_t)ta[2]) ||
+                (a->normal && memcmp(a->normal + 3 * pa, b->normal + 3 * pb, 12 * (size_t)ta[2])) ||
+                (a->color && memcmp(a->color + 3 * pa, b->color + 3 * pb, 12 * (size_t)ta[2]))) {
+                *first = i;
+                return 0;
+            }
+        }
+    }
+    return 1;
+}
+
+/* mlod_atlas_desc.order places view order[k] in cell k and moves no pixel
+   within a tile: MegaViews renders (shared and grouped) and the per-view
+   splat give each view the same tile as in view order; orders that are no
+   permutation are refused, holding nothing. */
+static void test_atlas_order(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    views v = make_views(23, 500, lo, hi, 1);
+    mlod_view_set s = view_set(&v, 1, 0);
+    mlod_view_tree *t = build_views(&s, NULL);
+    uint32_t channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, *shuffled = (uint32_t *)malloc(4 * (size_t)v.count);
+    uint32_t i, o, g, first = 0;
+    uint64_t rng = 77;
+    const uint32_t *orders[2];
+    mlod_view *vs = NULL;
+    mlod_atlas *ref = make_atlas(&v, 8, channels, &vs, 0), *a;
+    mlod_megaviews_params p;
+    mlod_megaviews_stats st0, st;
+    mlod_error e;
+    for (i = 0; i < v.count; i++) shuffled[i] = i;
+    for (i = v.count - 1; i > 0; i--) { /* Fisher-Yates */
+        uint32_t j = (uint32_t)(scene_rng_double(&rng) * (i + 1)), x = shuffled[i];
+        if (j > i) j = i;
+        shuffled[i] = shuffled[j];
+        shuffled[j] = x;
+    }
+    orders[0] = t ? t->eyes->leaf_sources : NULL;
+    orders[1] = shuffled;
+    memset(&p, 0, sizeof p);
+    p.epsilon = 1.0f;
+    p.delta = MLOD_MEGAVIEWS_DELTA;
+    p.resolution = 8;
+    for (o = 0; o < 2 && t && ref; o++) {
+        mlod_view *vs2 = NULL;
+        mlod_atlas_desc desc;
+        a = make_atlas_ordered(&v, 8, channels, &vs2, 0, orders[o]);
+        memset(&desc, 0, sizeof desc);
+        desc.channels = channels;
+        desc.order = orders[o];
+        CHECK(a && a->width == ref->width && a->height == ref->height && a->bytes == ref->bytes &&
+                  mlod_atlas_bound(vs2, v.count, &desc) == a->bytes,
+              "atlas order %u: the same grid and bytes", o);
+        for (i = 0; a && i < v.count; i++) {
+            const uint32_t *tile = a->tiles + 4 * (size_t)orders[o][i];
+            if (tile[0] != (i % a->columns) * a->cell_width || tile[1] != (i / a->columns) * a->cell_height) break;
+        }
+        CHECK(a && i == v.count, "atlas order %u: view order[k] in cell k (cell %u is not)", o, i);
+        for (g = 0; g < 2 && a; g++) { /* shared, then grouped */
+            p.group_radius = g ? 0.3f : 0.0f;
+            CHECK(mlod_megaviews_render(ref, scene, t, &p, &st0, &e) == MLOD_OK &&
+                      mlod_megaviews_render(a, scene, t, &p, &st, &e) == MLOD_OK,
+                  "atlas order %u, group %u: renders", o, g);
+            CHECK(st0.shared_draws > 100 && st.pairs == st0.pairs && st.shared_draws == st0.shared_draws,
+                  "atlas order %u, group %u: the same statistics (%llu shared draws)", o, g,
+                  (unsigned long long)st0.shared_draws);
+            CHECK(same_tiles(a, ref, &first), "atlas order %u, group %u: view %u's tile differs", o, g, first);
+        }
+        if (a) { /* the per-view cut and splat of the same views */
+            mlod_cut *cut = NULL;
+            mlod_cut_params cp;
+            memset(&cp, 0, sizeof cp);
+            cp.epsilon = 1.0f;
+            CHECK(mlod_cut_create(v.count, NULL, &cut, &e) == MLOD_OK && mlod_cut_update(cut, scene, vs, &cp, &e) == MLOD_OK &&
+                      mlod_splat(ref, scene, cut, vs, NULL, &e) == MLOD_OK && mlod_splat(a, scene, cut, vs2, NULL, &e) == MLOD_OK,
+                  "atlas order %u: splats", o);
+            CHECK(same_tiles(a, ref, &first), "atlas order %u: view %u's splat tile differs", o, first);
+            mlod_cut_destroy(cut);
+        }
+        mlod_atlas_destroy(a);
+        free(vs2);
+    }
+    for (o = 0; o < 2 && vs; o++) { /* not a permutation: a view out of range, a view twice */
+        tu_counter counter;
+        mlod_allocator al = failing_at(&counter, 0);
+        mlod_atlas_desc desc;
+        mlod_result r;
+        uint32_t keep = shuffled[7];
+        shuffled[7] = o ? shuffled[3] : v.count;
+        memset(&desc, 0, sizeof desc);
+        desc.order = shuffled;
+        a = (mlod_atlas *)&desc; /* not NULL: the call must set it */
+        r = mlod_atlas_create(vs, v.count, &desc, &al, &a, &e);
+        CHECK(r == MLOD_ERROR_INVALID_ARGUMENT && !a && counter.live_blocks == 0 && strstr(e.message, "order[7]"),
+              "atlas order: %s refused (%s: %s), nothing held", o ? "a view twice" : "a view out of range",
+              mlod_result_name(r), e.message);
+        shuffled[7] = keep;
+    }
+    mlod_atlas_destroy(ref);
+    mlod_view_tree_destroy(t);
+    free(vs);
+    free(shuffled);
+    free_views(&v);
+}
+
 static int atlas_all_empty(const mlod_atlas *a)
 {
     size_t i, n = (size_t)a->width * a->height;
@@ -1775,6 +1905,7 @@ int main(int argc, char **argv)
     TEST_GROUP("fusion", test_fusion(scene)); /* it overwrites the scene's colours with node indices */
     TEST_GROUP("groups", test_groups(scene));
     TEST_GROUP("query", test_query(scene));
+    TEST_GROUP("atlas_order", test_atlas_order(scene));
     TEST_GROUP("errors", test_errors(scene, bare));
     test_groups_end();
     mlod_tree_destroy(scene);

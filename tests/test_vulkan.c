@@ -1262,8 +1262,10 @@ static void test_megaviews_parity(void)
         ad.disc_scale = setting == 4 ? 0.5f : 0.0f;
         memset(&cs, 0, sizeof cs);
         memset(&gs, 0, sizeof gs);
+        /* setting 1: the atlas's cells in the view tree's leaf order (mlod_atlas_desc.order) */
         if (mlod_view_tree_build(&set, NULL, NULL, &vt, &e) != MLOD_OK ||
-            mlod_atlas_create(vs, count, &ad, NULL, &cpu_atlas, &e) != MLOD_OK ||
+            (ad.order = setting == 1 ? vt->eyes->leaf_sources : NULL,
+             mlod_atlas_create(vs, count, &ad, NULL, &cpu_atlas, &e)) != MLOD_OK ||
             mlod_atlas_create(vs, count, &ad, NULL, &gpu_atlas, &e) != MLOD_OK ||
             mlodvk_atlas_create(context, cpu_atlas, &vatlas, &e) != MLOD_OK ||
             mlod_megaviews_render(cpu_atlas, tree, vt, &p, &cs, &e) != MLOD_OK ||
