@@ -1123,10 +1123,20 @@ static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cu
     mlod_error e;
     mlod_result res;
     uint8_t channels = rd_u8(r);
-    int mismatch, bad_disc, bad_channels, tries = 0;
+    int mismatch, bad_disc, bad_channels, bad_order = 0, tries = 0;
+    uint32_t *order = NULL, v;
     memset(&desc, 0, sizeof desc);
     desc.columns = rd_u8(r) % 10;
     desc.channels = channels & 3u;
+    /* the cells' order (no byte of its own): columns 1, 4, 7 reversed, 8 with a view twice (refused) */
+    if (desc.columns % 3 == 1 || (desc.columns == 8 && vs->count > 1)) {
+        order = (uint32_t *)malloc(sizeof *order * vs->count);
+        if (!order) return;
+        for (v = 0; v < vs->count; v++) order[v] = vs->count - 1 - v;
+        if (desc.columns == 8) order[vs->count - 1] = order[0];
+        bad_order = desc.columns == 8;
+        desc.order = order;
+    }
     desc.disc_scale = (float)((channels >> 2) & 7u) / 7.0f; /* 0 (whole discs), 1/7 .. 1 */
     if (!c->sane_views && r->chaos && channels >= 0xf8) desc.channels = channels;
     if (c->ext & FZ_EXT_DISC_SCALE) desc.disc_scale = rd_disc_scale(r);
@@ -1143,16 +1153,29 @@ retry:
             check_error(res, &e);
             FZ_REQUIRE(atlas == NULL, "mlod_atlas_create failed but left *out_atlas set");
             check_no_leak(&c->counter, live, "mlod_atlas_create");
-            FZ_REQUIRE(injected_oom(&c->counter, res) || bad_channels || bad_disc,
+            FZ_REQUIRE(injected_oom(&c->counter, res) || bad_channels || bad_disc || bad_order,
                        "mlod_atlas_create failed with %s for valid tiles and options: %s", mlod_result_name(res),
                        e.message);
             FZ_REQUIRE(!bad_disc || bad_channels || res == MLOD_ERROR_INVALID_ARGUMENT,
                        "mlod_atlas_create refused disc_scale %g with %s, not MLOD_ERROR_INVALID_ARGUMENT",
                        (double)desc.disc_scale, mlod_result_name(res));
-            if (injected_oom(&c->counter, res) && !bad_channels && !bad_disc && tries++ < FZ_RETRIES) goto retry;
+            FZ_REQUIRE(!bad_order || bad_channels || bad_disc || injected_oom(&c->counter, res) ||
+                           res == MLOD_ERROR_INVALID_ARGUMENT,
+                       "mlod_atlas_create refused an order with a view twice with %s, not MLOD_ERROR_INVALID_ARGUMENT",
+                       mlod_result_name(res));
+            if (injected_oom(&c->counter, res) && !bad_channels && !bad_disc && !bad_order && tries++ < FZ_RETRIES)
+                goto retry;
+            free(order);
             return;
         }
     }
+    FZ_REQUIRE(!bad_order, "mlod_atlas_create accepted an order with a view twice");
+    for (v = 0; order && v < vs->count; v++) {
+        const uint32_t *tile = atlas->tiles + 4 * (size_t)order[v];
+        FZ_REQUIRE(tile[0] == (v % atlas->columns) * atlas->cell_width && tile[1] == (v / atlas->columns) * atlas->cell_height,
+                   "desc.order: view %u is not in cell %u", order[v], v);
+    }
+    free(order);
     FZ_REQUIRE(!bad_channels, "mlod_atlas_create accepted unknown channel bits 0x%x", desc.channels);
     FZ_REQUIRE(!bad_disc, "mlod_atlas_create accepted disc_scale %g", (double)desc.disc_scale);
     FZ_REQUIRE(atlas->disc_scale == (desc.disc_scale == 0.0f ? 1.0f : desc.disc_scale),
