@@ -1097,9 +1097,10 @@ typedef struct mlod_atlas_desc {
 
 /* One image holding a tile per view, laid out as a grid of equal cells (the
    largest tile's size), row by row in view order (or desc->order); each
-   view's tile sits at the top-left of its cell.  depth[y * width + x] is +inf where nothing was drawn; normal
-   and colour have 3 floats per pixel (0 where nothing was drawn) or are
-   NULL.  All arrays are owned by the atlas. */
+   view's tile sits at the top-left of its cell.  depth[y * width + x] is
+   +inf where nothing was drawn; normal and colour have 3 floats per pixel
+   (0 where nothing was drawn) or are NULL.  All arrays are owned by the
+   atlas. */
 typedef struct mlod_atlas {
     uint32_t width, height;   /* pixels */
     uint32_t view_count;
@@ -1121,9 +1122,9 @@ typedef struct mlod_atlas {
    would refuse them (no views, an empty tile, a bad desc, a size that
    overflows; desc->order is not read: it changes no byte count, and
    mlod_atlas_create checks it), (size_t)-1 beyond size_t.
-   mlod_atlas_fill_holes allocates
-   for its call, on top, about a third of the tiles' pixels times
-   4 (values + 1) bytes, values = 1 + 3 per channel.  Pure. */
+   mlod_atlas_fill_holes allocates for its call, on top, about a third of
+   the tiles' pixels times 4 (values + 1) bytes, values = 1 + 3 per
+   channel.  Pure. */
 MANYLODS_DEF size_t mlod_atlas_bound(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc);
 
 /* Create an atlas for view_count >= 1 views (their tile sizes fix the
