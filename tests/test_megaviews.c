@@ -75,6 +75,18 @@ static void free_views(views *v)
     free(v->fovs);
 }
 
+/* a[0 .. n) in a random order (Fisher-Yates). */
+static void shuffle(uint32_t *a, uint32_t n, uint64_t *rng)
+{
+    uint32_t i;
+    for (i = n; i > 1; i--) {
+        uint32_t j = (uint32_t)(scene_rng_double(rng) * i), x = a[i - 1];
+        if (j >= i) j = i - 1;
+        a[i - 1] = a[j];
+        a[j] = x;
+    }
+}
+
 static mlod_view_set view_set(const views *v, int directions, int per_view_fov)
 {
     mlod_view_set s;
@@ -1264,12 +1276,7 @@ static void test_descend(const mlod_tree *scene)
             } else { /* distinct nodes of one level, shuffled */
                 uint32_t width = begin + 1 < scene->node_count - begin ? begin + 1 : scene->node_count - begin;
                 for (i = 0; i < width; i++) roots[i] = begin + i;
-                for (i = width; i > 1; i--) {
-                    uint32_t j = (uint32_t)(scene_rng_double(&rng) * i), x = roots[i - 1];
-                    if (j >= i) j = i - 1;
-                    roots[i - 1] = roots[j];
-                    roots[j] = x;
-                }
+                shuffle(roots, width, &rng);
                 n = width < 300 ? width : 300;
             }
             small_roots += n <= 4;
@@ -1613,12 +1620,7 @@ static void test_atlas_order(const mlod_tree *scene)
     mlod_megaviews_stats st0, st;
     mlod_error e;
     for (i = 0; i < v.count; i++) shuffled[i] = i;
-    for (i = v.count - 1; i > 0; i--) { /* Fisher-Yates */
-        uint32_t j = (uint32_t)(scene_rng_double(&rng) * (i + 1)), x = shuffled[i];
-        if (j > i) j = i;
-        shuffled[i] = shuffled[j];
-        shuffled[j] = x;
-    }
+    shuffle(shuffled, v.count, &rng);
     orders[0] = t ? t->eyes->leaf_sources : NULL;
     orders[1] = shuffled;
     memset(&p, 0, sizeof p);
