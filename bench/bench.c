@@ -2148,11 +2148,9 @@ static void views_mask_reference(const mlod_atlas *atlas, const mlod_view *views
     }
 }
 
-/* FNV-1a over the bits of n floats (equal hashes: equal arrays, but for a
-   one in 2^64 chance). */
-static uint64_t hash_floats(const float *x, size_t n)
+/* FNV-1a over the bits of n floats, going on from hash h. */
+static uint64_t hash_floats_on(uint64_t h, const float *x, size_t n)
 {
-    uint64_t h = 1469598103934665603ull;
     size_t i;
     for (i = 0; i < n; i++) {
         uint32_t u;
@@ -2162,25 +2160,25 @@ static uint64_t hash_floats(const float *x, size_t n)
     return h;
 }
 
+/* FNV-1a over the bits of n floats (equal hashes: equal arrays, but for a
+   one in 2^64 chance). */
+static uint64_t hash_floats(const float *x, size_t n)
+{
+    return hash_floats_on(1469598103934665603ull, x, n);
+}
+
 /* hash_floats over each view's tile of the atlas's depth, view after view,
    row by row: the same for two atlases whose cells hold the views in
    different orders (mlod_atlas_desc.order) when every view's tile holds
    the same pixels. */
 static uint64_t hash_tiles(const mlod_atlas *atlas)
 {
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = hash_floats(NULL, 0);
     uint32_t v, y;
     for (v = 0; v < atlas->view_count; v++) {
         const uint32_t *tile = atlas->tiles + 4 * (size_t)v;
-        for (y = 0; y < tile[3]; y++) {
-            const float *row = atlas->depth + (size_t)(tile[1] + y) * atlas->width + tile[0];
-            uint32_t x;
-            for (x = 0; x < tile[2]; x++) {
-                uint32_t u;
-                memcpy(&u, &row[x], sizeof u);
-                h = (h ^ u) * 1099511628211ull;
-            }
-        }
+        for (y = 0; y < tile[3]; y++)
+            h = hash_floats_on(h, atlas->depth + (size_t)(tile[1] + y) * atlas->width + tile[0], tile[2]);
     }
     return h;
 }
