@@ -4578,6 +4578,7 @@ typedef __m256 mlod__vf;
 #define MLOD__VMUL _mm256_mul_ps
 #define MLOD__VDIV _mm256_div_ps
 #define MLOD__VSTORE _mm256_storeu_ps
+#define MLOD__VLOADU _mm256_loadu_ps
 #define MLOD__VAND _mm256_and_ps
 #define MLOD__VOR _mm256_or_ps
 #define MLOD__VANDNOT _mm256_andnot_ps /* (not a) and b */
@@ -4589,6 +4590,8 @@ typedef __m256 mlod__vf;
 #define MLOD__VGE(a, b) _mm256_cmp_ps(a, b, _CMP_GE_OQ)
 #define MLOD__VEQ(a, b) _mm256_cmp_ps(a, b, _CMP_EQ_OQ)
 #define MLOD__VBITS _mm256_movemask_ps
+/* a rounded toward zero (lanes below 2^31 in magnitude: those that read it) */
+#define MLOD__VTRUNC(a) _mm256_round_ps(a, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC)
 
 /* Rows of four floats, one per lane: lane l gets x, y, z, w of row
    nodes[l] of rows. */
@@ -4663,6 +4666,7 @@ typedef __m128 mlod__vf;
 #define MLOD__VMUL _mm_mul_ps
 #define MLOD__VDIV _mm_div_ps
 #define MLOD__VSTORE _mm_storeu_ps
+#define MLOD__VLOADU _mm_loadu_ps
 #define MLOD__VAND _mm_and_ps
 #define MLOD__VOR _mm_or_ps
 #define MLOD__VANDNOT _mm_andnot_ps
@@ -4674,6 +4678,7 @@ typedef __m128 mlod__vf;
 #define MLOD__VGE _mm_cmpge_ps
 #define MLOD__VEQ _mm_cmpeq_ps
 #define MLOD__VBITS _mm_movemask_ps
+#define MLOD__VTRUNC(a) _mm_cvtepi32_ps(_mm_cvttps_epi32(a))
 
 MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
 {
@@ -4713,6 +4718,7 @@ typedef float32x4_t mlod__vf;
 #define MLOD__VMUL vmulq_f32
 #define MLOD__VDIV vdivq_f32
 #define MLOD__VSTORE vst1q_f32
+#define MLOD__VLOADU vld1q_f32
 #define MLOD__VBITWISE(op, a, b) vreinterpretq_f32_u32(op(vreinterpretq_u32_f32(a), vreinterpretq_u32_f32(b)))
 #define MLOD__VAND(a, b) MLOD__VBITWISE(vandq_u32, a, b)
 #define MLOD__VOR(a, b) MLOD__VBITWISE(vorrq_u32, a, b)
@@ -4724,6 +4730,7 @@ typedef float32x4_t mlod__vf;
 #define MLOD__VGT(a, b) vreinterpretq_f32_u32(vcgtq_f32(a, b))
 #define MLOD__VGE(a, b) vreinterpretq_f32_u32(vcgeq_f32(a, b))
 #define MLOD__VEQ(a, b) vreinterpretq_f32_u32(vceqq_f32(a, b))
+#define MLOD__VTRUNC vrndq_f32
 
 /* Lane l's bit l where its mask is set. */
 #define MLOD__VBITS mlod__vbits
@@ -4858,31 +4865,67 @@ MLOD__FORCE_INLINE void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf 
    gives: the same bits on every path (tests/test_cut.c checks the
    children of nodes proved inside against the exact path).  Only lanes
    the filter decided (their guards passed) are proved inside. */
+/* The lanes' setup of the float filter (mlod__fast_status's): x =
+   centre - eye, d2 = |x|^2, t the tangent length (1 orthographic) and
+   reach >= |x| + r, which the planes' margins take; *unsure gets the
+   lanes that fail a guard. */
+MLOD__FORCE_INLINE void mlod__vsetup(const mlod__fview *fv, const mlod__vf *sphere, mlod__vf *x, mlod__vf *d2, mlod__vf *t,
+                                     mlod__vf *reach, mlod__vf *unsure)
+{
+    mlod__vf r = sphere[3], zero = MLOD__VSET(0.0f), all = MLOD__VEQ(zero, zero), u;
+    int j;
+    for (j = 0; j < 3; j++)
+        x[j] = fv->float_eye ? MLOD__VSUB(sphere[j], MLOD__VSET(fv->eye_f[j])) : mlod__vrelative(sphere[j], fv->eye[j]);
+    *d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], x[0]), MLOD__VMUL(x[1], x[1])), MLOD__VMUL(x[2], x[2]));
+    u = MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(*d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(*d2, MLOD__VSET(1.20892582e24f))),
+                      all);
+    u = MLOD__VOR(u, MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero), MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.09494702e-13f)),
+                                                                          MLOD__VLE(r, MLOD__VSET(1.09951163e12f)))),
+                                   all));
+    if (fv->ortho) {
+        *t = MLOD__VSET(1.0f);
+        *reach = MLOD__VADD(MLOD__VSQRT(*d2), r);
+    } else {
+        mlod__vf t2 = MLOD__VSUB(*d2, MLOD__VMUL(r, r));
+        u = MLOD__VOR(u, MLOD__VANDNOT(MLOD__VGE(MLOD__VMUL(MLOD__VSET(4.0f), t2), *d2), all));
+        *t = MLOD__VSQRT(MLOD__VAND(t2, MLOD__VGT(t2, zero)));
+        *reach = MLOD__VADD(*t, MLOD__VADD(r, r));
+    }
+    *unsure = u;
+}
+
+/* The plane tests of sub-projection fs in lanes (x, r and reach from
+   mlod__vsetup): *out gets the lanes surely outside some plane (the
+   sphere misses the sub-projection), *in those surely reaching into every
+   half-space; with track, *inside keeps only the lanes whose sphere lies
+   surely wholly inside every plane (mlod__vstatus_known). */
+MLOD__FORCE_INLINE void mlod__vplanes(const mlod__fsub *fs, const mlod__vf *x, mlod__vf r, mlod__vf reach, int track,
+                                      mlod__vf *out, mlod__vf *in, mlod__vf *inside)
+{
+    mlod__vf zero = MLOD__VSET(0.0f);
+    int j;
+    *out = zero;
+    *in = MLOD__VEQ(zero, zero);
+    for (j = 0; j < fs->plane_count; j++) {
+        const float *p = fs->planes[j];
+        mlod__vf a0 = MLOD__VMUL(MLOD__VSET(p[0]), x[0]), a1 = MLOD__VMUL(MLOD__VSET(p[1]), x[1]);
+        mlod__vf a2 = MLOD__VMUL(MLOD__VSET(p[2]), x[2]), a3 = MLOD__VMUL(MLOD__VSET(p[3]), r);
+        mlod__vf centre = MLOD__VADD(MLOD__VADD(a0, a1), a2);
+        mlod__vf v = MLOD__VSUB(MLOD__VADD(centre, a3), MLOD__VSET(p[4]));
+        mlod__vf m = MLOD__VADD(MLOD__VMUL(MLOD__VSET(fs->slope[j]), reach), MLOD__VSET(fs->err[j]));
+        *out = MLOD__VOR(*out, MLOD__VLT(v, MLOD__VSUB(zero, m)));
+        *in = MLOD__VAND(*in, MLOD__VGT(v, m));
+        if (track) *inside = MLOD__VAND(*inside, MLOD__VGT(MLOD__VSUB(MLOD__VSUB(centre, a3), MLOD__VSET(p[4])), m));
+    }
+}
+
 MLOD__FORCE_INLINE mlod__vf mlod__vstatus_known(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone,
                                               mlod__vf leaf, int known, int track, mlod__vf *inside)
 {
-    mlod__vf x[3], r = sphere[3], d2, t, twice, reach, unsure, none, culled, coarse, small, zero = MLOD__VSET(0.0f);
-    mlod__vf all = MLOD__VEQ(zero, zero);
-    int s, j;
-    for (j = 0; j < 3; j++)
-        x[j] = fv->float_eye ? MLOD__VSUB(sphere[j], MLOD__VSET(fv->eye_f[j])) : mlod__vrelative(sphere[j], fv->eye[j]);
-    d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], x[0]), MLOD__VMUL(x[1], x[1])), MLOD__VMUL(x[2], x[2]));
-    unsure = MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(d2, MLOD__VSET(1.20892582e24f))),
-                           all);
-    unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero),
-                                                       MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.09494702e-13f)),
-                                                                  MLOD__VLE(r, MLOD__VSET(1.09951163e12f)))),
-                                             all));
-    twice = MLOD__VADD(r, r);
-    if (fv->ortho) {
-        t = MLOD__VSET(1.0f);
-        reach = MLOD__VADD(MLOD__VSQRT(d2), r);
-    } else {
-        mlod__vf t2 = MLOD__VSUB(d2, MLOD__VMUL(r, r));
-        unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VGE(MLOD__VMUL(MLOD__VSET(4.0f), t2), d2), all));
-        t = MLOD__VSQRT(MLOD__VAND(t2, MLOD__VGT(t2, zero)));
-        reach = MLOD__VADD(t, twice);
-    }
+    mlod__vf x[3], r = sphere[3], d2, t, twice = MLOD__VADD(r, r), reach, unsure, none, culled, coarse, small;
+    mlod__vf zero = MLOD__VSET(0.0f), all = MLOD__VEQ(zero, zero);
+    int s;
+    mlod__vsetup(fv, sphere, x, &d2, &t, &reach, &unsure);
     none = all;
     coarse = zero;
     small = all;
@@ -4890,18 +4933,7 @@ MLOD__FORCE_INLINE mlod__vf mlod__vstatus_known(const mlod__fview *fv, const mlo
     for (s = 0; s < fv->sub_count; s++) {
         const mlod__fsub *fs = &fv->subs[s];
         mlod__vf out = zero, in = all, xw, lhs, rhs, ok;
-        for (j = 0; j < (known ? 0 : fs->plane_count); j++) {
-            const float *p = fs->planes[j];
-            mlod__vf a0 = MLOD__VMUL(MLOD__VSET(p[0]), x[0]), a1 = MLOD__VMUL(MLOD__VSET(p[1]), x[1]);
-            mlod__vf a2 = MLOD__VMUL(MLOD__VSET(p[2]), x[2]), a3 = MLOD__VMUL(MLOD__VSET(p[3]), r);
-            mlod__vf centre = MLOD__VADD(MLOD__VADD(a0, a1), a2);
-            mlod__vf v = MLOD__VSUB(MLOD__VADD(centre, a3), MLOD__VSET(p[4]));
-            mlod__vf m = MLOD__VADD(MLOD__VMUL(MLOD__VSET(fs->slope[j]), reach), MLOD__VSET(fs->err[j]));
-            out = MLOD__VOR(out, MLOD__VLT(v, MLOD__VSUB(zero, m)));
-            in = MLOD__VAND(in, MLOD__VGT(v, m));
-            if (track && s == 0)
-                *inside = MLOD__VAND(*inside, MLOD__VGT(MLOD__VSUB(MLOD__VSUB(centre, a3), MLOD__VSET(p[4])), m));
-        }
+        if (!known) mlod__vplanes(fs, x, r, reach, track && s == 0, &out, &in, inside);
         /* a sub-projection neither surely reached nor surely missed */
         unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VOR(out, in), all));
         none = MLOD__VAND(none, out);
@@ -7325,6 +7357,60 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
     uint32_t i;
     for (i = 0; i < count; i += MLOD__VLANES) mlod__fast_disc_lanes(fd, f, spheres, nodes + i, ds, box + i, stride);
 }
+
+/* mlod__reached of the spheres of nodes[0 .. MLOD__VLANES - 1] through
+   the view's float filter (pv->fast.ok; mlod__vplanes, the cut's plane
+   tests and margins), for the first count of them, as bit l of bits[s]:
+   a sub-projection is reached where the lane is surely within every plane
+   of it, missed where surely outside one; a lane that leaves one in
+   doubt, or that fails a guard, takes the exact test, so the bits are
+   mlod__reached's. */
+static void mlod__reached_lanes(const mlod__pview *pv, const float *spheres, const uint32_t *nodes, uint32_t count,
+                                unsigned *bits)
+{
+    const mlod__fview *fv = &pv->fast;
+    mlod__vf sphere[4], x[3], d2, t, reach, unsure, out, in;
+    unsigned doubt;
+    uint32_t l;
+    int s;
+    mlod__vload(spheres, nodes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+    mlod__vsetup(fv, sphere, x, &d2, &t, &reach, &unsure);
+    doubt = (unsigned)MLOD__VBITS(unsure);
+    for (s = 0; s < fv->sub_count; s++) {
+        mlod__vplanes(&fv->subs[s], x, sphere[3], reach, 0, &out, &in, &unsure);
+        bits[s] = (unsigned)MLOD__VBITS(in);
+        doubt |= ~(unsigned)MLOD__VBITS(MLOD__VOR(out, in));
+    }
+    for (l = 0; l < count; l++)
+        if (doubt >> l & 1u) {
+            unsigned r = mlod__reached(pv, spheres + 4 * (size_t)nodes[l]);
+            for (s = 0; s < fv->sub_count; s++) bits[s] = (bits[s] & ~(1u << l)) | (r >> s & 1u) << l;
+        }
+}
+
+/* mlod__disc_pixel for the boxes of MLOD__VLANES lanes (box[k * stride +
+   l], k = 0 .. 3), the clip's bounds c[0 .. 3] below 2^24 as floats: bit l
+   of *plot for MLOD__DISC_PLOT, its pixel in col[l] and row[l] (whole
+   numbers), of *none for MLOD__DISC_NONE; in neither, unsure.  As there,
+   the centre's box lies within the clip and xl and xh (yl and yh), xl <=
+   xh, share a column (a row): xh < floor(xl) + 1, xl >= 0. */
+static void mlod__disc_pixels(const float *box, size_t stride, const float *c, float *col, float *row, unsigned *plot,
+                              unsigned *none)
+{
+    mlod__vf xl = MLOD__VLOADU(box), xh = MLOD__VLOADU(box + stride);
+    mlod__vf yl = MLOD__VLOADU(box + 2 * stride), yh = MLOD__VLOADU(box + 3 * stride);
+    mlod__vf c0 = MLOD__VSET(c[0]), c1 = MLOD__VSET(c[1]), c2 = MLOD__VSET(c[2]), c3 = MLOD__VSET(c[3]);
+    mlod__vf one = MLOD__VSET(1.0f), fx, fy, in, out;
+    out = MLOD__VOR(MLOD__VOR(MLOD__VLT(xh, c0), MLOD__VGE(xl, c1)), MLOD__VOR(MLOD__VLT(yh, c2), MLOD__VGE(yl, c3)));
+    in = MLOD__VAND(MLOD__VAND(MLOD__VGE(xl, c0), MLOD__VLT(xh, c1)), MLOD__VAND(MLOD__VGE(yl, c2), MLOD__VLT(yh, c3)));
+    fx = MLOD__VTRUNC(MLOD__VAND(in, xl)); /* (0 outside: within the conversion's range) */
+    fy = MLOD__VTRUNC(MLOD__VAND(in, yl));
+    in = MLOD__VAND(in, MLOD__VAND(MLOD__VLT(xh, MLOD__VADD(fx, one)), MLOD__VLT(yh, MLOD__VADD(fy, one))));
+    MLOD__VSTORE(col, fx);
+    MLOD__VSTORE(row, fy);
+    *plot = (unsigned)MLOD__VBITS(in);
+    *none = (unsigned)MLOD__VBITS(out);
+}
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
 #endif
@@ -7751,6 +7837,26 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
             for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
             depth[l] = (float)(pv->kind[s] == MLOD_VIEW_PERSPECTIVE ? mlod__dot3(x, sub->forward) : mlod__length3(x));
         }
+#ifdef MLOD__VLANES
+    if (band->disc_scale >= 1.0f && clip[1] <= 16777216u && clip[3] <= 16777216u) {
+        /* mlod__disc_decide in lanes (at disc scale 1 it is mlod__disc_pixel) */
+        float c[4], cols[MLOD__BOX_STRIDE], rows[MLOD__BOX_STRIDE];
+        uint64_t plot = 0, none = 0;
+        unsigned p, q;
+        for (l = 0; l < 4; l++) c[l] = (float)(int32_t)clip[l]; /* below 2^24 (a signed conversion: one instruction) */
+        for (l = 0; l < padded; l += MLOD__VLANES) {
+            mlod__disc_pixels(box + l, MLOD__BOX_STRIDE, c, cols + l, rows + l, &p, &q);
+            plot |= (uint64_t)p << l;
+            none |= (uint64_t)q << l;
+        }
+        for (l = 0; l < count; l++)
+            if (plot >> l & 1u)
+                mlod__plot_if(band, (uint32_t)rows[l], (uint32_t)cols[l], depth[l], nodes[l], 1u);
+            else if (!(none >> l & 1u))
+                mlod__draw_exact(band, pv, s, nodes + l, 1);
+        return;
+    }
+#endif
     for (l = 0; l < count; l++) {
         uint32_t col = 0, row = 0;
         int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale, clip, &col, &row);
@@ -7776,17 +7882,38 @@ static int mlod__filtered(const mlod__band *band, int s)
 static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, const uint32_t *nodes, uint32_t n)
 {
     int s;
-    unsigned reached[MLOD__DRAW_CHUNK];
+    uint64_t reached[MLOD_VIEW_MAX_SUBS]; /* bit l of reached[s]: nodes[l] reaches sub-projection s */
     uint32_t l, m, reaching[MLOD__DRAW_CHUNK];
     const uint32_t *ids = nodes;
-    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK);
-    for (l = 0; l < n && pv->sub_count > 1; l++)
-        reached[l] = mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
+    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK && MLOD__DRAW_CHUNK <= 64);
+    if (pv->sub_count > 1 && n > 0) {
+        memset(reached, 0, sizeof reached);
+        l = 0;
+#ifdef MLOD__VLANES
+        if (pv->fast.ok) { /* the view's float filter, MLOD__VLANES nodes at a time */
+            uint32_t padded[MLOD__DRAW_CHUNK + MLOD__VLANES];
+            unsigned bits[MLOD_VIEW_MAX_SUBS];
+            memcpy(padded, nodes, n * sizeof *padded);
+            mlod__pad_last(padded, NULL, n, MLOD__VLANES);
+            for (; l < n; l += MLOD__VLANES) {
+                uint32_t k = n - l < MLOD__VLANES ? n - l : MLOD__VLANES;
+                mlod__reached_lanes(pv, band->tree->spheres, padded + l, k, bits);
+                for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)(bits[s] & ((1u << k) - 1u)) << l;
+            }
+        }
+#endif
+        for (; l < n; l++) {
+            unsigned r = mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
+            for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)(r >> s & 1u) << l;
+        }
+    }
     for (s = 0; s < pv->sub_count; s++) {
         m = n;
-        if (pv->sub_count > 1) { /* the nodes reaching s, in order */
-            for (l = m = 0; l < n; l++)
-                if (reached[l] >> s & 1u) reaching[m++] = nodes[l];
+        if (pv->sub_count > 1) { /* the nodes reaching s, in order, without a branch */
+            for (l = m = 0; l < n; l++) {
+                reaching[m] = nodes[l];
+                m += (uint32_t)(reached[s] >> l) & 1u;
+            }
             ids = reaching;
         }
         if (m == 0) continue;
@@ -7854,6 +7981,7 @@ static uint32_t mlod__draw_begin(const mlod__splat_job *job, uint32_t index, mlo
 {
     uint32_t view = mlod__band_begin(job, index, band);
     mlod__view_prepare(&job->views[view], pv, NULL);
+    mlod__fast_prepare(pv, 1.0); /* the planes' float filter (mlod__draw_nodes; epsilon plays no part there) */
     if (mlod__disc_prepare(pv, fast)) band->fast = fast;
     return view;
 }
@@ -7898,7 +8026,6 @@ static void mlod__ism_task(void *context, uint32_t index)
     mlod__fdiscs fast;
     uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), k, l, n, m, points[MLOD__DRAW_CHUNK];
     uint8_t status[MLOD__DRAW_CHUNK];
-    mlod__fast_prepare(&pv, 1.0);
     for (k = 0; k < job->points_per_view; k += n) {
         n = job->points_per_view - k < MLOD__DRAW_CHUNK ? job->points_per_view - k : MLOD__DRAW_CHUNK;
         for (l = 0; l < n; l++) points[l] = mlod__ism_node(tree, job->seed, view, k + l);
@@ -9510,6 +9637,21 @@ static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, 
                                  float *out)
 {
     uint32_t l = 0;
+#if defined(MLOD__VD) && defined(__AVX__)
+    for (; l + 4 <= n; l += 4) { /* four lanes: the rows transposed, each lane's steps as below */
+        __m128 a = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l]);
+        __m128 b = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 1]);
+        __m128 c = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 2]);
+        __m128 d = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 3]);
+        __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b), cd0 = _mm_unpacklo_ps(c, d);
+        __m128 cd1 = _mm_unpackhi_ps(c, d);
+        __m256d x = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movelh_ps(ab0, cd0)), _mm256_set1_pd(centre[0]));
+        __m256d y = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movehl_ps(cd0, ab0)), _mm256_set1_pd(centre[1]));
+        __m256d z = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movelh_ps(ab1, cd1)), _mm256_set1_pd(centre[2]));
+        __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+        _mm_storeu_ps(out + l, _mm256_cvtpd_ps(_mm256_sqrt_pd(sum)));
+    }
+#endif
 #ifdef MLOD__VD
     for (; l + 2 <= n; l += 2) {
         const float *a = scene->spheres + 4 * (size_t)nodes[l], *b = scene->spheres + 4 * (size_t)nodes[l + 1];
@@ -9631,6 +9773,7 @@ static void mlod__mv_flush(const mlod__mv_job *job, mlod__mv_drawer *dr)
     if (!dr->ready) {
         mlod_view view = mlod__node_map_view(job, dr->node);
         mlod__view_prepare(&view, dr->pv, NULL);
+        mlod__fast_prepare(dr->pv, job->epsilon); /* its planes' float filter (mlod__draw_nodes) */
         dr->ready = 1;
     }
     if (!dr->filter_ready) { /* the band and the view are set by now */

@@ -1588,7 +1588,7 @@ static void test_filtered_discs(void)
     for (i = 0; i < W * H; i++) scratch[i] = INFINITY;
     for (trial = 0; trial < 1200; trial++) {
         mlod_view view = tu_random_view(&rng, kinds[trial % 4], origin, 1.0);
-        mlod__pview pv;
+        mlod__pview pv, pv_fast;
         mlod__fdiscs fd;
         mlod__band band;
         int s, with_normals = trial % 5 == 3;
@@ -1600,6 +1600,8 @@ static void test_filtered_discs(void)
         if (view.height > H) view.height = H;
         if (mlod__view_prepare(&view, &pv, NULL) != MLOD_OK || !mlod__disc_prepare(&pv, &fd)) continue;
         views++;
+        pv_fast = pv; /* the double path's planes (pv) and the float filter's (pv_fast: mlod__draw_nodes) */
+        mlod__fast_prepare(&pv_fast, 1.0);
         memset(&band, 0, sizeof band);
         band.tree = &tree;
         band.stride = W;
@@ -1741,11 +1743,13 @@ static void test_filtered_discs(void)
             band.normal = with_normals ? normal[k] : NULL;
             band.fast = k == 0 ? NULL : &fd;
             if (k == 2 && pv.sub_count == 1) {
-                if (mlod__filtered(&band, 0)) mlod__draw_filtered(&band, &pv, 0, nodes, NODES);
+                if (mlod__filtered(&band, 0)) mlod__draw_filtered(&band, &pv_fast, 0, nodes, NODES);
                 else
-                    for (l = 0; l < NODES; l += MLOD__LANES) mlod__draw_nodes(&band, &pv, nodes + l, MLOD__LANES);
+                    for (l = 0; l < NODES; l += MLOD__LANES) mlod__draw_nodes(&band, &pv_fast, nodes + l, MLOD__LANES);
+            } else if (k == 2) { /* one chunk: the planes' filter in lanes too */
+                mlod__draw_nodes(&band, &pv_fast, nodes, NODES);
             } else {
-                for (l = 0; l < NODES; l += MLOD__LANES) mlod__draw_nodes(&band, &pv, nodes + l, MLOD__LANES);
+                for (l = 0; l < NODES; l += MLOD__LANES) mlod__draw_nodes(&band, k ? &pv_fast : &pv, nodes + l, MLOD__LANES);
             }
             if (k > 0 && (memcmp(depth[k], depth[0], sizeof depth[0]) || memcmp(ids[k], ids[0], sizeof ids[0]) ||
                           memcmp(normal[k], normal[0], sizeof normal[0]))) {
@@ -1765,6 +1769,84 @@ static void test_filtered_discs(void)
           "filtered discs: the filter decides %u of the %u small discs in its domain whose centres lie 1e-3 px or more "
           "from a pixel edge and whose radii are below 0.49 px (>= 99%%)",
           clear_decided, clear);
+}
+
+/* The plane tests of mlod__draw_nodes through the view's float filter
+   (mlod__reached_lanes) give mlod__reached's bits for every lane: spheres
+   all around views of several sub-projections (dual paraboloid, cube),
+   three in four with their centres put onto a plane of a sub-projection
+   (rounded to floats: within the filter's margin, where only the exact
+   test decides; those are counted) of radius 0, or touching it, or
+   across it; scenes scaled to 2^-50 and 2^30 around an eye at the origin.
+   And tiles drawn through it equal the double path's (test_filtered_discs
+   draws with the filter prepared). */
+static void test_reached_lanes(void)
+{
+#ifdef MLOD__VLANES
+    enum { N = 2048 };
+    static const mlod_view_kind kinds[2] = {MLOD_VIEW_DUAL_PARABOLOID, MLOD_VIEW_CUBE};
+    static const double origin[3] = {0.0, 0.0, 0.0};
+    static float spheres[4 * N];
+    uint64_t rng = 0x5eac4edull;
+    uint32_t trial, i, l, wrong = 0, compared = 0, on_plane = 0, views = 0;
+    for (trial = 0; trial < 96; trial++) {
+        mlod_view view = tu_random_view(&rng, kinds[trial % 2], origin, 1.0);
+        double scale = trial % 8 == 5 ? ldexp(1.0, -50) : trial % 8 == 6 ? ldexp(1.0, 30) : 1.0;
+        mlod__pview pv;
+        if (scale != 1.0) view.position[0] = view.position[1] = view.position[2] = 0.0f;
+        if (mlod__view_prepare(&view, &pv, NULL) != MLOD_OK) continue;
+        mlod__fast_prepare(&pv, 1.0);
+        if (!pv.fast.ok || pv.sub_count < 2) continue;
+        views++;
+        for (i = 0; i < N; i++) {
+            double dir[3], c[3], x[3], dist = (0.01 + 3.0 * scene_rng_double(&rng)) * scale, r, n2, v, mag;
+            const double *p = NULL;
+            int kind = (int)(i % 4), k;
+            tu_random_unit(&rng, dir);
+            for (k = 0; k < 3; k++) c[k] = pv.f.eye[k] + dist * dir[k];
+            r = kind == 1 ? 0.0 : dist * (kind == 0 ? 0.3 : 1e-3) * scene_rng_double(&rng);
+            if (kind > 0) { /* onto a plane of a random sub-projection, then r along its normal (kind 2, 3) */
+                int s = (int)(scene_rng_double(&rng) * pv.sub_count) % pv.sub_count;
+                if (pv.plane_count[s] > 0) {
+                    p = pv.f.subs[s].planes[(int)(scene_rng_double(&rng) * pv.plane_count[s]) % pv.plane_count[s]];
+                    n2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+                    v = (p[0] * c[0] + p[1] * c[1] + p[2] * c[2] - p[3]) / n2;
+                    for (k = 0; k < 3; k++) c[k] -= v * p[k];
+                    for (k = 0; kind >= 2 && k < 3; k++) c[k] += (kind == 2 ? -1.0 : 1.0) * r * p[k] / sqrt(n2);
+                }
+            }
+            for (k = 0; k < 4; k++) spheres[4 * i + k] = tu_float(k < 3 ? c[k] : r);
+            if (p) { /* the rounded sphere's plane value, within the filter's margin of 0 */
+                for (k = 0; k < 3; k++) x[k] = (double)spheres[4 * i + k] - pv.f.eye[k];
+                mag = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) + spheres[4 * i + 3];
+                v = p[0] * spheres[4 * i] + p[1] * spheres[4 * i + 1] + p[2] * spheres[4 * i + 2] +
+                    p[4] * spheres[4 * i + 3] - p[3];
+                on_plane += fabs(v) <= ldexp(p[4] * mag, -21);
+            }
+        }
+        for (i = 0; i < N; i += MLOD__VLANES) {
+            uint32_t nodes[MLOD__VLANES];
+            unsigned bits[MLOD_VIEW_MAX_SUBS];
+            int s;
+            for (l = 0; l < MLOD__VLANES; l++) nodes[l] = i + l;
+            mlod__reached_lanes(&pv, spheres, nodes, MLOD__VLANES, bits);
+            for (l = 0; l < MLOD__VLANES; l++) {
+                unsigned want = mlod__reached(&pv, spheres + 4 * (size_t)(i + l)), got = 0;
+                for (s = 0; s < pv.sub_count; s++) got |= (bits[s] >> l & 1u) << s;
+                if (got != want && wrong++ < 3)
+                    CHECK(0, "reached lanes: %s view, sphere (%.9g %.9g %.9g; %.9g): the lanes give sub-projections "
+                             "0x%x, the exact test 0x%x",
+                          kind_name(view.kind), spheres[4 * (i + l)], spheres[4 * (i + l) + 1],
+                          spheres[4 * (i + l) + 2], spheres[4 * (i + l) + 3], got, want);
+                compared++;
+            }
+        }
+    }
+    CHECK(wrong == 0 && views >= 64 && on_plane >= 10000,
+          "reached lanes: %u spheres around %u views (%u of them on a plane, within the float margin) give the exact "
+          "test's sub-projections (%u differ)",
+          compared, views, on_plane, wrong);
+#endif
 }
 
 static void test_unbounded_paraboloid(void)
@@ -3488,6 +3570,7 @@ int main(int argc, char **argv)
     TEST_GROUP("unbounded_paraboloid", test_unbounded_paraboloid());
     TEST_GROUP("image_lanes", test_image_lanes());
     TEST_GROUP("filtered_discs", test_filtered_discs());
+    TEST_GROUP("reached_lanes", test_reached_lanes());
     TEST_GROUP("ism_exact", test_ism_exact());
     TEST_GROUP("determinism", test_determinism());
     TEST_GROUP("disc_scale", test_disc_scale());
