@@ -317,8 +317,11 @@
      widened by the bound, lies inside one pixel and its radius below the
      small disc's, in vector lanes (64 nodes at a time), the depth still
      computed as the double path does; every other node takes the double
-     path.  The atlas is the same bit for bit (tests/test_splat.c,
-     filtered_discs); the object protocol's splat takes 0.55x the double
+     path.  In a view of several sub-projections (dual paraboloid, cube)
+     the sub-projections a node reaches are found by the cut's plane
+     tests in float lanes, with their margins; a lane in doubt takes the
+     exact test.  The atlas is the same bit for bit (tests/test_splat.c,
+     filtered_discs, reached_lanes); the object protocol's splat takes 0.55x the double
      path's time (0.75x with half discs, disc_scale 0.5).
 
    CHOOSING THE VIEWS (importance sampling, e.g. of virtual point lights)
