@@ -321,8 +321,8 @@
      the sub-projections a node reaches are found by the cut's plane
      tests in float lanes, with their margins; a lane in doubt takes the
      exact test.  The atlas is the same bit for bit (tests/test_splat.c,
-     filtered_discs, reached_lanes); the object protocol's splat takes 0.55x the double
-     path's time (0.75x with half discs, disc_scale 0.5).
+     filtered_discs and reached_lanes); the object protocol's splat takes
+     0.55x the double path's time (0.75x with half discs, disc_scale 0.5).
 
    CHOOSING THE VIEWS (importance sampling, e.g. of virtual point lights)
      mlod_sample() draws N samples from a discrete domain of D candidates
@@ -4901,7 +4901,8 @@ MLOD__FORCE_INLINE void mlod__vsetup(const mlod__fview *fv, const mlod__vf *sphe
    mlod__vsetup): *out gets the lanes surely outside some plane (the
    sphere misses the sub-projection), *in those surely reaching into every
    half-space; with track, *inside keeps only the lanes whose sphere lies
-   surely wholly inside every plane (mlod__vstatus_known). */
+   surely wholly inside every plane (mlod__vstatus_known; else inside is
+   not read). */
 MLOD__FORCE_INLINE void mlod__vplanes(const mlod__fsub *fs, const mlod__vf *x, mlod__vf r, mlod__vf reach, int track,
                                       mlod__vf *out, mlod__vf *in, mlod__vf *inside)
 {
@@ -7380,7 +7381,7 @@ static void mlod__reached_lanes(const mlod__pview *pv, const float *spheres, con
     mlod__vsetup(fv, sphere, x, &d2, &t, &reach, &unsure);
     doubt = (unsigned)MLOD__VBITS(unsure);
     for (s = 0; s < fv->sub_count; s++) {
-        mlod__vplanes(&fv->subs[s], x, sphere[3], reach, 0, &out, &in, &unsure);
+        mlod__vplanes(&fv->subs[s], x, sphere[3], reach, 0, &out, &in, NULL);
         bits[s] = (unsigned)MLOD__VBITS(in);
         doubt |= ~(unsigned)MLOD__VBITS(MLOD__VOR(out, in));
     }
