@@ -7364,18 +7364,15 @@ static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const
 
 /* mlod__reached of the spheres of nodes[0 .. MLOD__VLANES - 1] through
    the view's float filter (pv->fast.ok; mlod__vplanes, the cut's plane
-   tests and margins), for the first count of them, as bit l of bits[s]:
-   a sub-projection is reached where the lane is surely within every plane
-   of it, missed where surely outside one; a lane that leaves one in
-   doubt, or that fails a guard, takes the exact test, so the bits are
-   mlod__reached's. */
-static void mlod__reached_lanes(const mlod__pview *pv, const float *spheres, const uint32_t *nodes, uint32_t count,
-                                unsigned *bits)
+   tests and margins), as bit l of bits[s]: a sub-projection is reached
+   where the lane is surely within every plane of it, missed where surely
+   outside one.  Returns the lanes in doubt (one sub-projection neither,
+   or a guard failed), whose bits are 0: the exact test's to decide. */
+static unsigned mlod__reached_lanes(const mlod__pview *pv, const float *spheres, const uint32_t *nodes, unsigned *bits)
 {
     const mlod__fview *fv = &pv->fast;
     mlod__vf sphere[4], x[3], d2, t, reach, unsure, out, in;
     unsigned doubt;
-    uint32_t l;
     int s;
     mlod__vload(spheres, nodes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
     mlod__vsetup(fv, sphere, x, &d2, &t, &reach, &unsure);
@@ -7385,11 +7382,8 @@ static void mlod__reached_lanes(const mlod__pview *pv, const float *spheres, con
         bits[s] = (unsigned)MLOD__VBITS(in);
         doubt |= ~(unsigned)MLOD__VBITS(MLOD__VOR(out, in));
     }
-    for (l = 0; l < count; l++)
-        if (doubt >> l & 1u) {
-            unsigned r = mlod__reached(pv, spheres + 4 * (size_t)nodes[l]);
-            for (s = 0; s < fv->sub_count; s++) bits[s] = (bits[s] & ~(1u << l)) | (r >> s & 1u) << l;
-        }
+    for (s = 0; s < fv->sub_count; s++) bits[s] &= ~doubt;
+    return doubt & ((1u << MLOD__VLANES) - 1u);
 }
 
 /* mlod__disc_pixel for the boxes of MLOD__VLANES lanes (box[k * stride +
@@ -7891,25 +7885,26 @@ static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, cons
     const uint32_t *ids = nodes;
     MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK && MLOD__DRAW_CHUNK <= 64);
     if (pv->sub_count > 1 && n > 0) {
+        uint64_t exact = n == 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1u; /* the nodes the exact test takes */
         memset(reached, 0, sizeof reached);
-        l = 0;
 #ifdef MLOD__VLANES
         if (pv->fast.ok) { /* the view's float filter, MLOD__VLANES nodes at a time */
             uint32_t padded[MLOD__DRAW_CHUNK + MLOD__VLANES];
-            unsigned bits[MLOD_VIEW_MAX_SUBS];
+            unsigned bits[MLOD_VIEW_MAX_SUBS], lanes = (1u << MLOD__VLANES) - 1u;
             memcpy(padded, nodes, n * sizeof *padded);
             mlod__pad_last(padded, NULL, n, MLOD__VLANES);
-            for (; l < n; l += MLOD__VLANES) {
-                uint32_t k = n - l < MLOD__VLANES ? n - l : MLOD__VLANES;
-                mlod__reached_lanes(pv, band->tree->spheres, padded + l, k, bits);
-                for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)(bits[s] & ((1u << k) - 1u)) << l;
+            for (l = 0; l < n; l += MLOD__VLANES) {
+                uint64_t doubt = mlod__reached_lanes(pv, band->tree->spheres, padded + l, bits);
+                exact = (exact & ~((uint64_t)lanes << l)) | (exact & doubt << l);
+                for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)bits[s] << l;
             }
         }
 #endif
-        for (; l < n; l++) {
-            unsigned r = mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
-            for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)(r >> s & 1u) << l;
-        }
+        for (l = 0; l < n; l++)
+            if (exact >> l & 1u) {
+                unsigned r = mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
+                for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)(r >> s & 1u) << l;
+            }
     }
     for (s = 0; s < pv->sub_count; s++) {
         m = n;

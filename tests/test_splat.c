@@ -1776,25 +1776,36 @@ static void test_filtered_discs(void)
    all around views of several sub-projections (dual paraboloid, cube),
    three in four with their centres put onto a plane of a sub-projection
    (rounded to floats: within the filter's margin, where only the exact
-   test decides; those are counted) of radius 0, or touching it, or
-   across it; scenes scaled to 2^-50 and 2^30 around an eye at the origin.
-   And tiles drawn through it equal the double path's (test_filtered_discs
-   draws with the filter prepared). */
+   test decides; those are counted, and the lanes left in doubt) of radius
+   0, or touching it, or across it; scenes scaled to 2^-50 and 2^30 around
+   an eye at the origin.  And the tiles mlod__draw_nodes draws of them
+   with the filter (the doubtful lanes by the exact test) equal those it
+   draws with the exact test alone, depths and node indices;
+   test_filtered_discs draws with the filter prepared too. */
 static void test_reached_lanes(void)
 {
 #ifdef MLOD__VLANES
-    enum { N = 2048 };
+    enum { N = 2048, W = 192, H = 192 };
     static const mlod_view_kind kinds[2] = {MLOD_VIEW_DUAL_PARABOLOID, MLOD_VIEW_CUBE};
     static const double origin[3] = {0.0, 0.0, 0.0};
-    static float spheres[4 * N];
+    static float spheres[4 * N], depth[2][W * H];
+    static uint32_t ids[2][W * H], all[N];
     uint64_t rng = 0x5eac4edull;
-    uint32_t trial, i, l, wrong = 0, compared = 0, on_plane = 0, views = 0;
+    uint32_t trial, i, l, wrong = 0, compared = 0, on_plane = 0, views = 0, doubtful = 0, drawn = 0, differ = 0;
+    mlod_tree tree;
+    memset(&tree, 0, sizeof tree);
+    tree.spheres = spheres;
+    tree.node_count = N;
+    for (i = 0; i < N; i++) all[i] = i;
     for (trial = 0; trial < 96; trial++) {
         mlod_view view = tu_random_view(&rng, kinds[trial % 2], origin, 1.0);
         double scale = trial % 8 == 5 ? ldexp(1.0, -50) : trial % 8 == 6 ? ldexp(1.0, 30) : 1.0;
-        mlod__pview pv;
+        mlod__pview pv, exact;
+        mlod__band band;
+        int k;
         if (scale != 1.0) view.position[0] = view.position[1] = view.position[2] = 0.0f;
-        if (mlod__view_prepare(&view, &pv, NULL) != MLOD_OK) continue;
+        if (mlod__view_prepare(&view, &pv, NULL) != MLOD_OK || view.width > W || view.height > H) continue;
+        exact = pv; /* no float filter: mlod__draw_nodes takes the exact test */
         mlod__fast_prepare(&pv, 1.0);
         if (!pv.fast.ok || pv.sub_count < 2) continue;
         views++;
@@ -1829,10 +1840,15 @@ static void test_reached_lanes(void)
             unsigned bits[MLOD_VIEW_MAX_SUBS];
             int s;
             for (l = 0; l < MLOD__VLANES; l++) nodes[l] = i + l;
-            mlod__reached_lanes(&pv, spheres, nodes, MLOD__VLANES, bits);
+            unsigned doubt = mlod__reached_lanes(&pv, spheres, nodes, bits);
             for (l = 0; l < MLOD__VLANES; l++) {
                 unsigned want = mlod__reached(&pv, spheres + 4 * (size_t)(i + l)), got = 0;
                 for (s = 0; s < pv.sub_count; s++) got |= (bits[s] >> l & 1u) << s;
+                if (doubt >> l & 1u) { /* left to the exact test, its bits 0 */
+                    doubtful++;
+                    wrong += got != 0;
+                    continue;
+                }
                 if (got != want && wrong++ < 3)
                     CHECK(0, "reached lanes: %s view, sphere (%.9g %.9g %.9g; %.9g): the lanes give sub-projections "
                              "0x%x, the exact test 0x%x",
@@ -1841,11 +1857,34 @@ static void test_reached_lanes(void)
                 compared++;
             }
         }
+        /* whole tiles, 64 nodes at a time: through the filter [1], by the exact test alone [0] */
+        memset(&band, 0, sizeof band);
+        band.tree = &tree;
+        band.stride = W;
+        band.disc_scale = 1.0f;
+        band.row_end = view.height;
+        for (k = 0; k < 2; k++) {
+            for (i = 0; i < W * H; i++) {
+                depth[k][i] = INFINITY;
+                ids[k][i] = 7u;
+            }
+            band.depth = depth[k];
+            band.ids = ids[k];
+            for (i = 0; i < N; i += 64) mlod__draw_nodes(&band, k ? &pv : &exact, all + i, 64);
+        }
+        for (i = 0; i < W * H; i++) drawn += depth[0][i] < INFINITY;
+        if (memcmp(depth[0], depth[1], sizeof depth[0]) || memcmp(ids[0], ids[1], sizeof ids[0]))
+            if (differ++ < 3)
+                CHECK(0, "reached lanes: %s view %ux%u: the tile drawn through the filter differs from the exact test's",
+                      kind_name(view.kind), view.width, view.height);
     }
-    CHECK(wrong == 0 && views >= 64 && on_plane >= 10000,
+    CHECK(wrong == 0 && views >= 64 && on_plane >= 10000 && doubtful >= 1000,
           "reached lanes: %u spheres around %u views (%u of them on a plane, within the float margin) give the exact "
-          "test's sub-projections (%u differ)",
-          compared, views, on_plane, wrong);
+          "test's sub-projections where decided, %u left in doubt with no bits (%u wrong)",
+          compared, views, on_plane, doubtful, wrong);
+    CHECK(differ == 0 && drawn > 10000,
+          "reached lanes: tiles drawn through the filter equal the exact test's (%u of %u differ; %u pixels drawn)", differ,
+          views, drawn);
 #endif
 }
 
