@@ -9807,9 +9807,10 @@ static void mlod__mv_draw(const mlod__mv_job *job, mlod__mv_drawer *dr, const ui
    first order.  Level by level: a group of roots, then the children of
    those that split the scene node, and so on, each level classified at
    once (mlod__pair_actions: full batches of lanes, independent of each
-   other); then the draws and view splits below each pair are counted
-   (deepest level first), which gives each its place in the depth-first
-   order (top level first), where it is written.  A group whose levels
+   other); then the pairs are met again in depth-first order, where each
+   draw and view split is written: depth first meets a level's pairs in
+   their order, so one cursor per level finds the next, and a scene
+   split's children are the next two of the level below.  A group whose levels
    outgrow the room (job->descend_room pairs) is taken again with half
    the roots; a root alone that outgrows it is classified by itself and
    its children wait first in line (pending, the next on top).  Each pair
@@ -9818,19 +9819,20 @@ static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, cons
                             mlod__mv_out *out, mlod__mv_drawer *dr)
 {
     /* node[i], act[i]: the pairs, level after level (level k: lb[k] .. lb[k + 1] - 1, the children of a level's
-       scene splits in their order); draws[i], views[i]: the draws and view splits below pair i, then the place
-       of the first of them in the group's depth-first order; list: the draws in that order */
+       scene splits in their order); cur[k]: level k's next pair in depth-first order; left[k]: how many of the
+       current pair's siblings at level k (the roots, at level 0) are still to be met, itself included; list:
+       the draws in depth-first order */
     uint32_t node[MLOD__MV_ROOM + 2], lb[MLOD__MV_LEVELS + 1], pend[2 * MLOD__MV_LEVELS], list[MLOD__MV_ROOM + 1];
-    uint16_t draws[MLOD__MV_ROOM + 2], views[MLOD__MV_ROOM + 2];
+    uint32_t cur[MLOD__MV_LEVELS], left[MLOD__MV_LEVELS];
     uint8_t act[MLOD__MV_ROOM];
-    const uint32_t room = job->descend_room, zero = room; /* draws[zero], [zero + 1]: a non-split's "children" */
+    const uint32_t room = job->descend_room;
     uint32_t most = room / 2 < MLOD__MV_GROUP ? room / 2 : MLOD__MV_GROUP; /* roots in a group */
     uint32_t npend = 0, group = most, step = out->with_view ? 2u : 1u, unused[2];
     size_t next = 0;
     uint64_t culled = 0, leaves = 0, pairs = 0;
     MANYLODS_ASSERT(room >= 4 && room <= MLOD__MV_ROOM);
     while (npend || next < n) {
-        uint32_t g = 0, levels = 0, k, i, w, ns = 0, nd, nv;
+        uint32_t g = 0, levels = 0, k, i, w, ns = 0, nd = 0, nv = 0, nc = 0, nl = 0; /* splits, draws, ... */
         int from_pend = npend > 0;
         if (from_pend) /* the group: pending nodes first, in order */
             while (g < group && npend) node[g++] = pend[--npend];
@@ -9843,7 +9845,14 @@ static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, cons
         for (k = 0;; k++) { /* classify level k, then list the children of its scene splits as level k + 1 */
             uint32_t b = lb[k], e = lb[k + 1];
             mlod__pair_actions(job, vn, node + b, e - b, act + b);
-            for (i = b, ns = 0; i < e; i++) ns += act[i] == MLOD__PAIR_SPLIT_SCENE;
+            for (i = b, ns = 0; i < e; i++) { /* the level's scene splits; the group's draws, view splits, culls */
+                uint32_t a = act[i];
+                ns += a == MLOD__PAIR_SPLIT_SCENE;
+                nd += a == MLOD__PAIR_DRAW || a == MLOD__PAIR_DRAW_LEAF;
+                nv += a == MLOD__PAIR_SPLIT_VIEW;
+                nc += a == MLOD__PAIR_CULL;
+                nl += a == MLOD__PAIR_DRAW_LEAF;
+            }
             if (ns == 0 || e + 2 * ns > room || k + 2 > MLOD__MV_LEVELS) {
                 levels = k + 1;
                 break;
@@ -9870,38 +9879,31 @@ static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, cons
             pend[npend++] = 2 * node[0] + 1;
             continue;
         }
-        draws[zero] = draws[zero + 1] = views[zero] = views[zero + 1] = 0;
-        for (k = levels; k-- > 0;) /* the counts below each pair, deepest level first */
-            for (i = lb[k], w = lb[k + 1]; i < lb[k + 1]; i++) {
-                uint32_t a = act[i], split = a == MLOD__PAIR_SPLIT_SCENE, c = split ? w : zero;
-                w += 2 * split;
-                draws[i] = (uint16_t)(draws[c] + draws[c + 1] + (a == MLOD__PAIR_DRAW || a == MLOD__PAIR_DRAW_LEAF));
-                views[i] = (uint16_t)(views[c] + views[c + 1] + (a == MLOD__PAIR_SPLIT_VIEW));
-            }
-        for (i = 0, nd = nv = 0; i < g; i++) { /* the roots' places, in order */
-            uint32_t d = draws[i], v = views[i];
-            draws[i] = (uint16_t)nd;
-            views[i] = (uint16_t)nv;
-            nd += d;
-            nv += v;
-        }
         if ((dr ? 0 : out->capacity - out->draw_count < nd) || out->capacity - out->split_count < nv) return 0;
-        for (k = 0; k < levels; k++) /* each pair's children placed (the left's first), and each pair written */
-            for (i = lb[k], w = lb[k + 1]; i < lb[k + 1]; i++) {
-                uint32_t a = act[i], split = a == MLOD__PAIR_SPLIT_SCENE, c = split ? w : zero;
-                uint32_t left_draws = draws[c], left_views = views[c];
-                uint32_t *to = a == MLOD__PAIR_SPLIT_VIEW ? out->split + step * (out->split_count + views[i]) : unused;
-                w += 2 * split;
-                draws[c] = draws[i]; /* (a non-split: into the zero counts, no longer read) */
-                draws[c + 1] = (uint16_t)(draws[i] + left_draws);
-                views[c] = views[i];
-                views[c + 1] = (uint16_t)(views[i] + left_views);
-                list[a == MLOD__PAIR_DRAW || a == MLOD__PAIR_DRAW_LEAF ? draws[i] : room] = node[i];
-                to[0] = vn->node;
-                to[step - 1] = node[i];
-                culled += a == MLOD__PAIR_CULL;
-                leaves += a == MLOD__PAIR_DRAW_LEAF;
+        for (k = 0; k < levels; k++) cur[k] = lb[k];
+        k = 0;
+        left[0] = g;
+        for (nd = nv = 0;;) { /* depth first: each pair met, its draw or view split written in turn */
+            uint32_t a, s, *to;
+            i = cur[k]++;
+            a = act[i];
+            s = node[i];
+            to = a == MLOD__PAIR_SPLIT_VIEW ? out->split + step * (out->split_count + nv) : unused;
+            list[nd] = s; /* (kept only for a draw) */
+            nd += a == MLOD__PAIR_DRAW || a == MLOD__PAIR_DRAW_LEAF;
+            nv += a == MLOD__PAIR_SPLIT_VIEW;
+            to[0] = vn->node; /* (written, without a branch, into unused for any other pair) */
+            to[step - 1] = s;
+            left[k]--;
+            if (a == MLOD__PAIR_SPLIT_SCENE) { /* its children next */
+                left[++k] = 2;
+                continue;
             }
+            while (left[k] == 0 && k > 0) k--; /* up to the nearest level with a sibling still to meet */
+            if (left[k] == 0) break;
+        }
+        culled += nc;
+        leaves += nl;
         pairs += lb[levels];
         out->split_count += nv;
         if (dr) {
