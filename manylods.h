@@ -9526,9 +9526,10 @@ static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uin
 /* The actions of n <= MLOD__MV_ROOM pairs (scene nodes nodes[0 .. n) with
    view node vn), as mlod__pair_action gives them: through the float
    filter where vn has one and the build has lanes, the exact path for the
-   lanes it leaves.  The lanes' codes first, for all the pairs, then the
-   codes as actions, then the few codes that need more (the children's
-   radii, or the exact path): the batches of a level depend on no other
+   lanes it leaves.  The lanes' codes as actions first, for all the pairs
+   (whole batches: actions has room for n rounded up to MLOD__VLANES), the
+   codes that need more listed; then those few (the children's radii, or
+   the exact path): the batches of a level depend on no other
    pair's answer, and no loop over all the pairs branches on one pair's
    code.  (What that buys was measured: a tenth with 8 lanes, which the
    descent now fills; about nothing with 4, where the filter's arithmetic
@@ -9540,27 +9541,27 @@ static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, c
 #ifdef MLOD__VLANES
     if (vn->fast && n > 1) {
         const mlod_tree *scene = job->scene;
+        const mlod__vf zero = MLOD__VSET(0.0f), one = MLOD__VSET(1.0f), middle = MLOD__VSET((float)MLOD__VPAIR_MIDDLE);
         uint32_t lanes[MLOD__VLANES], l, m = 0;
         uint16_t odd[MLOD__MV_ROOM];
-        uint8_t codes[MLOD__VLANES];
         MANYLODS_ASSERT(n <= MLOD__MV_ROOM);
-        for (; i < n; i += MLOD__VLANES) {
-            mlod__vf sphere[4];
-            uint32_t k = n - i < MLOD__VLANES ? n - i : MLOD__VLANES;
+        for (; i < n; i += MLOD__VLANES) { /* the actions (code - 1; 0 where unsure), the unsure and middle listed */
+            mlod__vf sphere[4], code;
+            uint32_t k = n - i < MLOD__VLANES ? n - i : MLOD__VLANES, bits;
             for (l = 0; l < MLOD__VLANES; l++) lanes[l] = nodes[i + (l < k ? l : 0)];
             mlod__vload(scene->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
-            mlod__vbytes(mlod__vpair(vn, sphere, mlod__vleaf(lanes, scene->leaf_count - 1)), codes);
-            memcpy(actions + i, codes, k);
-        }
-        for (i = 0; i < n; i++) { /* code - 1, and the unsure (0) and middle codes listed */
-            uint32_t code = actions[i];
-            odd[m] = (uint16_t)i;
-            m += code == 0 || code == MLOD__VPAIR_MIDDLE;
-            actions[i] = (uint8_t)(code - 1);
+            code = mlod__vpair(vn, sphere, mlod__vleaf(lanes, scene->leaf_count - 1));
+            bits = (uint32_t)MLOD__VBITS(MLOD__VOR(MLOD__VEQ(code, zero), MLOD__VEQ(code, middle)));
+            mlod__vbytes(MLOD__VAND(MLOD__VSUB(code, one), MLOD__VGT(code, zero)), actions + i);
+            for (l = 0; l < k; l++) {
+                odd[m] = (uint16_t)(i + l);
+                m += bits >> l & 1u;
+            }
         }
         for (l = 0; l < m; l++) {
             uint32_t k = odd[l];
-            int a = mlod__vpair_action(scene, vn, nodes[k], (uint8_t)(actions[k] + 1));
+            int a = mlod__vpair_action(scene, vn, nodes[k],
+                                       actions[k] == MLOD__VPAIR_MIDDLE - 1 ? (uint8_t)MLOD__VPAIR_MIDDLE : 0);
             actions[k] = (uint8_t)(a >= 0 ? a : mlod__pair_action(job, vn, nodes[k]));
         }
         return;
@@ -9824,7 +9825,7 @@ static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, cons
        the draws in depth-first order */
     uint32_t node[MLOD__MV_ROOM + 2], lb[MLOD__MV_LEVELS + 1], pend[2 * MLOD__MV_LEVELS], list[MLOD__MV_ROOM + 1];
     uint32_t cur[MLOD__MV_LEVELS], left[MLOD__MV_LEVELS];
-    uint8_t act[MLOD__MV_ROOM];
+    uint8_t act[MLOD__MV_ROOM + 8]; /* (mlod__pair_actions writes whole batches of lanes) */
     const uint32_t room = job->descend_room;
     uint32_t most = room / 2 < MLOD__MV_GROUP ? room / 2 : MLOD__MV_GROUP; /* roots in a group */
     uint32_t npend = 0, group = most, step = out->with_view ? 2u : 1u, unused[2];
