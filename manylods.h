@@ -9517,7 +9517,7 @@ static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uin
 #endif
 
 /* A descent's room (mlod__mv_descend): the most pairs one group of roots
-   takes, all its levels (15 bytes of stack each), and the most roots in a
+   takes, all its levels (11 bytes of stack each), and the most roots in a
    group. */
 #define MLOD__MV_ROOM 2048u
 #define MLOD__MV_GROUP 256u
