@@ -9500,6 +9500,16 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
     code = mlod__vselect(cull, MLOD__VSET(1.0f), code);
     return MLOD__VANDNOT(unsure, code);
 }
+
+/* One batch of lanes of mlod__pair_actions: mlod__vpair's codes as
+   actions, code - 1 (0 where unsure), in MLOD__VLANES bytes at out;
+   returns the lanes whose code is unsure or middle, bit l for lane l. */
+MLOD__FORCE_INLINE uint32_t mlod__vpair_bytes(const mlod__vnode *vn, const mlod__vf *sphere, mlod__vf leaf, uint8_t *out)
+{
+    const mlod__vf zero = MLOD__VSET(0.0f), code = mlod__vpair(vn, sphere, leaf);
+    mlod__vbytes(MLOD__VAND(MLOD__VSUB(code, MLOD__VSET(1.0f)), MLOD__VGT(code, zero)), out);
+    return (uint32_t)MLOD__VBITS(MLOD__VOR(MLOD__VEQ(code, zero), MLOD__VEQ(code, MLOD__VSET((float)MLOD__VPAIR_MIDDLE))));
+}
 #endif
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
@@ -9541,18 +9551,15 @@ static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, c
 #ifdef MLOD__VLANES
     if (vn->fast && n > 1) {
         const mlod_tree *scene = job->scene;
-        const mlod__vf zero = MLOD__VSET(0.0f), one = MLOD__VSET(1.0f), middle = MLOD__VSET((float)MLOD__VPAIR_MIDDLE);
         uint32_t lanes[MLOD__VLANES], l, m = 0;
         uint16_t odd[MLOD__MV_ROOM];
         MANYLODS_ASSERT(n <= MLOD__MV_ROOM);
         for (; i < n; i += MLOD__VLANES) { /* the actions (code - 1; 0 where unsure), the unsure and middle listed */
-            mlod__vf sphere[4], code;
+            mlod__vf sphere[4];
             uint32_t k = n - i < MLOD__VLANES ? n - i : MLOD__VLANES, bits;
             for (l = 0; l < MLOD__VLANES; l++) lanes[l] = nodes[i + (l < k ? l : 0)];
             mlod__vload(scene->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
-            code = mlod__vpair(vn, sphere, mlod__vleaf(lanes, scene->leaf_count - 1));
-            bits = (uint32_t)MLOD__VBITS(MLOD__VOR(MLOD__VEQ(code, zero), MLOD__VEQ(code, middle)));
-            mlod__vbytes(MLOD__VAND(MLOD__VSUB(code, one), MLOD__VGT(code, zero)), actions + i);
+            bits = mlod__vpair_bytes(vn, sphere, mlod__vleaf(lanes, scene->leaf_count - 1), actions + i);
             for (l = 0; l < k; l++) {
                 odd[m] = (uint16_t)(i + l);
                 m += bits >> l & 1u;
