@@ -1334,7 +1334,8 @@ typedef struct mlod_megaviews_stats {
     uint64_t shared_views;     /* views below the inner nodes of shared draws, summed */
     uint64_t shared_leaves;    /* of shared_draws: scene leaves above epsilon for some eye (MegaViews 3.2.4) */
     uint32_t levels;           /* depth of the view tree + 1 */
-    size_t peak_bytes;         /* the most the call held at once from its allocator */
+    size_t peak_bytes;         /* the most the call held at once from its allocator (a zero-size array counts
+                                  the byte it takes; mlod_megaviews_render_maps: the maps it returns included) */
     uint64_t node_pairs;       /* the most pairs classified at one view node (mlod_megaviews_bound) */
 } mlod_megaviews_stats;
 
@@ -1358,8 +1359,10 @@ MANYLODS_DEF size_t mlod_megaviews_bound(const mlod_view_tree *views, uint32_t r
 typedef struct mlod_megaviews_maps mlod_megaviews_maps;
 
 /* Check the parameters alone: epsilon > 0, delta and group_radius finite
-   and >= 0, resolution in 1 .. 2^31 - 1 (what mlod_megaviews_render and
-   mlodvk_megaviews_render refuse first).  Pure, thread-safe. */
+   and >= 0, resolution in 1 .. 2^31 - 1, no flag but
+   MLOD_VIEW_CULL_BACKFACES (MLOD_ERROR_BAD_VIEW) (what
+   mlod_megaviews_render and mlodvk_megaviews_render refuse first).  Pure,
+   thread-safe. */
 MANYLODS_DEF mlod_result mlod_megaviews_check(const mlod_megaviews_params *params, mlod_error *error);
 
 /* Render every view's map into the atlas (MANY VIEWS AT ONCE): the pair
@@ -1369,10 +1372,16 @@ MANYLODS_DEF mlod_result mlod_megaviews_check(const mlod_megaviews_params *param
    resolution: view i has tile i).  Depth as for paraboloids: distance
    from the view's eye.  Every tile is cleared first.  stats may be NULL.
    Parallel through the hook, with the same atlas for any thread count.
-   Errors: NULLs, bad epsilon or delta, a resolution of 0, an atlas of
+   The atlas's views give only the tiles' sizes and places: the maps are
+   those of the view tree's eyes, whatever eyes the atlas was created for
+   (so one atlas serves a view tree refitted to moving views; look its
+   pixels up with mlod_megaviews_view of the view tree's eyes).
+   Errors: NULLs, parameters mlod_megaviews_check refuses, an atlas of
    another view count or tile size, channels the scene lacks (the atlas
-   is then untouched); no memory (MLOD_ERROR_OUT_OF_MEMORY, every tile
-   then empty, nothing held).  Not thread-safe for one atlas. */
+   is then untouched); maps whose bytes do not fit size_t
+   (MLOD_ERROR_OVERFLOW, untouched too); no memory
+   (MLOD_ERROR_OUT_OF_MEMORY, every tile then empty, nothing held).  Not
+   thread-safe for one atlas. */
 MANYLODS_DEF mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tree *scene, const mlod_view_tree *views,
                                                const mlod_megaviews_params *params, mlod_megaviews_stats *stats,
                                                mlod_error *error);
@@ -1395,8 +1404,10 @@ MANYLODS_DEF mlod_result mlod_megaviews_render_maps(const mlod_tree *scene, cons
    above left there, as the fusion does.  Returns 1 and writes the depth
    (distance from the view's eye) and the scene node, equal to the fused
    atlas's pixel of mlod_megaviews_render with the same arguments, or 0
-   where nothing was drawn (or for arguments out of range).  scene and
-   views must be those of the render.  Pure, thread-safe. */
+   where nothing was drawn, for arguments out of range, and for a view tree
+   or a scene that cannot be the render's (the maps record the view count
+   and the scene's node count; a tree of the same counts is not told
+   apart: pass those of the render).  Pure, thread-safe. */
 MANYLODS_DEF int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlod_tree *scene,
                                       const mlod_view_tree *views, uint32_t view, uint32_t x, uint32_t y, float *depth,
                                       uint32_t *node);
@@ -8926,7 +8937,7 @@ typedef struct mlod__mv_job {
     const uint32_t *map_of; /* per node of the level: its map, or UINT32_MAX */
     const float *parent_depth; /* the previous level's maps */
     const uint32_t *parent_ids, *parent_map_of;
-    uint32_t pixels;
+    size_t pixels;          /* 2 R^2, a map's pixels (mlod__megaviews_run: bytes of any count of maps fit size_t) */
     /* below the walk level: one walk per view subtree (mlod__mv_walk_task) */
     struct mlod__mv_walk *walks;
     uint32_t walk_level, levels;
@@ -9027,8 +9038,11 @@ static void mlod__vnode_set(const mlod__mv_job *job, uint32_t node, mlod__vnode 
     }
     if (vn->leaf || vn->group) {
         mlod_view view = mlod__node_map_view(job, node);
+        mlod_result ok;
         if (vn->group) view.flags &= ~(uint32_t)MLOD_VIEW_CULL_BACKFACES; /* culled for all eyes, above */
-        mlod__view_prepare(&view, &vn->pv, NULL);
+        ok = mlod__view_prepare(&view, &vn->pv, NULL); /* the flags and resolution were checked, the eyes are finite */
+        MANYLODS_ASSERT(ok == MLOD_OK);
+        (void)ok;
         mlod__fast_prepare(&vn->pv, job->epsilon);
     }
     mlod__vnode_fast_set(job, vn);
@@ -9779,7 +9793,9 @@ static void mlod__mv_flush(const mlod__mv_job *job, mlod__mv_drawer *dr)
     }
     if (!dr->ready) {
         mlod_view view = mlod__node_map_view(job, dr->node);
-        mlod__view_prepare(&view, dr->pv, NULL);
+        mlod_result ok = mlod__view_prepare(&view, dr->pv, NULL); /* as in mlod__vnode_set */
+        MANYLODS_ASSERT(ok == MLOD_OK);
+        (void)ok;
         mlod__fast_prepare(dr->pv, job->epsilon); /* its planes' float filter (mlod__draw_nodes) */
         dr->ready = 1;
     }
@@ -10079,15 +10095,21 @@ typedef struct mlod__mv_memory {
     int failed;
 } mlod__mv_memory;
 
+/* The bytes an array of count x size takes from the allocator: a
+   zero-size array takes one (mlod__alloc_array). */
+static size_t mlod__mv_bytes(size_t count, size_t size)
+{
+    return count && size ? count * size : 1;
+}
+
 static void *mlod__mv_alloc(mlod__mv_memory *m, size_t count, size_t size)
 {
-    size_t bytes = 0;
-    void *p = m->failed ? NULL : mlod__alloc_array(&m->a, count, size, &bytes);
+    void *p = m->failed ? NULL : mlod__alloc_array(&m->a, count, size, NULL);
     if (!p) {
         m->failed = 1;
         return NULL;
     }
-    m->live += bytes;
+    m->live += mlod__mv_bytes(count, size);
     if (m->live > m->peak) m->peak = m->live;
     return p;
 }
@@ -10095,7 +10117,7 @@ static void *mlod__mv_alloc(mlod__mv_memory *m, size_t count, size_t size)
 static void mlod__mv_free(mlod__mv_memory *m, void *p, size_t count, size_t size)
 {
     if (!p) return;
-    m->live -= count * size;
+    m->live -= mlod__mv_bytes(count, size);
     mlod__free(&m->a, p);
 }
 
@@ -10114,6 +10136,9 @@ MLOD__PUBLIC mlod_result mlod_megaviews_check(const mlod_megaviews_params *param
     if (params->resolution == 0 || params->resolution > 0x7fffffffu)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "resolution %u is not in 1 .. 2^31 - 1",
                           params->resolution);
+    if (params->flags & ~(uint32_t)MLOD_VIEW_CULL_BACKFACES)
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown flags 0x%x (only MLOD_VIEW_CULL_BACKFACES, 0x%x)",
+                          params->flags, (unsigned)MLOD_VIEW_CULL_BACKFACES);
     return mlod__succeed(error);
 }
 
@@ -10369,6 +10394,7 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
 
 struct mlod_megaviews_maps {
     uint32_t resolution, levels;
+    uint32_t view_count, scene_nodes; /* of the render's view tree and scene (mlod_megaviews_query refuses others) */
     uint32_t *map_of;     /* per view node: its map among its level's, or MLOD__NO_MAP */
     uint32_t *leaf_of;    /* per view: its leaf node */
     float **depth;        /* per level: the maps' depths from their node's centre, 2 R^2 per map */
@@ -10397,8 +10423,8 @@ MLOD__PUBLIC void mlod_megaviews_maps_destroy(mlod_megaviews_maps *maps)
 }
 
 /* An empty maps object for the views and levels; NULL without memory. */
-static mlod_megaviews_maps *mlod__maps_create(const mlod_allocator *a, const mlod_view_tree *views, uint32_t levels,
-                                              uint32_t resolution)
+static mlod_megaviews_maps *mlod__maps_create(const mlod_allocator *a, const mlod_view_tree *views,
+                                              const mlod_tree *scene, uint32_t levels, uint32_t resolution)
 {
     const mlod_tree *eyes = views->eyes;
     size_t bytes = 0;
@@ -10409,6 +10435,8 @@ static mlod_megaviews_maps *mlod__maps_create(const mlod_allocator *a, const mlo
     maps->allocator = *a;
     maps->resolution = resolution;
     maps->levels = levels;
+    maps->view_count = views->view_count;
+    maps->scene_nodes = scene->node_count;
     maps->map_of = (uint32_t *)mlod__alloc_array(a, eyes->node_count, sizeof(uint32_t), &bytes);
     maps->leaf_of = (uint32_t *)mlod__alloc_array(a, eyes->leaf_count, sizeof(uint32_t), &bytes);
     maps->depth = (float **)mlod__alloc_array(a, levels, sizeof(float *), &bytes);
@@ -10488,11 +10516,16 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     job.resolution = params->resolution;
     job.flags = params->flags;
     job.S = 0.5 * params->resolution;
-    job.pixels = 2 * params->resolution * params->resolution;
+    /* every array of maps holds at most one map per view node, 8 bytes a pixel: those sizes must fit size_t */
+    if (2.0 * params->resolution * params->resolution * 8.0 * eyes->node_count >= (double)(size_t)-1)
+        return mlod__fail(error, MLOD_ERROR_OVERFLOW, "resolution %u: the maps of %u view nodes (%.3g bytes) do not fit size_t",
+                          params->resolution, eyes->node_count, 16.0 * params->resolution * params->resolution * eyes->node_count);
+    job.pixels = 2 * (size_t)params->resolution * params->resolution;
     levels = mlod__depth_of(eyes->node_count - 1) + 1;
     st.levels = levels;
-    if (keep && !(job.keep = mlod__maps_create(&m.a, views, levels, params->resolution)))
+    if (keep && !(job.keep = mlod__maps_create(&m.a, views, scene, levels, params->resolution)))
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the maps");
+    if (job.keep) m.live = m.peak = job.keep->bytes;
     job.levels = levels;
     job.walk_level = keep || levels <= walk_level ? levels : walk_level;
     job.walk_room = walk_room;
@@ -10623,9 +10656,10 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
             job.keep->depth[d] = job.depth;
             job.keep->ids[d] = job.ids;
             job.keep->level_maps[d] = maps;
-            job.keep->bytes += (size_t)maps * job.pixels * (sizeof(float) + sizeof(uint32_t));
+            /* still held by the call (m.live): the maps it returns */
+            job.keep->bytes += mlod__mv_bytes((size_t)maps * job.pixels, sizeof(float)) +
+                               mlod__mv_bytes((size_t)maps * job.pixels, sizeof(uint32_t));
             for (i = 0; i < count; i++) job.keep->map_of[first + i] = map_of[i];
-            m.live -= (size_t)maps * job.pixels * (sizeof(float) + sizeof(uint32_t));
             job.depth = NULL;
             job.ids = NULL;
             maps = 0;
@@ -10755,7 +10789,8 @@ MLOD__PUBLIC int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlo
     uint32_t path[64], count = 0, leaf, k, have = 0, at_node = 0;
     float at_depth = INFINITY;
     size_t pixel;
-    if (!maps || !scene || !views || view >= views->view_count || x >= 2 * maps->resolution || y >= maps->resolution)
+    if (!maps || !scene || !views || !views->eyes || view >= views->view_count || x >= 2 * maps->resolution ||
+        y >= maps->resolution || views->view_count != maps->view_count || scene->node_count != maps->scene_nodes)
         return 0;
     eyes = views->eyes;
     pixel = (size_t)y * 2 * maps->resolution + x;

@@ -881,6 +881,47 @@ static void test_groups(mlod_tree *scene)
 /* The unfused maps, queried pixel by pixel down the view tree, equal the
    fused atlas (depth, and the node through the colour channel holding
    node indices), with sharing, fields of view, back faces and groups. */
+/* The maps of a render queried with a view tree or a scene that cannot be
+   the render's: 0, nothing read past the maps' tables (AddressSanitizer
+   watches). */
+static void query_other_trees(const mlod_megaviews_maps *maps, const mlod_tree *scene, const mlod_view_tree *t,
+                              const views *v)
+{
+    static const float lo[3] = {-1, 0.5f, -1}, hi[3] = {1, 2, 1};
+    views few = make_views(62, 2, lo, hi, 0), more = make_views(63, 4 * v->count, lo, hi, 0);
+    mlod_view_set s_few = view_set(&few, 0, 0), s_more = view_set(&more, 0, 0);
+    mlod_view_tree *t_few = build_views(&s_few, NULL), *t_more = build_views(&s_more, NULL);
+    mlod_megaviews_maps *small = NULL;
+    mlod_megaviews_params p;
+    mlod_error e;
+    scene_mesh room;
+    int have_room = scene_room(&room);
+    mlod_tree *other = have_room ? tu_build(&room, 500, 3, 0) : NULL;
+    uint32_t i, hits = 0, own = 0;
+    memset(&p, 0, sizeof p);
+    p.epsilon = 1.0f;
+    p.resolution = 8;
+    CHECK(t_few && t_more && other && mlod_megaviews_render_maps(scene, t_few, &p, &small, NULL, &e) == MLOD_OK,
+          "query: renders of other trees");
+    if (small && t_more && other) {
+        for (i = 0; i < v->count; i++) { /* the maps of 2 views, a tree of 4 x as many: every view in its range */
+            hits += mlod_megaviews_query(small, scene, t_more, 4 * i + 3, 15, 7, NULL, NULL);
+            hits += mlod_megaviews_query(small, scene, t, i, 15, 7, NULL, NULL);
+            hits += mlod_megaviews_query(maps, other, t, i, 8, 4, NULL, NULL); /* another scene */
+            own += mlod_megaviews_query(maps, scene, t, i, 8, 4, NULL, NULL);
+        }
+        CHECK(hits == 0 && own > 0, "query: maps of another view tree or scene give 0 (%u hits; %u of %u own views hit)",
+              hits, own, v->count);
+    }
+    mlod_megaviews_maps_destroy(small);
+    mlod_tree_destroy(other);
+    if (have_room) scene_free(&room);
+    mlod_view_tree_destroy(t_few);
+    mlod_view_tree_destroy(t_more);
+    free_views(&few);
+    free_views(&more);
+}
+
 static void test_query(const mlod_tree *scene)
 {
     static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
@@ -935,6 +976,7 @@ static void test_query(const mlod_tree *scene)
                   !mlod_megaviews_query(maps, scene, t, 0, 16, 0, NULL, NULL) &&
                   !mlod_megaviews_query(maps, scene, t, 0, 0, 8, NULL, NULL) && !mlod_megaviews_query(NULL, scene, t, 0, 0, 0, NULL, NULL),
                   "query: out of range is 0");
+            if (c == 0) query_other_trees(maps, scene, t, &v);
         }
         mlod_megaviews_maps_destroy(maps);
         mlod_atlas_destroy(a);
@@ -1491,7 +1533,7 @@ static void test_sizing(const mlod_tree *scene)
             } else {
                 bound = mlod_megaviews_bound(t, p.resolution, st.node_pairs);
                 any = mlod_megaviews_bound(t, p.resolution, scene->node_count);
-                CHECK(counter.peak_bytes <= bound && st.peak_bytes <= counter.peak_bytes && bound <= any &&
+                CHECK(counter.peak_bytes <= bound && st.peak_bytes == counter.peak_bytes && bound <= any &&
                       st.node_pairs <= scene->node_count,
                       "sizing: %u views at %u px: peak %zu bytes (reported %zu), bound %zu for %llu pairs per view "
                       "node, %zu for any scene", counts[c], resolutions[r], counter.peak_bytes, st.peak_bytes, bound,
@@ -1726,6 +1768,48 @@ static uint32_t failing_renders(mlod_atlas *a, const mlod_tree *scene, const mlo
     return i;
 }
 
+/* Maps too large to hold: 2 R^2 pixels past 2^32 (a 32-bit count wrapped
+   and the maps were written past their end), with an allocator of 64 MiB:
+   out of memory, nothing held; bytes past size_t: MLOD_ERROR_OVERFLOW.
+   The peak of a render that fits is what the allocator saw. */
+static void huge_resolutions(const mlod_tree *scene)
+{
+    static const float lo[3] = {-1, 0.5f, -1}, hi[3] = {1, 2, 1};
+    static const uint32_t R[4] = {46341, 65536, 1u << 20, 0x7fffffffu};
+    views v = make_views(33, 2, lo, hi, 0);
+    mlod_view_set s = view_set(&v, 0, 0);
+    mlod_view_tree *t = build_views(&s, NULL);
+    uint32_t i;
+    for (i = 0; t && i < 5; i++) {
+        tu_counter counter;
+        mlod_allocator al = tu_allocator(&counter);
+        mlod_megaviews_maps *maps = (mlod_megaviews_maps *)1;
+        mlod_megaviews_params p;
+        mlod_megaviews_stats st;
+        mlod_error e;
+        mlod_result r, want = i == 3 && sizeof(size_t) == 8 ? MLOD_ERROR_OVERFLOW : MLOD_ERROR_OUT_OF_MEMORY;
+        memset(&counter, 0, sizeof counter);
+        counter.budget_bytes = (size_t)64 << 20;
+        memset(&p, 0, sizeof p);
+        p.epsilon = 1.0f;
+        p.resolution = i < 4 ? R[i] : 64;
+        p.allocator = &al;
+        r = mlod_megaviews_render_maps(scene, t, &p, &maps, &st, &e);
+        if (i < 4) {
+            CHECK(r == want && maps == NULL && counter.live_blocks == 0,
+                  "maps at resolution %u: %s (%s), %lu blocks held", p.resolution, mlod_result_name(r), e.message,
+                  counter.live_blocks);
+        } else {
+            CHECK(r == MLOD_OK && st.peak_bytes == counter.peak_bytes && mlod_megaviews_maps_bytes(maps) == counter.live_bytes,
+                  "maps at resolution 64: %s, peak %zu bytes (reported %zu), the maps hold %zu (report %zu)",
+                  mlod_result_name(r), counter.peak_bytes, st.peak_bytes, counter.live_bytes, mlod_megaviews_maps_bytes(maps));
+            mlod_megaviews_maps_destroy(r == MLOD_OK ? maps : NULL);
+        }
+    }
+    mlod_view_tree_destroy(t);
+    free_views(&v);
+}
+
 static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
 {
     static const float lo[3] = {-1, 0.5f, -1}, hi[3] = {1, 2, 1};
@@ -1765,6 +1849,14 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
         CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "%s inf", name);
         *field = nan;
         CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_NON_FINITE, "%s NaN", name);
+    }
+    for (i = 1; i < 32; i++) { /* flags: back-face culling only (a render read unchecked flags into a crash) */
+        mlod_megaviews_maps *maps = (mlod_megaviews_maps *)1;
+        q = p;
+        q.flags = 1u << i;
+        CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_BAD_VIEW &&
+              mlod_megaviews_render_maps(scene, t, &q, &maps, NULL, &e) == MLOD_ERROR_BAD_VIEW && maps == NULL,
+              "flags 0x%x refused", q.flags);
     }
     q = p;
     q.resolution = 0;
@@ -1817,6 +1909,7 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
         }
         CHECK(i < 1000, "maps: a render without failures within 1000 allocations (%u)", i);
         mlod_megaviews_maps_destroy(NULL);
+        huge_resolutions(scene);
     }
     /* view sets */
     CHECK(mlod_view_tree_build(NULL, NULL, NULL, &none, &e) == MLOD_ERROR_INVALID_ARGUMENT && none == NULL,
