@@ -233,6 +233,44 @@ static void test_random_trees(void)
 
 /* Far views see the root alone; eps = +inf gives the root alone; a tiny
    eps gives leaves and culled nodes only. */
+/* Spheres of radius 0 (points): c = 0 for every view kind, except at a
+   paraboloid's eye (d = r = 0), where the paraboloid's rule d <= r gives
+   +inf; perspective and cube views cull a point at the eye by their near
+   plane, an orthographic view draws it as a point (c = 0).  The manual
+   states both. */
+static void test_zero_radius(void)
+{
+    static const float at[2][3] = {{0, 0, 0}, {0.3f, 0.2f, -2.0f}}, zero[2] = {0, 0};
+    mlod_points pts;
+    mlod_build_desc desc;
+    mlod_tree *tree = NULL;
+    mlod_error e;
+    uint32_t k, leaf, checked = 0, infinite = 0;
+    memset(&pts, 0, sizeof pts);
+    pts.positions = &at[0][0];
+    pts.count = 2;
+    pts.radii = zero;
+    memset(&desc, 0, sizeof desc);
+    CHECK(mlod_build_points(&pts, &desc, &tree, &e) == MLOD_OK, "zero radius: build (%s)", e.message);
+    if (!tree) return;
+    for (k = 0; k <= MLOD_VIEW_CUBE; k++) {
+        mlod_view view = tu_view((mlod_view_kind)k);
+        for (leaf = tree->leaf_count - 1; leaf < tree->node_count; leaf++) {
+            const float *sphere = tree->spheres + 4 * (size_t)leaf;
+            int at_eye = sphere[0] == 0.0f && sphere[1] == 0.0f && sphere[2] == 0.0f;
+            int paraboloid = k == MLOD_VIEW_PARABOLOID || k == MLOD_VIEW_DUAL_PARABOLOID;
+            double c = mlod_criterion(tree, leaf, &view);
+            CHECK(sphere[3] == 0.0f && c == (at_eye && paraboloid ? INFINITY : 0.0),
+                  "zero radius: view kind %u, leaf at (%g, %g, %g): c = %g", k, sphere[0], sphere[1], sphere[2], c);
+            checked++;
+            infinite += c == INFINITY;
+        }
+    }
+    CHECK(checked == 10 && infinite == 2, "zero radius: 5 kinds x 2 leaves (%u), +inf at both paraboloids' eye (%u)",
+          checked, infinite);
+    mlod_tree_destroy(tree);
+}
+
 static void test_hand_made(void)
 {
     scene_mesh s;
@@ -2637,6 +2675,7 @@ int main(int argc, char **argv)
     test_groups_begin(argc, argv);
     TEST_GROUP("random_trees", test_random_trees());
     TEST_GROUP("hand_made", test_hand_made());
+    TEST_GROUP("zero_radius", test_zero_radius());
     TEST_GROUP("restart", test_restart());
     TEST_GROUP("criterion_reference", test_criterion_reference());
     TEST_GROUP("backface_boundary", test_backface_boundary());

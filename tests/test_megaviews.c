@@ -1858,6 +1858,19 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
               mlod_megaviews_render_maps(scene, t, &q, &maps, NULL, &e) == MLOD_ERROR_BAD_VIEW && maps == NULL,
               "flags 0x%x refused", q.flags);
     }
+    { /* an allocator without functions means the default one, as everywhere; a view tree without eyes is refused */
+        mlod_allocator empty;
+        mlod_view_tree hollow = *t;
+        memset(&empty, 0, sizeof empty);
+        q = p;
+        q.allocator = &empty;
+        CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_OK && memcmp(before, a->depth, bytes) == 0,
+              "an allocator without functions: the default one (%s)", e.message);
+        hollow.eyes = NULL;
+        CHECK(mlod_megaviews_render(a, scene, &hollow, &p, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT,
+              "a view tree without eyes refused");
+        CHECK(mlod_megaviews_bound(t, 0x80000000u, 1) == 0, "sizing: 0 for a resolution the render refuses");
+    }
     q = p;
     q.resolution = 0;
     CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "resolution 0");
@@ -1874,6 +1887,17 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
         CHECK(mlod_megaviews_render(small, scene, t, &p, NULL, &e) == MLOD_ERROR_MISMATCH, "an atlas of 39 views for 40");
     }
     CHECK(memcmp(before, a->depth, bytes) == 0, "errors: the atlas is untouched by refused calls");
+    { /* an atlas created for other eyes of the same count holds the view tree's maps (documented, not refused) */
+        static const float lo2[3] = {5, 5, 5}, hi2[3] = {9, 9, 9};
+        views w = make_views(32, v.count, lo2, hi2, 0);
+        mlod_atlas *other = make_atlas(&w, 8, MLOD_ATLAS_NORMAL, NULL, 0);
+        CHECK(other && other->width == a->width && other->height == a->height &&
+              mlod_megaviews_render(other, scene, t, &p, NULL, &e) == MLOD_OK &&
+              memcmp(before, other->depth, bytes) == 0,
+              "errors: an atlas made for other eyes gets the view tree's maps");
+        mlod_atlas_destroy(other);
+        free_views(&w);
+    }
     /* failing allocators: an error, nothing held, the atlas empty */
     i = failing_renders(a, scene, t, &p, MLOD__MV_WALK_LEVEL, MLOD__MV_WALK_ROOM, before, "fused");
     CHECK(i < 1000, "a render without failures within 1000 allocations (%u)", i);

@@ -160,6 +160,48 @@ static void test_unbiased(void)
         }
 }
 
+/* Metropolis-Hastings' bias where g is not proportional to f, as the
+   manual states it (MLOD_SAMPLER_METROPOLIS): importances spread over 51
+   times (0.1 + 5 u on a quarter of the candidates, 0.1 + u elsewhere),
+   g = 1 (each candidate counted once, g / f as varied as f): low by about
+   12 % at M = 4, 7 % at 16, 2 % at 64, under 1 % at 256, never above; g
+   within [0.5, 1.5] f: within 2 % at every M. */
+static void test_bias(void)
+{
+    enum { D = 4096, N = 1024, SEEDS = 100 };
+    static float f[D], g[D], one[D];
+    static const uint32_t M[4] = {4, 16, 64, 256};
+    static const double most[4] = {0.15, 0.09, 0.03, 0.01}, least[4] = {0.08, 0.04, 0.005, -0.005};
+    double sum_g = 0.0, bias[4], bias_g[4];
+    uint32_t i, k, seed;
+    mlod_error e;
+    for (i = 0; i < D; i++) {
+        f[i] = (float)(0.1 + rng01() * (i < D / 4 ? 5.0 : 1.0));
+        g[i] = (float)(0.5 + rng01()) * f[i];
+        one[i] = 1.0f;
+        sum_g += g[i];
+    }
+    for (k = 0; k < 4; k++) {
+        double mean = 0.0, mean_g = 0.0;
+        for (seed = 0; seed < SEEDS; seed++) {
+            mlod_sample_params p = params_of(MLOD_SAMPLER_METROPOLIS, M[k], 7000 + seed);
+            if (mlod_sample(f, D, N, &p, samples, weights, &e) != MLOD_OK) {
+                CHECK(0, "bias: %s", e.message);
+                return;
+            }
+            mean += estimate(one, N);
+            mean_g += estimate(g, N);
+        }
+        bias[k] = mean / SEEDS / D - 1.0;
+        bias_g[k] = mean_g / SEEDS / sum_g - 1.0;
+        CHECK(bias[k] <= -least[k] && bias[k] >= -most[k] && fabs(bias_g[k]) <= 0.02,
+              "Metropolis, M = %u: g = 1 %+.2f %% (the manual: low by %.1f to %.1f %%), g within [0.5, 1.5] f %+.2f %% "
+              "(within 2 %%)", M[k], 100.0 * bias[k], 100.0 * least[k], 100.0 * most[k], 100.0 * bias_g[k]);
+    }
+    printf("  Metropolis bias, g = 1: %+.1f %%, %+.1f %%, %+.1f %%, %+.1f %% at M = 4, 16, 64, 256\n", 100.0 * bias[0],
+           100.0 * bias[1], 100.0 * bias[2], 100.0 * bias[3]);
+}
+
 /* A local change of the importance (32 neighbouring candidates of 4096
    three times as important) keeps most Metropolis samples where they
    were; the inverse transform shifts most of its own. */
@@ -334,8 +376,17 @@ static void test_errors(void)
 #undef CASE
     CHECK(mlod_sample(f, 4, 4, &p, NULL, weights, &e) == MLOD_ERROR_INVALID_ARGUMENT, "no sample array refused");
     CHECK(mlod_sample_bound(1000, MLOD_SAMPLER_INVERSE_TRANSFORM) == 1001 * sizeof(double) &&
-              mlod_sample_bound(1000, MLOD_SAMPLER_METROPOLIS) == 0,
-          "mlod_sample_bound: the cumulative table, nothing for Metropolis");
+              mlod_sample_bound(1000, MLOD_SAMPLER_METROPOLIS) == 0 &&
+              mlod_sample_bound(1000, (mlod_sampler)7) == (size_t)-1,
+          "mlod_sample_bound: the cumulative table, nothing for Metropolis, (size_t)-1 for an unknown method");
+    for (i = 0; i < 2; i++) { /* success clears an error left from an earlier call */
+        mlod_sample_params ok = params_of(i ? MLOD_SAMPLER_METROPOLIS : MLOD_SAMPLER_INVERSE_TRANSFORM, 4, 3);
+        e.code = MLOD_ERROR_EMPTY;
+        strcpy(e.message, "stale");
+        CHECK(mlod_sample(f, 4, 4, &ok, samples, weights, &e) == MLOD_OK && e.code == MLOD_OK && e.message[0] == '\0',
+              "%s: success leaves MLOD_OK and an empty message in the error (%s, '%s')", name_of(ok.method),
+              mlod_result_name(e.code), e.message);
+    }
     {
         float zero[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
         int m;
@@ -357,6 +408,7 @@ int main(void)
 {
     test_distribution();
     test_unbiased();
+    test_bias();
     test_coherence();
     test_determinism();
     test_distinct();

@@ -3381,6 +3381,9 @@ static void test_suggest(void)
         }
         CHECK(n_all == most, "mlod_suggest_sample_count over 7 views: %u, the largest of the single views %u", n_all, most);
     }
+    CHECK(mlod_suggest_sample_count(A, views, 7, 1.0f, 1.0f, INFINITY) == 0 &&
+              mlod_suggest_sample_count(A, views, 7, 1.0f, 1.0f, NAN) == 0,
+          "mlod_suggest_sample_count: closest infinite or NaN is invalid input (0)");
     CHECK(mlod_suggest_sample_count(A, &views[5], 1, 1.0f, 1.0f, 0.5) == mlod_suggest_sample_count(A, &views[5], 1, 1.0f, 1.0f, 30.0),
           "mlod_suggest_sample_count: orthographic views should not depend on `closest`");
     CHECK(mlod_suggest_sample_count(1e12, &views[0], 1, 1.0f, 1.0f, 1e-4) == MANYLODS_MAX_LEAVES,
