@@ -449,8 +449,10 @@
      at its exact distance, with one exception: a node within rho (the
      sharing ball's radius) of the plane between the map's halves through
      the view's eye may reach, from the ball's centre, a half that it does
-     not reach from the eye, and is drawn there too, near that half's rim,
-     where the view draws nothing; what changes is which nodes a view gets
+     not reach from the eye, and is drawn there too (near that half's rim,
+     within delta of where that half's projection, taken past its culling
+     plane, puts it from the eye), where the view draws nothing; what
+     changes is which nodes a view gets
      (within epsilon for all eyes of a ball, not at its own cut) and, per
      pixel, which of them is nearest.  tests/test_megaviews.c
      checks both; README.md measures the cost and the error.

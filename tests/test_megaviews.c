@@ -662,6 +662,7 @@ static void test_fusion(mlod_tree *scene)
         mlod_megaviews_stats st;
         mlod_error e;
         uint64_t filled = 0, bad_depth = 0, bad_normal = 0, far_off = 0, culled = 0, outside = 0, inside = 0;
+        uint64_t other_half = 0, off_plane = 0; /* drawn into a half the node does not reach from the eye */
         /* the angle delta + the centre pixel's 0.7072 px span at most: 2 / R map units a pixel, the
            paraboloid's map r = tan(phi / 2) turning at most 2 rad per unit */
         double worst = 0.0, deepest = -TU_PI, reach = 2.0 * (deltas[d] + 0.7072) * 2.0 / resolutions[d];
@@ -714,6 +715,10 @@ static void test_fusion(mlod_tree *scene)
                             if (in > reach) inside++;
                         }
                     }
+                    if ((col < p.resolution ? x[2] : -x[2]) + sph[3] < 0.0) { /* the half's culling plane */
+                        other_half++;
+                        off_plane += fabs(x[2]) - sph[3] > t->eyes->spheres[3]; /* within the root's rho, any ball's */
+                    }
                     if (!mlod__image_disc(&pv, col < p.resolution ? 0 : 1, centre, sph[3], &disc)) {
                         far_off++;
                         continue;
@@ -741,6 +746,9 @@ static void test_fusion(mlod_tree *scene)
               "up to %.3f) hold a node it culls", p.delta, p.resolution, (unsigned long long)inside, reach, deepest);
         CHECK(d == 0 || outside > 0, "fusion, delta %g, R %u: nodes shared outside some field of view (%llu pixels)",
               p.delta, p.resolution, (unsigned long long)outside);
+        CHECK(off_plane == 0,
+              "fusion, delta %g: %llu pixels in a half their node does not reach from the eye (%llu farther than rho "
+              "from the plane between the halves)", p.delta, (unsigned long long)other_half, (unsigned long long)off_plane);
         CHECK(far_off == 0, "fusion, delta %g: %llu pixels farther than delta from their node's image (worst %.3f px)",
               p.delta, (unsigned long long)far_off, worst);
         CHECK(worst > 0.25, "fusion, delta %g: shared images do move (worst %.3f px beyond the disc)", p.delta,
