@@ -833,8 +833,8 @@ MANYLODS_DEF void mlod_tree_destroy(mlod_tree *tree);
 
 /* For refits done elsewhere (manylods_vk.h): the internal nodes at one
    depth of the implicit tree of leaf_count leaves are first .. last
-   (returns 1), or there are none (returns 0).  Merging depth by depth,
-   deepest first, is the refit's order.  Pure. */
+   (returns 1), or there are none (returns 0; also for NULL outputs).
+   Merging depth by depth, deepest first, is the refit's order.  Pure. */
 MANYLODS_DEF int mlod_tree_depth_nodes(uint32_t leaf_count, uint32_t depth, uint32_t *first, uint32_t *last);
 
 /* The refit's range check: a sampled triangle grown `growth` times its
@@ -1086,8 +1086,8 @@ MANYLODS_DEF int mlod_view_project(const mlod_view *view, const float point[3], 
 /* The ray through pixel position (x, y) of the tile (continuous, pixel
    centres at i + 0.5): origin and unit direction in world units, through
    the sub-projection whose sub-tile holds the position.  Returns 0 when the
-   position has no ray (outside a paraboloid's disc, or outside the tile).
-   The origin is the eye (perspective, cube, paraboloids) or the point of
+   position has no ray (outside a paraboloid's disc, or outside the tile),
+   for an invalid view and for NULL outputs.  The origin is the eye (perspective, cube, paraboloids) or the point of
    depth 0 on the pixel's line (orthographic; not the near plane).  The
    depth (as in mlod_view_project) of origin + t direction is
    t * (direction . w) + (origin - eye) . w for perspective, cube and
@@ -1447,7 +1447,8 @@ typedef struct mlod_pool mlod_pool;
 MANYLODS_DEF mlod_pool *mlod_pool_create(uint32_t threads);
 MANYLODS_DEF void mlod_pool_destroy(mlod_pool *pool);
 /* A hook that runs tasks on the pool; valid while the pool lives. One call
-   at a time per pool. */
+   at a time per pool.  For a NULL pool (mlod_pool_create failed) a hook
+   that runs every task on the calling thread. */
 MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
 #endif
 
@@ -2076,7 +2077,7 @@ static void mlod__merge_nodes(mlod_tree *tree, uint32_t first, uint32_t n)
 MLOD__PUBLIC int mlod_tree_depth_nodes(uint32_t leaf_count, uint32_t depth, uint32_t *first, uint32_t *last)
 {
     uint64_t lo, hi;
-    if (leaf_count < 2 || depth >= 32) return 0; /* depth 32 starts at node 2^32 - 1 > leaf_count - 2 */
+    if (!first || !last || leaf_count < 2 || depth >= 32) return 0; /* depth 32 starts at node 2^32 - 1 > leaf_count - 2 */
     lo = ((uint64_t)1 << depth) - 1;
     hi = ((uint64_t)1 << (depth + 1)) - 2;
     if (lo > (uint64_t)leaf_count - 2) return 0;
@@ -7504,7 +7505,7 @@ MLOD__PUBLIC int mlod_view_pixel_ray(const mlod_view *view, float x, float y, fl
     const mlod_view_sub *sub;
     double o[3], dir[3], len;
     int k, s;
-    if (mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
+    if (!origin || !direction || mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
     if (!(x >= 0.0f && x < (float)view->width && y >= 0.0f && y < (float)view->height)) return 0;
     s = mlod__sub_at(&pv, x, y);
     if (s < 0) return 0;
@@ -10947,7 +10948,7 @@ MLOD__PUBLIC void mlod_pool_destroy(mlod_pool *pool)
 MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 {
     mlod_parallel p;
-    p.run = mlod__pool_run;
+    p.run = pool ? mlod__pool_run : NULL; /* NULL: the calling thread alone */
     p.user = pool;
     return p;
 }

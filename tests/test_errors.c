@@ -4,6 +4,7 @@
    back; a failing allocator (each allocation in turn) gives
    MLOD_ERROR_OUT_OF_MEMORY and no leak. */
 #define MANYLODS_IMPLEMENTATION
+#define MANYLODS_PTHREADS
 #include "../manylods.h"
 #include "testutil.h"
 
@@ -777,6 +778,24 @@ static void test_shared_checks(void)
     CHECK(mlod_refit_check_growth(1.0f, 1.0, 1, NAN, &e) == MLOD_ERROR_RANGE, "growth NaN is refused");
 }
 
+/* Outputs the caller passes as NULL: the functions that write through
+   pointers return 0 rather than crash; a NULL pool's hook has no run
+   function (the library then runs on the calling thread). */
+static void test_null_outputs(void)
+{
+    mlod_view v = tu_view(MLOD_VIEW_PERSPECTIVE);
+    float o[3], d[3];
+    uint32_t first = 0, last = 0;
+    mlod_parallel serial = mlod_pool_parallel(NULL);
+    CHECK(mlod_view_pixel_ray(&v, 32.5f, 32.5f, o, d) == 1 && mlod_view_pixel_ray(&v, 32.5f, 32.5f, NULL, d) == 0 &&
+              mlod_view_pixel_ray(&v, 32.5f, 32.5f, o, NULL) == 0,
+          "mlod_view_pixel_ray: 0 for NULL outputs");
+    CHECK(mlod_tree_depth_nodes(100, 2, &first, &last) == 1 && mlod_tree_depth_nodes(100, 2, NULL, &last) == 0 &&
+              mlod_tree_depth_nodes(100, 2, &first, NULL) == 0,
+          "mlod_tree_depth_nodes: 0 for NULL outputs");
+    CHECK(serial.run == NULL, "mlod_pool_parallel(NULL): a hook without run (the calling thread)");
+}
+
 int main(void)
 {
     int rc;
@@ -789,6 +808,7 @@ int main(void)
     test_cut_errors();
     test_counting();
     test_failing_allocator();
+    test_null_outputs();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
     return rc;
