@@ -213,6 +213,15 @@ static void test_cut_parity(void)
                                      name, NULL, &deferred);
                 check_validation(name);
             }
+    if (!lean) { /* lazy_steps 2^32 - 1: the device's rounds go in batches, as the other modes' do (one command
+                    buffer of 2^32 rounds once hung the call), and the cuts converge as the CPU's (host code: with
+                    the device's doubles only) */
+        mlod_view views[24];
+        make_views(97, -1, c, R, views, 24);
+        compared += run_mode(tree, vtree, views, 24, MLOD_CUT_LAZY, 0xffffffffu, 1.0f, 0, "lazy, lazy_steps 2^32 - 1",
+                             NULL, NULL);
+        check_validation("lazy, lazy_steps 2^32 - 1");
+    }
     printf("  cut parity: %llu cut entries compared over %d view sets x %d modes x %d epsilons x 4 frames; "
            "%llu entries took the exact pass (cut_exact, cut_settle)\n",
            (unsigned long long)compared, VIEW_KINDS + 1, lean ? 2 : 4, lean ? 1 : 2, (unsigned long long)deferred);
@@ -568,6 +577,21 @@ static void test_refit_parity(void)
                 CHECK(res == MLOD_ERROR_RANGE, "refit parity: a mesh grown 1e35 times gives %s (%s)", mlod_result_name(res), e.message);
                 res = mlod_refit_mesh(cpu, &mesh, NULL, &e);
                 CHECK(res == MLOD_ERROR_RANGE, "refit parity: the CPU refit of the grown mesh gives %s", mlod_result_name(res));
+                mesh.position_stride = 4; /* overlapping vertices: mlod_mesh's stride rule */
+                res = mlodvk_refit_mesh_host(context, vtree, &mesh, &e);
+                CHECK(res == MLOD_ERROR_INVALID_ARGUMENT, "refit parity: a stride of 4 bytes gives %s (%s)",
+                      mlod_result_name(res), e.message);
+                mesh.position_stride = 0;
+                { /* a stride whose last vertex lies past 2^32 floats: the shaders' 32-bit index would wrap */
+                    mlodvk_mesh_buffers mb;
+                    memset(&mb, 0, sizeof mb);
+                    mb.positions = mlodvk_cut_get_buffers(vcut).list; /* any buffers: refused before they are bound */
+                    mb.colors = mb.positions;
+                    mb.position_stride = 0x80000000u;
+                    res = mlodvk_refit_mesh(context, vtree, &mb, &e);
+                    CHECK(res == MLOD_ERROR_OVERFLOW, "refit parity: a stride of 2^31 floats for %u vertices gives %s (%s)",
+                          s.vertex_count, mlod_result_name(res), e.message);
+                }
                 CHECK(mlodvk_tree_download(context, vtree, copy, &e) == MLOD_OK && differing_nodes(cpu, copy) == 0,
                       "refit parity: a refused refit changed the device tree");
             }
@@ -1003,6 +1027,17 @@ static void test_failures(void)
     real = probe->vk; /* the loaded table, through the private struct */
     mlodvk_context_destroy(probe);
     table = real;
+    table.CmdDispatchIndirect = NULL; /* a caller's table with a hole: refused, not called through NULL */
+    desc.functions = &table;
+    CHECK(mlodvk_context_create(&desc, &ctx, &e) == MLOD_ERROR_INVALID_ARGUMENT && ctx == NULL &&
+              strstr(e.message, "CmdDispatchIndirect") != NULL,
+          "failures: a table without vkCmdDispatchIndirect: %s (%s)", mlod_result_name(e.code), e.message);
+    {
+        mlodvk_context_desc empty = mlodvk_device_context_desc(NULL);
+        CHECK(mlodvk_context_create(&empty, &ctx, &e) == MLOD_ERROR_INVALID_ARGUMENT && ctx == NULL,
+              "the context description of no device is refused: %s", mlod_result_name(e.code));
+    }
+    table = real;
     table.AllocateMemory = failing_allocate;
     table.QueueSubmit = failing_submit;
     desc.functions = &table;
@@ -1170,6 +1205,29 @@ static void test_arguments(void)
               strstr(e.message, "2147483648 views") != NULL,
           "a cut of 2^31 views: %s (%s)", mlod_result_name(e.code), e.message);
     CHECK(strcmp(mlod_result_name(MLOD_ERROR_DEVICE), "MLOD_ERROR_DEVICE") == 0, "the name of MLOD_ERROR_DEVICE");
+    { /* a layout changed by hand: what the shaders would trust is checked again */
+        mlod_view views[2];
+        mlod_atlas *layout = NULL;
+        mlod_atlas_desc ad;
+        mlod_atlas bad;
+        mlodvk_atlas *va = (mlodvk_atlas *)1;
+        uint32_t tiles[8], k;
+        views[0] = views[1] = tu_view(MLOD_VIEW_PARABOLOID);
+        memset(&ad, 0, sizeof ad);
+        CHECK(mlod_atlas_create(views, 2, &ad, NULL, &layout, &e) == MLOD_OK, "a layout: %s", e.message);
+        for (k = 0; layout && k < 4; k++) {
+            bad = *layout;
+            memcpy(tiles, layout->tiles, sizeof tiles);
+            bad.tiles = tiles;
+            if (k == 0) bad.disc_scale = NAN;
+            if (k == 1) bad.disc_scale = 1.5f;
+            if (k == 2) tiles[4] = layout->width; /* the second tile past the right edge */
+            if (k == 3) bad.tiles = NULL;
+            CHECK(mlodvk_atlas_create(context, &bad, &va, &e) == MLOD_ERROR_INVALID_ARGUMENT && va == NULL,
+                  "a tampered layout (%u) is refused: %s (%s)", k, mlod_result_name(e.code), e.message);
+        }
+        mlod_atlas_destroy(layout);
+    }
     /* where the doubles come from: a value that is no mlodvk_doubles is
        refused before anything is made; lavapipe has shaderFloat64, so AUTO
        and DEVICE use it (EMULATED: test_emulated_doubles) */
