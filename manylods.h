@@ -443,7 +443,11 @@
      atlas equals, bit for bit, the per-view cut (mlod_cut_update) and
      splat (mlod_splat) of the views' mlod_megaviews_view; with
      directions, the per-view cut less what each view's field of view
-     culls.  delta > 0: a shared node's disc lies within delta pixels of
+     culls.  One exception: where two drawn nodes lie at exactly the same
+     distance for a pixel (the same centre: duplicate points), the splat
+     keeps the one it drew first and the fusion the one an ancestor's map
+     holds, so the depth is the same and the node, normal and colour may
+     differ.  delta > 0: a shared node's disc lies within delta pixels of
      the disc the view would draw (centre and radius), the node is one the
      view would draw (or, wholly outside its field of view, one it culls),
      at its exact distance, with one exception: a node within rho (the
@@ -1305,8 +1309,9 @@ typedef struct mlod_view_tree {
 /* Build the view tree of the views: O(V log V), deterministic; parallel
    through the hook (NULL: the calling thread), memory from the allocator
    (NULL: the default); mlod_build_points_bound(count, MLOD_ATTR_REFIT |
-   (directions ? MLOD_ATTR_CONE : 0)) bounds its peak, plus 4 bytes per
-   view for the radii and, with directions, 32 per view.  On error *out is
+   (directions ? MLOD_ATTR_CONE : 0)) bounds its peak, plus
+   sizeof(mlod_view_tree), 4 bytes per view for the radii and, with
+   directions, 32 per view.  On error *out is
    NULL.  Reentrant. */
 MANYLODS_DEF mlod_result mlod_view_tree_build(const mlod_view_set *views, const mlod_allocator *allocator,
                                               const mlod_parallel *parallel, mlod_view_tree **out,
@@ -1335,8 +1340,9 @@ MANYLODS_DEF mlod_view mlod_megaviews_view(const float eye[3], uint32_t resoluti
 typedef struct mlod_megaviews_params {
     float epsilon;             /* pixels, > 0 (+inf allowed): the cut's epsilon */
     float delta;               /* pixels, >= 0, finite: how far a shared node's image may move
-                                  between the views that share it; 0 gives exactly the per-view
-                                  cut and splat (MLOD_MEGAVIEWS_DELTA: the suggested sharing) */
+                                  between the views that share it; 0 gives the per-view
+                                  cut and splat (but for exact depth ties: MANY VIEWS AT ONCE)
+                                  (MLOD_MEGAVIEWS_DELTA: the suggested sharing) */
     uint32_t resolution;       /* pixels per side of each half of the map, >= 1 */
     uint32_t flags;            /* MLOD_VIEW_CULL_BACKFACES (with a scene tree that has cones) */
     float group_radius;        /* world units, >= 0, finite: a view node whose eyes lie within this of

@@ -1943,6 +1943,23 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
         mlod_megaviews_maps_destroy(NULL);
         huge_resolutions(scene);
     }
+    for (i = 0; i < 3; i++) { /* the build's peak within the documented bound (the struct was left out once) */
+        static const uint32_t counts[3] = {1, 2, 40};
+        tu_counter counter;
+        mlod_allocator al = tu_allocator(&counter);
+        mlod_view_set few = view_set(&v, i == 2, 0);
+        mlod_view_tree *out = NULL;
+        size_t bound;
+        few.count = counts[i];
+        bound = mlod_build_points_bound(few.count, MLOD_ATTR_REFIT | (few.directions ? (uint32_t)MLOD_ATTR_CONE : 0u)) +
+                sizeof(mlod_view_tree) + 4 * (size_t)few.count + (few.directions ? 32 * (size_t)few.count : 0);
+        memset(&counter, 0, sizeof counter);
+        CHECK(mlod_view_tree_build(&few, &al, NULL, &out, &e) == MLOD_OK && counter.peak_bytes <= bound &&
+                  out->bytes == counter.live_bytes,
+              "view tree of %u views: peak %zu bytes, the documented bound %zu; holds %zu, reports %zu", few.count,
+              counter.peak_bytes, bound, counter.live_bytes, out ? out->bytes : 0);
+        mlod_view_tree_destroy(out);
+    }
     /* view sets */
     CHECK(mlod_view_tree_build(NULL, NULL, NULL, &none, &e) == MLOD_ERROR_INVALID_ARGUMENT && none == NULL,
           "NULL view set");
