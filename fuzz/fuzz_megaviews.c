@@ -109,7 +109,9 @@
 #include "../manylods.h"
 #include "fuzz.h"
 #include "reader.h"
+#include "fz_errors.h"
 #include "../tests/exact.h"
+#include "../tests/mv_reference.h"
 
 #include <float.h>
 #include <math.h>
@@ -244,23 +246,6 @@ static void fz_holds_as_before(const fz_mem *m, const fz_mark *k, const char *wh
     FZ_REQUIRE(m->live == k->live && m->blocks == k->blocks,
                "%s failed but holds %ld bytes in %ld blocks more than before", what, (long)(m->live - k->live),
                (long)m->blocks - (long)k->blocks);
-}
-
-/* ------------------------------------------------------ error checks */
-
-static const char *fz_where = "";
-
-/* A failed call: a real error code, matching error.code, with a message. */
-static void check_error(mlod_result res, const mlod_error *e)
-{
-    size_t len = 0;
-    FZ_REQUIRE(res != MLOD_OK && res >= MLOD_ERROR_INVALID_ARGUMENT && res <= MLOD_ERROR_CANCELLED,
-               "%s: not an error code: %d", fz_where, (int)res);
-    FZ_REQUIRE(e->code == res, "%s: returned %s, error.code %s", fz_where, mlod_result_name(res),
-               mlod_result_name(e->code));
-    while (len < sizeof e->message && e->message[len]) len++;
-    FZ_REQUIRE(len > 0 && len < sizeof e->message, "%s: %s with an empty or unterminated message", fz_where,
-               mlod_result_name(res));
 }
 
 /* ------------------------------------------------------------ context */
@@ -484,18 +469,6 @@ static void parse_views(fz_ctx *c, fz_views *v, const fz_views *from)
 
 /* ---------------------------------------------------------- view tree */
 
-/* Fast double test first, exact arithmetic where it is close. */
-static int sphere_contains(const float *outer, const float *inner)
-{
-    if (exact_finite4(outer) && exact_finite4(inner)) {
-        double dx = (double)outer[0] - inner[0], dy = (double)outer[1] - inner[1], dz = (double)outer[2] - inner[2];
-        double d = sqrt(dx * dx + dy * dy + dz * dz), need = (d + inner[3]) * (1.0 + 1.0 / 1048576.0);
-        double margin = outer[3] - need, size = outer[3] + d + inner[3];
-        if (isfinite(size) && margin > 1e-12 * size) return 1;
-    }
-    return exact_sphere_contains_slack(outer, inner);
-}
-
 static int below(uint32_t node, uint32_t ancestor)
 {
     while (node > ancestor) node = (node - 1) / 2;
@@ -527,7 +500,7 @@ static void check_view_tree(const mlod_view_tree *t, const fz_views *v, const ch
     }
     for (i = 1; i < eyes->node_count; i++) {
         uint32_t p = (i - 1) / 2;
-        FZ_REQUIRE(sphere_contains(eyes->spheres + 4 * (size_t)p, eyes->spheres + 4 * (size_t)i),
+        FZ_REQUIRE(exact_sphere_contains_filtered(eyes->spheres + 4 * (size_t)p, eyes->spheres + 4 * (size_t)i),
                    "%s: view node %u's sphere not inside its parent's with slack 2^-20", when, i);
         if (eyes->cones)
             FZ_REQUIRE(exact_cone_contains(eyes->cones + 4 * (size_t)p, eyes->cones + 4 * (size_t)i, FZ_CONE_SLACK),
@@ -796,7 +769,7 @@ static mlod_atlas *create_atlas(fz_ctx *c, const mlod_view *views, uint32_t coun
 /* The per-view render with delta = 0: each view's basic cut of its
    MegaViews view; without directions mlod_splat, with them its drawn nodes
    that the view's field of view does not cull, drawn in order as
-   mlod_splat draws them (tests/test_megaviews.c's reference_render).  The
+   mlod_splat draws them (tests/mv_reference.h).  The
    drawn nodes counted into *drawn. */
 static int reference_render(mlod_atlas *ref, const mlod_tree *scene, const mlod_view *vs, const fz_views *v,
                             float epsilon, uint64_t *drawn)
@@ -804,7 +777,7 @@ static int reference_render(mlod_atlas *ref, const mlod_tree *scene, const mlod_
     mlod_cut *cut = NULL;
     mlod_cut_params cp;
     mlod_error e;
-    uint32_t i, j;
+    uint32_t i;
     memset(&cp, 0, sizeof cp);
     cp.epsilon = epsilon;
     cp.mode = MLOD_CUT_BASIC;
@@ -823,32 +796,8 @@ static int reference_render(mlod_atlas *ref, const mlod_tree *scene, const mlod_
     }
     *drawn = 0;
     for (i = 0; i < v->count; i++) {
-        mlod_cut_view cv = mlod_cut_get(cut, i);
-        mlod__band band;
-        mlod__pview pv;
-        uint32_t batch[MLOD__LANES], n = 0;
-        double len = 0.0;
-        float cone[4] = {0, 0, 0, 0};
-        int k;
-        FZ_REQUIRE(mlod__view_prepare(&vs[i], &pv, NULL) == MLOD_OK, "the reference's view %u", i);
-        mlod__tile_band(ref, scene, i, &band);
-        mlod__band_clear(&band, ref->tiles[4 * (size_t)i + 2]);
-        for (k = 0; k < 3; k++) len += (double)v->direction[i][k] * v->direction[i][k];
-        for (k = 0; k < 3; k++) cone[k] = (float)(v->direction[i][k] / sqrt(len));
-        for (j = 0; j < cv.count; j++) {
-            const float *s = scene->spheres + 4 * (size_t)cv.nodes[j];
-            double x[3];
-            if (cv.status[j] == MLOD_STATUS_CULLED) continue;
-            for (k = 0; k < 3; k++) x[k] = (double)s[k] - v->eye[i][k];
-            if (mlod__outside_cone(x, mlod__length3(x), s[3], cone, v->fov[i], 0.0)) continue;
-            ++*drawn;
-            batch[n++] = cv.nodes[j];
-            if (n == MLOD__LANES) {
-                mlod__draw_nodes(&band, &pv, batch, n);
-                n = 0;
-            }
-        }
-        mlod__draw_nodes(&band, &pv, batch, n);
+        FZ_REQUIRE(mlod_view_check(&vs[i], &e) == MLOD_OK, "the reference's view %u: %s", i, e.message);
+        *drawn += mvref_draw_view(ref, scene, &vs[i], i, mlod_cut_get(cut, i), v->eye[i], v->direction[i], v->fov[i]);
     }
     mlod_cut_destroy(cut);
     return 1;

@@ -98,6 +98,7 @@
 #include "../manylods.h"
 #include "fuzz.h"
 #include "reader.h"
+#include "fz_errors.h"
 #include "../tests/exact.h"
 #include "../bench/shapes.h"
 
@@ -198,21 +199,6 @@ static void fz_run_reverse(void *user, uint32_t count, mlod_task_fn *task, void 
 }
 
 /* ------------------------------------------------------ error checks */
-
-static const char *fz_where; /* the call being checked, for messages */
-
-/* A failed call: a real error code, matching error.code, with a message. */
-static void check_error(mlod_result res, const mlod_error *e)
-{
-    size_t len = 0;
-    FZ_REQUIRE(res != MLOD_OK && res >= MLOD_ERROR_INVALID_ARGUMENT && res <= MLOD_ERROR_CANCELLED,
-               "%s: not an error code: %d", fz_where, (int)res);
-    FZ_REQUIRE(e->code == res, "%s: returned %s, error.code %s", fz_where, mlod_result_name(res),
-               mlod_result_name(e->code));
-    while (len < sizeof e->message && e->message[len]) len++;
-    FZ_REQUIRE(len > 0 && len < sizeof e->message, "%s: %s with an empty or unterminated message", fz_where,
-               mlod_result_name(res));
-}
 
 /* An injected allocation failure may turn any call into OUT_OF_MEMORY. */
 static int injected_oom(const fz_counter *c, mlod_result res)
@@ -774,19 +760,6 @@ static void layout_init(fz_layout *L, uint32_t leaves)
     layout_assign(L, 0, &next);
 }
 
-/* Sphere containment with the documented slack: a double filter decides
-   clear cases, exact arithmetic the rest. */
-static int sphere_contains(const float *outer, const float *inner)
-{
-    if (exact_finite4(outer) && exact_finite4(inner)) {
-        double dx = (double)outer[0] - inner[0], dy = (double)outer[1] - inner[1], dz = (double)outer[2] - inner[2];
-        double d = sqrt(dx * dx + dy * dy + dz * dz), need = (d + inner[3]) * (1.0 + 1.0 / 1048576.0);
-        double margin = outer[3] - need, size = outer[3] + d + inner[3];
-        if (isfinite(size) && margin > 1e-12 * size) return 1;
-    }
-    return exact_sphere_contains_slack(outer, inner);
-}
-
 #define FZ_CONE_SLACK (9.5367431640625e-7L - 1e-15L)
 #define FZ_PI 3.14159265358979323846
 
@@ -824,7 +797,7 @@ static void check_tree(const mlod_tree *t, uint32_t leaves, uint32_t attributes,
            (scattered by a multiplicative hash), in exact arithmetic */
         if (n >= 8192u && t->node_count > 16384u && (uint32_t)(n * 2654435761u) % (t->node_count / 8192u) != 0) continue;
         const float *ps = t->spheres + 4 * (size_t)p, *cs = t->spheres + 4 * (size_t)n;
-        FZ_REQUIRE(sphere_contains(ps, cs),
+        FZ_REQUIRE(exact_sphere_contains_filtered(ps, cs),
                    "%s: sphere of node %u (%.9g %.9g %.9g r %.9g) not inside its parent %u (%.9g %.9g %.9g r %.9g) "
                    "with slack 2^-20",
                    when, n, cs[0], cs[1], cs[2], cs[3], p, ps[0], ps[1], ps[2], ps[3]);

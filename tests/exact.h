@@ -194,4 +194,17 @@ static inline int exact_cone_contains(const float *outer, const float *inner, lo
     return exact_angle(outer, inner) + (long double)inner[3] + slack <= (long double)outer[3];
 }
 
+/* The same, fast: a double filter decides the clear cases (a margin far
+   above its rounding), exact arithmetic the rest. */
+static inline int exact_sphere_contains_filtered(const float *outer, const float *inner)
+{
+    if (exact_finite4(outer) && exact_finite4(inner)) {
+        double dx = (double)outer[0] - inner[0], dy = (double)outer[1] - inner[1], dz = (double)outer[2] - inner[2];
+        double d = sqrt(dx * dx + dy * dy + dz * dz), need = (d + inner[3]) * (1.0 + 1.0 / 1048576.0);
+        double margin = outer[3] - need, size = outer[3] + d + inner[3];
+        if (isfinite(size) && margin > 1e-12 * size) return 1;
+    }
+    return exact_sphere_contains_slack(outer, inner);
+}
+
 #endif /* MANYLODS_TEST_EXACT_H */

@@ -37,6 +37,7 @@
 #define MANYLODS_PTHREADS
 #include "../manylods.h"
 #include "testutil.h"
+#include "mv_reference.h"
 
 /* ============================================================ helpers */
 
@@ -170,7 +171,7 @@ static void reference_render(mlod_atlas *ref, const mlod_tree *scene, const mlod
     mlod_cut *cut = NULL;
     mlod_cut_params cp;
     mlod_error e;
-    uint32_t i, j;
+    uint32_t i;
     memset(&cp, 0, sizeof cp);
     cp.epsilon = epsilon;
     if (mlod_cut_create(v->count, NULL, &cut, &e) != MLOD_OK || mlod_cut_update(cut, scene, vs, &cp, &e) != MLOD_OK) {
@@ -179,34 +180,9 @@ static void reference_render(mlod_atlas *ref, const mlod_tree *scene, const mlod
         return;
     }
     *drawn_total = 0;
-    for (i = 0; i < v->count; i++) {
-        mlod_cut_view cv = mlod_cut_get(cut, i);
-        mlod__band band;
-        mlod__pview pv;
-        uint32_t batch[MLOD__LANES], n = 0;
-        double len = 0.0;
-        float cone[4] = {0, 0, 0, 0};
-        mlod__view_prepare(&vs[i], &pv, NULL);
-        mlod__tile_band(ref, scene, i, &band);
-        mlod__band_clear(&band, ref->tiles[4 * (size_t)i + 2]);
-        for (j = 0; j < 3; j++) len += (double)v->directions[3 * i + j] * v->directions[3 * i + j];
-        for (j = 0; j < 3; j++) cone[j] = (float)(v->directions[3 * i + j] / sqrt(len));
-        for (j = 0; j < cv.count; j++) {
-            const float *s = scene->spheres + 4 * (size_t)cv.nodes[j];
-            double x[3];
-            int k;
-            if (cv.status[j] == MLOD_STATUS_CULLED) continue;
-            for (k = 0; k < 3; k++) x[k] = (double)s[k] - v->eyes[3 * i + k];
-            if (directions && mlod__outside_cone(x, mlod__length3(x), s[3], cone, v->fovs[i], 0.0)) continue;
-            ++*drawn_total;
-            batch[n++] = cv.nodes[j];
-            if (n == MLOD__LANES) {
-                mlod__draw_nodes(&band, &pv, batch, n);
-                n = 0;
-            }
-        }
-        mlod__draw_nodes(&band, &pv, batch, n);
-    }
+    for (i = 0; i < v->count; i++)
+        *drawn_total += mvref_draw_view(ref, scene, &vs[i], i, mlod_cut_get(cut, i), v->eyes + 3 * i,
+                                        directions ? v->directions + 3 * i : NULL, v->fovs[i]);
     mlod_cut_destroy(cut);
 }
 
