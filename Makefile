@@ -121,7 +121,10 @@ ifeq ($(HAVE_VULKAN),1)
 BENCH_CFLAGS += -DBENCH_VULKAN
 BENCH_LDLIBS += $(VULKAN_LIBS)
 BENCH_DEPS   += manylods_vk.h
-VULKAN_TEST := $(BUILD)/vulkan/test_vulkan $(BUILD)/vulkan/test_f64_vulkan tests/check_vulkan_example.sh
+# test_vulkan's two groups as two programs side by side, the one with
+# emulated doubles first (lavapipe compiles its shaders for minutes)
+VULKAN_TEST := --args emulated $(BUILD)/vulkan/test_vulkan --args native $(BUILD)/vulkan/test_vulkan \
+               $(BUILD)/vulkan/test_f64_vulkan tests/check_vulkan_example.sh
 VULKAN_PROGRAMS := $(BUILD)/vulkan/test_vulkan $(BUILD)/vulkan/test_f64_vulkan $(BUILD)/examples/vulkan_minimal
 else
 VULKAN_TEST := tests/vulkan_missing.sh
