@@ -9,7 +9,9 @@
 #                    threaded ones with TSan, the compile matrix, examples/minimal
 #                    and every example on a tiny scene (tests/check_examples.c),
 #                    bench --selftest, the Vulkan tests; ends with
-#                    "N passed, M failed"
+#                    "N passed, M failed".  Each program has a time limit,
+#                    600 s times a factor tests/run.sh measures on a slow or
+#                    busy machine (or TEST_TIMEOUT_FACTOR=F, given)
 #   make test-only   the same tests without the package check
 #   make test-fast   only the tests built with gcc -O2
 #   make tsan        only the threaded tests under ThreadSanitizer (TSAN_TESTS)

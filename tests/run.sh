@@ -20,19 +20,91 @@
 # Programs run TEST_JOBS at a time (default: the number of processors),
 # each reported in the order given, when it and those before it are done.
 #
-# Environment: TEST_TIMEOUT  seconds allowed per program (default 600)
-#              TEST_JOBS     programs run at once (default nproc)
-#              VERBOSE=1     show every program's output, not only a failing one's
+# Each program may run TEST_TIMEOUT seconds (600) times a factor: the
+# TEST_TIMEOUT_FACTOR given, or else one measured at the start against the
+# machine the limits were set on (2 processors, idle): the processor time a
+# fixed loop of this shell takes over the reference's (a slower processor),
+# times its wall time over its processor time (a processor shared with other
+# work), times 2 over the processors there are (fewer than 2); never below 1.
+# A program past its limit is stopped with its whole process group; so are
+# the running ones when this script is interrupted or ends: no test
+# outlives `make test`.
+#
+# Environment: TEST_TIMEOUT         seconds per program before the factor (default 600)
+#              TEST_TIMEOUT_FACTOR  the factor (default: measured)
+#              TEST_JOBS            programs run at once (default nproc)
+#              VERBOSE=1            show every program's output, not only a failing one's
 set -u
 
-timeout_s=${TEST_TIMEOUT:-600}
 verbose=${VERBOSE:-0}
 jobs_max=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
 [ "$jobs_max" -ge 1 ] 2>/dev/null || jobs_max=1
 total_passed=0
 total_failed=0
 log_dir=$(mktemp -d "${TMPDIR:-/tmp}/manylods-run.XXXXXX")
-trap 'rm -rf "$log_dir"' EXIT
+
+# Stop every program still running (each runs under timeout, in a process
+# group of its own that a terminal's ^C or make's signals do not reach):
+# timeout passes the signal on to its group, and kills it 10 s later if it
+# is still there.  Then the logs go.
+stop_all() {
+    local f pid
+    for f in "$log_dir"/*.pid; do
+        [ -e "$f" ] || continue
+        read -r pid <"$f" 2>/dev/null && [ -n "$pid" ] && kill -TERM "$pid" 2>/dev/null
+    done
+}
+cleanup() {
+    local tries=0
+    trap - EXIT INT TERM HUP
+    # again while any is left: one may have been starting the first time
+    while stop_all; [ -n "$(jobs -rp)" ] && [ "$tries" -lt 150 ]; do
+        sleep 0.1
+        tries=$((tries + 1))
+    done
+    rm -rf "$log_dir"
+}
+trap cleanup EXIT
+trap 'echo "tests/run.sh: interrupted, stopping the programs still running" >&2; cleanup; exit 130' INT
+trap 'cleanup; exit 143' TERM
+trap 'cleanup; exit 129' HUP
+
+# The factor of the limits, measured (see above).  Processor time from
+# /proc (Linux), in clock ticks; without it, not measured.  The reference:
+# the loop's fastest runs on the 2-processor machine the limits were set on
+# (30 ticks of 10 ms; 30 to 50 there, idle).
+reference_ticks=30
+calibrate() {
+    local stat start_ticks end_ticks start end i hz
+    hz=$(getconf CLK_TCK 2>/dev/null || echo 100)
+    if [ ! -r /proc/$$/stat ] || [ -z "${EPOCHREALTIME:-}" ]; then
+        factor=1
+        factor_how="not measured here"
+        return
+    fi
+    read -r stat </proc/$$/stat; stat=${stat##*) }; set -- $stat; start_ticks=$((${12} + ${13}))
+    start=$EPOCHREALTIME
+    for ((i = 0; i < 200000; i++)); do :; done
+    end=$EPOCHREALTIME
+    read -r stat </proc/$$/stat; stat=${stat##*) }; set -- $stat; end_ticks=$((${12} + ${13}))
+    read -r factor speed share cores < <(awk -v ticks=$((end_ticks - start_ticks)) -v hz="$hz" -v ref="$reference_ticks" \
+        -v start="${start/,/.}" -v end="${end/,/.}" -v n="$(nproc 2>/dev/null || echo 1)" 'BEGIN {
+        cpu = ticks / hz; if (cpu < 0.01) cpu = 0.01
+        speed = ticks / (ref * hz / 100); if (speed < 1) speed = 1
+        share = (end - start) / cpu; if (share < 1) share = 1
+        cores = n < 2 ? 2 / n : 1
+        f = int(speed * share * cores * 10 + 0.999) / 10
+        printf "%.1f %.1f %.1f %.1f\n", f, speed, share, cores }')
+    factor_how="measured: processor ${speed}x slower, ${share}x shared, ${cores}x for fewer processors"
+}
+if [ -n "${TEST_TIMEOUT_FACTOR:-}" ]; then
+    factor=$TEST_TIMEOUT_FACTOR
+    factor_how="TEST_TIMEOUT_FACTOR"
+else
+    calibrate
+fi
+timeout_s=$(awk -v t="${TEST_TIMEOUT:-600}" -v f="$factor" 'BEGIN { s = int(t * f + 0.5); print s < 1 ? 1 : s }')
+echo "limit per program: ${TEST_TIMEOUT:-600} s x $factor = $timeout_s s ($factor_how), $jobs_max at once"
 
 # Line-buffered stdout (stdbuf), so that the result line survives a
 # sanitizer that ends the process at exit without flushing stdio; a time
@@ -51,7 +123,9 @@ show_tail() { # label file lines
 # Describe a non-zero exit status in words.
 describe_status() { # status
     case $1 in
-        124) printf 'timed out after %ss' "$timeout_s" ;;
+        124) printf 'timed out after %s s (TEST_TIMEOUT %s s x %s; on a slow or busy machine raise it: make test TEST_TIMEOUT_FACTOR=%s)' \
+                "$timeout_s" "${TEST_TIMEOUT:-600}" "$factor" "$(awk -v f="$factor" 'BEGIN { print int(f * 2 + 0.999) }')" ;;
+        137) printf 'killed by signal 9 (SIGKILL: out of memory, or 10 s after its time limit when it ignored SIGTERM)' ;;
         126) printf 'could not be executed' ;;
         127) printf 'not found' ;;
         *)
@@ -72,10 +146,15 @@ start_one() {
     read -r -a args <<<"${arguments[i]}"
     (
         start=$SECONDS
-        # The braces' 2>/dev/null silences the shell's own "Segmentation
-        # fault" notice; the program's stderr still goes to INDEX.err.
-        { ${wrap[@]+"${wrap[@]}"} "$program" ${args[@]+"${args[@]}"} </dev/null >"$log_dir/$i.out" 2>"$log_dir/$i.err"; } 2>/dev/null
+        # In the background, its process id in INDEX.pid for stop_all while
+        # it runs.  The braces' 2>/dev/null silences the shell's own
+        # "Segmentation fault" notice; the program's stderr still goes to
+        # INDEX.err.
+        { ${wrap[@]+"${wrap[@]}"} "$program" ${args[@]+"${args[@]}"} </dev/null >"$log_dir/$i.out" 2>"$log_dir/$i.err" & } 2>/dev/null
+        echo "$!" >"$log_dir/$i.pid"
+        { wait "$!"; } 2>/dev/null
         code=$?
+        rm -f "$log_dir/$i.pid"
         echo "$((SECONDS - start))" >"$log_dir/$i.time"
         echo "$code" >"$log_dir/$i.status.tmp" && mv "$log_dir/$i.status.tmp" "$log_dir/$i.status"
     ) &
