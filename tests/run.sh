@@ -20,18 +20,22 @@
 # Programs run TEST_JOBS at a time (default: the number of processors),
 # each reported in the order given, when it and those before it are done.
 #
-# Each program may run TEST_TIMEOUT seconds (600) times a factor: the
-# TEST_TIMEOUT_FACTOR given, or else one measured at the start against the
-# machine the limits were set on (2 processors, idle): the processor time a
-# fixed loop of this shell takes over the reference's (a slower processor),
-# times its wall time over its processor time (a processor shared with other
-# work), times 2 over the processors there are (fewer than 2); never below 1.
-# A program past its limit is stopped with its whole process group; so are
-# the running ones when this script is interrupted or ends: no test
-# outlives `make test`.
+# Each program may use TEST_TIMEOUT seconds (600) of processor time times a
+# factor: the TEST_TIMEOUT_FACTOR given, or else one measured at the start
+# against the machine the limits were set on (2 processors, idle): the
+# processor time a fixed loop of this shell takes over the reference's (a
+# slower processor); never below 1.  Processor time does not grow when
+# other work shares the machine (a busy laptop, a CI runner, taskset -c 0),
+# so the limit catches a program that loops without failing one that
+# waits its turn.  A program that hangs without using the processor is
+# stopped by a wall-time limit 4 times that, times the loop's wall time
+# over its processor time (a shared processor) and 2 over the processors
+# there are (fewer than 2).  A program past a limit is stopped with its
+# whole process group; so are the running ones when this script is
+# interrupted or ends: no test outlives `make test`.
 #
 # Environment: TEST_TIMEOUT         seconds per program before the factor (default 600)
-#              TEST_TIMEOUT_FACTOR  the factor (default: measured)
+#              TEST_TIMEOUT_FACTOR  the factor of both limits (default: measured)
 #              TEST_JOBS            programs run at once (default nproc)
 #              VERBOSE=1            show every program's output, not only a failing one's
 set -u
@@ -120,18 +124,22 @@ calibrate() {
         speed = ticks / (ref * hz / 100); if (speed < 1) speed = 1
         share = (end - start) / cpu; if (share < 1) share = 1
         cores = n < 2 ? 2 / n : 1
-        f = int(speed * share * cores * 10 + 0.999) / 10
+        f = int(speed * 10 + 0.999) / 10
         printf "%.1f %.1f %.1f %.1f\n", f, speed, share, cores }')
-    factor_how="measured: processor ${speed}x slower, ${share}x shared, ${cores}x for fewer processors"
+    factor_how="measured: processor ${speed}x slower"
 }
+share=1
+cores=1
 if [ -n "${TEST_TIMEOUT_FACTOR:-}" ]; then
     factor=$TEST_TIMEOUT_FACTOR
     factor_how="TEST_TIMEOUT_FACTOR"
 else
     calibrate
 fi
-timeout_s=$(awk -v t="${TEST_TIMEOUT:-600}" -v f="$factor" 'BEGIN { s = int(t * f + 0.5); print s < 1 ? 1 : s }')
-echo "limit per program: ${TEST_TIMEOUT:-600} s x $factor = $timeout_s s ($factor_how), $jobs_max at once"
+cpu_s=$(awk -v t="${TEST_TIMEOUT:-600}" -v f="$factor" 'BEGIN { s = int(t * f + 0.5); print s < 1 ? 1 : s }')
+timeout_s=$(awk -v c="$cpu_s" -v s="$share" -v n="$cores" 'BEGIN { print int(4 * c * s * n + 0.5) }')
+echo "limits per program: ${TEST_TIMEOUT:-600} s x $factor = $cpu_s s of processor time ($factor_how)," \
+     "$timeout_s s of wall time (4x, ${share}x shared, ${cores}x for fewer processors); $jobs_max at once"
 
 # Line-buffered stdout (stdbuf), so that the result line survives a
 # sanitizer that ends the process at exit without flushing stdio; a time
@@ -150,9 +158,11 @@ show_tail() { # label file lines
 # Describe a non-zero exit status in words.
 describe_status() { # status
     case $1 in
-        124) printf 'timed out after %s s (TEST_TIMEOUT %s s x %s; on a slow or busy machine raise it: make test TEST_TIMEOUT_FACTOR=%s)' \
-                "$timeout_s" "${TEST_TIMEOUT:-600}" "$factor" "$(awk -v f="$factor" 'BEGIN { print int(f * 2 + 0.999) }')" ;;
-        137) printf 'killed by signal 9 (SIGKILL: out of memory, or 10 s after its time limit when it ignored SIGTERM)' ;;
+        124) printf 'timed out after %s s of wall time (a hang? on a very busy machine raise it: make test TEST_TIMEOUT_FACTOR=%s)' \
+                "$timeout_s" "$(awk -v f="$factor" 'BEGIN { print int(f * 2 + 0.999) }')" ;;
+        152) printf 'used its %s s of processor time (TEST_TIMEOUT %s s x %s; on a slow processor raise it: make test TEST_TIMEOUT_FACTOR=%s)' \
+                "$cpu_s" "${TEST_TIMEOUT:-600}" "$factor" "$(awk -v f="$factor" 'BEGIN { print int(f * 2 + 0.999) }')" ;;
+        137) printf 'killed by signal 9 (SIGKILL: out of memory, or 10 s after a time limit when it ignored SIGTERM or SIGXCPU)' ;;
         126) printf 'could not be executed' ;;
         127) printf 'not found' ;;
         *)
@@ -173,6 +183,8 @@ start_one() {
     read -r -a args <<<"${arguments[i]}"
     (
         start=$SECONDS
+        # the program's processor time: SIGXCPU past it (status 152), SIGKILL 10 s later
+        ulimit -S -t "$cpu_s" 2>/dev/null && ulimit -H -t $((cpu_s + 10)) 2>/dev/null
         # In the background, its process id in INDEX.pid for stop_all while
         # it runs.  The braces' 2>/dev/null silences the shell's own
         # "Segmentation fault" notice; the program's stderr still goes to
