@@ -176,9 +176,13 @@ test:
 # last line is always the total.
 # The programs start in this order, as many at once as there are processors
 # (tests/run.sh), the longest first: Vulkan on lavapipe, then the matrix.
+# run.sh is make's own child (exec, not under a shell that a ^C ends at
+# once): GNU make 4.3, interrupted while its child dies of the same
+# signal, reaps that child twice and stops with "wait: No child
+# processes"; run.sh stops its programs first, then exits.
 test-only:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) test-programs
-	$(Q)tests/run.sh \
+	$(Q)exec tests/run.sh \
 	    --section "Vulkan (manylods_vk.h against the CPU, validation layer on; shaders/ against the embedded SPIR-V)" \
 	    $(VULKAN_TEST) tests/check_shaders.sh tests/check_twins.sh tests/compile/vulkan.sh \
 	    --section "compile matrix" tests/compile/matrix.sh \
@@ -192,7 +196,7 @@ test-only:
 
 # The Vulkan tests alone.
 vulkan: $(VULKAN_PROGRAMS)
-	$(Q)tests/run.sh --section "Vulkan" $(VULKAN_TEST) tests/check_shaders.sh tests/check_twins.sh tests/compile/vulkan.sh
+	$(Q)exec tests/run.sh --section "Vulkan" $(VULKAN_TEST) tests/check_shaders.sh tests/check_twins.sh tests/compile/vulkan.sh
 
 # examples/vulkan_minimal: the cut and splat on a Vulkan device, the atlas as a PNG.
 vulkan-minimal: $(BUILD)/examples/vulkan_minimal
@@ -220,11 +224,11 @@ $(BUILD)/vulkan/test_f64_vulkan: tests/test_f64_vulkan.c manylods_vk.h $(HEADERS
 
 test-fast:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) fast-programs
-	$(Q)tests/run.sh --section "tests, $(CC) -O2" $(GCC_TESTS)
+	$(Q)exec tests/run.sh --section "tests, $(CC) -O2" $(GCC_TESTS)
 
 tsan:
 	-$(Q)$(MAKE) --no-print-directory -s -k $(PARALLEL) $(TSAN_PROGRAMS)
-	$(Q)tests/run.sh --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_RUN)
+	$(Q)exec tests/run.sh --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_RUN)
 
 matrix:
 	$(Q)tests/compile/matrix.sh

@@ -159,6 +159,26 @@ no_fused_multiply_add() { # compiler
     echo "a * b + c fused in the probe, never in the implementation"
 }
 
+# Interrupted (^C on `make matrix`, or a SIGTERM or SIGHUP): stop the
+# entries running, and what they run.  They are background jobs, which
+# ignore SIGINT: without this a ^C left them running after make.
+descendants() { # pid: its children, theirs, ...
+    local child
+    for child in $(ps -o pid= --ppid "$1" 2>/dev/null); do
+        echo "$child"
+        descendants "$child"
+    done
+}
+stop_entries() {
+    local job pids=()
+    trap - INT TERM HUP
+    for job in $(jobs -p); do pids+=("$job" $(descendants "$job")); done
+    [ ${#pids[@]} = 0 ] || kill -TERM "${pids[@]}" 2>/dev/null
+}
+trap 'stop_entries; exit 130' INT
+trap 'stop_entries; exit 143' TERM
+trap 'stop_entries; exit 129' HUP
+
 patterns=("$@")
 
 echo "compile matrix (build/matrix; each entry: -Wall -Wextra -pedantic -Werror, link, run)"
