@@ -38,9 +38,10 @@
    failed check prints FAIL and exits 1.  Peers in the same run: a per-view
    recursive traversal (bench/recursive.h), Imperfect Shadow Maps at equal
    time, our basic cut drawn as half discs and pull-push filled
-   (mlod_atlas_desc.disc_scale 0.5), Embree casting every pixel of the
-   atlas ("Polys"), Embree's BVH
-   build and refit; and the N that mlod_suggest_sample_count suggests (for
+   (mlod_atlas_desc.disc_scale 0.5), Embree casting the exact maps (the
+   lean peer of bench/rt.h: rays set up once per map, only the pixels a
+   map shows, the fastest of its ray variants and BVH qualities in the
+   same run), Embree's BVH build and refit; and the N that mlod_suggest_sample_count suggests (for
    the closest surface any light sees), run when at most twice the largest N.
 
    The Targets table (issue 16's targets, then issue 7's that it does not
@@ -277,6 +278,58 @@ static void set3(float out[3], double x, double y, double z)
 
 /* ------------------------------------------------------------ results */
 
+/* ---------------------------------------------------------- the lean peer */
+
+/* Embree's exact maps, as its users would cast them (bench/rt.h, "the lean
+   peer"): every ray variant on every BVH quality tried, each timed as the
+   median of `repeats` casts, in turn in the same run. */
+#define BENCH_QUALITIES 2
+static const enum RTCBuildQuality bench_qualities[BENCH_QUALITIES] = {RTC_BUILD_QUALITY_MEDIUM, RTC_BUILD_QUALITY_HIGH};
+static const char *const bench_quality_names[BENCH_QUALITIES] = {"medium", "high"};
+
+typedef struct lean_times {
+    double ms[BENCH_QUALITIES][RT_RAY_VARIANTS]; /* NAN: not tried */
+    int quality, variant;                        /* the fastest */
+    double best_ms;
+    double setup_ms; /* the template (once per view shape, not in the times) */
+    uint64_t rays;   /* per cast */
+} lean_times;
+
+/* Whether two exact maps agree: the same pixels without a ray, the same
+   misses but for a few rays grazing an edge, depths within 1e-5
+   relative.  Returns the number of pixels that do not. */
+static size_t lean_mismatches(const float *a, const float *b, size_t n)
+{
+    size_t q, bad = 0;
+    for (q = 0; q < n; q++) {
+        if (isnan(a[q]) || isnan(b[q])) {
+            bad += isnan(a[q]) != isnan(b[q]);
+        } else if (isinf(a[q]) || isinf(b[q])) {
+            bad += a[q] != b[q];
+        } else {
+            bad += fabs((double)a[q] - b[q]) > 1e-5 * (fabs((double)b[q]) + 1e-3);
+        }
+    }
+    return bad;
+}
+
+static const char *lean_text(const lean_times *t)
+{
+    static char text[320];
+    int q, v;
+    size_t used = 0;
+    used += (size_t)snprintf(text, sizeof text, "%s, BVH quality %s; tried:", rt_variant_names[t->variant],
+                             bench_quality_names[t->quality]);
+    for (q = 0; q < BENCH_QUALITIES; q++)
+        for (v = 0; v < RT_RAY_VARIANTS && used < sizeof text; v++)
+            if (!isnan(t->ms[q][v]))
+                used += (size_t)snprintf(text + used, sizeof text - used, "%s %s/%s %.3g ms", q + v ? "," : "",
+                                         v == RT_RAYS_STREAM ? "1M" : v == RT_RAYS_1 ? "1" : v == RT_RAYS_4 ? "4"
+                                                                   : v == RT_RAYS_8 ? "8" : "16",
+                                         bench_quality_names[q], t->ms[q][v]);
+    return text;
+}
+
 /* ROW_TARGET: a measurement made only for the Targets table (another rig,
    a tree without cones, one large perspective view, ...). */
 enum { ROW_OURS, ROW_RECURSIVE, ROW_ISM, ROW_POLYS, ROW_EMBREE, ROW_TREE, ROW_SUGGESTED, ROW_VULKAN, ROW_DISCS,
@@ -286,7 +339,7 @@ typedef struct row {
     int kind;
     const char *scene;
     char method[40];
-    char note[160];
+    char note[400];
     float eps;       /* 0: not applicable */
     uint32_t n;      /* 0: not applicable */
     double build_ms, refit_ms, cut_ms, splat_ms, total_ms; /* NAN: not applicable */
@@ -321,7 +374,8 @@ typedef struct bench {
         double tree_ms, refit_ms, tree_bytes, mega_ms, mega_peak, atlas_bytes, pairs, culled, shared_draws, shared_views,
             leaf_draws, shared_leaves;
         double per_ms, per_cut_ms, per_splat_ms, per_bytes; /* NAN: not run */
-        double cast_ms;                                     /* Embree's exact maps */
+        double cast_ms;                                     /* Embree's exact maps (the lean peer) */
+        lean_times lean;
         double group_ms, group_peak, group_pairs;           /* grouped within a scene leaf's radius */
         double group_avx2_ms; /* the same grouped render by the -mavx2 -mfma copy (NAN: not run) */
         double mega_avx2_ms;  /* and the ungrouped one */
@@ -382,6 +436,71 @@ static const row *find_row(const bench *b, int kind, const char *scene, const ch
     return NULL;
 }
 
+/* The exact maps of `views` (layout's tiles, all shaped alike; hemispheres
+   as rt_maps) into reference, by the lean peer over the given mesh:
+   `qualities` (a bit per bench_qualities entry) x every variant when
+   `all` is set, else only t's quality and variant as found before.  Each
+   variant's maps are checked against the first's.  Fills t (keeping its
+   choice when !all). */
+static void lean_peer(bench *b, const scene_mesh *mesh, const float *positions, const mlod_atlas *layout,
+                      const mlod_view *views, const float *hemispheres, int repeats, unsigned qualities, int all,
+                      float *reference, lean_times *t)
+{
+    size_t pixels = (size_t)layout->width * layout->height, bad;
+    float *trial = (float *)checked_malloc(sizeof(float) * pixels);
+    double times[16], t0;
+    rt_template shape;
+    int q, v, i, first = 1;
+    t0 = now_ms();
+    if (!rt_template_make(&views[0], &shape)) fail("out of memory for the lean peer's rays");
+    t->setup_ms = now_ms() - t0;
+    t->rays = 0;
+    if (all) {
+        for (q = 0; q < BENCH_QUALITIES; q++)
+            for (v = 0; v < RT_RAY_VARIANTS; v++) t->ms[q][v] = NAN;
+        t->best_ms = INFINITY;
+    }
+    for (i = 0; i < (int)layout->view_count; i++)
+        if (!rt_same_shape(&views[0], &views[i])) fail("the lean peer: view %d is shaped unlike view 0", i);
+    for (q = 0; q < BENCH_QUALITIES; q++) {
+        rt_scene scene;
+        if (all ? !(qualities >> q & 1u) : q != t->quality) continue;
+        if (!rt_create(b->device, mesh->indices, mesh->index_count, positions, mesh->vertex_count, bench_qualities[q],
+                       &scene))
+            fail("Embree could not create a scene");
+        rt_commit(&scene);
+        for (v = 0; v < RT_RAY_VARIANTS; v++) {
+            float *out = first ? reference : trial;
+            if (!all && v != t->variant) continue;
+            for (i = 0; i < repeats; i++) {
+                t0 = now_ms();
+                rt_maps(&shape, layout, views, hemispheres, &scene, v, &b->parallel, out);
+                times[i] = now_ms() - t0;
+            }
+            if (!first && (bad = lean_mismatches(out, reference, pixels)) > pixels / 10000)
+                fail("the lean peer: %s on BVH quality %s differs from the first variant at %zu pixels",
+                     rt_variant_names[v], bench_quality_names[q], bad);
+            first = 0;
+            t->ms[q][v] = median(times, repeats);
+            if (all && t->ms[q][v] < t->best_ms) {
+                t->best_ms = t->ms[q][v];
+                t->quality = q;
+                t->variant = v;
+            }
+        }
+        rt_destroy(&scene);
+    }
+    if (!all) t->best_ms = t->ms[t->quality][t->variant];
+    for (i = 0; i < (int)layout->view_count; i++) {
+        const uint32_t *tile = layout->tiles + 4 * (size_t)i;
+        uint32_t x, y;
+        for (y = 0; y < tile[3]; y++)
+            for (x = 0; x < tile[2]; x++) t->rays += !isnan(reference[(size_t)(tile[1] + y) * layout->width + tile[0] + x]);
+    }
+    rt_template_free(&shape);
+    free(trial);
+}
+
 /* ------------------------------------------------------------- scenes */
 
 /* One scene and its frames: the deformed positions and the views of each
@@ -402,7 +521,9 @@ typedef struct protocol {
     float *receivers;
     uint32_t receiver_count;
     double closest;   /* nearest reference depth: the closest surface any light sees */
-    double polys_ms;
+    unsigned char *visible; /* exact visibility of each (view, receiver) of the last frame (metrics_visibility_view) */
+    double polys_ms;  /* the lean peer's exact maps: its fastest variant and BVH quality */
+    lean_times lean;
     double embree_build_ms, embree_refit_ms;
 } protocol;
 
@@ -591,8 +712,9 @@ static void protocol_room(const bench *b, protocol *p)
              p->rest.index_count / 3, p->view_count, c->tile, c->tile, offset);
 }
 
-/* The last frame's reference atlas, receivers and nearest depth; the
-   "Polys" timing (Embree casting every pixel); Embree's build and refit. */
+/* The last frame's reference atlas (the lean peer's exact maps, and its
+   timing), receivers, their exact visibility and the nearest depth;
+   Embree's build and refit. */
 static void protocol_reference(bench *b, protocol *p)
 {
     const config *c = &b->cfg;
@@ -623,17 +745,14 @@ static void protocol_reference(bench *b, protocol *p)
         t0 = now_ms();
         rt_commit(&scene);
         times[i] = now_ms() - t0;
-        if (i + 1 < c->cast_repeats) rt_destroy(&scene);
+        rt_destroy(&scene);
     }
     p->embree_build_ms = median(times, c->cast_repeats);
 
-    /* the reference, and the time of casting it ("Polys") */
-    for (i = 0; i < c->cast_repeats; i++) {
-        double t0 = now_ms();
-        rt_reference(p->atlas, frame_views(p, last), &scene, &b->parallel, p->reference);
-        times[i] = now_ms() - t0;
-    }
-    p->polys_ms = median(times, c->cast_repeats);
+    /* the reference, and the time of casting it: the lean peer at its best */
+    lean_peer(b, &p->rest, frame_positions(p, last), p->atlas, frame_views(p, last), NULL, c->cast_repeats, 3u, 1,
+              p->reference, &p->lean);
+    p->polys_ms = p->lean.best_ms;
     p->reference_hits = 0;
     p->closest = INFINITY;
     for (q = 0; q < pixels; q++)
@@ -642,7 +761,6 @@ static void protocol_reference(bench *b, protocol *p)
             if (p->reference[q] < p->closest) p->closest = p->reference[q];
         }
     if (p->reference_hits == 0) fail("%s: the reference atlas is empty: no light sees the mesh", p->name);
-    rt_destroy(&scene);
 
     /* Embree's refit through the frames */
     if (!rt_create(b->device, p->rest.indices, p->rest.index_count, frame_positions(p, 0), p->rest.vertex_count,
@@ -667,6 +785,15 @@ static void protocol_reference(bench *b, protocol *p)
     for (q = 0; q < p->receiver_count; q++)
         shape_point(frame_positions(p, last), p->rest.indices, &anchors[q], p->receivers + 3 * q, NULL);
     free(anchors);
+    /* exact visibility of each receiver from each light's eye (shadow rays) */
+    p->visible = (unsigned char *)checked_malloc((size_t)p->view_count * p->receiver_count);
+    if (!rt_create(b->device, p->rest.indices, p->rest.index_count, frame_positions(p, last), p->rest.vertex_count,
+                   RTC_BUILD_QUALITY_HIGH, &scene))
+        fail("Embree could not create a scene");
+    rt_commit(&scene);
+    rt_visibility(frame_views(p, last), p->view_count, p->receivers, p->receiver_count, &scene, &b->parallel,
+                  p->visible);
+    rt_destroy(&scene);
 }
 
 static void protocol_free(protocol *p)
@@ -676,6 +803,7 @@ static void protocol_free(protocol *p)
     free(p->views);
     free(p->reference);
     free(p->receivers);
+    free(p->visible);
     mlod_atlas_destroy(p->atlas);
     mlod_atlas_destroy(p->half_atlas);
     memset(p, 0, sizeof *p);
@@ -830,6 +958,12 @@ typedef struct metrics_job {
     eps_run *runs;
 } metrics_job;
 
+static void compare_atlas(const protocol *p, const mlod_atlas *atlas, metrics *m)
+{
+    metrics_compare_visibility(atlas, p->reference, frame_views(p, p->frame_count - 1), p->diameter, p->receivers,
+                               p->receiver_count, BENCH_BIAS, BENCH_BIAS_PIXELS, p->visible, m, NULL);
+}
+
 static void metrics_task(void *context, uint32_t index)
 {
     const metrics_job *job = (const metrics_job *)context;
@@ -838,14 +972,7 @@ static void metrics_task(void *context, uint32_t index)
     if (!s->last_depth) return;
     view_of_saved = *job->p->atlas;
     view_of_saved.depth = s->last_depth;
-    metrics_compare(&view_of_saved, job->p->reference, frame_views(job->p, job->p->frame_count - 1),
-                    job->p->diameter, job->p->receivers, job->p->receiver_count, BENCH_BIAS, BENCH_BIAS_PIXELS, &s->m, NULL);
-}
-
-static void compare_atlas(const protocol *p, const mlod_atlas *atlas, metrics *m)
-{
-    metrics_compare(atlas, p->reference, frame_views(p, p->frame_count - 1), p->diameter, p->receivers,
-                    p->receiver_count, BENCH_BIAS, BENCH_BIAS_PIXELS, m, NULL);
+    compare_atlas(job->p, &view_of_saved, &s->m);
 }
 
 static void compare_last(const protocol *p, metrics *m) { compare_atlas(p, p->atlas, m); }
@@ -1401,22 +1528,6 @@ static void target_avx2(bench *b, protocol *p, mlod_tree *tree)
    cast_repeats), whose hits must not be zero. */
 #define BENCH_SINGLE_SIZE 1024u
 
-typedef struct single_cast_job {
-    const mlod_view *view;
-    const rt_scene *scene;
-    float *depth;
-} single_cast_job;
-
-static void single_cast_task(void *context, uint32_t row_index)
-{
-    const single_cast_job *job = (const single_cast_job *)context;
-    uint32_t i, w = job->view->width;
-    float y = (float)row_index + 0.5f;
-    for (i = 0; i < w; i++)
-        job->depth[(size_t)row_index * w + i] =
-            metrics_reference_pixel(job->view, (float)i + 0.5f, y, rt_cast, (void *)job->scene);
-}
-
 /* Six updates of the one view's cut, checked, the median of the last five
    in a new row `method`: each from nothing (moved 0: the cut reset, as the
    same view again would be skipped), or each from the previous cut with
@@ -1459,7 +1570,7 @@ static void target_single(bench *b, protocol *p, mlod_tree *tree, const ranks *r
     const config *c = &b->cfg;
     const float *positions = frame_positions(p, p->frame_count - 1);
     const double fov = 60.0 * BENCH_PI / 180.0, dir[3] = {0.2, 0.3, 1.0};
-    double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]), distance, times[8], t0;
+    double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]), distance;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, centre[3], radius = 0;
     size_t pixels = (size_t)BENCH_SINGLE_SIZE * BENCH_SINGLE_SIZE, q;
     float *depth = (float *)checked_malloc(sizeof(float) * pixels);
@@ -1468,10 +1579,8 @@ static void target_single(bench *b, protocol *p, mlod_tree *tree, const ranks *r
     mlod_cut *cut = NULL;
     mlod_cut_params params;
     mlod_error error;
-    rt_scene scene;
-    single_cast_job job;
     uint32_t j;
-    int k, i;
+    int k;
     row *r;
     for (j = 0; j < p->rest.vertex_count; j++)
         for (k = 0; k < 3; k++) {
@@ -1516,25 +1625,23 @@ static void target_single(bench *b, protocol *p, mlod_tree *tree, const ranks *r
                  "the view above updated frame after frame (its eye moved by 1e-4 of the radius), each cut from "
                  "the previous one");
     }
-    /* the exact image, ray cast */
-    if (!rt_create(b->device, p->rest.indices, p->rest.index_count, frame_positions(p, p->frame_count - 1),
-                   p->rest.vertex_count, RTC_BUILD_QUALITY_MEDIUM, &scene))
-        fail("Embree could not create a scene");
-    rt_commit(&scene);
-    job.view = &view;
-    job.scene = &scene;
-    job.depth = depth;
-    for (i = 0; i < c->cast_repeats; i++) {
-        t0 = now_ms();
-        b->parallel.run(b->parallel.user, BENCH_SINGLE_SIZE, single_cast_task, &job);
-        times[i] = now_ms() - t0;
+    /* the exact image, ray cast by the lean peer (its fastest variant on this mesh: the object's) */
+    {
+        mlod_atlas *layout = NULL;
+        mlod_atlas_desc desc;
+        lean_times t = p->lean;
+        memset(&desc, 0, sizeof desc);
+        if (mlod_atlas_create(&view, 1, &desc, NULL, &layout, &error) != MLOD_OK)
+            fail("mlod_atlas_create: %s", error.message);
+        lean_peer(b, &p->rest, positions, layout, &view, NULL, c->cast_repeats, 0u, 0, depth, &t);
+        mlod_atlas_destroy(layout);
+        for (q = 0; q < pixels; q++) hits += isfinite(depth[q]) != 0;
+        if (hits == 0) fail("the single %ux%u view sees nothing of the object", BENCH_SINGLE_SIZE, BENCH_SINGLE_SIZE);
+        r = add_row(b, ROW_TARGET, p->name, "one 1024x1024 perspective view: Embree");
+        r->total_ms = t.best_ms;
+        snprintf(r->note, sizeof r->note, "the lean peer, one ray per pixel, %.0f%% of them hit; %s",
+                 100.0 * (double)hits / (double)pixels, lean_text(&t));
     }
-    rt_destroy(&scene);
-    for (q = 0; q < pixels; q++) hits += isfinite(depth[q]) != 0;
-    if (hits == 0) fail("the single %ux%u view sees nothing of the object", BENCH_SINGLE_SIZE, BENCH_SINGLE_SIZE);
-    r = add_row(b, ROW_TARGET, p->name, "one 1024x1024 perspective view: Embree");
-    r->total_ms = median(times, c->cast_repeats);
-    snprintf(r->note, sizeof r->note, "one ray per pixel, %.0f%% of them hit", 100.0 * (double)hits / (double)pixels);
     mlod_cut_destroy(cut);
     free(depth);
 }
@@ -2039,13 +2146,16 @@ static void run_protocol(bench *b, protocol *p)
             run_size(b, p, c->sizes[s], c->eps, c->eps_count, all, 1, c->sizes[s] == max_n, c->sizes[s] == min_n,
                      ROW_OURS);
 
-    r = add_row(b, ROW_POLYS, p->name, "Polys (Embree, every pixel)");
+    r = add_row(b, ROW_POLYS, p->name, "Embree, exact maps (lean)");
     r->total_ms = p->polys_ms;
-    r->has_metrics = 1; /* it is the reference: no error */
+    r->has_metrics = 1; /* the reference itself: no error against it, its own against shadow rays */
+    compare_atlas(p, p->atlas, &r->m); /* for the visibility counts only */
+    r->m.hole_rate = r->m.depth_rms = r->m.depth_p95 = r->m.shadow_disagreement = 0.0;
+    r->m.shadow_error = r->m.reference_shadow_error;
     r->m.reference_hits = p->reference_hits;
-    snprintf(r->note, sizeof r->note, "%u triangles into %u views: one ray per pixel, %.0f%% of them hit",
-             p->rest.index_count / 3, p->view_count,
-             100.0 * p->reference_hits / ((double)p->view_count * c->tile * c->tile));
+    snprintf(r->note, sizeof r->note, "%u triangles, %.0f rays (the paraboloids' discs), %.0f%% hit; %s",
+             p->rest.index_count / 3, (double)p->lean.rays, 100.0 * p->reference_hits / (double)p->lean.rays,
+             lean_text(&p->lean));
     if (strcmp(p->name, "object") == 0) b->object_triangles = p->rest.index_count / 3;
     r = add_row(b, ROW_EMBREE, p->name, "Embree BVH (triangles)");
     r->build_ms = p->embree_build_ms;
@@ -2130,24 +2240,6 @@ static void views_check_exact(bench *b, const mlod_tree *tree, const float *eyes
 /* Leave out of the comparison (NaN) every reference pixel whose direction
    lies outside its light's hemisphere: the lights never look there, and
    the render leaves what they cull empty. */
-static void views_mask_reference(const mlod_atlas *atlas, const mlod_view *views, const float *directions,
-                                 float *reference)
-{
-    uint32_t v, x, y;
-    for (v = 0; v < atlas->view_count; v++) {
-        const uint32_t *tile = atlas->tiles + 4 * (size_t)v;
-        const float *n = directions + 3 * (size_t)v;
-        for (y = 0; y < tile[3]; y++)
-            for (x = 0; x < tile[2]; x++) {
-                float origin[3], dir[3];
-                size_t p = (size_t)(tile[1] + y) * atlas->width + tile[0] + x;
-                if (!mlod_view_pixel_ray(&views[v], x + 0.5f, y + 0.5f, origin, dir) ||
-                    dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2] < 0.0f)
-                    reference[p] = NAN;
-            }
-    }
-}
-
 /* FNV-1a over the bits of n floats, going on from hash h. */
 static uint64_t hash_floats_on(uint64_t h, const float *x, size_t n)
 {
@@ -2275,6 +2367,7 @@ static void run_views(bench *b)
     float group_radius;
     rt_scene rt;
     protocol shell;
+    lean_times lean;
     for (v = 0; v < c->view_count_n; v++)
         if (c->view_counts[v] > most) most = c->view_counts[v];
     if (!scene_room(&room) || !shape_subdivide(&room, c->room_subdivision, &mesh)) fail("out of memory for the room");
@@ -2299,8 +2392,9 @@ static void run_views(bench *b)
     if (!shape_anchors(&mesh, c->views_receivers, 779, anchors)) fail("out of memory for the receivers");
     for (i = 0; i < c->views_receivers; i++) shape_point(mesh.positions, mesh.indices, &anchors[i], receivers + 3 * (size_t)i, NULL);
     free(anchors);
+    memset(&lean, 0, sizeof lean);
     if (!rt_create(b->device, mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count,
-                   RTC_BUILD_QUALITY_MEDIUM, &rt))
+                   RTC_BUILD_QUALITY_HIGH, &rt))
         fail("Embree could not create the room's scene");
     rt_commit(&rt);
     group_radius = (float)(diameter / 200.0);
@@ -2326,6 +2420,7 @@ static void run_views(bench *b)
         mlod_megaviews_stats st;
         mlod_error e;
         float *reference;
+        unsigned char *visible;
         double times[4], t0;
         uint64_t ungrouped_hash;
         memset(row, 0, sizeof *row);
@@ -2390,12 +2485,15 @@ static void run_views(bench *b)
         row->leaf_draws = (double)st.leaf_draws;
         row->shared_leaves = (double)st.shared_leaves;
         reference = (float *)checked_malloc(sizeof(float) * atlas->width * atlas->height);
-        t0 = now_ms();
-        rt_reference(atlas, views, &rt, &b->parallel, reference);
-        row->cast_ms = now_ms() - t0;
-        views_mask_reference(atlas, views, directions, reference);
-        metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
-                        &row->mega_m, NULL);
+        /* the lean peer: every variant and BVH quality up to 16 k lights, then the fastest of them */
+        lean_peer(b, &mesh, mesh.positions, atlas, views, directions, (int)c->cast_repeats, 3u, count <= 16384 || v == 0,
+                  reference, &lean);
+        row->cast_ms = lean.best_ms;
+        row->lean = lean;
+        visible = (unsigned char *)checked_malloc((size_t)count * c->views_receivers);
+        rt_visibility(views, count, receivers, c->views_receivers, &rt, &b->parallel, visible);
+        metrics_compare_visibility(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
+                                   BENCH_BIAS_PIXELS, visible, &row->mega_m, NULL);
         ungrouped_hash = hash_floats(atlas->depth, (size_t)atlas->width * atlas->height);
         /* grouped: lights within 1/200 of the scene's diameter of a view node's centre share its map */
         mp.group_radius = group_radius;
@@ -2412,8 +2510,8 @@ static void run_views(bench *b)
         row->group_bound = (double)mlod_megaviews_bound(vt, mp.resolution, st.node_pairs);
         if (!(row->group_peak <= row->group_bound))
             fail("megaviews, grouped: peak %.0f bytes above the sizing bound %.0f", row->group_peak, row->group_bound);
-        metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
-                        &row->group_m, NULL);
+        metrics_compare_visibility(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
+                                   BENCH_BIAS_PIXELS, visible, &row->group_m, NULL);
         row->group_avx2_ms = row->mega_avx2_ms = NAN;
 #ifdef BENCH_AVX2
         if (v == c->view_count_n - 1 && bench_avx2_supported()) { /* the most lights, grouped, by the AVX2 copy */
@@ -2456,8 +2554,8 @@ static void run_views(bench *b)
             row->per_cut_ms = median(cut_t, (int)repeats);
             row->per_splat_ms = median(splat_t, (int)repeats);
             row->per_bytes = (double)mlod_cut_bytes(cut);
-            metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
-                            BENCH_BIAS_PIXELS, &row->per_m, NULL);
+            metrics_compare_visibility(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
+                                       BENCH_BIAS_PIXELS, visible, &row->per_m, NULL);
             mlod_cut_destroy(cut);
         }
         printf("views %7u: view tree %.1f ms (refit %.1f); megaviews %.0f ms, peak %.0f MB, %.0f pairs, %.2f views per "
@@ -2480,6 +2578,7 @@ static void run_views(bench *b)
             views_group_sweep(b, atlas, tree, vt, &mp, reference, views, diameter, receivers);
         }
         free(reference);
+        free(visible);
         mlod_atlas_destroy(atlas);
         mlod_view_tree_destroy(vt);
         free(views);
@@ -2511,12 +2610,23 @@ static const char *paper_cut(const row *r)
     return "";
 }
 
-static void metric_cells(char cells[4][32], const row *r)
+/* holes, depth RMS, depth p95, shadow against the exact maps; shadow
+   against exact visibility (shadow rays), and that minus the exact maps'
+   own (the splat's error beyond the resolution's), in %% and points. */
+#define METRIC_CELLS 6
+static void metric_cells(char cells[METRIC_CELLS][32], const row *r)
 {
     if (!r->has_metrics) {
         int k;
-        for (k = 0; k < 4; k++) snprintf(cells[k], 32, "-");
+        for (k = 0; k < METRIC_CELLS; k++) snprintf(cells[k], 32, "-");
         return;
+    }
+    if (r->m.visibility_tests) {
+        snprintf(cells[4], 32, "%.2f", 100.0 * r->m.shadow_error);
+        snprintf(cells[5], 32, "%+.2f", 100.0 * (r->m.shadow_error - r->m.reference_shadow_error));
+    } else {
+        snprintf(cells[4], 32, "-");
+        snprintf(cells[5], 32, "-");
     }
     snprintf(cells[0], 32, "%.2f", 100.0 * r->m.hole_rate);
     snprintf(cells[1], 32, "%.3f", 100.0 * r->m.depth_rms);
@@ -2598,7 +2708,7 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
     const row *vk_emulated = find_row(b, ROW_VULKAN, o, "cut, basic (emulated doubles)", 0, 0);
     const row *vk_emulated_splat = find_row(b, ROW_VULKAN, o, "splat (emulated doubles)", 0, 0);
     const row *vk_emulated_context = find_row(b, ROW_VULKAN, o, "context creation (emulated doubles)", 0, 0);
-    char ours[160], target[64], anchor[640], what[160];
+    char ours[160], target[64], anchor[1024], what[160];
     int k;
     rigs[0][0] = find_row(b, ROW_TARGET, o, "rig turning 1 deg/frame: basic", 1.0f, n);
     rigs[0][1] = find_row(b, ROW_TARGET, o, "rig turning 1 deg/frame: incremental", 1.0f, n);
@@ -2693,13 +2803,13 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
     }
     if (polys) {
         snprintf(target, sizeof target, "<= %s", ms_text(polys->total_ms / 5.0));
-        snprintf(anchor, sizeof anchor, "Embree ray-casts the exact maps of the same frame in %s (the Polys row); "
+        snprintf(anchor, sizeof anchor, "Embree ray-casts the exact maps of the same frame in %s (the lean peer's row); "
                  "ours: basic cut %s + splat %s (incremental cut + splat %s)",
                  ms_text(polys->total_ms), ms_text(basic->cut_ms), ms_text(basic->splat_ms), ms_text(inc->total_ms));
         target_line(f, "cut + splat, epsilon 1", ms_text(basic->total_ms), target, anchor,
                     basic->total_ms / (polys->total_ms / 5.0), NULL);
     } else {
-        target_missing(f, "cut + splat, epsilon 1", "<= 1/5 of Embree", "no Polys row");
+        target_missing(f, "cut + splat, epsilon 1", "<= 1/5 of Embree", "no lean peer row");
     }
     if (polys && avx2 && avx2_splat) {
         snprintf(target, sizeof target, "<= %s", ms_text(polys->total_ms / 5.0));
@@ -2939,18 +3049,28 @@ static void write_views_markdown(const bench *b, FILE *f)
     fprintf(f, "\n## Many views at once (MegaViews: mlod_megaviews_render)\n\n%s. View tree and render: medians of 3 "
                "(after a warm-up render; the AVX2 build's renders too). Per-view: mlod_cut_update (basic) and "
                "mlod_splat of the same maps, which cannot cull a light's back hemisphere (its map is the global "
-               "dual paraboloid); up to %u views. Embree: the exact maps, one ray per pixel. Errors against "
+               "dual paraboloid); up to %u views. Embree: the exact maps by the lean peer (each light's hemisphere only, rays set "
+               "up once per map, the fastest ray variant and BVH quality of those tried up to 16 k lights; bench/rt.h). "
+               "Errors against "
                "Embree's maps, over each light's hemisphere: depth RMS in %% of the scene diameter, holes in %% of reference hits, shadow = "
-               "receivers (%u points on the surface) lit or shadowed otherwise. Before any timing, delta = 0 was "
+               "receivers (%u points on the surface) lit or shadowed otherwise; wrong = shadow tests answered otherwise "
+               "than by a shadow ray, splat's pts = MegaViews' wrong minus the exact maps'. Before any timing, delta = 0 was "
                "checked to equal the per-view cut and splat bit for bit.\n\n",
             b->views_note, b->cfg.views_per_view_max, b->cfg.views_receivers);
     fprintf(f, "| views | view tree ms (refit) | view tree MB | MegaViews ms | peak MB | atlas MB | pairs per view | views per "
                "shared draw | leaf draws per view (near scene leaves shared) | per-view ms (cut + splat) | per-view cut MB "
                "| Embree ms | depth RMS %% "
-               "(ours / per-view) | holes %% | shadow %% |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|\n");
+               "(ours / per-view) | holes %% | shadow %% | wrong %% (ours / per-view / exact maps) | splat's pts |\n"
+               "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|\n");
     for (k = 0; k < b->views_rows; k++) {
         const struct views_row *r = &b->views[k];
-        char per[48], per_mb[32], rms[48], holes[48], shadow[48];
+        char per[48], per_mb[32], rms[48], holes[48], shadow[48], wrong[64], own[48];
+        snprintf(wrong, sizeof wrong, "%.2f / - / %.2f", 100.0 * r->mega_m.shadow_error,
+                 100.0 * r->mega_m.reference_shadow_error);
+        if (r->per_ms == r->per_ms)
+            snprintf(wrong, sizeof wrong, "%.2f / %.2f / %.2f", 100.0 * r->mega_m.shadow_error,
+                     100.0 * r->per_m.shadow_error, 100.0 * r->mega_m.reference_shadow_error);
+        snprintf(own, sizeof own, "%+.2f", 100.0 * (r->mega_m.shadow_error - r->mega_m.reference_shadow_error));
         if (r->per_ms == r->per_ms) {
             snprintf(per, sizeof per, "%.0f (%.0f + %.0f)", r->per_ms, r->per_cut_ms, r->per_splat_ms);
             snprintf(per_mb, sizeof per_mb, "%.0f", r->per_bytes / 1048576.0);
@@ -2966,12 +3086,12 @@ static void write_views_markdown(const bench *b, FILE *f)
             snprintf(shadow, sizeof shadow, "%.2f / -", 100.0 * r->mega_m.shadow_disagreement);
         }
         fprintf(f,
-                "| %u | %.1f (%.1f) | %.1f | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f (%.1f) | %s | %s | %.0f | %s | %s | %s |\n",
+                "| %u | %.1f (%.1f) | %.1f | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f (%.1f) | %s | %s | %.0f | %s | %s | %s | %s | %s |\n",
                 r->views, r->tree_ms, r->refit_ms, r->tree_bytes / 1048576.0, r->mega_ms, r->mega_peak / 1048576.0,
                 r->atlas_bytes / 1048576.0, r->pairs / r->views,
                 r->shared_draws > 0 ? r->shared_views / r->shared_draws : 0.0, r->leaf_draws / r->views,
                 r->shared_leaves / r->views, per, per_mb,
-                r->cast_ms, rms, holes, shadow);
+                r->cast_ms, rms, holes, shadow, wrong, own);
     }
     fprintf(f, "\nGrouped (mlod_megaviews_params.group_radius: lights within 1/200 of the scene's diameter of a view node's "
                "centre share its map, seen from the centre), same renders otherwise:\n\n| views | grouped ms | peak MB "
@@ -3177,23 +3297,23 @@ static void write_markdown(const bench *b, FILE *f, protocol *const *protocols, 
                        "`make bench` must finish within 10 minutes.)\n\n",
                     b->cfg.room_skips[0], b->cfg.room_skips[1]);
         fprintf(f, "| mode | eps px | N | cut ms | splat ms | cut+splat ms | node-views / frame | cut / view | "
-                   "holes %% | depth RMS %% | depth p95 %% | shadow %% | cut MB | paper |\n"
-                   "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+                   "holes %% | depth RMS %% | depth p95 %% | shadow %% | wrong %% | splat's pts | cut MB | paper |\n"
+                   "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
         for (k = 0; k < b->row_count; k++) {
             const row *r = &b->rows[k];
-            char cells[4][32];
+            char cells[METRIC_CELLS][32];
             if (strcmp(r->scene, scene) != 0 || r->kind != ROW_OURS) continue;
             metric_cells(cells, r);
-            fprintf(f, "| %s | %g | %u | %.2f | %.2f | %.2f | %.3g | %.0f | %s | %s | %s | %s | %.1f | %s |\n",
+            fprintf(f, "| %s | %g | %u | %.2f | %.2f | %.2f | %.3g | %.0f | %s | %s | %s | %s | %s | %s | %.1f | %s |\n",
                     r->method, (double)r->eps, r->n, r->cut_ms, r->splat_ms, r->total_ms, r->evaluated, r->per_view,
-                    cells[0], cells[1], cells[2], cells[3], r->cut_bytes / 1e6, paper_cut(r));
+                    cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], r->cut_bytes / 1e6, paper_cut(r));
         }
         fprintf(f, "\n### Peers (same scene, views and frames)\n\n");
         fprintf(f, "| peer | eps px | N | cut ms | time ms | holes %% | depth RMS %% | depth p95 %% | shadow %% | "
-                   "note |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+                   "wrong %% | splat's pts | note |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
         for (k = 0; k < b->row_count; k++) {
             const row *r = &b->rows[k];
-            char cells[4][32], eps[16], n[16], cut[32];
+            char cells[METRIC_CELLS][32], eps[16], n[16], cut[32];
             if (strcmp(r->scene, scene) != 0 ||
                 (r->kind != ROW_RECURSIVE && r->kind != ROW_ISM && r->kind != ROW_POLYS && r->kind != ROW_DISCS))
                 continue;
@@ -3201,8 +3321,8 @@ static void write_markdown(const bench *b, FILE *f, protocol *const *protocols, 
             fmt(eps, sizeof eps, "%g", r->eps ? r->eps : NAN);
             fmt(n, sizeof n, "%.0f", r->n ? (double)r->n : NAN);
             fmt(cut, sizeof cut, "%.2f", r->cut_ms);
-            fprintf(f, "| %s | %s | %s | %s | %.2f | %s | %s | %s | %s | %s |\n", r->method, eps, n, cut, r->total_ms,
-                    cells[0], cells[1], cells[2], cells[3], r->note);
+            fprintf(f, "| %s | %s | %s | %s | %.2f | %s | %s | %s | %s | %s | %s | %s |\n", r->method, eps, n, cut,
+                    r->total_ms, cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], r->note);
         }
         {
             int any = 0;
@@ -3257,25 +3377,29 @@ static void write_markdown(const bench *b, FILE *f, protocol *const *protocols, 
         fprintf(f, "\n### Suggested N (mlod_suggest_sample_count, closest surface %.3g from a light)\n\n",
                 protocols[i]->closest);
         fprintf(f, "| eps px | suggested N | build ms | cut ms (incremental) | splat ms | holes %% | depth RMS %% | "
-                   "depth p95 %% | shadow %% | note |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+                   "depth p95 %% | shadow %% | wrong %% | splat's pts | note |\n"
+                   "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
         for (k = 0; k < b->row_count; k++) {
             const row *r = &b->rows[k];
-            char cells[4][32], build[32], cut[32], splat[32];
+            char cells[METRIC_CELLS][32], build[32], cut[32], splat[32];
             if (strcmp(r->scene, scene) != 0 || r->kind != ROW_SUGGESTED || strcmp(r->method, "incremental") != 0)
                 continue;
             metric_cells(cells, r);
             fmt(build, sizeof build, "%.1f", r->build_ms);
             fmt(cut, sizeof cut, "%.2f", r->cut_ms);
             fmt(splat, sizeof splat, "%.2f", r->splat_ms);
-            fprintf(f, "| %g | %u | %s | %s | %s | %s | %s | %s | %s | %s |\n", (double)r->eps, r->n, build, cut, splat,
-                    cells[0], cells[1], cells[2], cells[3], r->note);
+            fprintf(f, "| %g | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", (double)r->eps, r->n, build,
+                    cut, splat, cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], r->note);
         }
         fprintf(f, "\n");
     }
     write_views_markdown(b, f);
     fprintf(f, "Columns: times in ms per frame (all views); node-views = criterion evaluations per frame; cut / view "
                "= nodes per view's cut, culled ones included; holes, depth RMS, depth p95 and shadow in %% (depth "
-               "relative to the scene diameter); cut MB = what the cut object holds. The paper's figures are "
+               "relative to the scene diameter), against Embree's exact maps of the same resolution; wrong %% = shadow "
+               "tests whose answer differs from a shadow ray's (exact visibility: the segment from the light to the "
+               "receiver), and splat's pts = that minus the exact maps' own (the error the splat adds to what the "
+               "resolution costs; the exact maps' row gives theirs); cut MB = what the cut object holds. The paper's figures are "
                "from its Tables 1 and 2 (GTX 480).\n");
 }
 
@@ -3394,7 +3518,7 @@ static void write_svg(const bench *b, FILE *f, protocol *const *protocols, int p
             series[6].name = "ISM + pull-push at the time of our incremental cut + splat (largest N)";
             series[6].color = "#e377c2";
             series[6].marker = PLOT_TRIANGLE;
-            series[7].name = "Polys: Embree casts every pixel (the reference, error 0)";
+            series[7].name = "Embree, the exact maps (lean peer; the reference, error 0)";
             series[7].color = "#222";
             series[7].marker = PLOT_STAR;
             for (s = 0; s < 8; s++) {
@@ -3520,16 +3644,39 @@ static int selftest(bench *b, protocol *p)
     double build_ms;
     int last = p->frame_count - 1;
 
-    /* the parallel reference is the sequential one, bit for bit */
+    /* the lean peer's maps are metrics_reference_atlas's, up to the rounding of
+       their rays (set up from a template, not per pixel) */
     positions = frame_positions(p, last);
     if (!rt_create(b->device, p->rest.indices, p->rest.index_count, positions, p->rest.vertex_count,
                    RTC_BUILD_QUALITY_MEDIUM, &scene))
         fail("selftest: Embree could not create a scene");
     rt_commit(&scene);
     metrics_reference_atlas(p->atlas, frame_views(p, last), rt_cast, &scene, sequential);
-    for (q = 0; q < pixels; q++)
-        if (memcmp(&sequential[q], &p->reference[q], sizeof(float)) != 0)
-            fail("selftest: parallel reference pixel %zu differs from metrics_reference_atlas", q);
+    {
+        size_t bad = lean_mismatches(p->reference, sequential, pixels);
+        printf("selftest: the lean peer differs from metrics_reference_atlas at %zu of %zu pixels\n", bad, pixels);
+        if (bad > pixels / 1000)
+            fail("selftest: the lean peer differs from metrics_reference_atlas at %zu of %zu pixels", bad, pixels);
+    }
+    /* exact visibility: each shadow ray's answer is the nearest hit's along the same segment */
+    {
+        uint32_t r, wrong = 0, tests = 0;
+        for (v = 0; v < p->view_count; v++)
+            for (r = 0; r < p->receiver_count; r++) {
+                const mlod_view *view = frame_views(p, last) + v;
+                const float *x = p->receivers + 3 * (size_t)r;
+                float dir[3], t, length;
+                int lit;
+                unsigned char truth = p->visible[(size_t)v * p->receiver_count + r];
+                if (truth == 2 || !metrics_segment(view->position, x, dir, &length)) continue;
+                lit = !rt_cast(&scene, view->position, dir, &t) || t >= length;
+                wrong += lit != truth;
+                tests++;
+            }
+        printf("selftest: exact visibility: %u of %u shadow rays disagree with the nearest hit\n", wrong, tests);
+        if (tests == 0 || wrong > tests / 1000)
+            fail("selftest: exact visibility disagrees with the nearest hit for %u of %u pairs", wrong, tests);
+    }
     rt_destroy(&scene);
     free(sequential);
 

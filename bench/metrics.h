@@ -50,6 +50,17 @@
      shadow_tests     the number of such (view, receiver) pairs;
      shadow_differences  pairs with lit_S != lit_R;
      shadow_disagreement = shadow_differences / shadow_tests.
+     Against exact visibility (metrics_compare_visibility, with the
+     visibility of each (view, receiver) from metrics_visibility_view: the
+     segment from the view's eye to the receiver is clear, or not, short
+     of its last 1e-4 (metrics_segment)), for the shadow tests above:
+     visibility_tests   the tests whose pair has a visibility;
+     shadow_wrong       of those, lit_S differs from exact visibility;
+     reference_wrong    of those, lit_R does (the exact maps' own error,
+                        what their resolution and the bias cost);
+     shadow_error = shadow_wrong / visibility_tests, and
+     reference_shadow_error = reference_wrong / visibility_tests;
+     shadow_error - reference_shadow_error is the error the splat adds.
      A rate whose denominator is 0 is 0.  Pixels where R is finite but S is
      not are holes; pixels where S is finite but R is +inf (a splat spilling
      past a silhouette) enter none of the sums.  bias is a fraction of the
@@ -83,7 +94,29 @@ typedef int metrics_cast_fn(void *user, const float origin[3], const float direc
 typedef struct metrics {
     double hole_rate, depth_rms, depth_p95, shadow_disagreement;
     uint64_t reference_hits, holes, depth_pixels, shadow_tests, shadow_differences;
+    /* against exact visibility (metrics_compare_visibility) */
+    double shadow_error, reference_shadow_error;
+    uint64_t visibility_tests, shadow_wrong, reference_wrong;
 } metrics;
+
+/* Whether anything lies on the segment from `from` to `to`, short of its
+   end (metrics_segment): 1 occluded, 0 clear. */
+typedef int metrics_occluded_fn(void *user, const float from[3], const float to[3]);
+
+/* The shadow ray of a segment: unit direction from `from` to `to` and the
+   length to test, the segment's less 1e-4 of it (the receiver's own
+   surface is not an occluder).  Returns 0 for a segment of length 0. */
+static inline int metrics_segment(const float from[3], const float to[3], float direction[3], float *length)
+{
+    double d[3], len;
+    int k;
+    for (k = 0; k < 3; k++) d[k] = (double)to[k] - from[k];
+    len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(len > 0.0)) return 0;
+    for (k = 0; k < 3; k++) direction[k] = (float)(d[k] / len);
+    *length = (float)(len * (1.0 - 1e-4));
+    return 1;
+}
 
 /* The view's unit forward in double (zero vector for a zero forward). */
 static inline void metrics_unit_forward(const mlod_view *view, double w[3])
@@ -192,16 +225,46 @@ static inline void metrics_finish(metrics *m, double squared_sum)
     m->hole_rate = m->reference_hits ? (double)m->holes / (double)m->reference_hits : 0.0;
     m->depth_rms = m->depth_pixels ? sqrt(squared_sum / (double)m->depth_pixels) : 0.0;
     m->shadow_disagreement = m->shadow_tests ? (double)m->shadow_differences / (double)m->shadow_tests : 0.0;
+    m->shadow_error = m->visibility_tests ? (double)m->shadow_wrong / (double)m->visibility_tests : 0.0;
+    m->reference_shadow_error = m->visibility_tests ? (double)m->reference_wrong / (double)m->visibility_tests : 0.0;
+}
+
+/* Exact visibility for the shadow tests of one view: visible[r] for
+   receiver r (receivers: receiver_count points, 3 floats each) is 1 when
+   the segment from the view's eye (position) to it is clear, 0 when
+   something lies on it (occluded decides, the receiver's own surface
+   excluded), 2 when the pair is no shadow test of metrics_compare (the
+   receiver projects outside the view or its tile).  One occluded call per
+   test; perspective, cube and paraboloid views (a point light at the
+   eye). */
+static inline void metrics_visibility_view(const mlod_view *view, const float *receivers, uint32_t receiver_count,
+                                           metrics_occluded_fn *occluded, void *user, unsigned char *visible)
+{
+    uint32_t r;
+    for (r = 0; r < receiver_count; r++) {
+        float pixel[2], z;
+        const float *q = receivers + 3 * (size_t)r;
+        visible[r] = 2;
+        if (!mlod_view_project(view, q, pixel, &z)) continue;
+        if (!(floorf(pixel[0]) >= 0.0f && floorf(pixel[0]) < (float)view->width && floorf(pixel[1]) >= 0.0f &&
+              floorf(pixel[1]) < (float)view->height))
+            continue;
+        visible[r] = (unsigned char)!occluded(user, view->position, q);
+    }
 }
 
 /* Compare a splatted atlas with a reference (same layout; see the header
    comment for every formula; bias in scene diameters, bias_pixels in pixel
    footprints).  receivers: receiver_count points, 3 floats
    each (may be NULL when receiver_count is 0).  per_view: NULL or
-   splat->view_count entries. */
-static inline void metrics_compare(const mlod_atlas *splat, const float *reference, const mlod_view *views,
-                            double scene_diameter, const float *receivers, uint32_t receiver_count, double bias,
-                            double bias_pixels, metrics *overall, metrics *per_view)
+   splat->view_count entries.  visible: NULL, or for view v and receiver r
+   visible[v * receiver_count + r] from metrics_visibility_view: each
+   shadow test whose pair is not 2 is also compared with exact visibility
+   (shadow_wrong: lit_S differs from it; reference_wrong: lit_R does). */
+static inline void metrics_compare_visibility(const mlod_atlas *splat, const float *reference, const mlod_view *views,
+                                              double scene_diameter, const float *receivers, uint32_t receiver_count,
+                                              double bias, double bias_pixels, const unsigned char *visible,
+                                              metrics *overall, metrics *per_view)
 {
     size_t capacity = 0, used = 0;
     double *errors, total_squared = 0.0, bias_world = bias * scene_diameter;
@@ -250,6 +313,12 @@ static inline void metrics_compare(const mlod_atlas *splat, const float *referen
             lit_r = !((double)z > (double)R + b);
             m.shadow_tests++;
             m.shadow_differences += lit_s != lit_r;
+            if (visible && visible[(size_t)v * receiver_count + r] != 2) {
+                int truth = visible[(size_t)v * receiver_count + r];
+                m.visibility_tests++;
+                m.shadow_wrong += lit_s != truth;
+                m.reference_wrong += lit_r != truth;
+            }
         }
         metrics_finish(&m, squared);
         if (per_view) {
@@ -261,11 +330,23 @@ static inline void metrics_compare(const mlod_atlas *splat, const float *referen
         overall->depth_pixels += m.depth_pixels;
         overall->shadow_tests += m.shadow_tests;
         overall->shadow_differences += m.shadow_differences;
+        overall->visibility_tests += m.visibility_tests;
+        overall->shadow_wrong += m.shadow_wrong;
+        overall->reference_wrong += m.reference_wrong;
         total_squared += squared;
     }
     metrics_finish(overall, total_squared);
     overall->depth_p95 = errors ? metrics_percentile95(errors, used) : (double)NAN;
     free(errors);
+}
+
+/* metrics_compare_visibility without exact visibility. */
+static inline void metrics_compare(const mlod_atlas *splat, const float *reference, const mlod_view *views,
+                                   double scene_diameter, const float *receivers, uint32_t receiver_count, double bias,
+                                   double bias_pixels, metrics *overall, metrics *per_view)
+{
+    metrics_compare_visibility(splat, reference, views, scene_diameter, receivers, receiver_count, bias, bias_pixels,
+                               NULL, overall, per_view);
 }
 
 #endif /* MANYLODS_BENCH_METRICS_H */
