@@ -71,7 +71,11 @@ DEMO_DEFINES ?= -DMANYLODS_PTHREADS
 BENCH_OPT    := -std=c99 -O2
 BENCH_CFLAGS := $(BENCH_OPT) $(WARNINGS) $(CFLAGS) -DBENCH_FLAGS='"$(BENCH_OPT)"'
 BENCH_LDLIBS := -lembree3 -lm -pthread
-BENCH_DEPS   := bench/bench.c bench/cut_avx2.c $(wildcard bench/*.h) manylods.h examples/scenes.h examples/meshio.h
+# bench/bench.c includes its protocol files (one translation unit): they are
+# prerequisites here, not programs of their own.
+BENCH_DEPS   := bench/bench.c bench/protocol_single.c bench/protocol_targets.c bench/protocol_vulkan.c \
+                bench/protocol_sweep.c bench/protocol_views.c bench/report.c bench/cut_avx2.c \
+                $(wildcard bench/*.h) manylods.h examples/scenes.h examples/meshio.h
 # On x86-64 the bench also links a second copy of the library built with
 # -mavx2 -mfma (bench/cut_avx2.c) and reports its cut beside this build's.
 BENCH_AVX2   := $(if $(findstring x86_64,$(shell $(CC) -dumpmachine 2>/dev/null)),1)
