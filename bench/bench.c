@@ -431,9 +431,10 @@ int main(int argc, char **argv)
         protocol *p = protocols[i];
         protocol_reference(&b, p);
         printf("scene     %s: %s\n          %u vertices, diameter %.3g, area %.3g, atlas %ux%u, reference %.1f%% of "
-               "pixels hit, closest surface %.3g; Embree cast %.1f ms\n",
+               "pixels hit, closest surface %.3g; Embree cast %.1f ms\n          shadow bias %g px: %s\n",
                p->name, p->description, p->rest.vertex_count, p->diameter, p->area, p->atlas->width, p->atlas->height,
-               100.0 * p->reference_hits / ((double)p->atlas->width * p->atlas->height), p->closest, p->polys_ms);
+               100.0 * p->reference_hits / ((double)p->atlas->width * p->atlas->height), p->closest, p->polys_ms,
+               p->bias_pixels, p->bias_note);
         fflush(stdout);
     }
     if (b.cfg.selftest) {

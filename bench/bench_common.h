@@ -30,7 +30,9 @@ static const double group_sweep_fractions[] = {0.0, 1.0 / 400.0, 1.0 / 200.0, 1.
 #define BENCH_MODES 4
 #define BENCH_MAX_FRAMES 16
 #define BENCH_BIAS 0.002      /* shadow test bias: this fraction of the scene diameter */
-#define BENCH_BIAS_PIXELS 2.0 /* plus this many pixel footprints at the receiver (bench/metrics.h) */
+/* plus a number of pixel footprints at the receiver: the one at which the
+   exact maps answer the most shadow tests as exact visibility does
+   (metrics_best_bias), found per scene */
 #define BENCH_DISC_SCALE 0.5f /* the half-disc row: mlod_atlas_desc.disc_scale */
 #define BENCH_PI 3.14159265358979323846
 
@@ -295,6 +297,8 @@ typedef struct bench {
         double per_ms, per_cut_ms, per_splat_ms, per_bytes; /* NAN: not run */
         double cast_ms;                                     /* Embree's exact maps (the lean peer) */
         lean_times lean;
+        double bias_pixels; /* best_bias_pixels of this count's exact maps */
+        char bias_note[200];
         double group_ms, group_peak, group_pairs;           /* grouped within a scene leaf's radius */
         double group_avx2_ms; /* the same grouped render by the -mavx2 -mfma copy (NAN: not run) */
         double mega_avx2_ms;  /* and the ungrouped one */
@@ -438,11 +442,14 @@ typedef struct protocol {
     float *reference; /* the last frame's */
     uint64_t reference_hits;
     float *receivers;
+    float *receiver_normals; /* the surface's, 3 floats per receiver */
     uint32_t receiver_count;
     double closest;   /* nearest reference depth: the closest surface any light sees */
     unsigned char *visible; /* exact visibility of each (view, receiver) of the last frame (metrics_visibility_view) */
     double polys_ms;  /* the lean peer's exact maps: its fastest variant and BVH quality */
     lean_times lean;
+    double bias_pixels;   /* best_bias_pixels for the exact maps of the last frame */
+    char bias_note[200];
     double embree_build_ms, embree_refit_ms;
 } protocol;
 
@@ -699,10 +706,12 @@ static void protocol_reference(bench *b, protocol *p)
     /* receivers: area-uniform points on the last frame's surface */
     p->receiver_count = c->receivers;
     p->receivers = (float *)checked_malloc(sizeof(float) * 3 * p->receiver_count);
+    p->receiver_normals = (float *)checked_malloc(sizeof(float) * 3 * p->receiver_count);
     anchors = (shape_anchor *)checked_malloc(sizeof(shape_anchor) * p->receiver_count);
     if (!shape_anchors(&p->rest, p->receiver_count, 777, anchors)) fail("out of memory for the receivers");
     for (q = 0; q < p->receiver_count; q++)
-        shape_point(frame_positions(p, last), p->rest.indices, &anchors[q], p->receivers + 3 * q, NULL);
+        shape_point(frame_positions(p, last), p->rest.indices, &anchors[q], p->receivers + 3 * q,
+                    p->receiver_normals + 3 * q);
     free(anchors);
     /* exact visibility of each receiver from each light's eye (shadow rays) */
     p->visible = (unsigned char *)checked_malloc((size_t)p->view_count * p->receiver_count);
@@ -710,9 +719,11 @@ static void protocol_reference(bench *b, protocol *p)
                    RTC_BUILD_QUALITY_HIGH, &scene))
         fail("Embree could not create a scene");
     rt_commit(&scene);
-    rt_visibility(frame_views(p, last), p->view_count, p->receivers, p->receiver_count, &scene, &b->parallel,
-                  p->visible);
+    rt_visibility(frame_views(p, last), p->view_count, p->receivers, p->receiver_normals, p->receiver_count, &scene,
+                  &b->parallel, p->visible);
     rt_destroy(&scene);
+    p->bias_pixels = metrics_best_bias(p->atlas, p->reference, frame_views(p, last), p->diameter, p->receivers,
+                                       p->receiver_count, BENCH_BIAS, p->visible, p->bias_note, sizeof p->bias_note);
 }
 
 static void protocol_free(protocol *p)
@@ -722,6 +733,7 @@ static void protocol_free(protocol *p)
     free(p->views);
     free(p->reference);
     free(p->receivers);
+    free(p->receiver_normals);
     free(p->visible);
     mlod_atlas_destroy(p->atlas);
     mlod_atlas_destroy(p->half_atlas);
@@ -853,7 +865,7 @@ static void check_atlas(const mlod_atlas *atlas, const char *what)
 static void compare_atlas(const protocol *p, const mlod_atlas *atlas, metrics *m)
 {
     metrics_compare_visibility(atlas, p->reference, frame_views(p, p->frame_count - 1), p->diameter, p->receivers,
-                               p->receiver_count, BENCH_BIAS, BENCH_BIAS_PIXELS, p->visible, m, NULL);
+                               p->receiver_count, BENCH_BIAS, p->bias_pixels, p->visible, m, NULL);
 }
 
 static void compare_last(const protocol *p, metrics *m) { compare_atlas(p, p->atlas, m); }

@@ -54,7 +54,9 @@
      visibility of each (view, receiver) from metrics_visibility_view: the
      segment from the view's eye to the receiver is clear, or not, short
      of its last 1e-4 (metrics_segment)), for the shadow tests above:
-     visibility_tests   the tests whose pair has a visibility;
+     visibility_tests   the tests whose pair has a visibility (given
+                        normals, only receivers facing the eye: no
+                        renderer asks a shadow map about the others);
      shadow_wrong       of those, lit_S differs from exact visibility;
      reference_wrong    of those, lit_R does (the exact maps' own error,
                         what their resolution and the bias cost);
@@ -82,6 +84,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -233,18 +236,27 @@ static inline void metrics_finish(metrics *m, double squared_sum)
    receiver r (receivers: receiver_count points, 3 floats each) is 1 when
    the segment from the view's eye (position) to it is clear, 0 when
    something lies on it (occluded decides, the receiver's own surface
-   excluded), 2 when the pair is no shadow test of metrics_compare (the
-   receiver projects outside the view or its tile).  One occluded call per
+   excluded), 2 when the pair is no shadow test: the receiver projects
+   outside the view or its tile, or, with normals (3 floats per receiver,
+   or NULL), faces away from the eye (n . (eye - q) <= 0: a renderer
+   lights it with nothing and asks no shadow map).  One occluded call per
    test; perspective, cube and paraboloid views (a point light at the
    eye). */
-static inline void metrics_visibility_view(const mlod_view *view, const float *receivers, uint32_t receiver_count,
-                                           metrics_occluded_fn *occluded, void *user, unsigned char *visible)
+static inline void metrics_visibility_view(const mlod_view *view, const float *receivers, const float *normals,
+                                           uint32_t receiver_count, metrics_occluded_fn *occluded, void *user,
+                                           unsigned char *visible)
 {
     uint32_t r;
     for (r = 0; r < receiver_count; r++) {
         float pixel[2], z;
         const float *q = receivers + 3 * (size_t)r;
         visible[r] = 2;
+        if (normals) {
+            const float *n = normals + 3 * (size_t)r;
+            double facing = n[0] * ((double)view->position[0] - q[0]) + n[1] * ((double)view->position[1] - q[1]) +
+                            n[2] * ((double)view->position[2] - q[2]);
+            if (!(facing > 0.0)) continue;
+        }
         if (!mlod_view_project(view, q, pixel, &z)) continue;
         if (!(floorf(pixel[0]) >= 0.0f && floorf(pixel[0]) < (float)view->width && floorf(pixel[1]) >= 0.0f &&
               floorf(pixel[1]) < (float)view->height))
@@ -338,6 +350,37 @@ static inline void metrics_compare_visibility(const mlod_atlas *splat, const flo
     metrics_finish(overall, total_squared);
     overall->depth_p95 = errors ? metrics_percentile95(errors, used) : (double)NAN;
     free(errors);
+}
+
+/* The bias in pixel footprints (of 0, 0.25, 0.5, 0.75, 1, 1.5, 2, 3;
+   beside bias, in diameters) at which the exact maps `reference` (of
+   layout's tiles) get the fewest shadow tests wrong against exact
+   visibility `visible` (metrics_visibility_view): the anchor at its best,
+   to test every map of the scene with.  text (size bytes): the sweep. */
+static inline double metrics_best_bias(const mlod_atlas *layout, const float *reference, const mlod_view *views,
+                                       double scene_diameter, const float *receivers, uint32_t receiver_count,
+                                       double bias, const unsigned char *visible, char *text, size_t size)
+{
+    static const double sweep[] = {0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0};
+    mlod_atlas exact = *layout;
+    double best = sweep[0], best_error = INFINITY;
+    size_t used = 0;
+    int i;
+    exact.depth = (float *)reference;
+    used += (size_t)snprintf(text, size, "exact maps' wrong %% at bias");
+    for (i = 0; i < (int)(sizeof sweep / sizeof sweep[0]); i++) {
+        metrics m;
+        metrics_compare_visibility(&exact, reference, views, scene_diameter, receivers, receiver_count, bias, sweep[i],
+                                   visible, &m, NULL);
+        if (used < size)
+            used += (size_t)snprintf(text + used, size - used, "%s %g px: %.2f", i ? "," : "", sweep[i],
+                                     100.0 * m.reference_shadow_error);
+        if (m.reference_shadow_error < best_error) {
+            best_error = m.reference_shadow_error;
+            best = sweep[i];
+        }
+    }
+    return best;
 }
 
 /* metrics_compare_visibility without exact visibility. */

@@ -141,7 +141,7 @@ static void views_against_ungrouped(const mlod_atlas *atlas, const float *ungrou
    ungrouped render (the first radius, 0). */
 static void views_group_sweep(bench *b, mlod_atlas *atlas, const mlod_tree *tree, const mlod_view_tree *vt,
                               const mlod_megaviews_params *params, const float *reference, const mlod_view *views,
-                              double diameter, const float *receivers)
+                              double diameter, const float *receivers, double bias_pixels)
 {
     const config *c = &b->cfg;
     size_t pixels = (size_t)atlas->width * atlas->height;
@@ -162,7 +162,7 @@ static void views_group_sweep(bench *b, mlod_atlas *atlas, const mlod_tree *tree
         g->fraction = group_sweep_fractions[k];
         g->pairs = (double)st.pairs;
         g->peak = (double)st.peak_bytes;
-        metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, BENCH_BIAS_PIXELS,
+        metrics_compare(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS, bias_pixels,
                         &g->m, NULL);
         if (k == 0) /* group_sweep_fractions[0] is 0: the ungrouped render */
             memcpy(ungrouped, atlas->depth, sizeof(float) * pixels);
@@ -185,7 +185,7 @@ static void run_views(bench *b)
     scene_mesh room, mesh;
     mlod_tree *tree;
     shape_anchor *anchors;
-    float *eyes, *directions, *receivers;
+    float *eyes, *directions, *receivers, *receiver_normals;
     double offset, diameter, build_ms;
     float group_radius;
     rt_scene rt;
@@ -213,7 +213,9 @@ static void run_views(bench *b)
     }
     receivers = (float *)checked_malloc(sizeof(float) * 3 * c->views_receivers);
     if (!shape_anchors(&mesh, c->views_receivers, 779, anchors)) fail("out of memory for the receivers");
-    for (i = 0; i < c->views_receivers; i++) shape_point(mesh.positions, mesh.indices, &anchors[i], receivers + 3 * (size_t)i, NULL);
+    receiver_normals = (float *)checked_malloc(sizeof(float) * 3 * c->views_receivers);
+    for (i = 0; i < c->views_receivers; i++)
+        shape_point(mesh.positions, mesh.indices, &anchors[i], receivers + 3 * (size_t)i, receiver_normals + 3 * (size_t)i);
     free(anchors);
     memset(&lean, 0, sizeof lean);
     if (!rt_create(b->device, mesh.indices, mesh.index_count, mesh.positions, mesh.vertex_count,
@@ -314,9 +316,11 @@ static void run_views(bench *b)
         row->cast_ms = lean.best_ms;
         row->lean = lean;
         visible = (unsigned char *)checked_malloc((size_t)count * c->views_receivers);
-        rt_visibility(views, count, receivers, c->views_receivers, &rt, &b->parallel, visible);
+        rt_visibility(views, count, receivers, receiver_normals, c->views_receivers, &rt, &b->parallel, visible);
+        row->bias_pixels = metrics_best_bias(atlas, reference, views, diameter, receivers, c->views_receivers,
+                                             BENCH_BIAS, visible, row->bias_note, sizeof row->bias_note);
         metrics_compare_visibility(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
-                                   BENCH_BIAS_PIXELS, visible, &row->mega_m, NULL);
+                                   row->bias_pixels, visible, &row->mega_m, NULL);
         ungrouped_hash = hash_floats(atlas->depth, (size_t)atlas->width * atlas->height);
         /* grouped: lights within 1/200 of the scene's diameter of a view node's centre share its map */
         mp.group_radius = group_radius;
@@ -334,7 +338,7 @@ static void run_views(bench *b)
         if (!(row->group_peak <= row->group_bound))
             fail("megaviews, grouped: peak %.0f bytes above the sizing bound %.0f", row->group_peak, row->group_bound);
         metrics_compare_visibility(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
-                                   BENCH_BIAS_PIXELS, visible, &row->group_m, NULL);
+                                   row->bias_pixels, visible, &row->group_m, NULL);
         row->group_avx2_ms = row->mega_avx2_ms = NAN;
 #ifdef BENCH_AVX2
         if (v == c->view_count_n - 1 && bench_avx2_supported()) { /* the most lights, grouped, by the AVX2 copy */
@@ -378,7 +382,7 @@ static void run_views(bench *b)
             row->per_splat_ms = median(splat_t, (int)repeats);
             row->per_bytes = (double)mlod_cut_bytes(cut);
             metrics_compare_visibility(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
-                                       BENCH_BIAS_PIXELS, visible, &row->per_m, NULL);
+                                       row->bias_pixels, visible, &row->per_m, NULL);
             mlod_cut_destroy(cut);
         }
         printf("views %7u: view tree %.1f ms (refit %.1f); megaviews %.0f ms, peak %.0f MB, %.0f pairs, %.2f views per "
@@ -386,6 +390,8 @@ static void run_views(bench *b)
                count, row->tree_ms, row->refit_ms, row->mega_ms, row->mega_peak / 1048576.0, row->pairs,
                row->shared_draws > 0 ? row->shared_views / row->shared_draws : 0.0, 100.0 * row->mega_m.depth_rms,
                100.0 * row->mega_m.shadow_disagreement, row->cast_ms);
+        printf("; against shadow rays: wrong %.2f%% (exact maps %.2f%%, bias %g px)", 100.0 * row->mega_m.shadow_error,
+               100.0 * row->mega_m.reference_shadow_error, row->bias_pixels);
         printf("; grouped %.0f ms, %.0f pairs, depth RMS %.2f%%, shadow %.2f%%", row->group_ms, row->group_pairs,
                100.0 * row->group_m.depth_rms, 100.0 * row->group_m.shadow_disagreement);
         if (row->group_avx2_ms < INFINITY) printf(" (AVX2 build: %.0f ms, the same atlas)", row->group_avx2_ms);
@@ -398,7 +404,7 @@ static void run_views(bench *b)
         fflush(stdout);
         if (v == c->view_count_n - 1) {
             mp.group_radius = 0.0f;
-            views_group_sweep(b, atlas, tree, vt, &mp, reference, views, diameter, receivers);
+            views_group_sweep(b, atlas, tree, vt, &mp, reference, views, diameter, receivers, row->bias_pixels);
         }
         free(reference);
         free(visible);
@@ -411,6 +417,7 @@ static void run_views(bench *b)
     free(eyes);
     free(directions);
     free(receivers);
+    free(receiver_normals);
     scene_free(&mesh);
 }
 
@@ -515,8 +522,8 @@ static void write_views_markdown(const bench *b, FILE *f)
     fprintf(f, "| views | view tree ms (refit) | view tree MB | MegaViews ms | peak MB | atlas MB | pairs per view | views per "
                "shared draw | leaf draws per view (near scene leaves shared) | per-view ms (cut + splat) | per-view cut MB "
                "| Embree ms | depth RMS %% "
-               "(ours / per-view) | holes %% | shadow %% | wrong %% (ours / per-view / exact maps) | splat's pts |\n"
-               "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|\n");
+               "(ours / per-view) | holes %% | shadow %% | wrong %% (ours / per-view / exact maps) | splat's pts | bias px |\n"
+               "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|---:|\n");
     for (k = 0; k < b->views_rows; k++) {
         const struct views_row *r = &b->views[k];
         char per[48], per_mb[32], rms[48], holes[48], shadow[48], wrong[64], own[48];
@@ -541,12 +548,12 @@ static void write_views_markdown(const bench *b, FILE *f)
             snprintf(shadow, sizeof shadow, "%.2f / -", 100.0 * r->mega_m.shadow_disagreement);
         }
         fprintf(f,
-                "| %u | %.1f (%.1f) | %.1f | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f (%.1f) | %s | %s | %.0f | %s | %s | %s | %s | %s |\n",
+                "| %u | %.1f (%.1f) | %.1f | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f (%.1f) | %s | %s | %.0f | %s | %s | %s | %s | %s | %g |\n",
                 r->views, r->tree_ms, r->refit_ms, r->tree_bytes / 1048576.0, r->mega_ms, r->mega_peak / 1048576.0,
                 r->atlas_bytes / 1048576.0, r->pairs / r->views,
                 r->shared_draws > 0 ? r->shared_views / r->shared_draws : 0.0, r->leaf_draws / r->views,
                 r->shared_leaves / r->views, per, per_mb,
-                r->cast_ms, rms, holes, shadow, wrong, own);
+                r->cast_ms, rms, holes, shadow, wrong, own, r->bias_pixels);
     }
     fprintf(f, "\nGrouped (mlod_megaviews_params.group_radius: lights within 1/200 of the scene's diameter of a view node's "
                "centre share its map, seen from the centre), same renders otherwise:\n\n| views | grouped ms | peak MB "

@@ -444,7 +444,7 @@ static inline int rt_occluded(void *user, const float from[3], const float to[3]
 
 typedef struct rt_visibility_job {
     const mlod_view *views;
-    const float *receivers;
+    const float *receivers, *normals;
     uint32_t receiver_count;
     const rt_scene *scene;
     unsigned char *visible;
@@ -453,20 +453,21 @@ typedef struct rt_visibility_job {
 static inline void rt_visibility_task(void *context, uint32_t v)
 {
     const rt_visibility_job *job = (const rt_visibility_job *)context;
-    metrics_visibility_view(job->views + v, job->receivers, job->receiver_count, rt_occluded, (void *)job->scene,
-                            job->visible + (size_t)v * job->receiver_count);
+    metrics_visibility_view(job->views + v, job->receivers, job->normals, job->receiver_count, rt_occluded,
+                            (void *)job->scene, job->visible + (size_t)v * job->receiver_count);
 }
 
 /* metrics_visibility_view for every view (visible: view_count *
-   receiver_count bytes), in parallel over views. */
+   receiver_count bytes; normals as there), in parallel over views. */
 static inline void rt_visibility(const mlod_view *views, uint32_t view_count, const float *receivers,
-                                 uint32_t receiver_count, const rt_scene *scene, const mlod_parallel *parallel,
-                                 unsigned char *visible)
+                                 const float *normals, uint32_t receiver_count, const rt_scene *scene,
+                                 const mlod_parallel *parallel, unsigned char *visible)
 {
     rt_visibility_job job;
     uint32_t v;
     job.views = views;
     job.receivers = receivers;
+    job.normals = normals;
     job.receiver_count = receiver_count;
     job.scene = scene;
     job.visible = visible;
