@@ -42,6 +42,89 @@ static void metric_cells(char cells[METRIC_CELLS][32], const row *r)
     snprintf(cells[3], 32, "%.2f", 100.0 * r->m.shadow_disagreement);
 }
 
+/* Issue 51's targets: the splat's own error against exact visibility
+   (our maps' wrong shadow tests minus the exact maps', same receivers,
+   bias and lookup), its fall with epsilon, and the peer the Embree figures
+   come from. */
+static void write_accuracy_targets(const bench *b, FILE *f, protocol *const *protocols, int protocol_count)
+{
+    static const float falling[5] = {8, 4, 2, 1, 0.5f};
+    const struct views_row *v = NULL;
+    char ours[160], anchor[1024];
+    int i, k;
+    fprintf(f, "\n### Targets (issue 51): the splat's own error, against exact visibility\n\n"
+               "Shadow tests of receivers facing the light, each answered by the map and by a shadow ray (exact "
+               "visibility); our maps' wrong fraction minus the exact ray-cast maps' of the same resolution (same "
+               "receivers, bias and lookup; the bias the exact maps' best) is the error the splat adds. Basic cut, "
+               "default splat (disc_scale 1), the largest N of each scene in this run. Ratio = ours / target.\n\n"
+               "| what | ours | target | anchor | ratio | met |\n|---|---:|---:|---|---:|---|\n");
+    for (i = 0; i < protocol_count; i++) {
+        const protocol *p = protocols[i];
+        const row *r = NULL;
+        uint32_t n = 0;
+        int strictly = 1, count = 0;
+        size_t used = 0;
+        for (k = 0; k < b->row_count; k++)
+            if (b->rows[k].kind == ROW_OURS && strcmp(b->rows[k].scene, p->name) == 0 && b->rows[k].n > n)
+                n = b->rows[k].n;
+        r = find_row(b, ROW_OURS, p->name, "basic", 1.0f, n);
+        if (strcmp(p->name, "object") == 0) {
+            if (r && r->m.visibility_tests) {
+                double own = 100.0 * (r->m.shadow_error - r->m.reference_shadow_error);
+                snprintf(ours, sizeof ours, "%+.2f points", own);
+                snprintf(anchor, sizeof anchor, "N = %u: ours %.2f %% wrong, exact maps %.2f %%, of %.0f shadow tests; "
+                         "bias %g px (%s)", n, 100.0 * r->m.shadow_error, 100.0 * r->m.reference_shadow_error,
+                         (double)r->m.visibility_tests, p->bias_pixels, p->bias_note);
+                target_line(f, "splat's own error, object, 32x32, epsilon 1", ours, "<= 2 points", anchor, own / 2.0,
+                            NULL);
+            } else {
+                target_missing(f, "splat's own error, object, 32x32, epsilon 1", "<= 2 points", "no object basic row");
+            }
+        }
+        anchor[0] = '\0';
+        for (k = 0; k < 5; k++) {
+            const row *e = find_row(b, ROW_OURS, p->name, "basic", falling[k], n);
+            const row *prev = k ? find_row(b, ROW_OURS, p->name, "basic", falling[k - 1], n) : NULL;
+            if (!e || !e->m.visibility_tests) continue;
+            count++;
+            if (prev && prev->m.visibility_tests && !(e->m.shadow_error < prev->m.shadow_error)) strictly = 0;
+            if (used < sizeof anchor)
+                used += (size_t)snprintf(anchor + used, sizeof anchor - used, "%seps %g: %.2f %% (exact %.2f)",
+                                         count > 1 ? ", " : "", (double)falling[k], 100.0 * e->m.shadow_error,
+                                         100.0 * e->m.reference_shadow_error);
+        }
+        snprintf(ours, sizeof ours, "%s", count < 5 ? "not all five epsilons run" : strictly ? "strictly falling" : "not strictly falling");
+        if (used < sizeof anchor) snprintf(anchor + used, sizeof anchor - used, "; N = %u, wrong %% against shadow rays", n);
+        snprintf(ours + strlen(ours), sizeof ours - strlen(ours), " (%s)", p->name);
+        target_line(f, strcmp(p->name, "object") == 0 ? "error against epsilon, default settings, object"
+                                                      : "error against epsilon, default settings, room",
+                    ours, "strictly falling, eps 8 to 0.5", anchor, count < 5 ? NAN : strictly ? 0.0 : 2.0, NULL);
+    }
+    for (k = 0; k < b->views_rows; k++)
+        if (!v || b->views[k].views > v->views) v = &b->views[k];
+    if (v && v->mega_m.visibility_tests) {
+        double own = 100.0 * (v->mega_m.shadow_error - v->mega_m.reference_shadow_error);
+        snprintf(ours, sizeof ours, "%+.2f points", own);
+        snprintf(anchor, sizeof anchor, "%u lights: MegaViews %.2f %% wrong, exact maps %.2f %%, of %.0f shadow tests; "
+                 "bias %g px (%s)", v->views, 100.0 * v->mega_m.shadow_error, 100.0 * v->mega_m.reference_shadow_error,
+                 (double)v->mega_m.visibility_tests, v->bias_pixels, v->bias_note);
+        target_line(f, "splat's own error, room, MegaViews 2 x 11 x 11, epsilon 1", ours, "<= 3 points", anchor,
+                    own / 3.0, NULL);
+    } else {
+        target_missing(f, "splat's own error, room, MegaViews 2 x 11 x 11, epsilon 1", "<= 3 points", "views not run");
+    }
+    target_missing(f, "the new reconstruction's splat time", "<= 1.3x today's splat of the same cut",
+                   "not built: the splat is still today's (bench/splat_experiment.c measures candidates)");
+    {
+        const row *polys = NULL;
+        for (k = 0; k < b->row_count && !polys; k++)
+            if (b->rows[k].kind == ROW_POLYS) polys = &b->rows[k];
+        snprintf(anchor, sizeof anchor, "%s", polys ? polys->note : "no peer row");
+        target_line(f, "every Embree figure of this report", "the lean peer", "against the lean peer", anchor,
+                    polys ? 0.0 : NAN, NULL);
+    }
+}
+
 static void write_markdown(const bench *b, FILE *f, protocol *const *protocols, int protocol_count)
 {
     const config *c = &b->cfg;
@@ -232,6 +315,8 @@ static void write_markdown(const bench *b, FILE *f, protocol *const *protocols, 
         fprintf(f, "\n");
     }
     write_views_markdown(b, f);
+    write_accuracy_targets(b, f, protocols, protocol_count);
+    fprintf(f, "\n");
     fprintf(f, "Columns: times in ms per frame (all views); node-views = criterion evaluations per frame; cut / view "
                "= nodes per view's cut, culled ones included; holes, depth RMS, depth p95 and shadow in %% (depth "
                "relative to the scene diameter), against Embree's exact maps of the same resolution; wrong %% = shadow "
