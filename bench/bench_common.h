@@ -237,14 +237,14 @@ static size_t lean_mismatches(const float *a, const float *b, size_t n)
 static const char *lean_text(const lean_times *t)
 {
     static char text[320];
-    int q, v;
+    int q, v, first = 1;
     size_t used = 0;
     used += (size_t)snprintf(text, sizeof text, "%s, BVH quality %s; tried:", rt_variant_names[t->variant],
                              bench_quality_names[t->quality]);
     for (q = 0; q < BENCH_QUALITIES; q++)
         for (v = 0; v < RT_RAY_VARIANTS && used < sizeof text; v++)
-            if (!isnan(t->ms[q][v]))
-                used += (size_t)snprintf(text + used, sizeof text - used, "%s %s/%s %.3g ms", q + v ? "," : "",
+            if (!isnan(t->ms[q][v]) && used < sizeof text)
+                used += (size_t)snprintf(text + used, sizeof text - used, "%s %s/%s %.3g ms", first-- > 0 ? "" : ",",
                                          v == RT_RAYS_STREAM ? "1M" : v == RT_RAYS_1 ? "1" : v == RT_RAYS_4 ? "4"
                                                                    : v == RT_RAYS_8 ? "8" : "16",
                                          bench_quality_names[q], t->ms[q][v]);
@@ -362,7 +362,8 @@ static const row *find_row(const bench *b, int kind, const char *scene, const ch
 /* The exact maps of `views` (layout's tiles, all shaped alike; hemispheres
    as rt_maps) into reference, by the lean peer over the given mesh:
    `qualities` (a bit per bench_qualities entry) x every variant when
-   `all` is set, else only t's quality and variant as found before.  Each
+   `all` is set, else only t's quality and variant as found before (the
+   others' times are NaN after the call).  Each
    variant's maps are checked against the first's.  Fills t (keeping its
    choice when !all). */
 static void lean_peer(bench *b, const scene_mesh *mesh, const float *positions, const mlod_atlas *layout,
@@ -378,11 +379,9 @@ static void lean_peer(bench *b, const scene_mesh *mesh, const float *positions, 
     if (!rt_template_make(&views[0], &shape)) fail("out of memory for the lean peer's rays");
     t->setup_ms = now_ms() - t0;
     t->rays = 0;
-    if (all) {
-        for (q = 0; q < BENCH_QUALITIES; q++)
-            for (v = 0; v < RT_RAY_VARIANTS; v++) t->ms[q][v] = NAN;
-        t->best_ms = INFINITY;
-    }
+    for (q = 0; q < BENCH_QUALITIES; q++) /* only what this call times is reported */
+        for (v = 0; v < RT_RAY_VARIANTS; v++) t->ms[q][v] = NAN;
+    if (all) t->best_ms = INFINITY;
     for (i = 0; i < (int)layout->view_count; i++)
         if (!rt_same_shape(&views[0], &views[i])) fail("the lean peer: view %d is shaped unlike view 0", i);
     for (q = 0; q < BENCH_QUALITIES; q++) {
