@@ -473,19 +473,6 @@ static mlod_mesh frame_mesh(const protocol *p, int frame)
     return m;
 }
 
-static void paraboloid_light(mlod_view *v, const float position[3], const float normal[3], uint32_t tile)
-{
-    memset(v, 0, sizeof *v);
-    v->kind = MLOD_VIEW_PARABOLOID;
-    memcpy(v->position, position, sizeof v->position);
-    memcpy(v->forward, normal, sizeof v->forward);
-    if (fabsf(normal[1]) > 0.7f)
-        set3(v->up, 1, 0, 0);
-    else
-        set3(v->up, 0, 1, 0);
-    v->width = v->height = tile;
-    v->flags = MLOD_VIEW_CULL_BACKFACES;
-}
 
 /* Deformed copies of the rest mesh, frame f at time f * step. */
 static void deform_frames(protocol *p, double step)
@@ -506,24 +493,6 @@ static void load_mesh(const bench *b, scene_mesh *out)
     shape_normalize(out);
 }
 
-/* The object's light rig at `frame`, turning degrees_per_frame about y:
-   view_count lights on a sphere of radius 1.2 (Fibonacci points), facing
-   its centre. */
-static void object_rig(uint32_t view_count, uint32_t tile, double degrees_per_frame, int frame, mlod_view *out)
-{
-    double turn = degrees_per_frame * BENCH_PI / 180.0 * frame, ct = cos(turn), st = sin(turn);
-    uint32_t i;
-    for (i = 0; i < view_count; i++) {
-        double y = 1.0 - 2.0 * (i + 0.5) / view_count, ring = sqrt(1.0 - y * y);
-        double phi = i * 2.399963229728653, x = ring * cos(phi), z = ring * sin(phi);
-        double dx = ct * x + st * z, dz = -st * x + ct * z;
-        float pos[3], fwd[3];
-        set3(pos, 1.2 * dx, 1.2 * y, 1.2 * dz);
-        set3(fwd, -dx, -y, -dz);
-        paraboloid_light(&out[i], pos, fwd, tile);
-    }
-}
-
 /* The object: a bumpy torus knot (or the given mesh), lights on a sphere
    of radius 1.2 around it (Fibonacci points), facing its centre; the rig
    turns 10 degrees per frame about y while the object twists. */
@@ -541,7 +510,7 @@ static void protocol_object(const bench *b, protocol *p)
     deform_frames(p, 0.1);
     p->views = (mlod_view *)checked_malloc(sizeof(mlod_view) * p->view_count * (size_t)p->frame_count);
     for (f = 0; f < p->frame_count; f++)
-        object_rig(p->view_count, c->tile, 10.0, f, p->views + (size_t)f * p->view_count);
+        shape_object_rig(p->view_count, c->tile, 10.0, f, p->views + (size_t)f * p->view_count);
     snprintf(p->description, sizeof p->description,
              "%s, %u triangles, twisting (scene_deform, t = 0.1 per frame); %u paraboloid lights %ux%u px on a sphere "
              "of radius 1.2 around it (bounding radius 1), facing its centre, the rig turning 10 deg per frame",
@@ -555,47 +524,13 @@ static void protocol_object(const bench *b, protocol *p)
    kept when, at rest, the ray back to its surface point hits that surface
    first and the ray along its normal hits nothing or a front face (so no
    light sits inside a box). */
-/* count points on the mesh where a light `offset` above the surface along
-   its normal sits in free space: the surface is right below it and what
-   it faces along the normal is a front face (not inside a solid). */
+/* rt_surface_lights, or fail. */
 static void surface_lights(const bench *b, const scene_mesh *mesh, uint32_t count, uint64_t seed, double offset,
                            shape_anchor *lights)
 {
-    uint32_t i, kept = 0, tries = 8 * count;
-    shape_anchor *candidates = (shape_anchor *)checked_malloc(sizeof(shape_anchor) * tries);
-    rt_scene rest;
-    if (!shape_anchors(mesh, tries, seed, candidates)) fail("out of memory for the lights");
-    if (!rt_create(b->device, mesh->indices, mesh->index_count, mesh->positions, mesh->vertex_count,
-                   RTC_BUILD_QUALITY_MEDIUM, &rest))
-        fail("Embree could not create the lights' scene");
-    rt_commit(&rest);
-    for (i = 0; i < tries && kept < count; i++) {
-        float x[3], n[3], light[3], back[3], t;
-        uint32_t tri;
-        int k, ok;
-        shape_point(mesh->positions, mesh->indices, &candidates[i], x, n);
-        for (k = 0; k < 3; k++) {
-            light[k] = x[k] + (float)offset * n[k];
-            back[k] = -n[k];
-        }
-        ok = rt_cast_triangle(&rest, light, back, &t, &tri) && fabs(t - offset) < 0.01 * offset;
-        if (ok && rt_cast_triangle(&rest, light, n, &t, &tri)) {
-            const uint32_t *v = mesh->indices + 3 * (size_t)tri;
-            double e1[3], e2[3], g[3];
-            for (k = 0; k < 3; k++) {
-                e1[k] = (double)mesh->positions[3 * v[1] + k] - mesh->positions[3 * v[0] + k];
-                e2[k] = (double)mesh->positions[3 * v[2] + k] - mesh->positions[3 * v[0] + k];
-            }
-            g[0] = e1[1] * e2[2] - e1[2] * e2[1];
-            g[1] = e1[2] * e2[0] - e1[0] * e2[2];
-            g[2] = e1[0] * e2[1] - e1[1] * e2[0];
-            ok = g[0] * n[0] + g[1] * n[1] + g[2] * n[2] < 0.0;
-        }
-        if (ok) lights[kept++] = candidates[i];
-    }
-    rt_destroy(&rest);
-    free(candidates);
-    if (kept < count) fail("only %u of %u light positions passed the visibility test on this mesh", kept, count);
+    int kept = rt_surface_lights(b->device, mesh, count, seed, offset, lights);
+    if (kept < 0) fail("out of memory or an Embree failure placing the lights");
+    if ((uint32_t)kept < count) fail("only %d of %u light positions passed the visibility test on this mesh", kept, count);
 }
 
 static void protocol_room(const bench *b, protocol *p)
@@ -627,7 +562,7 @@ static void protocol_room(const bench *b, protocol *p)
             int k;
             shape_point(frame_positions(p, f), p->rest.indices, &lights[i], x, n);
             for (k = 0; k < 3; k++) light[k] = x[k] + (float)offset * n[k];
-            paraboloid_light(&p->views[(size_t)f * p->view_count + i], light, n, c->tile);
+            shape_paraboloid_light(&p->views[(size_t)f * p->view_count + i], light, n, c->tile);
         }
     free(lights);
     snprintf(p->description, sizeof p->description,

@@ -153,7 +153,7 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             double t0;
             char what[96];
             int frame = f % p->frame_count;
-            object_rig(p->view_count, c->tile, degrees[r], frame, views);
+            shape_object_rig(p->view_count, c->tile, degrees[r], frame, views);
             for (m = 0; m < 2; m++) {
                 params.mode = frame > 0 && m == 1 ? MLOD_CUT_INCREMENTAL : MLOD_CUT_BASIC;
                 t0 = now_ms();

@@ -14,6 +14,7 @@
                     Embree timing; the same maps as metrics_reference_atlas
                     up to the rounding of the rays (bench --selftest checks
                     it)
+     rt_surface_lights  light positions in free space just above a mesh
      rt_occluded, rt_visibility
                     exact visibility of receivers from the views' eyes
                     (shadow rays), for metrics_compare_visibility */
@@ -27,6 +28,7 @@
 #include <string.h>
 
 #include "metrics.h"
+#include "shapes.h"
 
 typedef struct rt_scene {
     RTCScene scene;
@@ -141,6 +143,54 @@ static inline int rt_cast_triangle(const rt_scene *s, const float origin[3], con
     *t = rh.ray.tfar;
     *triangle = rh.hit.primID;
     return 1;
+}
+
+/* `count` anchors on the mesh (from 8 count area-uniform candidates of
+   `seed`, in order) where a light `offset` above the surface along its
+   normal sits in free space: the surface is right below it and what it
+   faces along the normal is a front face (not inside a solid).  Returns
+   how many it found (less than count when too few pass), or -1 when
+   memory or Embree fails. */
+static inline int rt_surface_lights(RTCDevice device, const scene_mesh *mesh, uint32_t count, uint64_t seed,
+                                    double offset, shape_anchor *lights)
+{
+    uint32_t i, kept = 0, tries = 8 * count;
+    shape_anchor *candidates = (shape_anchor *)malloc(sizeof(shape_anchor) * (tries ? tries : 1));
+    rt_scene rest;
+    if (!candidates || !shape_anchors(mesh, tries, seed, candidates) ||
+        !rt_create(device, mesh->indices, mesh->index_count, mesh->positions, mesh->vertex_count,
+                   RTC_BUILD_QUALITY_MEDIUM, &rest)) {
+        free(candidates);
+        return -1;
+    }
+    rt_commit(&rest);
+    for (i = 0; i < tries && kept < count; i++) {
+        float x[3], n[3], light[3], back[3], t;
+        uint32_t tri;
+        int k, ok;
+        shape_point(mesh->positions, mesh->indices, &candidates[i], x, n);
+        for (k = 0; k < 3; k++) {
+            light[k] = x[k] + (float)offset * n[k];
+            back[k] = -n[k];
+        }
+        ok = rt_cast_triangle(&rest, light, back, &t, &tri) && fabs(t - offset) < 0.01 * offset;
+        if (ok && rt_cast_triangle(&rest, light, n, &t, &tri)) {
+            const uint32_t *v = mesh->indices + 3 * (size_t)tri;
+            double e1[3], e2[3], g[3];
+            for (k = 0; k < 3; k++) {
+                e1[k] = (double)mesh->positions[3 * v[1] + k] - mesh->positions[3 * v[0] + k];
+                e2[k] = (double)mesh->positions[3 * v[2] + k] - mesh->positions[3 * v[0] + k];
+            }
+            g[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            g[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            g[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            ok = g[0] * n[0] + g[1] * n[1] + g[2] * n[2] < 0.0;
+        }
+        if (ok) lights[kept++] = candidates[i];
+    }
+    rt_destroy(&rest);
+    free(candidates);
+    return (int)kept;
 }
 
 /* ------------------------------------------------------- the lean peer --

@@ -10,6 +10,9 @@
      shape_point        the position and unit geometric normal of an anchor
                         on a (deformed) copy of the mesh
      shape_normalize    centre a mesh on the origin, bounding radius 1
+     shape_paraboloid_light, shape_object_rig
+                        the benchmark's lights: a paraboloid view of a
+                        point light, and the object's rig of them
 
    Functions return 0 when malloc fails (outputs then empty), 1 otherwise. */
 #ifndef MANYLODS_BENCH_SHAPES_H
@@ -21,6 +24,7 @@
 #include <string.h>
 
 #include "../examples/scenes.h"
+#include "../manylods.h"
 
 /* A point on the (2,3) torus knot's centre line at parameter u, and the
    derivative there, in the knot's own units (radius about 3). */
@@ -252,6 +256,45 @@ static inline void shape_point(const float *positions, const uint32_t *indices, 
         p[k] = (float)(a + anchor->s * (positions[3 * (size_t)c[1] + k] - a) +
                        anchor->t * (positions[3 * (size_t)c[2] + k] - a));
         if (normal) normal[k] = (float)n[k];
+    }
+}
+
+/* A light at `position` seeing the hemisphere around `normal` (unit): a
+   tile x tile paraboloid view with back-face culling, up +y (+x when the
+   normal is within 45 degrees of the y axis). */
+static inline void shape_paraboloid_light(mlod_view *v, const float position[3], const float normal[3], uint32_t tile)
+{
+    memset(v, 0, sizeof *v);
+    v->kind = MLOD_VIEW_PARABOLOID;
+    memcpy(v->position, position, sizeof v->position);
+    memcpy(v->forward, normal, sizeof v->forward);
+    v->up[0] = fabsf(normal[1]) > 0.7f ? 1.0f : 0.0f;
+    v->up[1] = fabsf(normal[1]) > 0.7f ? 0.0f : 1.0f;
+    v->up[2] = 0.0f;
+    v->width = v->height = tile;
+    v->flags = MLOD_VIEW_CULL_BACKFACES;
+}
+
+/* The object's light rig at `frame`, turning degrees_per_frame about y:
+   view_count lights on a sphere of radius 1.2 (Fibonacci points), facing
+   its centre. */
+static inline void shape_object_rig(uint32_t view_count, uint32_t tile, double degrees_per_frame, int frame,
+                                    mlod_view *out)
+{
+    double turn = degrees_per_frame * 3.14159265358979323846 / 180.0 * frame, ct = cos(turn), st = sin(turn);
+    uint32_t i;
+    for (i = 0; i < view_count; i++) {
+        double y = 1.0 - 2.0 * (i + 0.5) / view_count, ring = sqrt(1.0 - y * y);
+        double phi = i * 2.399963229728653, x = ring * cos(phi), z = ring * sin(phi);
+        double dx = ct * x + st * z, dz = -st * x + ct * z;
+        float pos[3], fwd[3];
+        pos[0] = (float)(1.2 * dx);
+        pos[1] = (float)(1.2 * y);
+        pos[2] = (float)(1.2 * dz);
+        fwd[0] = (float)-dx;
+        fwd[1] = (float)-y;
+        fwd[2] = (float)-dz;
+        shape_paraboloid_light(&out[i], pos, fwd, tile);
     }
 }
 

@@ -113,80 +113,12 @@ static void *xmalloc(size_t n)
     return p;
 }
 
-static void set3(float *v, double x, double y, double z)
-{
-    v[0] = (float)x;
-    v[1] = (float)y;
-    v[2] = (float)z;
-}
-
-/* ---------------------------------------------------- scenes (as bench.c) */
-
-static void paraboloid_light(mlod_view *v, const float position[3], const float normal[3], uint32_t tile)
-{
-    memset(v, 0, sizeof *v);
-    v->kind = MLOD_VIEW_PARABOLOID;
-    memcpy(v->position, position, sizeof v->position);
-    memcpy(v->forward, normal, sizeof v->forward);
-    if (fabsf(normal[1]) > 0.7f)
-        set3(v->up, 1, 0, 0);
-    else
-        set3(v->up, 0, 1, 0);
-    v->width = v->height = tile;
-    v->flags = MLOD_VIEW_CULL_BACKFACES;
-}
-
-static void object_rig(uint32_t view_count, uint32_t tile, mlod_view *out)
-{
-    uint32_t i;
-    for (i = 0; i < view_count; i++) {
-        double y = 1.0 - 2.0 * (i + 0.5) / view_count, ring = sqrt(1.0 - y * y);
-        double phi = i * 2.399963229728653, x = ring * cos(phi), z = ring * sin(phi);
-        float pos[3], fwd[3];
-        set3(pos, 1.2 * x, 1.2 * y, 1.2 * z);
-        set3(fwd, -x, -y, -z);
-        paraboloid_light(&out[i], pos, fwd, tile);
-    }
-}
-
+/* rt_surface_lights, or fail. */
 static void surface_lights(RTCDevice device, const scene_mesh *mesh, uint32_t count, uint64_t seed, double offset,
                            shape_anchor *lights)
 {
-    uint32_t i, kept = 0, tries = 8 * count;
-    shape_anchor *candidates = (shape_anchor *)xmalloc(sizeof(shape_anchor) * tries);
-    rt_scene rest;
-    if (!shape_anchors(mesh, tries, seed, candidates)) fail("out of memory for the lights");
-    if (!rt_create(device, mesh->indices, mesh->index_count, mesh->positions, mesh->vertex_count,
-                   RTC_BUILD_QUALITY_MEDIUM, &rest))
-        fail("Embree could not create the lights' scene");
-    rt_commit(&rest);
-    for (i = 0; i < tries && kept < count; i++) {
-        float x[3], n[3], light[3], back[3], t;
-        uint32_t tri;
-        int k, ok;
-        shape_point(mesh->positions, mesh->indices, &candidates[i], x, n);
-        for (k = 0; k < 3; k++) {
-            light[k] = x[k] + (float)offset * n[k];
-            back[k] = -n[k];
-        }
-        ok = rt_cast_triangle(&rest, light, back, &t, &tri) && fabs(t - offset) < 0.01 * offset;
-        if (ok && rt_cast_triangle(&rest, light, n, &t, &tri)) {
-            const uint32_t *v = mesh->indices + 3 * (size_t)tri;
-            double e1[3], e2[3], g[3];
-            for (k = 0; k < 3; k++) {
-                e1[k] = (double)mesh->positions[3 * v[1] + k] - mesh->positions[3 * v[0] + k];
-                e2[k] = (double)mesh->positions[3 * v[2] + k] - mesh->positions[3 * v[0] + k];
-            }
-            g[0] = e1[1] * e2[2] - e1[2] * e2[1];
-            g[1] = e1[2] * e2[0] - e1[0] * e2[2];
-            g[2] = e1[0] * e2[1] - e1[1] * e2[0];
-            ok = g[0] * n[0] + g[1] * n[1] + g[2] * n[2] < 0.0;
-        }
-        if (ok) lights[kept++] = candidates[i];
-    }
-    rt_destroy(&rest);
-    free(candidates);
-    if (kept < count) fail("too few light positions passed the visibility test");
+    if (rt_surface_lights(device, mesh, count, seed, offset, lights) != (int)count)
+        fail("too few light positions passed the visibility test");
 }
 
 /* ------------------------------------------------------------ the setup */
@@ -296,7 +228,7 @@ static void setup_common(setup *s, RTCDevice device, uint32_t log2n)
                     s->normals + 3 * (size_t)r);
     free(anchors);
     s->visible = (unsigned char *)xmalloc((size_t)s->view_count * s->receiver_count);
-    rt_visibility(s->views, s->view_count, s->receivers, s->receiver_count, &scene, NULL, s->visible);
+    rt_visibility(s->views, s->view_count, s->receivers, NULL, s->receiver_count, &scene, NULL, s->visible);
     rt_destroy(&scene);
 
     /* the shadow tests, as metrics_compare_visibility makes them */
@@ -374,7 +306,7 @@ static void setup_object(setup *s, RTCDevice device, uint32_t lights, uint32_t l
     if (!shape_torus_knot(&s->mesh, 1536, 96)) fail("torus knot");
     s->view_count = lights;
     s->views = (mlod_view *)xmalloc(sizeof(mlod_view) * lights);
-    object_rig(lights, TILE, s->views);
+    shape_object_rig(lights, TILE, 0.0, 0, s->views);
     setup_common(s, device, log2n);
 }
 
@@ -398,7 +330,7 @@ static void setup_room(setup *s, RTCDevice device, uint32_t lights, uint32_t log
         int k;
         shape_point(s->mesh.positions, s->mesh.indices, &anchors[i], x, n);
         for (k = 0; k < 3; k++) light[k] = x[k] + (float)offset * n[k];
-        paraboloid_light(&s->views[i], light, n, TILE);
+        shape_paraboloid_light(&s->views[i], light, n, TILE);
     }
     free(anchors);
     setup_common(s, device, log2n);
