@@ -304,7 +304,7 @@
      drawn node's radius, up to epsilon / 2 pixels, so occluders (and their
      shadows) come out wider than they are.  mlod_atlas_desc.disc_scale
      draws smaller discs, sampled at pixel centres only; the holes left are
-     filled by mlod_atlas_fill_holes (README.md, "Choosing the disc
+     filled by mlod_atlas_fill_holes (docs/GUIDE.md, "Choosing the disc
      scale", measures what that buys).  mlod_splat_ism() is the Imperfect
      Shadow Maps baseline (a fixed random subset of leaves per view) and
      mlod_atlas_fill_holes() the pull-push hole filling for either.
@@ -459,7 +459,7 @@
      changes is which nodes a view gets
      (within epsilon for all eyes of a ball, not at its own cut) and, per
      pixel, which of them is nearest.  tests/test_megaviews.c
-     checks both; README.md measures the cost and the error.
+     checks both; docs/GUIDE.md measures the cost and the error.
      Grouping (params.group_radius g > 0; the paper's equal-depth octrees
      do the like): a view node whose sphere's radius is at most g is a
      group.  Its pairs are culled as an inner node's are, and otherwise
@@ -468,12 +468,12 @@
      splits.  Every view below gets that map, each pixel at its node's
      distance from the view's own eye: the views see the scene from up to
      g away, with the parallax that brings, and no delta bound holds
-     within a group.  README.md measures the error against exact maps.
+     within a group.  docs/GUIDE.md measures the error against exact maps.
      Speed: with delta > 0 and without back-face culling, the pairs of
      every view node (inner, group or leaf) are decided several at a time
      in float (4 lanes with SSE2 or NEON, 8 with AVX), each decision taken only
      where it clears its threshold by a margin proven to exceed the float
-     rounding (under 1 % of the pairs in README.md's benchmark fall within
+     rounding (under 1 % of the pairs in docs/GUIDE.md's benchmark fall within
      one and take the exact double path).  A view node's pairs are
      classified a level of the scene tree at a time (the scene nodes
      handed to it, then the children of those that split, and so on: each
@@ -487,7 +487,7 @@
      (mlod_view_tree.eyes->leaf_sources) holds those tiles side by side,
      so the writes go out in sequence rather than scattered over the
      atlas: the same pixels in each tile, a seventh less time at a million
-     views (README.md).
+     views (docs/GUIDE.md).
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes,
@@ -529,7 +529,7 @@
      stopped, the path to it classified again) and one map
      per level (8 bytes per pixel).  It reports its peak
      (mlod_megaviews_stats.peak_bytes: 9 to 13 MB for 64 k to 1 M
-     lights in README.md's benchmark, against the atlas's 4 bytes per
+     lights in docs/GUIDE.md's benchmark, against the atlas's 4 bytes per
      pixel) and the most pairs one view node classified
      (stats.node_pairs), for which mlod_megaviews_bound bounds the peak
      before the call (3.9 to 5.4 times above it in that benchmark; with the
@@ -545,7 +545,7 @@
      advised (madvise MADV_HUGEPAGE) to take transparent huge pages where
      the system leaves that to programs: a build of 1.3 M leaves then
      takes 4 k page faults instead of 34 k, and its process 2/3 of the
-     time on the machine the README's figures come from; advice only,
+     time on the machine docs/BENCHMARKS.md's figures come from; advice only,
      ignored for memory that cannot have them.  MANYLODS_NO_HUGE_PAGES
      turns it off.
 
@@ -1119,7 +1119,7 @@ typedef struct mlod_atlas_desc {
                               changes no tile's pixels, only where they lie: give the
                               view tree's leaf order (mlod_view_tree.eyes->leaf_sources)
                               and mlod_megaviews_render writes the tiles in sequence,
-                              not scattered over the atlas (README.md measures it) */
+                              not scattered over the atlas (docs/GUIDE.md measures it) */
 } mlod_atlas_desc;
 
 /* One image holding a tile per view, laid out as a grid of equal cells (the
@@ -1372,7 +1372,7 @@ typedef struct mlod_megaviews_stats {
    node classifies more than node_pairs pairs.  The pairs depend on the
    scene and the views: stats.node_pairs reports them after a render (the
    next frames of a moving scene need a margin: 6 317 to 7 060 in
-   README.md's benchmark, 1 k to 1 M lights), and the scene tree's node
+   docs/GUIDE.md's benchmark, 1 k to 1 M lights), and the scene tree's node
    count holds for any render (each scene node meets a view node at most
    once) at the price of a far larger bound.  Maps and tables are counted
    as allocated, the pair lists at their worst for node_pairs: 3.9 to 5.4
@@ -9588,7 +9588,7 @@ static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uin
    pair's answer, and no loop over all the pairs branches on one pair's
    code.  (What that buys was measured: a tenth with 8 lanes, which the
    descent now fills; about nothing with 4, where the filter's arithmetic
-   sets the pace, README.md's Changes.) */
+   sets the pace, CHANGELOG.md, 0.1.0.) */
 static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, const uint32_t *nodes, uint32_t n,
                                uint8_t *actions)
 {

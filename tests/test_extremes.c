@@ -8,7 +8,7 @@
    converging to it from another frame's cuts, and a splat atlas holding
    only finite depths or +inf (empty).  Invalid input must give the
    documented error instead.  Each case prints one row of the table in
-   README.md ("case | expected | result"). */
+   docs/GUIDE.md ("case | expected | result"). */
 #define MANYLODS_IMPLEMENTATION
 #define MANYLODS_PTHREADS
 #include "../manylods.h"
