@@ -1107,6 +1107,17 @@ enum {
     MLOD_ATLAS_COLOR = 1u << 1   /* the drawn node's mean colour (trees with colours) */
 };
 
+/* What a drawn node becomes in a tile (mlod_atlas_desc.splat; see
+   SPLATTING in the manual). */
+enum {
+    MLOD_SPLAT_AUTO = 0,    /* MLOD_SPLAT_TANGENT with a tree that has cones, else MLOD_SPLAT_SPHERES */
+    MLOD_SPLAT_SPHERES = 1, /* the disc of the sphere's image at the centre's depth; at disc_scale 1 a
+                               disc covering no pixel centre sets the pixel holding its centre */
+    MLOD_SPLAT_TANGENT = 2  /* the node's tangent disc (through the sphere's centre, normal the cone's
+                               axis, the sphere's radius) sampled at pixel centres, at the depth where
+                               each centre's ray meets it; needs a tree with cones */
+};
+
 /* Zero-initialise it (memset or = {0}): a zero field means its default. */
 typedef struct mlod_atlas_desc {
     uint32_t columns;  /* tiles per row; 0: ceil(sqrt(views)) */
@@ -1120,6 +1131,7 @@ typedef struct mlod_atlas_desc {
                               view tree's leaf order (mlod_view_tree.eyes->leaf_sources)
                               and mlod_megaviews_render writes the tiles in sequence,
                               not scattered over the atlas (docs/GUIDE.md measures it) */
+    uint32_t splat;        /* MLOD_SPLAT_*; 0: MLOD_SPLAT_AUTO */
 } mlod_atlas_desc;
 
 /* One image holding a tile per view, laid out as a grid of equal cells (the
@@ -1134,6 +1146,7 @@ typedef struct mlod_atlas {
     uint32_t channels;
     uint32_t cell_width, cell_height, columns;
     float disc_scale;         /* as given in mlod_atlas_desc (0 became 1) */
+    uint32_t splat;           /* as given in mlod_atlas_desc (MLOD_SPLAT_*) */
     float *depth;
     float *normal;
     float *color;
@@ -7176,12 +7189,14 @@ static int mlod__disc_inside(const float *box, size_t stride, uint32_t col, uint
 }
 
 /* What the filter's box (mlod__fast_disc; box[k * stride], k = 0 .. 5)
-   tells of the disc at disc scale ds: MLOD__DISC_* and the pixel. */
-static int mlod__disc_decide(const float *box, size_t stride, float ds, const uint32_t *clip, uint32_t *col,
+   tells of the disc: MLOD__DISC_* and the pixel; strict (a disc scale
+   below 1, or tangent discs): only where the pixel's centre lies in the
+   disc. */
+static int mlod__disc_decide(const float *box, size_t stride, int strict, const uint32_t *clip, uint32_t *col,
                              uint32_t *row)
 {
     int code = mlod__disc_pixel(box[0], box[stride], box[2 * stride], box[3 * stride], clip, col, row);
-    return code == MLOD__DISC_PLOT && ds < 1.0f ? mlod__disc_inside(box, stride, *col, *row) : code;
+    return code == MLOD__DISC_PLOT && strict ? mlod__disc_inside(box, stride, *col, *row) : code;
 }
 
 #ifndef MLOD__VLANES
@@ -7603,6 +7618,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     atlas->cell_height = cell_h;
     atlas->columns = columns;
     atlas->disc_scale = desc->disc_scale == 0.0f ? 1.0f : desc->disc_scale;
+    atlas->splat = desc->splat;
     atlas->depth = (float *)mlod__alloc_array(&a, (size_t)pixels, sizeof(float), &atlas->bytes);
     ok = atlas->depth != NULL;
     if (desc->channels & MLOD_ATLAS_NORMAL)
@@ -7659,6 +7675,8 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
     if (!(desc->disc_scale >= 0.0f && desc->disc_scale <= 1.0f))
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "disc_scale %g is not in (0, 1] (or 0 for 1)",
                           (double)desc->disc_scale);
+    if (desc->splat > MLOD_SPLAT_TANGENT)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "splat %u is not an MLOD_SPLAT_*", desc->splat);
     L->cell_w = L->cell_h = 1;
     for (v = 0; v < view_count; v++) {
         if (views[v].width == 0 || views[v].height == 0)
@@ -7718,9 +7736,17 @@ typedef struct mlod__band {
     uint32_t *ids;
     size_t stride;               /* pixels from one row to the next */
     float disc_scale;
+    int tangent;                 /* MLOD_SPLAT_TANGENT (mlod__splat_tangent), else MLOD_SPLAT_SPHERES */
     uint32_t row_begin, row_end; /* tile rows */
     const mlod__fdiscs *fast;    /* the view's float filter (mlod__disc_prepare), or NULL: the double path */
 } mlod__band;
+
+/* Whether an atlas's splat setting (MLOD_SPLAT_*) draws this tree's nodes
+   as tangent discs. */
+static int mlod__splat_tangent(uint32_t splat, const mlod_tree *tree)
+{
+    return splat == MLOD_SPLAT_TANGENT || (splat == MLOD_SPLAT_AUTO && tree->cones != NULL);
+}
 
 /* Set a pixel (index `at` of the band's arrays) to the node: its depth and
    channels, or its index. */
@@ -7763,10 +7789,123 @@ MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint
 }
 
 
+/* ---------------------------------------------------- tangent discs -- */
+
+/* The ray through the centre of tile pixel (col, row) in sub-projection
+   sub of this kind, in double, relative to the eye: origin eye + o
+   (orthographic: on the plane through the eye; else o = 0), direction dir
+   (not unit; mlod_view_pixel_ray normalises the same vector).  0 when the
+   centre lies outside a paraboloid's disc (no ray). */
+/* GLSL twin: centre_ray */
+static int mlod__centre_ray(const mlod_view_sub *sub, int kind, uint32_t col, uint32_t row, double *o, double *dir)
+{
+    double x = (double)col + 0.5, y = (double)row + 0.5, px, py, q;
+    int k;
+    for (k = 0; k < 3; k++) o[k] = 0.0;
+    if (kind == MLOD_VIEW_PERSPECTIVE) {
+        px = (x - (sub->x + 0.5 * sub->width)) / sub->scale;
+        py = ((sub->y + 0.5 * sub->height) - y) / sub->scale;
+        for (k = 0; k < 3; k++) dir[k] = sub->forward[k] + px * sub->right[k] + py * sub->up[k];
+    } else if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        px = (x - (sub->x + 0.5 * sub->width)) / sub->scale_x;
+        py = ((sub->y + 0.5 * sub->height) - y) / sub->scale_y;
+        for (k = 0; k < 3; k++) {
+            o[k] = px * sub->right[k] + py * sub->up[k];
+            dir[k] = sub->forward[k];
+        }
+    } else {
+        px = 2.0 * (x - sub->x) / sub->width - 1.0;
+        py = 1.0 - 2.0 * (y - sub->y) / sub->height;
+        q = px * px + py * py;
+        if (!(q <= 1.0)) return 0;
+        /* the inverse stereographic projection, times 1 + q */
+        for (k = 0; k < 3; k++) dir[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
+    }
+    return 1;
+}
+
+/* Whether the node draws as a tangent disc: its cone's half-angle is
+   below pi (it has an axis). */
+static int mlod__has_plane(const float *cone)
+{
+    return (double)cone[3] < MLOD__PI;
+}
+
+/* Where the ray eye + o + t dir (mlod__centre_ray) meets the plane through
+   the sphere's centre (x = centre - eye) whose normal is the cone's axis:
+   t = n.(x - o) / n.dir, and the point there, relative to the eye, in hit
+   (o + t dir). */
+/* GLSL twin: plane_hit */
+static double mlod__plane_hit(const double *x, const float *cone, const double *o, const double *dir, double *hit)
+{
+    double n[3], w[3], t;
+    int k;
+    for (k = 0; k < 3; k++) {
+        n[k] = cone[k];
+        w[k] = x[k] - o[k];
+    }
+    t = mlod__dot3(n, w) / mlod__dot3(n, dir);
+    for (k = 0; k < 3; k++) hit[k] = o[k] + t * dir[k];
+    return t;
+}
+
+/* A point's depth (relative to the eye) as sub-projection kind measures
+   it: z along forward (perspective, orthographic), else its distance. */
+static double mlod__view_depth(int kind, const mlod_view_sub *sub, const double *x)
+{
+    return kind == MLOD_VIEW_PARABOLOID ? mlod__length3(x) : mlod__dot3(x, sub->forward);
+}
+
+/* A point of the sphere's depth v, clamped to the sphere's depths [c - r,
+   c + r] (c: its centre's), which only rounding can leave (NaN: c - r). */
+/* GLSL twin: depth_clamp */
+static float mlod__depth_clamp(double v, double c, float r)
+{
+    double lo = c - (double)r, hi = c + (double)r;
+    if (!(v >= lo)) v = lo;
+    if (v > hi) v = hi;
+    return (float)v;
+}
+
+/* MLOD_SPLAT_TANGENT at tile pixel (col, row) of sub-projection s: whether
+   the ray through its centre meets the node's tangent disc (the plane
+   through the sphere's centre normal to the cone's axis, within the
+   sphere's radius times ds of the centre, in front of the eye but for an
+   orthographic view) and, if so, the depth of that point in *depth. */
+/* GLSL twin: tangent_hit */
+static int mlod__tangent_hit(const mlod__pview *pv, int s, const float *sphere, const float *cone, float ds,
+                             uint32_t col, uint32_t row, float *depth)
+{
+    const mlod_view_sub *sub = &pv->f.subs[s];
+    double o[3], dir[3], x[3], hit[3], e[3], t, rr = (double)sphere[3] * (double)ds;
+    int k;
+    if (!mlod__centre_ray(sub, pv->kind[s], col, row, o, dir)) return 0;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+    t = mlod__plane_hit(x, cone, o, dir, hit);
+    if (pv->kind[s] != MLOD_VIEW_ORTHOGRAPHIC && !(t > 0.0)) return 0;
+    for (k = 0; k < 3; k++) e[k] = hit[k] - x[k];
+    if (!(mlod__dot3(e, e) <= rr * rr)) return 0;
+    *depth = mlod__depth_clamp(mlod__view_depth(pv->kind[s], sub, hit), mlod__view_depth(pv->kind[s], sub, x), sphere[3]);
+    return 1;
+}
+
+/* The depth of the sphere's centre in sub-projection s (as
+   mlod__image_discs measures it). */
+static float mlod__centre_depth(const mlod__pview *pv, int s, const float *sphere)
+{
+    double x[3];
+    int k;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+    return (float)mlod__view_depth(pv->kind[s], &pv->f.subs[s], x);
+}
+
 /* Draw the disc into the band, clipped to tile columns [columns[0],
-   columns[1]) and rows [rows[0], rows[1]) (a sub-tile, see mlod_view_sub). */
-static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, uint32_t node, const uint32_t *columns,
-                              const uint32_t *rows)
+   columns[1]) and rows [rows[0], rows[1]) (a sub-tile, see mlod_view_sub):
+   the pixels whose centre lies in it, at its depth, or with a band of
+   tangent discs, those of them whose centre's ray meets the node's tangent
+   disc, at that point's depth (a node without a cone axis: its disc). */
+static void mlod__raster_disc(const mlod__band *band, const mlod__pview *pv, int s, const mlod__disc *disc,
+                              uint32_t node, const uint32_t *columns, const uint32_t *rows)
 {
     double radius = disc->radius * (double)band->disc_scale, r2 = radius * radius;
     double y0 = floor(disc->y - radius), y1 = ceil(disc->y + radius);
@@ -7778,6 +7917,25 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__disc *disc, ui
     int hit = 0;
     if (!(disc->radius < 1e9) || !isfinite(disc->x) || !isfinite(disc->y)) return;
     if (row_begin >= row_end) return;
+    if (band->tangent) { /* strictly the pixel centres in the disc, no rule for a disc covering none */
+        const float *sphere = band->tree->spheres + 4 * (size_t)node, *cone = band->tree->cones + 4 * (size_t)node;
+        int plane = mlod__has_plane(cone);
+        rb = y0 < row_begin ? row_begin : (y0 >= row_end ? row_end : (uint32_t)y0);
+        re = y1 > row_end ? row_end : (y1 <= row_begin ? row_begin : (uint32_t)y1);
+        cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);
+        ce = x1 > col_end ? col_end : (x1 <= col_begin ? col_begin : (uint32_t)x1);
+        for (row = rb; row < re; row++) {
+            double dy = row + 0.5 - disc->y;
+            for (col = cb; col < ce; col++) {
+                double dx = col + 0.5 - disc->x;
+                float at = depth;
+                uint32_t in = dx * dx + dy * dy <= r2;
+                if (in && plane) in = (uint32_t)mlod__tangent_hit(pv, s, sphere, cone, band->disc_scale, col, row, &at);
+                mlod__plot_if(band, row, col, at, node, in);
+            }
+        }
+        return;
+    }
     if (band->disc_scale >= 1.0f && radius < MLOD__SMALL_DISC) {
         /* A small disc (most of them, at epsilon 1): every pixel centre but the one of the pixel holding the
            disc's centre is 0.5 or more away along a row or a column, so its squared distance rounds to at
@@ -7825,7 +7983,7 @@ static void mlod__draw_exact(const mlod__band *band, const mlod__pview *pv, int 
         }
         mlod__image_discs(pv, s, (const double (*)[3])c, r, disc, bounded, lanes);
         for (l = 0; l < lanes; l++)
-            if (bounded[l]) mlod__raster_disc(band, &disc[l], nodes[i + l], pv->columns[s], pv->rows[s]);
+            if (bounded[l]) mlod__raster_disc(band, pv, s, &disc[l], nodes[i + l], pv->columns[s], pv->rows[s]);
     }
 }
 
@@ -7865,6 +8023,22 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
         mlod__fast_discs(band->fast, &band->fast->subs[s], spheres, ids, padded, band->disc_scale, box, MLOD__BOX_STRIDE);
     else
         for (l = 0; l < 6 * MLOD__BOX_STRIDE; l++) box[l] = NAN;
+    if (band->tangent) { /* each small disc's one pixel, if its centre lies in the disc and its ray meets the node */
+        const float *cones = band->tree->cones;
+        for (l = 0; l < count; l++) {
+            uint32_t col = 0, row = 0;
+            const float *sphere = spheres + 4 * (size_t)nodes[l], *cone = cones + 4 * (size_t)nodes[l];
+            int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, 1, clip, &col, &row);
+            float at;
+            if (code == MLOD__DISC_UNSURE)
+                mlod__draw_exact(band, pv, s, nodes + l, 1);
+            else if (code == MLOD__DISC_PLOT && !mlod__has_plane(cone))
+                mlod__plot_if(band, row, col, mlod__centre_depth(pv, s, sphere), nodes[l], 1u);
+            else if (code == MLOD__DISC_PLOT && mlod__tangent_hit(pv, s, sphere, cone, band->disc_scale, col, row, &at))
+                mlod__plot_if(band, row, col, at, nodes[l], 1u);
+        }
+        return;
+    }
     /* the double path's depths, as it computes them */
     if (pv->kind[s] == MLOD_VIEW_PARABOLOID)
         mlod__node_distances(band->tree, nodes, count, pv->f.eye, depth);
@@ -7898,7 +8072,7 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
 #endif
     for (l = 0; l < count; l++) {
         uint32_t col = 0, row = 0;
-        int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale, clip, &col, &row);
+        int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale < 1.0f, clip, &col, &row);
         if (code == MLOD__DISC_PLOT)
             mlod__plot_if(band, row, col, depth[l], nodes[l], 1u);
         else if (code == MLOD__DISC_UNSURE)
@@ -7977,6 +8151,7 @@ static void mlod__tile_band(mlod_atlas *atlas, const mlod_tree *tree, uint32_t v
     band->fast = NULL;
     band->stride = atlas->width;
     band->disc_scale = atlas->disc_scale;
+    band->tangent = mlod__splat_tangent(atlas->splat, tree);
     band->row_begin = 0;
     band->row_end = tile[3];
 }
@@ -8066,6 +8241,7 @@ static void mlod__ism_task(void *context, uint32_t index)
     mlod__fdiscs fast;
     uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), k, l, n, m, points[MLOD__DRAW_CHUNK];
     uint8_t status[MLOD__DRAW_CHUNK];
+    band.tangent = 0; /* ISM's points are discs, a point covering no pixel centre its pixel (MLOD_SPLAT_SPHERES) */
     for (k = 0; k < job->points_per_view; k += n) {
         n = job->points_per_view - k < MLOD__DRAW_CHUNK ? job->points_per_view - k : MLOD__DRAW_CHUNK;
         for (l = 0; l < n; l++) points[l] = mlod__ism_node(tree, job->seed, view, k + l);
@@ -8086,6 +8262,8 @@ static mlod_result mlod__check_splat(const mlod_atlas *atlas, const mlod_tree *t
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has normals and the tree no cones");
     if (atlas->color && !tree->colors)
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the tree none");
+    if (atlas->splat == MLOD_SPLAT_TANGENT && !tree->cones)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "MLOD_SPLAT_TANGENT needs a tree with cones");
     for (v = 0; v < atlas->view_count; v++) {
         mlod__pview pv;
         mlod_error detail;
@@ -8951,6 +9129,7 @@ typedef struct mlod__mv_job {
     double epsilon, delta, S, group_radius;
     uint32_t resolution, flags;
     float disc_scale;
+    int tangent;               /* tangent discs (mlod__splat_tangent) */
     mlod_megaviews_maps *keep; /* unfused: every node's own map, leaves too; NULL: fuse into the atlas */
     /* the level: view nodes first .. first + count - 1 */
     uint32_t first, count, prev_first;
@@ -9719,6 +9898,30 @@ static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, 
     for (; l < n; l++) out[l] = mlod__node_distance(scene, nodes[l], centre);
 }
 
+/* A scene node's depth at pixel (col, row) of a map whose view is pv (a
+   dual paraboloid from a view node's centre), as the fusion measures
+   again a node drawn into an ancestor's map: the distance from the eye to
+   the node's centre, or with tangent discs, to where the pixel centre's
+   ray meets the node's tangent plane, clamped to the sphere's range [d -
+   r, d + r] (mlod__depth_clamp; d + r where the plane lies behind; a node
+   without a cone axis, or a pixel outside the paraboloids' discs: d).
+   For a pixel the map's own eye drew, the depth it drew. */
+/* GLSL twin: remeasure */
+static float mlod__remeasure(const mlod__pview *pv, const mlod_tree *scene, uint32_t node, uint32_t col, uint32_t row,
+                             int tangent)
+{
+    const float *sphere = scene->spheres + 4 * (size_t)node;
+    double x[3], o[3], dir[3], hit[3], d, t;
+    int k, s = col < pv->columns[0][1] ? 0 : 1;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+    d = mlod__length3(x);
+    if (!tangent || !mlod__has_plane(scene->cones + 4 * (size_t)node) ||
+        !mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col, row, o, dir))
+        return (float)d;
+    t = mlod__plane_hit(x, scene->cones + 4 * (size_t)node, o, dir, hit);
+    return mlod__depth_clamp(t > 0.0 ? mlod__length3(hit) : d + (double)sphere[3], d, sphere[3]);
+}
+
 static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *centre)
 {
     int k;
@@ -9736,11 +9939,18 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
     uint32_t width = 2 * job->resolution, row, col, n, l, cols[MLOD__DRAW_CHUNK], ids[MLOD__DRAW_CHUNK];
     float depth[MLOD__DRAW_CHUNK];
     double centre[3];
+    mlod__pview pv;
     if (band->normal || band->color || !parent_depth) {
         mlod__band_clear(band, width);
         if (!parent_depth) return;
     }
     mlod__mv_centre(job, node, centre);
+    if (job->tangent) { /* the map's view: its pixels' rays */
+        mlod_view view = mlod__node_map_view(job, node);
+        mlod_result ok = mlod__view_prepare(&view, &pv, NULL);
+        MANYLODS_ASSERT(ok == MLOD_OK && pv.sub_count == 2 && pv.columns[0][1] == job->resolution);
+        (void)ok;
+    }
     for (row = 0; row < job->resolution; row++) {
         float *out = band->depth + (size_t)row * band->stride;
         uint32_t *out_ids = band->ids ? band->ids + (size_t)row * band->stride : NULL;
@@ -9752,7 +9962,10 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
                 ids[n] = parent_ids[at + col];
                 n += parent_depth[at + col] < INFINITY;
             }
-            mlod__node_distances(job->scene, ids, n, centre, depth);
+            if (job->tangent)
+                for (l = 0; l < n; l++) depth[l] = mlod__remeasure(&pv, job->scene, ids[l], cols[l], row, 1);
+            else
+                mlod__node_distances(job->scene, ids, n, centre, depth);
             if (band->normal || band->color) { /* the node's channels too */
                 for (l = 0; l < n; l++) mlod__band_set(band, (size_t)row * band->stride + cols[l], depth[l], ids[l]);
                 continue;
@@ -9808,6 +10021,7 @@ static void mlod__mv_map_begin(const mlod__mv_job *job, uint32_t node, float *de
     band->ids = ids;
     band->stride = 2 * job->resolution;
     band->disc_scale = job->disc_scale;
+    band->tangent = job->tangent;
     band->row_end = job->resolution;
     mlod__mv_inherit(job, band, parent_depth, parent_ids, node);
 }
@@ -10198,6 +10412,8 @@ static mlod_result mlod__check_megaviews(const mlod_atlas *atlas, const mlod_tre
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has normals and the scene no cones");
     if (atlas->color && !scene->colors)
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the atlas has colours and the scene none");
+    if (atlas->splat == MLOD_SPLAT_TANGENT && !scene->cones)
+        return mlod__fail(error, MLOD_ERROR_MISMATCH, "MLOD_SPLAT_TANGENT needs a scene tree with cones");
     return MLOD_OK;
 }
 
@@ -10426,6 +10642,7 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
 struct mlod_megaviews_maps {
     uint32_t resolution, levels;
     uint32_t view_count, scene_nodes; /* of the render's view tree and scene (mlod_megaviews_query refuses others) */
+    int tangent;          /* drawn as tangent discs (mlod__splat_tangent) */
     uint32_t *map_of;     /* per view node: its map among its level's, or MLOD__NO_MAP */
     uint32_t *leaf_of;    /* per view: its leaf node */
     float **depth;        /* per level: the maps' depths from their node's centre, 2 R^2 per map */
@@ -10468,6 +10685,7 @@ static mlod_megaviews_maps *mlod__maps_create(const mlod_allocator *a, const mlo
     maps->levels = levels;
     maps->view_count = views->view_count;
     maps->scene_nodes = scene->node_count;
+    maps->tangent = mlod__splat_tangent(MLOD_SPLAT_AUTO, scene);
     maps->map_of = (uint32_t *)mlod__alloc_array(a, eyes->node_count, sizeof(uint32_t), &bytes);
     maps->leaf_of = (uint32_t *)mlod__alloc_array(a, eyes->leaf_count, sizeof(uint32_t), &bytes);
     maps->depth = (float **)mlod__alloc_array(a, levels, sizeof(float *), &bytes);
@@ -10541,6 +10759,7 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     job.views = views;
     job.atlas = atlas;
     job.disc_scale = atlas ? atlas->disc_scale : 1.0f;
+    job.tangent = mlod__splat_tangent(atlas ? atlas->splat : MLOD_SPLAT_AUTO, scene);
     job.epsilon = params->epsilon;
     job.delta = params->delta;
     job.group_radius = params->group_radius;
@@ -10832,7 +11051,13 @@ MLOD__PUBLIC int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlo
         double centre[3];
         size_t at;
         for (k = 0; k < 3; k++) centre[k] = eyes->spheres[4 * (size_t)n + k];
-        if (have) at_depth = mlod__node_distance(scene, at_node, centre); /* measured again from this node's centre */
+        if (have && maps->tangent && scene->cones) { /* measured again from this node's centre, as the fusion does */
+            mlod_view mv = mlod_megaviews_view(eyes->spheres + 4 * (size_t)n, maps->resolution, 0);
+            mlod__pview pv;
+            if (mlod__view_prepare(&mv, &pv, NULL) != MLOD_OK) return 0;
+            at_depth = mlod__remeasure(&pv, scene, at_node, x, y, 1);
+        } else if (have)
+            at_depth = mlod__node_distance(scene, at_node, centre); /* measured again from this node's centre */
         if (m == MLOD__NO_MAP) continue;
         at = (size_t)m * 2 * maps->resolution * maps->resolution + pixel;
         if (!(maps->depth[level][at] < at_depth)) continue;

@@ -122,6 +122,36 @@ static mlod__mv_job pair_job(const mlod_tree *scene, const mlod_view_tree *t, ui
     return job;
 }
 
+/* The depth the fusion leaves at pixel (col, row) of the view whose
+   prepared map view is pv, holding the node (x: its centre minus the eye):
+   the node's distance from the eye (spheres), or, with the tangent discs
+   of a scene with cones, as measured along the pixel's ray
+   (mlod__remeasure: the fusion of an ancestor's pixel and the view's own
+   draw must agree on it), which must lie in the sphere's range of
+   distances. */
+static float fused_depth(const mlod__pview *pv, const mlod_tree *scene, uint32_t node, uint32_t col, uint32_t row,
+                         const double *x)
+{
+    double d = mlod__length3(x), r = scene->spheres[4 * (size_t)node + 3];
+    float v;
+    if (!scene->cones) return (float)d;
+    v = mlod__remeasure(pv, scene, node, col, row, 1);
+    return v >= (float)(d - r) * (1.0f - 1e-6f) && v <= (float)(d + r) * (1.0f + 1e-6f) ? v : -1.0f;
+}
+
+/* fused_depth at view i's pixel (col, row). */
+static float fused_depth_at(const views *v, uint32_t i, uint32_t resolution, const mlod_tree *scene, uint32_t node,
+                            uint32_t col, uint32_t row)
+{
+    mlod_view view = mlod_megaviews_view(v->eyes + 3 * i, resolution, 0);
+    mlod__pview pv;
+    double x[3];
+    int k;
+    mlod__view_prepare(&view, &pv, NULL);
+    for (k = 0; k < 3; k++) x[k] = (double)scene->spheres[4 * (size_t)node + k] - v->eyes[3 * i + k];
+    return fused_depth(&pv, scene, node, col, row, x);
+}
+
 /* An atlas of the views' MegaViews maps, cells in `order` (NULL: view
    order). */
 static mlod_atlas *make_atlas_ordered(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
@@ -670,7 +700,7 @@ static void test_fusion(mlod_tree *scene)
                         centre[k] = sph[k];
                         x[k] = (double)sph[k] - v.eyes[3 * i + k];
                     }
-                    if (a->depth[at] != (float)mlod__length3(x)) bad_depth++;
+                    if (a->depth[at] != fused_depth(&pv, scene, node, col, row, x)) bad_depth++;
                     if (memcmp(a->normal + 3 * at, scene->cones + 4 * (size_t)node, 12)) bad_normal++;
                     if (d > 0) {
                         const float *dir = v.directions + 3 * i;
@@ -786,9 +816,6 @@ static void test_groups(mlod_tree *scene)
             for (col = 0; col < tile[2]; col++) {
                 size_t at = (size_t)(tile[1] + row) * a->width + tile[0] + col, ref = (size_t)row * one->width + col;
                 uint32_t node;
-                const float *sph;
-                double x[3];
-                int k;
                 if ((a->depth[at] < INFINITY) != (one->depth[ref] < INFINITY) ||
                     (a->depth[at] < INFINITY && a->color[3 * at] != one->color[3 * ref])) {
                     wrong_node++;
@@ -797,9 +824,7 @@ static void test_groups(mlod_tree *scene)
                 if (!(a->depth[at] < INFINITY)) continue;
                 filled++;
                 node = (uint32_t)a->color[3 * at];
-                sph = scene->spheres + 4 * (size_t)node;
-                for (k = 0; k < 3; k++) x[k] = (double)sph[k] - v.eyes[3 * i + k];
-                if (a->depth[at] != (float)mlod__length3(x)) wrong_depth++;
+                if (a->depth[at] != fused_depth_at(&v, i, p.resolution, scene, node, col, row)) wrong_depth++;
             }
     }
     CHECK(filled > v.count * 100, "groups: %llu pixels filled", (unsigned long long)filled);
@@ -836,12 +861,10 @@ static void test_groups(mlod_tree *scene)
             for (row = 0; row < tile[3]; row++)
                 for (col = 0; col < tile[2]; col++) {
                     size_t at = (size_t)(tile[1] + row) * b1->width + tile[0] + col;
-                    const float *sph = scene->spheres + 4 * (size_t)(uint32_t)b1->color[3 * at];
-                    double x[3];
-                    int k;
                     if (!(b1->depth[at] < INFINITY)) continue;
-                    for (k = 0; k < 3; k++) x[k] = (double)sph[k] - v.eyes[3 * i + k];
-                    if (b1->depth[at] != (float)mlod__length3(x)) wrong_depth++;
+                    if (b1->depth[at] != fused_depth_at(&v, i, p.resolution, scene,
+                                                        (uint32_t)b1->color[3 * at], col, row))
+                        wrong_depth++;
                 }
         }
         CHECK(wrong_depth == 0, "groups, delta %g: %llu pixels not at their node's distance from the eye", p.delta,

@@ -488,6 +488,9 @@ static int depth_is_planar(const frame *F)
 typedef struct expect {
     uint32_t W, H;
     double disc_scale; /* the atlas's: drawn radius over the image's */
+    const float *cones; /* the tree's cones when the atlas draws tangent discs, else NULL */
+    const frame *F;     /* while a node is drawn (expect_node): its view, sphere and cone */
+    const float *sphere, *cone;
     double *depth;
     int64_t *node;
     uint8_t *unsure;
@@ -499,6 +502,7 @@ static void expect_init(expect *x, uint32_t W, uint32_t H)
     x->W = W;
     x->H = H;
     x->disc_scale = 1.0;
+    x->cones = NULL;
     x->depth = (double *)malloc(sizeof(double) * n);
     x->node = (int64_t *)malloc(sizeof(int64_t) * n);
     x->unsure = (uint8_t *)calloc(n, 1);
@@ -526,13 +530,60 @@ static void expect_put(expect *x, uint32_t col, uint32_t row, double depth, int6
     }
 }
 
+/* MLOD_SPLAT_TANGENT's rule at one pixel whose centre lies in the node's
+   disc, computed apart from the library (my_ray, then long double): the
+   ray through the pixel's centre meets the plane through the sphere's
+   centre normal to the cone's axis; the pixel is drawn where that point
+   lies within the sphere's radius times disc_scale of the centre, in
+   front of the eye (but orthographic), at its depth (z along the
+   sub-projection's axis, distance for paraboloids).  Returns 1 drawn
+   (*depth), 0 not, -1 too close to call. */
+static int expect_tangent(const expect *x, int s, uint32_t col, uint32_t row, double *depth)
+{
+    const frame *F = x->F;
+    double o[3], dir[3], axis[3];
+    long double n[3], w[3], hit[3], e[3], nw = 0.0L, nd = 0.0L, t, d2 = 0.0L, rr, z = 0.0L, scale = 0.0L;
+    int k;
+    if (!my_ray(F, col + 0.5, row + 0.5, o, dir)) return 0;
+    for (k = 0; k < 3; k++) {
+        n[k] = x->cone[k];
+        w[k] = (long double)x->sphere[k] - o[k];
+        nw += n[k] * w[k];
+        nd += n[k] * dir[k];
+        scale += w[k] * w[k];
+    }
+    if (fabsl(nd) < 1e-9L) return -1; /* the ray grazes the plane */
+    t = nw / nd;
+    for (k = 0; k < 3; k++) {
+        hit[k] = o[k] + t * dir[k];
+        e[k] = hit[k] - (long double)x->sphere[k];
+        d2 += e[k] * e[k];
+    }
+    rr = (long double)x->sphere[3] * x->disc_scale;
+    rr *= rr;
+    if (F->kind != MLOD_VIEW_ORTHOGRAPHIC && fabsl(t) <= 1e-9L * sqrtl(scale)) return -1;
+    if (fabsl(d2 - rr) <= 1e-9L * (rr + scale)) return -1;
+    if (!(d2 < rr) || (F->kind != MLOD_VIEW_ORTHOGRAPHIC && t < 0.0L)) return 0;
+    sub_axis(F, s, axis);
+    for (k = 0; k < 3; k++) {
+        long double rel = hit[k] - (long double)F->e[k];
+        z += depth_is_planar(F) ? rel * axis[k] : rel * rel;
+    }
+    *depth = (double)(depth_is_planar(F) ? z : sqrtl(z));
+    return 1;
+}
+
 /* Draw a disc by the documented rule: every pixel whose centre lies in the
    disc (its radius times disc_scale), clipped to columns [c0, c1) and rows
    [r0, r1) (its sub-projection's pixels); at disc_scale 1, a disc covering
    no pixel centre sets the pixel holding its centre, if that is one of
-   them. */
-static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, uint32_t c1, uint32_t r0, uint32_t r1)
+   them.  Tangent discs (x->cones): of those pixels, the ones
+   expect_tangent draws (a node without a cone axis: all, at the disc's
+   depth), and no pixel for a disc covering none. */
+static void expect_disc(expect *x, int s, const disc *dc, int64_t node, uint32_t c0, uint32_t c1, uint32_t r0,
+                        uint32_t r1)
 {
+    int plane = x->cones && (double)x->cone[3] < TU_PI;
     double radius = dc->radius * x->disc_scale, tol = 1e-7 * (1.0 + radius), lo_x, hi_x, lo_y, hi_y;
     int64_t i, j, i0, i1, j0, j1;
     int any = 0, maybe = 0;
@@ -548,7 +599,12 @@ static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, ui
     for (j = j0; j < j1; j++)
         for (i = i0; i < i1; i++) {
             double ex = i + 0.5 - dc->x, ey = j + 0.5 - dc->y, dist = sqrt(ex * ex + ey * ey);
-            if (dist < radius - tol) {
+            if (dist < radius - tol && plane) {
+                double at = 0.0;
+                int drawn = expect_tangent(x, s, (uint32_t)i, (uint32_t)j, &at);
+                if (drawn > 0) expect_put(x, (uint32_t)i, (uint32_t)j, at, node);
+                if (drawn < 0) x->unsure[(size_t)j * x->W + i] |= 1;
+            } else if (dist < radius - tol) {
                 any = 1;
                 expect_put(x, (uint32_t)i, (uint32_t)j, dc->depth, node);
             } else if (dist <= radius + tol) {
@@ -556,7 +612,7 @@ static void expect_disc(expect *x, const disc *dc, int64_t node, uint32_t c0, ui
                 x->unsure[(size_t)j * x->W + i] |= 1;
             }
         }
-    if (!any && x->disc_scale >= 1.0 && dc->x >= c0 && dc->x < c1 && dc->y >= r0 && dc->y < r1) {
+    if (!any && !x->cones && x->disc_scale >= 1.0 && dc->x >= c0 && dc->x < c1 && dc->y >= r0 && dc->y < r1) {
         uint32_t ci = (uint32_t)floor(dc->x), cj = (uint32_t)floor(dc->y);
         double fx = dc->x - floor(dc->x), fy = dc->y - floor(dc->y);
         if (maybe || fx < 1e-9 || fx > 1 - 1e-9 || fy < 1e-9 || fy > 1 - 1e-9)
@@ -574,11 +630,14 @@ static void expect_node(expect *x, const frame *F, const float *sphere, int64_t 
     double c[3] = {sphere[0], sphere[1], sphere[2]}, r = sphere[3];
     disc dc;
     int s;
+    x->F = F;
+    x->sphere = sphere;
+    x->cone = x->cones ? x->cones + 4 * (size_t)node : NULL;
     for (s = 0; s < sub_count(F); s++) {
         uint32_t c0, c1, r0, r1;
         if (!sub_reaches(F, s, c, r) || !sub_disc(F, s, c, r, &dc)) continue;
         sub_rect(F, s, &c0, &c1, &r0, &r1);
-        expect_disc(x, &dc, node, c0, c1, r0, r1);
+        expect_disc(x, s, &dc, node, c0, c1, r0, r1);
     }
 }
 
@@ -669,6 +728,7 @@ static void add_atlas_comparison(raster_diff *rd, const mlod_atlas *atlas, const
         mlod_cut_view cv = mlod_cut_get(cut, v);
         expect_init(&x, views[v].width, views[v].height);
         x.disc_scale = atlas->disc_scale;
+        if (atlas->splat == MLOD_SPLAT_TANGENT || (atlas->splat == MLOD_SPLAT_AUTO && tree->cones)) x.cones = tree->cones;
         expect_cut_view(&x, tree, views + v, &cv);
         compare_tile(atlas, v, &x, tree, rd);
         expect_free(&x);
@@ -724,15 +784,22 @@ static mlod_cut_params cut_params(float eps)
     return p;
 }
 
-static mlod_atlas *make_atlas_scaled(const mlod_view *views, uint32_t count, uint32_t channels, float disc_scale)
+static mlod_atlas *make_atlas_splat(const mlod_view *views, uint32_t count, uint32_t channels, float disc_scale,
+                                    uint32_t splat)
 {
     mlod_atlas_desc d;
     mlod_atlas *a = NULL;
     memset(&d, 0, sizeof d);
     d.channels = channels;
     d.disc_scale = disc_scale;
+    d.splat = splat;
     if (mlod_atlas_create(views, count, &d, NULL, &a, NULL) != MLOD_OK) return NULL;
     return a;
+}
+
+static mlod_atlas *make_atlas_scaled(const mlod_view *views, uint32_t count, uint32_t channels, float disc_scale)
+{
+    return make_atlas_splat(views, count, channels, disc_scale, MLOD_SPLAT_AUTO);
 }
 
 static mlod_atlas *make_atlas(const mlod_view *views, uint32_t count, uint32_t channels)
@@ -1069,7 +1136,7 @@ static void check_alone(const mlod_view *view, const double *centre, double radi
           col[3] = {0.25f, 0.5f, 0.75f};
     mlod_tree *tree = points_tree(1, pos, &rad, nrm, col);
     mlod_cut *cut = NULL;
-    mlod_atlas *atlas = make_atlas(view, 1, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR);
+    mlod_atlas *atlas = make_atlas_splat(view, 1, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, 0.0f, MLOD_SPLAT_SPHERES);
     mlod_cut_params cp = cut_params(1.0f);
     mlod_cut_view cv;
     frame F;
@@ -1661,7 +1728,7 @@ static void test_filtered_discs(void)
             mlod__fast_discs(&fd, &fd.subs[s], spheres, nodes, padded, band.disc_scale, box, NODES);
             for (i = 0; i < NODES; i++) {
                 uint32_t col = 0, row = 0;
-                int code = mlod__disc_decide(box + i, NODES, band.disc_scale, clip, &col, &row);
+                int code = mlod__disc_decide(box + i, NODES, band.disc_scale < 1.0f, clip, &col, &row);
                 double c[3];
                 mlod__disc one;
                 int bounded, small, clear_candidate;
@@ -1698,7 +1765,7 @@ static void test_filtered_discs(void)
                     alone.depth = scratch;
                     alone.ids = NULL;
                     alone.normal = NULL;
-                    if (bounded) mlod__raster_disc(&alone, &one, i, pv.columns[s], pv.rows[s]);
+                    if (bounded) mlod__raster_disc(&alone, &pv, s, &one, i, pv.columns[s], pv.rows[s]);
                     double reach = bounded ? one.radius * band.disc_scale + 2.0 : 0.0; /* where it can draw */
                     uint32_t x0 = 0, x1 = W, y0 = 0, y1 = H, px, py;
                     if (bounded && reach < 64.0 && fabs(one.x) < 1e6 && fabs(one.y) < 1e6) {
@@ -2094,6 +2161,7 @@ static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_v
         mlod__band band;
         mlod__pview pv;
         mlod__tile_band(atlas, tree, v, &band);
+        band.tangent = 0; /* ISM draws spheres whatever the atlas's splat setting */
         mlod__band_clear(&band, atlas->tiles[4 * (size_t)v + 2]);
         if (mlod__view_prepare(&views[v], &pv, NULL) != MLOD_OK) continue;
         for (k = 0; k < points; k++) {
@@ -2261,7 +2329,8 @@ static void test_disc_scale(void)
     ok = tree && pool && mlod_cut_create(count, NULL, &cut, NULL) == MLOD_OK &&
          mlod_cut_update(cut, tree, views, &cp, NULL) == MLOD_OK;
     for (k = 0; k < 4 && ok; k++)
-        ok = (atlas[k] = make_atlas_scaled(views, count, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, k ? scales[k] : 0.0f)) != NULL &&
+        ok = (atlas[k] = make_atlas_splat(views, count, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, k ? scales[k] : 0.0f,
+                                          MLOD_SPLAT_SPHERES)) != NULL &&
              mlod_splat(atlas[k], tree, cut, views, NULL, NULL) == MLOD_OK;
     ref = ok ? (float *)malloc(sizeof(float) * atlas[0]->width * atlas[0]->height) : NULL;
     if (!ref) {
@@ -2388,7 +2457,7 @@ static void test_small_discs(void)
             }
         }
         small += band.disc_scale >= 1.0f && radius < MLOD__SMALL_DISC;
-        mlod__raster_disc(&band, &disc, i, columns, rows);
+        mlod__raster_disc(&band, NULL, 0, &disc, i, columns, rows);
         for (p = 0; p < W * H; p++) plotted += ids[p] == i;
         if ((memcmp(depth, want, sizeof depth) || memcmp(ids, want_ids, sizeof ids)) && differ++ < 3)
             CHECK(0, "small disc at (%.17g, %.17g), radius %.17g, disc scale %g: not the rule's pixels", disc.x, disc.y,
