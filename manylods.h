@@ -288,32 +288,55 @@
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
      tile of one atlas (mlod_atlas: a grid of tiles, depth plus optional
-     normal and colour channels).  A node becomes a disc: the disc around the
-     exact image of its bounding sphere, centred on the image's centre, of
-     its diameter there (paraboloids: at the larger of their two pixel
-     scales), so it covers the node's whole image, in every sub-projection
-     the sphere reaches, clipped to that sub-projection's sub-tile.  The
-     disc holds one depth, that of the sphere's centre; nearest depth wins.
+     normal and colour channels), in every sub-projection the node's sphere
+     reaches, clipped to that sub-projection's sub-tile; nearest depth wins.
+     The node's disc is the disc around the exact image of its bounding
+     sphere, centred on the image's centre, of its diameter there
+     (paraboloids: at the larger of their two pixel scales), so it covers
+     the node's whole image; its radius is times mlod_atlas_desc.disc_scale.
+     What the node draws there depends on mlod_atlas_desc.splat:
+       MLOD_SPLAT_TANGENT (the default, MLOD_SPLAT_AUTO, for a tree with
+         cones): the node's tangent disc, the disc of the sphere's radius
+         (times disc_scale) through the sphere's centre c, normal to its
+         cone's axis n.  A pixel whose centre lies in the node's disc casts
+         its centre's ray, eye + o + t dir (as mlod_view_pixel_ray:
+         perspective dir = w + px u + py v, o = 0; orthographic o = px u +
+         py v, dir = w; paraboloids dir = 2 px u + 2 py v + (1 - q) w, q =
+         px^2 + py^2 <= 1, o = 0), meets the plane at t = n.(c - eye - o) /
+         n.dir, and is drawn when that point p lies within the disc's
+         radius of c (and t > 0 but for orthographic views), at p's depth
+         (clamped to the sphere's depths, which only rounding can leave).
+         A node whose cone holds every direction (half-angle >= pi) draws
+         its disc's pixel centres at its centre's depth.  A disc covering
+         no pixel centre draws nothing: a pixel holds what its centre sees,
+         as an exact (ray-cast) map's does, and a surface of tangent discs
+         leaves no holes where the cut's nodes overlap (their spheres do).
+       MLOD_SPLAT_SPHERES (and MLOD_SPLAT_AUTO for a tree without cones):
+         the node's disc itself, at its centre's depth: the pixels whose
+         centre lies in it; at disc_scale 1 a disc covering no pixel
+         centre sets the pixel holding its centre, so a cut leaves no holes
+         where its surface is, at the price of a silhouette that grows by
+         up to the drawn node's radius, up to epsilon / 2 pixels, and of a
+         pixel that takes the nearest of the sub-pixel nodes anywhere in it
+         (false shadows: docs/BENCHMARKS.md measures both).
      Depth means, in the sub-projection's frame:
        perspective (cube faces too), orthographic:  z = (p - eye) . w;
        paraboloid (dual paraboloid halves too):     |p - eye|.
      Pixel (i, j) of a tile covers [i, i+1) x [j, j+1), x to the right
      (along u), y downwards; mlod_view_project and mlod_view_pixel_ray are
      the projection and its inverse.
-     The whole image is conservative: every silhouette grows by up to the
-     drawn node's radius, up to epsilon / 2 pixels, so occluders (and their
-     shadows) come out wider than they are.  mlod_atlas_desc.disc_scale
-     draws smaller discs, sampled at pixel centres only; the holes left are
-     filled by mlod_atlas_fill_holes (docs/GUIDE.md, "Choosing the disc
-     scale", measures what that buys).  mlod_splat_ism() is the Imperfect
+     mlod_atlas_desc.disc_scale draws smaller discs, sampled at pixel
+     centres only; the holes left are filled by mlod_atlas_fill_holes
+     (docs/GUIDE.md, "Choosing the disc scale").  mlod_splat_ism() is the Imperfect
      Shadow Maps baseline (a fixed random subset of leaves per view) and
      mlod_atlas_fill_holes() the pull-push hole filling for either.
      mlod_suggest_sample_count() gives the smallest N whose leaves are at
      most epsilon pixels in the closest view: sample only what views resolve.
      Drawing is exact and fast like the cut: a node whose disc is smaller
      than a pixel (most of them at epsilon ~1) can only draw the one pixel
-     that holds the disc's centre (at a disc scale below 1, only where that
-     pixel's centre lies in the disc); a float filter finds that pixel from
+     that holds the disc's centre (at a disc scale below 1 and with tangent
+     discs, only where that pixel's centre lies in the disc; tangent discs
+     then cast that one ray, in double); a float filter finds that pixel from
      the disc's formulas in float, with a bound on each step's rounding
      (the proof is beside mlod__fast_disc), wherever the disc's centre,
      widened by the bound, lies inside one pixel and its radius below the
@@ -428,12 +451,20 @@
        phi the angle of x off the half's axis and b = asin((r + rho) / d):
        the direction turns by at most that angle and the map's rate, 1 /
        (1 + cos), is largest at the widest angle an eye sees the sphere at.
+     Draws into a map follow the atlas's splat setting (SPLATTING; the
+     maps of mlod_megaviews_render_maps: MLOD_SPLAT_AUTO), from the map's
+     eye (the view node's centre).
      Fusion: each inner node's map starts from its parent's, each pixel's
      node measured again from the node's own centre, then takes its own
      drawn nodes, nearest first (a tie keeps the parent's); a view's tile
-     gets its leaf's map so, each pixel at its node's distance from the
-     view's own eye (depth as for paraboloids), with the node's normal and
-     colour.  Maps of inner nodes hold node indices and live until their
+     gets its leaf's map so, each pixel at its node's depth from the view's
+     own eye (depth as for paraboloids), with the node's normal and
+     colour.  Measured again means: sphere discs, the distance to the
+     node's centre, d; tangent discs, the distance along the pixel
+     centre's ray from the new eye to the node's tangent plane, clamped to
+     [d - r, d + r] (d + r where the plane lies behind the eye; d for a
+     node whose cone holds every direction): the depth a view's own draw
+     of that pixel would give wherever its ray still meets the disc.  Maps of inner nodes hold node indices and live until their
      children have theirs; the atlas is the result.  Without fusion
      (mlod_megaviews_render_maps) every node keeps its own map, leaves
      included, and mlod_megaviews_query descends from the root to a
@@ -1178,21 +1209,22 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
 MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
 
 /* Clear every tile, then draw every drawn node (status DRAWN, OVERSIZE or
-   COARSE) of every view's cut into its tile as a disc, in each
-   sub-projection the node's sphere reaches, clipped to that
-   sub-projection's sub-tile: the disc around the exact image of the
-   sphere there (the image's diameter, centred on the image's centre;
-   paraboloids use the larger of their two pixel scales) with its radius
-   times the atlas's disc_scale, holding the depth of the sphere's centre
-   (as in mlod_view_project).  Nearest
-   depth wins; equal depths keep the node drawn first.  A pixel is drawn
-   when its centre lies in the disc.  At disc_scale 1 a disc covering no
-   pixel centre still sets the pixel holding its centre, so a cut leaves no
-   holes where its surface is; below 1 it draws nothing, and the holes are
-   mlod_atlas_fill_holes' to fill (see SPLATTING in the manual).  A node
-   is not drawn in a sub-projection where its image is unbounded.  The
-   views must be those of the cut's last update.  Parallel over tiles and row bands;
-   results are identical for any thread count. */
+   COARSE) of every view's cut into its tile, in each sub-projection the
+   node's sphere reaches, clipped to that sub-projection's sub-tile: its
+   disc there is the disc around the exact image of the sphere (the
+   image's diameter, centred on the image's centre; paraboloids use the
+   larger of their two pixel scales) with its radius times the atlas's
+   disc_scale.  A pixel is drawn when its centre lies in the disc and, with
+   tangent discs (mlod_atlas_desc.splat, by default for a tree with cones),
+   when its centre's ray meets the node's tangent disc, at the depth where
+   it does; with sphere discs at the depth of the sphere's centre (as in
+   mlod_view_project), and at disc_scale 1 a sphere disc covering no pixel
+   centre sets the pixel holding its centre.  See SPLATTING in the manual.
+   Nearest depth wins; equal depths keep the node drawn first.  A node is
+   not drawn in a sub-projection where its image is unbounded.  The views
+   must be those of the cut's last update.  MLOD_ERROR_MISMATCH for
+   MLOD_SPLAT_TANGENT and a tree without cones.  Parallel over tiles and
+   row bands; results are identical for any thread count. */
 MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
                                     const mlod_view *views, const mlod_parallel *parallel, mlod_error *error);
 
@@ -1200,7 +1232,9 @@ MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
    atlas, then draw into each view points_per_view leaves of the tree chosen
    at random for that view (with replacement, from (seed, view, k): the same
    subset every call), each as the disc of its own sphere, as mlod_splat
-   draws nodes (disc_scale included), unless the cut's criterion culls it
+   draws nodes with MLOD_SPLAT_SPHERES whatever the atlas's splat setting
+   (disc_scale included; a point covering no pixel centre sets its pixel,
+   as ISM splats points), unless the cut's criterion culls it
    (outside the view, or back-facing where the view culls back faces).
    The points go through the same float filters as the cut and the splat,
    64 at a time: the atlas is the one drawing them one by one in double
@@ -7465,6 +7499,36 @@ static void mlod__disc_pixels(const float *box, size_t stride, const float *c, f
     *plot = (unsigned)MLOD__VBITS(in);
     *none = (unsigned)MLOD__VBITS(out);
 }
+
+/* mlod__disc_inside for MLOD__VLANES lanes, at the pixels (col[l], row[l])
+   that mlod__disc_pixels found, step for step as it (the same bits): bit l
+   of *in for MLOD__DISC_PLOT, of *out for MLOD__DISC_NONE; in neither,
+   unsure. */
+static void mlod__disc_insides(const float *box, size_t stride, const float *col, const float *row, unsigned *in,
+                               unsigned *out)
+{
+    mlod__vf zero = MLOD__VSET(0.0f), half = MLOD__VSET(0.5f), sign = MLOD__VSET(-0.0f);
+    mlod__vf cx = MLOD__VADD(MLOD__VLOADU(col), half), cy = MLOD__VADD(MLOD__VLOADU(row), half);
+    mlod__vf dx0 = MLOD__VSUB(cx, MLOD__VLOADU(box + stride)), dx1 = MLOD__VSUB(cx, MLOD__VLOADU(box));
+    mlod__vf dy0 = MLOD__VSUB(cy, MLOD__VLOADU(box + 3 * stride)), dy1 = MLOD__VSUB(cy, MLOD__VLOADU(box + 2 * stride));
+    mlod__vf r_lo = MLOD__VLOADU(box + 4 * stride), r_hi = MLOD__VLOADU(box + 5 * stride);
+    mlod__vf ax0 = MLOD__VANDNOT(sign, dx0), ax1 = MLOD__VANDNOT(sign, dx1);
+    mlod__vf ay0 = MLOD__VANDNOT(sign, dy0), ay1 = MLOD__VANDNOT(sign, dy1), m;
+    mlod__vf far_x, far_y, near_x, near_y, far2, near2;
+    m = MLOD__VGT(ax0, ax1);
+    far_x = MLOD__VOR(MLOD__VAND(m, ax0), MLOD__VANDNOT(m, ax1));
+    m = MLOD__VGT(ay0, ay1);
+    far_y = MLOD__VOR(MLOD__VAND(m, ay0), MLOD__VANDNOT(m, ay1));
+    /* dx0 <= dx1: dx0 if it is positive, else -dx1 if that is, else 0 (a sum with a zero: exact) */
+    near_x = MLOD__VADD(MLOD__VAND(MLOD__VGT(dx0, zero), dx0), MLOD__VAND(MLOD__VLT(dx1, zero), MLOD__VSUB(zero, dx1)));
+    near_y = MLOD__VADD(MLOD__VAND(MLOD__VGT(dy0, zero), dy0), MLOD__VAND(MLOD__VLT(dy1, zero), MLOD__VSUB(zero, dy1)));
+    far2 = MLOD__VMUL(MLOD__VADD(MLOD__VMUL(far_x, far_x), MLOD__VMUL(far_y, far_y)),
+                      MLOD__VSET(1.0f + 1.0f / 1048576.0f));
+    near2 = MLOD__VMUL(MLOD__VADD(MLOD__VMUL(near_x, near_x), MLOD__VMUL(near_y, near_y)),
+                       MLOD__VSET(1.0f - 1.0f / 1048576.0f));
+    *in = (unsigned)MLOD__VBITS(MLOD__VLE(far2, MLOD__VMUL(r_lo, r_lo)));
+    *out = (unsigned)MLOD__VBITS(MLOD__VGT(near2, MLOD__VMUL(r_hi, r_hi)));
+}
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
 #endif
@@ -7794,32 +7858,39 @@ MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint
 /* The ray through the centre of tile pixel (col, row) in sub-projection
    sub of this kind, in double, relative to the eye: origin eye + o
    (orthographic: on the plane through the eye; else o = 0), direction dir
-   (not unit; mlod_view_pixel_ray normalises the same vector).  0 when the
-   centre lies outside a paraboloid's disc (no ray). */
+   (not unit; mlod_view_pixel_ray normalises the same vector), and the
+   factor that turns the ray's parameter into depth: 1 + q for
+   paraboloids (|dir| in exact arithmetic), else 1 (dir.w).  The pixel's
+   offsets are multiplied by the reciprocal of the scale.  0 when the
+   centre lies outside a paraboloid's disc. */
 /* GLSL twin: centre_ray */
-static int mlod__centre_ray(const mlod_view_sub *sub, int kind, uint32_t col, uint32_t row, double *o, double *dir)
+static int mlod__centre_ray(const mlod_view_sub *sub, int kind, uint32_t col, uint32_t row, double *o, double *dir,
+                            double *depth_per_t)
 {
     double x = (double)col + 0.5, y = (double)row + 0.5, px, py, q;
     int k;
     for (k = 0; k < 3; k++) o[k] = 0.0;
+    *depth_per_t = 1.0;
     if (kind == MLOD_VIEW_PERSPECTIVE) {
-        px = (x - (sub->x + 0.5 * sub->width)) / sub->scale;
-        py = ((sub->y + 0.5 * sub->height) - y) / sub->scale;
+        double inv = 1.0 / sub->scale;
+        px = (x - (sub->x + 0.5 * sub->width)) * inv;
+        py = ((sub->y + 0.5 * sub->height) - y) * inv;
         for (k = 0; k < 3; k++) dir[k] = sub->forward[k] + px * sub->right[k] + py * sub->up[k];
     } else if (kind == MLOD_VIEW_ORTHOGRAPHIC) {
-        px = (x - (sub->x + 0.5 * sub->width)) / sub->scale_x;
-        py = ((sub->y + 0.5 * sub->height) - y) / sub->scale_y;
+        px = (x - (sub->x + 0.5 * sub->width)) * (1.0 / sub->scale_x);
+        py = ((sub->y + 0.5 * sub->height) - y) * (1.0 / sub->scale_y);
         for (k = 0; k < 3; k++) {
             o[k] = px * sub->right[k] + py * sub->up[k];
             dir[k] = sub->forward[k];
         }
     } else {
-        px = 2.0 * (x - sub->x) / sub->width - 1.0;
-        py = 1.0 - 2.0 * (y - sub->y) / sub->height;
+        px = (x - sub->x) * (2.0 / sub->width) - 1.0;
+        py = 1.0 - (y - sub->y) * (2.0 / sub->height);
         q = px * px + py * py;
         if (!(q <= 1.0)) return 0;
         /* the inverse stereographic projection, times 1 + q */
         for (k = 0; k < 3; k++) dir[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
+        *depth_per_t = 1.0 + q;
     }
     return 1;
 }
@@ -7833,20 +7904,22 @@ static int mlod__has_plane(const float *cone)
 
 /* Where the ray eye + o + t dir (mlod__centre_ray) meets the plane through
    the sphere's centre (x = centre - eye) whose normal is the cone's axis:
-   t = n.(x - o) / n.dir, and the point there, relative to the eye, in hit
-   (o + t dir). */
+   *t = n.(x - o) / n.dir; returns whether that point, o + t dir, lies
+   within rr of the centre (|o + t dir - x|^2 <= rr^2) in front of the eye
+   (t > 0; orthographic views: anywhere on the line). */
 /* GLSL twin: plane_hit */
-static double mlod__plane_hit(const double *x, const float *cone, const double *o, const double *dir, double *hit)
+static int mlod__plane_hit(const double *x, const float *cone, const double *o, const double *dir, double rr,
+                           int ortho, double *t)
 {
-    double n[3], w[3], t;
+    double n[3], w[3], e[3];
     int k;
     for (k = 0; k < 3; k++) {
         n[k] = cone[k];
         w[k] = x[k] - o[k];
     }
-    t = mlod__dot3(n, w) / mlod__dot3(n, dir);
-    for (k = 0; k < 3; k++) hit[k] = o[k] + t * dir[k];
-    return t;
+    *t = mlod__dot3(n, w) / mlod__dot3(n, dir);
+    for (k = 0; k < 3; k++) e[k] = (o[k] + *t * dir[k]) - x[k];
+    return (ortho || *t > 0.0) && mlod__dot3(e, e) <= rr * rr;
 }
 
 /* A point's depth (relative to the eye) as sub-projection kind measures
@@ -7856,37 +7929,151 @@ static double mlod__view_depth(int kind, const mlod_view_sub *sub, const double 
     return kind == MLOD_VIEW_PARABOLOID ? mlod__length3(x) : mlod__dot3(x, sub->forward);
 }
 
-/* A point of the sphere's depth v, clamped to the sphere's depths [c - r,
-   c + r] (c: its centre's), which only rounding can leave (NaN: c - r). */
-/* GLSL twin: depth_clamp */
-static float mlod__depth_clamp(double v, double c, float r)
-{
-    double lo = c - (double)r, hi = c + (double)r;
-    if (!(v >= lo)) v = lo;
-    if (v > hi) v = hi;
-    return (float)v;
-}
-
 /* MLOD_SPLAT_TANGENT at tile pixel (col, row) of sub-projection s: whether
    the ray through its centre meets the node's tangent disc (the plane
    through the sphere's centre normal to the cone's axis, within the
    sphere's radius times ds of the centre, in front of the eye but for an
-   orthographic view) and, if so, the depth of that point in *depth. */
+   orthographic view) and, if so, the depth there in *depth: t times the
+   depth per unit of t (mlod__centre_ray), z along the axis for
+   perspective and orthographic views, the distance for paraboloids. */
 /* GLSL twin: tangent_hit */
 static int mlod__tangent_hit(const mlod__pview *pv, int s, const float *sphere, const float *cone, float ds,
                              uint32_t col, uint32_t row, float *depth)
 {
-    const mlod_view_sub *sub = &pv->f.subs[s];
-    double o[3], dir[3], x[3], hit[3], e[3], t, rr = (double)sphere[3] * (double)ds;
+    double o[3], dir[3], x[3], t, per_t;
     int k;
-    if (!mlod__centre_ray(sub, pv->kind[s], col, row, o, dir)) return 0;
+    if (!mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col, row, o, dir, &per_t)) return 0;
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
-    t = mlod__plane_hit(x, cone, o, dir, hit);
-    if (pv->kind[s] != MLOD_VIEW_ORTHOGRAPHIC && !(t > 0.0)) return 0;
-    for (k = 0; k < 3; k++) e[k] = hit[k] - x[k];
-    if (!(mlod__dot3(e, e) <= rr * rr)) return 0;
-    *depth = mlod__depth_clamp(mlod__view_depth(pv->kind[s], sub, hit), mlod__view_depth(pv->kind[s], sub, x), sphere[3]);
+    if (!mlod__plane_hit(x, cone, o, dir, (double)sphere[3] * (double)ds, pv->kind[s] == MLOD_VIEW_ORTHOGRAPHIC, &t))
+        return 0;
+    *depth = (float)(t * per_t);
     return 1;
+}
+
+/* Nodes a filtered draw takes at once (mlod__draw_filtered): enough
+   independent lanes for the processor to overlap their long chains of
+   divisions and square roots. */
+#define MLOD__DRAW_CHUNK 64u
+
+#ifdef MLOD__VD
+/* Two rows of four floats (a, b) as four pairs of doubles: out[k] holds
+   a[k] in lane 0 and b[k] in lane 1 (conversions: exact). */
+MLOD__FORCE_INLINE void mlod__vd_pairs(const float *a, const float *b, mlod__vd *out)
+{
+#if defined(__SSE2__) || defined(_M_X64)
+    __m128 la = _mm_loadu_ps(a), lb = _mm_loadu_ps(b), lo = _mm_unpacklo_ps(la, lb), hi = _mm_unpackhi_ps(la, lb);
+    out[0] = _mm_cvtps_pd(lo);
+    out[1] = _mm_cvtps_pd(_mm_movehl_ps(lo, lo));
+    out[2] = _mm_cvtps_pd(hi);
+    out[3] = _mm_cvtps_pd(_mm_movehl_ps(hi, hi));
+#else
+    int k;
+    for (k = 0; k < 4; k++) out[k] = MLOD__DPAIR(a[k], b[k]);
+#endif
+}
+#endif
+
+/* mlod__tangent_hit for nodes[i] at tile pixel (cols[i], rows[i]) (whole
+   numbers, as floats), i < n <= MLOD__DRAW_CHUNK, in a perspective or paraboloid sub-projection s:
+   bit 0 of hit[i] and depth[i], each node's operations those of
+   mlod__tangent_hit in its order (the same bits), two nodes a vector where
+   the build has double lanes; bit 1 of hit[i]: mlod__has_plane. */
+static void mlod__tangent_hits(const mlod__pview *pv, int s, const mlod_tree *tree, const uint32_t *nodes,
+                               const float *cols, const float *rows, uint32_t n, float ds, uint8_t *hit, float *depth)
+{
+    const mlod_view_sub *sub = &pv->f.subs[s];
+    const int parab = pv->kind[s] == MLOD_VIEW_PARABOLOID;
+    const double mid_x = sub->x + 0.5 * sub->width, mid_y = sub->y + 0.5 * sub->height, inv = 1.0 / sub->scale;
+    const double inv_w = 2.0 / sub->width, inv_h = 2.0 / sub->height;
+    uint32_t i;
+    int k;
+    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK && (parab || pv->kind[s] == MLOD_VIEW_PERSPECTIVE));
+    i = 0;
+#ifdef MLOD__VD
+    if (n >= 2) { /* two nodes a vector, each lane the scalar steps below; the divisions in a pass of their own */
+        mlod__vd vd[3][MLOD__DRAW_CHUNK / 2], vx[3][MLOD__DRAW_CHUNK / 2], vq[MLOD__DRAW_CHUNK / 2];
+        mlod__vd vt[MLOD__DRAW_CHUNK / 2], vr[MLOD__DRAW_CHUNK / 2];
+        uint8_t vp[MLOD__DRAW_CHUNK];
+        uint32_t j, pairs = n / 2;
+        for (j = 0; j < pairs; j++) {
+            const float *sa = tree->spheres + 4 * (size_t)nodes[2 * j], *sb = tree->spheres + 4 * (size_t)nodes[2 * j + 1];
+            const float *ca = tree->cones + 4 * (size_t)nodes[2 * j], *cb = tree->cones + 4 * (size_t)nodes[2 * j + 1];
+            mlod__vd cx = MLOD__DADD(MLOD__DPAIR(cols[2 * j], cols[2 * j + 1]), MLOD__DSPLAT(0.5));
+            mlod__vd cy = MLOD__DADD(MLOD__DPAIR(rows[2 * j], rows[2 * j + 1]), MLOD__DSPLAT(0.5));
+            mlod__vd px, py, d[3], x[3], sp[4], cp[4];
+            if (parab) {
+                mlod__vd x2, y2, w;
+                px = MLOD__DSUB(MLOD__DMUL(MLOD__DSUB(cx, MLOD__DSPLAT(sub->x)), MLOD__DSPLAT(inv_w)), MLOD__DSPLAT(1.0));
+                py = MLOD__DSUB(MLOD__DSPLAT(1.0), MLOD__DMUL(MLOD__DSUB(cy, MLOD__DSPLAT(sub->y)), MLOD__DSPLAT(inv_h)));
+                vq[j] = MLOD__DADD(MLOD__DMUL(px, px), MLOD__DMUL(py, py));
+                x2 = MLOD__DADD(px, px); /* 2 px, exact: (2 px) r as the scalar 2.0 * px * r */
+                y2 = MLOD__DADD(py, py);
+                w = MLOD__DSUB(MLOD__DSPLAT(1.0), vq[j]);
+                for (k = 0; k < 3; k++)
+                    d[k] = MLOD__DADD(MLOD__DADD(MLOD__DMUL(x2, MLOD__DSPLAT(sub->right[k])),
+                                                 MLOD__DMUL(y2, MLOD__DSPLAT(sub->up[k]))),
+                                      MLOD__DMUL(w, MLOD__DSPLAT(sub->forward[k])));
+            } else {
+                px = MLOD__DMUL(MLOD__DSUB(cx, MLOD__DSPLAT(mid_x)), MLOD__DSPLAT(inv));
+                py = MLOD__DMUL(MLOD__DSUB(MLOD__DSPLAT(mid_y), cy), MLOD__DSPLAT(inv));
+                vq[j] = MLOD__DSPLAT(0.0);
+                for (k = 0; k < 3; k++)
+                    d[k] = MLOD__DADD(MLOD__DADD(MLOD__DSPLAT(sub->forward[k]), MLOD__DMUL(px, MLOD__DSPLAT(sub->right[k]))),
+                                      MLOD__DMUL(py, MLOD__DSPLAT(sub->up[k])));
+            }
+            mlod__vd_pairs(sa, sb, sp);
+            mlod__vd_pairs(ca, cb, cp);
+            vp[2 * j] = (uint8_t)((double)ca[3] < MLOD__PI);
+            vp[2 * j + 1] = (uint8_t)((double)cb[3] < MLOD__PI);
+            for (k = 0; k < 3; k++) {
+                x[k] = MLOD__DSUB(sp[k], MLOD__DSPLAT(pv->f.eye[k]));
+                vd[k][j] = d[k];
+                vx[k][j] = x[k];
+            }
+            vr[j] = MLOD__DMUL(sp[3], MLOD__DSPLAT((double)ds));
+            /* t = n.(x - o) / n.dir with o = 0 (x - 0 is x, bit for bit) */
+            vt[j] = MLOD__DDIV(MLOD__DADD(MLOD__DADD(MLOD__DMUL(cp[0], x[0]), MLOD__DMUL(cp[1], x[1])), MLOD__DMUL(cp[2], x[2])),
+                               MLOD__DADD(MLOD__DADD(MLOD__DMUL(cp[0], d[0]), MLOD__DMUL(cp[1], d[1])), MLOD__DMUL(cp[2], d[2])));
+        }
+        for (j = 0; j < pairs; j++) {
+            mlod__vd e[3];
+            double tq[2], tt[2], te[2], tr[2];
+            /* (0 + t d) - x: without the 0, only a zero's sign may differ, which the square drops */
+            for (k = 0; k < 3; k++) e[k] = MLOD__DSUB(MLOD__DMUL(vt[j], vd[k][j]), vx[k][j]);
+            MLOD__DSTORE(te, MLOD__DADD(MLOD__DADD(MLOD__DMUL(e[0], e[0]), MLOD__DMUL(e[1], e[1])), MLOD__DMUL(e[2], e[2])));
+            MLOD__DSTORE(tr, vr[j]);
+            MLOD__DSTORE(tt, vt[j]);
+            MLOD__DSTORE(tq, vq[j]);
+            for (k = 0; k < 2; k++) {
+                hit[2 * j + k] = (uint8_t)(((tq[k] <= 1.0) & (tt[k] > 0.0) & (te[k] <= tr[k] * tr[k])) | vp[2 * j + k] << 1);
+                depth[2 * j + k] = (float)(tt[k] * (parab ? 1.0 + tq[k] : 1.0));
+            }
+        }
+        i = 2 * pairs;
+    }
+#endif
+    for (; i < n; i++) { /* mlod__centre_ray, mlod__plane_hit (o = 0) */
+        const float *sphere = tree->spheres + 4 * (size_t)nodes[i], *cone = tree->cones + 4 * (size_t)nodes[i];
+        double px, py, q = 0.0, dir[3], x[3], nw, nd, t, e[3], rr = (double)sphere[3] * (double)ds;
+        if (parab) {
+            px = ((double)cols[i] + 0.5 - sub->x) * inv_w - 1.0;
+            py = 1.0 - ((double)rows[i] + 0.5 - sub->y) * inv_h;
+            q = px * px + py * py;
+            for (k = 0; k < 3; k++) dir[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
+        } else {
+            px = ((double)cols[i] + 0.5 - mid_x) * inv;
+            py = (mid_y - ((double)rows[i] + 0.5)) * inv;
+            for (k = 0; k < 3; k++) dir[k] = sub->forward[k] + px * sub->right[k] + py * sub->up[k];
+        }
+        for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+        nw = (double)cone[0] * (x[0] - 0.0) + (double)cone[1] * (x[1] - 0.0) + (double)cone[2] * (x[2] - 0.0);
+        nd = (double)cone[0] * dir[0] + (double)cone[1] * dir[1] + (double)cone[2] * dir[2];
+        t = nw / nd;
+        for (k = 0; k < 3; k++) e[k] = (0.0 + t * dir[k]) - x[k];
+        hit[i] = (uint8_t)(((q <= 1.0) & (t > 0.0) & (e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= rr * rr)) |
+                           mlod__has_plane(cone) << 1);
+        depth[i] = (float)(t * (parab ? 1.0 + q : 1.0));
+    }
 }
 
 /* The depth of the sphere's centre in sub-projection s (as
@@ -7914,29 +8101,11 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__pview *pv, int
     uint32_t row_begin = rows[0] < band->row_begin ? band->row_begin : rows[0];
     uint32_t row_end = rows[1] > band->row_end ? band->row_end : rows[1];
     float depth = (float)disc->depth;
-    int hit = 0;
+    const float *sphere = NULL, *cone = NULL;
+    int hit = 0, plane = 0;
     if (!(disc->radius < 1e9) || !isfinite(disc->x) || !isfinite(disc->y)) return;
     if (row_begin >= row_end) return;
-    if (band->tangent) { /* strictly the pixel centres in the disc, no rule for a disc covering none */
-        const float *sphere = band->tree->spheres + 4 * (size_t)node, *cone = band->tree->cones + 4 * (size_t)node;
-        int plane = mlod__has_plane(cone);
-        rb = y0 < row_begin ? row_begin : (y0 >= row_end ? row_end : (uint32_t)y0);
-        re = y1 > row_end ? row_end : (y1 <= row_begin ? row_begin : (uint32_t)y1);
-        cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);
-        ce = x1 > col_end ? col_end : (x1 <= col_begin ? col_begin : (uint32_t)x1);
-        for (row = rb; row < re; row++) {
-            double dy = row + 0.5 - disc->y;
-            for (col = cb; col < ce; col++) {
-                double dx = col + 0.5 - disc->x;
-                float at = depth;
-                uint32_t in = dx * dx + dy * dy <= r2;
-                if (in && plane) in = (uint32_t)mlod__tangent_hit(pv, s, sphere, cone, band->disc_scale, col, row, &at);
-                mlod__plot_if(band, row, col, at, node, in);
-            }
-        }
-        return;
-    }
-    if (band->disc_scale >= 1.0f && radius < MLOD__SMALL_DISC) {
+    if (!band->tangent && band->disc_scale >= 1.0f && radius < MLOD__SMALL_DISC) {
         /* A small disc (most of them, at epsilon 1): every pixel centre but the one of the pixel holding the
            disc's centre is 0.5 or more away along a row or a column, so its squared distance rounds to at
            least 0.25 (1 - 2^-50) > r2 (radius below 0.5 - 2^-30): only that pixel can be in, and when it is
@@ -7946,6 +8115,11 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__pview *pv, int
             mlod__plot(band, (uint32_t)floor(disc->y), (uint32_t)floor(disc->x), depth, node);
         return;
     }
+    if (band->tangent) { /* the pixel centres in the disc whose ray meets the tangent disc; no rule for none */
+        sphere = band->tree->spheres + 4 * (size_t)node;
+        cone = band->tree->cones + 4 * (size_t)node;
+        plane = mlod__has_plane(cone);
+    }
     rb = y0 < row_begin ? row_begin : (y0 >= row_end ? row_end : (uint32_t)y0);
     re = y1 > row_end ? row_end : (y1 <= row_begin ? row_begin : (uint32_t)y1);
     cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);
@@ -7954,13 +8128,15 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__pview *pv, int
         double dy = row + 0.5 - disc->y;
         for (col = cb; col < ce; col++) {
             double dx = col + 0.5 - disc->x;
+            float at = depth;
             uint32_t in = dx * dx + dy * dy <= r2;
-            mlod__plot_if(band, row, col, depth, node, in);
+            if (in && plane) in = (uint32_t)mlod__tangent_hit(pv, s, sphere, cone, band->disc_scale, col, row, &at);
+            mlod__plot_if(band, row, col, at, node, in);
             hit |= (int)in;
         }
     }
-    /* no pixel centre in the disc: at disc_scale 1, the pixel holding its centre */
-    if (!hit && band->disc_scale >= 1.0f && disc->x >= col_begin && disc->x < col_end && disc->y >= row_begin &&
+    /* sphere discs, no pixel centre in the disc: at disc_scale 1, the pixel holding its centre */
+    if (!hit && !band->tangent && band->disc_scale >= 1.0f && disc->x >= col_begin && disc->x < col_end && disc->y >= row_begin &&
         disc->y < row_end)
         mlod__plot(band, (uint32_t)floor(disc->y), (uint32_t)floor(disc->x), depth, node);
 }
@@ -7992,10 +8168,6 @@ static void mlod__draw_exact(const mlod__band *band, const mlod__pview *pv, int 
 static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, uint32_t n, const double *centre,
                                  float *out);
 
-/* Nodes a filtered draw takes at once (mlod__draw_filtered): enough
-   independent lanes for the processor to overlap their long chains of
-   divisions and square roots. */
-#define MLOD__DRAW_CHUNK 64u
 #define MLOD__BOX_STRIDE (MLOD__DRAW_CHUNK + 8u) /* room for the padding of the last lanes */
 
 /* Draw nodes[0 .. count - 1] (count <= MLOD__DRAW_CHUNK), each of which
@@ -8024,19 +8196,41 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
     else
         for (l = 0; l < 6 * MLOD__BOX_STRIDE; l++) box[l] = NAN;
     if (band->tangent) { /* each small disc's one pixel, if its centre lies in the disc and its ray meets the node */
-        const float *cones = band->tree->cones;
-        for (l = 0; l < count; l++) {
-            uint32_t col = 0, row = 0;
-            const float *sphere = spheres + 4 * (size_t)nodes[l], *cone = cones + 4 * (size_t)nodes[l];
-            int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, 1, clip, &col, &row);
-            float at;
-            if (code == MLOD__DISC_UNSURE)
-                mlod__draw_exact(band, pv, s, nodes + l, 1);
-            else if (code == MLOD__DISC_PLOT && !mlod__has_plane(cone))
-                mlod__plot_if(band, row, col, mlod__centre_depth(pv, s, sphere), nodes[l], 1u);
-            else if (code == MLOD__DISC_PLOT && mlod__tangent_hit(pv, s, sphere, cone, band->disc_scale, col, row, &at))
-                mlod__plot_if(band, row, col, at, nodes[l], 1u);
+        float cols[MLOD__BOX_STRIDE], rows[MLOD__BOX_STRIDE];
+        uint8_t hit[MLOD__DRAW_CHUNK];
+        uint64_t plot = 0, none = 0;
+        l = 0;
+#ifdef MLOD__VLANES
+        if (clip[1] <= 16777216u && clip[3] <= 16777216u) { /* mlod__disc_decide in lanes, strictly */
+            float c[4];
+            unsigned p, q, in, out;
+            for (l = 0; l < 4; l++) c[l] = (float)(int32_t)clip[l];
+            for (l = 0; l < padded; l += MLOD__VLANES) {
+                mlod__disc_pixels(box + l, MLOD__BOX_STRIDE, c, cols + l, rows + l, &p, &q);
+                mlod__disc_insides(box + l, MLOD__BOX_STRIDE, cols + l, rows + l, &in, &out);
+                plot |= (uint64_t)(p & in) << l;
+                none |= (uint64_t)(q | (p & out & ~in)) << l;
+            }
+            l = count;
         }
+#endif
+        for (; l < count; l++) {
+            uint32_t col = 0, row = 0;
+            int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, 1, clip, &col, &row);
+            plot |= (uint64_t)(code == MLOD__DISC_PLOT) << l;
+            none |= (uint64_t)(code == MLOD__DISC_NONE) << l;
+            cols[l] = (float)col; /* below 2^24 */
+            rows[l] = (float)row;
+        }
+        mlod__tangent_hits(pv, s, band->tree, nodes, cols, rows, count, band->disc_scale, hit, depth);
+        for (l = 0; l < count; l++) /* in order: equal depths keep the node drawn first */
+            if (plot >> l & 1u) {
+                int plane = hit[l] >> 1;
+                float at = plane ? depth[l] : mlod__centre_depth(pv, s, spheres + 4 * (size_t)nodes[l]);
+                mlod__plot_if(band, (uint32_t)rows[l], (uint32_t)cols[l], at, nodes[l], (uint32_t)(plane == 0) | (hit[l] & 1u));
+            } else if (!(none >> l & 1u)) {
+                mlod__draw_exact(band, pv, s, nodes + l, 1);
+            }
         return;
     }
     /* the double path's depths, as it computes them */
@@ -8210,6 +8404,9 @@ static void mlod__splat_task(void *context, uint32_t index)
     uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), i, batch[MLOD__DRAW_CHUNK], n = 0;
     mlod_cut_view cv = mlod_cut_get(job->cut, view);
     for (i = 0; i < cv.count; i++) { /* MLOD__DRAW_CHUNK drawn nodes at a time, in order */
+        /* tangent discs read each node's cone too: a chunk ahead, its loads under way meanwhile */
+        if (band.tangent && i + MLOD__DRAW_CHUNK < cv.count)
+            MLOD__PREFETCH(job->tree->cones + 4 * (size_t)cv.nodes[i + MLOD__DRAW_CHUNK]);
         if (cv.status[i] == MLOD_STATUS_CULLED) continue;
         batch[n++] = cv.nodes[i];
         if (n == MLOD__DRAW_CHUNK) {
@@ -9900,26 +10097,34 @@ static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, 
 
 /* A scene node's depth at pixel (col, row) of a map whose view is pv (a
    dual paraboloid from a view node's centre), as the fusion measures
-   again a node drawn into an ancestor's map: the distance from the eye to
-   the node's centre, or with tangent discs, to where the pixel centre's
-   ray meets the node's tangent plane, clamped to the sphere's range [d -
-   r, d + r] (mlod__depth_clamp; d + r where the plane lies behind; a node
-   without a cone axis, or a pixel outside the paraboloids' discs: d).
-   For a pixel the map's own eye drew, the depth it drew. */
+   again a node drawn into an ancestor's map: sphere discs (and a node
+   without a cone axis, or a pixel outside the paraboloids' discs), d, the
+   distance from the eye to the node's centre; tangent discs, the depth
+   where the pixel centre's ray meets the node's tangent disc of the
+   sphere's radius (mlod__tangent_hit at disc scale 1: so a pixel the
+   map's own eye drew keeps the depth it drew), and where it misses it,
+   that depth on the disc's plane clamped to the sphere's [d - r, d + r]
+   (d + r when the plane lies behind the eye). */
 /* GLSL twin: remeasure */
 static float mlod__remeasure(const mlod__pview *pv, const mlod_tree *scene, uint32_t node, uint32_t col, uint32_t row,
                              int tangent)
 {
-    const float *sphere = scene->spheres + 4 * (size_t)node;
-    double x[3], o[3], dir[3], hit[3], d, t;
+    const float *sphere = scene->spheres + 4 * (size_t)node, *cone;
+    double x[3], o[3], dir[3], d, t, per_t, v, lo, hi;
     int k, s = col < pv->columns[0][1] ? 0 : 1;
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
     d = mlod__length3(x);
-    if (!tangent || !mlod__has_plane(scene->cones + 4 * (size_t)node) ||
-        !mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col, row, o, dir))
+    if (!tangent) return (float)d;
+    cone = scene->cones + 4 * (size_t)node;
+    if (!mlod__has_plane(cone) || !mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col, row, o, dir, &per_t))
         return (float)d;
-    t = mlod__plane_hit(x, scene->cones + 4 * (size_t)node, o, dir, hit);
-    return mlod__depth_clamp(t > 0.0 ? mlod__length3(hit) : d + (double)sphere[3], d, sphere[3]);
+    if (mlod__plane_hit(x, cone, o, dir, (double)sphere[3], 0, &t)) return (float)(t * per_t);
+    lo = d - (double)sphere[3];
+    hi = d + (double)sphere[3];
+    v = t > 0.0 ? t * per_t : hi;
+    if (!(v >= lo)) v = lo;
+    if (v > hi) v = hi;
+    return (float)v;
 }
 
 static void mlod__mv_centre(const mlod__mv_job *job, uint32_t node, double *centre)

@@ -2178,6 +2178,92 @@ static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_v
    bit: depth, normals and colours; views of every kind, with and without
    back-face culling, disc scales 1 and 0.5, point counts around the chunk
    size, one thread and two. */
+/* Tangent discs by the double path alone (no float filter: every node's
+   disc computed in double, every pixel's ray by mlod__tangent_hit), node
+   by node in the cut's order, whole tiles at once. */
+static void tangent_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, const mlod_view *views)
+{
+    uint32_t v, i;
+    for (v = 0; v < atlas->view_count; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        mlod__band band;
+        mlod__pview pv;
+        mlod__tile_band(atlas, tree, v, &band);
+        mlod__band_clear(&band, atlas->tiles[4 * (size_t)v + 2]);
+        if (mlod__view_prepare(&views[v], &pv, NULL) != MLOD_OK) continue;
+        for (i = 0; i < cv.count; i++)
+            if (cv.status[i] != MLOD_STATUS_CULLED) mlod__draw_nodes(&band, &pv, &cv.nodes[i], 1);
+    }
+}
+
+/* mlod_splat's tangent discs (small discs' pixels found by the float
+   filter, their rays cast MLOD__DRAW_CHUNK at a time, step by step) draw
+   the atlas of tangent_reference bit for bit: views of every kind, with and
+   without back-face culling, epsilon 0.5 to 4, disc scales 1 and 0.5, one
+   thread and two; and MLOD_SPLAT_TANGENT draws what MLOD_SPLAT_AUTO does
+   for a tree with cones, MLOD_SPLAT_SPHERES something else. */
+static void test_tangent_exact(void)
+{
+    static const float eps[4] = {0.5f, 1.0f, 2.0f, 4.0f};
+    scene_mesh sm;
+    mlod_tree *tree;
+    mlod_view views[15];
+    mlod_cut *cut = NULL;
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel two = mlod_pool_parallel(pool);
+    double c[3], R;
+    uint64_t rng = 5151;
+    uint32_t count, e, d, differ = 0, runs = 0, spheres_same = 0, auto_differs = 0;
+    if (!scene_torus(&sm, 1.0f, 0.35f, 32, 16)) return;
+    tu_bounds(&sm, c, &R);
+    tree = tu_build(&sm, 20000, 7, MLOD_ATTR_CONE | MLOD_ATTR_COLOR);
+    count = mixed_views(&rng, c, R, views);
+    if (!tree || !pool || mlod_cut_create(count, NULL, &cut, NULL) != MLOD_OK) {
+        CHECK(0, "tangent_exact: set-up failed");
+        goto done;
+    }
+    for (e = 0; e < 4; e++) {
+        mlod_cut_params cp = cut_params(eps[e]);
+        if (mlod_cut_update(cut, tree, views, &cp, NULL) != MLOD_OK) {
+            CHECK(0, "tangent_exact: cut");
+            break;
+        }
+        for (d = 0; d < 2; d++) {
+            mlod_atlas *atlas = make_atlas_splat(views, count, MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, d ? 0.5f : 0.0f,
+                                                 MLOD_SPLAT_AUTO);
+            mlod_atlas *tangent = make_atlas_splat(views, count, 0, d ? 0.5f : 0.0f, MLOD_SPLAT_TANGENT);
+            mlod_atlas *spheres = make_atlas_splat(views, count, 0, d ? 0.5f : 0.0f, MLOD_SPLAT_SPHERES);
+            snapshot ref;
+            if (!atlas || !tangent || !spheres) {
+                CHECK(0, "tangent_exact: no atlas");
+            } else {
+                tangent_reference(atlas, tree, cut, views);
+                snap_take(&ref, atlas);
+                mlod_splat(atlas, tree, cut, views, e & 1 ? &two : NULL, NULL);
+                differ += !snap_same(&ref, atlas);
+                mlod_splat(tangent, tree, cut, views, NULL, NULL);
+                mlod_splat(spheres, tree, cut, views, NULL, NULL);
+                auto_differs += memcmp(tangent->depth, atlas->depth, sizeof(float) * ref.pixels) != 0;
+                spheres_same += memcmp(spheres->depth, atlas->depth, sizeof(float) * ref.pixels) == 0;
+                runs++;
+                snap_free(&ref);
+            }
+            mlod_atlas_destroy(atlas);
+            mlod_atlas_destroy(tangent);
+            mlod_atlas_destroy(spheres);
+        }
+    }
+    CHECK(runs == 8 && differ == 0, "tangent_exact: %u of %u atlases differ from the double path's", differ, runs);
+    CHECK(auto_differs == 0 && spheres_same == 0,
+          "tangent_exact: MLOD_SPLAT_TANGENT differs from the default %u times, sphere discs equal it %u times",
+          auto_differs, spheres_same);
+done:
+    mlod_cut_destroy(cut);
+    mlod_tree_destroy(tree);
+    mlod_pool_destroy(pool);
+    scene_free(&sm);
+}
+
 static void test_ism_exact(void)
 {
     static const uint32_t counts[6] = {1, 63, 64, 65, 700, 3000};
@@ -3683,6 +3769,7 @@ int main(int argc, char **argv)
     TEST_GROUP("filtered_discs", test_filtered_discs());
     TEST_GROUP("reached_lanes", test_reached_lanes());
     TEST_GROUP("ism_exact", test_ism_exact());
+    TEST_GROUP("tangent_exact", test_tangent_exact());
     TEST_GROUP("determinism", test_determinism());
     TEST_GROUP("disc_scale", test_disc_scale());
     TEST_GROUP("small_discs", test_small_discs());
