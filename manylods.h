@@ -299,15 +299,18 @@
          cones): the node's tangent disc, the disc of the sphere's radius
          (times disc_scale) through the sphere's centre c, normal to its
          cone's axis n.  A pixel whose centre lies in the node's disc casts
-         its centre's ray, eye + o + t dir (as mlod_view_pixel_ray:
-         perspective dir = w + px u + py v, o = 0; orthographic o = px u +
-         py v, dir = w; paraboloids dir = 2 px u + 2 py v + (1 - q) w, q =
-         px^2 + py^2 <= 1, o = 0), meets the plane at t = n.(c - eye - o) /
-         n.dir, and is drawn when that point p lies within the disc's
-         radius of c (and t > 0 but for orthographic views), at p's depth
-         (clamped to the sphere's depths, which only rounding can leave).
-         A node whose cone holds every direction (half-angle >= pi) draws
-         its disc's pixel centres at its centre's depth.  A disc covering
+         its centre's ray, eye + o + t dir (the ray of mlod_view_pixel_ray,
+         not normalised; px, py: the centre's offsets in the sub-tile times
+         the reciprocal of the scale; perspective dir = w + px u + py v,
+         o = 0; orthographic o = px u + py v, dir = w; paraboloids, px and
+         py in [-1, 1] across the disc, dir = 2 px u + 2 py v + (1 - q) w,
+         q = px^2 + py^2 <= 1, o = 0), meets the plane at t = n.(c - eye -
+         o) / n.dir, and is drawn when that point lies within the disc's
+         radius of c (and t > 0 but for orthographic views), at depth t
+         (perspective, orthographic: z, as dir.w = 1) or t (1 + q)
+         (paraboloids: the distance, as |dir| = 1 + q), all in double, in
+         that order.  A node whose cone holds every direction (half-angle
+         >= pi) draws its disc's pixel centres at its centre's depth.  A disc covering
          no pixel centre draws nothing: a pixel holds what its centre sees,
          as an exact (ray-cast) map's does, and a surface of tangent discs
          leaves no holes where the cut's nodes overlap (their spheres do).
@@ -460,11 +463,12 @@
      gets its leaf's map so, each pixel at its node's depth from the view's
      own eye (depth as for paraboloids), with the node's normal and
      colour.  Measured again means: sphere discs, the distance to the
-     node's centre, d; tangent discs, the distance along the pixel
-     centre's ray from the new eye to the node's tangent plane, clamped to
-     [d - r, d + r] (d + r where the plane lies behind the eye; d for a
-     node whose cone holds every direction): the depth a view's own draw
-     of that pixel would give wherever its ray still meets the disc.  Maps of inner nodes hold node indices and live until their
+     node's centre, d; tangent discs, where the pixel centre's ray from the
+     new eye meets the node's tangent disc of the sphere's radius, the
+     depth a view's own draw of that pixel gives (SPLATTING), and where it
+     misses the disc, that depth on the disc's plane clamped to [d - r, d +
+     r] (d + r where the plane lies behind the eye; d for a node whose cone
+     holds every direction).  Maps of inner nodes hold node indices and live until their
      children have theirs; the atlas is the result.  Without fusion
      (mlod_megaviews_render_maps) every node keeps its own map, leaves
      included, and mlod_megaviews_query descends from the root to a
@@ -8124,6 +8128,27 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__pview *pv, int
     re = y1 > row_end ? row_end : (y1 <= row_begin ? row_begin : (uint32_t)y1);
     cb = x0 < col_begin ? col_begin : (x0 >= col_end ? col_end : (uint32_t)x0);
     ce = x1 > col_end ? col_end : (x1 <= col_begin ? col_begin : (uint32_t)x1);
+    if (plane && pv->kind[s] != MLOD_VIEW_ORTHOGRAPHIC) { /* the pixels in the disc, their rays in lanes */
+        float fc[MLOD__DRAW_CHUNK], fr[MLOD__DRAW_CHUNK], at[MLOD__DRAW_CHUNK];
+        uint32_t ids[MLOD__DRAW_CHUNK], m = 0, j;
+        uint8_t in[MLOD__DRAW_CHUNK];
+        for (row = rb; row < re; row++) {
+            double dy = row + 0.5 - disc->y;
+            for (col = cb; col < ce; col++) {
+                double dx = col + 0.5 - disc->x;
+                fc[m] = (float)col; /* below 2^24: the sub-tiles' bounds */
+                fr[m] = (float)row;
+                ids[m] = node;
+                m += dx * dx + dy * dy <= r2;
+                if (m == MLOD__DRAW_CHUNK || (m > 0 && row + 1 == re && col + 1 == ce)) {
+                    mlod__tangent_hits(pv, s, band->tree, ids, fc, fr, m, band->disc_scale, in, at);
+                    for (j = 0; j < m; j++) mlod__plot_if(band, (uint32_t)fr[j], (uint32_t)fc[j], at[j], node, in[j] & 1u);
+                    m = 0;
+                }
+            }
+        }
+        return;
+    }
     for (row = rb; row < re; row++) {
         double dy = row + 0.5 - disc->y;
         for (col = cb; col < ce; col++) {

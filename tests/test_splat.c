@@ -2178,12 +2178,14 @@ static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_v
    bit: depth, normals and colours; views of every kind, with and without
    back-face culling, disc scales 1 and 0.5, point counts around the chunk
    size, one thread and two. */
-/* Tangent discs by the double path alone (no float filter: every node's
-   disc computed in double, every pixel's ray by mlod__tangent_hit), node
-   by node in the cut's order, whole tiles at once. */
+/* Tangent discs by the definition, one pixel at a time: each drawn node's
+   disc in double (mlod__image_disc) in each sub-projection its sphere
+   reaches (mlod__reached), each pixel whose centre lies in it casting its
+   ray by the scalar mlod__tangent_hit (no float filter, no lanes), node by
+   node in the cut's order, whole tiles at once. */
 static void tangent_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, const mlod_view *views)
 {
-    uint32_t v, i;
+    uint32_t v, i, row, col;
     for (v = 0; v < atlas->view_count; v++) {
         mlod_cut_view cv = mlod_cut_get(cut, v);
         mlod__band band;
@@ -2191,8 +2193,30 @@ static void tangent_reference(mlod_atlas *atlas, const mlod_tree *tree, const ml
         mlod__tile_band(atlas, tree, v, &band);
         mlod__band_clear(&band, atlas->tiles[4 * (size_t)v + 2]);
         if (mlod__view_prepare(&views[v], &pv, NULL) != MLOD_OK) continue;
-        for (i = 0; i < cv.count; i++)
-            if (cv.status[i] != MLOD_STATUS_CULLED) mlod__draw_nodes(&band, &pv, &cv.nodes[i], 1);
+        for (i = 0; i < cv.count; i++) {
+            const float *sphere = tree->spheres + 4 * (size_t)cv.nodes[i], *cone = tree->cones + 4 * (size_t)cv.nodes[i];
+            unsigned reached = pv.sub_count == 1 ? 1u : mlod__reached(&pv, sphere);
+            double c[3] = {sphere[0], sphere[1], sphere[2]};
+            int s;
+            if (cv.status[i] == MLOD_STATUS_CULLED) continue;
+            for (s = 0; s < pv.sub_count; s++) {
+                mlod__disc d;
+                double radius, r2;
+                if (!(reached >> s & 1u) || !mlod__image_disc(&pv, s, c, sphere[3], &d) || !(d.radius < 1e9)) continue;
+                radius = d.radius * (double)atlas->disc_scale;
+                r2 = radius * radius;
+                for (row = pv.rows[s][0]; row < pv.rows[s][1]; row++)
+                    for (col = pv.columns[s][0]; col < pv.columns[s][1]; col++) {
+                        double dx = col + 0.5 - d.x, dy = row + 0.5 - d.y;
+                        float at = (float)d.depth;
+                        if (!(dx * dx + dy * dy <= r2)) continue;
+                        if (mlod__has_plane(cone) &&
+                            !mlod__tangent_hit(&pv, s, sphere, cone, atlas->disc_scale, col, row, &at))
+                            continue;
+                        mlod__plot(&band, row, col, at, cv.nodes[i]);
+                    }
+            }
+        }
     }
 }
 
