@@ -727,6 +727,85 @@ bool image_disc(uint view, uint s, real3 centre, real r, out real4 disc)
     return true;
 }
 
+// --------------------------------------------------------- tangent discs --
+
+// C twin: mlod__centre_ray
+// The ray through the centre of tile pixel (col, row) in the
+// sub-projection at views[sub], of this kind, relative to the eye: origin
+// eye + o, direction dir (not unit), and the factor that turns the ray's
+// parameter into depth (1 + q for paraboloids, else 1).  False when the
+// centre lies outside a paraboloid's disc.
+bool centre_ray(uint sub, int kind, uint col, uint row, out real3 o, out real3 dir, out real depth_per_t)
+{
+    real x = r_add(r_u(col), R_HALF), y = r_add(r_u(row), R_HALF);
+    real3 u = sd3(sub, MLOD_IF_S_RIGHT), v = sd3(sub, MLOD_IF_S_UP), w = sd3(sub, MLOD_IF_S_FORWARD);
+    real left = sd(sub, MLOD_IF_S_X), top = sd(sub, MLOD_IF_S_Y);
+    real width = sd(sub, MLOD_IF_S_WIDTH), height = sd(sub, MLOD_IF_S_HEIGHT);
+    o = real3(R_ZERO, R_ZERO, R_ZERO);
+    dir = w;
+    depth_per_t = R_ONE;
+    if (kind == MLOD_IF_KIND_PERSPECTIVE) {
+        real inv = r_div(R_ONE, sd(sub, MLOD_IF_S_SCALE));
+        real px = r_mul(r_sub(x, r_add(left, r_mul(R_HALF, width))), inv);
+        real py = r_mul(r_sub(r_add(top, r_mul(R_HALF, height)), y), inv);
+        dir = real3(r_add(r_add(w.x, r_mul(px, u.x)), r_mul(py, v.x)), r_add(r_add(w.y, r_mul(px, u.y)), r_mul(py, v.y)),
+                    r_add(r_add(w.z, r_mul(px, u.z)), r_mul(py, v.z)));
+    } else if (kind == MLOD_IF_KIND_ORTHOGRAPHIC) {
+        real px = r_mul(r_sub(x, r_add(left, r_mul(R_HALF, width))), r_div(R_ONE, sd(sub, MLOD_IF_S_SCALE_X)));
+        real py = r_mul(r_sub(r_add(top, r_mul(R_HALF, height)), y), r_div(R_ONE, sd(sub, MLOD_IF_S_SCALE_Y)));
+        o = real3(r_add(r_mul(px, u.x), r_mul(py, v.x)), r_add(r_mul(px, u.y), r_mul(py, v.y)),
+                  r_add(r_mul(px, u.z), r_mul(py, v.z)));
+    } else {
+        real px = r_sub(r_mul(r_sub(x, left), r_div(R_TWO, width)), R_ONE);
+        real py = r_sub(R_ONE, r_mul(r_sub(y, top), r_div(R_TWO, height)));
+        real q = r_add(r_mul(px, px), r_mul(py, py));
+        if (!r_le(q, R_ONE)) return false;
+        real tx = r_mul(R_TWO, px), ty = r_mul(R_TWO, py), tw = r_sub(R_ONE, q);
+        dir = real3(r_add(r_add(r_mul(tx, u.x), r_mul(ty, v.x)), r_mul(tw, w.x)),
+                    r_add(r_add(r_mul(tx, u.y), r_mul(ty, v.y)), r_mul(tw, w.y)),
+                    r_add(r_add(r_mul(tx, u.z), r_mul(ty, v.z)), r_mul(tw, w.z)));
+        depth_per_t = r_add(R_ONE, q);
+    }
+    return true;
+}
+
+// Whether the node draws as a tangent disc (mlod__has_plane): its cone's
+// half-angle is below pi.
+bool has_plane(vec4 cone) { return r_lt(r_f(cone.w), R_PI); }
+
+// C twin: mlod__plane_hit
+// Where the ray eye + o + t dir meets the plane through the sphere's
+// centre (x = centre - eye) normal to the cone's axis: t; whether that
+// point lies within rr of the centre, in front of the eye (ortho: anywhere
+// on the line).
+bool plane_hit(real3 x, vec4 cone, real3 o, real3 dir, real rr, bool ortho, out real t)
+{
+    real3 n = r3_f(cone.xyz);
+    t = r_div(dot3(n, r3_sub(x, o)), dot3(n, dir));
+    real3 e = real3(r_sub(r_add(o.x, r_mul(t, dir.x)), x.x), r_sub(r_add(o.y, r_mul(t, dir.y)), x.y),
+                    r_sub(r_add(o.z, r_mul(t, dir.z)), x.z));
+    return (ortho || r_gt(t, R_ZERO)) && r_le(dot3(e, e), r_mul(rr, rr));
+}
+
+// C twin: mlod__tangent_hit
+// MLOD_SPLAT_TANGENT at tile pixel (col, row) of the view's sub-projection
+// s: whether the ray through its centre meets the node's tangent disc (its
+// radius times ds) and, if so, the depth there (t times the depth per
+// unit of t).
+bool tangent_hit(uint view, uint s, vec4 sphere, vec4 cone, float ds, uint col, uint row, out float depth)
+{
+    uint sub = sub_base(view, s);
+    int kind = sub_kind(sub);
+    real3 o, dir;
+    real t, per_t;
+    depth = 0.0;
+    if (!centre_ray(sub, kind, col, row, o, dir, per_t)) return false;
+    real3 x = r3_sub(r3_f(sphere.xyz), vd3(view, MLOD_IF_V_EYE));
+    if (!plane_hit(x, cone, o, dir, r_mul(r_f(sphere.w), r_f(ds)), kind == MLOD_IF_KIND_ORTHOGRAPHIC, t)) return false;
+    depth = r_to_f(r_mul(t, per_t));
+    return true;
+}
+
 #ifdef MLOD_MEGAVIEWS
 // ------------------------------------------------------------ MegaViews --
 //
@@ -919,6 +998,31 @@ float node_distance(uint node, real3 centre)
 {
     real3 x = r3_sub(r3_f(spheres[node].xyz), centre);
     return r_to_f(length_d(x));
+}
+
+// C twin: mlod__remeasure
+// A scene node's depth at pixel (col, row) of the map at mv_eye (frame 0,
+// its two halves' columns [0, R) and [R, 2 R), R = ctl.resolution), as the
+// fusion measures again a node drawn into an ancestor's map: sphere discs
+// (or no cone axis, or no ray), the distance d to its centre; tangent
+// discs, the depth where the pixel centre's ray meets its tangent disc of
+// the sphere's radius, and where it misses, that depth on the plane
+// clamped to [d - r, d + r] (d + r with the plane behind the eye).
+float remeasure(uint node, uint col, uint row, bool tangent)
+{
+    vec4 sphere = spheres[node];
+    uint sub = sub_base(0u, col < ctl.resolution ? 0u : 1u);
+    real3 x = r3_sub(r3_f(sphere.xyz), vd3(0u, MLOD_IF_V_EYE)), o, dir;
+    real d = length_d(x), t, per_t;
+    if (!tangent) return r_to_f(d);
+    vec4 cone = cones[node];
+    if (!has_plane(cone) || !centre_ray(sub, sub_kind(sub), col, row, o, dir, per_t)) return r_to_f(d);
+    if (plane_hit(x, cone, o, dir, r_f(sphere.w), false, t)) return r_to_f(r_mul(t, per_t));
+    real lo = r_sub(d, r_f(sphere.w)), hi = r_add(d, r_f(sphere.w));
+    real v = r_gt(t, R_ZERO) ? r_mul(t, per_t) : hi;
+    if (!r_ge(v, lo)) v = lo;
+    if (r_gt(v, hi)) v = hi;
+    return r_to_f(v);
 }
 
 #endif // MLOD_MEGAVIEWS

@@ -226,8 +226,9 @@
 /* The splat shaders' push constants: the atlas's width and pixels, whether
    the tree has cones, whether the atlas has normals and colours, the
    device's maxComputeWorkGroupCount[0], the drawn radius over the image
-   radius (in (0, 1]; below 1, no pixel-holding-the-centre fallback), and
-   splat_draw's pass (splat_layout.glsl). */
+   radius (in (0, 1]; below 1, no pixel-holding-the-centre fallback),
+   splat_draw's pass (splat_layout.glsl), and whether nodes draw as tangent
+   discs (the atlas's splat setting with the tree: mlod__splat_tangent). */
 #define MLOD_IF_SPLAT_PUSH(MEMBER)                                                                                     \
     MEMBER(MLOD_IF_U32, atlas_width)                                                                                   \
     MEMBER(MLOD_IF_U32, pixel_count)                                                                                   \
@@ -236,8 +237,9 @@
     MEMBER(MLOD_IF_U32, want_color)                                                                                    \
     MEMBER(MLOD_IF_U32, max_groups_x)                                                                                  \
     MEMBER(float, disc_scale)                                                                                          \
-    MEMBER(MLOD_IF_U32, pass)
-#define MLOD_IF_SPLAT_PUSH_BYTES 32
+    MEMBER(MLOD_IF_U32, pass)                                                                                          \
+    MEMBER(MLOD_IF_U32, tangent)
+#define MLOD_IF_SPLAT_PUSH_BYTES 36
 
 /* The refit shaders' push constants: the tree's area_unit and
    radius_scale, its leaves, the items of this dispatch (vertices for the
@@ -264,24 +266,26 @@
 
 /* The MegaViews control block (std430), host-visible: the parameters
    (epsilon, delta, the maps' scale S = resolution / 2, the group radius;
-   the disc scale), the level (its first view node and count, the previous
-   level's first), the trees (scene leaves, view leaves, whether the scene
-   has cones, the view tree cones, half fields of view), the map
-   (resolution, pixels per map, flags, atlas width, channels wanted), the
-   level block's offsets in words (tiles, leaf sources, half fields of
-   view and the view tree's floors as float bits, this level's pair
-   counts, drawn flags and slots,
+   the disc scale, whether nodes draw as tangent discs), the level (its
+   first view node and count, the previous level's first), the trees
+   (scene leaves, view leaves, whether the scene has cones, the view tree
+   cones, half fields of view), the map (resolution, pixels per map,
+   flags, atlas width, channels wanted), the level block's offsets in
+   words (tiles, leaf sources, half fields of view and the view tree's
+   floors as float bits, this level's pair counts, drawn flags and slots,
    the previous level's slots, each slot's node), the lists' counts (the
    round's input and output pairs, the next level's pairs, the level's
    draws; the draws stand after next_capacity pairs), the slots given out,
-   the most pairs at one view node, and the counts of what the pairs did
-   (shared views: a 64-bit count, low word first): 8-byte aligned. */
+   the most pairs at one view node, the counts of what the pairs did
+   (shared views: a 64-bit count, low word first), and a word that pads
+   the block to a multiple of 8 bytes. */
 #define MLOD_IF_MV_CONTROL_BLOCK(MEMBER)                                                                               \
     MEMBER(MLOD_IF_F64, epsilon)                                                                                       \
     MEMBER(MLOD_IF_F64, delta)                                                                                         \
     MEMBER(MLOD_IF_F64, scale)                                                                                         \
     MEMBER(MLOD_IF_F64, group_radius)                                                                                  \
     MEMBER(float, disc_scale)                                                                                          \
+    MEMBER(MLOD_IF_U32, tangent)                                                                                       \
     MEMBER(MLOD_IF_U32, first)                                                                                         \
     MEMBER(MLOD_IF_U32, count)                                                                                         \
     MEMBER(MLOD_IF_U32, prev_first)                                                                                    \
@@ -318,8 +322,9 @@
     MEMBER(MLOD_IF_U32, leaf_draws)                                                                                    \
     MEMBER(MLOD_IF_U32, shared_leaves)                                                                                 \
     MEMBER(MLOD_IF_U32, shared_views_low)                                                                              \
-    MEMBER(MLOD_IF_U32, shared_views_high)
-#define MLOD_IF_MV_CONTROL_BYTES 184
+    MEMBER(MLOD_IF_U32, shared_views_high)                                                                             \
+    MEMBER(MLOD_IF_U32, pad)
+#define MLOD_IF_MV_CONTROL_BYTES 192
 
 /* The MegaViews shaders' push constants: the items of the dispatch (pairs,
    draws, slots, or map pixels) and the draw's pass (mv_draw.comp). */

@@ -4,11 +4,16 @@
 // half of the view node's map that the node reaches (frame 0 at the view
 // node's centre: common.glsl's image_disc), rastered as
 // mlod__raster_disc rasters it into a band of the whole map: pixels whose
-// centre lies in the disc (radius times ctl.disc_scale), or, at disc scale
-// 1 when none does, the pixel holding the disc's centre.  Pass pc.pass
-// of three (mv_layout.glsl): the nearest depth; the least `who` at it,
-// unless the inherited node (word 2 after mv_inherit, untouched until
-// pass 2) is at that depth; the node whose `who` won.
+// centre lies in the disc (radius times ctl.disc_scale), at its centre's
+// depth, or, at disc scale 1 when none does, the pixel holding the disc's
+// centre; with ctl.tangent (tangent discs) those pixels whose centre's ray
+// meets the node's tangent disc, at that point's depth (common.glsl:
+// tangent_hit; a node whose cone has no axis: all of them, at its
+// centre's depth), and no fallback pixel.  Pass pc.pass of three
+// (mv_layout.glsl): the nearest depth, a draw nearer than what it finds
+// taking the pixel from the inherited node (`who` 0 after mv_inherit);
+// the least `who` at it, unless the inherited node kept it; the node
+// whose `who` won.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
@@ -19,20 +24,18 @@ layout(local_size_x = MLOD_IF_GROUP) in;
 void plot(uint slot, uint row, uint col, uint depth_bits, uint who, uint node)
 {
     uint at = MLOD_IF_MV_WORDS * (slot * ctl.pixels + row * 2u * ctl.resolution + col);
-    if (pc.pass == 0u)
-        atomicMin(maps[at], depth_bits);
-    else if (maps[at] == depth_bits) {
-        if (pc.pass == 1u) {
-            // the inherited node keeps a pixel whose nearest depth is still its own
-            uint held = maps[at + 2u];
-            if (held == MLOD_IF_MV_NONE || mv_ordered(node_distance(held, mv_eye)) != depth_bits)
-                atomicMin(maps[at + 1u], who);
-        } else if (maps[at + 1u] == who)
+    if (pc.pass == 0u) {
+        // the inherited node keeps a pixel whose nearest depth is still its own: a nearer draw takes it
+        if (atomicMin(maps[at], depth_bits) > depth_bits) maps[at + 1u] = MLOD_IF_MV_NONE;
+    } else if (maps[at] == depth_bits) {
+        if (pc.pass == 1u)
+            atomicMin(maps[at + 1u], who);
+        else if (maps[at + 1u] == who)
             maps[at + 2u] = node;
     }
 }
 
-void raster(uint slot, uint k, real4 disc, uint node, uint who)
+void raster(uint slot, uint k, vec4 sphere, real4 disc, uint node, uint who)
 {
     uint sub = sub_base(0u, k);
     uint col_begin = r_to_u(sd(sub, MLOD_IF_S_X)), col_end = r_to_u(r_add(sd(sub, MLOD_IF_S_X), sd(sub, MLOD_IF_S_WIDTH)));
@@ -52,15 +55,16 @@ void raster(uint slot, uint k, real4 disc, uint node, uint who)
     uint re = r_gt(y1, re_) ? row_end : (r_le(y1, rb_) ? row_begin : r_to_u(y1));
     uint cb = r_lt(x0, cb_) ? col_begin : (r_ge(x0, ce_) ? col_end : r_to_u(x0));
     uint ce = r_gt(x1, ce_) ? col_end : (r_le(x1, cb_) ? col_begin : r_to_u(x1));
-    bool hit = false;
-    // the pixels whose centre lies in the disc; then, at disc scale 1 when none does, once more over
-    // the pixel holding the disc's centre, taken whole: one place that plots (emulated doubles inline
-    // each operation where it is written)
+    bool hit = false, tangent = ctl.tangent != 0u, plane = tangent && has_plane(cones[node]);
+    // the pixels whose centre lies in the disc; then, at disc scale 1 when none does (not with tangent
+    // discs), once more over the pixel holding the disc's centre, taken whole: one place that plots
+    // (emulated doubles inline each operation where it is written)
     bool fallback = false;
     [[dont_unroll]] for (int attempt = 0; attempt < 2; attempt++) {
         if (attempt == 1) {
-            if (hit || !(ctl.disc_scale >= 1.0 && r_ge(disc.x, cb_) && r_lt(disc.x, ce_) && r_ge(disc.y, rb_) &&
-                         r_lt(disc.y, re_)))
+            if (hit || tangent ||
+                !(ctl.disc_scale >= 1.0 && r_ge(disc.x, cb_) && r_lt(disc.x, ce_) && r_ge(disc.y, rb_) &&
+                  r_lt(disc.y, re_)))
                 break;
             fallback = true;
             rb = r_to_u(r_floor(disc.y));
@@ -72,10 +76,12 @@ void raster(uint slot, uint k, real4 disc, uint node, uint who)
             real dy = r_sub(r_add(r_u(row), R_HALF), disc.y);
             for (uint col = cb; col < ce; col++) {
                 real dx = r_sub(r_add(r_u(col), R_HALF), disc.x);
-                if (fallback || r_le(r_add(r_mul(dx, dx), r_mul(dy, dy)), r2)) {
-                    plot(slot, row, col, depth_bits, who, node);
-                    hit = true;
-                }
+                float at = 0.0;
+                if (!fallback && (!r_le(r_add(r_mul(dx, dx), r_mul(dy, dy)), r2) ||
+                                  (plane && !tangent_hit(0u, k, sphere, cones[node], ctl.disc_scale, col, row, at))))
+                    continue;
+                plot(slot, row, col, plane ? mv_ordered(at) : depth_bits, who, node);
+                hit = true;
             }
         }
     }
@@ -95,5 +101,5 @@ void main()
     mv_eye = r3_f(eye_spheres[v].xyz);
     uint reached = reached_subs(0u, sphere);
     [[dont_unroll]] for (uint k = 0u; k < 2u; k++)
-        if (((reached >> k) & 1u) != 0u && image_disc(0u, k, c, r_f(sphere.w), disc)) raster(slot, k, disc, s, who);
+        if (((reached >> k) & 1u) != 0u && image_disc(0u, k, c, r_f(sphere.w), disc)) raster(slot, k, sphere, disc, s, who);
 }

@@ -1,8 +1,9 @@
 #version 450
 // shaders/mv_inherit.comp - one thread per pixel of the level's slots
 // (pc.items = slots x pixels): the pixel from the parent's map (where it
-// holds a node), its depth measured again from this node's centre
-// (common.glsl: node_distance), as mlod__mv_inherit; empty otherwise.
+// holds a node; `who` 0), its depth measured again from this node's
+// centre (common.glsl: node_distance, or with tangent discs remeasure:
+// along the pixel's ray), as mlod__mv_inherit; empty otherwise.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
@@ -21,7 +22,9 @@ void main()
     if (parent == MLOD_IF_MV_NONE) return;
     uint from = MLOD_IF_MV_WORDS * (parent * ctl.pixels + p);
     if (prev_maps[from] == MLOD_IF_MV_NONE) return;
-    uint node = prev_maps[from + 2u];
-    maps[at] = mv_ordered(node_distance(node, r3_f(eye_spheres[v].xyz)));
+    uint node = prev_maps[from + 2u], row = p / (2u * ctl.resolution), col = p - row * 2u * ctl.resolution;
+    mv_eye = r3_f(eye_spheres[v].xyz);
+    maps[at] = mv_ordered(ctl.tangent != 0u ? remeasure(node, col, row, true) : node_distance(node, mv_eye));
+    maps[at + 1u] = 0u;
     maps[at + 2u] = node;
 }

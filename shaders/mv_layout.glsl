@@ -10,23 +10,29 @@
 //   mv_slots    a map slot for every node of the level that is a view leaf,
 //               drew something, or whose parent has a map
 //   mv_inherit  each slot's pixels from the parent's map, their depths
-//               measured again from this node's centre (else empty)
-//   mv_draw     the draws' discs, as mlod__draw_nodes draws them, into their
-//               node's slot, in three passes of 32-bit atomics
+//               measured again from this node's centre (with tangent
+//               discs along the pixel's ray: common.glsl's remeasure; else
+//               empty)
+//   mv_draw     the draws' discs (or tangent discs), as mlod__draw_nodes
+//               draws them, into their node's slot, in three passes of
+//               32-bit atomics
 //   mv_resolve  the view leaves' slots into their tiles of the atlas
 //
 // A map pixel is three words (MLOD_IF_MV_WORDS): the depth as a pattern
 // whose unsigned order is the depth's, which draw set it (`who`, 1 + the
-// drawn scene node's place from the left; MLOD_IF_MV_NONE: none), and the
-// node.  The CPU sets the inherited pixels first and then draws a view
-// node's nodes in scene pre-order (its pair lists stay in that order level
-// after level), keeping a pixel's first nearest: the nearest depth wins,
-// at equal depths the inherited node, then the least `who`.  The drawn
+// drawn scene node's place from the left; 0: inherited from the parent's
+// map; MLOD_IF_MV_NONE: none), and the node.  The CPU sets the inherited
+// pixels first and then draws a view node's nodes in scene pre-order (its
+// pair lists stay in that order level after level), keeping a pixel's
+// first nearest: the nearest depth wins, at equal depths the inherited
+// node, then the least `who`.  The drawn
 // nodes are disjoint subtrees, whose pre-order is their order from the
 // left, i.e. that of their leftmost descendant on the deepest level:
 // `who` = (i + 1) << (depth of the tree - depth of i), at most 2^31.  Pass
-// 0 keeps the nearest depth, pass 1 the least `who` at it where the
-// inherited node is not at that depth, pass 2 writes the winner's node.
+// 0 keeps the nearest depth, and a draw that finds a farther one sets
+// `who` to none (an inherited node then no longer holds the nearest
+// depth), pass 1 the least `who` at it (an inherited node's 0 stays),
+// pass 2 writes the winner's node.
 #include "interface.h"
 
 layout(std430, set = 0, binding = MLOD_IF_MV_SCENE_SPHERES) readonly buffer tree_spheres { vec4 spheres[]; };

@@ -4,8 +4,12 @@
 // its sphere's image, its radius times pc.disc_scale, in each sub-tile of its
 // view that it reaches, as
 // mlod__draw_nodes and mlod__raster_disc in manylods.h: pixels whose centre
-// lies in the disc, or, at disc_scale 1, when none of the 64-row band
-// holding the disc's centre does, the pixel holding the centre.
+// lies in the disc, at its centre's depth, or, at disc_scale 1, when none
+// of the 64-row band holding the disc's centre does, the pixel holding the
+// centre (MLOD_SPLAT_SPHERES); with pc.tangent (MLOD_SPLAT_TANGENT) those
+// pixels whose centre's ray meets the node's tangent disc, at that point's
+// depth (common.glsl: tangent_hit; a node whose cone has no axis: all of
+// them, at its centre's depth), and no fallback pixel.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
@@ -46,7 +50,7 @@ void plot(uint view, uint row, uint col, uint depth_bits, uint entry)
 
 // Clipped to the sub-tile of the view's sub-projection s (whole pixels:
 // columns floor(x) .. floor(x + width) - 1, rows likewise).
-void raster_disc(uint view, uint s, real4 disc, uint entry)
+void raster_disc(uint view, uint s, real4 disc, uint node, uint entry)
 {
     uint sub = sub_base(view, s);
     real sub_right = r_add(sd(sub, MLOD_IF_S_X), sd(sub, MLOD_IF_S_WIDTH));
@@ -72,18 +76,20 @@ void raster_disc(uint view, uint s, real4 disc, uint entry)
     real band_begin = centre_inside ? r_mul(r_floor(r_div(disc.y, BAND_ROWS)), BAND_ROWS) : R_ZERO;
     real band_top = r_add(band_begin, BAND_ROWS);
     real band_end = r_lt(tile_h, band_top) ? tile_h : band_top; // GLSL's min
-    bool hit_in_band = false;
+    bool hit_in_band = false, plane = pc.tangent != 0u && has_plane(cones[node]);
     for (uint row = rb; row < re; row++) {
         real dy = r_sub(r_add(r_u(row), R_HALF), disc.y);
         for (uint col = cb; col < ce; col++) {
             real dx = r_sub(r_add(r_u(col), R_HALF), disc.x);
-            if (r_le(r_add(r_mul(dx, dx), r_mul(dy, dy)), r2)) {
-                plot(view, row, col, depth_bits, entry);
-                if (r_ge(r_u(row), band_begin) && r_lt(r_u(row), band_end)) hit_in_band = true;
-            }
+            float at = 0.0;
+            if (!r_le(r_add(r_mul(dx, dx), r_mul(dy, dy)), r2) ||
+                (plane && !tangent_hit(view, s, spheres[node], cones[node], pc.disc_scale, col, row, at)))
+                continue;
+            plot(view, row, col, plane ? ordered_bits(at) : depth_bits, entry);
+            if (r_ge(r_u(row), band_begin) && r_lt(r_u(row), band_end)) hit_in_band = true;
         }
     }
-    if (!hit_in_band && centre_inside && pc.disc_scale >= 1.0)
+    if (pc.tangent == 0u && !hit_in_band && centre_inside && pc.disc_scale >= 1.0)
         plot(view, r_to_u(r_floor(disc.y)), r_to_u(r_floor(disc.x)), depth_bits, entry);
 }
 
@@ -101,5 +107,5 @@ void main()
     real4 disc;
     uint reached = count == 1u ? 1u : reached_subs(view, s);
     for (uint k = 0u; k < count; k++)
-        if (((reached >> k) & 1u) != 0u && image_disc(view, k, c, r_f(s.w), disc)) raster_disc(view, k, disc, i);
+        if (((reached >> k) & 1u) != 0u && image_disc(view, k, c, r_f(s.w), disc)) raster_disc(view, k, disc, node, i);
 }

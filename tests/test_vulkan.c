@@ -5,7 +5,9 @@
    status for status, over frames whose views move (incremental and lazy
    continue from the previous frame's cut); lists that outgrow their
    buffers grow and resume with the same result; the splatted atlas equals
-   mlod_splat's bit for bit (depth, normal, colour); errors from the
+   mlod_splat's bit for bit (depth, normal, colour), with tangent discs (the
+   default for a tree with cones) and sphere discs, and MegaViews' atlas
+   mlod_megaviews_render's likewise; errors from the
    Vulkan functions (out of memory, device loss) come back as results and
    leave every object destroyable.  Any validation message fails the test.
 
@@ -341,7 +343,10 @@ static void test_cut_parity(void)
 
 /* The device atlas equals mlod_splat's, pixel for pixel, for every kind,
    with whole discs (disc_scale 1) and with half discs (0.5: no fallback
-   pixel for discs that cover no pixel centre). */
+   pixel for discs that cover no pixel centre), as tangent discs (the
+   default, MLOD_SPLAT_AUTO, for the room's tree with cones); then the same
+   tree's sphere discs (MLOD_SPLAT_SPHERES), the views of every kind at
+   once, at disc_scale 1 (and 0.5, except with emulated doubles). */
 /* The room scene's tree of n leaves with cones and colours, uploaded, and
    its bounds (c, R); 0, the failure checked and nothing held, on failure. */
 static int room_tree(scene_mesh *s, uint32_t n, const char *what, mlod_tree **tree, mlodvk_tree **vtree, double *c,
@@ -372,10 +377,13 @@ static void test_splat_parity(void)
     mlodvk_tree *vtree = NULL;
     mlod_error e;
     double c[3], R;
-    int kind, round;
+    /* the rounds from first_spheres on (one with emulated doubles, two else) draw sphere discs, of mixed kinds */
+    int kind, round, first_spheres = lean ? VIEW_KINDS + 2 : 2 * (VIEW_KINDS + 1);
     if (!room_tree(&s, lean ? 4000 : 40000, "splat", &tree, &vtree, c, &R)) return;
-    for (round = 0; round < (lean ? VIEW_KINDS + 2 : 2 * (VIEW_KINDS + 1)); round++) {
-        float disc_scale = round <= VIEW_KINDS ? 0.0f : 0.5f;
+    for (round = 0; round < first_spheres + (lean ? 1 : 2); round++) {
+        int spheres = round >= first_spheres;
+        float disc_scale = spheres ? (round > first_spheres ? 0.5f : 0.0f) : round <= VIEW_KINDS ? 0.0f : 0.5f;
+        const char *splat = spheres ? "spheres" : "tangent";
         mlod_view views[16];
         mlod_atlas_desc ad;
         mlod_atlas *cpu_atlas = NULL, *gpu_atlas = NULL;
@@ -385,7 +393,7 @@ static void test_splat_parity(void)
         mlod_cut_params p;
         uint32_t v;
         size_t pixels, i, depth_diff = 0, normal_diff = 0, color_diff = 0, drawn = 0;
-        kind = round % (VIEW_KINDS + 1);
+        kind = spheres ? VIEW_KINDS : round % (VIEW_KINDS + 1);
         memset(&p, 0, sizeof p);
         p.mode = MLOD_CUT_BASIC;
         p.epsilon = kind == VIEW_KINDS ? 3.0f : 1.0f;
@@ -398,6 +406,7 @@ static void test_splat_parity(void)
         memset(&ad, 0, sizeof ad);
         ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
         ad.disc_scale = disc_scale;
+        ad.splat = spheres ? MLOD_SPLAT_SPHERES : MLOD_SPLAT_AUTO;
         if (mlod_atlas_create(views, 16, &ad, NULL, &cpu_atlas, &e) != MLOD_OK ||
             mlod_atlas_create(views, 16, &ad, NULL, &gpu_atlas, &e) != MLOD_OK ||
             mlodvk_atlas_create(context, cpu_atlas, &vatlas, &e) != MLOD_OK || mlod_cut_create(16, NULL, &cpu, &e) != MLOD_OK ||
@@ -405,7 +414,8 @@ static void test_splat_parity(void)
             mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK ||
             mlod_splat(cpu_atlas, tree, cpu, views, NULL, &e) != MLOD_OK || mlodvk_splat(context, vatlas, vtree, gpu, &e) != MLOD_OK ||
             mlodvk_atlas_download(context, vatlas, gpu_atlas, &e) != MLOD_OK) {
-            CHECK(0, "splat parity, kind %d, disc_scale %g: set-up failed: %s", kind, (double)disc_scale, e.message);
+            CHECK(0, "splat parity, %s, kind %d, disc_scale %g: set-up failed: %s", splat, kind, (double)disc_scale,
+                  e.message);
         } else {
             pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
             for (i = 0; i < pixels; i++) {
@@ -414,11 +424,11 @@ static void test_splat_parity(void)
                 normal_diff += memcmp(cpu_atlas->normal + 3 * i, gpu_atlas->normal + 3 * i, 3 * sizeof(float)) != 0;
                 color_diff += memcmp(cpu_atlas->color + 3 * i, gpu_atlas->color + 3 * i, 3 * sizeof(float)) != 0;
             }
-            CHECK(drawn > pixels / 20, "splat parity, kind %d, disc_scale %g: only %zu of %zu pixels drawn", kind,
-                  (double)disc_scale, drawn, pixels);
+            CHECK(drawn > pixels / 20, "splat parity, %s, kind %d, disc_scale %g: only %zu of %zu pixels drawn", splat,
+                  kind, (double)disc_scale, drawn, pixels);
             CHECK(depth_diff == 0 && normal_diff == 0 && color_diff == 0,
-                  "splat parity, kind %d, disc_scale %g: %zu depth, %zu normal, %zu colour pixels of %zu differ", kind,
-                  (double)disc_scale, depth_diff, normal_diff, color_diff, pixels);
+                  "splat parity, %s, kind %d, disc_scale %g: %zu depth, %zu normal, %zu colour pixels of %zu differ",
+                  splat, kind, (double)disc_scale, depth_diff, normal_diff, color_diff, pixels);
         }
         mlodvk_atlas_destroy(context, vatlas);
         mlodvk_cut_destroy(context, gpu);
@@ -745,6 +755,34 @@ static void test_refusals(void)
                   mlodvk_splat(context, vatlas, vtree, gpu, &e) == MLOD_ERROR_MISMATCH,
               "refusals: a splat whose view tile is not the atlas's is not refused as MLOD_ERROR_MISMATCH (%s)",
               mlod_result_name(e.code));
+    }
+    if (ready) { /* tangent discs asked of a tree without cones: both splats refuse */
+        mlod_tree *bare = tu_build(&s, 300, 21, 0);
+        mlodvk_tree *vbare = NULL;
+        mlod_cut *bare_cpu = NULL;
+        mlodvk_cut *bare_gpu = NULL;
+        mlod_atlas *tangent = NULL;
+        mlodvk_atlas *vtangent = NULL;
+        mlod_atlas_desc td;
+        memset(&td, 0, sizeof td);
+        td.splat = MLOD_SPLAT_TANGENT;
+        CHECK(bare && mlodvk_tree_upload(context, bare, &vbare, &e) == MLOD_OK &&
+                  mlod_cut_create(VIEWS, NULL, &bare_cpu, &e) == MLOD_OK &&
+                  mlodvk_cut_create(context, VIEWS, 0, &bare_gpu, &e) == MLOD_OK &&
+                  mlod_cut_update(bare_cpu, bare, views, &p, &e) == MLOD_OK &&
+                  mlodvk_cut_update(context, bare_gpu, vbare, views, &p, &e) == MLOD_OK &&
+                  mlod_atlas_create(views, VIEWS, &td, NULL, &tangent, &e) == MLOD_OK &&
+                  mlodvk_atlas_create(context, tangent, &vtangent, &e) == MLOD_OK &&
+                  mlod_splat(tangent, bare, bare_cpu, views, NULL, &e) == MLOD_ERROR_MISMATCH &&
+                  mlodvk_splat(context, vtangent, vbare, bare_gpu, &e) == MLOD_ERROR_MISMATCH,
+              "refusals: MLOD_SPLAT_TANGENT with a tree without cones is not refused as MLOD_ERROR_MISMATCH (%s)",
+              mlod_result_name(e.code));
+        mlodvk_atlas_destroy(context, vtangent);
+        mlodvk_cut_destroy(context, bare_gpu);
+        mlodvk_tree_destroy(context, vbare);
+        mlod_cut_destroy(bare_cpu);
+        mlod_atlas_destroy(tangent);
+        mlod_tree_destroy(bare);
     }
     mlodvk_atlas_destroy(context, vatlas);
     mlodvk_cut_destroy(context, gpu);
@@ -1227,7 +1265,7 @@ static void test_arguments(void)
         views[0] = views[1] = tu_view(MLOD_VIEW_PARABOLOID);
         memset(&ad, 0, sizeof ad);
         CHECK(mlod_atlas_create(views, 2, &ad, NULL, &layout, &e) == MLOD_OK, "a layout: %s", e.message);
-        for (k = 0; layout && k < 4; k++) {
+        for (k = 0; layout && k < 5; k++) {
             bad = *layout;
             memcpy(tiles, layout->tiles, sizeof tiles);
             bad.tiles = tiles;
@@ -1235,6 +1273,7 @@ static void test_arguments(void)
             if (k == 1) bad.disc_scale = 1.5f;
             if (k == 2) tiles[4] = layout->width; /* the second tile past the right edge */
             if (k == 3) bad.tiles = NULL;
+            if (k == 4) bad.splat = MLOD_SPLAT_TANGENT + 1;
             CHECK(mlodvk_atlas_create(context, &bad, &va, &e) == MLOD_ERROR_INVALID_ARGUMENT && va == NULL,
                   "a tampered layout (%u) is refused: %s (%s)", k, mlod_result_name(e.code), e.message);
         }
@@ -1271,7 +1310,9 @@ static void test_arguments(void)
    views with and without directions and fields of view, back-face
    culling, a group radius (with lights in a layer, which the view tree's
    floors cull below), a disc scale below 1, duplicate eyes, eyes
-   outside the scene, odd and even resolutions, one view; and the same
+   outside the scene, odd and even resolutions, one view, all with tangent
+   discs (the default for the room's tree with cones), and once with
+   sphere discs (MLOD_SPLAT_SPHERES: setting 8, few views); and the same
    refusals as the CPU's. */
 static void test_megaviews_parity(void)
 {
@@ -1283,9 +1324,11 @@ static void test_megaviews_parity(void)
     int setting;
     if (!room_tree(&s, lean ? 4000 : 30000, "megaviews", &tree, &vtree, c, &R)) return;
     /* lean (emulated doubles, whose pipelines alone take lavapipe about a minute): the odd settings, which
-       between them take every path of the shaders (sharing, fields of view, back faces, groups, one view) */
-    for (setting = lean ? 1 : 0; setting < 8; setting += lean ? 2 : 1) {
-        uint32_t count = setting == 7 ? 1 : (lean ? 24 + 13 * (uint32_t)setting : 160 + 37 * (uint32_t)setting), i;
+       between them take every path of the shaders (sharing, fields of view, back faces, groups, one view),
+       and the sphere discs */
+    for (setting = lean ? 1 : 0; setting < 9; setting += lean && setting < 7 ? 2 : 1) {
+        uint32_t count = setting == 7 ? 1 : setting == 8 ? (lean ? 12 : 64)
+                                          : (lean ? 24 + 13 * (uint32_t)setting : 160 + 37 * (uint32_t)setting), i;
         uint64_t rng = 900u + (uint64_t)setting;
         float *eyes = (float *)malloc(12 * (size_t)count), *dirs = (float *)malloc(12 * (size_t)count);
         float *fovs = (float *)malloc(4 * (size_t)count);
@@ -1330,6 +1373,7 @@ static void test_megaviews_parity(void)
         memset(&ad, 0, sizeof ad);
         ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
         ad.disc_scale = setting == 4 ? 0.5f : 0.0f;
+        ad.splat = setting == 8 ? MLOD_SPLAT_SPHERES : MLOD_SPLAT_AUTO;
         memset(&cs, 0, sizeof cs);
         memset(&gs, 0, sizeof gs);
         /* setting 1: the atlas's cells in the view tree's leaf order (mlod_atlas_desc.order) */
@@ -1369,7 +1413,8 @@ static void test_megaviews_parity(void)
                   (unsigned long long)gs.node_pairs);
             /* the settings exercise what they name: sharing with delta > 0, none with distinct eyes at 0 */
             if (setting == 0) CHECK(cs.shared_draws == 0, "megaviews parity: delta 0 shares nothing");
-            if (setting == 1 || setting == 2 || setting == 4 || setting == 6) CHECK(cs.shared_draws > 0, "megaviews parity, setting %d: something shared", setting);
+            if (setting == 1 || setting == 2 || setting == 4 || setting == 6 || setting == 8)
+                CHECK(cs.shared_draws > 0, "megaviews parity, setting %d: something shared", setting);
             if (setting == 5) { /* the floors cull pairs the views' cones leave (without them, more pairs) */
                 float *floors = vt->floors;
                 mlod_megaviews_stats without;
@@ -1400,6 +1445,26 @@ static void test_megaviews_parity(void)
                 CHECK(mlodvk_megaviews_render(context, vatlas, vtree, vt, &bad, NULL, &e) == MLOD_ERROR_MISMATCH &&
                           mlod_megaviews_render(cpu_atlas, tree, vt, &bad, NULL, &e) == MLOD_ERROR_MISMATCH,
                       "megaviews: tiles of another resolution refused by both");
+                { /* tangent discs asked of a scene without cones: refused by both */
+                    mlod_tree *bare = tu_build(&s, 200, 9, 0);
+                    mlodvk_tree *vbare = NULL;
+                    mlod_atlas *tangent = NULL;
+                    mlodvk_atlas *vtangent = NULL;
+                    mlod_atlas_desc td;
+                    memset(&td, 0, sizeof td);
+                    td.splat = MLOD_SPLAT_TANGENT;
+                    CHECK(bare && mlodvk_tree_upload(context, bare, &vbare, &e) == MLOD_OK &&
+                              mlod_atlas_create(vs, count, &td, NULL, &tangent, &e) == MLOD_OK &&
+                              mlodvk_atlas_create(context, tangent, &vtangent, &e) == MLOD_OK &&
+                              mlod_megaviews_render(tangent, bare, vt, &p, NULL, &e) == MLOD_ERROR_MISMATCH &&
+                              mlodvk_megaviews_render(context, vtangent, vbare, vt, &p, NULL, &e) == MLOD_ERROR_MISMATCH,
+                          "megaviews: MLOD_SPLAT_TANGENT with a scene without cones refused by both (%s)",
+                          mlod_result_name(e.code));
+                    mlodvk_atlas_destroy(context, vtangent);
+                    mlodvk_tree_destroy(context, vbare);
+                    mlod_atlas_destroy(tangent);
+                    mlod_tree_destroy(bare);
+                }
             }
         }
         mlodvk_atlas_destroy(context, vatlas);
