@@ -10989,7 +10989,7 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     job.views = views;
     job.atlas = atlas;
     job.disc_scale = atlas ? atlas->disc_scale : 1.0f;
-    job.tangent = mlod__splat_tangent(atlas ? atlas->splat : MLOD_SPLAT_AUTO, scene);
+    job.tangent = mlod__splat_tangent(atlas ? atlas->splat : (uint32_t)MLOD_SPLAT_AUTO, scene);
     job.epsilon = params->epsilon;
     job.delta = params->delta;
     job.group_radius = params->group_radius;
