@@ -265,6 +265,7 @@ typedef struct row {
     uint32_t n;      /* 0: not applicable */
     double build_ms, refit_ms, cut_ms, splat_ms, total_ms; /* NAN: not applicable */
     double cpu_ms;   /* ROW_VULKAN: the CPU's time for the same stage, same frames */
+    double splat_ratio; /* sphere discs row: the default splat / sphere discs, median of pairs in turn */
     double evaluated, per_view;                             /* per frame; NAN: n/a */
     double tree_bytes, cut_bytes, atlas_bytes;              /* NAN: n/a */
     double entry_bytes; /* mlod_cut_bytes / cut entries after the last frame's update; NAN: n/a */
@@ -303,6 +304,10 @@ typedef struct bench {
         double group_avx2_ms; /* the same grouped render by the -mavx2 -mfma copy (NAN: not run) */
         double mega_avx2_ms;  /* and the ungrouped one */
         double view_order_ms; /* the ungrouped render into an atlas in view order, not the tree's (NAN: not run) */
+        /* the most lights: the ungrouped render with sphere discs (MLOD_SPLAT_SPHERES) and the default, in turn
+           (NAN: not run): medians and the median of the pairs' ratios (default / spheres) */
+        double sphere_ms, default_ms, sphere_ratio;
+        metrics sphere_m;
         /* sizing: the most pairs of one view node and mlod_megaviews_bound for it (and for any scene) */
         double node_pairs, bound, bound_any, group_node_pairs, group_bound;
         metrics mega_m, per_m, group_m;
@@ -438,6 +443,7 @@ typedef struct protocol {
     double diameter, area;
     mlod_atlas *atlas;
     mlod_atlas *half_atlas; /* the same layout, discs at BENCH_DISC_SCALE */
+    mlod_atlas *sphere_atlas; /* the same layout, MLOD_SPLAT_SPHERES (the splat before tangent discs) */
     float *reference; /* the last frame's */
     uint64_t reference_hits;
     float *receivers;
@@ -590,6 +596,10 @@ static void protocol_reference(bench *b, protocol *p)
     memset(&desc, 0, sizeof desc);
     if (mlod_atlas_create(frame_views(p, 0), p->view_count, &desc, NULL, &p->atlas, &error) != MLOD_OK)
         fail("mlod_atlas_create: %s", error.message);
+    desc.splat = MLOD_SPLAT_SPHERES;
+    if (mlod_atlas_create(frame_views(p, 0), p->view_count, &desc, NULL, &p->sphere_atlas, &error) != MLOD_OK)
+        fail("mlod_atlas_create: %s", error.message);
+    desc.splat = MLOD_SPLAT_AUTO;
     desc.disc_scale = BENCH_DISC_SCALE;
     if (mlod_atlas_create(frame_views(p, 0), p->view_count, &desc, NULL, &p->half_atlas, &error) != MLOD_OK)
         fail("mlod_atlas_create: %s", error.message);
@@ -671,6 +681,7 @@ static void protocol_free(protocol *p)
     free(p->visible);
     mlod_atlas_destroy(p->atlas);
     mlod_atlas_destroy(p->half_atlas);
+    mlod_atlas_destroy(p->sphere_atlas);
     memset(p, 0, sizeof *p);
 }
 

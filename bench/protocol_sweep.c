@@ -83,6 +83,44 @@ static void run_half_discs(bench *b, const protocol *p, const mlod_tree *tree, f
              r->splat_ms);
 }
 
+/* The last frame's basic cut splatted as sphere discs (MLOD_SPLAT_SPHERES,
+   the splat before tangent discs) and as the default splat, in turn (7
+   pairs, the order alternating): the median time of each, the ratio of
+   the pairs' times, and the sphere discs' metrics. */
+static void run_sphere_discs(bench *b, const protocol *p, const mlod_tree *tree, float eps, const mlod_cut *cut,
+                             double cut_ms)
+{
+    const mlod_view *views = frame_views(p, p->frame_count - 1);
+    double times[2][7], ratios[7];
+    mlod_error error;
+    row *r;
+    int i, k;
+    for (i = 0; i < 7; i++)
+        for (k = 0; k < 2; k++) {
+            int which = (k + i) & 1; /* 1: sphere discs */
+            double t0 = now_ms();
+            if (mlod_splat(which ? p->sphere_atlas : p->atlas, tree, cut, views, &b->parallel, &error) != MLOD_OK)
+                fail("sphere discs: %s", error.message);
+            times[which][i] = now_ms() - t0;
+        }
+    check_atlas(p->sphere_atlas, "sphere discs");
+    for (i = 0; i < 7; i++) ratios[i] = times[0][i] / times[1][i];
+    r = add_row(b, ROW_DISCS, p->name, "basic cut, sphere discs (MLOD_SPLAT_SPHERES)");
+    r->eps = eps;
+    r->n = tree->leaf_count;
+    r->cut_ms = cut_ms;
+    r->splat_ms = median(times[1], 7);
+    r->total_ms = cut_ms + r->splat_ms;
+    r->splat_ratio = median(ratios, 7);
+    compare_atlas(p, p->sphere_atlas, &r->m);
+    r->has_metrics = 1;
+    r->atlas_bytes = (double)p->sphere_atlas->bytes;
+    snprintf(r->note, sizeof r->note,
+             "the splat before tangent discs: %.2f ms; the default splat of the same cut, in turn: %.2f ms (%.2fx, "
+             "median of 7 pairs)",
+             r->splat_ms, median(times[0], 7), r->splat_ratio);
+}
+
 static void fill_ours(row *r, const protocol *p, float eps, uint32_t n, const mode_stats *s, int measured,
                       double build_ms, double refit_ms, const mlod_tree *tree)
 {
@@ -308,9 +346,10 @@ static void run_size(bench *b, protocol *p, uint32_t n, const float *eps_list, i
                 fail("%s, N %u, eps %g: %s did not converge to the basic cut in 256 updates (view %u)", p->name, n,
                      (double)eps, mode_names[m], diff);
         }
-        if (ism) { /* the basic cut of the last frame, as half discs */
+        if (ism) { /* the basic cut of the last frame, as half discs and as sphere discs */
             double t0 = now_ms();
             run_half_discs(b, p, tree, eps, stats[MODE_BASIC].cut, median(stats[MODE_BASIC].cut_ms, c->measured));
+            run_sphere_discs(b, p, tree, eps, stats[MODE_BASIC].cut, median(stats[MODE_BASIC].cut_ms, c->measured));
             b->spent_ism += now_ms() - t0;
         }
         if (ism && stats[MODE_INCREMENTAL].present) { /* at the time of the incremental cut + splat */

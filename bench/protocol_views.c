@@ -321,6 +321,32 @@ static void run_views(bench *b)
                                              BENCH_BIAS, visible, row->bias_note, sizeof row->bias_note);
         metrics_compare_visibility(atlas, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
                                    row->bias_pixels, visible, &row->mega_m, NULL);
+        row->sphere_ms = row->default_ms = row->sphere_ratio = NAN;
+        if (v == c->view_count_n - 1) { /* the most lights: what tangent discs cost against sphere discs, in turn */
+            mlod_atlas *spheres = NULL;
+            double pair[2][BENCH_MAX_FRAMES], ratio[BENCH_MAX_FRAMES];
+            int k;
+            desc.order = vt->eyes->leaf_sources;
+            desc.splat = MLOD_SPLAT_SPHERES;
+            if (mlod_atlas_create(views, count, &desc, NULL, &spheres, &e) != MLOD_OK) fail("atlas: %s", e.message);
+            desc.splat = MLOD_SPLAT_AUTO;
+            for (rep = 0; rep < repeats; rep++) {
+                for (k = 0; k < 2; k++) {
+                    int which = (k + rep) & 1; /* 1: sphere discs */
+                    t0 = now_ms();
+                    if (mlod_megaviews_render(which ? spheres : atlas, tree, vt, &mp, NULL, &e) != MLOD_OK)
+                        fail("megaviews: %s", e.message);
+                    pair[which][rep] = now_ms() - t0;
+                }
+                ratio[rep] = pair[0][rep] / pair[1][rep];
+            }
+            row->default_ms = median(pair[0], (int)repeats);
+            row->sphere_ms = median(pair[1], (int)repeats);
+            row->sphere_ratio = median(ratio, (int)repeats);
+            metrics_compare_visibility(spheres, reference, views, diameter, receivers, c->views_receivers, BENCH_BIAS,
+                                       row->bias_pixels, visible, &row->sphere_m, NULL);
+            mlod_atlas_destroy(spheres);
+        }
         ungrouped_hash = hash_floats(atlas->depth, (size_t)atlas->width * atlas->height);
         /* grouped: lights within 1/200 of the scene's diameter of a view node's centre share its map */
         mp.group_radius = group_radius;
@@ -400,6 +426,9 @@ static void run_views(bench *b)
         if (row->per_ms == row->per_ms)
             printf("; per-view %.0f ms, depth RMS %.2f%%, shadow %.2f%%", row->per_ms, 100.0 * row->per_m.depth_rms,
                    100.0 * row->per_m.shadow_disagreement);
+        if (row->sphere_ms == row->sphere_ms)
+            printf("; sphere discs %.0f ms against the default's %.0f in turn (%.2fx), wrong %.2f%%", row->sphere_ms,
+                   row->default_ms, row->sphere_ratio, 100.0 * row->sphere_m.shadow_error);
         printf("\n");
         fflush(stdout);
         if (v == c->view_count_n - 1) {
@@ -554,6 +583,15 @@ static void write_views_markdown(const bench *b, FILE *f)
                 r->shared_draws > 0 ? r->shared_views / r->shared_draws : 0.0, r->leaf_draws / r->views,
                 r->shared_leaves / r->views, per, per_mb,
                 r->cast_ms, rms, holes, shadow, wrong, own, r->bias_pixels);
+    }
+    for (k = 0; k < b->views_rows; k++) {
+        const struct views_row *r = &b->views[k];
+        if (r->sphere_ms == r->sphere_ms)
+            fprintf(f, "\nTangent discs (the default) against sphere discs (mlod_atlas_desc.splat MLOD_SPLAT_SPHERES) at %u "
+                       "lights, ungrouped, in turn: %.0f against %.0f ms (%.2fx, median of the pairs' ratios); wrong %.2f %% "
+                       "against %.2f %% (exact maps %.2f %%).\n",
+                    r->views, r->default_ms, r->sphere_ms, r->sphere_ratio, 100.0 * r->mega_m.shadow_error,
+                    100.0 * r->sphere_m.shadow_error, 100.0 * r->mega_m.reference_shadow_error);
     }
     fprintf(f, "\nGrouped (mlod_megaviews_params.group_radius: lights within 1/200 of the scene's diameter of a view node's "
                "centre share its map, seen from the centre), same renders otherwise:\n\n| views | grouped ms | peak MB "
