@@ -10138,12 +10138,13 @@ static float mlod__remeasure(const mlod__pview *pv, const mlod_tree *scene, uint
     double x[3], o[3], dir[3], d, t, per_t, v, lo, hi;
     int k, s = col < pv->columns[0][1] ? 0 : 1;
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+    cone = tangent ? scene->cones + 4 * (size_t)node : NULL;
+    if (cone && mlod__has_plane(cone) && mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col, row, o, dir, &per_t)) {
+        if (mlod__plane_hit(x, cone, o, dir, (double)sphere[3], 0, &t)) return (float)(t * per_t);
+    } else {
+        return (float)mlod__length3(x);
+    }
     d = mlod__length3(x);
-    if (!tangent) return (float)d;
-    cone = scene->cones + 4 * (size_t)node;
-    if (!mlod__has_plane(cone) || !mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col, row, o, dir, &per_t))
-        return (float)d;
-    if (mlod__plane_hit(x, cone, o, dir, (double)sphere[3], 0, &t)) return (float)(t * per_t);
     lo = d - (double)sphere[3];
     hi = d + (double)sphere[3];
     v = t > 0.0 ? t * per_t : hi;
@@ -10186,15 +10187,27 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
         uint32_t *out_ids = band->ids ? band->ids + (size_t)row * band->stride : NULL;
         for (col = 0; col < width;) { /* the row's drawn pixels, up to a chunk at a time */
             const size_t at = (size_t)row * width;
-            for (n = 0; col < width && n < MLOD__DRAW_CHUNK; col++) {
+            const uint32_t end = col < job->resolution ? job->resolution : width; /* a chunk within one half */
+            for (n = 0; col < end && n < MLOD__DRAW_CHUNK; col++) {
                 out[col] = INFINITY;
                 cols[n] = col;
                 ids[n] = parent_ids[at + col];
                 n += parent_depth[at + col] < INFINITY;
             }
-            if (job->tangent)
-                for (l = 0; l < n; l++) depth[l] = mlod__remeasure(&pv, job->scene, ids[l], cols[l], row, 1);
-            else
+            if (job->tangent && n > 0) { /* the rays that meet their node's disc in lanes (mlod__remeasure's first case) */
+                float fc[MLOD__DRAW_CHUNK], fr[MLOD__DRAW_CHUNK];
+                uint8_t hit[MLOD__DRAW_CHUNK];
+                for (l = 0; l < n; l++) {
+                    fc[l] = (float)cols[l]; /* below 2^31 and whole; and 2 R below 2^24 for the lanes' pixels */
+                    fr[l] = (float)row;
+                }
+                if (width <= 16777216u)
+                    mlod__tangent_hits(&pv, cols[0] < job->resolution ? 0 : 1, job->scene, ids, fc, fr, n, 1.0f, hit, depth);
+                else
+                    memset(hit, 0, n);
+                for (l = 0; l < n; l++)
+                    if ((hit[l] & 3u) != 3u) depth[l] = mlod__remeasure(&pv, job->scene, ids[l], cols[l], row, 1);
+            } else
                 mlod__node_distances(job->scene, ids, n, centre, depth);
             if (band->normal || band->color) { /* the node's channels too */
                 for (l = 0; l < n; l++) mlod__band_set(band, (size_t)row * band->stride + cols[l], depth[l], ids[l]);
