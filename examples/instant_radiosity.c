@@ -4,10 +4,10 @@
    A spot light in a room (examples/app.h) spawns virtual point lights
    (VPLs) where its rays first hit the surface.  Each VPL gets a paraboloid
    shadow map: manylods cuts the room's sphere tree for all of them at once
-   and splats the cuts into one atlas, as discs of half the nodes' sphere
-   images (mlod_atlas_desc.disc_scale 0.5; the holes that leaves are
-   pull-push filled), which takes back the half pixel whole bounding
-   spheres add to every silhouette.  Every camera pixel then sums the
+   and splats the cuts into one atlas as tangent discs (the default
+   mlod_atlas_desc.splat for a tree with cones: each pixel takes a node
+   where the ray through its centre meets the node's disc, as a ray-cast
+   map samples it).  Every camera pixel then sums the
    light of every VPL, one bounce of indirect light, each VPL's visibility
    read from its shadow map; direct light uses exact shadow rays.
 
@@ -64,7 +64,7 @@ static const char usage[] =
     "  --mode M           basic, incremental or lazy cuts after the first frame (default incremental)\n"
     "  --ism-match M      give ISM the same 'time' as manylods (default), as many points as it 'drawn' nodes,\n"
     "                     or K times as many (K = 1 .. 16)\n"
-    "  --disc-scale S     manylods' discs: S times the sphere image's radius, 0 < S <= 1 (default 0.5;\n"
+    "  --disc-scale S     manylods' discs: S times the sphere image's radius, 0 < S <= 1 (default 1;\n"
     "                     below 1 the holes are pull-push filled, in the splat's time)\n"
     "  --threads N        threads (default 2)\n"
     "  --sampling         compare how the VPLs are chosen (mlod_sample: inverse transform and Metropolis-\n"
@@ -802,7 +802,7 @@ static int per_view_vpls(const char *program, const app_options *o, const app_sc
     mlod_atlas *cut_atlas = NULL, *ism_atlas = NULL;
     mlod_cut *cut = NULL;
     mlod_cut_params cp;
-    mlod_atlas_desc desc = {0, 0, 0.0f, NULL};
+    mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO};
     mlod_error error;
     uint64_t nodes, drawn;
     int ok = 0;
@@ -875,7 +875,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     mlod_view_set set;
     mlod_megaviews_params mp;
     mlod_megaviews_stats st;
-    mlod_atlas_desc desc = {0, 0, 0.0f, NULL};
+    mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO};
     mlod_error error;
     app_gbuffer g;
     app_image direct, raw, mv, exact, per_view, ism, exact_few, per_view_eq, ism_eq, panels[3];
@@ -1042,8 +1042,8 @@ done:
 int main(int argc, char **argv)
 {
     app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 2, MLOD_CUT_INCREMENTAL,
-                          0, 0, 0.5f, 0, 0, 0, 1};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 0.5f, 0, 0, 0, 1};
+                          0, 0, 1.0f, 0, 0, 0, 1};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f, 0, 0, 0, 1};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -1068,7 +1068,7 @@ int main(int argc, char **argv)
     app_counter build_memory = {0, 0};
     mlod_allocator build_allocator = app_counting(&build_memory);
     size_t build_bound;
-    mlod_atlas_desc atlas_desc = {0, 0, 0.0f, NULL};
+    mlod_atlas_desc atlas_desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO};
     uint32_t frame, compare_width = 0;
     int status = 1, parsed;
 
