@@ -7588,39 +7588,21 @@ MLOD__PUBLIC int mlod_view_project(const mlod_view *view, const float point[3], 
     return mlod__reached(&pv, sphere) != 0;
 }
 
+static int mlod__centre_ray(const mlod_view_sub *sub, int kind, double x, double y, double *o, double *dir,
+                            double *depth_per_t);
+
 MLOD__PUBLIC int mlod_view_pixel_ray(const mlod_view *view, float x, float y, float origin[3], float direction[3])
 {
     mlod__pview pv;
-    const mlod_view_sub *sub;
-    double o[3], dir[3], len;
+    double o[3], dir[3], per_t, len;
     int k, s;
     if (!origin || !direction || mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
     if (!(x >= 0.0f && x < (float)view->width && y >= 0.0f && y < (float)view->height)) return 0;
     s = mlod__sub_at(&pv, x, y);
-    if (s < 0) return 0;
-    sub = &pv.f.subs[s];
-    for (k = 0; k < 3; k++) o[k] = pv.f.eye[k];
-    if (pv.kind[s] == MLOD_VIEW_PERSPECTIVE) {
-        double px = (x - (sub->x + 0.5 * sub->width)) / sub->scale;
-        double py = ((sub->y + 0.5 * sub->height) - y) / sub->scale;
-        for (k = 0; k < 3; k++) dir[k] = sub->forward[k] + px * sub->right[k] + py * sub->up[k];
-    } else if (pv.kind[s] == MLOD_VIEW_ORTHOGRAPHIC) {
-        double px = (x - (sub->x + 0.5 * sub->width)) / sub->scale_x;
-        double py = ((sub->y + 0.5 * sub->height) - y) / sub->scale_y;
-        for (k = 0; k < 3; k++) {
-            o[k] += px * sub->right[k] + py * sub->up[k];
-            dir[k] = sub->forward[k];
-        }
-    } else {
-        double px = 2.0 * (x - sub->x) / sub->width - 1.0, py = 1.0 - 2.0 * (y - sub->y) / sub->height;
-        double q = px * px + py * py;
-        if (q > 1.0) return 0;
-        /* the inverse stereographic projection */
-        for (k = 0; k < 3; k++) dir[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
-    }
+    if (s < 0 || !mlod__centre_ray(&pv.f.subs[s], pv.kind[s], x, y, o, dir, &per_t)) return 0;
     len = mlod__length3(dir);
     for (k = 0; k < 3; k++) {
-        origin[k] = (float)o[k];
+        origin[k] = (float)(pv.f.eye[k] + o[k]);
         direction[k] = (float)(dir[k] / len);
     }
     return 1;
@@ -7859,19 +7841,19 @@ MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint
 
 /* ---------------------------------------------------- tangent discs -- */
 
-/* The ray through the centre of tile pixel (col, row) in sub-projection
-   sub of this kind, in double, relative to the eye: origin eye + o
-   (orthographic: on the plane through the eye; else o = 0), direction dir
-   (not unit; mlod_view_pixel_ray normalises the same vector), and the
-   factor that turns the ray's parameter into depth: 1 + q for
-   paraboloids (|dir| in exact arithmetic), else 1 (dir.w).  The pixel's
-   offsets are multiplied by the reciprocal of the scale.  0 when the
-   centre lies outside a paraboloid's disc. */
+/* The ray through tile position (x, y) (a pixel's centre: col + 0.5,
+   row + 0.5) in sub-projection sub of this kind, in double, relative to
+   the eye: origin eye + o (orthographic: on the plane through the eye;
+   else o = 0), direction dir (not unit; mlod_view_pixel_ray normalises
+   it), and the factor that turns the ray's parameter into depth: 1 + q
+   for paraboloids (|dir| in exact arithmetic), else 1 (dir.w).  The
+   position's offsets are multiplied by the reciprocal of the scale.  0
+   when the position lies outside a paraboloid's disc. */
 /* GLSL twin: centre_ray */
-static int mlod__centre_ray(const mlod_view_sub *sub, int kind, uint32_t col, uint32_t row, double *o, double *dir,
+static int mlod__centre_ray(const mlod_view_sub *sub, int kind, double x, double y, double *o, double *dir,
                             double *depth_per_t)
 {
-    double x = (double)col + 0.5, y = (double)row + 0.5, px, py, q;
+    double px, py, q;
     int k;
     for (k = 0; k < 3; k++) o[k] = 0.0;
     *depth_per_t = 1.0;
@@ -7946,7 +7928,7 @@ static int mlod__tangent_hit(const mlod__pview *pv, int s, const float *sphere, 
 {
     double o[3], dir[3], x[3], t, per_t;
     int k;
-    if (!mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col, row, o, dir, &per_t)) return 0;
+    if (!mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col + 0.5, row + 0.5, o, dir, &per_t)) return 0;
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
     if (!mlod__plane_hit(x, cone, o, dir, (double)sphere[3] * (double)ds, pv->kind[s] == MLOD_VIEW_ORTHOGRAPHIC, &t))
         return 0;
@@ -7985,16 +7967,16 @@ MLOD__FORCE_INLINE void mlod__vd_pairs(const float *a, const float *b, mlod__vd 
 static void mlod__tangent_hits(const mlod__pview *pv, int s, const mlod_tree *tree, const uint32_t *nodes,
                                const float *cols, const float *rows, uint32_t n, float ds, uint8_t *hit, float *depth)
 {
-    const mlod_view_sub *sub = &pv->f.subs[s];
-    const int parab = pv->kind[s] == MLOD_VIEW_PARABOLOID;
-    const double mid_x = sub->x + 0.5 * sub->width, mid_y = sub->y + 0.5 * sub->height, inv = 1.0 / sub->scale;
-    const double inv_w = 2.0 / sub->width, inv_h = 2.0 / sub->height;
-    uint32_t i;
-    int k;
-    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK && (parab || pv->kind[s] == MLOD_VIEW_PERSPECTIVE));
-    i = 0;
+    uint32_t i = 0;
+    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK &&
+                    (pv->kind[s] == MLOD_VIEW_PARABOLOID || pv->kind[s] == MLOD_VIEW_PERSPECTIVE));
 #ifdef MLOD__VD
-    if (n >= 2) { /* two nodes a vector, each lane the scalar steps below; the divisions in a pass of their own */
+    if (n >= 2) { /* two nodes a vector, each lane mlod__tangent_hit's steps; the divisions in a pass of their own */
+        const mlod_view_sub *sub = &pv->f.subs[s];
+        const int parab = pv->kind[s] == MLOD_VIEW_PARABOLOID;
+        const double mid_x = sub->x + 0.5 * sub->width, mid_y = sub->y + 0.5 * sub->height, inv = 1.0 / sub->scale;
+        const double inv_w = 2.0 / sub->width, inv_h = 2.0 / sub->height;
+        int k;
         mlod__vd vd[3][MLOD__DRAW_CHUNK / 2], vx[3][MLOD__DRAW_CHUNK / 2], vq[MLOD__DRAW_CHUNK / 2];
         mlod__vd vt[MLOD__DRAW_CHUNK / 2], vr[MLOD__DRAW_CHUNK / 2];
         uint8_t vp[MLOD__DRAW_CHUNK];
@@ -8056,27 +8038,11 @@ static void mlod__tangent_hits(const mlod__pview *pv, int s, const mlod_tree *tr
         i = 2 * pairs;
     }
 #endif
-    for (; i < n; i++) { /* mlod__centre_ray, mlod__plane_hit (o = 0) */
-        const float *sphere = tree->spheres + 4 * (size_t)nodes[i], *cone = tree->cones + 4 * (size_t)nodes[i];
-        double px, py, q = 0.0, dir[3], x[3], nw, nd, t, e[3], rr = (double)sphere[3] * (double)ds;
-        if (parab) {
-            px = ((double)cols[i] + 0.5 - sub->x) * inv_w - 1.0;
-            py = 1.0 - ((double)rows[i] + 0.5 - sub->y) * inv_h;
-            q = px * px + py * py;
-            for (k = 0; k < 3; k++) dir[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
-        } else {
-            px = ((double)cols[i] + 0.5 - mid_x) * inv;
-            py = (mid_y - ((double)rows[i] + 0.5)) * inv;
-            for (k = 0; k < 3; k++) dir[k] = sub->forward[k] + px * sub->right[k] + py * sub->up[k];
-        }
-        for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
-        nw = (double)cone[0] * (x[0] - 0.0) + (double)cone[1] * (x[1] - 0.0) + (double)cone[2] * (x[2] - 0.0);
-        nd = (double)cone[0] * dir[0] + (double)cone[1] * dir[1] + (double)cone[2] * dir[2];
-        t = nw / nd;
-        for (k = 0; k < 3; k++) e[k] = (0.0 + t * dir[k]) - x[k];
-        hit[i] = (uint8_t)(((q <= 1.0) & (t > 0.0) & (e[0] * e[0] + e[1] * e[1] + e[2] * e[2] <= rr * rr)) |
+    for (; i < n; i++) { /* the rest one at a time, by the definition */
+        const float *cone = tree->cones + 4 * (size_t)nodes[i];
+        hit[i] = (uint8_t)(mlod__tangent_hit(pv, s, tree->spheres + 4 * (size_t)nodes[i], cone, ds, (uint32_t)cols[i],
+                                             (uint32_t)rows[i], &depth[i]) |
                            mlod__has_plane(cone) << 1);
-        depth[i] = (float)(t * (parab ? 1.0 + q : 1.0));
     }
 }
 
@@ -8429,9 +8395,6 @@ static void mlod__splat_task(void *context, uint32_t index)
     uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), i, batch[MLOD__DRAW_CHUNK], n = 0;
     mlod_cut_view cv = mlod_cut_get(job->cut, view);
     for (i = 0; i < cv.count; i++) { /* MLOD__DRAW_CHUNK drawn nodes at a time, in order */
-        /* tangent discs read each node's cone too: a chunk ahead, its loads under way meanwhile */
-        if (band.tangent && i + MLOD__DRAW_CHUNK < cv.count)
-            MLOD__PREFETCH(job->tree->cones + 4 * (size_t)cv.nodes[i + MLOD__DRAW_CHUNK]);
         if (cv.status[i] == MLOD_STATUS_CULLED) continue;
         batch[n++] = cv.nodes[i];
         if (n == MLOD__DRAW_CHUNK) {
@@ -10139,7 +10102,7 @@ static float mlod__remeasure(const mlod__pview *pv, const mlod_tree *scene, uint
     int k, s = col < pv->columns[0][1] ? 0 : 1;
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
     cone = tangent ? scene->cones + 4 * (size_t)node : NULL;
-    if (cone && mlod__has_plane(cone) && mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col, row, o, dir, &per_t)) {
+    if (cone && mlod__has_plane(cone) && mlod__centre_ray(&pv->f.subs[s], pv->kind[s], col + 0.5, row + 0.5, o, dir, &per_t)) {
         if (mlod__plane_hit(x, cone, o, dir, (double)sphere[3], 0, &t)) return (float)(t * per_t);
     } else {
         return (float)mlod__length3(x);
