@@ -1016,15 +1016,23 @@ static void check_stats(const mlod_megaviews_stats *st, const mlod_tree *scene, 
                views);
 }
 
-/* Every drawn pixel of the tiles: a node at its distance from the view's
-   eye, its cone axis as normal; empty ones have channels 0. */
-static void check_drawn(const mlod_atlas *a, const mlod_tree *scene, const mlod_view_tree *vt, const char *what)
+/* Every drawn pixel of the tiles (views: the atlas's): a node with its
+   cone axis as normal, at its distance from the view's eye (sphere discs),
+   or (tangent discs) at the depth measured along the pixel's ray
+   (mlod__remeasure: where the fusion of an ancestor's pixel and the view's
+   own draw agree), within the sphere's range of distances; empty ones
+   have channels 0. */
+static void check_drawn(const mlod_atlas *a, const mlod_view *views, const mlod_tree *scene, const mlod_view_tree *vt,
+                        const char *what)
 {
     uint32_t v, x, y, leaf_of[FZ_MAX_VIEWS];
+    int tangent = a->splat == MLOD_SPLAT_TANGENT || (a->splat == MLOD_SPLAT_AUTO && scene->cones);
     for (v = 0; v < vt->view_count; v++) leaf_of[vt->eyes->leaf_sources[v]] = v;
     for (v = 0; v < a->view_count; v++) {
         const uint32_t *t = a->tiles + 4 * (size_t)v;
         const float *eye = vt->eyes->spheres + 4 * (size_t)(vt->eyes->leaf_count - 1 + leaf_of[v]);
+        mlod__pview pv;
+        FZ_REQUIRE(mlod__view_prepare(&views[v], &pv, NULL) == MLOD_OK, "%s: view %u does not prepare", what, v);
         for (y = 0; y < t[3]; y++)
             for (x = 0; x < t[2]; x++) {
                 size_t at = pixel_of(a, v, x, y);
@@ -1049,9 +1057,17 @@ static void check_drawn(const mlod_atlas *a, const mlod_tree *scene, const mlod_
                     s = scene->spheres + 4 * (size_t)node;
                     for (k = 0; k < 3; k++) dist2 += ((double)s[k] - eye[k]) * ((double)s[k] - eye[k]);
                     dist = sqrt(dist2);
-                    FZ_REQUIRE(fabs(d - dist) <= 1e-6 * dist + 1e-37,
-                               "%s: view %u pixel (%u, %u) holds node %u at depth %.9g, its distance from the eye %.9g",
-                               what, v, x, y, node, (double)d, dist);
+                    if (tangent) {
+                        float m = mlod__remeasure(&pv, scene, node, x, y, 1);
+                        double r = s[3];
+                        FZ_REQUIRE(d == m && d >= (dist - r) * (1.0 - 1e-6) - 1e-37 && d <= (dist + r) * (1.0 + 1e-6) + 1e-37,
+                                   "%s: view %u pixel (%u, %u) holds node %u at depth %.9g: measured along its ray "
+                                   "%.9g, the sphere's distances %.9g to %.9g",
+                                   what, v, x, y, node, (double)d, (double)m, dist - r, dist + r);
+                    } else
+                        FZ_REQUIRE(fabs(d - dist) <= 1e-6 * dist + 1e-37,
+                                   "%s: view %u pixel (%u, %u) holds node %u at depth %.9g, its distance from the eye %.9g",
+                                   what, v, x, y, node, (double)d, dist);
                     if (a->normal)
                         FZ_REQUIRE(!memcmp(a->normal + 3 * at, scene->cones + 4 * (size_t)node, 12),
                                    "%s: view %u pixel (%u, %u): the normal is not node %u's cone axis", what, v, x, y,
@@ -1300,12 +1316,14 @@ static void run_frame(fz_ctx *c, const fz_views *v, const mlod_view_tree *vt, co
         desc.channels &= (c->scene->cones ? (uint32_t)MLOD_ATLAS_NORMAL : 0u) | (c->scene->colors ? (uint32_t)MLOD_ATLAS_COLOR : 0u);
     desc.disc_scale = (cb >> 2) % 4 == 3 ? (float)((cb >> 4) % 7 + 1) / 8.0f : 0.0f;
     desc.columns = (cb >> 6) ? (cb >> 6) + 1 : 0;
+    desc.splat = (ab >> 1) % 4 == 3 ? (uint32_t)MLOD_SPLAT_SPHERES : (ab >> 1) % 8 == 2 ? (uint32_t)MLOD_SPLAT_TANGENT : 0u;
     if (count == v->count && rd_u8(r) < 128) { /* the view tree's leaf order, or reversed */
         for (i = 0; i < count; i++) order[i] = (cb & 0x20) ? vt->eyes->leaf_sources[i] : count - 1 - i;
         desc.order = order;
     }
     mismatch = count != v->count || tile_R != R || ((desc.channels & MLOD_ATLAS_NORMAL) && !c->scene->cones) ||
-               ((desc.channels & MLOD_ATLAS_COLOR) && !c->scene->colors);
+               ((desc.channels & MLOD_ATLAS_COLOR) && !c->scene->colors) ||
+               (desc.splat == MLOD_SPLAT_TANGENT && !c->scene->cones);
     a = create_atlas(c, views, count, &desc, "mlod_atlas_create (MegaViews)");
     if (a) {
         paint(a, c->hash);
@@ -1348,7 +1366,7 @@ static void run_frame(fz_ctx *c, const fz_views *v, const mlod_view_tree *vt, co
         if (res == MLOD_OK) {
             check_stats(&st, c->scene, v->count, "mlod_megaviews_render");
             check_outside_tiles(a, &before, "mlod_megaviews_render");
-            check_drawn(a, c->scene, vt, "mlod_megaviews_render");
+            check_drawn(a, views, c->scene, vt, "mlod_megaviews_render");
             FZ_NOTE("fuzz: render: %llu pairs, %llu shared draws, %llu leaf draws, peak %zu bytes\n",
                     (unsigned long long)st.pairs, (unsigned long long)st.shared_draws,
                     (unsigned long long)st.leaf_draws, st.peak_bytes);
@@ -1362,7 +1380,7 @@ static void run_frame(fz_ctx *c, const fz_views *v, const mlod_view_tree *vt, co
                 FZ_REQUIRE(mlod_atlas_create(views, count, &desc, NULL, &ref, &e) == MLOD_OK, "the reference atlas: %s",
                            e.message);
                 reference_render(ref, c->scene, views, v, fp.p.epsilon, &drawn);
-                check_drawn(ref, c->scene, vt, "the per-view cut and splat");
+                check_drawn(ref, views, c->scene, vt, "the per-view cut and splat");
                 if (!same_tiles(a, ref, &dv, &dx, &dy, &ties)) {
                     size_t pa = pixel_of(a, dv, dx, dy), pr = pixel_of(ref, dv, dx, dy);
                     FZ_REQUIRE(0,
@@ -1409,7 +1427,7 @@ static void run_frame(fz_ctx *c, const fz_views *v, const mlod_view_tree *vt, co
         }
         image_free(&before);
     }
-    run_maps(c, &fp, v, vt, other, a && res == MLOD_OK && a->disc_scale == 1.0f ? a : NULL,
+    run_maps(c, &fp, v, vt, other, a && res == MLOD_OK && a->disc_scale == 1.0f && a->splat != MLOD_SPLAT_SPHERES ? a : NULL,
              a && res == MLOD_OK ? &st : NULL);
     if (a && res == MLOD_OK) fill_holes(c, a, "hole filling of a MegaViews atlas");
     FZ_NOTE("fuzz: %s done%s\n", when, compared ? " (compared with the per-view path)" : "");

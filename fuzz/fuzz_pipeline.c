@@ -1096,7 +1096,7 @@ static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cu
     mlod_error e;
     mlod_result res;
     uint8_t channels = rd_u8(r);
-    int mismatch, bad_disc, bad_channels, bad_order = 0, tries = 0;
+    int mismatch, bad_disc, bad_channels, bad_splat, bad_order = 0, tries = 0;
     uint32_t *order = NULL, v;
     memset(&desc, 0, sizeof desc);
     desc.columns = rd_u8(r) % 10;
@@ -1111,11 +1111,14 @@ static void run_splat(fz_ctx *c, fz_reader *r, const mlod_tree *t, const mlod_cu
         desc.order = order;
     }
     desc.disc_scale = (float)((channels >> 2) & 7u) / 7.0f; /* 0 (whole discs), 1/7 .. 1 */
+    /* the reconstruction: auto, sphere or tangent discs; hostile, one that is none */
+    desc.splat = (channels >> 5) % 4u == 3u ? (r->chaos ? 3u + (channels >> 7) * 0x7ffffffcu : 0u) : (channels >> 5) % 4u;
     if (!c->sane_views && r->chaos && channels >= 0xf8) desc.channels = channels;
     if (c->ext & FZ_EXT_DISC_SCALE) desc.disc_scale = rd_disc_scale(r);
     /* the documentation: outside (0, 1] other than 0, or NaN, is invalid */
     bad_disc = !(desc.disc_scale >= 0.0f && desc.disc_scale <= 1.0f);
     bad_channels = (desc.channels & ~3u) != 0;
+    bad_splat = desc.splat > MLOD_SPLAT_TANGENT;
 retry:
     {
         unsigned long live = c->counter.live;
@@ -1126,7 +1129,7 @@ retry:
             check_error(res, &e);
             FZ_REQUIRE(atlas == NULL, "mlod_atlas_create failed but left *out_atlas set");
             check_no_leak(&c->counter, live, "mlod_atlas_create");
-            FZ_REQUIRE(injected_oom(&c->counter, res) || bad_channels || bad_disc || bad_order,
+            FZ_REQUIRE(injected_oom(&c->counter, res) || bad_channels || bad_disc || bad_order || bad_splat,
                        "mlod_atlas_create failed with %s for valid tiles and options: %s", mlod_result_name(res),
                        e.message);
             FZ_REQUIRE(!bad_disc || bad_channels || res == MLOD_ERROR_INVALID_ARGUMENT,
@@ -1136,7 +1139,12 @@ retry:
                            res == MLOD_ERROR_INVALID_ARGUMENT,
                        "mlod_atlas_create refused an order with a view twice with %s, not MLOD_ERROR_INVALID_ARGUMENT",
                        mlod_result_name(res));
-            if (injected_oom(&c->counter, res) && !bad_channels && !bad_disc && !bad_order && tries++ < FZ_RETRIES)
+            FZ_REQUIRE(!bad_splat || bad_channels || bad_disc || bad_order || injected_oom(&c->counter, res) ||
+                           res == MLOD_ERROR_INVALID_ARGUMENT,
+                       "mlod_atlas_create refused splat %u with %s, not MLOD_ERROR_INVALID_ARGUMENT", desc.splat,
+                       mlod_result_name(res));
+            if (injected_oom(&c->counter, res) && !bad_channels && !bad_disc && !bad_order && !bad_splat &&
+                tries++ < FZ_RETRIES)
                 goto retry;
             free(order);
             return;
@@ -1151,6 +1159,8 @@ retry:
     free(order);
     FZ_REQUIRE(!bad_channels, "mlod_atlas_create accepted unknown channel bits 0x%x", desc.channels);
     FZ_REQUIRE(!bad_disc, "mlod_atlas_create accepted disc_scale %g", (double)desc.disc_scale);
+    FZ_REQUIRE(!bad_splat && atlas->splat == desc.splat, "mlod_atlas_create accepted splat %u as %u", desc.splat,
+               atlas->splat);
     FZ_REQUIRE(atlas->disc_scale == (desc.disc_scale == 0.0f ? 1.0f : desc.disc_scale),
                "atlas disc_scale %g for desc.disc_scale %g", (double)atlas->disc_scale, (double)desc.disc_scale);
     {
@@ -1160,7 +1170,8 @@ retry:
                            (!atlas->color || atlas->color[3 * i] == 0.0f),
                        "a new atlas is not empty at pixel %zu", i);
     }
-    mismatch = (atlas->normal && !t->cones) || (atlas->color && !t->colors);
+    mismatch = (atlas->normal && !t->cones) || (atlas->color && !t->colors) ||
+               (atlas->splat == MLOD_SPLAT_TANGENT && !t->cones);
     res = mlod_splat(atlas, t, cut, vs->views, c->parallel, &e);
     if (res != MLOD_OK) {
         fz_where = "mlod_splat";
