@@ -25,8 +25,13 @@
 #   make fuzz-corpus regenerate fuzz/corpus/pipeline/ with fuzz/make_corpus.c
 #   make bench       tests/deps.sh, then the benchmark (bench/bench.c, needs
 #                    Embree 3: Debian's libembree-dev); prints its tables and writes
-#                    docs/BENCHMARKS.md, docs/bench.csv, docs/bench.svg
+#                    docs/BENCHMARKS.md, docs/bench.csv, docs/bench.svg,
+#                    docs/views.svg, docs/bench_figures.txt; then rewrites
+#                    README.md's benchmark block from them (as make readme-figures)
 #   make bench-quick a smaller sweep, written under build/bench/
+#   make readme-figures
+#                    README.md's benchmark block (between its bench:begin and
+#                    bench:end markers) from docs/bench_figures.txt, without a run
 #   make clean       remove build/
 #
 # CC, CXX, CLANG and CLANGXX may be overridden (make test CC=gcc-13).  V=1
@@ -146,7 +151,7 @@ VULKAN_PROGRAMS :=
 endif
 
 .PHONY: all demo test test-only fuzz-only test-fast tsan matrix fuzz fuzz-corpus bench bench-quick clean test-programs fast-programs \
-        shaders vulkan vulkan-minimal docs-images
+        shaders vulkan vulkan-minimal docs-images readme-figures
 .DELETE_ON_ERROR:
 
 # The examples that show the paper's applications (examples/*.c with app.h).
@@ -302,6 +307,12 @@ bench:
 	$(Q)tests/deps.sh
 	$(Q)$(MAKE) --no-print-directory $(BUILD)/bench/bench
 	$(Q)$(BUILD)/bench/bench --out docs
+	$(Q)bench/readme_figures.sh --update README.md docs/bench_figures.txt
+
+# README.md's figures from the last make bench's files: bench/readme_figures.sh
+# formats docs/bench_figures.txt into the block between the README's markers.
+readme-figures:
+	$(Q)bench/readme_figures.sh --update README.md docs/bench_figures.txt
 
 bench-quick:
 	$(Q)tests/deps.sh

@@ -2,7 +2,8 @@
    added: BENCHMARKS.md (write_markdown: the machine, the headline and the
    Targets table, then per scene the trees, the sweep, the peers, the
    Targets' own rows, Vulkan and the suggested N; then the views section),
-   bench.csv (every row) and bench.svg (time against error per scene);
+   bench.csv (every row), bench.svg (time against error per scene) and
+   bench_figures.txt (the figures README.md quotes, key=value: write_figures);
    write_outputs writes them, and views.svg, under --out, and the markdown
    to stdout.  The Targets and views sections are written by their
    protocol files (bench/protocol_targets.c, bench/protocol_views.c). */
@@ -490,6 +491,75 @@ static void write_svg(const bench *b, FILE *f, protocol *const *protocols, int p
     free(keep);
 }
 
+/* bench_figures.txt: the figures README.md quotes, one "key=value" a line,
+   each value printed as BENCHMARKS.md prints it (tests/check_readme_figures.sh
+   finds every value there); bench/readme_figures.sh formats them into the
+   README's block.  run.*: the machine, compiler, threads and date.  Per
+   scene, the largest N at epsilon 1: the basic cut + splat, the lean Embree
+   peer's exact maps, the shadow tests answered wrongly against exact
+   visibility (ours, the exact maps', the points the splat adds), and the
+   points sphere discs and ISM add.  views.COUNT.*: the MegaViews render,
+   Embree's exact maps and the grouped render; views.most.*: the errors and
+   sphere discs at the most views, and the memory when they are 1 M.  A
+   figure this run did not measure is left out (the formatter then stops
+   and names it). */
+static void write_figures(const bench *b, FILE *f, protocol *const *protocols, int protocol_count)
+{
+    const config *c = &b->cfg;
+    const struct views_row *most = NULL;
+    int i, k;
+    fprintf(f, "# written by make bench (bench/report.c, write_figures): the figures README.md quotes, each as\n"
+               "# BENCHMARKS.md prints it; bench/readme_figures.sh formats them into README.md's block\n");
+    fprintf(f, "run.date=%s\nrun.machine=%s\nrun.compiler=%s\nrun.flags=%s\nrun.threads=%s\nrun.embree=%s\n", b->date,
+            b->machine, b->compiler, BENCH_FLAGS, b->threads, RTC_VERSION_STRING);
+    for (i = 0; i < protocol_count; i++) {
+        const char *s = protocols[i]->name;
+        const row *basic, *spheres = NULL, *ism = NULL, *polys = find_row(b, ROW_POLYS, s, NULL, 0, 0);
+        uint32_t n = 0;
+        for (k = 0; k < b->row_count; k++) {
+            const row *r = &b->rows[k];
+            if (strcmp(r->scene, s) != 0 || r->eps != 1.0f) continue;
+            if (r->kind == ROW_OURS && r->n > n) n = r->n;
+            if (r->kind == ROW_DISCS && strstr(r->method, "sphere discs") && (!spheres || r->n >= spheres->n))
+                spheres = r;
+            if (r->kind == ROW_ISM && (!ism || r->n >= ism->n)) ism = r;
+        }
+        basic = find_row(b, ROW_OURS, s, "basic", 1.0f, n);
+        fprintf(f, "%s.views=%u\n%s.map_px=%u\n", s, c->view_count, s, c->tile);
+        if (basic) {
+            fprintf(f, "%s.n=%u\n%s.cut_splat_ms=%.2f\n", s, n, s, basic->total_ms);
+            if (basic->m.visibility_tests)
+                fprintf(f, "%s.wrong=%.2f\n%s.exact_wrong=%.2f\n%s.splat_pts=%+.2f\n", s, 100.0 * basic->m.shadow_error,
+                        s, 100.0 * basic->m.reference_shadow_error, s,
+                        100.0 * (basic->m.shadow_error - basic->m.reference_shadow_error));
+        }
+        if (polys) fprintf(f, "%s.embree_ms=%.2f\n", s, polys->total_ms);
+        if (spheres && spheres->m.visibility_tests)
+            fprintf(f, "%s.spheres_pts=%+.2f\n%s.spheres_time=%.2f\n", s,
+                    100.0 * (spheres->m.shadow_error - spheres->m.reference_shadow_error), s, spheres->splat_ratio);
+        if (ism && ism->m.visibility_tests)
+            fprintf(f, "%s.ism_pts=%+.2f\n", s, 100.0 * (ism->m.shadow_error - ism->m.reference_shadow_error));
+    }
+    for (k = 0; k < b->views_rows; k++)
+        if (!most || b->views[k].views > most->views) most = &b->views[k];
+    if (!most) return;
+    fprintf(f, "views.map_px=%u\nviews.group_radius=1/200\nviews.most=%u\n", c->views_resolution, most->views);
+    for (k = 0; k < b->views_rows; k++) {
+        const struct views_row *r = &b->views[k];
+        fprintf(f, "views.%u.ms=%.0f\nviews.%u.embree_ms=%.0f\nviews.%u.grouped_ms=%.0f\n", r->views, r->mega_ms, r->views,
+                r->cast_ms, r->views, r->group_ms);
+    }
+    if (most->mega_m.visibility_tests)
+        fprintf(f, "views.most.wrong=%.2f\nviews.most.exact_wrong=%.2f\nviews.most.splat_pts=%+.2f\n",
+                100.0 * most->mega_m.shadow_error, 100.0 * most->mega_m.reference_shadow_error,
+                100.0 * (most->mega_m.shadow_error - most->mega_m.reference_shadow_error));
+    if (most->sphere_ms == most->sphere_ms)
+        fprintf(f, "views.most.spheres_wrong=%.2f\nviews.most.spheres_time=%.2f\n", 100.0 * most->sphere_m.shadow_error,
+                most->sphere_ratio);
+    if (most->views == 1u << 20) /* the Targets' row "memory for 1 M lights" */
+        fprintf(f, "views.most.memory=%.2f GiB\n", views_memory(b, most) / 1073741824.0);
+}
+
 static void write_outputs(const bench *b, protocol *const *protocols, int protocol_count)
 {
     char path[1024];
@@ -515,6 +585,10 @@ static void write_outputs(const bench *b, protocol *const *protocols, int protoc
         write_views_svg(b, f);
         fclose(f);
     }
-    printf("\nwrote %s/BENCHMARKS.md, %s/bench.csv, %s/bench.svg%s\n", b->cfg.out_dir, b->cfg.out_dir, b->cfg.out_dir,
-           b->views_rows ? " and views.svg" : "");
+    snprintf(path, sizeof path, "%s/bench_figures.txt", b->cfg.out_dir);
+    if (!(f = fopen(path, "w"))) fail("cannot write %s", path);
+    write_figures(b, f, protocols, protocol_count);
+    fclose(f);
+    printf("\nwrote %s/BENCHMARKS.md, %s/bench.csv, %s/bench.svg%s, %s/bench_figures.txt\n", b->cfg.out_dir,
+           b->cfg.out_dir, b->cfg.out_dir, b->views_rows ? ", views.svg" : "", b->cfg.out_dir);
 }
