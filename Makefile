@@ -8,7 +8,8 @@
 #                    then every test: gcc -O2, clang with ASan+UBSan and the
 #                    threaded ones with TSan, the compile matrix, examples/minimal
 #                    and every example on a tiny scene (tests/check_examples.c),
-#                    bench --selftest, the Vulkan tests; ends with
+#                    bench --selftest, README.md's benchmark figures against
+#                    docs/ (tests/check_readme_figures.sh), the Vulkan tests; ends with
 #                    "N passed, M failed".  Each program has a time limit,
 #                    600 s times a factor tests/run.sh measures on a slow or
 #                    busy machine (or TEST_TIMEOUT_FACTOR=F, given)
@@ -201,7 +202,9 @@ test-only:
 	    --section "examples (each on a tiny scene: runs, valid PNGs, accuracy)" --check $(BUILD)/examples/minimal \
 	    $(BUILD)/examples/check_examples \
 	    --section "benchmark (bench --selftest: compiles, checks cuts and metrics against Embree)" \
-	    --check $(BUILD)/bench/selftest
+	    --check $(BUILD)/bench/selftest \
+	    --section "README.md's benchmark figures (its block against docs/bench_figures.txt, docs/BENCHMARKS.md; none outside it)" \
+	    tests/check_readme_figures.sh
 
 # The Vulkan tests alone.
 vulkan: $(VULKAN_PROGRAMS)
