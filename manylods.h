@@ -1256,6 +1256,62 @@ MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree
    Allocates its scratch once per call. */
 MANYLODS_DEF mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error);
 
+/* -------------------------------------------------------- shadow lookups */
+
+/* The widest percentage-closer filter of mlod_atlas_shadow, in pixels. */
+#define MLOD_SHADOW_MAX_FILTER 16u
+/* The largest slope mlod_atlas_shadow scales its slope bias by (tan 82.9 degrees). */
+#define MLOD_SHADOW_MAX_SLOPE 8.0
+
+/* How mlod_atlas_shadow tests a point against a tile (zero-initialise:
+   one pixel, no bias). */
+typedef struct mlod_shadow_params {
+    uint32_t filter;  /* percentage-closer filter width k, in pixels, 0 .. MLOD_SHADOW_MAX_FILTER: 0 tests
+                         the pixel holding the point; k >= 1 averages the tests of the pixels under the
+                         k x k-pixel square centred on the point, each weighted by the area of it that
+                         lies in the square (k = 1: bilinear weights over the 2 x 2 nearest pixels);
+                         pixels past the point's sub-tile (a dual paraboloid's half, a cube face) are
+                         read at its nearest edge pixel */
+    float bias;       /* world units of depth, >= 0, finite: added to the map's depth */
+    float slope_bias; /* pixel footprints, >= 0, finite: times the footprint at the point (the world
+                         distance between the rays of its pixel's centre and of the horizontal neighbour's,
+                         at the point's distance from the first), times tan of the angle between the
+                         normal and the direction to the eye (at most MLOD_SHADOW_MAX_SLOPE), or times 1
+                         without a normal; added to the map's depth */
+} mlod_shadow_params;
+
+/* Where a world point lands in view `view`'s tile of the atlas (frame:
+   that view's, from mlod_view_frame_of; the tile must be the frame's
+   size): pixel (tile pixels from its top-left, as mlod_view_project),
+   *depth the point's depth as the view measures it (perspective, cube,
+   orthographic: along the sub-projection's axis; paraboloids: distance
+   from the eye) and *map_depth the depth the tile holds at the pixel
+   under the point (+inf where nothing was drawn).  The point is projected
+   by the sub-projection whose axis is closest to its direction, with the
+   arithmetic of mlod_view_project (the same bits).  Returns 1 when the
+   point lies inside the view as mlod_view_project says and its pixel in
+   the tile, else 0 (outputs then undefined); 0 for NULL atlas, frame or
+   point, view >= view_count, or a tile of another size.  Outputs may be
+   NULL.  Pure, thread-safe; no allocation; the frame spares the view's
+   set-up that mlod_view_project makes on every call. */
+MANYLODS_DEF int mlod_atlas_lookup(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame,
+                                   const float point[3], float pixel[2], float *depth, float *map_depth);
+
+/* The lit fraction, in [0, 1], of a world point in view `view`'s tile
+   (a shadow map; frame as for mlod_atlas_lookup): the point counts as lit
+   by a map pixel when its depth is at most the pixel's depth plus the
+   bias of params (bias + slope_bias x footprint x slope); params->filter
+   averages such tests (percentage-closer filtering).  normal (any length,
+   not 0; may be NULL) gives the slope: tan of the angle between it and
+   the direction to the eye (an orthographic view's: -axis), either side.
+   A point outside the view (mlod_atlas_lookup returns 0 for it) is lit: 1.
+   NaN for NULL atlas, frame, point or params, view >= view_count, a tile
+   of another size than the frame, or params out of range.  Doubles
+   throughout; the result does not depend on the build's SIMD level.
+   Pure, thread-safe; no allocation. */
+MANYLODS_DEF float mlod_atlas_shadow(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame,
+                                     const float point[3], const float normal[3], const mlod_shadow_params *params);
+
 /* ------------------------------------------------------- choosing N */
 
 /* Surface area of a mesh in world units^2 (0 for invalid input). Pure. */
@@ -7084,12 +7140,6 @@ static int mlod__image_discs(const mlod__pview *pv, int s, const double (*centre
     return bounded[0];
 }
 
-/* One sphere: mlod__image_discs with one lane; 0 when unbounded. */
-static int mlod__image_disc(const mlod__pview *pv, int s, const double *centre, double r, mlod__disc *out)
-{
-    int bounded;
-    return mlod__image_discs(pv, s, (const double (*)[3])centre, &r, out, &bounded, 1);
-}
 
 /* ------------------------------------------------ the splat's float filter -- */
 
@@ -7538,23 +7588,6 @@ static void mlod__disc_insides(const float *box, size_t stride, const float *col
 #endif
 #endif
 
-/* The sub-projection whose axis is closest to the direction of p from the
-   eye: the largest (p - eye).w, the first on a tie. */
-static int mlod__nearest_sub(const mlod__pview *pv, const double *p)
-{
-    double x[3], best = 0.0;
-    int s, k, found = 0;
-    for (k = 0; k < 3; k++) x[k] = p[k] - pv->f.eye[k];
-    for (s = 0; s < pv->sub_count; s++) {
-        double xw = mlod__dot3(x, pv->f.subs[s].forward);
-        if (s == 0 || xw > best) {
-            best = xw;
-            found = s;
-        }
-    }
-    return found;
-}
-
 /* The sub-projection whose sub-tile holds tile position (x, y), or -1. */
 static int mlod__sub_at(const mlod__pview *pv, double x, double y)
 {
@@ -7566,26 +7599,88 @@ static int mlod__sub_at(const mlod__pview *pv, double x, double y)
     return -1;
 }
 
-MLOD__PUBLIC int mlod_view_project(const mlod_view *view, const float point[3], float pixel[2], float *depth)
+/* Where world point `point` lands in the view of frame f: in the
+   sub-projection whose axis is closest to its direction (mlod__nearest_sub's
+   rule), *sub, the tile position (x, y) and depth, with the arithmetic of
+   mlod__image_discs for a sphere of radius 0 (the same bits: with r = 0
+   its sin b is 0 and cos b 1, so hi = lo = tan t, or tan(t / 2) for
+   paraboloids, and the sums below are its own).  Returns 1 when a
+   sub-projection reaches the point (mlod__reached), 0 when none does,
+   with the outputs written; -1 where the projection is undefined (at the
+   eye, or behind a perspective or paraboloid sub-projection), outputs
+   unwritten. */
+static int mlod__frame_project(const mlod_view_frame *f, const float *point, int *sub, double *x, double *y,
+                               double *depth)
 {
-    mlod__pview pv;
-    mlod__disc disc;
-    double p[3];
+    double e[3], best = 0.0, d, a, b, cos_t, sin_t, dir_x = 0.0, dir_y = 0.0, hi;
     float sphere[4];
-    int k;
-    if (!point || mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
+    int s, k, found = 0, subs = (int)f->sub_count;
+    const mlod_view_sub *v;
     for (k = 0; k < 3; k++) {
-        p[k] = point[k];
+        e[k] = (double)point[k] - f->eye[k];
         sphere[k] = point[k];
     }
     sphere[3] = 0.0f;
-    if (!mlod__image_disc(&pv, mlod__nearest_sub(&pv, p), p, 0.0, &disc)) return 0;
-    if (pixel) {
-        pixel[0] = (float)disc.x;
-        pixel[1] = (float)disc.y;
+    for (s = 0; s < subs; s++) {
+        double xw = mlod__dot3(e, f->subs[s].forward);
+        if (s == 0 || xw > best) {
+            best = xw;
+            found = s;
+        }
     }
-    if (depth) *depth = (float)disc.depth;
-    return mlod__reached(&pv, sphere) != 0;
+    v = &f->subs[found];
+    if ((int)v->kind == MLOD_VIEW_ORTHOGRAPHIC) {
+        *x = v->x + 0.5 * v->width + v->scale_x * mlod__dot3(e, v->right);
+        *y = v->y + 0.5 * v->height - v->scale_y * mlod__dot3(e, v->up);
+        *depth = mlod__dot3(e, v->forward);
+    } else {
+        d = mlod__length3(e);
+        if (!(d > 0.0)) return -1;
+        a = mlod__dot3(e, v->right) / d;
+        b = mlod__dot3(e, v->up) / d;
+        cos_t = mlod__dot3(e, v->forward) / d;
+        sin_t = sqrt(a * a + b * b);
+        if (sin_t > 0.0) {
+            dir_x = a / sin_t;
+            dir_y = b / sin_t;
+        }
+        if ((int)v->kind == MLOD_VIEW_PERSPECTIVE) {
+            if (!(cos_t > 0.0)) return -1;
+            hi = sin_t / cos_t;
+            *x = v->x + 0.5 * v->width + v->scale * 0.5 * (hi + hi) * dir_x;
+            *y = v->y + 0.5 * v->height + v->scale * 0.5 * (hi + hi) * -dir_y;
+            *depth = mlod__dot3(e, v->forward);
+        } else {
+            if (!(1.0 + cos_t > 0.0) || !(sin_t > 0.0 || cos_t > 0.0)) return -1;
+            hi = sin_t / (1.0 + cos_t);
+            *x = v->x + 0.5 * v->width * (1.0 + 0.5 * (hi + hi) * dir_x);
+            *y = v->y + 0.5 * v->height * (1.0 - 0.5 * (hi + hi) * dir_y);
+            *depth = d;
+        }
+    }
+    *sub = found;
+    for (s = 0; s < subs; s++) {
+        for (k = 0; k < (int)f->subs[s].plane_count; k++)
+            if (mlod__outside(f->subs[s].planes[k], sphere)) break;
+        if (k == (int)f->subs[s].plane_count) return 1;
+    }
+    return 0;
+}
+
+MLOD__PUBLIC int mlod_view_project(const mlod_view *view, const float point[3], float pixel[2], float *depth)
+{
+    mlod__pview pv;
+    double x, y, z;
+    int s, inside;
+    if (!point || mlod__view_prepare(view, &pv, NULL) != MLOD_OK) return 0;
+    inside = mlod__frame_project(&pv.f, point, &s, &x, &y, &z);
+    if (inside < 0) return 0;
+    if (pixel) {
+        pixel[0] = (float)x;
+        pixel[1] = (float)y;
+    }
+    if (depth) *depth = (float)z;
+    return inside;
 }
 
 static int mlod__centre_ray(const mlod_view_sub *sub, int kind, double x, double y, double *o, double *dir,
@@ -8619,6 +8714,136 @@ MLOD__PUBLIC mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_par
     mlod__free(&atlas->allocator, job.scratch);
     mlod__free(&atlas->allocator, job.tile_scratch);
     return mlod__succeed(error);
+}
+
+/* ------------------------------------------------------- shadow lookups -- */
+
+/* The tile of `view` when it is the frame's size, else NULL. */
+static const uint32_t *mlod__lookup_tile(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame)
+{
+    const uint32_t *tile;
+    if (!atlas || !frame || view >= atlas->view_count) return NULL;
+    tile = atlas->tiles + 4 * (size_t)view;
+    return (double)tile[2] == frame->width && (double)tile[3] == frame->height ? tile : NULL;
+}
+
+/* The depth the tile holds at its pixel (i, j), clamped into the
+   sub-tile's columns [c0, c1) and rows [r0, r1). */
+static double mlod__lookup_depth(const mlod_atlas *atlas, const uint32_t *tile, double i, double j, const double *c)
+{
+    if (i < c[0]) i = c[0];
+    if (i > c[1] - 1.0) i = c[1] - 1.0;
+    if (j < c[2]) j = c[2];
+    if (j > c[3] - 1.0) j = c[3] - 1.0;
+    return atlas->depth[((size_t)tile[1] + (size_t)j) * atlas->width + tile[0] + (size_t)i];
+}
+
+/* Sub-projection s's pixels: columns c[0] .. c[1] - 1, rows c[2] .. c[3] - 1,
+   as mlod__view_prepare rounds them. */
+static void mlod__lookup_sub_pixels(const mlod_view_sub *sub, double *c)
+{
+    c[0] = (double)(uint32_t)sub->x;
+    c[1] = (double)(uint32_t)(sub->x + sub->width);
+    c[2] = (double)(uint32_t)sub->y;
+    c[3] = (double)(uint32_t)(sub->y + sub->height);
+}
+
+MLOD__PUBLIC int mlod_atlas_lookup(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame,
+                                   const float point[3], float pixel[2], float *depth, float *map_depth)
+{
+    const uint32_t *tile = mlod__lookup_tile(atlas, view, frame);
+    double x, y, z, c[4];
+    int s;
+    if (!tile || !point || mlod__frame_project(frame, point, &s, &x, &y, &z) != 1) return 0;
+    x = floor(x);
+    y = floor(y);
+    mlod__lookup_sub_pixels(&frame->subs[s], c);
+    if (!(x >= 0.0 && x < (double)tile[2] && y >= 0.0 && y < (double)tile[3])) return 0;
+    if (pixel) {
+        pixel[0] = (float)x;
+        pixel[1] = (float)y;
+    }
+    if (depth) *depth = (float)z;
+    if (map_depth) *map_depth = (float)mlod__lookup_depth(atlas, tile, x, y, c);
+    return 1;
+}
+
+/* The footprint of mlod_shadow_params at point p (e: p - eye) in
+   sub-projection sub (pixels c) at tile position (x, y): the rays of the
+   centre of the pixel holding it and of its right neighbour (the left one
+   past the sub-tile or the disc), unit directions, |o1 - o0| + |e - o0|
+   |d1 - d0|; 0 when neither neighbour has a ray. */
+static double mlod__footprint(const mlod_view_sub *sub, const double *c, const double *e, double x, double y)
+{
+    double o0[3], d0[3], o1[3], d1[3], per_t, l0, l1, oo = 0.0, ee = 0.0, dd = 0.0;
+    double cx = floor(x) + 0.5, cy = floor(y) + 0.5;
+    int kind = (int)sub->kind, k;
+    if (!mlod__centre_ray(sub, kind, cx, cy, o0, d0, &per_t)) return 0.0;
+    if (!(cx + 1.0 < c[1] && mlod__centre_ray(sub, kind, cx + 1.0, cy, o1, d1, &per_t)) &&
+        !(cx - 1.0 > c[0] && mlod__centre_ray(sub, kind, cx - 1.0, cy, o1, d1, &per_t)))
+        return 0.0;
+    l0 = mlod__length3(d0);
+    l1 = mlod__length3(d1);
+    for (k = 0; k < 3; k++) {
+        double od = o1[k] - o0[k], ed = e[k] - o0[k], dv = d1[k] / l1 - d0[k] / l0;
+        oo += od * od;
+        ee += ed * ed;
+        dd += dv * dv;
+    }
+    return sqrt(oo) + sqrt(ee) * sqrt(dd);
+}
+
+MLOD__PUBLIC float mlod_atlas_shadow(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame,
+                                     const float point[3], const float normal[3], const mlod_shadow_params *params)
+{
+    const uint32_t *tile = mlod__lookup_tile(atlas, view, frame);
+    const mlod_view_sub *sub;
+    double x, y, z, c[4], e[3], bias, slope = 1.0, lit = 0.0, half, x0, x1, y0, y1, i, j, k2;
+    int s, k, inside;
+    if (!tile || !point || !params || params->filter > MLOD_SHADOW_MAX_FILTER || !(params->bias >= 0.0f) ||
+        !(params->bias <= FLT_MAX) || !(params->slope_bias >= 0.0f) || !(params->slope_bias <= FLT_MAX))
+        return NAN;
+    inside = mlod__frame_project(frame, point, &s, &x, &y, &z);
+    if (inside != 1 || !(x >= 0.0 && x < (double)tile[2] && y >= 0.0 && y < (double)tile[3])) return 1.0f;
+    sub = &frame->subs[s];
+    mlod__lookup_sub_pixels(sub, c);
+    for (k = 0; k < 3; k++) e[k] = (double)point[k] - frame->eye[k];
+    bias = params->bias;
+    if (params->slope_bias > 0.0f) {
+        if (normal) {
+            double n[3], l[3], nl, nn, ll, cos2;
+            for (k = 0; k < 3; k++) {
+                n[k] = normal[k];
+                l[k] = (int)sub->kind == MLOD_VIEW_ORTHOGRAPHIC ? -sub->forward[k] : -e[k];
+            }
+            nl = mlod__dot3(n, l);
+            nn = mlod__dot3(n, n);
+            ll = mlod__dot3(l, l);
+            cos2 = nl * nl / (nn * ll); /* tan^2 = 1 / cos^2 - 1 */
+            slope = sqrt(1.0 / cos2 - 1.0);
+            if (!(slope <= MLOD_SHADOW_MAX_SLOPE)) slope = MLOD_SHADOW_MAX_SLOPE;
+        }
+        bias += (double)params->slope_bias * mlod__footprint(sub, c, e, x, y) * slope;
+    }
+    if (params->filter == 0)
+        return z > mlod__lookup_depth(atlas, tile, floor(x), floor(y), c) + bias ? 0.0f : 1.0f;
+    /* the k x k square [x - k/2, x + k/2] x [y - k/2, y + k/2]: pixel (i, j)
+       covers [i, i + 1) x [j, j + 1) */
+    half = 0.5 * params->filter;
+    x0 = x - half;
+    x1 = x + half;
+    y0 = y - half;
+    y1 = y + half;
+    for (j = floor(y0); j < y1; j += 1.0) {
+        double wy = (j + 1.0 < y1 ? j + 1.0 : y1) - (j > y0 ? j : y0);
+        for (i = floor(x0); i < x1; i += 1.0) {
+            double wx = (i + 1.0 < x1 ? i + 1.0 : x1) - (i > x0 ? i : x0);
+            if (!(z > mlod__lookup_depth(atlas, tile, i, j, c) + bias)) lit += wx * wy;
+        }
+    }
+    k2 = (double)params->filter * params->filter;
+    lit /= k2;
+    return (float)(lit < 1.0 ? lit : 1.0);
 }
 
 /* ----------------------------------------------------------- choosing N -- */

@@ -581,7 +581,7 @@ static void test_bounds(void)
         mlod__view_prepare(&mv, &pc, NULL);
         for (k = 0; k < 2; k++) {
             double centre[3] = {sphere[0], sphere[1], sphere[2]};
-            bc[k] = mlod__image_disc(&pc, k, centre, r, &dc[k]) && mlod__reached(&pc, sphere) >> k & 1u;
+            bc[k] = tu_image_disc(&pc, k, centre, r, &dc[k]) && mlod__reached(&pc, sphere) >> k & 1u;
         }
         for (sample = 0; sample < 16; sample++) {
             double y[3], len = rho * pow(scene_rng_double(&rng), 1.0 / 3.0);
@@ -606,7 +606,7 @@ static void test_bounds(void)
                     mlod__disc de;
                     double centre[3] = {sphere[0], sphere[1], sphere[2]}, shift;
                     if (!bc[k] || !(mlod__reached(&pe, sphere) >> k & 1u)) continue;
-                    if (!mlod__image_disc(&pe, k, centre, r, &de)) {
+                    if (!tu_image_disc(&pe, k, centre, r, &de)) {
                         bad_motion++;
                         continue;
                     }
@@ -725,7 +725,7 @@ static void test_fusion(mlod_tree *scene)
                         other_half++;
                         off_plane += fabs(x[2]) - sph[3] > t->eyes->spheres[3]; /* within the root's rho, any ball's */
                     }
-                    if (!mlod__image_disc(&pv, col < p.resolution ? 0 : 1, centre, sph[3], &disc)) {
+                    if (!tu_image_disc(&pv, col < p.resolution ? 0 : 1, centre, sph[3], &disc)) {
                         far_off++;
                         continue;
                     }

@@ -1599,7 +1599,7 @@ static void test_image_lanes(void)
                 for (l = 0; l < n; l++) {
                     int alone;
                     memset(&one, 0, sizeof one);
-                    alone = mlod__image_disc(&pv, s, centre[l], r[l], &one);
+                    alone = tu_image_disc(&pv, s, centre[l], r[l], &one);
                     compared++;
                     unbounded += !alone;
                     if (alone != bounded[l] || (alone && memcmp(&one, &batch[l], sizeof one) != 0)) {
@@ -1714,7 +1714,7 @@ static void test_filtered_discs(void)
                          : kind == 6 ? 0.0
                                      : 0.7 * scene_rng_double(&rng);
                 r1 = 1e-3 * dist;
-                if (mlod__image_disc(&pv, s, c, r1, &one) && one.radius > 0.0)
+                if (tu_image_disc(&pv, s, c, r1, &one) && one.radius > 0.0)
                     spheres[4 * i + 3] = (float)(r1 * target / one.radius);
                 else
                     spheres[4 * i + 3] = (float)(dist * 0.01 * scene_rng_double(&rng));
@@ -1733,7 +1733,7 @@ static void test_filtered_discs(void)
                 mlod__disc one;
                 int bounded, small, clear_candidate;
                 for (k = 0; k < 3; k++) c[k] = spheres[4 * i + k];
-                bounded = mlod__image_disc(&pv, s, c, spheres[4 * i + 3], &one);
+                bounded = tu_image_disc(&pv, s, c, spheres[4 * i + 3], &one);
                 small = bounded && one.radius * (double)band.disc_scale < MLOD__SMALL_DISC;
                 {
                     double x[3], dist, t, b, in_domain;
@@ -2202,7 +2202,7 @@ static void tangent_reference(mlod_atlas *atlas, const mlod_tree *tree, const ml
             for (s = 0; s < pv.sub_count; s++) {
                 mlod__disc d;
                 double radius, r2;
-                if (!(reached >> s & 1u) || !mlod__image_disc(&pv, s, c, sphere[3], &d) || !(d.radius < 1e9)) continue;
+                if (!(reached >> s & 1u) || !tu_image_disc(&pv, s, c, sphere[3], &d) || !(d.radius < 1e9)) continue;
                 radius = d.radius * (double)atlas->disc_scale;
                 r2 = radius * radius;
                 for (row = pv.rows[s][0]; row < pv.rows[s][1]; row++)

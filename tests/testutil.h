@@ -17,6 +17,16 @@
 
 #define TU_PI 3.14159265358979323846
 
+#ifdef MANYLODS_IMPLEMENTATION
+/* One sphere's image in sub-projection s: mlod__image_discs with one lane
+   (the splat's arithmetic); 0 when unbounded. */
+static inline int tu_image_disc(const mlod__pview *pv, int s, const double *centre, double r, mlod__disc *out)
+{
+    int bounded;
+    return mlod__image_discs(pv, s, (const double (*)[3])centre, &r, out, &bounded, 1);
+}
+#endif
+
 static inline mlod_mesh tu_mesh(const scene_mesh *s)
 {
     mlod_mesh m;
