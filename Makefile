@@ -214,7 +214,8 @@ vulkan: $(VULKAN_PROGRAMS)
 vulkan-minimal: $(BUILD)/examples/vulkan_minimal
 	$(Q)$(BUILD)/examples/vulkan_minimal $(BUILD)/vulkan_atlas.png
 
-$(BUILD)/examples/vulkan_minimal: examples/vulkan_minimal.c manylods.h manylods_vk.h examples/png.h examples/scenes.h
+$(BUILD)/examples/vulkan_minimal: examples/vulkan_minimal.c manylods.h manylods_vk.h examples/png.h examples/progress.h \
+                                  examples/scenes.h
 	$(say) CC $@
 	$(Q)mkdir -p $(@D)
 	$(Q)$(CC) $(EXAMPLE_CFLAGS) $< -o $@ $(VULKAN_LIBS) $(LDLIBS)

@@ -1,8 +1,8 @@
 /* examples/app.h - what the three global-illumination examples share
    (instant_radiosity.c, point_based_gi.c, reflections.c): their options,
-   a clock, memory (a counting allocator, the check that refuses a
-   --samples the machine cannot build), the thread pool, the scene, the
-   light, camera rays, images.
+   a clock and progress lines (examples/progress.h), memory (a counting
+   allocator, the check that refuses a --samples the machine cannot
+   build), the thread pool, the scene, the light, camera rays, images.
    C99, header-only; include it after manylods.h (with its implementation,
    and MANYLODS_PTHREADS for threads) in a file that defines
    _POSIX_C_SOURCE 200809L before any system header (clock_gettime, mkdir).
@@ -41,6 +41,7 @@
 #include "../manylods.h"
 #include "meshio.h"
 #include "png.h"
+#include "progress.h"
 #include "raytrace.h"
 #include "scenes.h"
 
@@ -56,7 +57,7 @@ typedef struct app_options {
     uint32_t views;        /* --views N: lights, gather points or reflective objects */
     uint32_t tile;         /* --tile PX: side of each view's tile */
     uint32_t frames;       /* --frames N: animated frames */
-    uint32_t threads;      /* --threads N */
+    uint32_t threads;      /* --threads N; 0 in a preset: the machine's cores (app_core_count) */
     mlod_cut_mode mode;    /* --mode basic|incremental|lazy */
     uint32_t match_drawn;  /* --ism-match: time (0), drawn (1) or K (K times the drawn count, 1..16) */
     int tiny;              /* --tiny: the small preset */
@@ -66,6 +67,17 @@ typedef struct app_options {
     uint32_t megaviews;    /* --megaviews N: instant_radiosity's N VPLs through the view tree (0: off) */
     uint32_t bounces;      /* --bounces B: with --megaviews, VPLs at the first B hits of each light path */
 } app_options;
+
+/* The processor cores online (sysconf), at most 256 (--threads' limit);
+   2 when the system cannot tell.  The examples' default thread count. */
+static inline uint32_t app_core_count(void)
+{
+#ifdef _SC_NPROCESSORS_ONLN
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    if (cores >= 1) return cores > 256 ? 256u : (uint32_t)cores;
+#endif
+    return 2;
+}
 
 /* "basic", "incremental" or "lazy". */
 static inline const char *app_mode_name(mlod_cut_mode mode)
@@ -108,6 +120,7 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
     *o = *normal;
     for (i = 1; i < argc; i++)
         if (strcmp(argv[i], "--tiny") == 0) *o = *tiny;
+    if (o->threads == 0) o->threads = app_core_count();
     for (i = 1; i < argc; i++) {
         const char *arg = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
         int ok = 1, takes = 1;
@@ -180,15 +193,6 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
         i += takes;
     }
     return 1;
-}
-
-/* ----------------------------------------------------------------- clock */
-
-static inline double app_now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
 /* ---------------------------------------------------------------- memory */
@@ -1021,6 +1025,8 @@ static inline int app_begin(const char *program, const app_options *o, app_threa
 {
     char message[256];
     app_threads_start(threads, o->threads);
+    app_stage("%s, %s: building the scene (%s) and its ray-tracing BVH", program, threads->description,
+              o->mesh_path ? o->mesh_path : "the room with a torus");
     if (!app_scene_create(scene, o->mesh_path, o->tiny, message, sizeof message)) {
         fprintf(stderr, "%s: %s\n", program, message);
         app_threads_stop(threads);

@@ -66,7 +66,7 @@ static const char usage[] =
     "                     or K times as many (K = 1 .. 16)\n"
     "  --disc-scale S     manylods' discs: S times the sphere image's radius, 0 < S <= 1 (default 1;\n"
     "                     below 1 the holes are pull-push filled, in the splat's time)\n"
-    "  --threads N        threads (default 2)\n"
+    "  --threads N        threads (default: this machine's processor cores, 2 if it cannot tell)\n"
     "  --sampling         compare how the VPLs are chosen (mlod_sample: inverse transform and Metropolis-\n"
     "                     Hastings) over the frames: flicker, error, VPLs kept, cut time; writes no image\n"
     "  --still            with --sampling: the object stays at rest (the tree is not refitted)\n"
@@ -615,6 +615,8 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
         mlod_view camera = sampling_camera(o->width, o->height, frame);
         importance_job ij;
         uint32_t point_count = 0, k;
+        app_stage("frame %u of %u: %u candidate VPLs, their importance, the reference, both samplers' VPLs and cuts",
+                  frame, o->frames, d);
         if (!o->still) { /* else the tree stays as built, at rest: a VPL whose view stays is not evaluated */
             app_scene_animate(scene, 0.25f * (float)frame);
             if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
@@ -714,6 +716,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
                100.0 * runs[1].flicker / o->frames, 100.0 * runs[0].error / o->frames,
                100.0 * runs[1].error / o->frames, runs[0].cut_ms / o->frames, runs[1].cut_ms / o->frames);
     }
+    app_stage("done");
     ok = 1;
     goto done;
 failed:
@@ -911,6 +914,8 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
            tree->leaf_count, o->width, o->height, (double)o->epsilon, o->bounces, o->bounces > 1 ? "s" : "");
 
     /* N VPLs through the view tree: each a global dual paraboloid of 2 R x R pixels */
+    app_stage("MegaViews: %u VPLs at the first %u hit%s of the light's paths, their view tree", many, o->bounces,
+              o->bounces > 1 ? "s" : "");
     spawn_vpls(scene, &light, many, o->bounces, o->tile, many_vpls, spawned, spawned_maps);
     for (k = 0; k < many; k++) {
         memcpy(eyes + 3 * (size_t)k, spawned[k].position, 3 * sizeof(float));
@@ -935,6 +940,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     mp.resolution = resolution;
     mp.flags = MLOD_VIEW_CULL_BACKFACES;
     mp.parallel = threads->parallel;
+    app_stage("MegaViews: rendering %u global dual paraboloid maps of 2 x %u x %u px", many, resolution, resolution);
     t0 = app_now_ms();
     if (mlod_megaviews_render(mv_atlas, tree, vtree, &mp, &st, &error) != MLOD_OK ||
         (o->disc_scale < 1.0f && mlod_atlas_fill_holes(mv_atlas, threads->parallel, &error) != MLOD_OK))
@@ -945,11 +951,13 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
         job.atlas = mv_atlas;
         job.dual = duals;
         job.interleave = INTERLEAVE;
+        app_stage("MegaViews: shading, each pixel 1/%u of the VPLs", INTERLEAVE * INTERLEAVE);
         t0 = app_now_ms();
         shade_indirect(&job, threads);
         filter_interleaved(&g, &raw, INTERLEAVE, scene->diameter, &mv);
         shade_ms = app_now_ms() - t0;
         job.atlas = NULL;
+        app_stage("the reference: the %u VPLs' exact visibility (shadow rays)", many);
         t0 = app_now_ms();
         rays = shade_indirect(&job, threads);
         filter_interleaved(&g, &raw, INTERLEAVE, scene->diameter, &exact);
@@ -957,6 +965,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     }
 
     /* o.views VPLs through the per-view cut and splat, and ISM given its time */
+    app_stage("%u VPLs through per-view cuts, ISM given their time, and their exact visibility", few);
     if (!per_view_vpls(program, o, scene, tree, &light, &g, threads, few, 0.0, &per_view, &ism, &exact_few, &cut_ms,
                        &ism_ms, &points))
         goto done;
@@ -964,6 +973,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
        the VPLs), ISM given that time */
     scaled = (double)few * (tree_ms + render_ms) / (cut_ms > 0.01 ? cut_ms : 0.01);
     equal = scaled < (double)few ? few : scaled > (double)many ? many : (uint32_t)scaled;
+    app_stage("at MegaViews' time: %u VPLs through per-view cuts, ISM given that time", equal);
     if (!per_view_vpls(program, o, scene, tree, &light, &g, threads, equal, tree_ms + render_ms, &per_view_eq, &ism_eq,
                        NULL, &cut_eq_ms, &ism_eq_ms, &points_eq))
         goto done;
@@ -1009,14 +1019,17 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     panels[0] = mv;
     panels[1] = exact;
     panels[2] = per_view;
+    app_stage("writing %s/instant_radiosity_megaviews.png", o->out_dir);
     {
         uint8_t *rgb = app_compose(panels, 3, app_auto_exposure(&exact), &width);
         ok = app_write_png(program, o->out_dir, "instant_radiosity_megaviews.png", width, o->height, rgb);
         free(rgb);
     }
-    if (ok)
+    if (ok) {
         printf("\nwrote %s/instant_radiosity_megaviews.png (MegaViews, %u VPLs | exact visibility, %u VPLs | manylods, "
                "%u VPLs)\n", o->out_dir, many, many, few);
+        app_stage("done");
+    }
     goto done;
 oom:
     fprintf(stderr, "%s: out of memory\n", program);
@@ -1041,9 +1054,10 @@ done:
 
 int main(int argc, char **argv)
 {
-    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 2, MLOD_CUT_INCREMENTAL,
+    /* threads 0: the machine's cores (app_core_count) */
+    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 0, MLOD_CUT_INCREMENTAL,
                           0, 0, 1.0f, 0, 0, 0, 1};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 2, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f, 0, 0, 0, 1};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 0, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f, 0, 0, 0, 1};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -1106,6 +1120,7 @@ int main(int argc, char **argv)
     /* size before you allocate: refuse a --samples this machine cannot build */
     build_bound = mlod_build_mesh_bound(o.samples, scene.mesh.index_count / 3, desc.attributes);
     if (!app_check_build(program, o.samples, build_bound)) goto done;
+    app_stage("building the tree (%u samples of %u triangles)", o.samples, scene.mesh.index_count / 3);
     t0 = app_now_ms();
     if (mlod_build_mesh(&scene.mesh, &desc, &tree, &error) != MLOD_OK) goto failed;
     build_ms = app_now_ms() - t0;
@@ -1140,6 +1155,8 @@ int main(int argc, char **argv)
         float t = 0.5f * (float)frame;
         app_light light = app_light_at(t);
         double refit_ms, frame_cut_ms, frame_splat_ms, shade_ms;
+        app_stage("frame %u of %u: refit, %s cut, splat of %u shadow maps, shading %ux%u pixels", frame, o.frames,
+                  app_mode_name(frame == 0 ? MLOD_CUT_BASIC : o.mode), o.views, o.width, o.height);
         app_scene_animate(&scene, t);
         t0 = app_now_ms();
         if (mlod_refit_mesh(tree, &scene.mesh, threads.parallel, &error) != MLOD_OK) goto failed;
@@ -1199,6 +1216,8 @@ int main(int argc, char **argv)
         int ok = 1;
         points *= o.match_drawn ? o.match_drawn : 1;
         if (points == 0) points = 1;
+        app_stage("last frame: ISM's maps (%s) and their shading", o.match_drawn ? "a set number of points per VPL"
+                                                                                : "matching manylods' time");
         if (o.match_drawn)
             ism_ms = splat_ism(ism_atlas, tree, views, points, &threads, &error, &ok);
         else
@@ -1209,6 +1228,8 @@ int main(int argc, char **argv)
         shade_indirect(&job, &threads);
         job.atlas = NULL;
         job.indirect = &reference;
+        app_stage("last frame: the reference, exact visibility (a shadow ray per pixel and VPL: %.1f million at most)",
+                  (double)o.width * o.height * o.views / 1e6);
         t0 = app_now_ms();
         rays = shade_indirect(&job, &threads);
         reference_ms = app_now_ms() - t0;
@@ -1216,6 +1237,7 @@ int main(int argc, char **argv)
         error_ism = relative_difference(&ism, &reference, &reference, NULL);
 
         /* the maps themselves against ray-cast maps (bench/metrics.h) */
+        app_stage("last frame: the shadow maps against ray-cast maps and %u receivers' shadow rays", RECEIVERS);
         exact = (float *)malloc(sizeof(float) * atlas->width * atlas->height);
         if (!exact) {
             fprintf(stderr, "%s: out of memory\n", program);
@@ -1274,6 +1296,7 @@ int main(int argc, char **argv)
         uint32_t crop_w = (atlas->columns < 8 ? atlas->columns : 8) * atlas->cell_width, crop_h = atlas->cell_height * 8;
         int wrote;
         if (crop_h > atlas->height) crop_h = atlas->height;
+        app_stage("writing the images into %s", o.out_dir);
         rgb = app_compose(&lit, 1, (float)exposure, &compare_width);
         wrote = app_write_png(program, o.out_dir, "instant_radiosity.png", o.width, o.height, rgb);
         free(rgb);
@@ -1300,6 +1323,7 @@ int main(int argc, char **argv)
                " manylods | ISM | ray-cast)\n",
                o.out_dir, o.views);
     }
+    app_stage("done");
     status = 0;
     goto done;
 

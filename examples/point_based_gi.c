@@ -33,7 +33,7 @@ static const char usage[] =
     "  --tile PX          micro-view size, PX x PX (default 16)\n"
     "  --samples N        points of the point cloud (default 100000)\n"
     "  --size WxH         the image (default 256x192)\n"
-    "  --threads N        threads (default 2)\n"
+    "  --threads N        threads (default: this machine's processor cores, 2 if it cannot tell)\n"
     "  --tiny             a small run for the tests: 80x60 pixels, 300 gather points, 20000 points\n";
 
 /* Micro-views sit this far (world units) above their gather point. */
@@ -174,8 +174,9 @@ static void interpolate_row(void *context, uint32_t y)
 
 int main(int argc, char **argv)
 {
-    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 3072, 16, 0, 2, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 300, 16, 0, 2, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1};
+    /* threads 0: the machine's cores (app_core_count) */
+    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 3072, 16, 0, 0, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 300, 16, 0, 0, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -229,11 +230,13 @@ int main(int argc, char **argv)
     /* size before you allocate: refuse a --samples this machine cannot bake */
     bake_bound = app_bake_bound(&scene, o.samples);
     if (!app_check_build(program, o.samples, bake_bound)) goto done;
+    app_stage("baking the point cloud: %u surface samples, each lit by the spot light, their tree", o.samples);
     t0 = app_now_ms();
     tree = app_bake_points(&scene, &light, 0.0f, o.samples, &threads, &bake_allocator, &error);
     if (!tree) goto failed;
     bake_ms = app_now_ms() - t0;
 
+    app_stage("ray tracing the %ux%u image, direct light with shadow rays", o.width, o.height);
     t0 = app_now_ms();
     if (!app_gbuffer_trace(&g, &scene, &camera, &threads)) {
         fprintf(stderr, "%s: out of memory\n", program);
@@ -278,14 +281,17 @@ int main(int argc, char **argv)
             mlod_atlas_create(views, count, &desc, NULL, &atlas, &error) != MLOD_OK)
             goto failed;
     }
+    app_stage("cutting the tree for %u micro-views of %ux%u px", count, o.tile, o.tile);
     t0 = app_now_ms();
     if (mlod_cut_update(cut, tree, views, &params, &error) != MLOD_OK) goto failed;
     cut_ms = app_now_ms() - t0;
+    app_stage("splatting radiance, depth and normals into an atlas of %ux%u px", atlas->width, atlas->height);
     t0 = app_now_ms();
     if (mlod_splat(atlas, tree, cut, views, threads.parallel, &error) != MLOD_OK) goto failed;
     splat_ms = app_now_ms() - t0;
     app_cut_counts(cut, count, &nodes, &drawn);
 
+    app_stage("gathering every micro-view, then interpolating to every pixel");
     t0 = app_now_ms();
     {
         gather_job gj;
@@ -339,6 +345,7 @@ int main(int argc, char **argv)
         uint32_t width;
         uint8_t *rgb;
         int wrote;
+        app_stage("writing the images into %s", o.out_dir);
         rgb = app_compose(&lit, 1, exposure, &width);
         wrote = app_write_png(program, o.out_dir, "point_based_gi.png", o.width, o.height, rgb);
         free(rgb);
@@ -359,6 +366,7 @@ int main(int argc, char **argv)
                "  point_based_gi_microviews.png (%u micro-views, each where its gather point is)\n",
                o.out_dir, count);
     }
+    app_stage("done");
     status = 0;
     goto done;
 

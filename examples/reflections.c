@@ -38,7 +38,7 @@ static const char usage[] =
     "  --cube             cube maps (six faces of PX/2 px, 3/2 PX x PX) in place of dual paraboloids\n"
     "  --samples N        points of the point cloud (default 100000)\n"
     "  --size WxH         the image (default 256x192)\n"
-    "  --threads N        threads (default 2)\n"
+    "  --threads N        threads (default: this machine's processor cores, 2 if it cannot tell)\n"
     "  --tiny             a small run for the tests: 80x60 pixels, 16 spheres, 20000 points\n";
 
 /* Light everywhere: a little ambient light (radiance per unit albedo) on top
@@ -204,8 +204,9 @@ static void render_row(void *context, uint32_t y)
 
 int main(int argc, char **argv)
 {
-    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 400, 32, 0, 2, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 16, 32, 0, 2, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1};
+    /* threads 0: the machine's cores (app_core_count) */
+    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 400, 32, 0, 0, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 16, 32, 0, 0, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -283,6 +284,7 @@ int main(int argc, char **argv)
     /* size before you allocate: refuse a --samples this machine cannot bake */
     bake_bound = app_bake_bound(&scene, o.samples);
     if (!app_check_build(program, o.samples, bake_bound)) goto done;
+    app_stage("baking the point cloud: %u surface samples, each lit by the spot light, their tree", o.samples);
     t0 = app_now_ms();
     tree = app_bake_points(&scene, &light, AMBIENT, o.samples, &threads, &bake_allocator, &error);
     if (!tree) goto failed;
@@ -298,9 +300,11 @@ int main(int argc, char **argv)
             mlod_atlas_create(views, count, &desc, NULL, &atlas, &error) != MLOD_OK)
             goto failed;
     }
+    app_stage("cutting the tree for %u mirror spheres' %s maps", count, cube ? "cube" : "dual-paraboloid");
     t0 = app_now_ms();
     if (mlod_cut_update(cut, tree, views, &params, &error) != MLOD_OK) goto failed;
     cut_ms = app_now_ms() - t0;
+    app_stage("splatting radiance into an atlas of %ux%u px, pull-push hole filling", atlas->width, atlas->height);
     t0 = app_now_ms();
     if (mlod_splat(atlas, tree, cut, views, threads.parallel, &error) != MLOD_OK) goto failed;
     splat_ms = app_now_ms() - t0;
@@ -309,6 +313,8 @@ int main(int argc, char **argv)
     fill_ms = app_now_ms() - t0;
     app_cut_counts(cut, count, &nodes, &drawn);
 
+    app_stage("ray tracing the %ux%u image: the room, the spheres from their maps, and the reference", o.width,
+              o.height);
     t0 = app_now_ms();
     {
         render_job job;
@@ -371,6 +377,7 @@ int main(int argc, char **argv)
         uint32_t width, crop_w, crop_h;
         uint8_t *rgb, *full;
         int wrote;
+        app_stage("writing the images into %s", o.out_dir);
         rgb = app_compose(&image, 1, exposure, &width);
         wrote = app_write_png(program, o.out_dir, "reflections.png", o.width, o.height, rgb);
         free(rgb);
@@ -394,6 +401,7 @@ int main(int argc, char **argv)
                "  reflections_maps.png (the first environment maps, %s)\n",
                o.out_dir, cube ? "six faces each: +X -X +Y over -Y +Z -Z" : "front and back halves");
     }
+    app_stage("done");
     status = 0;
     goto done;
 

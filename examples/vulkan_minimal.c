@@ -8,7 +8,9 @@
    A torus, 64 virtual point lights around it (paraboloid views, 32x32 px),
    one cut and one splat on the device; the depth atlas (near = white) goes
    to atlas.png (default build/vulkan_atlas.png).  Exit status 0, 1 on an
-   error, 2 when there is no usable Vulkan device. */
+   error, 2 when there is no usable Vulkan device.  Each stage, as it
+   starts, prints a line with the time so far to stderr. */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime, for examples/progress.h */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +20,7 @@
 #define MANYLODS_VK_IMPLEMENTATION
 #include "../manylods_vk.h"
 #include "png.h"
+#include "progress.h"
 #include "scenes.h"
 
 VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instance, const char *name);
@@ -47,6 +50,7 @@ int main(int argc, char **argv)
     int status = 1, i;
 
     /* the tree, on the CPU */
+    app_stage("vulkan_minimal: building the tree on the CPU (200000 samples of a torus)");
     if (!scene_torus(&s, 1.0f, 0.4f, 96, 48)) return 1;
     memset(&mesh, 0, sizeof mesh);
     mesh.positions = s.positions;
@@ -84,6 +88,7 @@ int main(int argc, char **argv)
     params.epsilon = 1.0f;
 
     /* a device: the first GPU with the features, else lavapipe */
+    app_stage("opening a Vulkan device");
     memset(&device_desc, 0, sizeof device_desc);
     device_desc.get_instance_proc_addr = vkGetInstanceProcAddr;
     if (mlodvk_device_create(&device_desc, &device, &e) != MLOD_OK) {
@@ -93,6 +98,7 @@ int main(int argc, char **argv)
         return 2;
     }
     context_desc = mlodvk_device_context_desc(&device);
+    app_stage("creating the context and its pipelines, then the cut and the splat of %d lights on the device", LIGHTS);
     if (mlodvk_context_create(&context_desc, &ctx, &e) != MLOD_OK || mlodvk_tree_upload(ctx, tree, &vtree, &e) != MLOD_OK ||
         mlodvk_cut_create(ctx, LIGHTS, 0, &cut, &e) != MLOD_OK ||
         mlodvk_cut_update(ctx, cut, vtree, views, &params, &e) != MLOD_OK ||
@@ -120,8 +126,10 @@ int main(int argc, char **argv)
         printf("device %s: %u lights, %u cut entries (%u per light) in %u rounds, %u x %u atlas\n",
                mlodvk_context_device_name(ctx), LIGHTS, info.entries, info.entries / LIGHTS, info.rounds, atlas->width,
                atlas->height);
+        app_stage("writing %s", out);
         if (rgb && png_write_rgb(out, atlas->width, atlas->height, rgb, message, sizeof message)) {
             printf("wrote %s\n", out);
+            app_stage("done");
             status = 0;
         } else {
             fprintf(stderr, "%s\n", rgb ? message : "out of memory");
