@@ -50,6 +50,7 @@
 #include "../manylods.h"
 #include "../bench/metrics.h"
 #include "app.h"
+#include "label.h"
 
 static const char usage[] =
     "usage: instant_radiosity [options]\n"
@@ -1021,7 +1022,9 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     panels[2] = per_view;
     app_stage("writing %s/instant_radiosity_megaviews.png", o->out_dir);
     {
+        static const char *const labels[3] = {"MegaViews", "exact", "manylods"};
         uint8_t *rgb = app_compose(panels, 3, app_auto_exposure(&exact), &width);
+        label_panels(rgb, width, o->height, 3, labels);
         ok = app_write_png(program, o->out_dir, "instant_radiosity_megaviews.png", width, o->height, rgb);
         free(rgb);
     }
@@ -1294,6 +1297,8 @@ int main(int argc, char **argv)
     {
         uint8_t *rgb, *pictures[3];
         uint32_t crop_w = (atlas->columns < 8 ? atlas->columns : 8) * atlas->cell_width, crop_h = atlas->cell_height * 8;
+        static const char *const map_labels[3] = {"manylods", "ISM", "ray cast"};
+        static const char *const compare_labels[3] = {"manylods", "ISM", "ray traced"};
         int wrote;
         if (crop_h > atlas->height) crop_h = atlas->height;
         app_stage("writing the images into %s", o.out_dir);
@@ -1306,6 +1311,7 @@ int main(int argc, char **argv)
         wrote = wrote && app_write_png(program, o.out_dir, "instant_radiosity_atlas.png", atlas->width, atlas->height,
                                        pictures[0]);
         rgb = app_crops_side_by_side(pictures, 3, atlas->width, 0, 0, crop_w, crop_h, 2);
+        label_panels(rgb, 3 * crop_w * 2, crop_h * 2, 3, map_labels);
         wrote = wrote && app_write_png(program, o.out_dir, "instant_radiosity_maps.png", 3 * crop_w * 2, crop_h * 2, rgb);
         free(rgb);
         free(pictures[0]);
@@ -1315,6 +1321,7 @@ int main(int argc, char **argv)
         panels[1] = ism;
         panels[2] = reference;
         rgb = app_compose(panels, 3, (float)exposure, &compare_width);
+        label_panels(rgb, compare_width, o.height, 3, compare_labels);
         wrote = wrote && app_write_png(program, o.out_dir, "instant_radiosity_compare.png", compare_width, o.height, rgb);
         free(rgb);
         if (!wrote) goto done;

@@ -27,6 +27,7 @@
 #define MANYLODS_IMPLEMENTATION
 #include "../manylods.h"
 #include "app.h"
+#include "label.h"
 
 static const char usage[] =
     "usage: reflections [options]\n"
@@ -376,6 +377,7 @@ int main(int argc, char **argv)
         app_image panels[2], maps;
         uint32_t width, crop_w, crop_h;
         uint8_t *rgb, *full;
+        static const char *const labels[2] = {"manylods", "ray traced"};
         int wrote;
         app_stage("writing the images into %s", o.out_dir);
         rgb = app_compose(&image, 1, exposure, &width);
@@ -384,6 +386,7 @@ int main(int argc, char **argv)
         panels[0] = image;
         panels[1] = reference;
         rgb = app_compose(panels, 2, exposure, &width);
+        label_panels(rgb, width, o.height, 2, labels);
         wrote = wrote && app_write_png(program, o.out_dir, "reflections_compare.png", width, o.height, rgb);
         free(rgb);
         maps.width = atlas->width;
