@@ -8,6 +8,7 @@
 #                    then every test: gcc -O2, clang with ASan+UBSan and the
 #                    threaded ones with TSan, the compile matrix, examples/minimal
 #                    and every example on a tiny scene (tests/check_examples.c),
+#                    every examples/*.c compiled as C++11 (tests/compile/examples_cxx.sh),
 #                    bench --selftest, README.md's benchmark figures against
 #                    docs/ (tests/check_readme_figures.sh), the Vulkan tests; ends with
 #                    "N passed, M failed".  Each program has a time limit,
@@ -199,8 +200,8 @@ test-only:
 	    --section "tests, $(CC) -O2" $(GCC_TESTS) \
 	    --section "tests, $(CLANG) -fsanitize=address,undefined -O1" $(SAN_TESTS) \
 	    --section "threaded tests, $(CLANG) -fsanitize=thread -O1" $(TSAN_RUN) \
-	    --section "examples (each on a tiny scene: runs, valid PNGs, accuracy)" --check $(BUILD)/examples/minimal \
-	    $(BUILD)/examples/check_examples \
+	    --section "examples (each on a tiny scene: runs, valid PNGs, accuracy; each compiled as C++11)" \
+	    --check $(BUILD)/examples/minimal $(BUILD)/examples/check_examples tests/compile/examples_cxx.sh \
 	    --section "benchmark (bench --selftest: compiles, checks cuts and metrics against Embree)" \
 	    --check $(BUILD)/bench/selftest \
 	    --section "README.md's benchmark figures (its block against docs/bench_figures.txt, docs/BENCHMARKS.md; none outside it)" \
