@@ -12,13 +12,78 @@
    honours (the tree, the criterion, the cut, the splat); README.md gives an
    overview and the benchmark figures, and points here.
 
-   CONTENTS
-     USAGE, QUICK EXAMPLE, CONFIGURATION, FLOATING POINT, PIPELINE,
-     TREE LAYOUT, SAMPLING, BUILD, VIEWS AND THE CRITERION, THE CUT,
-     SPLATTING, CHOOSING THE VIEWS, MANY VIEWS AT ONCE, THREADS, ERRORS,
-     MEMORY; then the
-     declarations, each
-     documented where it stands, and the implementation.
+   CONTENTS (search for a title to get there)
+     Manual (this comment)
+       USAGE                              one file holds the implementation
+       QUICK EXAMPLE                      a tree, then a cut for every view
+       CONFIGURATION                      allocator, assert, SIMD, linkage
+       FLOATING POINT                     compiler flags; bit-exact results
+       PIPELINE                           build, refit, cut
+       TREE LAYOUT                        the implicit heap, containment
+       SAMPLING                           stratified samples on a mesh
+       BUILD                              median splits, axis by volume
+       VIEWS AND THE CRITERION            sub-projections; c(node, view)
+       THE CUT                            basic, incremental, lazy; filters
+       SPLATTING                          drawing the cuts into an atlas
+       CHOOSING THE VIEWS                 importance sampling (mlod_sample)
+       MANY VIEWS AT ONCE                 MegaViews: view tree, pairs, fusion
+       THREADS                            the mlod_parallel hook
+       ERRORS                             mlod_result, mlod_error
+       MEMORY                             bounds before allocating; huge pages
+       LICENSE
+     Code: the declarations, in header order, each documented where it
+     stands (search for "- title *")
+       results                            mlod_result, mlod_error
+       allocation and threads             mlod_allocator, mlod_parallel
+       input                              mlod_mesh, _points, _build_desc
+       the tree                           mlod_tree, mlod_build_*, _refit_*
+       views                              mlod_view, mlod_criterion, frames
+       cut                                mlod_cut_*
+       projection                         mlod_view_project, _pixel_ray
+       atlas                              mlod_atlas_*, mlod_splat, _splat_ism
+       shadow lookups                     mlod_atlas_lookup, mlod_atlas_shadow
+       choosing N                         mlod_suggest_sample_count
+       choosing the views                 mlod_sample
+       many views at once: MegaViews      mlod_view_tree_*, mlod_megaviews_*
+       built-in thread pool               mlod_pool_* (MANYLODS_PTHREADS)
+     Code: the implementation (search for "- title --")
+       errors                             mlod_result_name, the messages
+       allocation                         the allocator, huge-page advice
+       float helpers                      vectors, sin, cos, atan2
+       sphere and cone merge              enclosing spheres and normal cones
+       tree shape                         depths, mlod_tree_depth_nodes
+       parallel run                       tasks, with or without a hook
+       input checks                       meshes, points, build descs
+       tree allocation                    the arrays; parents from children
+       sampling                           samples on triangles
+       the build                          sorts, splits, mlod_build_*
+       refit                              mlod_refit_*
+       exact plane predicate              exact sides of culling planes
+       views                              sub-projections, mlod_criterion
+       float filter                       the cut's float filter, one node
+       vector float filter                the same in vector lanes
+       cut                                the three modes, mlod_cut_*
+       projection                         a sphere's image discs
+       the splat's float filter           small discs; mlod_view_project
+       atlas                              mlod_atlas_create, _bound
+       splat                              bands, plotting pixels
+       tangent discs                      drawing nodes; mlod_splat, _ism
+       pull-push                          mlod_atlas_fill_holes
+       shadow lookups                     mlod_atlas_lookup, mlod_atlas_shadow
+       choosing N                         mlod_suggest_sample_count
+       choosing the views                 mlod_sample's two samplers
+       MegaViews                          (its parts below)
+       MegaViews: the view tree           mlod_view_tree_*, eyes' floors
+       MegaViews: pair bounds             cones, diameters, motion over a ball
+       MegaViews: the traversal's state   view nodes, outputs, the job
+       MegaViews: classifying node pairs  cull, draw or split, exactly
+       MegaViews: the float pair filter   the same in float vector lanes
+       MegaViews: a level's units         the pairs a level classifies
+       MegaViews: drawing and fusion      maps from the parent's (inherit)
+       MegaViews: level by level          the descent, tasks, memory, checks
+       MegaViews: the subtree walks       the 64 subtrees, depth first
+       MegaViews: the render              mlod_megaviews_render, _bound, _query
+       pthreads thread pool               mlod_pool_* (MANYLODS_PTHREADS)
 
    USAGE
      In exactly one C or C++ file:
@@ -1036,9 +1101,10 @@ typedef struct mlod_cut_view {
     const uint32_t *nodes;  /* count node indices, left to right */
     const uint8_t *status;  /* count MLOD_STATUS_* values */
     uint32_t count;
-    uint32_t drawn, culled, oversize, coarse; /* counts by status */
+    uint32_t drawn, culled, oversize, coarse; /* counts by status (drawn: MLOD_STATUS_DRAWN only) */
     uint64_t evaluated;     /* criterion evaluations in the last update */
     uint64_t steps;         /* splits and merges in the last update */
+    uint32_t splatted;      /* the nodes mlod_splat draws: drawn + oversize + coarse */
 } mlod_cut_view;
 
 typedef struct mlod_cut mlod_cut;
@@ -1226,7 +1292,9 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
    centre sets the pixel holding its centre.  See SPLATTING in the manual.
    Nearest depth wins; equal depths keep the node drawn first.  A node is
    not drawn in a sub-projection where its image is unbounded.  The views
-   must be those of the cut's last update.  MLOD_ERROR_MISMATCH for
+   must be those of the cut's last update, byte for byte: a view moved
+   since is MLOD_ERROR_MISMATCH (a cut never updated, or reset, draws
+   nothing for any views).  MLOD_ERROR_MISMATCH also for
    MLOD_SPLAT_TANGENT and a tree without cones.  Parallel over tiles and
    row bands; results are identical for any thread count. */
 MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
@@ -6281,6 +6349,7 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
         r.coarse = s->coarse;
         r.evaluated = s->evaluated;
         r.steps = s->steps;
+        r.splatted = s->drawn + s->oversize + s->coarse;
     }
     return r;
 }
@@ -8569,6 +8638,13 @@ MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
                           atlas->view_count);
     if (cut->tree_nodes != 0 && cut->tree_nodes != tree->node_count)
         return mlod__fail(error, MLOD_ERROR_MISMATCH, "the cut was computed for another tree");
+    if (cut->tree_nodes != 0) { /* lists to draw: for these views, byte for byte */
+        uint32_t v;
+        for (v = 0; v < cut->view_count; v++)
+            if (!(cut->known[v] & MLOD__SEEN) || memcmp(&views[v], &cut->seen[v], sizeof(mlod_view)) != 0)
+                return mlod__fail(error, MLOD_ERROR_MISMATCH,
+                                  "view %u differs from the view of the cut's last update: update the cut first", v);
+    }
     memset(&job, 0, sizeof job);
     job.atlas = atlas;
     job.tree = tree;
@@ -9098,6 +9174,8 @@ MLOD__PUBLIC mlod_result mlod_sample(const float *importance, uint32_t domain_si
 
 /* ------------------------------------------------------------ MegaViews -- */
 
+/* -------------------------------------------- MegaViews: the view tree -- */
+
 static float mlod__view_half_fov(const mlod_view_set *views, uint32_t i)
 {
     if (!views->half_fovs) return views->half_fov > 0.0f ? views->half_fov : (float)(0.5 * MLOD__PI);
@@ -9341,6 +9419,8 @@ MLOD__PUBLIC mlod_view mlod_megaviews_view(const float eye[3], uint32_t resoluti
     return v;
 }
 
+/* ---------------------------------------------- MegaViews: pair bounds -- */
+
 /* Pairs (scene node s, view node v) and what the traversal does with them. */
 enum { MLOD__PAIR_CULL, MLOD__PAIR_DRAW, MLOD__PAIR_DRAW_LEAF, MLOD__PAIR_SPLIT_SCENE, MLOD__PAIR_SPLIT_VIEW };
 
@@ -9471,6 +9551,8 @@ static double mlod__ball_motion(double S, const double *x, double d, double r, d
     return least < INFINITY ? S * turn / least * (1.0 + 1.0 / 1048576.0) : 0.0;
 }
 
+/* ------------------------------------ MegaViews: the traversal's state -- */
+
 /* A view node as the pair test sees it. */
 typedef struct mlod__vnode {
     uint32_t node;
@@ -9580,6 +9662,8 @@ static mlod_view mlod__node_map_view(const mlod__mv_job *job, uint32_t node)
 {
     return mlod_megaviews_view(job->views->eyes->spheres + 4 * (size_t)node, job->resolution, job->flags);
 }
+
+/* ----------------------------------- MegaViews: classifying node pairs -- */
 
 /* The fast paths' constants of a view node from its cone, fields of view
    and leafness (mlod__vnode). */
@@ -9904,6 +9988,8 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
     return job->delta > 0.0 ? mlod__larger_splits(scene, s, vn->radius) : MLOD__PAIR_SPLIT_VIEW;
 }
 
+/* ------------------------------------ MegaViews: the float pair filter -- */
+
 /* The pair test of inner view nodes in float, several pairs at once
    (MegaViews' hot path: nearly every pair has an inner view node).  Each
    lane gives mlod__pair_action's answer where it can prove it, or says it
@@ -10211,6 +10297,8 @@ static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, c
     for (; i < n; i++) actions[i] = (uint8_t)mlod__pair_action(job, vn, nodes[i]);
 }
 
+/* ------------------------------------------ MegaViews: a level's units -- */
+
 /* The level's units in order: unit u is scene node in[in_off[j] + i] of
    parent j (a node of the previous level) handed to its left child (u =
    2 in_off[j] + i) or its right (u = 2 in_off[j] + len_j + i).  A cursor
@@ -10257,6 +10345,8 @@ static void mlod__mv_next(const mlod__mv_job *job, mlod__mv_cursor *at, uint32_t
         while (job->in_off[at->parent + 1] == job->in_off[at->parent]);
     }
 }
+
+/* --------------------------------------- MegaViews: drawing and fusion -- */
 
 /* A scene node's depth in the paraboloid maps of a view node with this
    centre: the distance from it to the node's centre (as mlod__image_discs
@@ -10496,6 +10586,8 @@ static void mlod__mv_draw(const mlod__mv_job *job, mlod__mv_drawer *dr, const ui
         if (dr->n == MLOD__DRAW_CHUNK) mlod__mv_flush(job, dr);
     }
 }
+
+/* ------------------------------------------- MegaViews: level by level -- */
 
 /* Scene nodes given to a view node at once in the level-synchronous
    traversal (mlod__mv_classify_task). */
@@ -10886,6 +10978,8 @@ static int mlod__mv_classify_level(mlod__mv_job *job, mlod__mv_memory *m, const 
     return !m->failed;
 }
 
+/* ---------------------------------------- MegaViews: the subtree walks -- */
+
 /* A walk of one view subtree, depth first: each view node classifies the
    scene nodes its parent handed down, draws into its map (or its tile) at
    once and hands its view splits to both children.  The lists along the
@@ -11069,6 +11163,8 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
     job->walks = NULL;
     return !m->failed;
 }
+
+/* ----------------------------------------------- MegaViews: the render -- */
 
 struct mlod_megaviews_maps {
     uint32_t resolution, levels;

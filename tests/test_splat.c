@@ -3598,6 +3598,69 @@ static void expect_code(mlod_result got, const mlod_error *e, mlod_result want, 
           mlod_result_name(got), mlod_result_name(e->code), e->message, mlod_result_name(want));
 }
 
+/* The splat draws only for the views of the cut's last update: a view
+   moved since is refused, the atlas untouched; after a reset nothing is
+   drawn for any views; mlod_cut_view.splatted counts what is drawn. */
+static void test_moved_views(void)
+{
+    scene_mesh s;
+    mlod_tree *tree;
+    mlod_view views[16], moved[4];
+    mlod_cut *cut = NULL;
+    mlod_atlas *a = NULL;
+    mlod_cut_params cp = cut_params(1.0f);
+    mlod_error e;
+    uint64_t rng = 4242;
+    double c[3], R;
+    size_t pixels, i, finite = 0, drawn_pixels = 0;
+    uint32_t v, count;
+    int ok;
+    if (!scene_torus(&s, 1.0f, 0.35f, 24, 12)) return;
+    tu_bounds(&s, c, &R);
+    tree = tu_build(&s, 20000, 9, MLOD_ATTR_CONE);
+    count = mixed_views(&rng, c, R, views) < 4 ? 0 : 4;
+    ok = tree && count && mlod_cut_create(4, NULL, &cut, NULL) == MLOD_OK && mlod_cut_update(cut, tree, views, &cp, NULL) == MLOD_OK &&
+         (a = make_atlas(views, 4, 0)) != NULL && mlod_splat(a, tree, cut, views, NULL, NULL) == MLOD_OK;
+    if (!ok) {
+        CHECK(0, "moved views: set-up failed");
+        goto done;
+    }
+    pixels = (size_t)a->width * a->height;
+    for (i = 0; i < pixels; i++) drawn_pixels += isfinite(a->depth[i]);
+    for (v = 0; v < 4; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        uint32_t k, by_status = 0;
+        for (k = 0; k < cv.count; k++) by_status += cv.status[k] != MLOD_STATUS_CULLED;
+        CHECK(cv.splatted == by_status && cv.splatted == cv.drawn + cv.oversize + cv.coarse,
+              "view %u: splatted %u, the statuses say %u drawn", v, cv.splatted, by_status);
+    }
+    memcpy(moved, views, sizeof moved);
+    moved[2].position[0] += 1e-3f;
+    for (i = 0; i < pixels; i++) a->depth[i] = 7.0f;
+    CHECK(mlod_splat(a, tree, cut, moved, NULL, &e) == MLOD_ERROR_MISMATCH && e.code == MLOD_ERROR_MISMATCH &&
+              strstr(e.message, "view 2") != NULL,
+          "a view moved since the cut's update is not refused with MLOD_ERROR_MISMATCH naming it: %s", e.message);
+    for (i = 0; i < pixels && a->depth[i] == 7.0f; i++) continue;
+    CHECK(i == pixels, "the refused splat changed the atlas");
+    mlod_cut_reset(cut);
+    CHECK(mlod_splat(a, tree, cut, moved, NULL, NULL) == MLOD_OK, "a reset cut refuses views");
+    for (v = 0; v < 4; v++) {
+        const uint32_t *t = a->tiles + 4 * (size_t)v;
+        uint32_t x, y;
+        for (y = 0; y < t[3]; y++)
+            for (x = 0; x < t[2]; x++) finite += a->depth[(size_t)(t[1] + y) * a->width + t[0] + x] != INFINITY;
+    }
+    CHECK(finite == 0 && drawn_pixels > 100, "a reset cut drew %llu pixels (the update's splat %llu)",
+          (unsigned long long)finite, (unsigned long long)drawn_pixels);
+    CHECK(mlod_cut_update(cut, tree, moved, &cp, NULL) == MLOD_OK && mlod_splat(a, tree, cut, moved, NULL, NULL) == MLOD_OK,
+          "the moved views, once the cut is updated for them, are refused");
+done:
+    mlod_atlas_destroy(a);
+    mlod_cut_destroy(cut);
+    mlod_tree_destroy(tree);
+    scene_free(&s);
+}
+
 static void test_errors(void)
 {
     scene_mesh s;
@@ -3803,6 +3866,7 @@ int main(int argc, char **argv)
     TEST_GROUP("metrics_reference", test_metrics_reference());
     TEST_GROUP("end_to_end", test_end_to_end());
     TEST_GROUP("suggest", test_suggest());
+    TEST_GROUP("moved_views", test_moved_views());
     TEST_GROUP("errors", test_errors());
     test_groups_end();
     return test_finish();
