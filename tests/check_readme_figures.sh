@@ -9,7 +9,9 @@
 #      us, s, %, GiB, MiB, KiB, GB, MB or KB, or a decimal number followed
 #      by x or "points" (1.61x, 0.15 points);
 #   3. every value of docs/bench_figures.txt appears in docs/BENCHMARKS.md,
-#      where the same run printed it the same way.
+#      where the same run printed it the same way;
+#   4. README.md's first C block is examples/minimal.c, which make test
+#      builds and runs.
 # Prints "N passed, M failed" for tests/run.sh.
 cd "$(dirname "$0")/.." || exit 1
 LC_ALL=C
@@ -66,6 +68,11 @@ done <docs/bench_figures.txt
 check $? "docs/bench_figures.txt has values docs/BENCHMARKS.md does not show (not the same run?):
 $(cat "$tmp/absent")"
 
-echo "README.md's benchmark figures checked against docs/bench_figures.txt and docs/BENCHMARKS.md"
+# 4. the README's program (its first ```c block) is examples/minimal.c, which make test builds and runs
+awk '/^```c$/ && !done { inside = 1; next } inside && /^```$/ { inside = 0; done = 1 } inside { print }' README.md >"$tmp/program"
+cmp -s "$tmp/program" examples/minimal.c
+check $? "README.md's first C block is not examples/minimal.c (the program make test builds and runs)"
+
+echo "README.md's benchmark figures checked against docs/bench_figures.txt and docs/BENCHMARKS.md; its program is examples/minimal.c"
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
