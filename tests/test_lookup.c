@@ -396,21 +396,13 @@ static uint32_t receivers_of(const scene_mesh *s, uint32_t per, float **points, 
     *points = (float *)malloc(sizeof(float) * 3 * n);
     *normals = (float *)malloc(sizeof(float) * 3 * n);
     for (t = 0; t < n && *points && *normals; t++) {
-        double a = rnd(), b = rnd(), p[3], e1[3], e2[3], nv[3];
-        const uint32_t *tri = s->indices + 3 * (t / per);
-        const float *A = s->positions + 3 * tri[0], *B = s->positions + 3 * tri[1], *C = s->positions + 3 * tri[2];
+        double a = rnd(), b = rnd(), p[3], nv[3];
         if (a + b > 1.0) {
             a = 1.0 - a;
             b = 1.0 - b;
         }
-        tu_eval_on_triangle(s->positions, tri, a, b, p);
-        for (k = 0; k < 3; k++) {
-            e1[k] = (double)B[k] - A[k];
-            e2[k] = (double)C[k] - A[k];
-        }
-        nv[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        nv[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        nv[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        tu_eval_on_triangle(s->positions, s->indices + 3 * (t / per), a, b, p);
+        shape_triangle_area(s->positions, s->indices, t / per, nv); /* the unit normal, of the winding */
         for (k = 0; k < 3; k++) {
             (*points)[3 * t + k] = (float)p[k];
             (*normals)[3 * t + k] = (float)nv[k];
