@@ -792,49 +792,6 @@ static inline void app_direct_image(const app_scene *s, const app_light *light, 
     app_parallel_for(t, g->height, app_direct_row, &job);
 }
 
-/* ------------------------------------------------------------ projection */
-
-/* A paraboloid view prepared for many projections (float). */
-typedef struct app_paraboloid {
-    float eye[3], u[3], v[3], w[3];
-    float half_width, half_height;
-} app_paraboloid;
-
-/* Prepare a paraboloid view from the library's frame of it.  Returns 0 for
-   an invalid view or another kind (*out is then zero). */
-static inline int app_paraboloid_of(const mlod_view *view, app_paraboloid *out)
-{
-    mlod_view_frame f;
-    int k;
-    memset(out, 0, sizeof *out);
-    if (view->kind != MLOD_VIEW_PARABOLOID || mlod_view_frame_of(view, &f, NULL) != MLOD_OK) return 0;
-    for (k = 0; k < 3; k++) {
-        out->eye[k] = (float)f.eye[k];
-        out->u[k] = (float)f.subs[0].right[k];
-        out->v[k] = (float)f.subs[0].up[k];
-        out->w[k] = (float)f.subs[0].forward[k];
-    }
-    out->half_width = 0.5f * (float)f.width;
-    out->half_height = 0.5f * (float)f.height;
-    return 1;
-}
-
-/* Where p lands in the tile (pixel x right, y down) and its depth |p - eye|:
-   mlod_view_project's paraboloid formula, (x.u, x.v) / (|x| + x.w) scaled
-   to the tile, in float for the inner loops.  Returns 0 when p is behind
-   the view's plane or at the eye. */
-static inline int app_paraboloid_project(const app_paraboloid *pv, const float p[3], float *x, float *y, float *depth)
-{
-    float r[3] = {p[0] - pv->eye[0], p[1] - pv->eye[1], p[2] - pv->eye[2]};
-    float d = sqrtf(app_dot(r, r)), zw = app_dot(r, pv->w), s;
-    if (!(d > 0.0f) || zw < 0.0f) return 0;
-    s = 1.0f / (d + zw);
-    *x = pv->half_width * (1.0f + app_dot(r, pv->u) * s);
-    *y = pv->half_height * (1.0f - app_dot(r, pv->v) * s);
-    *depth = d;
-    return 1;
-}
-
 /* ----------------------------------------------------- a baked point cloud */
 
 typedef struct app_bake_job {

@@ -77,14 +77,14 @@ static const char usage[] =
     "  --bounces B        with --megaviews: light paths leave a VPL at each of their first B hits (default 1)\n"
     "  --tiny             a small run for the tests: 64 VPLs, 80x60 pixels, 2 frames\n";
 
-/* Shadow-map lookups.  The receiver moves off its surface by NORMAL_OFFSET
-   world units per unit of distance to the VPL and counts as lit where its
-   depth z is at most the map's plus a bias: DEPTH_BIAS z, plus the depth
-   its own plane gains across FILTER_PIXELS map pixels (z alpha tan(theta):
-   alpha the angle one pixel spans there, 2 / (1 + rho^2) / (T / 2) for a
-   paraboloid of T pixels, theta the receiver's angle to the VPL), since
-   every map pixel of the 2 x 2 filter holds the nearest depth within it.
-   The same lookups serve manylods' maps and ISM's. */
+/* Shadow-map lookups (mlod_atlas_shadow).  The receiver moves off its
+   surface by NORMAL_OFFSET world units per unit of distance to the VPL and
+   counts as lit where its depth is at most the map's plus a bias: DEPTH_BIAS
+   of its distance, plus the depth its own plane gains across FILTER_PIXELS
+   map pixels (FILTER_PIXELS pixel footprints times tan(theta), theta the
+   receiver's angle to the VPL), since every map pixel of the 2 x 2 filter
+   holds the nearest depth within it.  The same lookups serve manylods'
+   maps, ISM's and MegaViews'. */
 #define NORMAL_OFFSET 0.02f
 #define DEPTH_BIAS 0.02f
 #define FILTER_PIXELS 2.0f
@@ -127,9 +127,9 @@ typedef struct shade_job {
     const app_scene *scene;
     const app_gbuffer *g;
     const vpl *vpls;
-    const app_paraboloid *maps; /* per VPL */
     const mlod_atlas *atlas;    /* NULL: exact visibility (shadow rays) */
-    const mlod_view *dual;      /* per VPL: its MegaViews map (a global dual paraboloid), or NULL (maps) */
+    const mlod_view *views;     /* per VPL: its map's view in the atlas (a paraboloid, or a MegaViews map) */
+    mlod_view_frame *frames;    /* per VPL, from views: shade_indirect prepares them for the lookups */
     uint32_t vpl_count;
     uint32_t interleave;        /* P > 1: pixel (x, y) takes VPLs k = (y mod P) P + x mod P (mod P^2), P^2 times */
     app_image *indirect;
@@ -137,7 +137,7 @@ typedef struct shade_job {
 } shade_job;
 
 /* A frame's shading of these VPLs into `indirect`: exact visibility until
-   the caller gives maps (atlas, and maps or dual views). */
+   the caller gives maps (atlas and views). */
 static shade_job shade_job_for(const app_scene *scene, const app_gbuffer *g, const vpl *vpls, uint32_t count,
                                app_image *indirect)
 {
@@ -153,66 +153,24 @@ static shade_job shade_job_for(const app_scene *scene, const app_gbuffer *g, con
 
 #define BLOCK 16 /* pixels per side of a shading block: its VPL maps stay in cache */
 
-/* The shadow test of a receiver at depth z from the VPL whose point lands
-   at tile pixel (px, py) of a paraboloid (of half sizes half_w, half_h)
-   drawn in the tile's columns [lo, lo + columns) and rows [0, rows): lit
-   where z is at most the map's depth plus the bias, filtered over the 2 x 2
-   nearest map pixels (percentage closer), kept within those pixels. */
-static float paraboloid_lit(const mlod_atlas *atlas, const uint32_t *tile, float px, float py, float z, float cos_theta,
-                            int lo, int columns, int rows, float half_w, float half_h)
+/* Visibility of x (geometric normal n, distance from the VPL) in VPL k's
+   map: the library's shadow lookup (mlod_atlas_shadow) of x moved off its
+   surface by NORMAL_OFFSET world units per unit of distance, lit where its
+   depth is at most the map's plus DEPTH_BIAS of the distance plus
+   FILTER_PIXELS pixel footprints times the slope (tan of the receiver's
+   angle to the VPL), filtered over the 2 x 2 nearest map pixels. */
+static float map_visibility(const mlod_atlas *atlas, uint32_t k, const mlod_view_frame *frame, const float x[3],
+                            const float n[3], float distance)
 {
-    float fx, fy, rx, ry, tan_theta, bias, lit = 0.0f;
-    int i0, j0, di, dj;
-    rx = (px - (float)lo) / half_w - 1.0f;
-    ry = py / half_h - 1.0f;
-    tan_theta = sqrtf(1.0f - cos_theta * cos_theta) / cos_theta;
-    if (tan_theta > 8.0f) tan_theta = 8.0f;
-    bias = z * (DEPTH_BIAS + FILTER_PIXELS * 2.0f / ((1.0f + rx * rx + ry * ry) * half_w) * tan_theta);
-    px -= 0.5f;
-    py -= 0.5f;
-    i0 = (int)floorf(px);
-    j0 = (int)floorf(py);
-    fx = px - (float)i0;
-    fy = py - (float)j0;
-    for (dj = 0; dj < 2; dj++)
-        for (di = 0; di < 2; di++) {
-            int i = i0 + di, j = j0 + dj;
-            float w = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy), d;
-            if (i < lo) i = lo;
-            if (j < 0) j = 0;
-            if (i >= lo + columns) i = lo + columns - 1;
-            if (j >= rows) j = rows - 1;
-            d = atlas->depth[(size_t)(tile[1] + (uint32_t)j) * atlas->width + tile[0] + (uint32_t)i];
-            if (z <= d + bias) lit += w;
-        }
-    return lit;
-}
-
-/* Visibility of x (normal n, distance from the VPL) in one shadow map. */
-static float map_visibility(const mlod_atlas *atlas, const uint32_t *tile, const app_paraboloid *map, const float x[3],
-                            const float n[3], float distance, float cos_theta)
-{
-    float q[3], px, py, z;
-    int k;
-    for (k = 0; k < 3; k++) q[k] = x[k] + NORMAL_OFFSET * distance * n[k];
-    if (!app_paraboloid_project(map, q, &px, &py, &z)) return 1.0f;
-    return paraboloid_lit(atlas, tile, px, py, z, cos_theta, 0, (int)tile[2], (int)tile[3], map->half_width,
-                          map->half_height);
-}
-
-/* Visibility of x in a VPL's MegaViews map (mlod_megaviews_view: a dual
-   paraboloid of the global orientation, two halves of R x R pixels side by
-   side), read as map_visibility reads a paraboloid, within the half the
-   point falls in. */
-static float dual_visibility(const mlod_atlas *atlas, const uint32_t *tile, const mlod_view *view, const float x[3],
-                             const float n[3], float distance, float cos_theta)
-{
-    float q[3], pixel[2], z;
-    int k, size = (int)tile[3];
-    for (k = 0; k < 3; k++) q[k] = x[k] + NORMAL_OFFSET * distance * n[k];
-    if (!mlod_view_project(view, q, pixel, &z)) return 1.0f;
-    return paraboloid_lit(atlas, tile, pixel[0], pixel[1], z, cos_theta, pixel[0] < (float)size ? 0 : size, size, size,
-                          0.5f * (float)size, 0.5f * (float)size);
+    mlod_shadow_params sp;
+    float q[3];
+    int c;
+    for (c = 0; c < 3; c++) q[c] = x[c] + NORMAL_OFFSET * distance * n[c];
+    memset(&sp, 0, sizeof sp);
+    sp.filter = 1;
+    sp.bias = DEPTH_BIAS * distance;
+    sp.slope_bias = FILTER_PIXELS;
+    return mlod_atlas_shadow(atlas, k, frame, q, n, &sp);
 }
 
 /* The VPL's geometry term at surface point p (shading normal n), clamped
@@ -250,9 +208,7 @@ static float vpl_weight(const shade_job *job, uint32_t k, size_t i, uint64_t *ra
     geometry = vpl_geometry(l, s->p, s->n, &d, &cos_s);
     if (geometry <= 0.0f) return 0.0f;
     if (job->atlas) {
-        const uint32_t *tile = job->atlas->tiles + 4 * (size_t)k;
-        visibility = job->dual ? dual_visibility(job->atlas, tile, &job->dual[k], s->p, s->ng, d, cos_s)
-                               : map_visibility(job->atlas, tile, &job->maps[k], s->p, s->ng, d, cos_s);
+        visibility = map_visibility(job->atlas, k, &job->frames[k], s->p, s->ng, d);
     } else {
         float start[3];
         app_offset(job->scene, s, start);
@@ -323,7 +279,19 @@ static uint64_t shade_indirect(shade_job *job, const app_threads *threads)
     uint32_t blocks = ((job->g->width + BLOCK - 1) / BLOCK) * ((job->g->height + BLOCK - 1) / BLOCK), b;
     uint64_t total = 0;
     job->rays = job->atlas ? NULL : (uint64_t *)calloc(blocks, sizeof(uint64_t));
+    job->frames = NULL;
+    if (job->atlas) { /* what each lookup needs of a view, prepared once (2.3 KB per VPL) */
+        uint32_t k;
+        job->frames = (mlod_view_frame *)malloc(sizeof(mlod_view_frame) * job->vpl_count);
+        if (!job->frames) {
+            fprintf(stderr, "out of memory for %u views' frames\n", job->vpl_count);
+            exit(1);
+        }
+        for (k = 0; k < job->vpl_count; k++) mlod_view_frame_of(&job->views[k], &job->frames[k], NULL);
+    }
     app_parallel_for(threads, blocks, shade_block, job);
+    free(job->frames);
+    job->frames = NULL;
     if (job->rays)
         for (b = 0; b < blocks; b++) total += job->rays[b];
     free(job->rays);
@@ -332,7 +300,7 @@ static uint64_t shade_indirect(shade_job *job, const app_threads *threads)
 }
 
 /* VPL k's view: a paraboloid along its normal (its shadow map). */
-static void vpl_view(const vpl *l, const app_light *light, uint32_t tile, mlod_view *v, app_paraboloid *map)
+static void vpl_view(const vpl *l, const app_light *light, uint32_t tile, mlod_view *v)
 {
     memset(v, 0, sizeof *v);
     v->kind = MLOD_VIEW_PARABOLOID;
@@ -346,7 +314,6 @@ static void vpl_view(const vpl *l, const app_light *light, uint32_t tile, mlod_v
         memcpy(v->forward, light->axis, sizeof v->forward);
     }
     app_perpendicular(v->forward, v->up);
-    app_paraboloid_of(v, map);
 }
 
 /* Two unit vectors that make an orthonormal frame with the unit axis. */
@@ -380,7 +347,7 @@ static void cosine_direction(const float n[3], float u1, float u2, float d[3])
    cosine lobe of the surface it hit (fixed numbers per path and bounce),
    which carries the VPL's flux on, times the next albedo. */
 static void spawn_vpls(const app_scene *scene, const app_light *light, uint32_t count, uint32_t bounces, uint32_t tile,
-                       vpl *vpls, mlod_view *views, app_paraboloid *maps)
+                       vpl *vpls, mlod_view *views)
 {
     uint32_t paths = (count + bounces - 1) / bounces;
     float up[3], right[3], per_vpl = light->intensity * 2.0f * (float)SCENE_PI / ((light->exponent + 1.0f) * (float)paths);
@@ -414,7 +381,7 @@ static void spawn_vpls(const app_scene *scene, const app_light *light, uint32_t 
             cosine_direction(s.n, (float)scene_rng_double(&rng), (float)scene_rng_double(&rng), d);
         }
     }
-    for (k = 0; k < count; k++) vpl_view(&vpls[k], light, tile, &views[k], &maps[k]);
+    for (k = 0; k < count; k++) vpl_view(&vpls[k], light, tile, &views[k]);
 }
 
 /* Mean absolute difference of a and b over every channel of the pixels
@@ -558,7 +525,6 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
     uint32_t frame, j, r, s, stable_count;
     vpl *candidates = (vpl *)calloc(d, sizeof *candidates);
     mlod_view *candidate_views = (mlod_view *)calloc(d, sizeof *candidate_views);
-    app_paraboloid *candidate_maps = (app_paraboloid *)calloc(d, sizeof *candidate_maps);
     float *importance = (float *)calloc(d, sizeof *importance);
     app_surface points[IMPORTANCE_POINTS];
     uint8_t *stable = (uint8_t *)calloc(receivers, 1);
@@ -569,7 +535,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
     mlod_error error;
     shade_job job;
     const app_light light = app_light_at(0.0f);
-    int ok = candidates && candidate_views && candidate_maps && importance && stable;
+    int ok = candidates && candidate_views && importance && stable;
     memset(&g, 0, sizeof g);
     memset(runs, 0, sizeof runs);
     memset(&reference, 0, sizeof reference);
@@ -623,7 +589,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
             if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
         }
         /* the candidates, and the importance over fixed camera pixels */
-        spawn_vpls(scene, &light, d, 1, o->tile, candidates, candidate_views, candidate_maps);
+        spawn_vpls(scene, &light, d, 1, o->tile, candidates, candidate_views);
         for (k = 0; k < IMPORTANCE_POINTS; k++) {
             uint64_t h = 0x9e3779b97f4a7c15ull * (k + 1);
             float origin[3], direction[3];
@@ -736,7 +702,6 @@ done:
     }
     free(candidates);
     free(candidate_views);
-    free(candidate_maps);
     free(importance);
     free(stable);
     app_gbuffer_free(&g);
@@ -802,7 +767,6 @@ static int per_view_vpls(const char *program, const app_options *o, const app_sc
 {
     vpl *vpls = (vpl *)calloc(count, sizeof(vpl));
     mlod_view *views = (mlod_view *)calloc(count, sizeof(mlod_view));
-    app_paraboloid *maps = (app_paraboloid *)calloc(count, sizeof(app_paraboloid));
     mlod_atlas *cut_atlas = NULL, *ism_atlas = NULL;
     mlod_cut *cut = NULL;
     mlod_cut_params cp;
@@ -812,11 +776,11 @@ static int per_view_vpls(const char *program, const app_options *o, const app_sc
     int ok = 0;
     double t0;
     memset(&error, 0, sizeof error);
-    if (!vpls || !views || !maps) {
+    if (!vpls || !views) {
         fprintf(stderr, "%s: out of memory\n", program);
         goto done;
     }
-    spawn_vpls(scene, light, count, o->bounces, o->tile, vpls, views, maps);
+    spawn_vpls(scene, light, count, o->bounces, o->tile, vpls, views);
     memset(&cp, 0, sizeof cp);
     cp.epsilon = o->epsilon;
     cp.parallel = threads->parallel;
@@ -837,7 +801,7 @@ static int per_view_vpls(const char *program, const app_options *o, const app_sc
     if (!ok) goto failed;
     {
         shade_job job = shade_job_for(scene, g, vpls, count, per_view);
-        job.maps = maps;
+        job.views = views;
         job.atlas = cut_atlas;
         shade_indirect(&job, threads);
         job.atlas = ism_atlas;
@@ -859,7 +823,6 @@ done:
     mlod_cut_destroy(cut);
     free(vpls);
     free(views);
-    free(maps);
     return ok;
 }
 
@@ -872,7 +835,6 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     mlod_view camera = app_camera(o->width, o->height);
     vpl *many_vpls = (vpl *)calloc(many, sizeof(vpl));
     mlod_view *spawned = (mlod_view *)calloc(many, sizeof(mlod_view)), *duals = (mlod_view *)calloc(many, sizeof(mlod_view));
-    app_paraboloid *spawned_maps = (app_paraboloid *)calloc(many, sizeof(app_paraboloid));
     float *eyes = (float *)malloc(sizeof(float) * 3 * (size_t)many), *directions = (float *)malloc(sizeof(float) * 3 * (size_t)many);
     mlod_view_tree *vtree = NULL;
     mlod_atlas *mv_atlas = NULL;
@@ -904,7 +866,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     for (c = 0; c < 9; c++) memset(images[c], 0, sizeof(app_image));
     for (c = 0; c < 9; c++)
         if (!app_image_create(images[c], o->width, o->height)) goto oom;
-    if (!many_vpls || !spawned || !duals || !spawned_maps || !eyes || !directions) goto oom;
+    if (!many_vpls || !spawned || !duals || !eyes || !directions) goto oom;
     app_scene_animate(scene, 0.0f);
     if (mlod_refit_mesh(tree, &scene->mesh, threads->parallel, &error) != MLOD_OK) goto failed;
     if (!app_gbuffer_trace(&g, scene, &camera, threads)) goto oom;
@@ -917,7 +879,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     /* N VPLs through the view tree: each a global dual paraboloid of 2 R x R pixels */
     app_stage("MegaViews: %u VPLs at the first %u hit%s of the light's paths, their view tree", many, o->bounces,
               o->bounces > 1 ? "s" : "");
-    spawn_vpls(scene, &light, many, o->bounces, o->tile, many_vpls, spawned, spawned_maps);
+    spawn_vpls(scene, &light, many, o->bounces, o->tile, many_vpls, spawned);
     for (k = 0; k < many; k++) {
         memcpy(eyes + 3 * (size_t)k, spawned[k].position, 3 * sizeof(float));
         memcpy(directions + 3 * (size_t)k, spawned[k].forward, 3 * sizeof(float));
@@ -950,7 +912,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     {
         shade_job job = shade_job_for(scene, &g, many_vpls, many, &raw);
         job.atlas = mv_atlas;
-        job.dual = duals;
+        job.views = duals;
         job.interleave = INTERLEAVE;
         app_stage("MegaViews: shading, each pixel 1/%u of the VPLs", INTERLEAVE * INTERLEAVE);
         t0 = app_now_ms();
@@ -1049,7 +1011,6 @@ done:
     free(many_vpls);
     free(spawned);
     free(duals);
-    free(spawned_maps);
     free(eyes);
     free(directions);
     return ok;
@@ -1074,7 +1035,6 @@ int main(int argc, char **argv)
     mlod_cut_params params;
     mlod_error error;
     vpl *vpls = NULL;
-    app_paraboloid *maps = NULL;
     float *exact = NULL;
     unsigned char *visible = NULL;
     metrics maps_cut, maps_ism;
@@ -1105,9 +1065,8 @@ int main(int argc, char **argv)
     if (!app_begin(program, &o, &threads, &scene)) return 1;
     views = (mlod_view *)calloc(o.views, sizeof *views);
     vpls = (vpl *)calloc(o.views, sizeof *vpls);
-    maps = (app_paraboloid *)calloc(o.views, sizeof *maps);
     camera = app_camera(o.width, o.height);
-    if (!views || !vpls || !maps || !app_image_create(&direct, o.width, o.height) ||
+    if (!views || !vpls || !app_image_create(&direct, o.width, o.height) ||
         !app_image_create(&indirect, o.width, o.height) || !app_image_create(&lit, o.width, o.height) ||
         !app_image_create(&ism, o.width, o.height) || !app_image_create(&reference, o.width, o.height)) {
         fprintf(stderr, "%s: out of memory\n", program);
@@ -1165,7 +1124,7 @@ int main(int argc, char **argv)
         if (mlod_refit_mesh(tree, &scene.mesh, threads.parallel, &error) != MLOD_OK) goto failed;
         refit_ms = app_now_ms() - t0;
 
-        spawn_vpls(&scene, &light, o.views, 1, o.tile, vpls, views, maps);
+        spawn_vpls(&scene, &light, o.views, 1, o.tile, vpls, views);
         params.mode = frame == 0 ? MLOD_CUT_BASIC : o.mode;
         t0 = app_now_ms();
         if (mlod_cut_update(cut, tree, views, &params, &error) != MLOD_OK) goto failed;
@@ -1187,7 +1146,7 @@ int main(int argc, char **argv)
         }
         app_direct_image(&scene, &light, &g, direct.rgb, &threads);
         job = shade_job_for(&scene, &g, vpls, o.views, &indirect);
-        job.maps = maps;
+        job.views = views;
         job.atlas = atlas;
         shade_indirect(&job, &threads);
         add_images(&direct, &indirect, &lit);
@@ -1343,7 +1302,6 @@ done:
     mlod_tree_destroy(tree);
     free(views);
     free(vpls);
-    free(maps);
     free(exact);
     free(visible);
     app_gbuffer_free(&g);

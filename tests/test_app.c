@@ -1,9 +1,6 @@
 /* tests/test_app.c - the examples' shared code (examples/app.h) where it is
    more than plumbing:
 
-   - app_paraboloid_project, the examples' float projection for their inner
-     loops, against the library's mlod_view_project (pixel within 1e-3,
-     depth within 1e-5 relative, the same points inside);
    - app_parse_options: presets, every option's valid and invalid values,
      options the usage does not list;
    - the scene: room and torus well formed, the object's animation moves the
@@ -19,44 +16,6 @@
 #include "tempdir.h"
 
 #include <unistd.h>
-
-static void test_projection(void)
-{
-    uint64_t seed = 11;
-    int v, i, mismatched = 0, far_off = 0, compared = 0;
-    for (v = 0; v < 20; v++) {
-        mlod_view view;
-        app_paraboloid pv;
-        memset(&view, 0, sizeof view);
-        view.kind = MLOD_VIEW_PARABOLOID;
-        app_set(view.position, scene_rng_range(&seed, -1, 1), scene_rng_range(&seed, 0, 3), scene_rng_range(&seed, -1, 1));
-        app_set(view.forward, scene_rng_range(&seed, -1, 1), scene_rng_range(&seed, -1, 1), scene_rng_range(&seed, -1, 1));
-        app_normalize(view.forward);
-        app_perpendicular(view.forward, view.up);
-        view.width = view.height = v % 2 ? 32 : 17;
-        CHECK(app_paraboloid_of(&view, &pv), "view %d prepares", v);
-        for (i = 0; i < 2000; i++) {
-            float p[3], a[2], b[2], za, zb;
-            int in_a, in_b;
-            app_set(p, scene_rng_range(&seed, -2, 2), scene_rng_range(&seed, 0, 3), scene_rng_range(&seed, -2, 2));
-            in_a = mlod_view_project(&view, p, a, &za);
-            in_b = app_paraboloid_project(&pv, p, &b[0], &b[1], &zb);
-            mismatched += in_a != in_b;
-            if (!in_a || !in_b) continue;
-            compared++;
-            far_off += fabsf(a[0] - b[0]) > 1e-3f || fabsf(a[1] - b[1]) > 1e-3f || fabsf(za - zb) > 1e-5f * za;
-        }
-    }
-    CHECK(mismatched == 0, "the same points inside as mlod_view_project (%d differ)", mismatched);
-    CHECK(compared > 10000 && far_off == 0, "pixels and depths as mlod_view_project (%d of %d differ)", far_off, compared);
-    {
-        mlod_view view;
-        app_paraboloid pv;
-        memset(&view, 0, sizeof view);
-        view.kind = MLOD_VIEW_PERSPECTIVE;
-        CHECK(!app_paraboloid_of(&view, &pv), "a perspective view is not prepared as a paraboloid");
-    }
-}
 
 static int parse(const char *usage, const app_options *normal, const app_options *tiny, app_options *o, int argc,
                  const char **argv)
@@ -236,7 +195,6 @@ static void test_tonemap(void)
 
 int main(void)
 {
-    test_projection();
     test_options();
     test_scene();
     test_tonemap();
