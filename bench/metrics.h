@@ -37,16 +37,18 @@
                         ascending e_1 <= ... <= e_n, e_k with k = ceil(0.95 n)
                         (exact, no interpolation);
      shadow test      for every view and every receiver point q (3 floats)
-                      that mlod_view_project puts inside the view, at pixel
-                      (floor(px), floor(py)) inside the tile, where R is not
-                      NaN: with z the receiver's depth from mlod_view_project
-                      and b = bias * D + bias_pixels * f,
+                      that mlod_atlas_lookup puts inside the view and its
+                      tile, where R is not NaN: the library's shadow test
+                      (mlod_atlas_shadow, filter 0, no normal), with z the
+                      receiver's depth and b = bias * D + bias_pixels * f,
                           lit_X = !(z > X + b)       for X = S and X = R
                       (an empty pixel, +inf, is lit), where f is the pixel
-                      footprint at the receiver (metrics_pixel_footprint:
-                      the world distance between the rays of that pixel's
+                      footprint at the receiver (mlod_shadow_params: the
+                      world distance between the rays of that pixel's
                       centre and of its horizontal neighbour's, taken at the
-                      receiver's distance from the first ray's origin);
+                      receiver's distance from the first ray's origin;
+                      metrics_pixel_footprint measures it from the public
+                      pixel rays, for the tests);
      shadow_tests     the number of such (view, receiver) pairs;
      shadow_differences  pairs with lit_S != lit_R;
      shadow_disagreement = shadow_differences / shadow_tests.
@@ -286,6 +288,7 @@ static inline void metrics_compare_visibility(const mlod_atlas *splat, const flo
     memset(overall, 0, sizeof *overall);
     for (v = 0; v < splat->view_count; v++) {
         const uint32_t *tile = splat->tiles + 4 * (size_t)v;
+        mlod_view_frame frame;
         metrics m;
         size_t first = used;
         double squared = 0.0;
@@ -305,31 +308,29 @@ static inline void metrics_compare_visibility(const mlod_atlas *splat, const flo
                     if (errors) errors[used++] = e;
                 }
             }
-        for (r = 0; r < receiver_count; r++) {
-            float pixel[2], z;
-            double px, py, b;
-            size_t p;
-            float R, S;
-            int lit_s, lit_r;
-            if (!mlod_view_project(views + v, receivers + 3 * (size_t)r, pixel, &z)) continue;
-            px = floor((double)pixel[0]);
-            py = floor((double)pixel[1]);
-            if (!(px >= 0.0 && px < (double)tile[2] && py >= 0.0 && py < (double)tile[3])) continue;
-            p = (size_t)(tile[1] + (uint32_t)py) * splat->width + tile[0] + (uint32_t)px;
-            R = reference[p];
-            S = splat->depth[p];
-            if (isnan(R)) continue;
-            b = bias_world;
-            if (bias_pixels > 0.0) b += bias_pixels * metrics_pixel_footprint(views + v, pixel[0], pixel[1], receivers + 3 * (size_t)r);
-            lit_s = !((double)z > (double)S + b);
-            lit_r = !((double)z > (double)R + b);
-            m.shadow_tests++;
-            m.shadow_differences += lit_s != lit_r;
-            if (visible && visible[(size_t)v * receiver_count + r] != 2) {
-                int truth = visible[(size_t)v * receiver_count + r];
-                m.visibility_tests++;
-                m.shadow_wrong += lit_s != truth;
-                m.reference_wrong += lit_r != truth;
+        if (receiver_count > 0 && mlod_view_frame_of(views + v, &frame, NULL) == MLOD_OK) {
+            mlod_atlas exact = *splat; /* the reference's pixels in the splat's layout */
+            mlod_shadow_params sp;
+            exact.depth = (float *)reference;
+            memset(&sp, 0, sizeof sp);
+            sp.bias = (float)bias_world;
+            sp.slope_bias = (float)bias_pixels;
+            for (r = 0; r < receiver_count; r++) {
+                const float *q = receivers + 3 * (size_t)r;
+                float R;
+                int lit_s, lit_r;
+                /* the library's shadow test (mlod_atlas_shadow: one pixel, no normal) in both maps */
+                if (!mlod_atlas_lookup(&exact, v, &frame, q, NULL, NULL, &R) || isnan(R)) continue;
+                lit_s = mlod_atlas_shadow(splat, v, &frame, q, NULL, &sp) == 1.0f;
+                lit_r = mlod_atlas_shadow(&exact, v, &frame, q, NULL, &sp) == 1.0f;
+                m.shadow_tests++;
+                m.shadow_differences += lit_s != lit_r;
+                if (visible && visible[(size_t)v * receiver_count + r] != 2) {
+                    int truth = visible[(size_t)v * receiver_count + r];
+                    m.visibility_tests++;
+                    m.shadow_wrong += lit_s != truth;
+                    m.reference_wrong += lit_r != truth;
+                }
             }
         }
         metrics_finish(&m, squared);
