@@ -92,9 +92,9 @@ BENCH_EXTRA  = $(if $(BENCH_AVX2),-DBENCH_AVX2 $(BUILD)/bench/cut_avx2.o)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PARALLEL = $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(JOBS))
 
-# tests/test_vulkan.c and tests/test_f64_vulkan.c link the Vulkan loader:
-# built by their own rules below.
-TEST_SOURCES := $(filter-out tests/test_vulkan.c tests/test_f64_vulkan.c,$(sort $(wildcard tests/test_*.c)))
+# tests/test_vulkan.c, tests/test_f64_vulkan.c and tests/test_lookup_vulkan.c
+# link the Vulkan loader: built by their own rules below.
+TEST_SOURCES := $(filter-out tests/test_vulkan.c tests/test_f64_vulkan.c tests/test_lookup_vulkan.c,$(sort $(wildcard tests/test_*.c)))
 TEST_NAMES   := $(TEST_SOURCES:tests/%.c=%)
 GCC_TESTS    := $(TEST_NAMES:%=$(BUILD)/gcc/%)
 SAN_TESTS    := $(TEST_NAMES:%=$(BUILD)/san/%)
@@ -143,10 +143,13 @@ BENCH_CFLAGS += -DBENCH_VULKAN
 BENCH_LDLIBS += $(VULKAN_LIBS)
 BENCH_DEPS   += manylods_vk.h
 # test_vulkan's two groups as two programs side by side, the one with
-# emulated doubles first (lavapipe compiles its shaders for minutes)
+# emulated doubles first (lavapipe compiles its shaders for minutes); so
+# test_lookup_vulkan's two forms
 VULKAN_TEST := --args emulated $(BUILD)/vulkan/test_vulkan --args native $(BUILD)/vulkan/test_vulkan \
-               $(BUILD)/vulkan/test_f64_vulkan tests/check_vulkan_example.sh
-VULKAN_PROGRAMS := $(BUILD)/vulkan/test_vulkan $(BUILD)/vulkan/test_f64_vulkan $(BUILD)/examples/vulkan_minimal
+               --args emulated $(BUILD)/vulkan/test_lookup_vulkan $(BUILD)/vulkan/test_f64_vulkan \
+               --args native $(BUILD)/vulkan/test_lookup_vulkan tests/check_vulkan_example.sh
+VULKAN_PROGRAMS := $(BUILD)/vulkan/test_vulkan $(BUILD)/vulkan/test_f64_vulkan $(BUILD)/vulkan/test_lookup_vulkan \
+                   $(BUILD)/examples/vulkan_minimal
 else
 VULKAN_TEST := tests/vulkan_missing.sh
 VULKAN_PROGRAMS :=
@@ -232,6 +235,13 @@ $(BUILD)/vulkan/test_vulkan: tests/test_vulkan.c manylods_vk.h $(HEADERS)
 
 # shaders/f64.glsl on the device (it compiles tests/f64_check.comp when run).
 $(BUILD)/vulkan/test_f64_vulkan: tests/test_f64_vulkan.c manylods_vk.h $(HEADERS)
+	$(say) CC $@
+	$(Q)mkdir -p $(@D) && rm -f $@
+	$(Q)$(CC) $(TEST_CFLAGS) $< -o $@ $(VULKAN_LIBS) $(LDLIBS)
+
+# shaders/lookup.glsl on the device against mlod_atlas_lookup and
+# mlod_atlas_shadow (it compiles tests/lookup_check.comp when run).
+$(BUILD)/vulkan/test_lookup_vulkan: tests/test_lookup_vulkan.c manylods_vk.h $(HEADERS)
 	$(say) CC $@
 	$(Q)mkdir -p $(@D) && rm -f $@
 	$(Q)$(CC) $(TEST_CFLAGS) $< -o $@ $(VULKAN_LIBS) $(LDLIBS)

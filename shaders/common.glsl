@@ -17,7 +17,12 @@
 //   uvec2 views[]   (MLOD_IF_VIEW_STRIDE doubles per view, as their bits:
 //                    interface.h)
 // and a macro MLOD_HAS_CONES (a bool expression) - or defines MLOD_NO_VIEWS
-// (the refit shaders) and gets only the functions that need no view.
+// (the refit shaders) and gets only the functions that need no view, or
+// MLOD_NO_TREE (shaders/lookup.glsl) and declares views[] alone: the
+// functions that read the tree's buffers (classify) are left out.  The
+// includer enables GL_KHR_shader_subgroup_vote (plane_outside asks its
+// subgroup before the exact path) unless it defines MLOD_NO_SUBGROUPS
+// (the same results, without that shortcut).
 
 #include "real.glsl"
 
@@ -393,7 +398,9 @@ bool plane_outside(uint base, vec4 sphere)
     // The exact path runs where the filter cannot decide, which is rare;
     // asking the whole subgroup first keeps SIMD devices (lavapipe runs
     // every lane of a divergent branch) from paying for it every time.
+#ifndef MLOD_NO_SUBGROUPS
     if (!subgroupAny(!below && !above)) return below;
+#endif
     if (below) return true;
     if (above) return false;
     real t[9];
@@ -632,6 +639,7 @@ uint fast_status(uint view, vec4 sphere, bool use_cone, vec4 cone)
 // C twin: mlod__is_valid
 bool status_valid(uint s) { return s == MLOD_IF_STATUS_DRAWN || s == MLOD_IF_STATUS_CULLED; }
 
+#ifndef MLOD_NO_TREE
 #ifdef MLOD_HAS_FILTERS
 // classify's first step, the float filter alone: the status, or 0 where
 // the filter is unsure (cut_step and cut_finish then list the entry for
@@ -663,6 +671,7 @@ uint classify(uint view, uint node, real epsilon, uint leaf_count)
     if (r_le(c, epsilon)) return MLOD_IF_STATUS_DRAWN;
     return node >= leaf_count - 1u ? MLOD_IF_STATUS_OVERSIZE : MLOD_IF_STATUS_COARSE;
 }
+#endif // MLOD_NO_TREE
 
 // ----------------------------------------------------------- image disc --
 
