@@ -1376,7 +1376,10 @@ MANYLODS_DEF int mlod_atlas_lookup(const mlod_atlas *atlas, uint32_t view, const
    NaN for NULL atlas, frame, point or params, view >= view_count, a tile
    of another size than the frame, or params out of range.  Doubles
    throughout; the result does not depend on the build's SIMD level.
-   Pure, thread-safe; no allocation. */
+   Pure, thread-safe; no allocation.  On a Vulkan device, shaders/lookup.glsl
+   gives the same results bit for bit (this and mlod_atlas_lookup, with
+   the device's doubles or emulated ones): #include it in your shader after
+   declaring the frames and the atlas depth as its top comment says. */
 MANYLODS_DEF float mlod_atlas_shadow(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame,
                                      const float point[3], const float normal[3], const mlod_shadow_params *params);
 
@@ -7678,6 +7681,7 @@ static int mlod__sub_at(const mlod__pview *pv, double x, double y)
    with the outputs written; -1 where the projection is undefined (at the
    eye, or behind a perspective or paraboloid sub-projection), outputs
    unwritten. */
+/* GLSL twin: frame_project */
 static int mlod__frame_project(const mlod_view_frame *f, const float *point, int *sub, double *x, double *y,
                                double *depth)
 {
@@ -8795,6 +8799,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_par
 /* ------------------------------------------------------- shadow lookups -- */
 
 /* The tile of `view` when it is the frame's size, else NULL. */
+/* GLSL twin: lookup_tile */
 static const uint32_t *mlod__lookup_tile(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame)
 {
     const uint32_t *tile;
@@ -8805,6 +8810,7 @@ static const uint32_t *mlod__lookup_tile(const mlod_atlas *atlas, uint32_t view,
 
 /* The depth the tile holds at its pixel (i, j), clamped into the
    sub-tile's columns [c0, c1) and rows [r0, r1). */
+/* GLSL twin: lookup_depth */
 static double mlod__lookup_depth(const mlod_atlas *atlas, const uint32_t *tile, double i, double j, const double *c)
 {
     if (i < c[0]) i = c[0];
@@ -8816,6 +8822,7 @@ static double mlod__lookup_depth(const mlod_atlas *atlas, const uint32_t *tile, 
 
 /* Sub-projection s's pixels: columns c[0] .. c[1] - 1, rows c[2] .. c[3] - 1,
    as mlod__view_prepare rounds them. */
+/* GLSL twin: lookup_sub_pixels */
 static void mlod__lookup_sub_pixels(const mlod_view_sub *sub, double *c)
 {
     c[0] = (double)(uint32_t)sub->x;
@@ -8824,6 +8831,7 @@ static void mlod__lookup_sub_pixels(const mlod_view_sub *sub, double *c)
     c[3] = (double)(uint32_t)(sub->y + sub->height);
 }
 
+/* GLSL twin: mlod_atlas_lookup */
 MLOD__PUBLIC int mlod_atlas_lookup(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame,
                                    const float point[3], float pixel[2], float *depth, float *map_depth)
 {
@@ -8849,6 +8857,7 @@ MLOD__PUBLIC int mlod_atlas_lookup(const mlod_atlas *atlas, uint32_t view, const
    centre of the pixel holding it and of its right neighbour (the left one
    past the sub-tile or the disc), unit directions, |o1 - o0| + |e - o0|
    |d1 - d0|; 0 when neither neighbour has a ray. */
+/* GLSL twin: lookup_footprint */
 static double mlod__footprint(const mlod_view_sub *sub, const double *c, const double *e, double x, double y)
 {
     double o0[3], d0[3], o1[3], d1[3], per_t, l0, l1, oo = 0.0, ee = 0.0, dd = 0.0;
@@ -8869,6 +8878,7 @@ static double mlod__footprint(const mlod_view_sub *sub, const double *c, const d
     return sqrt(oo) + sqrt(ee) * sqrt(dd);
 }
 
+/* GLSL twin: mlod_atlas_shadow */
 MLOD__PUBLIC float mlod_atlas_shadow(const mlod_atlas *atlas, uint32_t view, const mlod_view_frame *frame,
                                      const float point[3], const float normal[3], const mlod_shadow_params *params)
 {
@@ -8887,7 +8897,7 @@ MLOD__PUBLIC float mlod_atlas_shadow(const mlod_atlas *atlas, uint32_t view, con
     bias = params->bias;
     if (params->slope_bias > 0.0f) {
         if (normal) {
-            double n[3], l[3], nl, nn, ll, cos2;
+            double n[3], l[3], nl, nn, ll, cos2, t2;
             for (k = 0; k < 3; k++) {
                 n[k] = normal[k];
                 l[k] = (int)sub->kind == MLOD_VIEW_ORTHOGRAPHIC ? -sub->forward[k] : -e[k];
@@ -8895,8 +8905,9 @@ MLOD__PUBLIC float mlod_atlas_shadow(const mlod_atlas *atlas, uint32_t view, con
             nl = mlod__dot3(n, l);
             nn = mlod__dot3(n, n);
             ll = mlod__dot3(l, l);
-            cos2 = nl * nl / (nn * ll); /* tan^2 = 1 / cos^2 - 1 */
-            slope = sqrt(1.0 / cos2 - 1.0);
+            cos2 = nl * nl / (nn * ll);
+            t2 = 1.0 / cos2 - 1.0; /* tan^2 = 1 / cos^2 - 1: rounding may take it below 0 for a normal facing the eye */
+            slope = t2 > 0.0 ? sqrt(t2) : t2 <= 0.0 ? 0.0 : MLOD_SHADOW_MAX_SLOPE; /* NaN (a zero normal): the steepest */
             if (!(slope <= MLOD_SHADOW_MAX_SLOPE)) slope = MLOD_SHADOW_MAX_SLOPE;
         }
         bias += (double)params->slope_bias * mlod__footprint(sub, c, e, x, y) * slope;

@@ -342,6 +342,32 @@ static void test_bias(void)
             tested += 2;
         }
     }
+    { /* normals facing the eye exactly: slope 0, whatever the rounding of cos^2 (which may pass 1) */
+        uint64_t facing = 0, facing_wrong = 0;
+        for (v = 0; v < count; v++) {
+            mlod_view_frame F;
+            const uint32_t *t = a->tiles + 4 * (size_t)v;
+            if (views[v].kind == MLOD_VIEW_ORTHOGRAPHIC || mlod_view_frame_of(&views[v], &F, NULL) != MLOD_OK) continue;
+            for (i = 0; i < 300; i++) {
+                float q[3], pixel[2], z, normal[3], *cell, scale;
+                mlod_shadow_params sp;
+                int k;
+                random_point(eye, 4.0, q);
+                if (!mlod_atlas_lookup(a, v, &F, q, pixel, &z, NULL)) continue;
+                scale = (float)(1.0 + 3.0 * rnd());
+                for (k = 0; k < 3; k++) normal[k] = (eye[k] - q[k]) * scale;
+                memset(&sp, 0, sizeof sp);
+                sp.bias = 0.02f;
+                sp.slope_bias = 3.0f;
+                cell = &a->depth[((size_t)t[1] + (size_t)pixel[1]) * a->width + t[0] + (size_t)pixel[0]];
+                *cell = (float)((double)z - 0.02 * (1.0 + 1e-3));
+                facing_wrong += mlod_atlas_shadow(a, v, &F, q, normal, &sp) != 0.0f;
+                facing++;
+            }
+        }
+        CHECK(facing > 500 && facing_wrong == 0, "bias: %llu of %llu points whose normal faces the eye get a slope bias",
+              (unsigned long long)facing_wrong, (unsigned long long)facing);
+    }
     CHECK(tested > 1500 && wrong == 0,
           "bias: %llu of %llu lookups on the wrong side of bias + slope_bias x footprint x slope",
           (unsigned long long)wrong, (unsigned long long)tested);
