@@ -473,6 +473,17 @@
      orientation (mlod_megaviews_view: directions towards +z in the left
      half of the tile, -z in the right, R x R pixels each), so that an
      inner view node's map is a partial rendering all views below share.
+     params.forward and up choose that orientation
+     (mlod_megaviews_view_oriented: the left half looks along forward),
+     both 0 keeping the default (forward +z, up +y).  A paraboloid is
+     sharpest at its axis and least sharp at its rim, the seam between
+     the halves, where a direction lands on the edge of both discs: point
+     forward where the views look most, -y for ceiling lights in a y-up
+     scene, whose "straight down" then falls in the middle of the front
+     half rather than on the seam.  The bounds below read x.w (w =
+     forward, unit) and the angle off w in that frame, and the float
+     filter takes them from the axes rounded to float (within its proven
+     margins); every result below holds for any orientation.
      The traversal starts from (scene root, view root), level by level
      down the view tree's first six levels, then depth first within each of
      the 64 subtrees below (one task each, so no two threads draw into one
@@ -541,7 +552,8 @@
      of the tree's depth in lookups, for programs that read few pixels.
      delta = 0 shares only among eyes at one point (duplicates), and the
      atlas equals, bit for bit, the per-view cut (mlod_cut_update) and
-     splat (mlod_splat) of the views' mlod_megaviews_view; with
+     splat (mlod_splat) of the views' mlod_megaviews_view (in the params'
+     orientation: mlod_megaviews_view_oriented); with
      directions, the per-view cut less what each view's field of view
      culls.  One exception: where two drawn nodes lie at exactly the same
      distance for a pixel (the same centre: duplicate points), the splat
@@ -1504,13 +1516,27 @@ MANYLODS_DEF mlod_result mlod_view_tree_refit(mlod_view_tree *tree, const mlod_v
 /* Free the view tree.  NULL is fine. */
 MANYLODS_DEF void mlod_view_tree_destroy(mlod_view_tree *tree);
 
-/* The map every view gets from mlod_megaviews_render: a dual paraboloid
-   of one global orientation (front half: directions towards +z, in the
-   tile's left half; back half: -z, in the right; forward (0, 0, 1), up
-   (0, 1, 0)), at the eye, resolution x resolution pixels per half (tile
-   2 resolution x resolution), with `flags` (MLOD_VIEW_*).  Use it to
-   create the atlas and to look up pixels (mlod_view_project).  Pure. */
+/* The map every view gets from mlod_megaviews_render with the default
+   orientation (params.forward and up 0): a dual paraboloid of one global
+   orientation (front half: directions towards +z, in the tile's left
+   half; back half: -z, in the right; forward (0, 0, 1), up (0, 1, 0)),
+   at the eye, resolution x resolution pixels per half (tile 2 resolution
+   x resolution), with `flags` (MLOD_VIEW_*).  Use it to create the atlas
+   and to look up pixels (mlod_view_project).  Pure. */
 MANYLODS_DEF mlod_view mlod_megaviews_view(const float eye[3], uint32_t resolution, uint32_t flags);
+
+/* The same map in another orientation, the one params.forward and up
+   give the render: the front half (the tile's left) looks along forward,
+   the back half (the right) along -forward, up as mlod_view's (made
+   perpendicular to forward).  forward and up both NULL or 0:
+   mlod_megaviews_view's, forward (0, 0, 1), up (0, 1, 0); otherwise
+   copied as given, for mlod_view_check (or mlod_megaviews_check) to
+   judge.  A direction on the seam between the halves (perpendicular to
+   forward) lands on the rim of both discs, the map's least sharp place:
+   choose forward along what the views look at most (-y, down, for
+   ceiling lights in a y-up scene).  Pure. */
+MANYLODS_DEF mlod_view mlod_megaviews_view_oriented(const float eye[3], uint32_t resolution, uint32_t flags,
+                                                    const float forward[3], const float up[3]);
 
 /* The sharing suggested for delta: half a pixel. */
 #define MLOD_MEGAVIEWS_DELTA 0.5f
@@ -1528,6 +1554,10 @@ typedef struct mlod_megaviews_params {
                                   (an approximation: see MANY VIEWS AT ONCE); 0: none */
     const mlod_parallel *parallel;   /* optional */
     const mlod_allocator *allocator; /* the call's scratch; NULL: the atlas's allocator */
+    float forward[3];          /* the maps' front axis and up (mlod_megaviews_view_oriented); both 0:
+                                  forward +z, up +y (the default, mlod_megaviews_view); otherwise as
+                                  mlod_view's forward and up: finite, nonzero, not parallel */
+    float up[3];
 } mlod_megaviews_params;
 
 /* What a render did. */
@@ -1566,22 +1596,26 @@ typedef struct mlod_megaviews_maps mlod_megaviews_maps;
 
 /* Check the parameters alone: epsilon > 0, delta and group_radius finite
    and >= 0, resolution in 1 .. 2^31 - 1, no flag but
-   MLOD_VIEW_CULL_BACKFACES (MLOD_ERROR_BAD_VIEW) (what
-   mlod_megaviews_render and mlodvk_megaviews_render refuse first).  Pure,
-   thread-safe. */
+   MLOD_VIEW_CULL_BACKFACES (MLOD_ERROR_BAD_VIEW), forward and up both 0
+   or a frame mlod_view_check takes (MLOD_ERROR_NON_FINITE: NaN or
+   infinite; MLOD_ERROR_BAD_VIEW: one of zero length, the two parallel)
+   (what mlod_megaviews_render and mlodvk_megaviews_render refuse first).
+   Pure, thread-safe. */
 MANYLODS_DEF mlod_result mlod_megaviews_check(const mlod_megaviews_params *params, mlod_error *error);
 
 /* Render every view's map into the atlas (MANY VIEWS AT ONCE): the pair
    traversal of the scene tree and the view tree, drawing into shared maps
    of inner view nodes and fusing them down into each view's tile of the
    atlas (created for the views of mlod_megaviews_view at the same
-   resolution: view i has tile i).  Depth as for paraboloids: distance
-   from the view's eye.  Every tile is cleared first.  stats may be NULL.
-   Parallel through the hook, with the same atlas for any thread count.
-   The atlas's views give only the tiles' sizes and places: the maps are
-   those of the view tree's eyes, whatever eyes the atlas was created for
-   (so one atlas serves a view tree refitted to moving views; look its
-   pixels up with mlod_megaviews_view of the view tree's eyes).
+   resolution: view i has tile i), in the orientation of params.forward
+   and up (mlod_megaviews_view_oriented).  Depth as for paraboloids:
+   distance from the view's eye.  Every tile is cleared first.  stats may
+   be NULL.  Parallel through the hook, with the same atlas for any
+   thread count.  The atlas's views give only the tiles' sizes and
+   places: the maps are those of the view tree's eyes, whatever eyes the
+   atlas was created for (so one atlas serves a view tree refitted to
+   moving views; look its pixels up with mlod_megaviews_view_oriented of
+   the view tree's eyes and the params' forward and up).
    Errors: NULLs, parameters mlod_megaviews_check refuses, an atlas of
    another view count or tile size, channels the scene lacks (the atlas
    is then untouched); maps whose bytes do not fit size_t
@@ -1604,10 +1638,11 @@ MANYLODS_DEF mlod_result mlod_megaviews_render_maps(const mlod_tree *scene, cons
                                                     const mlod_megaviews_params *params, mlod_megaviews_maps **out,
                                                     mlod_megaviews_stats *stats, mlod_error *error);
 
-/* Pixel (x, y) of view `view`'s map (x < 2 resolution, y < resolution):
-   down the view tree from the root to the view's leaf, each node's pixel
-   taken where it is nearer (from that node's centre) than what the nodes
-   above left there, as the fusion does.  Returns 1 and writes the depth
+/* Pixel (x, y) of view `view`'s map (x < 2 resolution, y < resolution,
+   in the render's orientation, which the maps keep): down the view tree
+   from the root to the view's leaf, each node's pixel taken where it is
+   nearer (from that node's centre) than what the nodes above left there,
+   as the fusion does.  Returns 1 and writes the depth
    (distance from the view's eye) and the scene node, equal to the fused
    atlas's pixel of mlod_megaviews_render with the same arguments, or 0
    where nothing was drawn, for arguments out of range, and for a view tree
@@ -9415,19 +9450,41 @@ MLOD__PUBLIC void mlod_view_tree_destroy(mlod_view_tree *tree)
     a.free(a.user, tree);
 }
 
-MLOD__PUBLIC mlod_view mlod_megaviews_view(const float eye[3], uint32_t resolution, uint32_t flags)
+/* Is the orientation (forward, up) the default one: both NULL or 0? */
+static int mlod__megaviews_default_axes(const float *forward, const float *up)
+{
+    int k;
+    for (k = 0; k < 3; k++)
+        if ((forward && forward[k] != 0.0f) || (up && up[k] != 0.0f)) return 0;
+    return 1;
+}
+
+MLOD__PUBLIC mlod_view mlod_megaviews_view_oriented(const float eye[3], uint32_t resolution, uint32_t flags,
+                                                    const float forward[3], const float up[3])
 {
     mlod_view v;
     int k;
     memset(&v, 0, sizeof v);
     v.kind = MLOD_VIEW_DUAL_PARABOLOID;
     for (k = 0; k < 3; k++) v.position[k] = eye ? eye[k] : 0.0f;
-    v.forward[2] = 1.0f;
-    v.up[1] = 1.0f;
+    if (mlod__megaviews_default_axes(forward, up)) {
+        v.forward[2] = 1.0f;
+        v.up[1] = 1.0f;
+    } else {
+        for (k = 0; k < 3; k++) {
+            v.forward[k] = forward ? forward[k] : 0.0f;
+            v.up[k] = up ? up[k] : 0.0f;
+        }
+    }
     v.width = resolution > 0x7fffffffu ? 0u : 2u * resolution;
     v.height = resolution;
     v.flags = flags;
     return v;
+}
+
+MLOD__PUBLIC mlod_view mlod_megaviews_view(const float eye[3], uint32_t resolution, uint32_t flags)
+{
+    return mlod_megaviews_view_oriented(eye, resolution, flags, NULL, NULL);
 }
 
 /* ---------------------------------------------- MegaViews: pair bounds -- */
@@ -9479,11 +9536,25 @@ static int mlod__within_cone(const double *x, double d, double r, double rho, co
     return mlod__angle(x, axis) + spread + turn + 1.0 / 1073741824.0 <= limit + seen;
 }
 
+/* x in the frame of the maps (axes: their u, v, w, 9 doubles, as
+   mlod__mv_job.axes), for the bounds below, which read x.w (x[2]) and the
+   length across it (of x[0], x[1]); x itself in the default frame (not
+   oriented), where those are x's own (the coordinates -x[0], x[1],
+   x[2]). */
+/* GLSL twin: map_coords */
+static const double *mlod__map_coords(const double *x, const double *axes, int oriented, double *out)
+{
+    int k;
+    if (!oriented) return x;
+    for (k = 0; k < 3; k++) out[k] = mlod__dot3(x, axes + 3 * k);
+    return out;
+}
+
 /* Bounds on c, in pixels, over every eye of the ball (c + y, |y| <= rho)
-   for the sphere (x = centre - c, d = |x|, r) in the global dual
-   paraboloid of scale S: from the eye, d moves within [d - rho, d + rho]
-   and x.w within [x.w - rho, x.w + rho], so each half's denominator x.w +
-   sqrt(d^2 - r^2) is at least (x.w - rho) + sqrt((d - rho)^2 - r^2) and at
+   for the sphere (x = centre - c in the maps' frame, mlod__map_coords, d
+   = |x|, r) in the global dual paraboloid of scale S: from the eye, d
+   moves within [d - rho, d + rho] and x.w within [x.w - rho, x.w +
+   rho], so each half's denominator x.w + sqrt(d^2 - r^2) is at least (x.w - rho) + sqrt((d - rho)^2 - r^2) and at
    most (x.w + rho) + sqrt((d + rho)^2 - r^2).  cmax: the largest over the
    halves some eye reaches (x.w + rho + r >= 0); cmin: over the halves every
    eye reaches (x.w - rho + r >= 0), 0 if none.  2^-40 relative to spare,
@@ -9532,10 +9603,11 @@ static void mlod__ball_diameters(double S, const double *x, double d, double r, 
    direction phi off a half's axis maps to radius tan(phi / 2), whose rate
    1 / (1 + cos phi) (radially and across, the map being conformal) grows
    with phi up to the largest angle off the axis of any direction from an
-   eye to the sphere, phi + b, with phi = angle(x, w) and b = asin((r +
-   rho) / d).  Halves no eye sees the sphere in (phi - b > pi / 2) are
-   left out; +inf where the bound does not hold (phi + b >= pi).  Sines
-   and cosines of phi +- b from their sums: no trigonometry. */
+   eye to the sphere, phi + b, with phi = angle(x, w) (x in the maps'
+   frame: mlod__map_coords) and b = asin((r + rho) / d).  Halves no eye
+   sees the sphere in (phi - b > pi / 2) are left out; +inf where the
+   bound does not hold (phi + b >= pi).  Sines and cosines of phi +- b
+   from their sums: no trigonometry. */
 /* GLSL twin: ball_motion */
 static double mlod__ball_motion(double S, const double *x, double d, double r, double rho)
 {
@@ -9583,6 +9655,7 @@ typedef struct mlod__vnode {
        kc = 2 S / epsilon, km = S / delta, all rounded to float */
     int fast, fast_cull;
     float fc[3], frho, faxis[3], fcos_reach, fsin_reach, fkc, fkm;
+    const float (*fframe)[3]; /* the maps' frame in float (mlod__mv_job.faxes), NULL: the default */
     int fslab;        /* the floor's test, floor and spread (floats: exact) */
     float ffloor, fspread;
 } mlod__vnode;
@@ -9631,6 +9704,13 @@ typedef struct mlod__mv_job {
     mlod_atlas *atlas;
     double epsilon, delta, S, group_radius;
     uint32_t resolution, flags;
+    /* the maps' orientation (params.forward, up; 0: the default) and frame: axes u, v, w (the front
+       half's right, up and forward, as mlod_view_frame_of gives them), in float too; oriented 0 where
+       that frame is the default's, (-1, 0, 0), (0, 1, 0), (0, 0, 1) (mlod__mv_orient) */
+    float forward[3], up[3];
+    double axes[3][3];
+    float faxes[3][3];
+    int oriented;
     float disc_scale;
     int tangent;               /* tangent discs (mlod__splat_tangent) */
     mlod_megaviews_maps *keep; /* unfused: every node's own map, leaves too; NULL: fuse into the atlas */
@@ -9671,7 +9751,35 @@ typedef struct mlod__mv_job {
 
 static mlod_view mlod__node_map_view(const mlod__mv_job *job, uint32_t node)
 {
-    return mlod_megaviews_view(job->views->eyes->spheres + 4 * (size_t)node, job->resolution, job->flags);
+    return mlod_megaviews_view_oriented(job->views->eyes->spheres + 4 * (size_t)node, job->resolution, job->flags,
+                                        job->forward, job->up);
+}
+
+/* Set the job's orientation (mlod_megaviews_check took it) and its maps'
+   frame.  Returns 0 for an orientation the maps' view refuses. */
+static int mlod__mv_orient(mlod__mv_job *job, const float *forward, const float *up)
+{
+    static const double standard[3][3] = {{-1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+    mlod_view view = mlod_megaviews_view_oriented(NULL, 1, 0, forward, up);
+    mlod__pview pv;
+    int j, k;
+    for (k = 0; k < 3; k++) {
+        job->forward[k] = forward ? forward[k] : 0.0f;
+        job->up[k] = up ? up[k] : 0.0f;
+    }
+    if (mlod__view_prepare(&view, &pv, NULL) != MLOD_OK) return 0;
+    job->oriented = 0;
+    for (k = 0; k < 3; k++) {
+        job->axes[0][k] = pv.f.subs[0].right[k];
+        job->axes[1][k] = pv.f.subs[0].up[k];
+        job->axes[2][k] = pv.f.subs[0].forward[k];
+    }
+    for (j = 0; j < 3; j++)
+        for (k = 0; k < 3; k++) {
+            job->faxes[j][k] = (float)job->axes[j][k];
+            job->oriented |= job->axes[j][k] != standard[j][k];
+        }
+    return 1;
 }
 
 /* ----------------------------------- MegaViews: classifying node pairs -- */
@@ -9715,6 +9823,7 @@ static void mlod__vnode_fast_set(const mlod__mv_job *job, mlod__vnode *vn)
     vn->frho = (float)vn->radius;
     vn->fkc = (float)kc;
     vn->fkm = (float)km;
+    vn->fframe = job->oriented ? (const float(*)[3])job->faxes : NULL;
     vn->fast_cull = 0;
     if (vn->cone) {
         if (!(vn->axis_length >= lo && vn->axis_length <= hi)) return;
@@ -9949,7 +10058,8 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
     const mlod_tree *scene = job->scene;
     const float *sphere = scene->spheres + 4 * (size_t)s;
     const float *cone = NULL; /* the scene node's normals, when back faces are culled */
-    double x[3], away[3], d, r = sphere[3], cmax, cmin, cos_phi = 0.0;
+    const double *xm;         /* x in the maps' frame */
+    double x[3], away[3], in_map[3], d, r = sphere[3], cmax, cmin, cos_phi = 0.0;
     int k;
     for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn->centre[k], away[k] = -x[k];
     d = mlod__length3(x);
@@ -9976,12 +10086,13 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
         uint8_t st = mlod__classify(&vn->pv, scene, s, job->epsilon);
         return st == MLOD_STATUS_COARSE ? MLOD__PAIR_SPLIT_SCENE : MLOD__PAIR_DRAW;
     }
-    mlod__ball_diameters(job->S, x, d, r, vn->radius, &cmax, &cmin);
+    xm = mlod__map_coords(x, job->axes[0], job->oriented, in_map);
+    mlod__ball_diameters(job->S, xm, d, r, vn->radius, &cmax, &cmin);
     /* within epsilon for every eye, or a scene leaf (no finer node to split into: every view below draws it
        whole, an oversize leaf where above epsilon; MegaViews 3.2.4): shared if it moves by at most delta
        (delta 0: and every view below draws it) */
     if (cmax <= job->epsilon || s >= scene->leaf_count - 1) {
-        if (!(mlod__ball_motion(job->S, x, d, r, vn->radius) <= job->delta)) return MLOD__PAIR_SPLIT_VIEW;
+        if (!(mlod__ball_motion(job->S, xm, d, r, vn->radius) <= job->delta)) return MLOD__PAIR_SPLIT_VIEW;
         if (vn->cone && job->delta == 0.0) { /* delta 0: only what every view below would draw itself */
             k = mlod__surely_within(cos_phi, d, r, vn);
             if (!(k >= 0 ? k : mlod__within_cone(x, d, r, vn->radius, vn->cone, vn->cone[3], vn->least_fov)))
@@ -10040,6 +10151,14 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
      double path's errors and margins; the cone's cosines are lengths over
      d, with U <= 2 d where they are compared, and an angle is at least as
      far from its threshold as its cosine.
+   - Maps of another orientation (mlod_megaviews_params.forward, up) take
+     x.w and P = d sin phi, the length across w, from dot products with
+     their axes rounded to float (u relative off the double path's): x.w
+     errs by at most 6 u d, P by 10 u d, x's own rounding included (the
+     default frame's x2 and sqrt(x0^2 + x1^2): u d and 3 u d), which the
+     budgets above absorb (each enters a length, or an area as a factor
+     of one <= U, once: a length errs by 115 u U at most, an area by 131
+     u U^2).
    - The floor's test (mlod__below_floor: x.a + r - floor + U spread, a
      the float unit axis, floor and spread floats, |floor| <= 2^30) errs
      by at most 20 u (U + |floor|), and is decided 2^-14 (U + |floor|)
@@ -10065,6 +10184,13 @@ MLOD__FORCE_INLINE mlod__vf mlod__vmin(mlod__vf a, mlod__vf b) { return mlod__vs
 MLOD__FORCE_INLINE mlod__vf mlod__vclear(mlod__vf v, mlod__vf m, mlod__vf neg_m)
 {
     return MLOD__VOR(MLOD__VGT(v, m), MLOD__VLT(v, neg_m));
+}
+
+/* (x0, x1, x2).a, lane by lane */
+MLOD__FORCE_INLINE mlod__vf mlod__vdot(mlod__vf x0, mlod__vf x1, mlod__vf x2, const float *a)
+{
+    return MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(a[0])), MLOD__VMUL(x1, MLOD__VSET(a[1]))),
+                      MLOD__VMUL(x2, MLOD__VSET(a[2])));
 }
 
 /* The lanes' codes (see above) for scene spheres (rows x, y, z, r) of
@@ -10132,6 +10258,8 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
                                                              MLOD__VSET(4.0f), MLOD__VSET(2.0f)));
         if (vn->leaf) code = mlod__vselect(MLOD__VEQ(st, MLOD__VSET((float)MLOD_STATUS_CULLED)), MLOD__VSET(1.0f), code);
     } else {
+        /* x.w: x2 in the default frame, else along the maps' float axis (mlod__map_coords) */
+        mlod__vf xw = vn->fframe ? mlod__vdot(x0, x1, x2, vn->fframe[2]) : x2;
         /* cmax: the nearest eye, closest = d - rho; t_closest = sqrt((closest - r)(closest + r)); over the
            halves some eye reaches (x.w + rho + r >= 0), the least x.w - rho + t_closest (0 when not positive) */
         kr = MLOD__VMUL(MLOD__VSET(vn->fkc), r);
@@ -10141,10 +10269,10 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
         near_ok = MLOD__VAND(MLOD__VGT(cr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yc), UU));
         near_none = MLOD__VLT(cr, nM); /* every eye within the sphere's reach: cmax infinite */
         tc = MLOD__VSQRT(MLOD__VAND(Yc, MLOD__VGT(Yc, zero)));
-        rp = MLOD__VADD(x2, g);
-        rm = MLOD__VSUB(g, x2);
-        ln = mlod__vselect(MLOD__VGT(rp, M), MLOD__VADD(MLOD__VSUB(x2, rho), tc), big);
-        ln = mlod__vmin(ln, mlod__vselect(MLOD__VGT(rm, M), MLOD__VSUB(MLOD__VSUB(tc, x2), rho), big));
+        rp = MLOD__VADD(xw, g);
+        rm = MLOD__VSUB(g, xw);
+        ln = mlod__vselect(MLOD__VGT(rp, M), MLOD__VADD(MLOD__VSUB(xw, rho), tc), big);
+        ln = mlod__vmin(ln, mlod__vselect(MLOD__VGT(rm, M), MLOD__VSUB(MLOD__VSUB(tc, xw), rho), big));
         /* each half's reach decided, and the least denominator unless cmax is surely infinite */
         go = MLOD__VAND(mlod__vclear(rp, M, nM), mlod__vclear(rm, M, nM));
         small = MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VAND(MLOD__VGT(ln, M), MLOD__VLE(kr, MLOD__VSUB(ln, M))));
@@ -10163,10 +10291,10 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
             far_ok = MLOD__VAND(MLOD__VGT(fr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yf), UU));
             far_none = MLOD__VLT(fr, nM);
             tf = MLOD__VSQRT(MLOD__VAND(Yf, MLOD__VGT(Yf, zero)));
-            ep = MLOD__VADD(MLOD__VSUB(x2, rho), r);
-            em = MLOD__VSUB(MLOD__VSUB(r, rho), x2);
-            lf = mlod__vselect(MLOD__VGT(ep, M), MLOD__VADD(MLOD__VADD(x2, rho), tf), big);
-            lf = mlod__vmin(lf, mlod__vselect(MLOD__VGT(em, M), MLOD__VSUB(MLOD__VADD(rho, tf), x2), big));
+            ep = MLOD__VADD(MLOD__VSUB(xw, rho), r);
+            em = MLOD__VSUB(MLOD__VSUB(r, rho), xw);
+            lf = mlod__vselect(MLOD__VGT(ep, M), MLOD__VADD(MLOD__VADD(xw, rho), tf), big);
+            lf = mlod__vmin(lf, mlod__vselect(MLOD__VGT(em, M), MLOD__VSUB(MLOD__VADD(rho, tf), xw), big));
             some = MLOD__VOR(MLOD__VGT(ep, M), MLOD__VGT(em, M));
             none = MLOD__VAND(MLOD__VLT(ep, nM), MLOD__VLT(em, nM));
             go = MLOD__VAND(mlod__vclear(ep, M, nM), mlod__vclear(em, M, nM));
@@ -10180,20 +10308,25 @@ MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *s
         } else if (MLOD__VBITS(MLOD__VAND(MLOD__VOR(leaf, small), live))) {
             /* motion (mlod__ball_motion): S turn / least (1 + cos(phi + b)) <= delta, turn = rho / t_m, t_m =
                sqrt((d - r - rho)(d - r + rho)), compared as S rho d^2 / delta <= (least d^2 (1 + cos)) t_m; with
-               P = d sin phi, per half (x.w = +-x2): d^2 cos(phi - b) = x.w C + P g (the half counts unless below
-               0), d^2 cos(phi + b) = x.w C - P g, d^2 sin(phi + b) = P C + x.w g */
+               P = d sin phi (the length across w), per half (+-x.w): d^2 cos(phi - b) = x.w C + P g (the half
+               counts unless below 0), d^2 cos(phi + b) = x.w C - P g, d^2 sin(phi + b) = P C + x.w g */
             cm = MLOD__VSUB(d, r);
             cmr = MLOD__VSUB(cm, rho);
             Ym = MLOD__VMUL(cmr, MLOD__VADD(cm, rho));
             m_ok = MLOD__VAND(okY, MLOD__VAND(MLOD__VGT(cmr, M), MLOD__VGE(MLOD__VMUL(sixty4, Ym), UU)));
             m_inf = MLOD__VOR(MLOD__VLT(cmr, nM), MLOD__VLT(dg, nM));
             tm = MLOD__VSQRT(MLOD__VAND(Ym, MLOD__VGT(Ym, zero)));
-            P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)));
+            if (vn->fframe) { /* across the maps' float axes */
+                mlod__vf xa = mlod__vdot(x0, x1, x2, vn->fframe[0]), xb = mlod__vdot(x0, x1, x2, vn->fframe[1]);
+                P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(xa, xa), MLOD__VMUL(xb, xb)));
+            } else {
+                P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)));
+            }
             least = big;
             for (h = 0; h < 2; h++) {
-                mlod__vf xw = h ? MLOD__VSUB(zero, x2) : x2, xc = MLOD__VMUL(xw, C), pg = MLOD__VMUL(P, g);
+                mlod__vf xh = h ? MLOD__VSUB(zero, xw) : xw, xc = MLOD__VMUL(xh, C), pg = MLOD__VMUL(P, g);
                 mlod__vf e = MLOD__VADD(xc, pg), cs = MLOD__VSUB(xc, pg),
-                         sn = MLOD__VADD(MLOD__VMUL(P, C), MLOD__VMUL(xw, g));
+                         sn = MLOD__VADD(MLOD__VMUL(P, C), MLOD__VMUL(xh, g));
                 mlod__vf one = MLOD__VADD(d2, cs), counts = MLOD__VGT(e, M2), mM2 = MLOD__VSUB(zero, M2);
                 mlod__vf bounded = MLOD__VAND(MLOD__VGT(one, M2), MLOD__VOR(MLOD__VGT(cs, M2), MLOD__VGT(sn, M2)));
                 mlod__vf endless = MLOD__VOR(MLOD__VLT(one, mM2), MLOD__VAND(MLOD__VLT(cs, mM2), MLOD__VLT(sn, mM2)));
@@ -10918,6 +11051,18 @@ MLOD__PUBLIC mlod_result mlod_megaviews_check(const mlod_megaviews_params *param
     if (params->flags & ~(uint32_t)MLOD_VIEW_CULL_BACKFACES)
         return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "unknown flags 0x%x (only MLOD_VIEW_CULL_BACKFACES, 0x%x)",
                           params->flags, (unsigned)MLOD_VIEW_CULL_BACKFACES);
+    if (!mlod__megaviews_default_axes(params->forward, params->up)) { /* the maps' frame, as mlod_view_check takes it */
+        const float *f = params->forward, *u = params->up;
+        mlod_view view = mlod_megaviews_view_oriented(NULL, 1, 0, f, u);
+        mlod__pview pv;
+        mlod_error why;
+        if (!mlod__finite3(f) || !mlod__finite3(u))
+            return mlod__fail(error, MLOD_ERROR_NON_FINITE, "forward (%g, %g, %g) and up (%g, %g, %g) must be finite",
+                              f[0], f[1], f[2], u[0], u[1], u[2]);
+        if (mlod__view_prepare(&view, &pv, &why) != MLOD_OK)
+            return mlod__fail(error, why.code, "forward (%g, %g, %g), up (%g, %g, %g): %s (both 0: the default)", f[0],
+                              f[1], f[2], u[0], u[1], u[2], why.message);
+    }
     return mlod__succeed(error);
 }
 
@@ -11181,6 +11326,7 @@ struct mlod_megaviews_maps {
     uint32_t resolution, levels;
     uint32_t view_count, scene_nodes; /* of the render's view tree and scene (mlod_megaviews_query refuses others) */
     int tangent;          /* drawn as tangent discs (mlod__splat_tangent) */
+    float forward[3], up[3]; /* the maps' orientation (params.forward, up; 0: the default) */
     uint32_t *map_of;     /* per view node: its map among its level's, or MLOD__NO_MAP */
     uint32_t *leaf_of;    /* per view: its leaf node */
     float **depth;        /* per level: the maps' depths from their node's centre, 2 R^2 per map */
@@ -11304,6 +11450,8 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     job.resolution = params->resolution;
     job.flags = params->flags;
     job.S = 0.5 * params->resolution;
+    if (!mlod__mv_orient(&job, params->forward, params->up)) /* (mlod_megaviews_check took it) */
+        return mlod__fail(error, MLOD_ERROR_BAD_VIEW, "the maps' forward and up make no frame");
     /* every array of maps holds at most one map per view node, 8 bytes a pixel: those sizes must fit size_t */
     if (2.0 * params->resolution * params->resolution * 8.0 * eyes->node_count >= (double)(size_t)-1)
         return mlod__fail(error, MLOD_ERROR_OVERFLOW, "resolution %u: the maps of %u view nodes (%.3g bytes) do not fit size_t",
@@ -11313,7 +11461,11 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     st.levels = levels;
     if (keep && !(job.keep = mlod__maps_create(&m.a, views, scene, levels, params->resolution)))
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "no memory for the maps");
-    if (job.keep) m.live = m.peak = job.keep->bytes;
+    if (job.keep) {
+        m.live = m.peak = job.keep->bytes;
+        memcpy(job.keep->forward, job.forward, sizeof job.forward);
+        memcpy(job.keep->up, job.up, sizeof job.up);
+    }
     job.levels = levels;
     job.walk_level = keep || levels <= walk_level ? levels : walk_level;
     job.walk_room = walk_room;
@@ -11590,7 +11742,8 @@ MLOD__PUBLIC int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlo
         size_t at;
         for (k = 0; k < 3; k++) centre[k] = eyes->spheres[4 * (size_t)n + k];
         if (have && maps->tangent && scene->cones) { /* measured again from this node's centre, as the fusion does */
-            mlod_view mv = mlod_megaviews_view(eyes->spheres + 4 * (size_t)n, maps->resolution, 0);
+            mlod_view mv = mlod_megaviews_view_oriented(eyes->spheres + 4 * (size_t)n, maps->resolution, 0,
+                                                        maps->forward, maps->up);
             mlod__pview pv;
             if (mlod__view_prepare(&mv, &pv, NULL) != MLOD_OK) return 0;
             at_depth = mlod__remeasure(&pv, scene, at_node, x, y, 1);

@@ -853,6 +853,26 @@ bool within_cone(real d, real r, real rho, real spread, real limit, real angle, 
     return r_le(r_add(r_add(r_add(angle, spread), turn), MV_2M30), r_add(limit, seen_r));
 }
 
+// C twin: mlod__map_coords
+// (the maps' frame: the right, up and forward of frame 0's first
+// sub-projection, MLOD_IF_S_RIGHT, _UP, _FORWARD 3 apart; x itself where
+// they are the default's, (-1, 0, 0), (0, 1, 0), (0, 0, 1): the C job's
+// `oriented` 0.  One loop, not unrolled: one copy of dot3, which matters
+// where doubles are emulated; its products are not read by default.)
+real3 map_coords(real3 x)
+{
+    uint sub = sub_base(0u, 0u);
+    real m[3];
+    bool standard = true;
+    [[dont_unroll]] for (uint k = 0u; k < 3u; k++) {
+        real3 a = sd3(sub, MLOD_IF_S_RIGHT + 3u * k);
+        standard = standard && r_eq(a.x, k == 0u ? r_neg(R_ONE) : R_ZERO) && r_eq(a.y, k == 1u ? R_ONE : R_ZERO) &&
+                   r_eq(a.z, k == 2u ? R_ONE : R_ZERO);
+        m[k] = dot3(x, a);
+    }
+    return standard ? x : real3(m[0], m[1], m[2]);
+}
+
 // C twin: mlod__ball_diameters
 void ball_diameters(real S, real3 x, real d, real r, real rho, out real cmax, out real cmin)
 {
@@ -983,9 +1003,10 @@ uint pair_action(uint v, uint s)
         return st == MLOD_IF_STATUS_COARSE ? MV_PAIR_SPLIT_SCENE : MV_PAIR_DRAW;
     }
     real S = r_load(ctl.scale), cmax, cmin;
-    ball_diameters(S, x, d, r, radius, cmax, cmin);
+    real3 xm = map_coords(x);
+    ball_diameters(S, xm, d, r, radius, cmax, cmin);
     if (r_le(cmax, epsilon) || s >= ctl.scene_leaves - 1u) {
-        if (!r_le(ball_motion(S, x, d, r, radius), delta)) return MV_PAIR_SPLIT_VIEW;
+        if (!r_le(ball_motion(S, xm, d, r, radius), delta)) return MV_PAIR_SPLIT_VIEW;
         if (has_cone && r_eq(delta, R_ZERO) &&
             !within_cone(d, r, radius, r_f(vcone.w), least_fov, at[0], at[3], at[4]))
             return MV_PAIR_SPLIT_VIEW;

@@ -28,11 +28,18 @@
    - the same atlas and statistics walking each view subtree depth first
      from any level of the view tree, however little room its lists get
      first, as level by level;
-   - the unfused maps queried down the view tree equal the fused atlas;
+   - the unfused maps queried down the view tree equal the fused atlas,
+     in maps of another orientation too;
+   - the maps' orientation (params.forward, up): with delta 0 the render
+     equals the per-view cut and splat of each view's oriented map, bit
+     for bit; frames equal to the default's give the default's atlas; in
+     an oblique frame the pair filter, the walks and the bounds hold as in
+     the default's;
    - statistics: with delta = 0 and distinct eyes nothing is shared and
      the leaf draws are the per-view cuts' drawn nodes;
-   - errors: NULLs, bad epsilon, delta, resolution, mismatched atlases and
-     channels, bad view sets, failing allocators (the atlas then empty). */
+   - errors: NULLs, bad epsilon, delta, resolution, orientation,
+     mismatched atlases and channels, bad view sets, failing allocators
+     (the atlas then empty). */
 #define MANYLODS_IMPLEMENTATION
 #define MANYLODS_PTHREADS
 #include "../manylods.h"
@@ -152,17 +159,18 @@ static float fused_depth_at(const views *v, uint32_t i, uint32_t resolution, con
     return fused_depth(&pv, scene, node, col, row, x);
 }
 
-/* An atlas of the views' MegaViews maps, cells in `order` (NULL: view
-   order). */
-static mlod_atlas *make_atlas_ordered(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
-                                      uint32_t flags, const uint32_t *order)
+/* An atlas of the views' MegaViews maps in the orientation (forward, up)
+   (NULL: the default), cells in `order` (NULL: view order). */
+static mlod_atlas *make_atlas_axes(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
+                                   uint32_t flags, const uint32_t *order, const float *forward, const float *up)
 {
     mlod_view *vs = (mlod_view *)malloc(sizeof(mlod_view) * v->count);
     mlod_atlas_desc desc;
     mlod_atlas *a = NULL;
     mlod_error e;
     uint32_t i;
-    for (i = 0; i < v->count; i++) vs[i] = mlod_megaviews_view(v->eyes + 3 * i, resolution, flags);
+    for (i = 0; i < v->count; i++)
+        vs[i] = mlod_megaviews_view_oriented(v->eyes + 3 * i, resolution, flags, forward, up);
     memset(&desc, 0, sizeof desc);
     desc.channels = channels;
     desc.order = order;
@@ -172,6 +180,12 @@ static mlod_atlas *make_atlas_ordered(const views *v, uint32_t resolution, uint3
     else
         free(vs);
     return a;
+}
+
+static mlod_atlas *make_atlas_ordered(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
+                                      uint32_t flags, const uint32_t *order)
+{
+    return make_atlas_axes(v, resolution, channels, out_views, flags, order, NULL, NULL);
 }
 
 static mlod_atlas *make_atlas(const views *v, uint32_t resolution, uint32_t channels, mlod_view **out_views,
@@ -555,17 +569,28 @@ static void test_culling(const mlod_tree *scene)
 static void test_bounds(void)
 {
     uint64_t rng = 3;
-    uint32_t trial, tested = 0, moved = 0, bad_max = 0, bad_min = 0, bad_motion = 0;
+    uint32_t trial, tested = 0, moved = 0, bad_max = 0, bad_min = 0, bad_motion = 0, oriented = 0;
     double worst = 0.0;
     for (trial = 0; trial < 4000; trial++) {
-        double c[3], x[3], d, rho = 0.5 * scene_rng_double(&rng), r = 0.3 * scene_rng_double(&rng), cmax, cmin, motion;
-        double S = 8.0, dir[3];
-        float sphere[4], cf[3];
+        double c[3], x[3], xm[3], d, rho = 0.5 * scene_rng_double(&rng), r = 0.3 * scene_rng_double(&rng), cmax, cmin;
+        double S = 8.0, dir[3], motion, fd[3], ud[3];
+        float sphere[4], cf[3], forward[3] = {0, 0, 0}, up[3] = {0, 0, 0};
+        const double *in_map;
+        mlod__mv_job job;
         mlod_view mv;
         mlod__pview pc;
         mlod__disc dc[2];
         int k, bc[2], sample;
         tu_random_unit(&rng, dir);
+        /* odd trials: maps of a random orientation, the bounds reading x in their frame */
+        tu_random_unit(&rng, fd);
+        tu_random_unit(&rng, ud);
+        for (k = 0; trial % 2 && k < 3; k++) {
+            forward[k] = (float)(fd[k] * 2.5);
+            up[k] = (float)ud[k];
+        }
+        memset(&job, 0, sizeof job);
+        if (!mlod__mv_orient(&job, forward, up)) continue; /* (nearly) parallel: not a frame */
         d = 0.05 + 3.0 * scene_rng_double(&rng);
         for (k = 0; k < 3; k++) {
             c[k] = scene_rng_range(&rng, -1, 1);
@@ -575,9 +600,11 @@ static void test_bounds(void)
         sphere[3] = (float)r;
         for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - (double)cf[k];
         d = mlod__length3(x);
-        mlod__ball_diameters(S, x, d, r, rho, &cmax, &cmin);
-        motion = mlod__ball_motion(S, x, d, r, rho);
-        mv = mlod_megaviews_view(cf, 16, 0);
+        in_map = mlod__map_coords(x, job.axes[0], job.oriented, xm);
+        mlod__ball_diameters(S, in_map, d, r, rho, &cmax, &cmin);
+        motion = mlod__ball_motion(S, in_map, d, r, rho);
+        oriented += job.oriented;
+        mv = mlod_megaviews_view_oriented(cf, 16, 0, forward, up);
         mlod__view_prepare(&mv, &pc, NULL);
         for (k = 0; k < 2; k++) {
             double centre[3] = {sphere[0], sphere[1], sphere[2]};
@@ -595,7 +622,7 @@ static void test_bounds(void)
                 double off[3] = {(double)e[0] - cf[0], (double)e[1] - cf[1], (double)e[2] - cf[2]};
                 if (mlod__length3(off) > rho) continue; /* rounding left the ball */
             }
-            mv = mlod_megaviews_view(e, 16, 0);
+            mv = mlod_megaviews_view_oriented(e, 16, 0, forward, up);
             mlod__view_prepare(&mv, &pe, NULL);
             ce = mlod__evaluate(&pe, sphere, NULL, &culled);
             tested++;
@@ -620,7 +647,8 @@ static void test_bounds(void)
             }
         }
     }
-    CHECK(tested > 30000 && moved > 10000, "bounds: %u eyes sampled, %u motions", tested, moved);
+    CHECK(tested > 30000 && moved > 10000 && oriented > 1900, "bounds: %u eyes sampled, %u motions, %u of 4000 "
+          "spheres in maps of a random orientation", tested, moved, oriented);
     CHECK(bad_max == 0, "bounds: %u eyes see a diameter above cmax", bad_max);
     CHECK(bad_min == 0, "bounds: %u eyes see a diameter below cmin", bad_min);
     CHECK(bad_motion == 0, "bounds: %u images moved beyond the motion bound", bad_motion);
@@ -932,9 +960,10 @@ static void query_other_trees(const mlod_megaviews_maps *maps, const mlod_tree *
 static void test_query(const mlod_tree *scene)
 {
     static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    static const float forward[3] = {0.2f, -3.0f, 0.5f}, up[3] = {0.0f, 0.1f, 1.0f};
     views v = make_views(61, 500, lo, hi, 1);
     uint32_t c, i, row, col;
-    for (c = 0; c < 3; c++) {
+    for (c = 0; c < 4; c++) { /* 3: maps of another orientation, which the maps keep for the query */
         mlod_view_set s = view_set(&v, c > 0, c > 0);
         mlod_view_tree *t = build_views(&s, NULL);
         mlod_view *vs = NULL;
@@ -951,6 +980,10 @@ static void test_query(const mlod_tree *scene)
         p.resolution = 8;
         p.flags = flags;
         p.group_radius = c == 1 ? 0.2f : 0.0f;
+        if (c == 3) {
+            memcpy(p.forward, forward, sizeof forward);
+            memcpy(p.up, up, sizeof up);
+        }
         if (!t || !a || mlod_megaviews_render(a, scene, t, &p, &st_a, &e) != MLOD_OK ||
             mlod_megaviews_render_maps(scene, t, &p, &maps, &st_m, &e) != MLOD_OK) {
             CHECK(0, "query case %u: renders", c);
@@ -991,6 +1024,191 @@ static void test_query(const mlod_tree *scene)
         free(vs);
     }
     free_views(&v);
+}
+
+/* ======================================================== orientation */
+
+static int same_view(const mlod_view *a, const mlod_view *b)
+{
+    return a->kind == b->kind && !memcmp(a->position, b->position, 12) && !memcmp(a->forward, b->forward, 12) &&
+           !memcmp(a->up, b->up, 12) && a->width == b->width && a->height == b->height && a->flags == b->flags;
+}
+
+/* The maps' orientation (params.forward, up).  mlod_megaviews_view_oriented
+   gives mlod_megaviews_view's map for none (NULL or 0) and copies any
+   other; a light's straight down lands in the middle of the front half
+   with forward -y, on the rim of both halves by default.  With delta 0
+   and no groups the render equals, bit for bit, each view's basic cut and
+   mlod_splat of its oriented map (down: forward -y, up +z; an oblique
+   frame of random axes, not unit), with and without directions and
+   fields of view, back-face culling, duplicate eyes, both scenes, and
+   differs from the default's.  Frames equal to the default's, (0, 0, 1)
+   and (0, 1, 0) at any length, render the default's atlas and
+   statistics bit for bit, with sharing and groups.  In an oblique frame,
+   with sharing and groups, the float pair filter and the exact path, and
+   the subtree walks from any level, give the same atlas and
+   statistics. */
+static void test_orientation(const mlod_tree *scene, const mlod_tree *bare)
+{
+    static const float lo[3] = {-1.9f, 0.1f, -1.9f}, hi[3] = {1.9f, 2.9f, 1.9f};
+    static const float down[3] = {0, -1, 0}, north[3] = {0, 0, 1}, zero[3] = {0, 0, 0};
+    float oblique[2][3];
+    const float *frames[2][2];
+    uint64_t rng = 4242;
+    double fd[3], ud[3];
+    uint32_t c, i;
+    int k;
+    tu_random_unit(&rng, fd);
+    tu_random_unit(&rng, ud);
+    for (k = 0; k < 3; k++) {
+        oblique[0][k] = (float)(1.7 * fd[k]);
+        oblique[1][k] = (float)(0.6 * ud[k]);
+    }
+    frames[0][0] = down;
+    frames[0][1] = north;
+    frames[1][0] = oblique[0];
+    frames[1][1] = oblique[1];
+    { /* the view */
+        const float eye[3] = {0.5f, 2.5f, -0.25f}, below[3] = {0.5f, 0.5f, -0.25f}, up[3] = {0, 1, 0};
+        mlod_view a = mlod_megaviews_view(eye, 8, MLOD_VIEW_CULL_BACKFACES);
+        mlod_view b = mlod_megaviews_view_oriented(eye, 8, MLOD_VIEW_CULL_BACKFACES, NULL, NULL);
+        mlod_view z = mlod_megaviews_view_oriented(eye, 8, MLOD_VIEW_CULL_BACKFACES, zero, zero);
+        mlod_view d = mlod_megaviews_view_oriented(eye, 8, 0, down, north);
+        mlod_view bad = mlod_megaviews_view_oriented(eye, 8, 0, zero, up);
+        mlod_error e;
+        float pa[2] = {0, 0}, pd[2] = {0, 0}, depth_a = 0.0f, depth_d = 0.0f;
+        CHECK(same_view(&a, &b) && same_view(&a, &z) && a.forward[2] == 1.0f && a.up[1] == 1.0f,
+              "orientation: none (NULL or 0) gives mlod_megaviews_view's map, forward +z, up +y");
+        CHECK(!memcmp(d.forward, down, 12) && !memcmp(d.up, north, 12) && d.width == 16 && d.height == 8 &&
+              d.kind == MLOD_VIEW_DUAL_PARABOLOID && mlod_view_check(&d, &e) == MLOD_OK,
+              "orientation: forward and up copied into the map's view");
+        CHECK(mlod_view_check(&bad, &e) == MLOD_ERROR_BAD_VIEW,
+              "orientation: a zero forward with a nonzero up is copied, and mlod_view_check refuses it");
+        /* straight down from a ceiling light: the middle of the front half with forward -y; the seam by default */
+        CHECK(mlod_view_project(&d, below, pd, &depth_d) && fabsf(pd[0] - 4.0f) < 1e-4f && fabsf(pd[1] - 4.0f) < 1e-4f,
+              "orientation: straight down lands in the middle of the front half with forward -y (%g, %g)", pd[0],
+              pd[1]);
+        CHECK(mlod_view_project(&a, below, pa, &depth_a) &&
+                  fabs(hypot(pa[0] - 4.0, pa[1] - 4.0) - 4.0) < 1e-3 && depth_a == depth_d && depth_d == 2.0f,
+              "orientation: by default straight down lands on the front half's rim, the seam (%g, %g)", pa[0], pa[1]);
+    }
+    { /* delta 0: the per-view cut and splat of the oriented maps, bit for bit */
+        struct {
+            int frame, scene, directions, per_view, backfaces, dup;
+            uint32_t views, resolution;
+            float epsilon;
+        } cases[] = {{0, 0, 0, 0, 0, 0, 200, 8, 1.0f}, {1, 0, 1, 1, 0, 0, 200, 7, 1.5f}, {1, 0, 0, 0, 1, 1, 150, 8, 1.0f},
+                     {0, 0, 1, 0, 1, 0, 150, 5, 2.5f}, {1, 1, 0, 0, 0, 0, 150, 8, 1.0f}, {0, 1, 1, 1, 0, 1, 120, 6, 1.0f}};
+        for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+            const mlod_tree *sc = cases[c].scene ? bare : scene;
+            const float *forward = frames[cases[c].frame][0], *up = frames[cases[c].frame][1];
+            views v = make_views(700 + c, cases[c].views, lo, hi, cases[c].dup);
+            mlod_view_set s = view_set(&v, cases[c].directions, cases[c].per_view);
+            mlod_view_tree *t = build_views(&s, NULL);
+            uint32_t flags = cases[c].backfaces ? MLOD_VIEW_CULL_BACKFACES : 0u;
+            uint32_t channels = (sc->cones ? MLOD_ATLAS_NORMAL : 0u) | (sc->colors ? MLOD_ATLAS_COLOR : 0u);
+            mlod_view *vs = NULL;
+            mlod_atlas *a = make_atlas(&v, cases[c].resolution, channels, NULL, flags);
+            mlod_atlas *ref = make_atlas_axes(&v, cases[c].resolution, channels, &vs, flags, NULL, forward, up);
+            mlod_atlas *plain = make_atlas(&v, cases[c].resolution, channels, NULL, flags);
+            mlod_megaviews_params p;
+            mlod_megaviews_stats st;
+            mlod_error e;
+            uint64_t drawn = 0;
+            size_t first = 0, n, differ = 0;
+            memset(&p, 0, sizeof p);
+            p.epsilon = cases[c].epsilon;
+            p.resolution = cases[c].resolution;
+            p.flags = flags;
+            memcpy(p.forward, forward, 12);
+            memcpy(p.up, up, 12);
+            if (!cases[c].per_view && cases[c].directions)
+                for (i = 0; i < v.count; i++) v.fovs[i] = (float)(0.5 * TU_PI); /* the reference's fov */
+            if (t && a && ref && plain && mlod_megaviews_render(a, sc, t, &p, &st, &e) == MLOD_OK) {
+                reference_render(ref, sc, vs, &v, cases[c].directions, p.epsilon, &drawn);
+                CHECK(same_atlas(a, ref, &first), "orientation case %u: delta 0 differs from the per-view cut and "
+                      "splat of the oriented maps at pixel %zu (%g against %g)", c, first, a->depth[first],
+                      ref->depth[first]);
+                CHECK(cases[c].dup ? st.shared_draws > 0 : st.leaf_draws == drawn,
+                      "orientation case %u: %llu leaf draws, %llu shared; the per-view cuts draw %llu", c,
+                      (unsigned long long)st.leaf_draws, (unsigned long long)st.shared_draws,
+                      (unsigned long long)drawn);
+                memset(p.forward, 0, 12);
+                memset(p.up, 0, 12);
+                CHECK(mlod_megaviews_render(plain, sc, t, &p, NULL, &e) == MLOD_OK, "orientation case %u: %s", c,
+                      e.message);
+                for (n = 0; n < (size_t)a->width * a->height; n++) differ += memcmp(&a->depth[n], &plain->depth[n], 4) != 0;
+                CHECK(differ > n / 4, "orientation case %u: the oriented maps differ from the default's (%zu of %zu "
+                      "pixels)", c, differ, n);
+            } else {
+                CHECK(0, "orientation case %u: set up and render", c);
+            }
+            mlod_atlas_destroy(a);
+            mlod_atlas_destroy(ref);
+            mlod_atlas_destroy(plain);
+            mlod_view_tree_destroy(t);
+            free(vs);
+            free_views(&v);
+        }
+    }
+    { /* sharing and groups: the default's frame at any length is the default; an oblique frame takes the filter and
+         the walks as the default does */
+        static const float z3[3] = {0, 0, 3}, y2[3] = {0, 2.5f, 0}, z1[3] = {0, 0, 1}, y1[3] = {0, 1, 0};
+        views v = make_views(720, 1200, lo, hi, 1);
+        mlod_view_set s = view_set(&v, 1, 1);
+        mlod_view_tree *t = build_views(&s, NULL);
+        uint32_t channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR, g;
+        for (g = 0; g < 2; g++) {
+            mlod_atlas *a = make_atlas(&v, 8, channels, NULL, 0), *b = make_atlas(&v, 8, channels, NULL, 0);
+            mlod_megaviews_params p;
+            mlod_megaviews_stats sa, sb;
+            mlod_error e;
+            size_t first = 0;
+            int same = 1;
+            memset(&p, 0, sizeof p);
+            p.epsilon = 1.0f;
+            p.delta = MLOD_MEGAVIEWS_DELTA;
+            p.resolution = 8;
+            p.group_radius = g ? 0.25f : 0.0f;
+            if (!t || !a || !b || mlod_megaviews_render(a, scene, t, &p, &sa, &e) != MLOD_OK) {
+                CHECK(0, "orientation: sharing, set up");
+            } else {
+                for (i = 0; i < 2; i++) {
+                    mlod_megaviews_params q = p;
+                    memcpy(q.forward, i ? z3 : z1, 12);
+                    memcpy(q.up, i ? y2 : y1, 12);
+                    same &= mlod_megaviews_render(b, scene, t, &q, &sb, &e) == MLOD_OK && same_atlas(a, b, &first) &&
+                            sa.pairs == sb.pairs && sa.shared_draws == sb.shared_draws &&
+                            sa.leaf_draws == sb.leaf_draws && sa.culled == sb.culled;
+                }
+                CHECK(same && sa.shared_draws > 1000, "orientation, group %g: forward (0, 0, 1) and up (0, 1, 0), at "
+                      "any length, render the default's atlas and statistics (%llu shared draws)",
+                      (double)p.group_radius, (unsigned long long)sa.shared_draws);
+                memcpy(p.forward, oblique[0], 12);
+                memcpy(p.up, oblique[1], 12);
+                same = mlod__megaviews_run(a, NULL, scene, t, &p, MLOD__MV_WALK_LEVEL, 64, 0, 0, &sa, &e) == MLOD_OK &&
+                       mlod__megaviews_run(b, NULL, scene, t, &p, MLOD__MV_WALK_LEVEL, 64, 0, 1, &sb, &e) == MLOD_OK &&
+                       same_atlas(a, b, &first) && sa.pairs == sb.pairs && sa.shared_draws == sb.shared_draws &&
+                       sa.leaf_draws == sb.leaf_draws && sa.culled == sb.culled && sa.node_pairs == sb.node_pairs;
+                CHECK(same && sa.shared_draws > 1000, "orientation, group %g: an oblique frame's float pair filter "
+                      "gives the exact path's atlas and statistics (pixel %zu, pairs %llu / %llu, %llu shared)",
+                      (double)p.group_radius, first, (unsigned long long)sa.pairs, (unsigned long long)sb.pairs,
+                      (unsigned long long)sa.shared_draws);
+                for (i = 0; i < 4; i++) { /* the walks from levels 0, 2, 5 and past the last: level by level */
+                    static const uint32_t levels[4] = {0, 2, 5, 64};
+                    same = mlod__megaviews_run(b, NULL, scene, t, &p, levels[i], i == 0 ? 1 : 4096, 0, 0, &sb, &e) ==
+                               MLOD_OK && same_atlas(a, b, &first) && sa.pairs == sb.pairs &&
+                           sa.shared_draws == sb.shared_draws && sa.leaf_draws == sb.leaf_draws;
+                    CHECK(same, "orientation, group %g: walks from level %u give the same atlas in an oblique frame "
+                          "(pixel %zu)", (double)p.group_radius, levels[i], first);
+                }
+            }
+            mlod_atlas_destroy(a);
+            mlod_atlas_destroy(b);
+        }
+        mlod_view_tree_destroy(t);
+        free_views(&v);
+    }
 }
 
 /* ============================================================== walks */
@@ -1420,14 +1638,16 @@ static void test_pair_filter(const mlod_tree *scene)
         mlod__mv_job job = pair_job(scene, t, 11, 0);
         uint64_t rng = 77;
         uint32_t trial, wrong = 0, lanes = 0, decided = 0, far = 0, far_decided = 0, kinds[6] = {0, 0, 0, 0, 0, 0};
-        uint32_t leaves = 0, leaves_decided = 0;
+        uint32_t leaves = 0, leaves_decided = 0, oriented = 0;
+        static const float axes[2][2][3] = {{{0, -1, 0}, {0, 0, 1}}, {{0.3f, -2.0f, 0.7f}, {1.0f, 0.2f, 0.1f}}};
         if (!t) return;
         for (trial = 0; trial < 30000 && wrong < 3; trial++) {
             uint32_t inner = t->eyes->leaf_count - 1, level = (uint32_t)(scene_rng_double(&rng) * 14.0);
             uint32_t vi = (uint32_t)(scene_rng_double(&rng) * inner), si, lane[MLOD__VLANES], l, which = trial % 4;
             if (trial % 7 == 3) vi = inner + (uint32_t)(scene_rng_double(&rng) * t->eyes->leaf_count); /* a leaf */
             uint32_t first_s = (1u << (level < 13 ? level : 13)) - 1;
-            double x[3], d, r, rho, cmax, cmin, motion, T = 0.0, off;
+            double x[3], xm[3], d, r, rho, cmax, cmin, motion, T = 0.0, off;
+            const double *in_map;
             const float *sphere;
             mlod__vnode vn;
             mlod__vf sp[4];
@@ -1439,13 +1659,17 @@ static void test_pair_filter(const mlod_tree *scene)
             job.epsilon = 1.0;
             job.delta = 0.5;
             job.group_radius = trial % 5 == 0 ? 0.3 : 0.0;
+            /* maps of the default orientation, down (-y, up +z) and an oblique one, in turn */
+            mlod__mv_orient(&job, trial % 3 ? axes[trial % 3 - 1][0] : NULL, trial % 3 ? axes[trial % 3 - 1][1] : NULL);
+            oriented += job.oriented;
             mlod__vnode_set(&job, vi, &vn);
             for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - vn.centre[k];
             d = mlod__length3(x);
             r = sphere[3];
             rho = vn.radius;
-            mlod__ball_diameters(job.S, x, d, r, rho, &cmax, &cmin);
-            motion = mlod__ball_motion(job.S, x, d, r, rho);
+            in_map = mlod__map_coords(x, job.axes[0], job.oriented, xm);
+            mlod__ball_diameters(job.S, in_map, d, r, rho, &cmax, &cmin);
+            motion = mlod__ball_motion(job.S, in_map, d, r, rho);
             off = ldexp(1.0, -1 - (int)(scene_rng_double(&rng) * 50.0)) * (trial & 4 ? -1.0 : 1.0);
             if (which == 0) T = cmax;
             if (which == 1) T = cmin;
@@ -1494,6 +1718,7 @@ static void test_pair_filter(const mlod_tree *scene)
               "pair filter: decides %u of %u lanes of inner nodes 2^-6 to 2^-1 from a finite threshold, and every "
               "kind of action",
               far_decided, far);
+        CHECK(oriented > lanes / 2, "pair filter: %u of %u lanes in oriented maps", oriented, lanes);
         CHECK(leaves > 1000 && leaves_decided >= 0.25 * leaves,
               "pair filter: decides %u of %u lanes of view leaves (the cut's filter for the leaf's eye)", leaves_decided,
               leaves);
@@ -1878,6 +2103,44 @@ static void test_errors(const mlod_tree *scene, const mlod_tree *bare)
               "a view tree without eyes refused");
         CHECK(mlod_megaviews_bound(t, 0x80000000u, 1) == 0, "sizing: 0 for a resolution the render refuses");
     }
+    { /* the orientation: both 0, or a frame mlod_view_check takes */
+        static const struct {
+            float forward[3], up[3];
+            mlod_result code;
+        } frames[] = {{{0, -1, 0}, {0, 2, 0}, MLOD_ERROR_BAD_VIEW},        /* parallel */
+                      {{1, 1, 0}, {-3, -3, 0}, MLOD_ERROR_BAD_VIEW},       /* opposite */
+                      {{0, 0, 0}, {0, 1, 0}, MLOD_ERROR_BAD_VIEW},         /* forward 0, up not */
+                      {{0, -1, 0}, {0, 0, 0}, MLOD_ERROR_BAD_VIEW},        /* up 0, forward not */
+                      {{0, 0, 1}, {0, 1, 1e-30f}, MLOD_OK},                /* nearly the default */
+                      {{0, -1, 0}, {0, 0, 1}, MLOD_OK}};
+        mlod_megaviews_maps *maps = (mlod_megaviews_maps *)1;
+        for (i = 0; i < sizeof frames / sizeof frames[0]; i++) {
+            q = p;
+            memcpy(q.forward, frames[i].forward, 12);
+            memcpy(q.up, frames[i].up, 12);
+            CHECK(mlod_megaviews_check(&q, &e) == frames[i].code &&
+                      (frames[i].code == MLOD_OK || (mlod_megaviews_render(a, scene, t, &q, NULL, &e) == frames[i].code &&
+                                                     strstr(e.message, "forward") != NULL &&
+                                                     mlod_megaviews_render_maps(scene, t, &q, &maps, NULL, &e) ==
+                                                         frames[i].code &&
+                                                     maps == NULL)),
+                  "orientation %u: forward (%g, %g, %g), up (%g, %g, %g): %s (%s)", i, frames[i].forward[0],
+                  frames[i].forward[1], frames[i].forward[2], frames[i].up[0], frames[i].up[1], frames[i].up[2],
+                  mlod_result_name(frames[i].code), e.message);
+            maps = (mlod_megaviews_maps *)1;
+        }
+        for (i = 0; i < 6; i++) { /* NaN or infinite in any of the six */
+            float *field = i < 3 ? &q.forward[i] : &q.up[i - 3];
+            q = p;
+            q.forward[1] = -1.0f;
+            q.up[2] = 1.0f;
+            *field = i % 2 ? INFINITY : nan;
+            CHECK(mlod_megaviews_check(&q, &e) == MLOD_ERROR_NON_FINITE &&
+                      mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_NON_FINITE,
+                  "orientation: %s in %s[%u] refused (%s)", i % 2 ? "inf" : "NaN", i < 3 ? "forward" : "up", i % 3,
+                  e.message);
+        }
+    }
     q = p;
     q.resolution = 0;
     CHECK(mlod_megaviews_render(a, scene, t, &q, NULL, &e) == MLOD_ERROR_INVALID_ARGUMENT, "resolution 0");
@@ -2048,6 +2311,7 @@ int main(int argc, char **argv)
     TEST_GROUP("fusion", test_fusion(scene)); /* it overwrites the scene's colours with node indices */
     TEST_GROUP("groups", test_groups(scene));
     TEST_GROUP("query", test_query(scene));
+    TEST_GROUP("orientation", test_orientation(scene, bare));
     TEST_GROUP("atlas_order", test_atlas_order(scene));
     TEST_GROUP("errors", test_errors(scene, bare));
     test_groups_end();

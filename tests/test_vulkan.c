@@ -1312,8 +1312,11 @@ static void test_arguments(void)
    floors cull below), a disc scale below 1, duplicate eyes, eyes
    outside the scene, odd and even resolutions, one view, all with tangent
    discs (the default for the room's tree with cones), and once with
-   sphere discs (MLOD_SPLAT_SPHERES: setting 8, few views); and the same
-   refusals as the CPU's. */
+   sphere discs (MLOD_SPLAT_SPHERES: setting 8, few views); maps of
+   another orientation (params.forward, up: setting 9 down, -y with up
+   +z, at delta 0 with fields of view and back faces; setting 10 an
+   oblique frame with sharing and duplicate eyes); and the same refusals
+   as the CPU's. */
 static void test_megaviews_parity(void)
 {
     scene_mesh s;
@@ -1325,9 +1328,10 @@ static void test_megaviews_parity(void)
     if (!room_tree(&s, lean ? 4000 : 30000, "megaviews", &tree, &vtree, c, &R)) return;
     /* lean (emulated doubles, whose pipelines alone take lavapipe about a minute): the odd settings, which
        between them take every path of the shaders (sharing, fields of view, back faces, groups, one view),
-       and the sphere discs */
-    for (setting = lean ? 1 : 0; setting < 9; setting += lean && setting < 7 ? 2 : 1) {
-        uint32_t count = setting == 7 ? 1 : setting == 8 ? (lean ? 12 : 64)
+       the sphere discs and the oblique orientation (10) */
+    for (setting = lean ? 1 : 0; setting < 11; setting += lean && (setting < 7 || setting == 8) ? 2 : 1) {
+        static const float frames[2][2][3] = {{{0, -1, 0}, {0, 0, 1}}, {{0.4f, -1.7f, 0.9f}, {-0.3f, 0.2f, 1.1f}}};
+        uint32_t count = setting == 7 ? 1 : setting == 8 ? (lean ? 12 : 64) : setting >= 9 ? (lean ? 24 : 200)
                                           : (lean ? 24 + 13 * (uint32_t)setting : 160 + 37 * (uint32_t)setting), i;
         uint64_t rng = 900u + (uint64_t)setting;
         float *eyes = (float *)malloc(12 * (size_t)count), *dirs = (float *)malloc(12 * (size_t)count);
@@ -1343,17 +1347,21 @@ static void test_megaviews_parity(void)
         size_t pixels, k, depth_diff = 0, normal_diff = 0, color_diff = 0, drawn = 0;
         memset(&p, 0, sizeof p);
         p.epsilon = setting == 4 ? 3.0f : 1.0f;
-        p.delta = setting == 0 || setting == 3 ? 0.0f : MLOD_MEGAVIEWS_DELTA;
+        p.delta = setting == 0 || setting == 3 || setting == 9 ? 0.0f : MLOD_MEGAVIEWS_DELTA;
         p.resolution = setting % 2 ? 5 : 8;
-        p.flags = setting == 2 || setting == 3 || setting == 6 ? MLOD_VIEW_CULL_BACKFACES : 0;
+        p.flags = setting == 2 || setting == 3 || setting == 6 || setting == 9 ? MLOD_VIEW_CULL_BACKFACES : 0;
         p.group_radius = setting == 5 ? (float)(0.05 * R) : 0.0f;
+        if (setting >= 9) {
+            memcpy(p.forward, frames[setting - 9][0], 12);
+            memcpy(p.up, frames[setting - 9][1], 12);
+        }
         for (i = 0; i < count; i++) {
             double d[3];
             int j;
             /* eyes in the room's box, grown by a third for setting 6 (some outside) */
             for (j = 0; j < 3; j++)
                 eyes[3 * i + j] = (float)(c[j] + (setting == 6 ? 1.3 : 0.8) * R * (2.0 * scene_rng_double(&rng) - 1.0));
-            if (setting == 1 && i % 5 == 2) memcpy(eyes + 3 * i, eyes + 3 * (i - 1), 12);
+            if ((setting == 1 || setting == 10) && i % 5 == 2) memcpy(eyes + 3 * i, eyes + 3 * (i - 1), 12);
             tu_random_unit(&rng, d);
             if (setting == 5) { /* lights in a thin layer facing up (some tilted): the view tree's floors cull */
                 eyes[3 * i + 1] = (float)(c[1] - 0.3 * R + 0.02 * R * scene_rng_double(&rng));
@@ -1363,13 +1371,13 @@ static void test_megaviews_parity(void)
             }
             for (j = 0; j < 3; j++) dirs[3 * i + j] = (float)d[j];
             fovs[i] = (float)(0.3 + 2.8 * scene_rng_double(&rng));
-            vs[i] = mlod_megaviews_view(eyes + 3 * i, p.resolution, p.flags);
+            vs[i] = mlod_megaviews_view_oriented(eyes + 3 * i, p.resolution, p.flags, p.forward, p.up);
         }
         memset(&set, 0, sizeof set);
         set.eyes = eyes;
         set.count = count;
-        if (setting >= 2 && setting <= 5) set.directions = dirs;
-        if (setting == 3) set.half_fovs = fovs; /* else each view a hemisphere (half_fov 0: pi/2) */
+        if ((setting >= 2 && setting <= 5) || setting >= 9) set.directions = dirs;
+        if (setting == 3 || setting == 9) set.half_fovs = fovs; /* else each view a hemisphere (half_fov 0: pi/2) */
         memset(&ad, 0, sizeof ad);
         ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
         ad.disc_scale = setting == 4 ? 0.5f : 0.0f;
@@ -1412,8 +1420,8 @@ static void test_megaviews_parity(void)
                   (unsigned long long)gs.shared_leaves, cs.levels, gs.levels, (unsigned long long)cs.node_pairs,
                   (unsigned long long)gs.node_pairs);
             /* the settings exercise what they name: sharing with delta > 0, none with distinct eyes at 0 */
-            if (setting == 0) CHECK(cs.shared_draws == 0, "megaviews parity: delta 0 shares nothing");
-            if (setting == 1 || setting == 2 || setting == 4 || setting == 6 || setting == 8)
+            if (setting == 0 || setting == 9) CHECK(cs.shared_draws == 0, "megaviews parity: delta 0 shares nothing");
+            if (setting == 1 || setting == 2 || setting == 4 || setting == 6 || setting == 8 || setting == 10)
                 CHECK(cs.shared_draws > 0, "megaviews parity, setting %d: something shared", setting);
             if (setting == 5) { /* the floors cull pairs the views' cones leave (without them, more pairs) */
                 float *floors = vt->floors;
