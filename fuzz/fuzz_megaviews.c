@@ -4,7 +4,8 @@
    to 256 (duplicates, directions, fields of view; hostile ones too: NaN,
    huge, zero-length directions, bad strides), a view tree (built, then refitted to moved
    views), MegaViews parameters (hostile epsilon, delta, group_radius,
-   flags, resolutions up to 2^32 - 1) and an atlas; then the render, the
+   flags, resolutions up to 2^32 - 1; the maps' orientation, refused ones
+   too) and an atlas; then the render, the
    unfused maps and their queries, hole filling and mlod_sample, each result
    checked against what manylods.h promises.  A broken promise prints what
    broke and aborts, so libFuzzer keeps the input.
@@ -36,7 +37,8 @@
    - mlod_megaviews_check refuses exactly the documented parameters, with
      the documented codes where one field is bad; render and render_maps
      return its code first; mlod_megaviews_view's tile is 2R x R (0 wide past
-     2^31 - 1); mlod_megaviews_bound is 0 for no views or a resolution the
+     2^31 - 1), forward +z, up +y, and mlod_megaviews_view_oriented's the
+     same with the params' axes (none: mlod_megaviews_view's); mlod_megaviews_bound is 0 for no views or a resolution the
      render refuses, (size_t)-1 for unbounded pairs, no smaller for more
      pairs;
    - mlod_megaviews_render: refused calls (NULLs, parameters, an atlas of
@@ -56,7 +58,8 @@
      the float filter, as tests/test_megaviews.c calls them) give the same
      atlas and statistics, their peak within mlod__mv_bound;
    - delta = 0 and no groups: the atlas equals, bit for bit, each view's
-     basic cut (mlod_cut_update) and mlod_splat of its mlod_megaviews_view,
+     basic cut (mlod_cut_update) and mlod_splat of its
+     mlod_megaviews_view_oriented in the params' orientation,
      less what its field of view culls where the views have directions
      (as tests/test_megaviews.c draws it), but for pixels where two nodes
      lie at exactly one depth (the manual's exception: the depth equal,
@@ -587,6 +590,49 @@ typedef struct fz_params {
 static const uint32_t fz_hostile_resolutions[] = {0u,          46340u,      46341u,      65535u,     65536u,
                                                    1u << 20,    0x7fffffffu, 0x80000000u, 0xffffffffu};
 
+/* The maps' orientation (params.forward, up), from bits 1 to 7 of the
+   flags byte and the input's hash: no byte of its own, so every input
+   reads its fields as before.  fb below 128: none (the default); else
+   down (ceiling lights), along the axes, the default's at other lengths,
+   nearly parallel, tiny, or an oblique frame from the hash; hostile
+   inputs get, one in eight, a frame mlod_megaviews_check refuses
+   (parallel, opposite, a zero axis, NaN, infinite). */
+static void parse_orientation(const fz_ctx *c, uint8_t fb, fz_params *fp)
+{
+    static const float frames[8][6] = {{0, -1, 0, 0, 0, 1},        {0, 1, 0, 1, 0, 0},     {1, 0, 0, 0, 1, 0},
+                                       {0, 0, -1, 0, -1, 0},       {0, 0, 2, 0, 5, 0},     {1, 1, 1, 0, 1, 0},
+                                       {0, 1, 0, 1e-3f, 1, 0},     {1e-30f, 0, 0, 0, 1e-30f, 0}};
+    static const float refused[7][6] = {{0, -1, 0, 0, 2, 0},     {1, 1, 0, -3, -3, 0},      {0, 0, 0, 0, 1, 0},
+                                        {0, -1, 0, 0, 0, 0},     {0, NAN, 0, 0, 0, 1},      {0, -1, 0, INFINITY, 0, 1},
+                                        {1e-30f, 0, 0, 1e-30f, 0, 1e-37f}};
+    const float *pick;
+    float oblique[6];
+    uint64_t h = c->hash * 0x9E3779B97F4A7C15ull + fb;
+    uint32_t o = fb >> 1, k;
+    if (o < 64) return;
+    o -= 64;
+    if (c->r.chaos && o % 8 == 7) {
+        pick = refused[(h >> 40) % 7];
+        fp->bad++;
+        fp->check = isfinite(pick[1]) && isfinite(pick[3]) ? MLOD_ERROR_BAD_VIEW : MLOD_ERROR_NON_FINITE;
+    } else if (o < 24) {
+        pick = frames[o % 8];
+    } else { /* oblique: components in [-1, 1) from the hash; a frame only where clearly one */
+        double f[3], u[3], x[3], lf, lu;
+        for (k = 0; k < 6; k++) oblique[k] = (float)((int8_t)(h >> (8 * k)) / 128.0);
+        for (k = 0; k < 3; k++) f[k] = oblique[k], u[k] = oblique[3 + k];
+        x[0] = f[1] * u[2] - f[2] * u[1];
+        x[1] = f[2] * u[0] - f[0] * u[2];
+        x[2] = f[0] * u[1] - f[1] * u[0];
+        lf = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        pick = lf > 0.1 && lu > 0.1 && sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > 0.1 * lf * lu ? oblique
+                                                                                                     : frames[o % 8];
+    }
+    memcpy(fp->p.forward, pick, 12);
+    memcpy(fp->p.up, pick + 3, 12);
+}
+
 static void parse_params(fz_ctx *c, uint32_t views, fz_params *fp)
 {
     fz_reader *r = &c->r;
@@ -601,6 +647,7 @@ static void parse_params(fz_ctx *c, uint32_t views, fz_params *fp)
         p->resolution = 13 + rd_u8(r) % 52;
     while (p->resolution > 1 && (uint64_t)views * 2 * p->resolution * p->resolution > FZ_PIXEL_BUDGET) p->resolution--;
     p->flags = fb & 1u;
+    parse_orientation(c, fb, fp);
     p->group_radius = gb < 180 ? 0.0f : (float)(c->radius * ldexp(rd_unit(r), (int)(gb % 8) - 4));
     p->parallel = c->parallel;
     /* NULL: the atlas's (the same counter); an allocator without
@@ -1282,19 +1329,37 @@ static void run_frame(fz_ctx *c, const fz_views *v, const mlod_view_tree *vt, co
     mlod_result res = MLOD_ERROR_INVALID_ARGUMENT;
     uint32_t order[FZ_MAX_VIEWS + 1], count, R, tile_R, i;
     uint8_t ab = rd_u8(r), cb = rd_u8(r);
-    int mismatch, tries, compared = 0;
+    int mismatch, tries, compared = 0, oriented;
+    const float *forward, *up; /* the maps' orientation for the views (NULL: the default; a refused one too) */
     fz_image before;
     parse_params(c, v->count, &fp);
     check_params(&fp);
     R = fp.p.resolution;
-    FZ_NOTE("fuzz: %s: epsilon %g delta %g resolution %u flags 0x%x group_radius %g, %u views\n", when,
-            (double)fp.p.epsilon, (double)fp.p.delta, R, fp.p.flags, (double)fp.p.group_radius, v->count);
+    FZ_NOTE("fuzz: %s: epsilon %g delta %g resolution %u flags 0x%x group_radius %g forward (%g %g %g) up (%g %g %g), "
+            "%u views\n", when, (double)fp.p.epsilon, (double)fp.p.delta, R, fp.p.flags, (double)fp.p.group_radius,
+            (double)fp.p.forward[0], (double)fp.p.forward[1], (double)fp.p.forward[2], (double)fp.p.up[0],
+            (double)fp.p.up[1], (double)fp.p.up[2], v->count);
     /* pure helpers */
     {
         mlod_view mv = mlod_megaviews_view(v->eye[0], R, fp.p.flags);
+        mlod_view mo = mlod_megaviews_view_oriented(v->eye[0], R, fp.p.flags, fp.p.forward, fp.p.up);
+        int none = 1;
         FZ_REQUIRE(mv.kind == MLOD_VIEW_DUAL_PARABOLOID && mv.height == R && mv.width == (R > 0x7fffffffu ? 0u : 2 * R) &&
-                       mv.flags == fp.p.flags && !memcmp(mv.position, v->eye[0], 12),
+                       mv.flags == fp.p.flags && !memcmp(mv.position, v->eye[0], 12) && mv.forward[2] == 1.0f &&
+                       mv.up[1] == 1.0f && mv.forward[0] == 0.0f && mv.forward[1] == 0.0f && mv.up[0] == 0.0f &&
+                       mv.up[2] == 0.0f,
                    "mlod_megaviews_view(resolution %u): %u x %u", R, mv.width, mv.height);
+        for (i = 0; i < 3; i++) none &= fp.p.forward[i] == 0.0f && fp.p.up[i] == 0.0f;
+        FZ_REQUIRE(mo.kind == mv.kind && mo.width == mv.width && mo.height == mv.height && mo.flags == mv.flags &&
+                       !memcmp(mo.position, mv.position, 12) &&
+                       (none ? !memcmp(mo.forward, mv.forward, 12) && !memcmp(mo.up, mv.up, 12)
+                             : !memcmp(mo.forward, fp.p.forward, 12) && !memcmp(mo.up, fp.p.up, 12)),
+                   "mlod_megaviews_view_oriented: not mlod_megaviews_view's map with %s", none ? "no orientation"
+                                                                                               : "the params' axes");
+        mo = mlod_megaviews_view_oriented(NULL, 1, 0, fp.p.forward, fp.p.up); /* the axes alone */
+        oriented = !none && mlod_view_check(&mo, NULL) == MLOD_OK;
+        forward = oriented ? fp.p.forward : NULL;
+        up = oriented ? fp.p.up : NULL;
         FZ_REQUIRE(mlod_megaviews_bound(NULL, R, 1) == 0 && mlod_megaviews_bound(vt, 0, 1) == 0 &&
                        mlod_megaviews_bound(vt, R, UINT64_MAX) == (R == 0 || R > 0x7fffffffu ? 0 : (size_t)-1),
                    "mlod_megaviews_bound(resolution %u): 0 for no views or a resolution the render refuses, "
@@ -1309,7 +1374,8 @@ static void run_frame(fz_ctx *c, const fz_views *v, const mlod_view_tree *vt, co
     if ((ab & 0xf0) == 0xf0) tile_R++;
     views = (mlod_view *)malloc(sizeof(mlod_view) * (count + 1));
     FZ_REQUIRE(views != NULL, "out of memory (harness)");
-    for (i = 0; i < count; i++) views[i] = mlod_megaviews_view(v->eye[i < v->count ? i : 0], tile_R, fp.p.flags & 1u);
+    for (i = 0; i < count; i++)
+        views[i] = mlod_megaviews_view_oriented(v->eye[i < v->count ? i : 0], tile_R, fp.p.flags & 1u, forward, up);
     memset(&desc, 0, sizeof desc);
     desc.channels = cb & 3u;
     if (ab >= 32) /* the channels the scene has, mostly */
@@ -1376,7 +1442,7 @@ static void run_frame(fz_ctx *c, const fz_views *v, const mlod_view_tree *vt, co
                 uint32_t dv = 0, dx = 0, dy = 0, j;
                 uint64_t ties = 0;
                 int distinct = 1;
-                for (i = 0; i < count; i++) views[i] = mlod_megaviews_view(v->eye[i], R, fp.p.flags);
+                for (i = 0; i < count; i++) views[i] = mlod_megaviews_view_oriented(v->eye[i], R, fp.p.flags, forward, up);
                 FZ_REQUIRE(mlod_atlas_create(views, count, &desc, NULL, &ref, &e) == MLOD_OK, "the reference atlas: %s",
                            e.message);
                 reference_render(ref, c->scene, views, v, fp.p.epsilon, &drawn);
