@@ -23,74 +23,12 @@
 
 #include "harness.h"
 #include "tempdir.h"
+#include "vkcheck.h"
 #include "f64_c.h"
 
 VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instance, const char *name);
 
 #define RESULTS 6 /* uvec4 per operand pair, as tests/f64_check.comp writes them */
-
-static int skip(const char *why)
-{
-    const char *require = getenv("MANYLODS_REQUIRE_VULKAN");
-    printf("SKIPPED: %s\n", why);
-    if (require && strcmp(require, "1") == 0) {
-        printf("MANYLODS_REQUIRE_VULKAN=1: a skip is a failure\n0 passed, 1 failed\n");
-        return 1;
-    }
-    printf("0 passed, 0 failed\n");
-    return 0;
-}
-
-/* The SPIR-V words of tests/f64_check.comp, malloc'd, or NULL (why in `why`). */
-static uint32_t *compile(size_t *bytes, char *why, size_t why_size)
-{
-    char dir[256], cmd[1024], path[300];
-    const char *glslang = getenv("GLSLANG");
-    uint32_t *words = NULL;
-    FILE *f;
-    long size;
-    if (!test_temp_dir(dir, sizeof dir, "f64")) {
-        snprintf(why, why_size, "no temporary directory");
-        return NULL;
-    }
-    snprintf(path, sizeof path, "%s/f64_check.spv", dir);
-    snprintf(cmd, sizeof cmd, "%s -V --target-env vulkan1.1 -Ishaders tests/f64_check.comp -o %s >%s/log 2>&1",
-             glslang && *glslang ? glslang : "glslangValidator", path, dir);
-    if (system(cmd) != 0) {
-        snprintf(why, why_size, "%s could not compile tests/f64_check.comp (its log: %s/log)",
-                 glslang && *glslang ? glslang : "glslangValidator", dir);
-        return NULL;
-    }
-    f = fopen(path, "rb");
-    if (f && fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) > 20 && size % 4 == 0 && fseek(f, 0, SEEK_SET) == 0) {
-        words = malloc((size_t)size);
-        if (words && fread(words, 1, (size_t)size, f) != (size_t)size) {
-            free(words);
-            words = NULL;
-        }
-        *bytes = (size_t)size;
-    }
-    if (f) fclose(f);
-    if (!words) snprintf(why, why_size, "could not read %s", path);
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (words && system(cmd) != 0) fprintf(stderr, "note: could not remove %s\n", dir);
-    return words;
-}
-
-/* The capabilities a module declares that need 64-bit types or atomics
-   (OpCapability Float64 = 10, Int64 = 11, Int64Atomics = 12), as a count. */
-static int wide_capabilities(const uint32_t *words, size_t count)
-{
-    size_t i = 5;
-    int wide = 0;
-    while (i < count) {
-        uint32_t op = words[i] & 0xFFFFu, length = words[i] >> 16;
-        if (length == 0) return 99;
-        if (op == 17 && length == 2 && (words[i + 1] == 10 || words[i + 1] == 11 || words[i + 1] == 12)) wide++;
-        i += length;
-    }
-    return wide;
-}
 
 int main(int argc, char **argv)
 {
@@ -112,11 +50,11 @@ int main(int argc, char **argv)
     mlodvk__buffer operands, results;
     mlod_result res;
 
-    words = compile(&bytes, why, sizeof why);
-    if (!words) return skip(why);
-    CHECK(wide_capabilities(words, bytes / 4) == 0,
+    words = vkc_compile("tests/f64_check.comp", "", &bytes, why, sizeof why);
+    if (!words) return vkc_skip(why);
+    CHECK(vkc_wide_capabilities(words, bytes / 4, 0) == 0,
           "tests/f64_check.comp declares no Float64, Int64 or Int64Atomics capability (found %d)",
-          wide_capabilities(words, bytes / 4));
+          vkc_wide_capabilities(words, bytes / 4, 0));
 
     memset(&dd, 0, sizeof dd);
     dd.get_instance_proc_addr = vkGetInstanceProcAddr;
@@ -125,7 +63,7 @@ int main(int argc, char **argv)
     if (mlodvk_device_create(&dd, &device, &e) != MLOD_OK) {
         free(words);
         snprintf(why, sizeof why, "no usable Vulkan device with the validation layer: %s", e.message);
-        return skip(why);
+        return vkc_skip(why);
     }
     desc = mlodvk_device_context_desc(&device);
     if (mlodvk_context_create(&desc, &ctx, &e) != MLOD_OK) {

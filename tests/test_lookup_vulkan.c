@@ -54,24 +54,13 @@
 
 #include "harness.h"
 #include "tempdir.h"
+#include "vkcheck.h"
 
 VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instance, const char *name);
 
 #define VIEWS 10
 #define QUERY_WORDS 12  /* three uvec4 per query, as tests/lookup_check.comp reads them */
 #define RESULT_WORDS 20 /* five uvec4 per query */
-
-static int skip(const char *why)
-{
-    const char *require = getenv("MANYLODS_REQUIRE_VULKAN");
-    printf("SKIPPED: %s\n", why);
-    if (require && strcmp(require, "1") == 0) {
-        printf("MANYLODS_REQUIRE_VULKAN=1: a skip is a failure\n0 passed, 1 failed\n");
-        return 1;
-    }
-    printf("0 passed, 0 failed\n");
-    return 0;
-}
 
 static uint64_t rng_state = 0x5EED100C0ull;
 
@@ -104,63 +93,6 @@ static double word_double(const uint32_t *w) /* two words, low first */
     double d;
     memcpy(&d, &u, 8);
     return d;
-}
-
-/* The SPIR-V words of tests/lookup_check.comp compiled with `flags`,
-   malloc'd, or NULL (why in `why`). */
-static uint32_t *compile(const char *flags, size_t *bytes, char *why, size_t why_size)
-{
-    char dir[256], cmd[1024], path[300];
-    const char *glslang = getenv("GLSLANG");
-    uint32_t *words = NULL;
-    FILE *f;
-    long size;
-    if (!test_temp_dir(dir, sizeof dir, "lookup")) {
-        snprintf(why, why_size, "no temporary directory");
-        return NULL;
-    }
-    snprintf(path, sizeof path, "%s/lookup_check.spv", dir);
-    snprintf(cmd, sizeof cmd, "%s -V --target-env vulkan1.1 %s -Ishaders tests/lookup_check.comp -o %s >%s/log 2>&1",
-             glslang && *glslang ? glslang : "glslangValidator", flags, path, dir);
-    if (system(cmd) != 0) {
-        snprintf(why, why_size, "%s could not compile tests/lookup_check.comp with '%s' (its log: %s/log)",
-                 glslang && *glslang ? glslang : "glslangValidator", flags, dir);
-        return NULL;
-    }
-    f = fopen(path, "rb");
-    if (f && fseek(f, 0, SEEK_END) == 0 && (size = ftell(f)) > 20 && size % 4 == 0 && fseek(f, 0, SEEK_SET) == 0) {
-        words = malloc((size_t)size);
-        if (words && fread(words, 1, (size_t)size, f) != (size_t)size) {
-            free(words);
-            words = NULL;
-        }
-        *bytes = (size_t)size;
-    }
-    if (f) fclose(f);
-    if (!words) snprintf(why, why_size, "could not read %s", path);
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (words && system(cmd) != 0) fprintf(stderr, "note: could not remove %s\n", dir);
-    return words;
-}
-
-/* The capabilities a module declares that need 64-bit types or atomics
-   (OpCapability Float64 = 10, Int64 = 11, Int64Atomics = 12), and with
-   subgroups too those of subgroup operations (GroupNonUniform = 61,
-   GroupNonUniformVote = 62), as a count. */
-static int wide_capabilities(const uint32_t *words, size_t count, int subgroups)
-{
-    size_t i = 5;
-    int wide = 0;
-    while (i < count) {
-        uint32_t op = words[i] & 0xFFFFu, length = words[i] >> 16;
-        if (length == 0) return 99;
-        if (op == 17 && length == 2 &&
-            (words[i + 1] == 10 || words[i + 1] == 11 || words[i + 1] == 12 ||
-             (subgroups && (words[i + 1] == 61 || words[i + 1] == 62))))
-            wide++;
-        i += length;
-    }
-    return wide;
 }
 
 /* The five kinds around `eye`, looking along `forward` (views v[0 .. 4]),
@@ -322,12 +254,13 @@ int main(int argc, char **argv)
     /* the module of each form, and of MLOD_NO_SUBGROUPS (compiled only) */
     {
         size_t bytes = 0;
-        uint32_t *words = compile("-DMLOD_NO_SUBGROUPS -DMLOD_F64_EMULATED", &bytes, why, sizeof why);
-        if (!words) return skip(why);
-        CHECK(wide_capabilities(words, bytes / 4, 1) == 0,
+        uint32_t *words =
+            vkc_compile("tests/lookup_check.comp", "-DMLOD_NO_SUBGROUPS -DMLOD_F64_EMULATED", &bytes, why, sizeof why);
+        if (!words) return vkc_skip(why);
+        CHECK(vkc_wide_capabilities(words, bytes / 4, 1) == 0,
               "lookup_check.comp with MLOD_NO_SUBGROUPS and MLOD_F64_EMULATED declares no Float64, Int64, Int64Atomics "
               "or subgroup capability (found %d)",
-              wide_capabilities(words, bytes / 4, 1));
+              vkc_wide_capabilities(words, bytes / 4, 1));
         free(words);
     }
 
@@ -415,7 +348,7 @@ int main(int argc, char **argv)
         free(want);
         mlod_atlas_destroy(atlas);
         snprintf(why, sizeof why, "no usable Vulkan device with the validation layer: %s", e.message);
-        return skip(why);
+        return vkc_skip(why);
     }
     desc = mlodvk_device_context_desc(&device);
     if (mlodvk_context_create(&desc, &ctx, &e) != MLOD_OK) {
@@ -448,13 +381,13 @@ int main(int argc, char **argv)
                    device.name);
             continue;
         }
-        words = compile(form_flags[form], &bytes, why, sizeof why);
+        words = vkc_compile("tests/lookup_check.comp", form_flags[form], &bytes, why, sizeof why);
         CHECK(words != NULL, "%s", why);
         if (!words) continue;
         if (form == 1)
-            CHECK(wide_capabilities(words, bytes / 4, 0) == 0,
+            CHECK(vkc_wide_capabilities(words, bytes / 4, 0) == 0,
                   "lookup_check.comp with MLOD_F64_EMULATED declares no Float64, Int64 or Int64Atomics capability (found %d)",
-                  wide_capabilities(words, bytes / 4, 0));
+                  vkc_wide_capabilities(words, bytes / 4, 0));
         memset(buffers, 0, sizeof buffers);
         t0 = clock();
         res = mlodvk__set_layout(ctx, 5, &set_layout, &e);
