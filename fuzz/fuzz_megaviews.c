@@ -1073,7 +1073,7 @@ static void check_drawn(const mlod_atlas *a, const mlod_view *views, const mlod_
                         const char *what)
 {
     uint32_t v, x, y, leaf_of[FZ_MAX_VIEWS];
-    int tangent = a->splat == MLOD_SPLAT_TANGENT || (a->splat == MLOD_SPLAT_AUTO && scene->cones);
+    int tangent = mlod__splat_tangent(a->splat, scene);
     for (v = 0; v < vt->view_count; v++) leaf_of[vt->eyes->leaf_sources[v]] = v;
     for (v = 0; v < a->view_count; v++) {
         const uint32_t *t = a->tiles + 4 * (size_t)v;
