@@ -416,6 +416,28 @@
      exact test.  The atlas is the same bit for bit (tests/test_splat.c,
      filtered_discs and reached_lanes); the object protocol's splat takes
      0.55x the double path's time (0.75x with half discs, disc_scale 0.5).
+     An atlas follows its cut: mlod_splat keeps each tile that shows what
+     it would draw, and clears and draws the others whole.  A tile is kept
+     when this atlas's last mlod_splat drew or kept it from the same cut
+     at the same mlod_cut_view.version, no drawn node of it changed since
+     by the tree's record of changes, and disc_scale and splat are as
+     they were.  An update gives a view a new version when its view bytes
+     or its drawn entries (their nodes, order, and which are culled)
+     differ from the previous update's; a reset gives every view one; no
+     two cuts of the process share one.  Each refit marks in
+     mlod_tree.changes the nodes whose sphere, cone or colour bits it
+     changed and the nodes above them; the nodes of a tree of another
+     build, or of one whose revision other code counted up, count as
+     changed (a tile that draws nothing stays).  A tile's pixels are a
+     function of its view, its drawn nodes in order and their bits, so a
+     kept tile is what a full redraw gives, bit for bit
+     (tests/test_redraw.c compares every step with one).  A frame where
+     nothing changed costs a comparison per tile; a refit costs a pass
+     over the drawn entries of the tiles whose version did not move, and
+     the tiles that draw what moved.  Other writers of the pixels
+     (mlod_splat_ism, mlod_atlas_fill_holes, mlod_megaviews_render,
+     mlodvk_atlas_download) and mlod_atlas_invalidate make the next
+     mlod_splat draw every tile; atlas->redrawn counts the tiles drawn.
 
    CHOOSING THE VIEWS (importance sampling, e.g. of virtual point lights)
      mlod_sample() draws N samples from a discrete domain of D candidates
@@ -1117,6 +1139,11 @@ typedef struct mlod_cut_view {
     uint64_t evaluated;     /* criterion evaluations in the last update */
     uint64_t steps;         /* splits and merges in the last update */
     uint32_t splatted;      /* the nodes mlod_splat draws: drawn + oversize + coarse */
+    uint64_t version;       /* changes exactly when an update or a reset changes the view or the
+                               entries mlod_splat draws for it (their nodes and order, or which
+                               are culled); no two cuts of the process share a value.  With the
+                               tree's record of changes it tells what a tile shows (mlod_splat
+                               keeps the tiles whose version and drawn nodes did not change) */
 } mlod_cut_view;
 
 typedef struct mlod_cut mlod_cut;
@@ -1245,11 +1272,16 @@ typedef struct mlod_atlas_desc {
                               and mlod_megaviews_render writes the tiles in sequence,
                               not scattered over the atlas (docs/GUIDE.md measures it) */
     uint32_t splat;        /* MLOD_SPLAT_*; 0: MLOD_SPLAT_AUTO */
+    uint32_t fill_holes;   /* 1: mlod_splat fills the holes of each tile it draws, as
+                              mlod_atlas_fill_holes does (allocating its scratch for those
+                              tiles in the call), so that the tiles it keeps stay filled;
+                              0: it leaves holes */
 } mlod_atlas_desc;
 
 /* One image holding a tile per view, laid out as a grid of equal cells (the
    largest tile's size), row by row in view order (or desc->order); each
-   view's tile sits at the top-left of its cell.  depth[y * width + x] is
+   view's tile sits at the top-left of its cell (mlod_splat keeps a record
+   per tile of what it shows).  depth[y * width + x] is
    +inf where nothing was drawn; normal and colour have 3 floats per pixel
    (0 where nothing was drawn) or are NULL.  All arrays are owned by the
    atlas. */
@@ -1260,6 +1292,7 @@ typedef struct mlod_atlas {
     uint32_t cell_width, cell_height, columns;
     float disc_scale;         /* as given in mlod_atlas_desc (0 became 1) */
     uint32_t splat;           /* as given in mlod_atlas_desc (MLOD_SPLAT_*) */
+    uint32_t fill_holes;      /* as given in mlod_atlas_desc */
     float *depth;
     float *normal;
     float *color;
@@ -1267,11 +1300,18 @@ typedef struct mlod_atlas {
     uint32_t *bands;          /* private: per view, first row band (splat tasks) */
     size_t bytes;
     mlod_allocator allocator;
+    uint32_t redrawn;         /* the tiles the last mlod_splat drew; the others kept their pixels */
+    uint64_t *shown;          /* private: per view, what its tile shows (mlod_splat): the cut's
+                                 version and the tree's revision it was drawn from; 0: unknown */
+    uint32_t *redraw;         /* private: mlod_splat's band tasks (the bands of the tiles it draws) */
+    float shown_scale;        /* private: the disc_scale, splat and fill_holes the known tiles were */
+    uint32_t shown_splat, shown_fill; /* drawn with */
 } mlod_atlas;
 
 /* Sizing, before an atlas: the bytes mlod_atlas_create allocates for these
    views and desc (the atlas's bytes, exactly): 4 bytes per pixel of depth,
-   12 more per channel, the per-view tables.  0 when mlod_atlas_create
+   12 more per channel, the per-view tables (36 bytes per view and 4 per
+   64 rows of its tile).  0 when mlod_atlas_create
    would refuse them (no views, an empty tile, a bad desc, a size that
    overflows; desc->order is not read: it changes no byte count, and
    mlod_atlas_create checks it), (size_t)-1 beyond size_t.
@@ -1290,8 +1330,8 @@ MANYLODS_DEF mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
                                            mlod_error *error);
 MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
 
-/* Clear every tile, then draw every drawn node (status DRAWN, OVERSIZE or
-   COARSE) of every view's cut into its tile, in each sub-projection the
+/* Draw every drawn node (status DRAWN, OVERSIZE or COARSE) of every
+   view's cut into its cleared tile, in each sub-projection the
    node's sphere reaches, clipped to that sub-projection's sub-tile: its
    disc there is the disc around the exact image of the sphere (the
    image's diameter, centred on the image's centre; paraboloids use the
@@ -1307,10 +1347,25 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
    must be those of the cut's last update, byte for byte: a view moved
    since is MLOD_ERROR_MISMATCH (a cut never updated, or reset, draws
    nothing for any views).  MLOD_ERROR_MISMATCH also for
-   MLOD_SPLAT_TANGENT and a tree without cones.  Parallel over tiles and
-   row bands; results are identical for any thread count. */
+   MLOD_SPLAT_TANGENT and a tree without cones.  A tile that shows what
+   this call would draw is kept as it is (the same bits): one this atlas's
+   last mlod_splat drew or kept, whose view and drawn entries did not
+   change since (mlod_cut_view.version) and none of whose drawn nodes a
+   refit changed (sphere, cone or colour bits; a tree without
+   MLOD_ATTR_REFIT: any refit), with the same disc_scale and splat; the
+   others are cleared and drawn whole (and, with mlod_atlas_desc.fill_holes,
+   their holes filled).  atlas->redrawn counts the tiles drawn.  What else writes the pixels (mlod_splat_ism,
+   mlod_atlas_fill_holes, mlod_megaviews_render, mlodvk_atlas_download)
+   makes the next mlod_splat draw every tile; code of yours that writes
+   them calls mlod_atlas_invalidate.  Parallel over tiles and row bands;
+   results are identical for any thread count. */
 MANYLODS_DEF mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
                                     const mlod_view *views, const mlod_parallel *parallel, mlod_error *error);
+
+/* Forget what the tiles show: the next mlod_splat clears and draws every
+   tile (a full redraw).  Call it after writing an atlas's pixels yourself.
+   NULL is fine.  Not thread-safe for one atlas. */
+MANYLODS_DEF void mlod_atlas_invalidate(mlod_atlas *atlas);
 
 /* The Imperfect Shadow Maps baseline (Ritschel et al. 2008): clear the
    atlas, then draw into each view points_per_view leaves of the tree chosen
@@ -1333,7 +1388,10 @@ MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree
    empty pixel takes its parent's value; so an empty tile pixel gets the
    value of its nearest non-empty ancestor in the pyramid.  Pixels that
    were drawn keep their values; a tile with nothing drawn stays empty.
-   Allocates its scratch once per call. */
+   Allocates its scratch once per call.  The next mlod_splat draws every
+   tile again, unless the atlas has fill_holes: its tiles that mlod_splat
+   drew or kept are filled already and left as they are (the others are
+   filled). */
 MANYLODS_DEF mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error);
 
 /* -------------------------------------------------------- shadow lookups */
@@ -2566,8 +2624,8 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
 /* How a pass that writes nodes records the ones it changed in
    mlod_tree.changes: not at all (changes NULL: a build, which clears the
    array after), with value (the refit's revision, low 32 bits) on each
-   leaf whose sphere and cone bits (what a cut's status reads) differ
-   before and after and on each internal node a child of which got it (a
+   leaf whose sphere, cone and colour bits (what a cut's status and a
+   tile read) differ before and after and on each internal node a child of which got it (a
    refit that knows changes[]), or on every node written (`all`: a refit
    after the arrays were written otherwise).  An internal node neither of
    whose children changed keeps its bits: it holds the merge of its
@@ -2596,6 +2654,15 @@ static void mlod__store_leaf(mlod_tree *tree, uint32_t node, const float bounds[
     }
     memcpy(sphere, bounds, 4 * sizeof(float));
     if (cone) memcpy(cone, bounds + 4, 4 * sizeof(float));
+}
+
+/* Store leaf `node`'s colour, recording a change of its bits as `stamp`
+   says (what a tile's colour channel shows, mlod_splat). */
+static void mlod__store_color(mlod_tree *tree, uint32_t node, const float color[3], const mlod__stamp *stamp)
+{
+    float *to = tree->colors + 3 * (size_t)node;
+    if (stamp && stamp->changes && memcmp(to, color, 3 * sizeof(float)) != 0) stamp->changes[node] = stamp->value;
+    memcpy(to, color, 3 * sizeof(float));
 }
 
 typedef struct mlod__merge_job {
@@ -2778,8 +2845,10 @@ static void mlod__mesh_leaf(mlod_tree *tree, uint32_t node, const mlod_mesh *mes
     if (tree->areas) tree->areas[node] = shared->area;
     if (tree->colors) {
         double c[3];
+        float color[3];
         mlod__interpolate(mesh->colors, mesh->color_stride, corner, s, t, c);
-        for (k = 0; k < 3; k++) tree->colors[3 * (size_t)node + k] = (float)c[k];
+        for (k = 0; k < 3; k++) color[k] = (float)c[k];
+        mlod__store_color(tree, node, color, stamp);
     }
 }
 
@@ -3669,10 +3738,7 @@ static void mlod__point_leaf(mlod_tree *tree, uint32_t node, const mlod_points *
     }
     mlod__store_leaf(tree, node, bounds, stamp);
     if (tree->areas) tree->areas[node] = (float)(radius * radius / tree->area_unit);
-    if (tree->colors) {
-        const float *c = mlod__at(points->colors, points->color_stride, item);
-        for (k = 0; k < 3; k++) tree->colors[3 * (size_t)node + k] = c[k];
-    }
+    if (tree->colors) mlod__store_color(tree, node, mlod__at(points->colors, points->color_stride, item), stamp);
 }
 
 /* Density-based radius of leaf j (before radius_scale), from the lowest
@@ -5344,6 +5410,8 @@ struct mlod_cut {
     uint64_t seen_revision;     /* had then; seen_tree NULL: none (tree_nodes is its node count) */
     const float *seen_spheres, *seen_cones;
     float seen_epsilon;
+    uint64_t *version; /* per view: mlod_cut_view.version */
+    uint64_t serial;   /* the last version given out */
     mlod__work_buffer kept[MLOD__WORK_COUNT]; /* during an update: what its growth replaced */
     uint8_t grown[MLOD__WORK_COUNT];          /* during an update: kept[i] holds buffer i's old arrays */
     size_t bytes;
@@ -5404,6 +5472,7 @@ typedef struct mlod__cut_job {
     int lazy;   /* one step per entry */
     int last;   /* the call's last round: clear MLOD__PARENT_INVALID */
     uint32_t age; /* refits since the committed lists (low 32 bits), for MLOD__STAMPED views */
+    uint64_t serial; /* the version a view gets whose view or drawn entries changed */
     const mlod__list *in;
     mlod__list *out;
     const mlod__list *done_in; /* where the views done this round are copied from: in, or in
@@ -6174,6 +6243,42 @@ static void mlod__copy_skipped_task(void *context, uint32_t index)
     }
 }
 
+/* Whether entries a and b (count each) draw the same nodes in the same
+   order: equal nodes, and equal in which are culled. */
+static int mlod__same_drawn(const uint32_t *a_nodes, const uint8_t *a_status, const uint32_t *b_nodes,
+                            const uint8_t *b_status, uint32_t count)
+{
+    uint32_t i;
+    if (count && memcmp(a_nodes, b_nodes, count * sizeof(uint32_t)) != 0) return 0;
+    for (i = 0; i < count; i++)
+        if ((a_status[i] == MLOD_STATUS_CULLED) != (b_status[i] == MLOD_STATUS_CULLED)) return 0;
+    return 1;
+}
+
+/* After the last round, before the commit (job->out the new lists,
+   job->done_in the committed ones, cut->seen their views): a view
+   evaluated in this update gets the new version (job->serial) when its
+   view bytes or its drawn entries differ from the committed list's
+   (node indices alone, whatever the tree: the atlas asks the tree; a
+   reset left no entries). */
+static void mlod__version_task(void *context, uint32_t index)
+{
+    const mlod__cut_job *job = (const mlod__cut_job *)context;
+    mlod_cut *cut = job->cut;
+    const mlod__list *old = job->done_in, *now = job->out;
+    uint32_t end, v = mlod__view_chunk(cut, index, &end);
+    for (; v < end; v++) {
+        uint32_t count = now->count[v];
+        if (cut->view_done[v] == MLOD__SKIPPED) continue;
+        if ((cut->known[v] & MLOD__SEEN) &&
+            memcmp(&job->views[v], &cut->seen[v], sizeof(mlod_view)) == 0 && old->count[v] == count &&
+            mlod__same_drawn(now->nodes + now->offset[v], now->status + now->offset[v], old->nodes + old->offset[v],
+                             old->status + old->offset[v], count))
+            continue;
+        cut->version[v] = job->serial;
+    }
+}
+
 static void mlod__join_task(void *context, uint32_t index)
 {
     const mlod__cut_job *job = (const mlod__cut_job *)context;
@@ -6314,7 +6419,16 @@ MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
     mlod__free(&cut->allocator, cut->view_work);
     mlod__free(&cut->allocator, cut->seen);
     mlod__free(&cut->allocator, cut->known);
+    mlod__free(&cut->allocator, cut->version);
     cut->allocator.free(cut->allocator.user, cut);
+}
+
+/* A new version for every view (a created or reset cut). */
+static void mlod__new_versions(mlod_cut *cut)
+{
+    uint32_t v;
+    cut->serial++;
+    for (v = 0; v < cut->view_count; v++) cut->version[v] = cut->serial;
 }
 
 MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator, mlod_cut **out_cut,
@@ -6344,6 +6458,7 @@ MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
     ok = ok && (cut->view_work = (size_t *)mlod__alloc_array(&a, view_count, sizeof(size_t), &cut->bytes));
     ok = ok && (cut->seen = (mlod_view *)mlod__alloc_array(&a, view_count, sizeof(mlod_view), &cut->bytes));
     ok = ok && (cut->known = (uint8_t *)mlod__alloc_array(&a, view_count, 1, &cut->bytes));
+    ok = ok && (cut->version = (uint64_t *)mlod__alloc_array(&a, view_count, sizeof(uint64_t), &cut->bytes));
     if (!ok) {
         mlod_cut_destroy(cut);
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating a cut for %u views", view_count);
@@ -6354,6 +6469,8 @@ MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
     }
     memset(cut->stats[0], 0, view_count * sizeof(mlod__view_stats));
     memset(cut->known, 0, view_count);
+    cut->serial = mlod__first_revision(); /* unique in the process, as a tree's revision */
+    mlod__new_versions(cut);
     *out_cut = cut;
     return mlod__succeed(error);
 }
@@ -6365,6 +6482,7 @@ MLOD__PUBLIC void mlod_cut_reset(mlod_cut *cut)
     cut->seen_tree = NULL; /* nothing skipped: the views stay known to be valid */
     memset(cut->lists[cut->committed].count, 0, cut->view_count * sizeof(uint32_t));
     memset(cut->stats[0], 0, cut->view_count * sizeof(mlod__view_stats));
+    mlod__new_versions(cut);
 }
 
 MLOD__PUBLIC uint32_t mlod_cut_view_count(const mlod_cut *cut) { return cut ? cut->view_count : 0; }
@@ -6388,6 +6506,7 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
         r.evaluated = s->evaluated;
         r.steps = s->steps;
         r.splatted = s->drawn + s->oversize + s->coarse;
+        r.version = cut->version[view];
     }
     return r;
 }
@@ -6426,7 +6545,7 @@ static double mlod__cut_capacities(uint32_t view_count, uint32_t mean_cut_nodes,
     capacity[MLOD__WORK_TASKS] = capacity[MLOD__WORK_SEGMENTS] + 1.0;
     return (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
            v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t) +
-                sizeof(mlod_view) + 1);
+                sizeof(mlod_view) + 1 + sizeof(uint64_t));
 }
 
 MLOD__PUBLIC size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
@@ -7010,11 +7129,12 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         idle = steps == round_steps;
         round_steps = steps;
     }
-    if (skipped) {
-        job.done_in = &cut->lists[cut->committed];
-        job.out = in;
-        mlod__run(params->parallel, mlod__view_chunks(cut), mlod__copy_skipped_task, &job);
-    }
+    job.done_in = &cut->lists[cut->committed];
+    job.out = in;
+    if (skipped) mlod__run(params->parallel, mlod__view_chunks(cut), mlod__copy_skipped_task, &job);
+    job.serial = cut->serial + 1;
+    mlod__run(params->parallel, mlod__view_chunks(cut), mlod__version_task, &job);
+    cut->serial++;
     {
         mlod__view_stats *t = cut->stats[0];
         cut->stats[0] = cut->stats[1];
@@ -7823,13 +7943,15 @@ MLOD__PUBLIC void mlod_atlas_destroy(mlod_atlas *atlas)
     mlod__free(&a, atlas->color);
     mlod__free(&a, atlas->tiles);
     mlod__free(&a, atlas->bands);
+    mlod__free(&a, atlas->shown);
+    mlod__free(&a, atlas->redraw);
     a.free(a.user, atlas);
 }
 
 /* The grid of an atlas for these views and desc, and its bytes; the error
    mlod_atlas_create returns for them, if any. */
 typedef struct mlod__atlas_layout {
-    uint32_t columns, cell_w, cell_h;
+    uint32_t columns, cell_w, cell_h, bands;
     uint64_t width, height, pixels;
     size_t bytes;
 } mlod__atlas_layout;
@@ -7872,6 +7994,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     atlas->columns = columns;
     atlas->disc_scale = desc->disc_scale == 0.0f ? 1.0f : desc->disc_scale;
     atlas->splat = desc->splat;
+    atlas->fill_holes = desc->fill_holes;
     atlas->depth = (float *)mlod__alloc_array(&a, (size_t)pixels, sizeof(float), &atlas->bytes);
     ok = atlas->depth != NULL;
     if (desc->channels & MLOD_ATLAS_NORMAL)
@@ -7880,6 +8003,8 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         ok = ok && (atlas->color = (float *)mlod__alloc_array(&a, (size_t)pixels, 3 * sizeof(float), &atlas->bytes));
     ok = ok && (atlas->tiles = (uint32_t *)mlod__alloc_array(&a, view_count, 4 * sizeof(uint32_t), &atlas->bytes));
     ok = ok && (atlas->bands = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &atlas->bytes));
+    ok = ok && (atlas->shown = (uint64_t *)mlod__alloc_array(&a, view_count, 2 * sizeof(uint64_t), &atlas->bytes));
+    ok = ok && (atlas->redraw = (uint32_t *)mlod__alloc_array(&a, L.bands, sizeof(uint32_t), &atlas->bytes));
     if (!ok) {
         mlod_atlas_destroy(atlas);
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for an atlas of %llu x %llu pixels",
@@ -7910,6 +8035,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     }
     if (atlas->normal) memset(atlas->normal, 0, (size_t)pixels * 3 * sizeof(float));
     if (atlas->color) memset(atlas->color, 0, (size_t)pixels * 3 * sizeof(float));
+    mlod_atlas_invalidate(atlas);
     *out_atlas = atlas;
     return mlod__succeed(error);
 }
@@ -7930,6 +8056,8 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
                           (double)desc->disc_scale);
     if (desc->splat > MLOD_SPLAT_TANGENT)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "splat %u is not an MLOD_SPLAT_*", desc->splat);
+    if (desc->fill_holes > 1)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "fill_holes %u is not 0 or 1", desc->fill_holes);
     L->cell_w = L->cell_h = 1;
     for (v = 0; v < view_count; v++) {
         if (views[v].width == 0 || views[v].height == 0)
@@ -7955,8 +8083,9 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
     /* depth and the channels per pixel, the tile and band tables per view */
     per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
                 ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
-    tables = sizeof(mlod_atlas) + (size_t)view_count * 4 * sizeof(uint32_t) +
-             ((size_t)view_count + 1) * sizeof(uint32_t);
+    L->bands = (uint32_t)bands;
+    tables = sizeof(mlod_atlas) + (size_t)view_count * (4 * sizeof(uint32_t) + 2 * sizeof(uint64_t)) +
+             ((size_t)view_count + 1 + bands) * sizeof(uint32_t);
     L->bytes = L->pixels > ((size_t)-1 - tables) / per_pixel ? (size_t)-1 : tables + (size_t)L->pixels * per_pixel;
     return MLOD_OK;
 }
@@ -7976,6 +8105,7 @@ typedef struct mlod__splat_job {
     const mlod_view *views;
     uint32_t points_per_view; /* ISM */
     uint64_t seed;
+    const uint32_t *tasks;    /* NULL: task i draws band i; else band tasks[i] */
 } mlod__splat_job;
 
 /* One band of rows of one tile while it is drawn: the tile's pixel
@@ -8561,6 +8691,7 @@ static uint32_t mlod__band_begin(const mlod__splat_job *job, uint32_t index, mlo
 {
     mlod_atlas *atlas = job->atlas;
     uint32_t lo = 0, hi = atlas->view_count, view, height;
+    if (job->tasks) index = job->tasks[index];
     while (hi - lo > 1) { /* the view whose bands hold index */
         uint32_t mid = lo + (hi - lo) / 2;
         if (atlas->bands[mid] <= index)
@@ -8665,6 +8796,58 @@ static mlod_result mlod__check_splat(const mlod_atlas *atlas, const mlod_tree *t
     return MLOD_OK;
 }
 
+MLOD__PUBLIC void mlod_atlas_invalidate(mlod_atlas *atlas)
+{
+    if (!atlas) return;
+    memset(atlas->shown, 0, atlas->view_count * 2 * sizeof(uint64_t));
+}
+
+/* Whether the tile of `view` shows what mlod_splat would draw now: it was
+   drawn from this version of the view's cut (mlod_cut_view.version: the
+   same view, and the same drawn entries in the same order) and no refit
+   since changed a node it draws (mlod_tree.changes: sphere, cone, colour).
+   A tree of another build is 2^32 or more revisions away, or, in its
+   first 2^32, every node of it counts as changed (its record holds its own
+   revisions, fewer than the refits it seems to be ahead), unless the tile
+   draws nothing, which no tree changes (whatever the record says). */
+static int mlod__tile_current(const mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, uint32_t view)
+{
+    const uint64_t *shown = atlas->shown + 2 * (size_t)view;
+    uint64_t refits = tree->revision - shown[1];
+    uint32_t i, now = (uint32_t)tree->revision, age = (uint32_t)refits;
+    int record = tree->changes && tree->changes_revision == tree->revision && refits < ((uint64_t)1 << 32);
+    mlod_cut_view cv;
+    if (shown[0] != cut->version[view]) return 0; /* versions are never 0: a tile not known */
+    if (refits == 0) return 1;
+    cv = mlod_cut_get(cut, view);
+    for (i = 0; i < cv.count; i++) /* without the record, every node counts as changed */
+        if (cv.status[i] != MLOD_STATUS_CULLED && (!record || now - tree->changes[cv.nodes[i]] < age)) return 0;
+    return 1;
+}
+
+static int mlod__fill_tiles(mlod_atlas *atlas, const uint32_t *list, uint32_t count, const mlod_parallel *parallel,
+                            size_t *floats);
+
+#define MLOD__ATLAS_CHUNK 16u
+static uint32_t mlod__atlas_chunks(const mlod_atlas *atlas) { return (atlas->view_count - 1) / MLOD__ATLAS_CHUNK + 1; }
+
+/* mlod_splat's decision for MLOD__ATLAS_CHUNK views: a current tile
+   (mlod__tile_current) is now known to show this revision; the others are
+   marked unknown, to draw. */
+static void mlod__shown_task(void *context, uint32_t index)
+{
+    const mlod__splat_job *job = (const mlod__splat_job *)context;
+    mlod_atlas *atlas = job->atlas;
+    uint32_t v = index * MLOD__ATLAS_CHUNK,
+             end = atlas->view_count - v < MLOD__ATLAS_CHUNK ? atlas->view_count : v + MLOD__ATLAS_CHUNK;
+    for (; v < end; v++) {
+        if (mlod__tile_current(atlas, job->tree, job->cut, v))
+            atlas->shown[2 * (size_t)v + 1] = job->tree->revision;
+        else
+            atlas->shown[2 * (size_t)v] = 0;
+    }
+}
+
 MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
                                     const mlod_view *views, const mlod_parallel *parallel, mlod_error *error)
 {
@@ -8689,7 +8872,39 @@ MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
     job.tree = tree;
     job.cut = cut;
     job.views = views;
-    mlod__run(parallel, atlas->bands[atlas->view_count], mlod__splat_task, &job);
+    if (atlas->shown_scale != atlas->disc_scale || atlas->shown_splat != atlas->splat ||
+        atlas->shown_fill != atlas->fill_holes)
+        mlod_atlas_invalidate(atlas);
+    mlod__run(parallel, mlod__atlas_chunks(atlas), mlod__shown_task, &job);
+    {
+        uint32_t v, b, tasks = 0;
+        atlas->redrawn = 0;
+        for (v = 0; v < atlas->view_count; v++)
+            if (atlas->shown[2 * (size_t)v] == 0) {
+                for (b = atlas->bands[v]; b < atlas->bands[v + 1]; b++) atlas->redraw[tasks++] = b;
+                atlas->redrawn++;
+            }
+        job.tasks = atlas->redraw;
+        mlod__run(parallel, tasks, mlod__splat_task, &job);
+        if (atlas->fill_holes && atlas->redrawn) { /* the drawn tiles' holes, the list in place of the bands */
+            uint32_t n = 0;
+            size_t floats;
+            for (v = 0; v < atlas->view_count; v++)
+                if (atlas->shown[2 * (size_t)v] == 0) atlas->redraw[n++] = v;
+            if (!mlod__fill_tiles(atlas, atlas->redraw, n, parallel, &floats))
+                return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY,
+                                  "out of memory filling the holes of %u tiles (%zu floats); they stay unfilled, "
+                                  "and the next mlod_splat draws them again", n, floats);
+        }
+        for (v = 0; v < atlas->view_count; v++)
+            if (atlas->shown[2 * (size_t)v] == 0) {
+                atlas->shown[2 * (size_t)v] = cut->version[v];
+                atlas->shown[2 * (size_t)v + 1] = tree->revision;
+            }
+    }
+    atlas->shown_scale = atlas->disc_scale;
+    atlas->shown_splat = atlas->splat;
+    atlas->shown_fill = atlas->fill_holes;
     return mlod__succeed(error);
 }
 
@@ -8701,6 +8916,7 @@ MLOD__PUBLIC mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree
     mlod_result res = mlod__check_splat(atlas, tree, views, error);
     if (res != MLOD_OK) return res;
     memset(&job, 0, sizeof job);
+    mlod_atlas_invalidate(atlas);
     job.atlas = atlas;
     job.tree = tree;
     job.views = views;
@@ -8715,8 +8931,9 @@ MLOD__PUBLIC mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree
 typedef struct mlod__fill_job {
     mlod_atlas *atlas;
     float *scratch;
-    size_t *tile_scratch; /* per view: first float of its pyramid */
+    size_t *tile_scratch; /* per tile filled: first float of its pyramid */
     uint32_t values;      /* floats per pixel: depth + channels */
+    const uint32_t *list; /* the views to fill, NULL: all */
 } mlod__fill_job;
 
 /* Floats of a w x h tile's coarser pyramid levels, values per pixel. */
@@ -8740,13 +8957,14 @@ static float *mlod__tile_value(mlod_atlas *atlas, const uint32_t *tile, uint32_t
     return atlas->color + 3 * at + (v - (atlas->normal ? 4 : 1));
 }
 
-static void mlod__fill_task(void *context, uint32_t view)
+static void mlod__fill_task(void *context, uint32_t index)
 {
     const mlod__fill_job *job = (const mlod__fill_job *)context;
     mlod_atlas *atlas = job->atlas;
+    uint32_t view = job->list ? job->list[index] : index;
     const uint32_t *tile = atlas->tiles + 4 * (size_t)view;
     uint32_t values = job->values, stride = values + 1, w = tile[2], h = tile[3], levels = 0, level;
-    float *pyramid = job->scratch + job->tile_scratch[view], *level_at[40];
+    float *pyramid = job->scratch + job->tile_scratch[index], *level_at[40];
     uint32_t lw[40], lh[40];
     /* pull: each coarser pixel is the mean of its non-empty children;
        a pixel is (weight, values...), weight 0 when empty */
@@ -8806,28 +9024,54 @@ static void mlod__fill_task(void *context, uint32_t view)
     }
 }
 
-MLOD__PUBLIC mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error)
+/* Pull-push on the tiles of views list[0 .. count - 1] (list NULL: every
+   view, count = view_count); 0 when out of memory (nothing filled). */
+static int mlod__fill_tiles(mlod_atlas *atlas, const uint32_t *list, uint32_t count, const mlod_parallel *parallel,
+                            size_t *floats)
 {
     mlod__fill_job job;
     size_t total = 0;
-    uint32_t v;
-    if (!atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas is NULL");
+    uint32_t i;
     job.atlas = atlas;
+    job.list = list;
     job.values = 1 + (atlas->normal ? 3u : 0u) + (atlas->color ? 3u : 0u);
-    job.tile_scratch = (size_t *)mlod__alloc_array(&atlas->allocator, atlas->view_count, sizeof(size_t), NULL);
-    if (!job.tile_scratch) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory filling holes");
-    for (v = 0; v < atlas->view_count; v++) {
-        job.tile_scratch[v] = total;
-        total += mlod__pyramid_floats(atlas->tiles[4 * (size_t)v + 2], atlas->tiles[4 * (size_t)v + 3], job.values);
+    *floats = 0;
+    if (count == 0) return 1;
+    job.tile_scratch = (size_t *)mlod__alloc_array(&atlas->allocator, count, sizeof(size_t), NULL);
+    if (!job.tile_scratch) return 0;
+    for (i = 0; i < count; i++) {
+        const uint32_t *tile = atlas->tiles + 4 * (size_t)(list ? list[i] : i);
+        job.tile_scratch[i] = total;
+        total += mlod__pyramid_floats(tile[2], tile[3], job.values);
     }
+    *floats = total;
     job.scratch = (float *)mlod__alloc_array(&atlas->allocator, total, sizeof(float), NULL);
     if (!job.scratch) {
         mlod__free(&atlas->allocator, job.tile_scratch);
-        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory filling holes (%zu floats)", total);
+        return 0;
     }
-    mlod__run(parallel, atlas->view_count, mlod__fill_task, &job);
+    mlod__run(parallel, count, mlod__fill_task, &job);
     mlod__free(&atlas->allocator, job.scratch);
     mlod__free(&atlas->allocator, job.tile_scratch);
+    return 1;
+}
+
+MLOD__PUBLIC mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_parallel *parallel, mlod_error *error)
+{
+    uint32_t *list = NULL, count = 0, v;
+    size_t floats;
+    int ok;
+    if (!atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas is NULL");
+    if (atlas->fill_holes) { /* the tiles mlod_splat drew or kept are filled already */
+        list = (uint32_t *)mlod__alloc_array(&atlas->allocator, atlas->view_count, sizeof(uint32_t), NULL);
+        if (!list) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory filling holes");
+        for (v = 0; v < atlas->view_count; v++)
+            if (atlas->shown[2 * (size_t)v] == 0) list[count++] = v;
+    }
+    ok = mlod__fill_tiles(atlas, list, list ? count : atlas->view_count, parallel, &floats);
+    mlod__free(&atlas->allocator, list);
+    if (!ok) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory filling holes (%zu floats)", floats);
+    if (!atlas->fill_holes) mlod_atlas_invalidate(atlas); /* the filled tiles are not what mlod_splat draws */
     return mlod__succeed(error);
 }
 
@@ -11708,6 +11952,7 @@ MLOD__PUBLIC mlod_result mlod_megaviews_render(mlod_atlas *atlas, const mlod_tre
                                                mlod_error *error)
 {
     if (!atlas) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "atlas is NULL");
+    mlod_atlas_invalidate(atlas); /* its tiles become the maps (mlod_splat redraws them all next) */
     return mlod__megaviews_run(atlas, NULL, scene, views, params, MLOD__MV_WALK_LEVEL, MLOD__MV_WALK_ROOM, 0, 0, stats,
                                error);
 }

@@ -770,7 +770,7 @@ static int per_view_vpls(const char *program, const app_options *o, const app_sc
     mlod_atlas *cut_atlas = NULL, *ism_atlas = NULL;
     mlod_cut *cut = NULL;
     mlod_cut_params cp;
-    mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO};
+    mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO, 0};
     mlod_error error;
     uint64_t nodes, drawn;
     int ok = 0;
@@ -841,7 +841,7 @@ static int compare_megaviews(const char *program, const app_options *o, app_scen
     mlod_view_set set;
     mlod_megaviews_params mp;
     mlod_megaviews_stats st;
-    mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO};
+    mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO, 0};
     mlod_error error;
     app_gbuffer g;
     app_image direct, raw, mv, exact, per_view, ism, exact_few, per_view_eq, ism_eq, panels[3];
@@ -1045,7 +1045,7 @@ int main(int argc, char **argv)
     app_counter build_memory = {0, 0};
     mlod_allocator build_allocator = app_counting(&build_memory);
     size_t build_bound;
-    mlod_atlas_desc atlas_desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO};
+    mlod_atlas_desc atlas_desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO, 0};
     uint32_t frame, compare_width = 0;
     int status = 1, parsed;
 
@@ -1132,11 +1132,12 @@ int main(int argc, char **argv)
         if (!atlas) {
             if (mlod_atlas_create(views, o.views, &atlas_desc, NULL, &ism_atlas, &error) != MLOD_OK) goto failed;
             atlas_desc.disc_scale = o.disc_scale;
+            atlas_desc.fill_holes = o.disc_scale < 1.0f; /* filled as drawn: the tiles kept stay filled */
             if (mlod_atlas_create(views, o.views, &atlas_desc, NULL, &atlas, &error) != MLOD_OK) goto failed;
         }
         t0 = app_now_ms();
+        /* redraws the tiles whose VPL, cut or drawn nodes changed */
         if (mlod_splat(atlas, tree, cut, views, threads.parallel, &error) != MLOD_OK) goto failed;
-        if (o.disc_scale < 1.0f && mlod_atlas_fill_holes(atlas, threads.parallel, &error) != MLOD_OK) goto failed;
         frame_splat_ms = app_now_ms() - t0;
 
         t0 = app_now_ms();

@@ -295,7 +295,7 @@ int main(int argc, char **argv)
     params.lazy_steps = 1;
     params.parallel = threads.parallel;
     {
-        mlod_atlas_desc desc = {0, MLOD_ATLAS_COLOR, 0.0f, NULL, MLOD_SPLAT_AUTO};
+        mlod_atlas_desc desc = {0, MLOD_ATLAS_COLOR, 0.0f, NULL, MLOD_SPLAT_AUTO, 0};
         atlas_bound = mlod_atlas_bound(views, count, &desc);
         if (mlod_cut_create(count, NULL, &cut, &error) != MLOD_OK ||
             mlod_atlas_create(views, count, &desc, NULL, &atlas, &error) != MLOD_OK)
