@@ -1195,6 +1195,72 @@ retry:
     mlod_atlas_destroy(atlas);
 }
 
+/* The atlas that follows the incremental cut from frame to frame
+   (mlod_splat keeps the tiles that show what it would draw) against a new
+   atlas drawn whole from the basic cut of the same frame: the same bits.
+   follow_begin draws frame 1 (NULL where that fails: an injected
+   allocation failure, a cut that failed); follow_check frame 2. */
+static mlod_atlas *follow_begin(fz_ctx *c, const mlod_tree *t, const mlod_cut *cut, const fz_views *vs, uint32_t fill)
+{
+    mlod_atlas_desc desc;
+    mlod_atlas *a = NULL;
+    mlod_error e;
+    memset(&desc, 0, sizeof desc);
+    desc.channels = (t->cones ? (uint32_t)MLOD_ATLAS_NORMAL : 0u) | (t->colors ? (uint32_t)MLOD_ATLAS_COLOR : 0u);
+    desc.fill_holes = fill;
+    if (mlod_atlas_create(vs->views, vs->count, &desc, &c->alloc, &a, &e) != MLOD_OK) return NULL;
+    if (mlod_splat(a, t, cut, vs->views, c->parallel, &e) != MLOD_OK) {
+        check_error(e.code, &e);
+        mlod_atlas_destroy(a);
+        return NULL;
+    }
+    FZ_REQUIRE(a->redrawn == vs->count, "a new atlas drew %u of %u tiles", a->redrawn, vs->count);
+    return a;
+}
+
+static void follow_check(fz_ctx *c, mlod_atlas *a, const mlod_tree *t, mlod_cut *cut, const mlod_cut *basic,
+                         const fz_views *vs, const mlod_cut_params *p)
+{
+    mlod_atlas_desc desc;
+    mlod_atlas *fresh = NULL;
+    mlod_error e;
+    size_t pixels;
+    mlod_result res;
+    if (!a) return;
+    res = mlod_splat(a, t, cut, vs->views, c->parallel, &e);
+    if (res != MLOD_OK) { /* other tile sizes, a failed update, an injected failure filling holes */
+        fz_where = "mlod_splat (the atlas kept from frame 1)";
+        check_error(res, &e);
+        FZ_REQUIRE(res == MLOD_ERROR_MISMATCH || injected_oom(&c->counter, res),
+                   "mlod_splat into the atlas of frame 1 failed with %s: %s", mlod_result_name(res), e.message);
+        return;
+    }
+    memset(&desc, 0, sizeof desc);
+    desc.channels = a->channels;
+    desc.fill_holes = a->fill_holes;
+    if (mlod_atlas_create(vs->views, vs->count, &desc, &c->alloc, &fresh, &e) != MLOD_OK) return;
+    if (mlod_splat(fresh, t, basic, vs->views, c->parallel, &e) == MLOD_OK) {
+        pixels = (size_t)a->width * a->height;
+        FZ_REQUIRE(memcmp(a->depth, fresh->depth, pixels * sizeof(float)) == 0 &&
+                       (!a->normal || memcmp(a->normal, fresh->normal, 3 * pixels * sizeof(float)) == 0) &&
+                       (!a->color || memcmp(a->color, fresh->color, 3 * pixels * sizeof(float)) == 0),
+                   "the atlas kept from frame 1 (%u of %u tiles redrawn) differs from a full redraw of frame 2",
+                   a->redrawn, vs->count);
+        FZ_NOTE("fuzz: the atlas kept from frame 1 redrew %u of %u tiles, equal to a full redraw\n", a->redrawn,
+                vs->count);
+        /* the same views again, the tree as it is: the cut keeps its lists
+           and versions, and the splat every tile, with the same bits */
+        if (cut_update(c, cut, t, vs, p, 0, 0, "incremental update, frame 2 again") == MLOD_OK &&
+            mlod_splat(a, t, cut, vs->views, c->parallel, &e) == MLOD_OK) {
+            FZ_REQUIRE(a->redrawn == 0, "nothing changed, yet mlod_splat redrew %u of %u tiles", a->redrawn,
+                       vs->count);
+            FZ_REQUIRE(memcmp(a->depth, fresh->depth, pixels * sizeof(float)) == 0,
+                       "nothing changed, yet the kept atlas differs from a full redraw");
+        }
+    }
+    mlod_atlas_destroy(fresh);
+}
+
 /* The deformed scene of a frame later, for refit. */
 static void perturb(fz_reader *r, const fz_scene *s, float *out, int sane)
 {
@@ -1761,6 +1827,7 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
     static float moved[3 * (FZ_LARGE_POINTS + 1)];
     fz_views v1, v2;
     mlod_cut *basic = NULL, *incremental = NULL, *lazy = NULL;
+    mlod_atlas *follow = NULL; /* follows the incremental cut from frame 1 to frame 2 */
     mlod_cut_params p;
     mlod_error e;
     mlod_result res;
@@ -1819,6 +1886,7 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
     cut_update(c, incremental, t, &v1, &p, 0, 0, "incremental update, frame 1");
     FZ_REQUIRE(same_cut(basic, incremental, v1.count, &differs), "frame 1: incremental cut differs from basic in view %u",
                differs);
+    follow = follow_begin(c, t, incremental, &v1, p.lazy_steps & 1u);
     p.mode = MLOD_CUT_LAZY;
     cut_update(c, lazy, t, &v1, &p, 0, 0, "lazy update, frame 1");
     check_cut(lazy, t, &layout, &v1, eps, 0, 1, &c->rng, "lazy cut, frame 1");
@@ -1914,6 +1982,7 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
     check_cut(incremental, t, &layout, &v2, eps, 1, 1, &c->rng, "incremental cut, frame 2");
     FZ_REQUIRE(same_cut(basic, incremental, v2.count, &differs),
                "frame 2: incremental cut (from frame 1's) differs from basic in view %u", differs);
+    follow_check(c, follow, t, incremental, basic, &v2, &p);
     p.mode = MLOD_CUT_LAZY;
     for (call = 0; call < FZ_LAZY_CALLS; call++) {
         cut_update(c, lazy, t, &v2, &p, 0, 0, "lazy update, frame 2");
@@ -1942,6 +2011,7 @@ done:
     check_depth_nodes(rd_leaf_count(r), rd_u32(r));
     check_growth(r, t);
     check_sample(r, &c->counter, &c->alloc);
+    mlod_atlas_destroy(follow);
     mlod_cut_destroy(basic);
     mlod_cut_destroy(incremental);
     mlod_cut_destroy(lazy);
