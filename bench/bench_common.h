@@ -773,6 +773,16 @@ static int cut_partitions_by_walk(const mlod_tree *tree, const mlod_cut_view *c,
     return 1;
 }
 
+/* Two atlases of the same layout hold the same bits (depth and channels). */
+static int atlases_equal(const mlod_atlas *a, const mlod_atlas *b)
+{
+    size_t pixels = (size_t)a->width * a->height;
+    if (a->width != b->width || a->height != b->height || a->channels != b->channels) return 0;
+    return memcmp(a->depth, b->depth, sizeof(float) * pixels) == 0 &&
+           (!a->normal || memcmp(a->normal, b->normal, 3 * sizeof(float) * pixels) == 0) &&
+           (!a->color || memcmp(a->color, b->color, 3 * sizeof(float) * pixels) == 0);
+}
+
 /* Two views' cuts list the same nodes with the same statuses. */
 static int same_cut_view(mlod_cut_view x, mlod_cut_view y)
 {

@@ -51,6 +51,7 @@ mlod_result bench_avx2_cut_update(bench_avx2_cut *cut, const mlod_tree *tree, co
 mlod_result bench_avx2_splat(const bench_avx2_cut *cut, mlod_atlas *atlas, const mlod_tree *tree,
                              const mlod_view *views, const mlod_parallel *parallel, mlod_error *error)
 {
+    mlod_atlas_invalidate(atlas); /* a full splat, as the bench times this build's */
     return mlod_splat(atlas, tree, cut->cut, views, parallel, error);
 }
 

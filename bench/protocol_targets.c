@@ -57,6 +57,7 @@ static void time_threads(bench *b, protocol *p, mlod_tree *tree, const mlod_view
             if (mlod_cut_update(cut, tree, views, &params, &error) != MLOD_OK)
                 fail("mlod_cut_update: %s", error.message);
             times[t][STAGE_CUT][i] = now_ms() - t0;
+            mlod_atlas_invalidate(p->atlas); /* the same frame again: a full splat, every tile drawn */
             t0 = now_ms();
             if (mlod_splat(p->atlas, tree, cut, views, parallel, &error) != MLOD_OK)
                 fail("mlod_splat: %s", error.message);
@@ -123,21 +124,35 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
     float *part = (float *)checked_malloc(sizeof(float) * 3 * p->rest.vertex_count);
     double limit = part_limit(p);
     mlod_cut *cuts[BENCH_RIGS][2];
+    mlod_atlas *atlases[BENCH_RIGS][2]; /* [1] follows the incremental cut, [0] is redrawn whole */
+    mlod_atlas_desc desc;
     mlod_cut_params params;
     mlod_error error;
-    double ms[BENCH_RIGS][2][BENCH_MAX_FRAMES], evaluated[BENCH_RIGS][2], nodes[BENCH_RIGS][2], same[3], e, n;
+    double ms[BENCH_RIGS][2][BENCH_MAX_FRAMES], splat_ms[BENCH_RIGS][2][BENCH_MAX_FRAMES], redrawn[BENCH_RIGS];
+    double changed[BENCH_RIGS]; /* pixels whose depth differs from the frame before, per frame */
+    float *before[BENCH_RIGS];  /* the frame before's depth */
+    double evaluated[BENCH_RIGS][2], nodes[BENCH_RIGS][2], same[3], same_splat[3], e, n;
     int f, r, m, k;
     uint32_t diff;
     row *out;
     memset(evaluated, 0, sizeof evaluated);
     memset(nodes, 0, sizeof nodes);
+    memset(redrawn, 0, sizeof redrawn);
+    memset(changed, 0, sizeof changed);
+    memset(&desc, 0, sizeof desc);
     memset(&params, 0, sizeof params);
     params.epsilon = 1.0f;
     params.parallel = &b->parallel;
     for (r = 0; r < BENCH_RIGS; r++)
         for (m = 0; m < 2; m++)
-            if (mlod_cut_create(p->view_count, NULL, &cuts[r][m], &error) != MLOD_OK)
-                fail("mlod_cut_create: %s", error.message);
+            if (mlod_cut_create(p->view_count, NULL, &cuts[r][m], &error) != MLOD_OK ||
+                mlod_atlas_create(frame_views(p, 0), p->view_count, &desc, NULL, &atlases[r][m], &error) != MLOD_OK)
+                fail("mlod_cut_create / mlod_atlas_create: %s", error.message);
+    for (r = 0; r < BENCH_RIGS; r++) {
+        size_t bytes = sizeof(float) * (size_t)atlases[r][0]->width * atlases[r][0]->height;
+        before[r] = (float *)checked_malloc(bytes);
+        memset(before[r], 0, bytes);
+    }
     /* the two rigs over the whole mesh share each frame's refit; the
        moving part's frames come after (a refit between two of its frames
        would change every node) */
@@ -165,6 +180,17 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
                 evaluated[r][m] += e;
                 nodes[r][m] += n;
             }
+            /* the splats: the atlas that follows the incremental cut, and
+               one redrawn whole from the basic cut */
+            for (m = 0; m < 2; m++) {
+                if (m == 0) mlod_atlas_invalidate(atlases[r][m]);
+                t0 = now_ms();
+                if (mlod_splat(atlases[r][m], tree, cuts[r][m], views, &b->parallel, &error) != MLOD_OK)
+                    fail("mlod_splat: %s", error.message);
+                if (frame < c->warmup) continue;
+                splat_ms[r][m][frame - c->warmup] = now_ms() - t0;
+                if (m == 1) redrawn[r] += atlases[r][m]->redrawn;
+            }
             t0 = now_ms();
             for (m = 0; m < 2; m++) {
                 snprintf(what, sizeof what, "object, %s, %s, frame %d", rig_names[r], cut_names[m], frame);
@@ -172,6 +198,15 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             }
             if (!cuts_equal(cuts[r][1], cuts[r][0], &diff))
                 fail("%s: the cut of view %u differs from the basic cut", what, diff);
+            if (!atlases_equal(atlases[r][1], atlases[r][0]))
+                fail("%s: the atlas that kept unchanged tiles differs from a full redraw", what);
+            { /* the pixels that changed: what any redraw must write at least */
+                size_t i, pixels = (size_t)atlases[r][0]->width * atlases[r][0]->height, differ = 0;
+                const float *now = atlases[r][0]->depth;
+                for (i = 0; i < pixels; i++) differ += memcmp(&now[i], &before[r][i], sizeof(float)) != 0;
+                if (frame >= c->warmup) changed[r] += 100.0 * (double)differ / (double)pixels;
+                memcpy(before[r], now, sizeof(float) * pixels);
+            }
             b->spent_checks += now_ms() - t0;
         }
     }
@@ -182,12 +217,16 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             out = add_row(b, ROW_TARGET, p->name, method);
             out->eps = 1.0f;
             out->n = tree->leaf_count;
-            out->cut_ms = out->total_ms = median(ms[r][m], c->measured);
+            out->cut_ms = median(ms[r][m], c->measured);
+            out->splat_ms = median(splat_ms[r][m], c->measured);
+            out->total_ms = out->cut_ms + out->splat_ms;
             out->evaluated = evaluated[r][m] / c->measured;
             out->per_view = nodes[r][m] / c->measured / p->view_count;
-            snprintf(out->note, sizeof out->note,
+            snprintf(out->note, sizeof out->note, "%s; %s, %.0f tiles of %u redrawn per frame, %.1f%% of the pixels changed",
                      r == 2 ? "the object's frames, the top eighth of its vertices (by y) twisting, the rest still"
-                            : "the object's frames (twisting), this rig");
+                            : "the object's frames (twisting), this rig",
+                     m == 1 ? "the atlas kept from frame to frame" : "every tile redrawn",
+                     m == 1 ? redrawn[r] / c->measured : (double)p->view_count, p->view_count, changed[r] / c->measured);
         }
     {
         /* back to the last frame, as the other measurements expect */
@@ -203,24 +242,42 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
     if (mlod_cut_update(cuts[1][0], tree, views, &params, &error) != MLOD_OK)
         fail("mlod_cut_update: %s", error.message);
     params.mode = MLOD_CUT_INCREMENTAL;
+    if (mlod_splat(atlases[1][1], tree, cuts[1][1], views, &b->parallel, &error) != MLOD_OK)
+        fail("mlod_splat: %s", error.message);
     for (k = 0; k < 3; k++) {
         double t0 = now_ms();
         if (mlod_cut_update(cuts[1][1], tree, views, &params, &error) != MLOD_OK)
             fail("mlod_cut_update: %s", error.message);
         same[k] = now_ms() - t0;
+        t0 = now_ms();
+        if (mlod_splat(atlases[1][1], tree, cuts[1][1], views, &b->parallel, &error) != MLOD_OK)
+            fail("mlod_splat: %s", error.message);
+        same_splat[k] = now_ms() - t0;
+        if (atlases[1][1]->redrawn != 0) fail("nothing changed, yet mlod_splat redrew %u tiles", atlases[1][1]->redrawn);
     }
     if (!cuts_equal(cuts[1][1], cuts[1][0], &diff))
         fail("object, static rig, an update with unchanged views and tree: view %u differs from the basic cut", diff);
+    mlod_atlas_invalidate(atlases[1][0]);
+    if (mlod_splat(atlases[1][0], tree, cuts[1][0], views, &b->parallel, &error) != MLOD_OK)
+        fail("mlod_splat: %s", error.message);
+    if (!atlases_equal(atlases[1][1], atlases[1][0]))
+        fail("object, static rig, nothing changed: the kept atlas differs from a full redraw");
     cut_totals(cuts[1][1], &e, &n);
     out = add_row(b, ROW_TARGET, p->name, "unchanged views and tree: incremental");
     out->eps = 1.0f;
     out->n = tree->leaf_count;
-    out->cut_ms = out->total_ms = median(same, 3);
+    out->cut_ms = median(same, 3);
+    out->splat_ms = median(same_splat, 3);
+    out->total_ms = out->cut_ms + out->splat_ms;
     out->evaluated = e;
     out->per_view = n / p->view_count;
     snprintf(out->note, sizeof out->note, "the static rig's last frame updated again, nothing changed");
     for (r = 0; r < BENCH_RIGS; r++)
-        for (m = 0; m < 2; m++) mlod_cut_destroy(cuts[r][m]);
+        for (m = 0; m < 2; m++) {
+            mlod_cut_destroy(cuts[r][m]);
+            mlod_atlas_destroy(atlases[r][m]);
+        }
+    for (r = 0; r < BENCH_RIGS; r++) free(before[r]);
     free(part);
     free(views);
 }
@@ -335,9 +392,11 @@ static void target_avx2(bench *b, protocol *p, mlod_tree *tree)
         }
         for (v = 0; v < p->view_count; v++) hash = bench_hash_cut_view(hash, mlod_cut_get(cut, v));
         if (hash != bench_avx2_cut_hash(wide)) fail("frame %d: the AVX2 build's cuts differ from this build's", f);
-        for (k = 0; k < 2; k++) { /* the splats likewise, each of its own copy's cut */
+        for (k = 0; k < 2; k++) { /* the splats likewise, each of its own copy's cut, every tile drawn */
             int which = (k + f) & 1;
-            double t0 = now_ms();
+            double t0;
+            mlod_atlas_invalidate(p->atlas); /* (bench_avx2_splat invalidates its atlas itself) */
+            t0 = now_ms();
             if ((which ? bench_avx2_splat(wide, wide_atlas, tree, views, &b->parallel, &error)
                        : mlod_splat(p->atlas, tree, cut, views, &b->parallel, &error)) != MLOD_OK)
                 fail("mlod_splat (%s): %s", which ? "AVX2 copy" : "this build", error.message);
@@ -497,6 +556,35 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
                  rigs[2][1]->evaluated);
         target_line(f, "incremental / basic, static rig, an eighth of the mesh moving", ours, "- (no target)", anchor,
                     NAN, "(for reference)");
+    }
+    for (k = 0; k < 3; k++) { /* the atlas that follows the cut (issue 53) against a full redraw */
+        static const char *const names[3] = {"kept / full splat, rig turning 1 deg/frame",
+                                             "kept / full splat, static rig over the deforming mesh",
+                                             "kept / full splat, static rig, an eighth of the mesh moving"};
+        if (rigs[k][0] && rigs[k][1]) {
+            double ratio = rigs[k][1]->splat_ms / rigs[k][0]->splat_ms;
+            snprintf(ours, sizeof ours, "%.2fx", ratio);
+            snprintf(anchor, sizeof anchor, "full splat %s (every tile cleared and drawn), the atlas kept from frame "
+                     "to frame %s (%s); equal atlases, bit for bit (checked every frame)",
+                     ms_text(rigs[k][0]->splat_ms), ms_text(rigs[k][1]->splat_ms), rigs[k][1]->note);
+            if (k == 2)
+                target_line(f, names[k], ours, "<= 0.25x", anchor, ratio / 0.25, NULL);
+            else
+                target_line(f, names[k], ours, "- (no target)", anchor, NAN, "(for reference)");
+        } else {
+            target_missing(f, names[k], k == 2 ? "<= 0.25x" : "- (no target)", "not run in this configuration");
+        }
+    }
+    if (same) {
+        snprintf(anchor, sizeof anchor, "%u views, an incremental update %s and a splat %s with identical views and "
+                 "tree (no tile redrawn, the atlas equal to a full redraw: checked); the full splat of the same "
+                 "frame: %s",
+                 c->view_count, ms_text(same->cut_ms), ms_text(same->splat_ms),
+                 rigs[1][0] ? ms_text(rigs[1][0]->splat_ms) : "-");
+        target_line(f, "cut + splat, nothing changed", ms_text(same->total_ms), "<= 1 ms", anchor,
+                    same->total_ms / 1.0, NULL);
+    } else {
+        target_missing(f, "cut + splat, nothing changed", "<= 1 ms", "not run in this configuration");
     }
     if (same) {
         double us = 1e3 * same->cut_ms / c->view_count;
