@@ -515,7 +515,8 @@ typedef struct sampler_run {
     uint32_t *samples;
     float *weights;
     app_image light, last; /* at the receivers: this frame, the previous */
-    double kept, flicker, error, cut_ms; /* summed over frames 1 .. */
+    mlod_atlas *atlas;     /* the VPLs' shadow maps, kept from frame to frame */
+    double kept, flicker, error, cut_ms, splat_ms, redrawn; /* summed over frames 1 .. */
 } sampler_run;
 
 static int compare_samplers(const char *program, const app_options *o, app_scene *scene, mlod_tree *tree,
@@ -572,12 +573,14 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
            "frame.  The light stands still, the camera turns %.1f deg a frame, the object %s.  Indirect light\n"
            "at %u surface points, exact visibility: error against every candidate as a VPL (the converged\n"
            "reference), flicker = frame-to-frame change where the reference changes by <= %.0f %%; kept = VPLs\n"
-           "whose view is the previous frame's; cut: %s, epsilon %g px, %u x %u px paraboloids.\n\n",
+           "whose view is the previous frame's; cut: %s, epsilon %g px, %u x %u px paraboloids; splat: their\n"
+           "shadow maps in an atlas kept from frame to frame (redrawn = its tiles drawn again, the others kept).\n\n",
            n, d, IMPORTANCE_POINTS, CHAIN_LENGTH, (double)CAMERA_TURN * 180.0 / SCENE_PI,
            o->still ? "stays at rest" : "twists", receivers, 100.0 * STABLE,
            app_mode_name(MLOD_CUT_INCREMENTAL), (double)o->epsilon, o->tile, o->tile);
-    printf("       inverse transform                     Metropolis-Hastings\n");
-    printf("frame  kept %%  flicker %%  error %%  cut ms    kept %%  flicker %%  error %%  cut ms\n");
+    printf("       inverse transform                                        Metropolis-Hastings\n");
+    printf("frame  kept %%  flicker %%  error %%  cut ms  splat ms  redrawn %%    kept %%  flicker %%  error %%  cut ms  "
+           "splat ms  redrawn %%\n");
     for (frame = 0; frame <= o->frames; frame++) {
         mlod_view camera = sampling_camera(o->width, o->height, frame);
         importance_job ij;
@@ -630,7 +633,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
             sampler_run *run = &runs[s];
             mlod_sample_params sp;
             uint32_t kept = 0;
-            double t0, cut_ms, flicker, err;
+            double t0, cut_ms, splat_ms, flicker, err;
             memset(&sp, 0, sizeof sp);
             sp.method = run->method;
             sp.chain_length = CHAIN_LENGTH;
@@ -650,6 +653,15 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
             t0 = app_now_ms();
             if (mlod_cut_update(run->cut, tree, run->views, &params, &error) != MLOD_OK) goto failed;
             cut_ms = app_now_ms() - t0;
+            /* the shadow maps: only the tiles whose VPL, cut or drawn nodes changed are drawn again (the
+               indirect light below uses exact visibility, so the figures are the sampler's alone) */
+            if (!run->atlas) {
+                mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO, 0};
+                if (mlod_atlas_create(run->views, n, &desc, NULL, &run->atlas, &error) != MLOD_OK) goto failed;
+            }
+            t0 = app_now_ms();
+            if (mlod_splat(run->atlas, tree, run->cut, run->views, threads->parallel, &error) != MLOD_OK) goto failed;
+            splat_ms = app_now_ms() - t0;
             memcpy(run->last.rgb, run->light.rgb, 3 * sizeof(float) * receivers);
             job.vpls = run->vpls;
             job.vpl_count = n;
@@ -662,9 +674,13 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
                 run->flicker += flicker;
                 run->error += err;
                 run->cut_ms += cut_ms;
-                printf("  %6.1f  %9.2f  %7.2f  %6.1f", 100.0 * kept / n, 100.0 * flicker, 100.0 * err, cut_ms);
+                run->splat_ms += splat_ms;
+                run->redrawn += (double)run->atlas->redrawn / n;
+                printf("  %6.1f  %9.2f  %7.2f  %6.1f  %8.1f  %9.1f", 100.0 * kept / n, 100.0 * flicker, 100.0 * err,
+                       cut_ms, splat_ms, 100.0 * run->atlas->redrawn / n);
             } else {
-                printf("  %6s  %9s  %7.2f  %6.1f", "-", "-", 100.0 * err, cut_ms);
+                printf("  %6s  %9s  %7.2f  %6.1f  %8.1f  %9.1f", "-", "-", 100.0 * err, cut_ms, splat_ms,
+                       100.0 * run->atlas->redrawn / n);
             }
         }
         printf("%s\n", frame == 0 ? "   (basic cuts from the root)" : "");
@@ -674,14 +690,18 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
     if (o->frames > 0) {
         printf("mean  ");
         for (s = 0; s < 2; s++)
-            printf("  %6.1f  %9.2f  %7.2f  %6.1f", 100.0 * runs[s].kept / o->frames, 100.0 * runs[s].flicker / o->frames,
-                   100.0 * runs[s].error / o->frames, runs[s].cut_ms / o->frames);
+            printf("  %6.1f  %9.2f  %7.2f  %6.1f  %8.1f  %9.1f", 100.0 * runs[s].kept / o->frames,
+                   100.0 * runs[s].flicker / o->frames, 100.0 * runs[s].error / o->frames, runs[s].cut_ms / o->frames,
+                   runs[s].splat_ms / o->frames, 100.0 * runs[s].redrawn / o->frames);
         printf("   (frames 1 .. %u)\n", o->frames);
         printf("sampling summary: kept %.1f %% vs %.1f %%, flicker %.2f %% vs %.2f %%, error %.2f %% vs %.2f %%,"
-               " cut %.1f ms vs %.1f ms (inverse transform vs Metropolis-Hastings)\n",
+               " cut %.1f ms vs %.1f ms, splat %.1f ms vs %.1f ms, tiles redrawn %.1f %% vs %.1f %%"
+               " (inverse transform vs Metropolis-Hastings)\n",
                100.0 * runs[0].kept / o->frames, 100.0 * runs[1].kept / o->frames, 100.0 * runs[0].flicker / o->frames,
                100.0 * runs[1].flicker / o->frames, 100.0 * runs[0].error / o->frames,
-               100.0 * runs[1].error / o->frames, runs[0].cut_ms / o->frames, runs[1].cut_ms / o->frames);
+               100.0 * runs[1].error / o->frames, runs[0].cut_ms / o->frames, runs[1].cut_ms / o->frames,
+               runs[0].splat_ms / o->frames, runs[1].splat_ms / o->frames, 100.0 * runs[0].redrawn / o->frames,
+               100.0 * runs[1].redrawn / o->frames);
     }
     app_stage("done");
     ok = 1;
@@ -692,6 +712,7 @@ failed:
 done:
     for (s = 0; s < 2; s++) {
         mlod_cut_destroy(runs[s].cut);
+        mlod_atlas_destroy(runs[s].atlas);
         free(runs[s].views);
         free(runs[s].previous);
         free(runs[s].vpls);
