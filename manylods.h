@@ -670,7 +670,10 @@
      scene tree's node count, for any scene: far above);
      mlod_megaviews_render_maps, level by level throughout, keeps
      on top 8 bytes per pixel of every view node that drew anything
-     (mlod_megaviews_maps_bytes).  Attributes a scene does not ask for take
+     (mlod_megaviews_maps_bytes).  mlod_splat allocates nothing, unless
+     the atlas fills holes (mlod_atlas_desc.fill_holes): then the
+     pull-push scratch of the tiles it draws, as mlod_atlas_fill_holes
+     does for every tile.  Attributes a scene does not ask for take
      no memory.
      A failed call gives back what it allocated (a cut keeps its bytes and
      cuts).  All memory comes from the allocator given at creation (or
