@@ -269,6 +269,7 @@ typedef struct row {
     double evaluated, per_view;                             /* per frame; NAN: n/a */
     double tree_bytes, cut_bytes, atlas_bytes;              /* NAN: n/a */
     double entry_bytes; /* mlod_cut_bytes / cut entries after the last frame's update; NAN: n/a */
+    double redrawn, changed_pixels; /* target_rigs: tiles mlod_splat drew and % of pixels that changed, per frame */
     int has_metrics;
     metrics m;
 } row;

@@ -222,7 +222,9 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             out->total_ms = out->cut_ms + out->splat_ms;
             out->evaluated = evaluated[r][m] / c->measured;
             out->per_view = nodes[r][m] / c->measured / p->view_count;
-            snprintf(out->note, sizeof out->note, "%s; %s, %.0f tiles of %u redrawn per frame, %.1f%% of the pixels changed",
+            out->redrawn = m == 1 ? redrawn[r] / c->measured : (double)p->view_count;
+            out->changed_pixels = changed[r] / c->measured;
+            snprintf(out->note, sizeof out->note, "%s; %s, tiles redrawn per frame: %.0f of %u, %.1f%% of the pixels changed",
                      r == 2 ? "the object's frames, the top eighth of its vertices (by y) twisting, the rest still"
                             : "the object's frames (twisting), this rig",
                      m == 1 ? "the atlas kept from frame to frame" : "every tile redrawn",

@@ -540,6 +540,16 @@ static void write_figures(const bench *b, FILE *f, protocol *const *protocols, i
         if (ism && ism->m.visibility_tests)
             fprintf(f, "%s.ism_pts=%+.2f\n", s, 100.0 * (ism->m.shadow_error - ism->m.reference_shadow_error));
     }
+    { /* frames that change little (issue 53's rows of the Targets table) */
+        const row *same = find_row(b, ROW_TARGET, "object", "unchanged views and tree: incremental", 1.0f, 0);
+        const row *full = find_row(b, ROW_TARGET, "object", "static rig: basic", 1.0f, 0);
+        const row *part = find_row(b, ROW_TARGET, "object", "static rig, a part moving: basic", 1.0f, 0);
+        const row *kept = find_row(b, ROW_TARGET, "object", "static rig, a part moving: incremental", 1.0f, 0);
+        if (same && full) fprintf(f, "object.same_ms=%.2f\nobject.full_splat=%s\n", same->total_ms, ms_text(full->splat_ms));
+        if (part && kept)
+            fprintf(f, "object.part_kept=%.2fx\nobject.part_tiles=%.0f of %u\nobject.part_pixels=%.1f%%\n",
+                    kept->splat_ms / part->splat_ms, kept->redrawn, c->view_count, kept->changed_pixels);
+    }
     for (k = 0; k < b->views_rows; k++)
         if (!most || b->views[k].views > most->views) most = &b->views[k];
     if (!most) return;
