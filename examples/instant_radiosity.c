@@ -532,6 +532,11 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
     app_gbuffer g;
     app_image reference, reference_last;
     sampler_run runs[2];
+    /* the anchor of Metropolis-Hastings' frames: basic cuts and full splats of its VPLs */
+    mlod_cut *anchor_cut = NULL;
+    mlod_atlas *anchor_atlas = NULL;
+    double anchor_ms = 0.0;
+    uint32_t anchor_differ = 0;
     mlod_cut_params params;
     mlod_error error;
     shade_job job;
@@ -662,6 +667,25 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
             t0 = app_now_ms();
             if (mlod_splat(run->atlas, tree, run->cut, run->views, threads->parallel, &error) != MLOD_OK) goto failed;
             splat_ms = app_now_ms() - t0;
+            if (s == 1) { /* the same VPLs by a basic cut from the root and a full splat, and the same maps */
+                mlod_cut_params basic = params;
+                mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO, 0};
+                double a_ms;
+                basic.mode = MLOD_CUT_BASIC;
+                if ((!anchor_cut && mlod_cut_create(n, NULL, &anchor_cut, &error) != MLOD_OK) ||
+                    (!anchor_atlas && mlod_atlas_create(run->views, n, &desc, NULL, &anchor_atlas, &error) != MLOD_OK))
+                    goto failed;
+                mlod_cut_reset(anchor_cut); /* from the root for every view, as a program without the last frame */
+                t0 = app_now_ms();
+                if (mlod_cut_update(anchor_cut, tree, run->views, &basic, &error) != MLOD_OK) goto failed;
+                mlod_atlas_invalidate(anchor_atlas);
+                if (mlod_splat(anchor_atlas, tree, anchor_cut, run->views, threads->parallel, &error) != MLOD_OK)
+                    goto failed;
+                a_ms = app_now_ms() - t0;
+                if (frame > 0) anchor_ms += a_ms;
+                anchor_differ += memcmp(anchor_atlas->depth, run->atlas->depth,
+                                        sizeof(float) * anchor_atlas->width * anchor_atlas->height) != 0;
+            }
             memcpy(run->last.rgb, run->light.rgb, 3 * sizeof(float) * receivers);
             job.vpls = run->vpls;
             job.vpl_count = n;
@@ -702,6 +726,11 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
                100.0 * runs[1].error / o->frames, runs[0].cut_ms / o->frames, runs[1].cut_ms / o->frames,
                runs[0].splat_ms / o->frames, runs[1].splat_ms / o->frames, 100.0 * runs[0].redrawn / o->frames,
                100.0 * runs[1].redrawn / o->frames);
+        printf("Metropolis-Hastings' incremental cut + kept maps against a basic cut + full splat of its VPLs: %.1f "
+               "against %.1f ms a frame (%.2fx); the same maps in %u of %u frames (the basic cut from the root, "
+               "every view evaluated)\n",
+               (runs[1].cut_ms + runs[1].splat_ms) / o->frames, anchor_ms / o->frames,
+               (runs[1].cut_ms + runs[1].splat_ms) / anchor_ms, o->frames + 1 - anchor_differ, o->frames + 1);
     }
     app_stage("done");
     ok = 1;
@@ -710,6 +739,8 @@ failed:
     fprintf(stderr, "%s: %s: %s\n", program, mlod_result_name(error.code), error.message);
     ok = 0;
 done:
+    mlod_cut_destroy(anchor_cut);
+    mlod_atlas_destroy(anchor_atlas);
     for (s = 0; s < 2; s++) {
         mlod_cut_destroy(runs[s].cut);
         mlod_atlas_destroy(runs[s].atlas);
