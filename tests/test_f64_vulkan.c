@@ -26,29 +26,22 @@
 #include "vkcheck.h"
 #include "f64_c.h"
 
-VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instance, const char *name);
-
 #define RESULTS 6 /* uvec4 per operand pair, as tests/f64_check.comp writes them */
 
 int main(int argc, char **argv)
 {
-    uint32_t n = argc > 1 ? (uint32_t)strtoul(argv[1], NULL, 10) : 200000u, i, groups, wrong = 0, wrong_ops[RESULTS * 4];
+    uint32_t n = argc > 1 ? (uint32_t)strtoul(argv[1], NULL, 10) : 200000u, i, wrong = 0, wrong_ops[RESULTS * 4];
     uint64_t state = 0x5EEDF64ull + 1;
-    mlodvk_device_desc dd;
     mlodvk_device device;
-    mlodvk_context_desc desc;
     mlodvk_context *ctx = NULL;
     mlod_error e;
     char why[1200];
     size_t bytes = 0;
     uint32_t *words, *in, *out;
-    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
-    VkPipelineLayout layout = VK_NULL_HANDLE;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set;
-    mlodvk__buffer operands, results;
+    VkDeviceSize sizes[2];
+    vkc_program program;
     mlod_result res;
+    int opened;
 
     words = vkc_compile("tests/f64_check.comp", "", &bytes, why, sizeof why);
     if (!words) return vkc_skip(why);
@@ -56,40 +49,20 @@ int main(int argc, char **argv)
           "tests/f64_check.comp declares no Float64, Int64 or Int64Atomics capability (found %d)",
           vkc_wide_capabilities(words, bytes / 4, 0));
 
-    memset(&dd, 0, sizeof dd);
-    dd.get_instance_proc_addr = vkGetInstanceProcAddr;
-    dd.validation = 1;
-    dd.prefer_cpu = getenv("MANYLODS_VULKAN_GPU") == NULL;
-    if (mlodvk_device_create(&dd, &device, &e) != MLOD_OK) {
+    opened = vkc_open(&device, &ctx, why, sizeof why);
+    if (opened <= 0) {
         free(words);
-        snprintf(why, sizeof why, "no usable Vulkan device with the validation layer: %s", e.message);
-        return vkc_skip(why);
-    }
-    desc = mlodvk_device_context_desc(&device);
-    if (mlodvk_context_create(&desc, &ctx, &e) != MLOD_OK) {
-        CHECK(0, "mlodvk_context_create on %s: %s", device.name, e.message);
-        free(words);
-        mlodvk_device_destroy(&device);
-        return test_finish();
+        return opened == 0 ? vkc_skip(why) : test_finish();
     }
     printf("  device: %s\n", mlodvk_context_device_name(ctx));
 
-    memset(&operands, 0, sizeof operands);
-    memset(&results, 0, sizeof results);
-    res = mlodvk__set_layout(ctx, 2, &set_layout, &e);
-    if (res == MLOD_OK) res = mlodvk__pipeline_layout(ctx, set_layout, 4, &layout, &e);
-    if (res == MLOD_OK) res = mlodvk__pipeline(ctx, words, bytes, layout, &pipeline, &e);
-    if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, 16 * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, &operands, &e);
-    if (res == MLOD_OK)
-        res = mlodvk__buffer_create(ctx, 16 * RESULTS * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1,
-                                    &results, &e);
-    if (res == MLOD_OK) res = mlodvk__pool(ctx, 1, 2, &pool, &e);
-    if (res == MLOD_OK) res = mlodvk__sets(ctx, pool, set_layout, 1, &set, &e);
+    memset(&program, 0, sizeof program);
+    sizes[0] = 16 * (VkDeviceSize)n;           /* operands */
+    sizes[1] = 16 * RESULTS * (VkDeviceSize)n; /* results */
+    res = vkc_program_create(ctx, words, bytes, sizes, 2, 4, &program, &e);
     CHECK(res == MLOD_OK, "the test pipeline and buffers: %s", e.message);
     if (res == MLOD_OK) {
-        VkBuffer buffers[2];
-        in = operands.mapped;
+        in = program.buffers[0].mapped;
         for (i = 0; i < n; i++) {
             uint64_t a = f64t_operand(&state, i % 7), b = f64t_partner(&state, a, i / 7);
             in[4 * i] = (uint32_t)a;
@@ -97,20 +70,7 @@ int main(int argc, char **argv)
             in[4 * i + 2] = (uint32_t)b;
             in[4 * i + 3] = (uint32_t)(b >> 32);
         }
-        buffers[0] = operands.buffer;
-        buffers[1] = results.buffer;
-        mlodvk__write_set(ctx, set, buffers, 2);
-        res = mlodvk__begin(ctx, &e);
-        if (res == MLOD_OK) {
-            groups = (n + 63) / 64;
-            ctx->vk.CmdBindPipeline(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-            ctx->vk.CmdBindDescriptorSets(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, NULL);
-            ctx->vk.CmdPushConstants(ctx->commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 4, &n);
-            ctx->vk.CmdDispatch(ctx->commands, groups, 1, 1);
-            mlodvk__barrier(ctx);
-            res = mlodvk__submit(ctx, &e);
-        }
-        mlodvk__abandon(ctx);
+        res = vkc_program_run(ctx, &program, &n, (n + 63) / 64, &e);
         CHECK(res == MLOD_OK, "the dispatch of %u operand pairs: %s", n, e.message);
     }
     if (res == MLOD_OK) {
@@ -120,7 +80,7 @@ int main(int argc, char **argv)
                                                   "from float", "from int", "from int", "from uint", "from uint",
                                                   "to int", "(unused)", "floor", "floor", "ceil", "ceil"};
         memset(wrong_ops, 0, sizeof wrong_ops);
-        out = results.mapped;
+        out = program.buffers[1].mapped;
         for (i = 0; i < n; i++) {
             uvec2 a = f64t_pair(in[4 * i], in[4 * i + 1]), b = f64t_pair(in[4 * i + 2], in[4 * i + 3]), r;
             uint32_t want[RESULTS * 4], k;
@@ -160,12 +120,7 @@ int main(int argc, char **argv)
     }
     CHECK(device.validation_messages == 0, "%u validation message(s), the last: %s", device.validation_messages,
           device.last_message);
-    if (pool) ctx->vk.DestroyDescriptorPool(ctx->device, pool, ctx->vk_allocator);
-    if (pipeline) ctx->vk.DestroyPipeline(ctx->device, pipeline, ctx->vk_allocator);
-    if (layout) ctx->vk.DestroyPipelineLayout(ctx->device, layout, ctx->vk_allocator);
-    if (set_layout) ctx->vk.DestroyDescriptorSetLayout(ctx->device, set_layout, ctx->vk_allocator);
-    mlodvk__buffer_destroy(ctx, &operands);
-    mlodvk__buffer_destroy(ctx, &results);
+    vkc_program_destroy(ctx, &program);
     mlodvk_context_destroy(ctx);
     mlodvk_device_destroy(&device);
     free(words);

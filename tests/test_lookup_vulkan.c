@@ -56,8 +56,6 @@
 #include "tempdir.h"
 #include "vkcheck.h"
 
-VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL vkGetInstanceProcAddr(VkInstance instance, const char *name);
-
 #define VIEWS 10
 #define QUERY_WORDS 12  /* three uvec4 per query, as tests/lookup_check.comp reads them */
 #define RESULT_WORDS 20 /* five uvec4 per query */
@@ -226,9 +224,7 @@ int main(int argc, char **argv)
     mlod_view_frame frames[VIEWS];
     mlod_atlas *atlas = NULL;
     mlod_atlas_desc ad;
-    mlodvk_device_desc dd;
     mlodvk_device device;
-    mlodvk_context_desc desc;
     mlodvk_context *ctx = NULL;
     mlod_error e;
     char why[1200];
@@ -339,25 +335,14 @@ int main(int argc, char **argv)
           "the queries cover inside and outside, lit, shadowed, partly lit and refused (%u, %u, %u, %u, %u of %u)",
           counts[0], counts[1], counts[3], counts[4], counts[5], n);
 
-    memset(&dd, 0, sizeof dd);
-    dd.get_instance_proc_addr = vkGetInstanceProcAddr;
-    dd.validation = 1;
-    dd.prefer_cpu = getenv("MANYLODS_VULKAN_GPU") == NULL;
-    if (mlodvk_device_create(&dd, &device, &e) != MLOD_OK) {
-        free(queries);
-        free(want);
-        mlod_atlas_destroy(atlas);
-        snprintf(why, sizeof why, "no usable Vulkan device with the validation layer: %s", e.message);
-        return vkc_skip(why);
-    }
-    desc = mlodvk_device_context_desc(&device);
-    if (mlodvk_context_create(&desc, &ctx, &e) != MLOD_OK) {
-        CHECK(0, "mlodvk_context_create on %s: %s", device.name, e.message);
-        free(queries);
-        free(want);
-        mlod_atlas_destroy(atlas);
-        mlodvk_device_destroy(&device);
-        return test_finish();
+    {
+        int opened = vkc_open(&device, &ctx, why, sizeof why);
+        if (opened <= 0) {
+            free(queries);
+            free(want);
+            mlod_atlas_destroy(atlas);
+            return opened == 0 ? vkc_skip(why) : test_finish();
+        }
     }
     {
         const char *perf = getenv("GALLIVM_PERF");
@@ -365,12 +350,9 @@ int main(int argc, char **argv)
     }
 
     for (form = 0; form < 2; form++) {
-        VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
-        VkPipelineLayout layout = VK_NULL_HANDLE;
-        VkPipeline pipeline = VK_NULL_HANDLE;
-        VkDescriptorPool pool = VK_NULL_HANDLE;
-        VkDescriptorSet set;
-        mlodvk__buffer buffers[5];
+        /* bindings: the frames, the atlas's depth, its tiles, the queries, the results */
+        VkDeviceSize sizes[5];
+        vkc_program program;
         mlod_result res;
         size_t bytes = 0;
         uint32_t *words, wrong[8] = {0}, first = 0, k;
@@ -388,29 +370,18 @@ int main(int argc, char **argv)
             CHECK(vkc_wide_capabilities(words, bytes / 4, 0) == 0,
                   "lookup_check.comp with MLOD_F64_EMULATED declares no Float64, Int64 or Int64Atomics capability (found %d)",
                   vkc_wide_capabilities(words, bytes / 4, 0));
-        memset(buffers, 0, sizeof buffers);
+        memset(&program, 0, sizeof program);
+        sizes[0] = sizeof frames;
+        sizes[1] = 4 * (VkDeviceSize)pixels;
+        sizes[2] = 16 * VIEWS;
+        sizes[3] = 4 * QUERY_WORDS * (VkDeviceSize)n;
+        sizes[4] = 4 * RESULT_WORDS * (VkDeviceSize)n;
         t0 = clock();
-        res = mlodvk__set_layout(ctx, 5, &set_layout, &e);
-        if (res == MLOD_OK) res = mlodvk__pipeline_layout(ctx, set_layout, 8, &layout, &e);
-        if (res == MLOD_OK) res = mlodvk__pipeline(ctx, words, bytes, layout, &pipeline, &e);
-        if (res == MLOD_OK)
-            res = mlodvk__buffer_create(ctx, sizeof frames, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, &buffers[0], &e);
-        if (res == MLOD_OK)
-            res = mlodvk__buffer_create(ctx, 4 * (VkDeviceSize)pixels, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, &buffers[1], &e);
-        if (res == MLOD_OK)
-            res = mlodvk__buffer_create(ctx, 16 * VIEWS, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, &buffers[2], &e);
-        if (res == MLOD_OK)
-            res = mlodvk__buffer_create(ctx, 4 * QUERY_WORDS * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1,
-                                        &buffers[3], &e);
-        if (res == MLOD_OK)
-            res = mlodvk__buffer_create(ctx, 4 * RESULT_WORDS * (VkDeviceSize)n, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1,
-                                        &buffers[4], &e);
-        if (res == MLOD_OK) res = mlodvk__pool(ctx, 1, 5, &pool, &e);
-        if (res == MLOD_OK) res = mlodvk__sets(ctx, pool, set_layout, 1, &set, &e);
+        res = vkc_program_create(ctx, words, bytes, sizes, 5, 8, &program, &e);
         CHECK(res == MLOD_OK, "%s: the test pipeline and buffers: %s", form_names[form], e.message);
         if (res == MLOD_OK) {
-            VkBuffer handles[5];
-            uint32_t *in = buffers[3].mapped, *tiles = buffers[2].mapped, push[2], groups;
+            mlodvk__buffer *buffers = program.buffers;
+            uint32_t *in = buffers[3].mapped, *tiles = buffers[2].mapped, push[2];
             printf("  %s: pipeline %.1f s of processor time\n", form_names[form], (double)(clock() - t0) / CLOCKS_PER_SEC);
             memcpy(buffers[0].mapped, frames, sizeof frames); /* 296 doubles a view, as manylods_vk.h uploads them */
             memcpy(buffers[1].mapped, atlas->depth, 4 * pixels);
@@ -430,26 +401,14 @@ int main(int argc, char **argv)
                 w[11] = float_bits(q->params.slope_bias);
             }
             memset(buffers[4].mapped, 0xAB, 4 * RESULT_WORDS * (size_t)n);
-            for (k = 0; k < 5; k++) handles[k] = buffers[k].buffer;
-            mlodvk__write_set(ctx, set, handles, 5);
             push[0] = n;
             push[1] = atlas->width;
             t0 = clock();
-            res = mlodvk__begin(ctx, &e);
-            if (res == MLOD_OK) {
-                groups = (n + 63) / 64;
-                ctx->vk.CmdBindPipeline(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-                ctx->vk.CmdBindDescriptorSets(ctx->commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, NULL);
-                ctx->vk.CmdPushConstants(ctx->commands, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 8, push);
-                ctx->vk.CmdDispatch(ctx->commands, groups, 1, 1);
-                mlodvk__barrier(ctx);
-                res = mlodvk__submit(ctx, &e);
-            }
-            mlodvk__abandon(ctx);
+            res = vkc_program_run(ctx, &program, push, (n + 63) / 64, &e);
             CHECK(res == MLOD_OK, "%s: the dispatch of %u queries: %s", form_names[form], n, e.message);
         }
         if (res == MLOD_OK) {
-            const uint32_t *out = buffers[4].mapped;
+            const uint32_t *out = program.buffers[4].mapped;
             for (i = 0; i < n; i++) {
                 const uint32_t *r = out + RESULT_WORDS * (size_t)i;
                 const expected *w = &want[i];
@@ -517,11 +476,7 @@ int main(int argc, char **argv)
                   form_names[form], wrong[7], n);
             ran++;
         }
-        if (pool) ctx->vk.DestroyDescriptorPool(ctx->device, pool, ctx->vk_allocator);
-        if (pipeline) ctx->vk.DestroyPipeline(ctx->device, pipeline, ctx->vk_allocator);
-        if (layout) ctx->vk.DestroyPipelineLayout(ctx->device, layout, ctx->vk_allocator);
-        if (set_layout) ctx->vk.DestroyDescriptorSetLayout(ctx->device, set_layout, ctx->vk_allocator);
-        for (k = 0; k < 5; k++) mlodvk__buffer_destroy(ctx, &buffers[k]);
+        vkc_program_destroy(ctx, &program);
         free(words);
     }
     CHECK(ran > 0 || (!forms[1] && mlodvk_context_emulates_doubles(ctx)), "no form of lookup.glsl ran");
