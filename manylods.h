@@ -9189,8 +9189,8 @@ MLOD__PUBLIC float mlod_atlas_shadow(const mlod_atlas *atlas, uint32_t view, con
             ll = mlod__dot3(l, l);
             cos2 = nl * nl / (nn * ll);
             t2 = 1.0 / cos2 - 1.0; /* tan^2 = 1 / cos^2 - 1: rounding may take it below 0 for a normal facing the eye */
-            slope = t2 > 0.0 ? sqrt(t2) : t2 <= 0.0 ? 0.0 : MLOD_SHADOW_MAX_SLOPE; /* NaN (a zero normal): the steepest */
-            if (!(slope <= MLOD_SHADOW_MAX_SLOPE)) slope = MLOD_SHADOW_MAX_SLOPE;
+            slope = t2 <= 0.0 ? 0.0 : sqrt(t2);
+            if (!(slope <= MLOD_SHADOW_MAX_SLOPE)) slope = MLOD_SHADOW_MAX_SLOPE; /* NaN (a zero normal): the steepest */
         }
         bias += (double)params->slope_bias * mlod__footprint(sub, c, e, x, y) * slope;
     }

@@ -271,8 +271,8 @@ float mlod_atlas_shadow(uint view, uvec4 tile, uint atlas_width, vec3 point, boo
             real nl = dot3(n, l), nn = dot3(n, n), ll = dot3(l, l);
             real cos2 = r_div(r_mul(nl, nl), r_mul(nn, ll));
             real t2 = r_sub(r_div(R_ONE, cos2), R_ONE); // tan^2 = 1 / cos^2 - 1
-            slope = r_gt(t2, R_ZERO) ? r_sqrt(t2) : (r_le(t2, R_ZERO) ? R_ZERO : MLOD_SHADOW_MAX_SLOPE);
-            if (!r_le(slope, MLOD_SHADOW_MAX_SLOPE)) slope = MLOD_SHADOW_MAX_SLOPE;
+            slope = r_le(t2, R_ZERO) ? R_ZERO : r_sqrt(t2);
+            if (!r_le(slope, MLOD_SHADOW_MAX_SLOPE)) slope = MLOD_SHADOW_MAX_SLOPE; // NaN (a zero normal): the steepest
         }
         bias = r_add(bias, r_mul(r_mul(r_f(params.slope_bias), lookup_footprint(sub, c, e, x, y)), slope));
     }
