@@ -274,14 +274,6 @@ static void download_views(mlodvk_cut *cut, uint32_t view_count, unsigned char *
                e.message);
 }
 
-static int same_atlas(const mlod_atlas *a, const mlod_atlas *b)
-{
-    size_t pixels = (size_t)a->width * a->height;
-    return memcmp(a->depth, b->depth, pixels * sizeof(float)) == 0 &&
-           memcmp(a->normal, b->normal, 3 * pixels * sizeof(float)) == 0 &&
-           memcmp(a->color, b->color, 3 * pixels * sizeof(float)) == 0;
-}
-
 static int tiles_fit(const mlod_view *views, uint32_t count)
 {
     uint32_t v;
@@ -351,7 +343,7 @@ static void run_update(fz_run *run, const mlod_view *views, const mlod_cut_param
                 FZ_REQUIRE(mlodvk_splat(fz_context, run->vatlas, fz_vtree, run->gpu, &ge) == MLOD_OK &&
                                mlodvk_atlas_download(fz_context, run->vatlas, run->gpu_atlas, &ge) == MLOD_OK,
                            "%s: the device splat failed: %s", what, ge.message);
-                FZ_REQUIRE(same_atlas(run->cpu_atlas, run->gpu_atlas), "%s: the device atlas differs from mlod_splat's",
+                FZ_REQUIRE(fz_same_atlas(run->cpu_atlas, run->gpu_atlas), "%s: the device atlas differs from mlod_splat's",
                            what);
                 memcpy(run->kept_atlas->depth, run->gpu_atlas->depth,
                        sizeof(float) * run->gpu_atlas->width * run->gpu_atlas->height);
@@ -386,7 +378,7 @@ static void run_update(fz_run *run, const mlod_view *views, const mlod_cut_param
         FZ_REQUIRE(mlodvk_splat(fz_context, run->vatlas, fz_vtree, run->gpu, &ge) == MLOD_OK &&
                        mlodvk_atlas_download(fz_context, run->vatlas, run->gpu_atlas, &ge) == MLOD_OK,
                    "%s: the splat after a refusal failed: %s", what, ge.message);
-        FZ_REQUIRE(same_atlas(run->kept_atlas, run->gpu_atlas), "%s: a refused update changed the next splat", what);
+        FZ_REQUIRE(fz_same_atlas(run->kept_atlas, run->gpu_atlas), "%s: a refused update changed the next splat", what);
     } else if (run->vatlas) { /* the kept views' tiles are not the atlas's: still refused */
         FZ_REQUIRE(mlodvk_splat(fz_context, run->vatlas, fz_vtree, run->gpu, &ge) == MLOD_ERROR_MISMATCH,
                    "%s: after a refusal the splat of the kept cut returned %s, before it MLOD_ERROR_MISMATCH", what,
