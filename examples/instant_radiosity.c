@@ -537,6 +537,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
     mlod_atlas *anchor_atlas = NULL;
     double anchor_ms = 0.0;
     uint32_t anchor_differ = 0;
+    const mlod_atlas_desc maps_desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO, 0}; /* the shadow maps' atlases */
     mlod_cut_params params;
     mlod_error error;
     shade_job job;
@@ -660,20 +661,17 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
             cut_ms = app_now_ms() - t0;
             /* the shadow maps: only the tiles whose VPL, cut or drawn nodes changed are drawn again (the
                indirect light below uses exact visibility, so the figures are the sampler's alone) */
-            if (!run->atlas) {
-                mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO, 0};
-                if (mlod_atlas_create(run->views, n, &desc, NULL, &run->atlas, &error) != MLOD_OK) goto failed;
-            }
+            if (!run->atlas && mlod_atlas_create(run->views, n, &maps_desc, NULL, &run->atlas, &error) != MLOD_OK)
+                goto failed;
             t0 = app_now_ms();
             if (mlod_splat(run->atlas, tree, run->cut, run->views, threads->parallel, &error) != MLOD_OK) goto failed;
             splat_ms = app_now_ms() - t0;
             if (s == 1) { /* the same VPLs by a basic cut from the root and a full splat, and the same maps */
                 mlod_cut_params basic = params;
-                mlod_atlas_desc desc = {0, 0, 0.0f, NULL, MLOD_SPLAT_AUTO, 0};
                 double a_ms;
                 basic.mode = MLOD_CUT_BASIC;
                 if ((!anchor_cut && mlod_cut_create(n, NULL, &anchor_cut, &error) != MLOD_OK) ||
-                    (!anchor_atlas && mlod_atlas_create(run->views, n, &desc, NULL, &anchor_atlas, &error) != MLOD_OK))
+                    (!anchor_atlas && mlod_atlas_create(run->views, n, &maps_desc, NULL, &anchor_atlas, &error) != MLOD_OK))
                     goto failed;
                 mlod_cut_reset(anchor_cut); /* from the root for every view, as a program without the last frame */
                 t0 = app_now_ms();

@@ -17,7 +17,8 @@
      cone or colour bits, or those of a leaf below it) in any refit since,
      found by comparing the tree's arrays before and after each refit;
    - mlod_cut_view.version moves exactly when the view or the entries
-     change, and no two cuts share one. */
+     change, and no two cuts share one.
+   REDRAW_VERBOSE=1 in the environment prints each step's redrawn tiles. */
 #define MANYLODS_IMPLEMENTATION
 #define MANYLODS_PTHREADS
 #include "../manylods.h"
