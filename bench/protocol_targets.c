@@ -227,8 +227,8 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             snprintf(out->note, sizeof out->note, "%s; %s, tiles redrawn per frame: %.0f of %u, %.1f%% of the pixels changed",
                      r == 2 ? "the object's frames, the top eighth of its vertices (by y) twisting, the rest still"
                             : "the object's frames (twisting), this rig",
-                     m == 1 ? "the atlas kept from frame to frame" : "every tile redrawn",
-                     m == 1 ? redrawn[r] / c->measured : (double)p->view_count, p->view_count, changed[r] / c->measured);
+                     m == 1 ? "the atlas kept from frame to frame" : "every tile redrawn", out->redrawn, p->view_count,
+                     out->changed_pixels);
         }
     {
         /* back to the last frame, as the other measurements expect */
