@@ -5848,6 +5848,63 @@ MLOD__FORCE_INLINE void mlod__classify_children(const mlod__pview *pv, const mlo
     mlod__classify_known(pv, tree, children, padded, epsilon, status, known ? child_known : NULL, inside);
 }
 
+/* Whether node x lies strictly below node a. */
+static inline int mlod__below(uint32_t x, uint32_t a)
+{
+    uint32_t dx = mlod__depth_of(x), da = mlod__depth_of(a);
+    return dx > da && ((x + 1u) >> (dx - da)) == a + 1u;
+}
+
+/* unchanged[k] for each of n consecutive entries of a view's list (left
+   to right): whether no refit of the last `age` changed its parent (the
+   root entry: itself).  Changes mark every node above a changed one, so
+   the nodes no refit changed are whole subtrees, and the entries below
+   one of them are a run of the list: a run costs one climb to its
+   highest unchanged node (through the top of the tree, which stays in
+   cache) and a search for its end, rather than one look at a scattered
+   record per entry. */
+static void mlod__unchanged_runs(const mlod_tree *tree, uint32_t age, const uint32_t *nodes, uint32_t n,
+                                 uint8_t *unchanged)
+{
+    const uint32_t *changes = tree->changes, now = (uint32_t)tree->revision;
+    uint32_t k = 0;
+    while (k < n) {
+        uint32_t x = nodes[k], top, lo, hi;
+        if (x == 0 || now - changes[(x - 1) / 2] < age) {
+            unchanged[k++] = (uint8_t)(x == 0 && now - changes[0] >= age);
+            continue;
+        }
+        top = (x - 1) / 2;
+        while (top > 0 && now - changes[(top - 1) / 2] >= age) top = (top - 1) / 2;
+        /* entries k .. k + lo - 1 lie below top, entry k + hi does not
+           (or hi = n - k): the run ends between, found by doubling then
+           halving */
+        lo = 1;
+        hi = 2;
+        while (k + hi < n && mlod__below(nodes[k + hi], top)) {
+            lo = hi + 1;
+            hi *= 2;
+        }
+        if (k + hi > n) hi = n - k;
+        while (lo < hi) {
+            uint32_t mid = lo + (hi - lo) / 2;
+            if (mlod__below(nodes[k + mid], top))
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        memset(unchanged + k, 1, lo);
+        k += lo;
+    }
+}
+
+/* The end of the run of entries from k (< n) whose flag equals flags[k]. */
+static inline uint32_t mlod__run_end(const uint8_t *flags, uint32_t k, uint32_t n)
+{
+    const void *other = memchr(flags + k, flags[k] ? 0 : 1, n - k);
+    return other ? (uint32_t)((const uint8_t *)other - flags) : n;
+}
+
 /* The statuses of a segment's input entries into status[]: those whose
    status is not current (all, unless the job trusts the input; else the
    pending ones) classified, in vector lanes together, the others copied
@@ -5867,32 +5924,43 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
     const uint8_t *in_status = job->in->status + seg->in_begin;
     uint32_t todo[MLOD__SEGMENT_INPUT], count = 0, k;
     uint8_t found[MLOD__SEGMENT_INPUT], kept[MLOD__SEGMENT_INPUT];
-    const uint8_t *keep;
     MANYLODS_ASSERT(seg->in_count <= MLOD__SEGMENT_INPUT);
     memset(unchanged, 0, seg->in_count);
     if (!job->trust && !(job->cut->known[seg->view] & MLOD__STAMPED)) {
         mlod__classify_list(pv, job->tree, in_nodes, seg->in_count, job->epsilon, status);
         return seg->in_count;
     }
-    /* keep[k]: entry k's input status stands (the committed lists hold no
-       lazy marks) */
-    if (!job->trust) {
-        const uint32_t *changes = job->tree->changes, now = (uint32_t)job->tree->revision, age = job->age;
-        for (k = 0; k < seg->in_count; k++) {
-            uint32_t x = in_nodes[k];
-            unchanged[k] = (uint8_t)(now - changes[x > 0 ? (x - 1) / 2 : 0] >= age);
+    if (!job->trust) { /* the committed lists hold no lazy marks: runs of
+                          unchanged entries copied whole, the rest classified */
+        uint32_t end;
+        mlod__unchanged_runs(job->tree, job->age, in_nodes, seg->in_count, unchanged);
+        for (k = 0; k < seg->in_count; k = end) {
+            end = mlod__run_end(unchanged, k, seg->in_count);
+            if (unchanged[k]) {
+                memcpy(status + k, in_status + k, end - k);
+                continue;
+            }
+            for (; k < end; k++) todo[count++] = in_nodes[k];
         }
-        keep = unchanged;
-    } else {
-        for (k = 0; k < seg->in_count; k++) kept[k] = (uint8_t)((in_status[k] & MLOD__STATUS_MASK) != MLOD__PENDING);
-        keep = kept;
+        if (count) mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
+        for (k = 0, count = 0; k < seg->in_count; k = end) {
+            end = mlod__run_end(unchanged, k, seg->in_count);
+            if (!unchanged[k]) {
+                memcpy(status + k, found + count, end - k);
+                count += end - k;
+            }
+        }
+        return count;
     }
+    /* a later round: the pending entries classified, the others' statuses
+       (with their lazy marks) stand */
+    for (k = 0; k < seg->in_count; k++) kept[k] = (uint8_t)((in_status[k] & MLOD__STATUS_MASK) != MLOD__PENDING);
     for (k = 0; k < seg->in_count; k++) {
         todo[count] = in_nodes[k];
-        count += !keep[k];
+        count += !kept[k];
     }
     if (count) mlod__classify_list(pv, job->tree, todo, count, job->epsilon, found);
-    for (k = 0, count = 0; k < seg->in_count; k++) status[k] = keep[k] ? in_status[k] : found[count++];
+    for (k = 0, count = 0; k < seg->in_count; k++) status[k] = kept[k] ? in_status[k] : found[count++];
     return count;
 }
 
@@ -5903,24 +5971,35 @@ static uint32_t mlod__classify_input(const mlod__cut_job *job, const mlod__segme
    MLOD__PARENT_INVALID), else MLOD__PENDING.  Such a pair's parent is
    evaluated exactly once by either mode's merge step, so the counts do
    not change; statuses (from mlod__classify_input) may carry lazy marks.
-   A pair with an unchanged entry gets MLOD__KNOWN_INVALID, unevaluated. */
+   Unchanged entries get MLOD__KNOWN_INVALID, unevaluated: a pair of them
+   has an unchanged parent, still invalid. */
 static void mlod__merge_hints(const mlod__cut_job *job, const mlod__segment *seg, const mlod__pview *pv,
                               const uint8_t *fresh, const uint8_t *unchanged, uint8_t *hint)
 {
     const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
     uint32_t parents[MLOD__SEGMENT_INPUT / 2 + 1], at[MLOD__SEGMENT_INPUT / 2 + 1], count = 0, k, n = seg->in_count;
     uint8_t found[MLOD__SEGMENT_INPUT / 2];
+    uint32_t end;
     hint[0] = MLOD__PENDING;
-    for (k = 1; k < n; k++) { /* without branches: the pairs come and go unpredictably */
-        uint32_t x = in_nodes[k];
-        int pair = ((x & 1u) == 0) & (x > 0) & (in_nodes[k - 1] == x - 1) &
-                   mlod__is_valid(fresh[k] & MLOD__STATUS_MASK) & mlod__is_valid(fresh[k - 1] & MLOD__STATUS_MASK) &
-                   !(fresh[k - 1] & MLOD__PARENT_INVALID);
-        int known = pair & (unchanged[k] | unchanged[k - 1]);
-        hint[k] = (uint8_t)(known ? MLOD__KNOWN_INVALID : MLOD__PENDING);
-        parents[count] = (x - 1) / 2; /* pairs do not overlap: at most in_count / 2, and one slot to spare */
-        at[count] = k;
-        count += (uint32_t)(pair & !known);
+    /* siblings share their parent, and so whether it changed: a pair is
+       unchanged whole or not at all, and a run of unchanged entries is
+       known at once */
+    for (k = 0; k < n; k = end) {
+        end = mlod__run_end(unchanged, k, n);
+        if (unchanged[k]) {
+            memset(hint + k, MLOD__KNOWN_INVALID, end - k);
+            continue;
+        }
+        for (k = k > 0 ? k : 1; k < end; k++) { /* without branches: the pairs come and go unpredictably */
+            uint32_t x = in_nodes[k];
+            int pair = ((x & 1u) == 0) & (x > 0) & (in_nodes[k - 1] == x - 1) &
+                       mlod__is_valid(fresh[k] & MLOD__STATUS_MASK) &
+                       mlod__is_valid(fresh[k - 1] & MLOD__STATUS_MASK) & !(fresh[k - 1] & MLOD__PARENT_INVALID);
+            hint[k] = MLOD__PENDING;
+            parents[count] = (x - 1) / 2; /* pairs do not overlap: at most in_count / 2, and one slot to spare */
+            at[count] = k;
+            count += (uint32_t)pair;
+        }
     }
     if (count == 0) return;
     mlod__classify_list(pv, job->tree, parents, count, job->epsilon, found);
@@ -6036,10 +6115,23 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     for (k = 0; k < seg->in_count; k++) {
         uint32_t node = in_nodes[k], remaining = seg->in_count - 1 - k;
         uint8_t st = fresh[k];
+        if (unchanged[k]) {
+            /* a run of unchanged entries: none splits or merges, nor
+               merges with the output before it (its first entry's left
+               sibling, unchanged too, is in the run or before the
+               segment), so the run is copied */
+            uint32_t end = mlod__run_end(unchanged, k, seg->in_count);
+            MANYLODS_ASSERT(out.count + (end - k) <= out.capacity);
+            memcpy(out.nodes + out.count, in_nodes + k, (end - k) * sizeof(uint32_t));
+            memcpy(out.status + out.count, fresh + k, end - k);
+            out.count += end - k;
+            k = end - 1;
+            continue;
+        }
         if (st != MLOD_STATUS_COARSE) {
             if (job->merge && mlod__mergeable(out.nodes, out.status, out.count, node, st))
-                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st,
-                                    unchanged[k] ? (uint8_t)MLOD__KNOWN_INVALID : hint[k], &evaluated, &steps);
+                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, hint[k], &evaluated,
+                                    &steps);
             mlod__emit(&out, node, st);
         } else if (track) {
             mlod__split_down(job, seg, pv, &out, node, st, remaining, 1, &evaluated, &steps);
@@ -6140,6 +6232,46 @@ static void mlod__segment_task(void *context, uint32_t index)
     }
 }
 
+/* How many of status[0 .. count) are drawn, culled and oversize (their
+   lazy marks aside), into by_status[MLOD_STATUS_DRAWN ..
+   MLOD_STATUS_OVERSIZE]: eight at a time, without branches (the statuses
+   alternate unpredictably).  A byte of t = w ^ (s * ones) is zero exactly
+   where w's byte is s; ~(((t & low) + low) | t | low) holds 0x80 in those
+   bytes and nothing else (no carry crosses a byte), so each byte of the
+   running sum counts one position, emptied before it can pass 255. */
+typedef char mlod__statuses_in_a_row[MLOD_STATUS_CULLED == MLOD_STATUS_DRAWN + 1 &&
+                                     MLOD_STATUS_OVERSIZE == MLOD_STATUS_DRAWN + 2 ? 1 : -1];
+static void mlod__count_statuses(const uint8_t *status, uint32_t count, uint32_t *by_status)
+{
+    const uint64_t ones = 0x0101010101010101u, low = 0x7f7f7f7f7f7f7f7fu;
+    uint64_t sums[3] = {0, 0, 0};
+    uint32_t i = 0, s;
+    while (i + 8 <= count) {
+        uint64_t part[3] = {0, 0, 0};
+        uint32_t end = count - i >= 8 * 255u ? i + 8 * 255u : i + ((count - i) & ~7u);
+        for (; i < end; i += 8) {
+            uint64_t w;
+            memcpy(&w, status + i, 8);
+            w &= ones * MLOD__STATUS_MASK;
+            for (s = 0; s < 3; s++) {
+                uint64_t t = w ^ (ones * (MLOD_STATUS_DRAWN + s));
+                part[s] += ~(((t & low) + low) | t | low) >> 7;
+            }
+        }
+        for (s = 0; s < 3; s++) /* the bytes' sum: pairs, then fours, then all */
+        {
+            uint64_t x = (part[s] & 0x00ff00ff00ff00ffu) + ((part[s] >> 8) & 0x00ff00ff00ff00ffu);
+            x = (x & 0x0000ffff0000ffffu) + ((x >> 16) & 0x0000ffff0000ffffu);
+            sums[s] += (x & 0xffffffffu) + (x >> 32);
+        }
+    }
+    for (; i < count; i++) {
+        uint32_t st = status[i] & MLOD__STATUS_MASK;
+        for (s = 0; s < 3; s++) sums[s] += st == MLOD_STATUS_DRAWN + s;
+    }
+    for (s = 0; s < 3; s++) by_status[MLOD_STATUS_DRAWN + s] = (uint32_t)sums[s];
+}
+
 /* Concatenate one view's segment outputs into the output list, merging
    sibling pairs that meet at segment boundaries, and count (a finished
    view: copy its list). */
@@ -6198,22 +6330,13 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     stats->steps = steps;
     job->out->count[view] = count;
     {
-        /* counted by tables, not by branches (the statuses alternate
-           unpredictably), four of them so that neighbours' increments do
-           not wait on each other */
-        uint32_t by_status[4][MLOD__STATUS_MASK + 1], k;
-        memset(by_status, 0, sizeof by_status);
-        if (job->last)
+        uint32_t by_status[MLOD__STATUS_MASK + 1];
+        if (job->lazy && job->last) /* only lazy rounds leave marks */
             for (i = 0; i < count; i++) status[i] &= MLOD__STATUS_MASK;
-        for (i = 0; i < count; i++) by_status[i & 3u][status[i] & MLOD__STATUS_MASK]++;
-        for (k = 1; k < 4; k++) {
-            by_status[0][MLOD_STATUS_DRAWN] += by_status[k][MLOD_STATUS_DRAWN];
-            by_status[0][MLOD_STATUS_CULLED] += by_status[k][MLOD_STATUS_CULLED];
-            by_status[0][MLOD_STATUS_OVERSIZE] += by_status[k][MLOD_STATUS_OVERSIZE];
-        }
-        stats->drawn = by_status[0][MLOD_STATUS_DRAWN];
-        stats->culled = by_status[0][MLOD_STATUS_CULLED];
-        stats->oversize = by_status[0][MLOD_STATUS_OVERSIZE];
+        mlod__count_statuses(status, count, by_status);
+        stats->drawn = by_status[MLOD_STATUS_DRAWN];
+        stats->culled = by_status[MLOD_STATUS_CULLED];
+        stats->oversize = by_status[MLOD_STATUS_OVERSIZE];
         stats->coarse = count - stats->drawn - stats->culled - stats->oversize;
     }
 }
@@ -6253,6 +6376,7 @@ static int mlod__same_drawn(const uint32_t *a_nodes, const uint8_t *a_status, co
 {
     uint32_t i;
     if (count && memcmp(a_nodes, b_nodes, count * sizeof(uint32_t)) != 0) return 0;
+    if (count && memcmp(a_status, b_status, count) == 0) return 1; /* the usual case, at once */
     for (i = 0; i < count; i++)
         if ((a_status[i] == MLOD_STATUS_CULLED) != (b_status[i] == MLOD_STATUS_CULLED)) return 0;
     return 1;
