@@ -5370,6 +5370,8 @@ typedef struct mlod__segment {
     uint32_t out_count;
     uint8_t ends_unchanged; /* bit 0: the first output entry is an unchanged input entry (see
                                mlod__classify_input), bit 1: the last one is */
+    uint8_t from_input;     /* every entry unchanged (mlod__all_unchanged): the output is the input,
+                               which the join copies from the input list (no room in scratch) */
     uint32_t depth_room;    /* 0, or: an entry with more leaves below it than this is split at most
                                log2(depth_room) levels deep this round (mlod__depth_limit) */
     uint64_t evaluated, steps;
@@ -5855,47 +5857,81 @@ static inline int mlod__below(uint32_t x, uint32_t a)
     return dx > da && ((x + 1u) >> (dx - da)) == a + 1u;
 }
 
-/* unchanged[k] for each of n consecutive entries of a view's list (left
-   to right): whether no refit of the last `age` changed its parent (the
-   root entry: itself).  Changes mark every node above a changed one, so
-   the nodes no refit changed are whole subtrees, and the entries below
-   one of them are a run of the list: a run costs one climb to its
+/* Unchanged entries.  An entry of a MLOD__STAMPED view's list is
+   unchanged when no refit of the last `age` changed its parent (the root
+   entry: itself).  Changes mark every node above a changed one, so the
+   nodes no refit changed are whole subtrees, and the entries below one of
+   them are a run of the list (left to right): a run costs one climb to its
    highest unchanged node (through the top of the tree, which stays in
    cache) and a search for its end, rather than one look at a scattered
-   record per entry. */
+   record per entry.
+
+   The highest node above x, a strict ancestor, that no refit of the last
+   `age` changed, or MLOD__CHANGED when one changed x's parent (or x is
+   the root). */
+#define MLOD__CHANGED ((uint32_t)-1)
+static uint32_t mlod__unchanged_top(const mlod_tree *tree, uint32_t age, uint32_t x)
+{
+    const uint32_t *changes = tree->changes, now = (uint32_t)tree->revision;
+    uint32_t top;
+    if (x == 0 || now - changes[(x - 1) / 2] < age) return MLOD__CHANGED;
+    top = (x - 1) / 2;
+    while (top > 0 && now - changes[(top - 1) / 2] >= age) top = (top - 1) / 2;
+    return top;
+}
+
+/* The end of the run of unchanged entries from nodes[k] (k < n): k when
+   entry k is changed. */
+static uint32_t mlod__unchanged_run(const mlod_tree *tree, uint32_t age, const uint32_t *nodes, uint32_t k, uint32_t n)
+{
+    uint32_t x = nodes[k], top = mlod__unchanged_top(tree, age, x), lo, hi;
+    if (top == MLOD__CHANGED) return x == 0 && (uint32_t)tree->revision - tree->changes[0] >= age ? k + 1 : k;
+    /* entries k .. k + lo - 1 lie below top, entry k + hi does not (or
+       hi = n - k): the run ends between, found by doubling then halving */
+    lo = 1;
+    hi = 2;
+    while (k + hi < n && mlod__below(nodes[k + hi], top)) {
+        lo = hi + 1;
+        hi *= 2;
+    }
+    if (k + hi > n) hi = n - k;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (mlod__below(nodes[k + mid], top))
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return k + lo;
+}
+
+/* unchanged[k] for each of n consecutive entries of a view's list. */
 static void mlod__unchanged_runs(const mlod_tree *tree, uint32_t age, const uint32_t *nodes, uint32_t n,
                                  uint8_t *unchanged)
 {
-    const uint32_t *changes = tree->changes, now = (uint32_t)tree->revision;
     uint32_t k = 0;
     while (k < n) {
-        uint32_t x = nodes[k], top, lo, hi;
-        if (x == 0 || now - changes[(x - 1) / 2] < age) {
-            unchanged[k++] = (uint8_t)(x == 0 && now - changes[0] >= age);
-            continue;
+        uint32_t end = mlod__unchanged_run(tree, age, nodes, k, n);
+        if (end == k) {
+            unchanged[k++] = 0;
+        } else {
+            memset(unchanged + k, 1, end - k);
+            k = end;
         }
-        top = (x - 1) / 2;
-        while (top > 0 && now - changes[(top - 1) / 2] >= age) top = (top - 1) / 2;
-        /* entries k .. k + lo - 1 lie below top, entry k + hi does not
-           (or hi = n - k): the run ends between, found by doubling then
-           halving */
-        lo = 1;
-        hi = 2;
-        while (k + hi < n && mlod__below(nodes[k + hi], top)) {
-            lo = hi + 1;
-            hi *= 2;
-        }
-        if (k + hi > n) hi = n - k;
-        while (lo < hi) {
-            uint32_t mid = lo + (hi - lo) / 2;
-            if (mlod__below(nodes[k + mid], top))
-                lo = mid + 1;
-            else
-                hi = mid;
-        }
-        memset(unchanged + k, 1, lo);
-        k += lo;
     }
+}
+
+/* Whether each of the n consecutive entries of a view's list from
+   nodes[0] is unchanged (mlod__unchanged_runs), run by run. */
+static int mlod__all_unchanged(const mlod_tree *tree, uint32_t age, const uint32_t *nodes, uint32_t n)
+{
+    uint32_t k = 0;
+    while (k < n) {
+        uint32_t end = mlod__unchanged_run(tree, age, nodes, k, n);
+        if (end == k) return 0;
+        k = end;
+    }
+    return 1;
 }
 
 /* The end of the run of entries from k (< n) whose flag equals flags[k]. */
@@ -6098,16 +6134,6 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     out.count = 0;
     out.capacity = seg->out_capacity;
     evaluated += mlod__classify_input(job, seg, pv, fresh, unchanged);
-    if (evaluated == 0 && seg->in_count > 0 && unchanged[0]) {
-        /* every entry unchanged: none splits or merges, the output is the
-           input (the room holds it) */
-        memcpy(out.nodes, in_nodes, seg->in_count * sizeof(uint32_t));
-        memcpy(out.status, fresh, seg->in_count);
-        seg->out_count = seg->in_count;
-        seg->ends_unchanged = 3u;
-        seg->evaluated = seg->steps = 0;
-        return;
-    }
     if (job->merge) mlod__merge_hints(job, seg, pv, fresh, unchanged, hint);
     /* an unchanged entry is never split, nor merged: the first and last
        input entries, unchanged, are the first and last output entries */
@@ -6220,6 +6246,12 @@ static void mlod__segment_task(void *context, uint32_t index)
     mlod__pview pv;
     for (s = cut->tasks[index]; s < cut->tasks[index + 1]; s++) {
         mlod__segment *seg = &cut->segments[s];
+        if (seg->from_input) { /* the join copies it */
+            seg->out_count = seg->in_count;
+            seg->ends_unchanged = 3u;
+            seg->evaluated = seg->steps = 0;
+            continue;
+        }
         if (seg->view != prepared) {
             mlod__view_prepare(&job->views[seg->view], &pv, NULL);
             mlod__fast_prepare(&pv, job->epsilon);
@@ -6299,8 +6331,9 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     steps = job->trust ? stats->steps : 0;
     for (s = cut->view_segment[view]; s < cut->view_segment[view + 1]; s++) {
         const mlod__segment *seg = &cut->segments[s];
-        const uint32_t *src = cut->scratch_nodes + seg->out_begin;
-        const uint8_t *src_status = cut->scratch_status + seg->out_begin;
+        const uint32_t *src = seg->from_input ? job->in->nodes + seg->in_begin : cut->scratch_nodes + seg->out_begin;
+        const uint8_t *src_status =
+            seg->from_input ? job->in->status + seg->in_begin : cut->scratch_status + seg->out_begin;
         i = 0;
         if (job->merge && count > 0) {
             for (; i < seg->out_count; i++) {
@@ -6800,12 +6833,14 @@ static size_t mlod__split_room(mlod__room_walk *w, uint32_t node)
    the entries its splits may add (mlod__split_room).  A segment closes at
    MLOD__SEGMENT_INPUT entries, or once its splits may produce
    MLOD__SEGMENT_GROWTH entries, so that big expansions spread over many
-   tasks. */
-static uint32_t mlod__segment_length(const mlod__list *in, size_t at, size_t end, int lazy, int trust,
+   tasks.  scan: look for entries to split (not in lazy rounds, which
+   split nothing by plan, nor in an exact committed list, which holds
+   none). */
+static uint32_t mlod__segment_length(const mlod__list *in, size_t at, size_t end, int scan, int trust,
                                      mlod__room_walk *w, size_t *grow)
 {
     size_t limit = end - at < MLOD__SEGMENT_INPUT ? end : at + MLOD__SEGMENT_INPUT, next = at, g = 0;
-    if (!lazy) /* nothing is split by plan in lazy rounds */
+    if (scan)
         while (g < MLOD__SEGMENT_GROWTH) {
             next = mlod__next_to_split(in->status, next, limit, trust);
             if (next == limit) break;
@@ -6865,6 +6900,9 @@ typedef struct mlod__plan_job {
     size_t unit;
     size_t wide; /* the first round from the roots: root rooms above this are MLOD__SEGMENT_GROWTH */
     int fill;    /* segments pass: 0 counts, 1 writes */
+    int committed; /* the input is the committed lists (the first round of an update from them) */
+    const mlod_tree *tree;
+    uint32_t age; /* for the MLOD__STAMPED views (mlod__cut_job.age) */
 } mlod__plan_job;
 
 /* The room walk of view v's splits in this round, and the depth room of
@@ -6912,7 +6950,7 @@ static void mlod__plan_splits_task(void *context, uint32_t index)
             cut->view_segment[v] = 0;
             continue;
         }
-        if (!job->lazy)
+        if (!job->lazy && !(job->committed && (cut->known[v] & MLOD__EXACT))) /* an exact list has none */
             while ((at = mlod__next_to_split(job->in->status, at, stop, job->trust)) < stop) {
                 view_splits++;
                 sum += w.prev ? mlod__split_room(&w, job->in->nodes[at])
@@ -6937,13 +6975,17 @@ static void mlod__plan_view(const mlod__plan_job *job, uint32_t v)
     size_t s = fill ? cut->view_segment[v] : 0, capacity = fill ? cut->view_work[v] : 0;
     uint32_t depth_room;
     mlod__room_walk w = mlod__plan_walk(job, v, &depth_room);
+    const int exact = job->committed && (cut->known[v] & MLOD__EXACT);
+    const int stamped = job->committed && (cut->known[v] & MLOD__STAMPED);
     while (at < end) {
         size_t grow;
-        uint32_t n = mlod__segment_length(job->in, at, end, job->lazy, job->trust, &w, &grow);
-        size_t room = mlod__segment_room(n, grow, job->lazy, job->trust);
+        uint32_t n = mlod__segment_length(job->in, at, end, !job->lazy && !exact, job->trust, &w, &grow);
+        int copy = stamped && mlod__all_unchanged(job->tree, job->age, job->in->nodes + at, n);
+        size_t room = copy ? 0 : mlod__segment_room(n, grow, job->lazy, job->trust);
         if (fill) {
             mlod__segment *seg = &cut->segments[s];
             seg->view = v;
+            seg->from_input = (uint8_t)copy;
             seg->in_begin = at;
             seg->in_count = n;
             seg->out_begin = capacity;
@@ -6977,9 +7019,10 @@ static void mlod__plan_segments_task(void *context, uint32_t index)
    rounds of a cut from the roots, the previous cut of the same tree, else
    NULL.  Returns 0 when out of memory (or too many segments). */
 static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int trust, const uint32_t *hint,
-                            const mlod__list *prev, uint32_t leaf_count, const mlod_parallel *parallel,
-                            uint32_t *task_count)
+                            const mlod__list *prev, const mlod_tree *tree, uint32_t age,
+                            const mlod_parallel *parallel, uint32_t *task_count)
 {
+    const uint32_t leaf_count = tree->leaf_count;
     mlod__plan_job job;
     size_t total = 0, to_split = 0, leaves = 0, rooms = 0, segments = 0, capacity = 0, work = 0, s, budget;
     uint32_t v, tasks = 0, chunks = mlod__view_chunks(cut);
@@ -6991,6 +7034,9 @@ static int mlod__plan_round(mlod_cut *cut, const mlod__list *in, int lazy, int t
     job.prev = NULL;
     job.leaf_count = leaf_count;
     job.deepest = mlod__depth_of(2 * (uint64_t)leaf_count - 2);
+    job.committed = in == &cut->lists[cut->committed];
+    job.tree = tree;
+    job.age = age;
     job.unit = 0;
     job.wide = (size_t)-1;
     job.fill = 0;
@@ -7242,7 +7288,7 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         job.out = out;
         job.done_in = round == 0 ? &cut->lists[cut->committed] : in;
         if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, round > 0 ? hint_list : NULL,
-                              tree->leaf_count, params->parallel, &tasks))
+                              tree, job.age, params->parallel, &tasks))
             goto out_of_memory;
         mlod__run(params->parallel, tasks, mlod__segment_task, &job);
         if (!mlod__place_output(cut, job.done_in, out)) goto out_of_memory;

@@ -2589,6 +2589,66 @@ static void random_cut(uint64_t *rng, uint32_t node, uint32_t n, double split, u
     out[(*count)++] = node;
 }
 
+/* The runs of unchanged entries of a stamped view's list
+   (mlod__unchanged_runs, mlod__all_unchanged) against the rule read entry
+   by entry: an entry is unchanged when no refit of the last `age` changed
+   its parent (the root entry: itself).  Random cuts of random trees, and
+   records of changes in which each changed node marks every node above
+   it, as a refit does: few, some or many nodes changed per revision. */
+static void test_unchanged_runs(void)
+{
+    enum { LIST = 20000 };
+    static uint32_t nodes[LIST], changes[LIST];
+    static uint8_t flags[LIST];
+    uint64_t rng = 91;
+    unsigned i, windows = 0, wrong = 0, wrong_all = 0, runs_of_all = 0, mixed = 0;
+    for (i = 0; i < 90; i++) {
+        const double shares[3] = {0.0005, 0.01, 0.2};
+        uint32_t n = 2u + (uint32_t)(scene_rng_double(&rng) * (LIST / 2 - 2)), x, r, now = 1000, age, w;
+        size_t count = 0;
+        mlod_tree tree;
+        memset(&tree, 0, sizeof tree);
+        tree.leaf_count = n;
+        tree.node_count = 2 * n - 1;
+        tree.changes = changes;
+        tree.revision = now;
+        for (x = 0; x < 2 * n - 1; x++) changes[x] = now - 10;
+        for (r = now - 4; r <= now; r++) { /* five refits, each marking nodes and what lies above them */
+            uint32_t seeds = 1u + (uint32_t)(shares[i % 3] * n), k;
+            for (k = 0; k < seeds; k++) {
+                x = (uint32_t)(scene_rng_double(&rng) * (2 * n - 1));
+                for (;;) {
+                    changes[x] = r;
+                    if (x == 0) break;
+                    x = (x - 1) / 2;
+                }
+            }
+        }
+        random_cut(&rng, 0, n, 0.8 + 0.2 * scene_rng_double(&rng), nodes, &count, LIST);
+        age = 1u + i % 4;
+        for (w = 0; w < 40; w++) { /* windows: the segments of a view's list */
+            uint32_t at = (uint32_t)(scene_rng_double(&rng) * (double)count), len, k, all = 1;
+            len = 1u + (uint32_t)(scene_rng_double(&rng) * (double)(count - at < 1500 ? count - at : 1500));
+            if (at + len > count) len = (uint32_t)count - at;
+            mlod__unchanged_runs(&tree, age, nodes + at, len, flags);
+            for (k = 0; k < len; k++) {
+                uint32_t e = nodes[at + k];
+                uint8_t want = (uint8_t)(now - changes[e > 0 ? (e - 1) / 2 : 0] >= age);
+                wrong += flags[k] != want;
+                all &= want;
+            }
+            wrong_all += (unsigned)(mlod__all_unchanged(&tree, age, nodes + at, len) != (int)all);
+            runs_of_all += all && len > 1;
+            mixed += !all;
+            windows++;
+        }
+    }
+    CHECK(wrong == 0 && wrong_all == 0 && runs_of_all > 100 && mixed > 100,
+          "unchanged runs: %u entries and %u of %u windows differ from the entry-by-entry rule (%u windows wholly "
+          "unchanged, %u mixed)",
+          wrong, wrong_all, windows, runs_of_all, mixed);
+}
+
 static void test_planning(void)
 {
     static const uint8_t values[] = {MLOD__PENDING,
@@ -2654,7 +2714,7 @@ static void test_planning(void)
                     w.deepest = mlod__depth_of(2 * (uint64_t)n - 2);
                     for (at = (size_t)(scene_rng_double(&rng) * 7); at < end;) {
                         size_t g1, g2;
-                        uint32_t n1 = mlod__segment_length(&in, at, end, lazy, trust, &w, &g1);
+                        uint32_t n1 = mlod__segment_length(&in, at, end, !lazy, trust, &w, &g1);
                         uint32_t n2 = plain_segment_length(cut_nodes, list, at, end, lazy, trust, w.prev, prev_count,
                                                            unit, n, &g2);
                         segments++;
@@ -2687,6 +2747,7 @@ int main(int argc, char **argv)
     TEST_GROUP("one_view", test_one_view());
     TEST_GROUP("skip", test_skip());
     TEST_GROUP("planning", test_planning());
+    TEST_GROUP("unchanged runs", test_unchanged_runs());
     TEST_GROUP("filter_export", test_filter_export());
     test_groups_end();
     rc = test_finish();
