@@ -5886,6 +5886,9 @@ static uint32_t mlod__unchanged_run(const mlod_tree *tree, uint32_t age, const u
 {
     uint32_t x = nodes[k], top = mlod__unchanged_top(tree, age, x), lo, hi;
     if (top == MLOD__CHANGED) return x == 0 && (uint32_t)tree->revision - tree->changes[0] >= age ? k + 1 : k;
+    /* the usual case, where a run is long, at once: the entries are not
+       in cache, and each step of the search below loads one more line */
+    if (mlod__below(nodes[n - 1], top)) return n;
     /* entries k .. k + lo - 1 lie below top, entry k + hi does not (or
        hi = n - k): the run ends between, found by doubling then halving */
     lo = 1;
