@@ -5436,6 +5436,10 @@ struct mlod_cut {
 /* ... only where the last refit changed at most this share of the tree
    (mlod_tree.changes_share) */
 #define MLOD__STAMPED_SHARE 0.5f
+/* For this update, set by the first round's join of a MLOD__STAMPED view
+   (mlod__join_view): its list differs from the committed one in what the
+   splat draws (mlod__same_drawn). */
+#define MLOD__DIFFERS 8u
 /* cut->view_done[v] for a view the update skips. */
 #define MLOD__SKIPPED 2u
 
@@ -6267,6 +6271,27 @@ static void mlod__segment_task(void *context, uint32_t index)
     }
 }
 
+/* Whether entries a and b (count each) draw the same nodes in the same
+   order: equal nodes, and equal in which are culled (lazy marks aside). */
+static int mlod__same_drawn(const uint32_t *a_nodes, const uint8_t *a_status, const uint32_t *b_nodes,
+                            const uint8_t *b_status, uint32_t count)
+{
+    uint32_t i;
+    if (count && memcmp(a_nodes, b_nodes, count * sizeof(uint32_t)) != 0) return 0;
+    if (count && memcmp(a_status, b_status, count) == 0) return 1; /* the usual case, at once */
+    for (i = 0; i < count; i++)
+        if (((a_status[i] & MLOD__STATUS_MASK) == MLOD_STATUS_CULLED) !=
+            ((b_status[i] & MLOD__STATUS_MASK) == MLOD_STATUS_CULLED))
+            return 0;
+    return 1;
+}
+
+/* After the last round, before the commit (job->out the new lists,
+   job->done_in the committed ones, cut->seen their views): a view
+   evaluated in this update gets the new version (job->serial) when its
+   view bytes or its drawn entries differ from the committed list's
+   (node indices alone, whatever the tree: the atlas asks the tree; a
+   reset left no entries). */
 /* How many of status[0 .. count) are drawn, culled and oversize (their
    lazy marks aside), into by_status[MLOD_STATUS_DRAWN ..
    MLOD_STATUS_OVERSIZE]: eight at a time, without branches (the statuses
@@ -6318,6 +6343,17 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     uint8_t *status = job->out->status + job->out->offset[view];
     uint64_t evaluated, steps;
     int left_unchanged = 0; /* the entry on top of the output is an unchanged input entry */
+    /* The first round over a stamped view's committed list: the segments
+       copied from the input (from_input) stay as they are (no merge
+       reaches an unchanged entry), so the counts are the committed list's
+       less its other segments' input plus their output, and the list
+       differs exactly where one of those segments or a merge between
+       them changed something.  counted: the output before it is counted
+       (or copied from the input). */
+    const int stamped = (cut->known[view] & MLOD__STAMPED) && job->in == &cut->lists[cut->committed];
+    uint32_t counted = 0, differs = 0, was[MLOD__STATUS_MASK + 1], now[MLOD__STATUS_MASK + 1], k;
+    memset(was, 0, sizeof was);
+    memset(now, 0, sizeof now);
     if (cut->view_done[view]) { /* nothing to split this round: copied as it is, its counts stand */
         const mlod__list *in = job->done_in;
         count = in->count[view];
@@ -6337,6 +6373,22 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
         const uint32_t *src = seg->from_input ? job->in->nodes + seg->in_begin : cut->scratch_nodes + seg->out_begin;
         const uint8_t *src_status =
             seg->from_input ? job->in->status + seg->in_begin : cut->scratch_status + seg->out_begin;
+        if (stamped && !seg->from_input) {
+            const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
+            const uint8_t *in_status = job->in->status + seg->in_begin;
+            uint32_t part[MLOD__STATUS_MASK + 1];
+            mlod__count_statuses(in_status, seg->in_count, part);
+            for (k = MLOD_STATUS_DRAWN; k <= MLOD_STATUS_OVERSIZE; k++) was[k] += part[k];
+            differs |= seg->out_count != seg->in_count ||
+                       !mlod__same_drawn(src, src_status, in_nodes, in_status, seg->out_count);
+        }
+        if (stamped && seg->from_input && counted < count) { /* the output before it stays as it is */
+            uint32_t part[MLOD__STATUS_MASK + 1];
+            if (job->lazy && job->last) /* only lazy rounds leave marks (the input's copies hold none) */
+                for (i = counted; i < count; i++) status[i] &= MLOD__STATUS_MASK;
+            mlod__count_statuses(status + counted, count - counted, part);
+            for (k = MLOD_STATUS_DRAWN; k <= MLOD_STATUS_OVERSIZE; k++) now[k] += part[k];
+        }
         i = 0;
         if (job->merge && count > 0) {
             for (; i < seg->out_count; i++) {
@@ -6353,11 +6405,13 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
                     i++;
                     break;
                 }
+                differs = 1; /* a merge across the boundary */
             }
         }
         memcpy(nodes + count, src + i, (seg->out_count - i) * sizeof(uint32_t));
         memcpy(status + count, src_status + i, seg->out_count - i);
         count += seg->out_count - i;
+        if (seg->from_input) counted = count;
         left_unchanged = (seg->ends_unchanged & 2u) && seg->out_count > 0 && nodes[count - 1] == src[seg->out_count - 1];
         evaluated += seg->evaluated;
         steps += seg->steps;
@@ -6365,16 +6419,25 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     stats->evaluated = evaluated;
     stats->steps = steps;
     job->out->count[view] = count;
-    {
+    if (job->lazy && job->last) /* what is not counted yet */
+        for (i = stamped ? counted : 0; i < count; i++) status[i] &= MLOD__STATUS_MASK;
+    if (stamped) {
+        const mlod__view_stats *old = &cut->stats[0][view];
+        uint32_t part[MLOD__STATUS_MASK + 1];
+        mlod__count_statuses(status + counted, count - counted, part);
+        for (k = MLOD_STATUS_DRAWN; k <= MLOD_STATUS_OVERSIZE; k++) now[k] += part[k];
+        stats->drawn = old->drawn - was[MLOD_STATUS_DRAWN] + now[MLOD_STATUS_DRAWN];
+        stats->culled = old->culled - was[MLOD_STATUS_CULLED] + now[MLOD_STATUS_CULLED];
+        stats->oversize = old->oversize - was[MLOD_STATUS_OVERSIZE] + now[MLOD_STATUS_OVERSIZE];
+        cut->known[view] = (uint8_t)((cut->known[view] & ~MLOD__DIFFERS) | (differs ? MLOD__DIFFERS : 0u));
+    } else {
         uint32_t by_status[MLOD__STATUS_MASK + 1];
-        if (job->lazy && job->last) /* only lazy rounds leave marks */
-            for (i = 0; i < count; i++) status[i] &= MLOD__STATUS_MASK;
         mlod__count_statuses(status, count, by_status);
         stats->drawn = by_status[MLOD_STATUS_DRAWN];
         stats->culled = by_status[MLOD_STATUS_CULLED];
         stats->oversize = by_status[MLOD_STATUS_OVERSIZE];
-        stats->coarse = count - stats->drawn - stats->culled - stats->oversize;
     }
+    stats->coarse = count - stats->drawn - stats->culled - stats->oversize;
 }
 
 /* Per-view work of a cut (joining, planning) runs MLOD__VIEW_CHUNK views a
@@ -6405,25 +6468,6 @@ static void mlod__copy_skipped_task(void *context, uint32_t index)
     }
 }
 
-/* Whether entries a and b (count each) draw the same nodes in the same
-   order: equal nodes, and equal in which are culled. */
-static int mlod__same_drawn(const uint32_t *a_nodes, const uint8_t *a_status, const uint32_t *b_nodes,
-                            const uint8_t *b_status, uint32_t count)
-{
-    uint32_t i;
-    if (count && memcmp(a_nodes, b_nodes, count * sizeof(uint32_t)) != 0) return 0;
-    if (count && memcmp(a_status, b_status, count) == 0) return 1; /* the usual case, at once */
-    for (i = 0; i < count; i++)
-        if ((a_status[i] == MLOD_STATUS_CULLED) != (b_status[i] == MLOD_STATUS_CULLED)) return 0;
-    return 1;
-}
-
-/* After the last round, before the commit (job->out the new lists,
-   job->done_in the committed ones, cut->seen their views): a view
-   evaluated in this update gets the new version (job->serial) when its
-   view bytes or its drawn entries differ from the committed list's
-   (node indices alone, whatever the tree: the atlas asks the tree; a
-   reset left no entries). */
 static void mlod__version_task(void *context, uint32_t index)
 {
     const mlod__cut_job *job = (const mlod__cut_job *)context;
@@ -6433,6 +6477,10 @@ static void mlod__version_task(void *context, uint32_t index)
     for (; v < end; v++) {
         uint32_t count = now->count[v];
         if (cut->view_done[v] == MLOD__SKIPPED) continue;
+        if (cut->known[v] & MLOD__STAMPED) { /* the join compared what could differ */
+            if (cut->known[v] & MLOD__DIFFERS) cut->version[v] = job->serial;
+            continue;
+        }
         if ((cut->known[v] & MLOD__SEEN) &&
             memcmp(&job->views[v], &cut->seen[v], sizeof(mlod_view)) == 0 && old->count[v] == count &&
             mlod__same_drawn(now->nodes + now->offset[v], now->status + now->offset[v], old->nodes + old->offset[v],
