@@ -314,8 +314,13 @@
      invalid in that list, is still invalid: no merge is tried.  Only the
      entries in or next to what moved are evaluated, so an animated part
      of a static scene costs in proportion to its share of the cut; the
-     result is what the update computes without the record (every entry
-     evaluated), entry for entry (tests/test_cut.c, group skip).  Moving a
+     others are carried as whole runs (the entries below a subtree no
+     refit changed are consecutive in the list): they are copied once, not
+     read entry by entry, and neither counted nor compared again (4.1 M
+     entries, one vertex moving: 4.7 ms on two threads, where a basic cut
+     takes 55).  The result is what the update computes without the
+     record (every entry evaluated), entry for entry (tests/test_cut.c,
+     groups skip and unchanged runs).  Moving a
      view, another epsilon or a revision counted up by other code
      evaluates every entry of the views concerned, and so does a refit
      that changed more than half the tree (of the internal nodes at depth
