@@ -6958,7 +6958,8 @@ typedef struct mlod__plan_job {
     int fill;    /* segments pass: 0 counts, 1 writes */
     int committed; /* the input is the committed lists (the first round of an update from them) */
     const mlod_tree *tree;
-    uint32_t age; /* for the MLOD__STAMPED views (mlod__cut_job.age) */
+    uint32_t age; /* for the MLOD__STAMPED views (mlod__cut_job.age); 0: no segment is copied
+                     from the input (from_input) */
 } mlod__plan_job;
 
 /* The room walk of view v's splits in this round, and the depth room of
@@ -7032,7 +7033,7 @@ static void mlod__plan_view(const mlod__plan_job *job, uint32_t v)
     uint32_t depth_room;
     mlod__room_walk w = mlod__plan_walk(job, v, &depth_room);
     const int exact = job->committed && (cut->known[v] & MLOD__EXACT);
-    const int stamped = job->committed && (cut->known[v] & MLOD__STAMPED);
+    const int stamped = job->committed && job->age && (cut->known[v] & MLOD__STAMPED);
     while (at < end) {
         size_t grow;
         uint32_t n = mlod__segment_length(job->in, at, end, !job->lazy && !exact, job->trust, &w, &grow);
@@ -7343,8 +7344,11 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         job.in = in;
         job.out = out;
         job.done_in = round == 0 ? &cut->lists[cut->committed] : in;
+        /* a lazy round before the last marks the unchanged pairs' parents
+           as invalid for the next rounds (MLOD__PARENT_INVALID): its
+           segments are not copied from the input, which holds no marks */
         if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, round > 0 ? hint_list : NULL,
-                              tree, job.age, params->parallel, &tasks))
+                              tree, job.lazy && !job.last ? 0u : job.age, params->parallel, &tasks))
             goto out_of_memory;
         mlod__run(params->parallel, tasks, mlod__segment_task, &job);
         if (!mlod__place_output(cut, job.done_in, out)) goto out_of_memory;

@@ -2001,10 +2001,10 @@ static void skip_nodes(skip_env *env, mlod_tree *twin, const scene_mesh *s, cons
     if (pool) hook = mlod_pool_parallel(pool);
 #endif
     for (threaded = 0; threaded < 2; threaded++)
-        for (mode = 0; mode < 2; mode++) {
-            mlod_cut_params p = params(mode ? MLOD_CUT_LAZY : MLOD_CUT_INCREMENTAL, 1.5f, 1,
+        for (mode = 0; mode < 3; mode++) {
+            mlod_cut_params p = params(mode ? MLOD_CUT_LAZY : MLOD_CUT_INCREMENTAL, 1.5f, mode == 2 ? 2u : 1u,
                                        threaded && pool ? &hook : NULL);
-            const char *m = mode ? "lazy q=1" : "incremental";
+            const char *m = mode == 0 ? "incremental" : mode == 1 ? "lazy q=1" : "lazy q=2";
             mlod_cut *a = NULL, *b = NULL;
             uint64_t evaluated[2] = {0, 0};
             uint32_t frame, v, differ = 0, more = 0;
@@ -2054,7 +2054,7 @@ static void skip_nodes(skip_env *env, mlod_tree *twin, const scene_mesh *s, cons
                   "skip nodes, %s%s: %llu nodes evaluated against the twin's %llu (%u view-updates evaluated more)",
                   m, threaded ? ", 2 threads" : "", (unsigned long long)evaluated[0],
                   (unsigned long long)evaluated[1], more);
-            if (mode == 1) {
+            if (mode >= 1) {
                 CHECK(skip_settle(env, a, env->tree, views, p) > 0, "skip nodes: settle");
                 snprintf(what, sizeof what, "skip nodes, %s%s, settled", m, threaded ? ", 2 threads" : "");
                 skip_reference(env, env->tree, views, p.epsilon, a, what);
