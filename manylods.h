@@ -6258,12 +6258,7 @@ static void mlod__segment_task(void *context, uint32_t index)
     mlod__pview pv;
     for (s = cut->tasks[index]; s < cut->tasks[index + 1]; s++) {
         mlod__segment *seg = &cut->segments[s];
-        if (seg->from_input) { /* the join copies it */
-            seg->out_count = seg->in_count;
-            seg->ends_unchanged = 3u;
-            seg->evaluated = seg->steps = 0;
-            continue;
-        }
+        if (seg->from_input) continue; /* the join copies it */
         if (seg->view != prepared) {
             mlod__view_prepare(&job->views[seg->view], &pv, NULL);
             mlod__fast_prepare(&pv, job->epsilon);
@@ -6291,26 +6286,24 @@ static int mlod__same_drawn(const uint32_t *a_nodes, const uint8_t *a_status, co
     return 1;
 }
 
-/* After the last round, before the commit (job->out the new lists,
-   job->done_in the committed ones, cut->seen their views): a view
-   evaluated in this update gets the new version (job->serial) when its
-   view bytes or its drawn entries differ from the committed list's
-   (node indices alone, whatever the tree: the atlas asks the tree; a
-   reset left no entries). */
-/* How many of status[0 .. count) are drawn, culled and oversize (their
-   lazy marks aside), into by_status[MLOD_STATUS_DRAWN ..
-   MLOD_STATUS_OVERSIZE]: eight at a time, without branches (the statuses
-   alternate unpredictably).  A byte of t = w ^ (s * ones) is zero exactly
+/* Adds how many of status[0 .. count) are drawn, culled and oversize
+   (their lazy marks aside) to by_status[MLOD_STATUS_DRAWN ..
+   MLOD_STATUS_OVERSIZE], after clearing the marks where unmark is set
+   (the last round of a lazy update): eight at a time, without branches
+   (the statuses alternate unpredictably).  A byte of t = w ^ (s * ones) is zero exactly
    where w's byte is s; ~(((t & low) + low) | t | low) holds 0x80 in those
    bytes and nothing else (no carry crosses a byte), so each byte of the
    running sum counts one position, emptied before it can pass 255. */
 typedef char mlod__statuses_in_a_row[MLOD_STATUS_CULLED == MLOD_STATUS_DRAWN + 1 &&
                                      MLOD_STATUS_OVERSIZE == MLOD_STATUS_DRAWN + 2 ? 1 : -1];
-static void mlod__count_statuses(const uint8_t *status, uint32_t count, uint32_t *by_status)
+static void mlod__count_statuses(uint8_t *status, uint32_t count, int unmark, uint32_t *by_status)
 {
     const uint64_t ones = 0x0101010101010101u, low = 0x7f7f7f7f7f7f7f7fu;
     uint64_t sums[3] = {0, 0, 0};
     uint32_t i = 0, s;
+    if (unmark)
+        for (i = 0; i < count; i++) status[i] &= MLOD__STATUS_MASK;
+    i = 0;
     while (i + 8 <= count) {
         uint64_t part[3] = {0, 0, 0};
         uint32_t end = count - i >= 8 * 255u ? i + 8 * 255u : i + ((count - i) & ~7u);
@@ -6334,7 +6327,7 @@ static void mlod__count_statuses(const uint8_t *status, uint32_t count, uint32_t
         uint32_t st = status[i] & MLOD__STATUS_MASK;
         for (s = 0; s < 3; s++) sums[s] += st == MLOD_STATUS_DRAWN + s;
     }
-    for (s = 0; s < 3; s++) by_status[MLOD_STATUS_DRAWN + s] = (uint32_t)sums[s];
+    for (s = 0; s < 3; s++) by_status[MLOD_STATUS_DRAWN + s] += (uint32_t)sums[s];
 }
 
 /* Concatenate one view's segment outputs into the output list, merging
@@ -6356,7 +6349,8 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
        them changed something.  counted: the output before it is counted
        (or copied from the input). */
     const int stamped = (cut->known[view] & MLOD__STAMPED) && job->in == &cut->lists[cut->committed];
-    uint32_t counted = 0, differs = 0, was[MLOD__STATUS_MASK + 1], now[MLOD__STATUS_MASK + 1], k;
+    const int unmark = job->lazy && job->last; /* only lazy rounds leave marks (the input holds none) */
+    uint32_t counted = 0, differs = 0, was[MLOD__STATUS_MASK + 1], now[MLOD__STATUS_MASK + 1];
     memset(was, 0, sizeof was);
     memset(now, 0, sizeof now);
     if (cut->view_done[view]) { /* nothing to split this round: copied as it is, its counts stand */
@@ -6380,20 +6374,13 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
             seg->from_input ? job->in->status + seg->in_begin : cut->scratch_status + seg->out_begin;
         if (stamped && !seg->from_input) {
             const uint32_t *in_nodes = job->in->nodes + seg->in_begin;
-            const uint8_t *in_status = job->in->status + seg->in_begin;
-            uint32_t part[MLOD__STATUS_MASK + 1];
-            mlod__count_statuses(in_status, seg->in_count, part);
-            for (k = MLOD_STATUS_DRAWN; k <= MLOD_STATUS_OVERSIZE; k++) was[k] += part[k];
+            uint8_t *in_status = job->in->status + seg->in_begin;
+            mlod__count_statuses(in_status, seg->in_count, 0, was);
             differs |= seg->out_count != seg->in_count ||
                        !mlod__same_drawn(src, src_status, in_nodes, in_status, seg->out_count);
         }
-        if (stamped && seg->from_input && counted < count) { /* the output before it stays as it is */
-            uint32_t part[MLOD__STATUS_MASK + 1];
-            if (job->lazy && job->last) /* only lazy rounds leave marks (the input's copies hold none) */
-                for (i = counted; i < count; i++) status[i] &= MLOD__STATUS_MASK;
-            mlod__count_statuses(status + counted, count - counted, part);
-            for (k = MLOD_STATUS_DRAWN; k <= MLOD_STATUS_OVERSIZE; k++) now[k] += part[k];
-        }
+        if (seg->from_input) /* (stamped) the output before it stays as it is */
+            mlod__count_statuses(status + counted, count - counted, unmark, now);
         i = 0;
         if (job->merge && count > 0) {
             for (; i < seg->out_count; i++) {
@@ -6424,24 +6411,19 @@ static void mlod__join_view(const mlod__cut_job *job, uint32_t view, const mlod_
     stats->evaluated = evaluated;
     stats->steps = steps;
     job->out->count[view] = count;
-    if (job->lazy && job->last) /* what is not counted yet */
-        for (i = stamped ? counted : 0; i < count; i++) status[i] &= MLOD__STATUS_MASK;
+    /* what is not counted yet (a view not stamped: all of it); a stamped
+       view's counts start from the committed list's, less was */
+    mlod__count_statuses(status + counted, count - counted, unmark, now);
     if (stamped) {
         const mlod__view_stats *old = &cut->stats[0][view];
-        uint32_t part[MLOD__STATUS_MASK + 1];
-        mlod__count_statuses(status + counted, count - counted, part);
-        for (k = MLOD_STATUS_DRAWN; k <= MLOD_STATUS_OVERSIZE; k++) now[k] += part[k];
-        stats->drawn = old->drawn - was[MLOD_STATUS_DRAWN] + now[MLOD_STATUS_DRAWN];
-        stats->culled = old->culled - was[MLOD_STATUS_CULLED] + now[MLOD_STATUS_CULLED];
-        stats->oversize = old->oversize - was[MLOD_STATUS_OVERSIZE] + now[MLOD_STATUS_OVERSIZE];
+        now[MLOD_STATUS_DRAWN] += old->drawn - was[MLOD_STATUS_DRAWN];
+        now[MLOD_STATUS_CULLED] += old->culled - was[MLOD_STATUS_CULLED];
+        now[MLOD_STATUS_OVERSIZE] += old->oversize - was[MLOD_STATUS_OVERSIZE];
         cut->known[view] = (uint8_t)((cut->known[view] & ~MLOD__DIFFERS) | (differs ? MLOD__DIFFERS : 0u));
-    } else {
-        uint32_t by_status[MLOD__STATUS_MASK + 1];
-        mlod__count_statuses(status, count, by_status);
-        stats->drawn = by_status[MLOD_STATUS_DRAWN];
-        stats->culled = by_status[MLOD_STATUS_CULLED];
-        stats->oversize = by_status[MLOD_STATUS_OVERSIZE];
     }
+    stats->drawn = now[MLOD_STATUS_DRAWN];
+    stats->culled = now[MLOD_STATUS_CULLED];
+    stats->oversize = now[MLOD_STATUS_OVERSIZE];
     stats->coarse = count - stats->drawn - stats->culled - stats->oversize;
 }
 
@@ -6473,6 +6455,12 @@ static void mlod__copy_skipped_task(void *context, uint32_t index)
     }
 }
 
+/* After the last round, before the commit (job->out the new lists,
+   job->done_in the committed ones, cut->seen their views): a view
+   evaluated in this update gets the new version (job->serial) when its
+   view bytes or its drawn entries differ from the committed list's
+   (node indices alone, whatever the tree: the atlas asks the tree; a
+   reset left no entries). */
 static void mlod__version_task(void *context, uint32_t index)
 {
     const mlod__cut_job *job = (const mlod__cut_job *)context;
@@ -6962,6 +6950,13 @@ typedef struct mlod__plan_job {
                      from the input (from_input) */
 } mlod__plan_job;
 
+/* Whether this round reads view v's exact committed list (a basic cut:
+   no entry to split). */
+static int mlod__plan_exact(const mlod__plan_job *job, uint32_t v)
+{
+    return job->committed && (job->cut->known[v] & MLOD__EXACT);
+}
+
 /* The room walk of view v's splits in this round, and the depth room of
    its segments (mlod__segment): the share where the rooms may not hold
    the cuts below them, 0 where they were sized to. */
@@ -7007,7 +7002,7 @@ static void mlod__plan_splits_task(void *context, uint32_t index)
             cut->view_segment[v] = 0;
             continue;
         }
-        if (!job->lazy && !(job->committed && (cut->known[v] & MLOD__EXACT))) /* an exact list has none */
+        if (!job->lazy && !mlod__plan_exact(job, v)) /* an exact list has none */
             while ((at = mlod__next_to_split(job->in->status, at, stop, job->trust)) < stop) {
                 view_splits++;
                 sum += w.prev ? mlod__split_room(&w, job->in->nodes[at])
@@ -7032,7 +7027,7 @@ static void mlod__plan_view(const mlod__plan_job *job, uint32_t v)
     size_t s = fill ? cut->view_segment[v] : 0, capacity = fill ? cut->view_work[v] : 0;
     uint32_t depth_room;
     mlod__room_walk w = mlod__plan_walk(job, v, &depth_room);
-    const int exact = job->committed && (cut->known[v] & MLOD__EXACT);
+    const int exact = mlod__plan_exact(job, v);
     const int stamped = job->committed && job->age && (cut->known[v] & MLOD__STAMPED);
     while (at < end) {
         size_t grow;
@@ -7047,7 +7042,8 @@ static void mlod__plan_view(const mlod__plan_job *job, uint32_t v)
             seg->in_count = n;
             seg->out_begin = capacity;
             seg->out_capacity = (uint32_t)room;
-            seg->out_count = 0;
+            seg->out_count = copy ? n : 0;       /* a copied segment's output is its input, */
+            seg->ends_unchanged = copy ? 3u : 0u; /* unchanged at both ends */
             seg->depth_room = depth_room;
             seg->evaluated = seg->steps = 0;
         }
