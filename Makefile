@@ -76,7 +76,8 @@ EXAMPLE_CFLAGS := -std=c99 -O2 $(WARNINGS) $(CFLAGS)
 DEMO_DEFINES ?= -DMANYLODS_PTHREADS
 # The benchmark: portable -O2 (no -march=native), Embree for the reference.
 BENCH_OPT    := -std=c99 -O2
-BENCH_CFLAGS := $(BENCH_OPT) $(WARNINGS) $(CFLAGS) -DBENCH_FLAGS='"$(BENCH_OPT)"'
+BENCH_CFLAGS := $(BENCH_OPT) $(WARNINGS) $(CFLAGS) -DBENCH_FLAGS='"$(BENCH_OPT)"' \
+                -DBENCH_VK_HEADER='"$(CURDIR)/manylods_vk.h"'
 BENCH_LDLIBS := -lembree3 -lm -pthread
 # bench/bench.c includes its protocol files (one translation unit): they are
 # prerequisites here, not programs of their own.

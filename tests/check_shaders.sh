@@ -1,11 +1,13 @@
 #!/bin/sh
 # tests/check_shaders.sh - the SPIR-V embedded in manylods_vk.h is what the
-# pinned compiler makes of shaders/ today: shaders/embed.sh (which also runs
-# spirv-val on every module) rewrites a copy of the header, and the copy
-# must equal the original byte for byte.  Prints "N passed, M failed" for
-# tests/run.sh.  Without glslangValidator or spirv-val it says it skipped
-# and counts nothing, unless MANYLODS_REQUIRE_VULKAN=1 (CI): then a skip is
-# a failure.
+# pinned compiler and optimiser make of shaders/ today: shaders/embed.sh
+# (which also runs spirv-val on every module) rewrites a copy of the
+# header, and the copy must equal the original byte for byte; and the
+# header unpacks its text to those very modules, word for word
+# (tests/unpack_shaders.c).  Prints "N passed, M failed" for tests/run.sh.
+# Without glslangValidator, spirv-opt, spirv-val or the Vulkan headers it
+# says it skipped and counts nothing, unless MANYLODS_REQUIRE_VULKAN=1
+# (CI): then a skip is a failure.
 cd "$(dirname "$0")/.." || exit 1
 skip() {
     echo "SKIPPED: $1"
@@ -19,8 +21,12 @@ skip() {
 }
 command -v "${GLSLANG:-glslangValidator}" >/dev/null 2>&1 || skip "glslangValidator not found (Debian: glslang-tools)"
 command -v spirv-val >/dev/null 2>&1 || skip "spirv-val not found (Debian: spirv-tools)"
+command -v spirv-opt >/dev/null 2>&1 || skip "spirv-opt not found (Debian: spirv-tools)"
+echo '#include <vulkan/vulkan.h>' | ${CC:-cc} -E -x c - >/dev/null 2>&1 || skip "no Vulkan headers (Debian: libvulkan-dev)"
 pinned=$(sed -n 's|^/\* compiler: \(.*\) \*/$|\1|p' manylods_vk.h)
 found=$("${GLSLANG:-glslangValidator}" --version | head -n 1)
+pinned_opt=$(sed -n 's|^/\* optimiser: \(.*\) \*/$|\1|p' manylods_vk.h)
+found_opt=$(spirv-opt --version 2>&1 | head -n 1)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cp manylods_vk.h "$tmp/manylods_vk.h"
@@ -32,7 +38,14 @@ if [ "$pinned" != "$found" ]; then
 else
     passed=$((passed + 1))
 fi
-if ! shaders/embed.sh "$tmp/manylods_vk.h" >"$tmp/log" 2>&1; then
+if [ "$pinned_opt" != "$found_opt" ]; then
+    echo "FAIL: manylods_vk.h was optimised by '$pinned_opt', this machine has '$found_opt'"
+    failed=$((failed + 1))
+else
+    passed=$((passed + 1))
+fi
+mkdir "$tmp/spv"
+if ! SPV_OUT="$tmp/spv" shaders/embed.sh "$tmp/manylods_vk.h" >"$tmp/log" 2>&1; then
     echo "FAIL: shaders/embed.sh (compile or spirv-val):"
     cat "$tmp/log"
     failed=$((failed + 1))
@@ -43,6 +56,17 @@ elif ! cmp -s manylods_vk.h "$tmp/manylods_vk.h"; then
 else
     echo "the embedded SPIR-V equals a fresh compile; spirv-val accepts every module"
     passed=$((passed + 1))
+fi
+# the modules in the order of the header's list (MLODVK__SPV_NAME)
+modules=$(sed -n 's|^    MLODVK__SPV_\([A-Z0-9_]*\),$|\1|p' "$tmp/manylods_vk.h" | tr A-Z a-z | sed "s|.*|$tmp/spv/&.spv|")
+if ! ${CC:-cc} -std=c99 -O1 -I"$tmp" -I. tests/unpack_shaders.c -o "$tmp/unpack" -lm >"$tmp/log" 2>&1; then
+    echo "FAIL: tests/unpack_shaders.c does not build:"
+    cat "$tmp/log"
+    failed=$((failed + 1))
+elif "$tmp/unpack" $modules; then
+    passed=$((passed + 1))
+else
+    failed=$((failed + 1))
 fi
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
