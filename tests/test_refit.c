@@ -592,6 +592,94 @@ static void test_changes(void)
     scene_free(&s);
 }
 
+/* A refit merges only the internal nodes above what changed
+   (mlod__merge_task): the tree it leaves equals, bit for bit, a twin
+   built alike whose refits merge every node (its revision counted up by
+   hand before each, so that it marks all).  Frames move a region, move
+   nothing, move everything, or nudge vertices by an ulp or so (areas that
+   change where radii may not); with cones, areas and colours (merged with
+   the areas as weights), on one and two threads. */
+static void test_partial_merge(void)
+{
+    scene_mesh s, square;
+    mlod_mesh mesh;
+    mlod_tree *t, *twin;
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel hook = mlod_pool_parallel(pool);
+    const uint32_t attributes = MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT;
+    float *moved, *areas;
+    uint64_t rng = 77;
+    uint32_t i, frame, bad = 0, merged_less = 0, area_only = 0;
+    scene_torus(&s, 1.0f, 0.35f, 40, 20);
+    mesh = tu_mesh(&s);
+    t = tu_build(&s, 5000, 9, attributes);
+    twin = tu_build(&s, 5000, 9, attributes);
+    moved = (float *)malloc(sizeof(float) * 3 * s.vertex_count);
+    CHECK(t && twin && same_bounds(t, twin), "partial merge: twin builds");
+    if (!t || !twin) return;
+    memcpy(moved, s.positions, sizeof(float) * 3 * s.vertex_count);
+    for (frame = 0; frame < 24; frame++) {
+        const mlod_parallel *par = frame % 2 ? &hook : NULL;
+        int kind = (int)(frame % 3);
+        uint32_t changed = 0;
+        float x0 = scene_rng_range(&rng, -1.2f, 1.2f);
+        for (i = 0; i < s.vertex_count; i++) {
+            float *p = moved + 3 * i;
+            if (kind == 0 && p[0] > x0 && p[0] < x0 + 0.3f) p[1] += scene_rng_range(&rng, -0.02f, 0.02f);
+            if (kind == 2) p[2] += 0.001f * (float)frame;
+        }
+        if (kind == 1 && frame % 6 == 1) s.colors[3 * (frame * 37 % s.vertex_count)] += 0.25f; /* a colour alone */
+        mesh.positions = moved;
+        CHECK(mlod_refit_mesh(t, &mesh, par, NULL) == MLOD_OK, "partial merge: refit");
+        twin->revision++; /* the twin's record is unknown: it merges every node */
+        CHECK(mlod_refit_mesh(twin, &mesh, par, NULL) == MLOD_OK, "partial merge: twin refit");
+        bad += !same_bounds(t, twin);
+        for (i = 0; i < t->leaf_count - 1; i++) changed += t->changes[i] == (uint32_t)t->revision;
+        merged_less += changed < t->leaf_count - 1;
+    }
+    CHECK(bad == 0, "partial merge: %u of 24 refits left other bits than merging every node", bad);
+    CHECK(merged_less >= 12, "partial merge: only %u of 24 refits changed fewer than every internal node", merged_less);
+    mlod_tree_destroy(t);
+    mlod_tree_destroy(twin);
+    free(moved);
+    scene_free(&s);
+
+    /* the square [-1, 1]^2, one corner moved towards the centre by an ulp
+       at a time (a growth of about 2^-25): some leaves' areas change
+       where their radii, centres and cones keep their bits (counted:
+       area_only) */
+    scene_unit_square(&square);
+    for (i = 0; i < 2 * 4; i++) square.positions[3 * (i / 2) + i % 2] = 2.0f * square.positions[3 * (i / 2) + i % 2] - 1.0f;
+    mesh = tu_mesh(&square);
+    t = tu_build(&square, 3000, 4, attributes);
+    twin = tu_build(&square, 3000, 4, attributes);
+    CHECK(t && twin, "partial merge, square: builds");
+    if (!t || !twin) return;
+    areas = (float *)malloc(sizeof(float) * t->node_count);
+    for (frame = 0, bad = 0; frame < 16; frame++) {
+        float *p = square.positions + 3 * 2;
+        snapshot before;
+        p[frame % 2] = nextafterf(p[frame % 2], 0.0f);
+        snapshot_take(&before, t);
+        CHECK(mlod_refit_mesh(t, &mesh, frame % 2 ? &hook : NULL, NULL) == MLOD_OK, "partial merge, square: refit");
+        twin->revision++;
+        CHECK(mlod_refit_mesh(twin, &mesh, frame % 2 ? &hook : NULL, NULL) == MLOD_OK, "partial merge, square: twin");
+        bad += !same_bounds(t, twin);
+        for (i = t->leaf_count - 1; i < t->node_count; i++)
+            area_only += memcmp((const float *)before.arrays[2] + i, t->areas + i, 4) != 0 &&
+                         memcmp((const float *)before.arrays[0] + 4 * (size_t)i, t->spheres + 4 * (size_t)i, 16) == 0 &&
+                         memcmp((const float *)before.arrays[1] + 4 * (size_t)i, t->cones + 4 * (size_t)i, 16) == 0;
+        snapshot_free(&before);
+    }
+    CHECK(bad == 0, "partial merge, square: %u of 16 refits left other bits than merging every node", bad);
+    CHECK(area_only > 0, "partial merge, square: no leaf's area changed alone (the case this part is for)");
+    free(areas);
+    mlod_tree_destroy(t);
+    mlod_tree_destroy(twin);
+    mlod_pool_destroy(pool);
+    scene_free(&square);
+}
+
 int main(void)
 {
     int rc;
@@ -604,6 +692,7 @@ int main(void)
     test_errors(100);
     test_points();
     test_changes();
+    test_partial_merge();
     rc = test_finish();
     fflush(stdout); /* keep the result line even if a sanitizer reports at exit */
     return rc;
