@@ -493,6 +493,7 @@ static void parse_build(fz_reader *r, fz_build *b, const fz_scene *s, int sane, 
     b->desc.radius_scale = scale < 64 ? 0.0f : rd_maybe_raw(r, ldexp(1.0 + (scale & 15) / 16.0, (int)(scale >> 4) - 8));
     if (!(b->desc.radius_scale >= 0.0f) || !isfinite(b->desc.radius_scale)) b->must_fail = 1;
     b->desc.attributes = attributes & 15u;
+    if ((attributes & 16u) && (attributes & MLOD_ATTR_REFIT)) b->desc.attributes |= MLOD_ATTR_REFIT_CACHE;
     if (!sane && r->chaos && attributes >= 0xf0) {
         b->desc.attributes = attributes;
         b->must_fail = 1;
@@ -1272,6 +1273,54 @@ static void perturb(fz_reader *r, const fz_scene *s, float *out, int sane)
         }
 }
 
+/* MLOD_ATTR_REFIT_CACHE on hostile motion: after a refit to `moved`, a
+   second refit where a fuzzed subset of the vertices moved (by an ulp or
+   by fuzzed amounts, normals sometimes dropped) computes only the leaves
+   of triangles whose corners changed; computing everything again from
+   the same mesh (the revision counted up by hand, so that the refit
+   trusts nothing it kept) must give the same bits.  Then back to
+   `moved`, as the caller expects. */
+static void refit_cache_check(fz_reader *r, const fz_scene *s, mlod_tree *t, const float *moved,
+                              const mlod_parallel *parallel)
+{
+    size_t n = t->node_count, i;
+    float *again = (float *)malloc(sizeof(float) * 3 * (s->vertex_count + 1));
+    float *keep = (float *)malloc(sizeof(float) * 12 * n);
+    uint8_t share = rd_u8(r), how = rd_u8(r);
+    mlod_mesh mesh = fz_mesh_of(s, moved);
+    mlod_error e;
+    FZ_REQUIRE(again && keep, "out of memory");
+    memcpy(again, moved, sizeof(float) * 3 * s->vertex_count);
+    for (i = 0; i < 3 * (size_t)s->vertex_count; i++)
+        if (rd_u8(r) < share) {
+            float x = again[i], y = how & 1 ? nextafterf(x, INFINITY) : x + (float)(s->radius * ldexp(rd_signed(r), -(int)(how % 24)));
+            if (isfinite(y) && fabsf(y) < 1e30f) again[i] = y;
+        }
+    mesh.positions = again;
+    if (how & 0x80) mesh.normals = NULL;
+    if (mlod_refit_mesh(t, &mesh, parallel, &e) == MLOD_OK) { /* a growth out of range may refuse it */
+        memcpy(keep, t->spheres, sizeof(float) * 4 * n);
+        if (t->cones) memcpy(keep + 4 * n, t->cones, sizeof(float) * 4 * n);
+        if (t->colors) memcpy(keep + 8 * n, t->colors, sizeof(float) * 3 * n);
+        if (t->areas) memcpy(keep + 11 * n, t->areas, sizeof(float) * n);
+        t->revision++;
+        fz_where = "refit with MLOD_ATTR_REFIT_CACHE";
+        FZ_REQUIRE(mlod_refit_mesh(t, &mesh, parallel, &e) == MLOD_OK, "the same refit computed whole failed: %s",
+                   e.message);
+        FZ_REQUIRE(memcmp(keep, t->spheres, sizeof(float) * 4 * n) == 0 &&
+                       (!t->cones || memcmp(keep + 4 * n, t->cones, sizeof(float) * 4 * n) == 0) &&
+                       (!t->colors || memcmp(keep + 8 * n, t->colors, sizeof(float) * 3 * n) == 0) &&
+                       (!t->areas || memcmp(keep + 11 * n, t->areas, sizeof(float) * n) == 0),
+                   "a refit that kept the leaves of unchanged triangles differs from one that computed them all");
+    }
+    mesh.positions = moved;
+    mesh.normals = s->has_normals ? s->normals : NULL;
+    FZ_REQUIRE(mlod_refit_mesh(t, &mesh, parallel, &e) == MLOD_OK, "the refit to the same mesh again failed: %s",
+               e.message);
+    free(again);
+    free(keep);
+}
+
 /* ------------------------------------------------------- cube maps */
 
 /* The Vulkan specification's cube map face selection ("Cube Map Face
@@ -1960,6 +2009,8 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
         } else {
             FZ_REQUIRE(!refit_must_fail, "refit accepted invalid input (positions, another mesh, or no MLOD_ATTR_REFIT)");
             check_tree(t, leaves, t->attributes, "after refit");
+            if (!s->points && !c->strides.on && (t->attributes & MLOD_ATTR_REFIT_CACHE))
+                refit_cache_check(r, s, t, moved, c->parallel);
         }
         free(before);
     }

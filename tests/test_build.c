@@ -293,7 +293,9 @@ static void test_attributes(void)
                  {MLOD_ATTR_COLOR, 28},
                  {MLOD_ATTR_REFIT, 20}, /* the record of changes */
                  {MLOD_ATTR_CONE | MLOD_ATTR_COLOR, 44},
-                 {MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT, 52}};
+                 {MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT, 52},
+                 {MLOD_ATTR_REFIT | MLOD_ATTR_REFIT_CACHE, 20},
+                 {MLOD_ATTR_CONE | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT | MLOD_ATTR_REFIT_CACHE, 48}};
     const uint32_t N = 1000;
     scene_mesh s;
     mlod_tree *base, *t;
@@ -317,12 +319,16 @@ static void test_attributes(void)
               (void *)t->colors);
         CHECK(!(a & MLOD_ATTR_REFIT) == !t->leaf_sources && !(a & MLOD_ATTR_REFIT) == !t->leaf_barycentrics &&
                   !(a & MLOD_ATTR_REFIT) == !t->triangle_areas && !(a & MLOD_ATTR_REFIT) == !t->triangle_leaves &&
-                  !(a & MLOD_ATTR_REFIT) == !t->changes,
+                  !(a & MLOD_ATTR_REFIT) == !t->changes && !(a & MLOD_ATTR_REFIT_CACHE) == !t->corners &&
+                  !(a & MLOD_ATTR_REFIT_CACHE) == !t->corners_changed,
               "attributes 0x%x: refit arrays present iff asked", a);
         CHECK(same_array(t->spheres, base->spheres, 16 * (size_t)N * 2 - 16),
               "attributes 0x%x: the spheres depend on the attributes", a);
         /* refit: source and barycentrics per leaf, build area and refit scratch per triangle */
         lo = extra + ((a & MLOD_ATTR_REFIT) ? 12 * (size_t)N + 40 * (s.index_count / 3) : 0);
+        /* the corners: positions, normals with cones, colours with colours; a byte of scratch */
+        if (a & MLOD_ATTR_REFIT_CACHE)
+            lo += (36 * (1 + !!(a & MLOD_ATTR_CONE) + !!(a & MLOD_ATTR_COLOR)) + 1) * (size_t)(s.index_count / 3);
         hi = lo + 256;
         CHECK(t->bytes >= base->bytes + lo && t->bytes <= base->bytes + hi,
               "attributes 0x%x: bytes %zu, without attributes %zu, expected %zu more (+256)", a, t->bytes, base->bytes, lo);

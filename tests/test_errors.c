@@ -92,6 +92,9 @@ static void test_build_errors(void)
     d2.attributes |= 1u << 9;
     expect_build(&m, &d2, MLOD_ERROR_INVALID_ARGUMENT, MLOD_ERROR_INVALID_ARGUMENT, "unknown attribute bit");
     d2 = d;
+    d2.attributes = (d.attributes & ~(uint32_t)MLOD_ATTR_REFIT) | MLOD_ATTR_REFIT_CACHE;
+    expect_build(&m, &d2, MLOD_ERROR_INVALID_ARGUMENT, MLOD_ERROR_INVALID_ARGUMENT, "MLOD_ATTR_REFIT_CACHE without MLOD_ATTR_REFIT");
+    d2 = d;
     d2.radius_scale = NAN;
     expect_build(&m, &d2, MLOD_ERROR_NON_FINITE, MLOD_ERROR_INVALID_ARGUMENT, "radius_scale NaN");
     d2.radius_scale = INFINITY;

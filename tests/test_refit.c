@@ -593,54 +593,91 @@ static void test_changes(void)
 }
 
 /* A refit merges only the internal nodes above what changed
-   (mlod__merge_task): the tree it leaves equals, bit for bit, a twin
-   built alike whose refits merge every node (its revision counted up by
-   hand before each, so that it marks all).  Frames move a region, move
-   nothing, move everything, or nudge vertices by an ulp or so (areas that
-   change where radii may not); with cones, areas and colours (merged with
-   the areas as weights), on one and two threads. */
+   (mlod__merge_task), and with MLOD_ATTR_REFIT_CACHE computes only the
+   leaves of triangles whose corners changed: the trees it leaves equal,
+   bit for bit, a twin built alike whose refits compute and merge
+   everything (its revision counted up by hand before each, so that it
+   marks all), and mark the same nodes as changed.  Frames move a region,
+   move nothing, move everything, change a colour alone, drop the normals,
+   turn some triangles' corners round (the same triangles, other leaves),
+   or count the cached tree's revision up by hand; then nudge vertices by
+   an ulp (areas that change where radii may not); with cones, areas and
+   colours (merged with the areas as weights), on one and two threads. */
+static int same_marks(const mlod_tree *a, const mlod_tree *b)
+{
+    uint32_t i;
+    for (i = 0; i < a->node_count; i++)
+        if ((a->changes[i] == (uint32_t)a->revision) != (b->changes[i] == (uint32_t)b->revision)) return 0;
+    return 1;
+}
+
 static void test_partial_merge(void)
 {
     scene_mesh s, square;
     mlod_mesh mesh;
-    mlod_tree *t, *twin;
+    mlod_tree *t, *twin, *cached;
     mlod_pool *pool = mlod_pool_create(2);
     mlod_parallel hook = mlod_pool_parallel(pool);
     const uint32_t attributes = MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT;
     float *moved, *areas;
     uint64_t rng = 77;
-    uint32_t i, frame, bad = 0, merged_less = 0, area_only = 0;
+    uint32_t i, frame, bad = 0, bad_cached = 0, bad_marks = 0, merged_less = 0, area_only = 0, skipped = 0;
     scene_torus(&s, 1.0f, 0.35f, 40, 20);
     mesh = tu_mesh(&s);
     t = tu_build(&s, 5000, 9, attributes);
     twin = tu_build(&s, 5000, 9, attributes);
+    cached = tu_build(&s, 5000, 9, attributes | MLOD_ATTR_REFIT_CACHE);
     moved = (float *)malloc(sizeof(float) * 3 * s.vertex_count);
-    CHECK(t && twin && same_bounds(t, twin), "partial merge: twin builds");
-    if (!t || !twin) return;
+    CHECK(t && twin && cached && same_bounds(t, twin) && same_bounds(t, cached), "partial merge: twin builds");
+    if (!t || !twin || !cached) return;
+    CHECK(cached->corners != NULL && t->corners == NULL, "partial merge: MLOD_ATTR_REFIT_CACHE keeps the corners");
     memcpy(moved, s.positions, sizeof(float) * 3 * s.vertex_count);
-    for (frame = 0; frame < 24; frame++) {
+    for (frame = 0; frame < 36; frame++) {
         const mlod_parallel *par = frame % 2 ? &hook : NULL;
-        int kind = (int)(frame % 3);
+        int kind = (int)(frame % 6);
         uint32_t changed = 0;
         float x0 = scene_rng_range(&rng, -1.2f, 1.2f);
         for (i = 0; i < s.vertex_count; i++) {
             float *p = moved + 3 * i;
-            if (kind == 0 && p[0] > x0 && p[0] < x0 + 0.3f) p[1] += scene_rng_range(&rng, -0.02f, 0.02f);
+            if ((kind == 0 || kind == 3) && p[0] > x0 && p[0] < x0 + 0.3f) p[1] += scene_rng_range(&rng, -0.02f, 0.02f);
             if (kind == 2) p[2] += 0.001f * (float)frame;
         }
-        if (kind == 1 && frame % 6 == 1) s.colors[3 * (frame * 37 % s.vertex_count)] += 0.25f; /* a colour alone */
+        if (kind == 1) s.colors[3 * (frame * 37 % s.vertex_count)] += 0.25f; /* a colour alone */
+        if (kind == 4) /* some triangles' corners turned round */
+            for (i = frame; i < s.index_count / 3; i += 97) {
+                uint32_t *c = s.indices + 3 * (size_t)i, first = c[0];
+                c[0] = c[1], c[1] = c[2], c[2] = first;
+            }
+        if (kind == 5) cached->revision++; /* as a user who wrote its arrays does */
         mesh.positions = moved;
+        mesh.normals = kind == 3 || (kind == 0 && frame > 20) ? NULL : s.normals;
         CHECK(mlod_refit_mesh(t, &mesh, par, NULL) == MLOD_OK, "partial merge: refit");
-        twin->revision++; /* the twin's record is unknown: it merges every node */
+        memset(cached->corners_changed, 2, cached->triangle_count); /* what the comparison did, seen below */
+        CHECK(mlod_refit_mesh(cached, &mesh, par, NULL) == MLOD_OK, "partial merge: refit with the cache");
+        if (kind == 0 && mesh.normals) { /* a region moved: the cache compared every triangle, and kept most */
+            uint32_t same = 0, other = 0;
+            for (i = 0; i < cached->triangle_count; i++) {
+                same += cached->corners_changed[i] == 0;
+                other += cached->corners_changed[i] > 1;
+            }
+            skipped += frame > 0 && other == 0 && same > cached->triangle_count / 2;
+        }
+        twin->revision++; /* the twin's record is unknown: it computes and merges every node */
         CHECK(mlod_refit_mesh(twin, &mesh, par, NULL) == MLOD_OK, "partial merge: twin refit");
         bad += !same_bounds(t, twin);
+        bad_cached += !same_bounds(cached, twin);
+        bad_marks += kind != 5 && !same_marks(t, cached);
         for (i = 0; i < t->leaf_count - 1; i++) changed += t->changes[i] == (uint32_t)t->revision;
         merged_less += changed < t->leaf_count - 1;
     }
-    CHECK(bad == 0, "partial merge: %u of 24 refits left other bits than merging every node", bad);
-    CHECK(merged_less >= 12, "partial merge: only %u of 24 refits changed fewer than every internal node", merged_less);
+    CHECK(bad == 0, "partial merge: %u of 36 refits left other bits than computing everything", bad);
+    CHECK(bad_cached == 0, "partial merge, cache: %u of 36 refits left other bits than computing everything", bad_cached);
+    CHECK(bad_marks == 0, "partial merge, cache: %u refits marked other nodes than without it", bad_marks);
+    CHECK(merged_less >= 12, "partial merge: only %u of 36 refits changed fewer than every internal node", merged_less);
+    CHECK(skipped == 3, "partial merge, cache: %u of the 3 refits of a moved region kept most triangles' leaves", skipped);
     mlod_tree_destroy(t);
     mlod_tree_destroy(twin);
+    mlod_tree_destroy(cached);
     free(moved);
     scene_free(&s);
 
@@ -653,8 +690,9 @@ static void test_partial_merge(void)
     mesh = tu_mesh(&square);
     t = tu_build(&square, 3000, 4, attributes);
     twin = tu_build(&square, 3000, 4, attributes);
-    CHECK(t && twin, "partial merge, square: builds");
-    if (!t || !twin) return;
+    cached = tu_build(&square, 3000, 4, attributes | MLOD_ATTR_REFIT_CACHE);
+    CHECK(t && twin && cached, "partial merge, square: builds");
+    if (!t || !twin || !cached) return;
     areas = (float *)malloc(sizeof(float) * t->node_count);
     for (frame = 0, bad = 0; frame < 16; frame++) {
         float *p = square.positions + 3 * 2;
@@ -662,20 +700,22 @@ static void test_partial_merge(void)
         p[frame % 2] = nextafterf(p[frame % 2], 0.0f);
         snapshot_take(&before, t);
         CHECK(mlod_refit_mesh(t, &mesh, frame % 2 ? &hook : NULL, NULL) == MLOD_OK, "partial merge, square: refit");
+        CHECK(mlod_refit_mesh(cached, &mesh, frame % 2 ? &hook : NULL, NULL) == MLOD_OK, "partial merge, square: cache");
         twin->revision++;
         CHECK(mlod_refit_mesh(twin, &mesh, frame % 2 ? &hook : NULL, NULL) == MLOD_OK, "partial merge, square: twin");
-        bad += !same_bounds(t, twin);
+        bad += !same_bounds(t, twin) || !same_bounds(cached, twin) || !same_marks(t, cached);
         for (i = t->leaf_count - 1; i < t->node_count; i++)
             area_only += memcmp((const float *)before.arrays[2] + i, t->areas + i, 4) != 0 &&
                          memcmp((const float *)before.arrays[0] + 4 * (size_t)i, t->spheres + 4 * (size_t)i, 16) == 0 &&
                          memcmp((const float *)before.arrays[1] + 4 * (size_t)i, t->cones + 4 * (size_t)i, 16) == 0;
         snapshot_free(&before);
     }
-    CHECK(bad == 0, "partial merge, square: %u of 16 refits left other bits than merging every node", bad);
+    CHECK(bad == 0, "partial merge, square: %u of 16 refits left other bits than computing everything, or other marks", bad);
     CHECK(area_only > 0, "partial merge, square: no leaf's area changed alone (the case this part is for)");
     free(areas);
     mlod_tree_destroy(t);
     mlod_tree_destroy(twin);
+    mlod_tree_destroy(cached);
     mlod_pool_destroy(pool);
     scene_free(&square);
 }
