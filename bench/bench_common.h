@@ -264,6 +264,7 @@ typedef struct row {
     float eps;       /* 0: not applicable */
     uint32_t n;      /* 0: not applicable */
     double build_ms, refit_ms, cut_ms, splat_ms, total_ms; /* NAN: not applicable */
+    double refit_cache_ms; /* the same refit of a twin built with MLOD_ATTR_REFIT_CACHE (target_rigs) */
     double cpu_ms;   /* ROW_VULKAN: the CPU's time for the same stage, same frames */
     double splat_ratio; /* sphere discs row: the default splat / sphere discs, median of pairs in turn */
     double evaluated, per_view;                             /* per frame; NAN: n/a */

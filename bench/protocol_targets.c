@@ -130,7 +130,8 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
     mlod_error error;
     double ms[BENCH_RIGS][2][BENCH_MAX_FRAMES], splat_ms[BENCH_RIGS][2][BENCH_MAX_FRAMES], redrawn[BENCH_RIGS];
     double changed[BENCH_RIGS]; /* pixels whose depth differs from the frame before, per frame */
-    double refits[2][BENCH_MAX_FRAMES]; /* the whole mesh's refits, the moving part's */
+    double refits[2][2][BENCH_MAX_FRAMES]; /* [without, with the cache][the whole mesh's refits, the moving part's] */
+    mlod_tree *cached = NULL; /* a twin of tree built with MLOD_ATTR_REFIT_CACHE, refitted alike */
     float *before[BENCH_RIGS];  /* the frame before's depth */
     double evaluated[BENCH_RIGS][2], nodes[BENCH_RIGS][2], same[3], same_splat[3], e, n;
     int f, r, m, k;
@@ -149,6 +150,12 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             if (mlod_cut_create(p->view_count, NULL, &cuts[r][m], &error) != MLOD_OK ||
                 mlod_atlas_create(frame_views(p, 0), p->view_count, &desc, NULL, &atlases[r][m], &error) != MLOD_OK)
                 fail("mlod_cut_create / mlod_atlas_create: %s", error.message);
+    {
+        mlod_mesh mesh = frame_mesh(p, 0);
+        mlod_build_desc bd;
+        build_desc(&bd, tree->leaf_count, tree->attributes | MLOD_ATTR_REFIT_CACHE, &b->parallel);
+        if (mlod_build_mesh(&mesh, &bd, &cached, &error) != MLOD_OK) fail("mlod_build_mesh (cache): %s", error.message);
+    }
     for (r = 0; r < BENCH_RIGS; r++) {
         size_t bytes = sizeof(float) * (size_t)atlases[r][0]->width * atlases[r][0]->height;
         before[r] = (float *)checked_malloc(bytes);
@@ -164,11 +171,20 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             part_positions(p, f % p->frame_count, limit, part);
             mesh.positions = part;
         }
+        for (k = 0; k < 2; k++) { /* the protocol's tree, then its twin with the cache: the same bits */
+            mlod_tree *which = k ? cached : tree;
+            double t0 = now_ms();
+            if (mlod_refit_mesh(which, &mesh, &b->parallel, &error) != MLOD_OK)
+                fail("mlod_refit_mesh: %s", error.message);
+            if (f % p->frame_count >= c->warmup)
+                refits[k][f >= p->frame_count][f % p->frame_count - c->warmup] = now_ms() - t0;
+        }
         {
             double t0 = now_ms();
-            if (mlod_refit_mesh(tree, &mesh, &b->parallel, &error) != MLOD_OK)
-                fail("mlod_refit_mesh: %s", error.message);
-            if (f % p->frame_count >= c->warmup) refits[f >= p->frame_count][f % p->frame_count - c->warmup] = now_ms() - t0;
+            if (memcmp(cached->spheres, tree->spheres, 16 * (size_t)tree->node_count) != 0 ||
+                (tree->cones && memcmp(cached->cones, tree->cones, 16 * (size_t)tree->node_count) != 0))
+                fail("frame %d: the refit with MLOD_ATTR_REFIT_CACHE differs from the one without", f);
+            b->spent_checks += now_ms() - t0;
         }
         for (r = first; r <= last; r++) {
             double t0;
@@ -224,7 +240,8 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             out->eps = 1.0f;
             out->n = tree->leaf_count;
             out->cut_ms = median(ms[r][m], c->measured);
-            out->refit_ms = median(refits[r == 2], c->measured);
+            out->refit_ms = median(refits[0][r == 2], c->measured);
+            out->refit_cache_ms = median(refits[1][r == 2], c->measured);
             out->splat_ms = median(splat_ms[r][m], c->measured);
             out->total_ms = out->cut_ms + out->splat_ms;
             out->evaluated = evaluated[r][m] / c->measured;
@@ -287,6 +304,7 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
             mlod_atlas_destroy(atlases[r][m]);
         }
     for (r = 0; r < BENCH_RIGS; r++) free(before[r]);
+    mlod_tree_destroy(cached);
     free(part);
     free(views);
 }
@@ -561,9 +579,11 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
         snprintf(anchor, sizeof anchor, "basic %s, incremental %s, the static rig over frames in which only the top "
                  "eighth of the object's vertices twists (the entries below unchanged subtrees carried whole, "
                  "unevaluated); node-views per frame "
-                 "%.3g / %.3g; equal cuts (checked); the refit before each cut %s (the whole mesh twisting: %s)",
+                 "%.3g / %.3g; equal cuts (checked); the refit before each cut %s, %s with MLOD_ATTR_REFIT_CACHE "
+                 "(the same bits, checked; the whole mesh twisting: %s, %s)",
                  ms_text(rigs[2][0]->cut_ms), ms_text(rigs[2][1]->cut_ms), rigs[2][0]->evaluated,
-                 rigs[2][1]->evaluated, ms_text(rigs[2][1]->refit_ms), rigs[1][1] ? ms_text(rigs[1][1]->refit_ms) : "-");
+                 rigs[2][1]->evaluated, ms_text(rigs[2][1]->refit_ms), ms_text(rigs[2][1]->refit_cache_ms),
+                 rigs[1][1] ? ms_text(rigs[1][1]->refit_ms) : "-", rigs[1][1] ? ms_text(rigs[1][1]->refit_cache_ms) : "-");
         target_line(f, "incremental / basic, static rig, an eighth of the mesh moving", ours, "<= 0.12x", anchor,
                     ratio / 0.12, NULL);
     } else {
