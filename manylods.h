@@ -986,12 +986,12 @@ MANYLODS_DEF mlod_result mlod_build_points(const mlod_points *points, const mlod
    its triangle's corners, barycentrics and area at build): the same
    bits, for one pass over the corners (the same mesh: 10.7 ms with its
    top eighth moving, 4.4 ms with one vertex moving, 48 ms with all of it
-   twisting; the tree holds 21.5 MB more, 142.5 MB); the first refit after the build,
-   one with normals where the last had none or the other way round, and
-   one after a failed refit compute every leaf.  When the revision was
-   counted up by other code since the last refit (arrays written
-   otherwise, mlodvk_tree_download), every leaf is computed and every
-   node merged and marked. */
+   twisting; the tree holds 21.5 MB more, 142.5 MB).  The first refit
+   after the build, one with normals where the last had none or the other
+   way round, and one after a failed refit compute every leaf.  When the
+   revision was counted up by other code since the last refit (arrays
+   written otherwise, mlodvk_tree_download), every leaf is computed and
+   every node merged and marked. */
 MANYLODS_DEF mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
                                          const mlod_parallel *parallel, mlod_error *error);
 
