@@ -2677,9 +2677,9 @@ static mlod_tree *mlod__tree_create(const mlod_allocator *a, uint32_t leaves, ui
 /* How a pass that writes nodes records the ones it changed in
    mlod_tree.changes: not at all (changes NULL: a build, which clears the
    array after), with value (the refit's revision, low 32 bits) on each
-   leaf whose sphere, cone and colour bits (what a cut's status and a
-   tile read) differ before and after and on each internal node a child of which got it (a
-   refit that knows changes[]), or on every node written (`all`: a refit
+   leaf whose sphere, cone, colour or area bits (what a cut's status, a
+   tile and the merges above read) differ before and after and on each
+   internal node a child of which got it (a refit that knows changes[]), or on every node written (`all`: a refit
    after the arrays were written otherwise).  An internal node neither of
    whose children changed keeps its bits: it holds the merge of its
    children (mlod__merge_all, the last writer of every internal node in
@@ -2690,44 +2690,26 @@ typedef struct mlod__stamp {
     int all;
 } mlod__stamp;
 
+/* Store count floats of leaf `node` (its sphere, cone, colour or area),
+   recording a change of their bits as `stamp` says (NULL: not at all;
+   `all`: every leaf written).  The areas count too: they weigh the
+   colours of the nodes above, and a refit merges only above what changed
+   (mlod__merge_task); a mesh leaf's radius, rounded from the square root
+   of its area, may keep its bits where the area does not. */
+static inline void mlod__store_leaf_floats(float *to, const float *from, size_t count, uint32_t node,
+                                           const mlod__stamp *stamp)
+{
+    if (stamp && stamp->changes && (stamp->all || memcmp(to, from, count * sizeof(float)) != 0))
+        stamp->changes[node] = stamp->value;
+    memcpy(to, from, count * sizeof(float));
+}
+
 /* Store leaf `node`'s sphere (bounds[0..3]) and, in a tree with cones,
-   its cone (bounds[4..7]), recording a change of their bits as `stamp`
-   says (NULL: not at all). */
+   its cone (bounds[4..7]), as mlod__store_leaf_floats. */
 static void mlod__store_leaf(mlod_tree *tree, uint32_t node, const float bounds[8], const mlod__stamp *stamp)
 {
-    float *sphere = tree->spheres + 4 * (size_t)node, *cone = tree->cones ? tree->cones + 4 * (size_t)node : NULL;
-    if (stamp && stamp->changes) {
-        uint32_t was[8], now[8], differ = 0;
-        int k, words = cone ? 8 : 4;
-        memcpy(was, sphere, 4 * sizeof(float));
-        if (cone) memcpy(was + 4, cone, 4 * sizeof(float));
-        memcpy(now, bounds, (size_t)words * sizeof(float));
-        for (k = 0; k < words; k++) differ |= was[k] ^ now[k];
-        if (stamp->all || differ) stamp->changes[node] = stamp->value;
-    }
-    memcpy(sphere, bounds, 4 * sizeof(float));
-    if (cone) memcpy(cone, bounds + 4, 4 * sizeof(float));
-}
-
-/* Store leaf `node`'s colour, recording a change of its bits as `stamp`
-   says (what a tile's colour channel shows, mlod_splat). */
-static void mlod__store_color(mlod_tree *tree, uint32_t node, const float color[3], const mlod__stamp *stamp)
-{
-    float *to = tree->colors + 3 * (size_t)node;
-    if (stamp && stamp->changes && memcmp(to, color, 3 * sizeof(float)) != 0) stamp->changes[node] = stamp->value;
-    memcpy(to, color, 3 * sizeof(float));
-}
-
-/* Store leaf `node`'s area, recording a change of its bits as `stamp`
-   says: the areas weigh the colours of the nodes above it, and a refit
-   merges only above what changed (mlod__merge_task).  (A mesh leaf's
-   radius, rounded from the square root of its area, may keep its bits
-   where the area does not.) */
-static void mlod__store_area(mlod_tree *tree, uint32_t node, float area, const mlod__stamp *stamp)
-{
-    float *to = tree->areas + node;
-    if (stamp && stamp->changes && memcmp(to, &area, sizeof area) != 0) stamp->changes[node] = stamp->value;
-    *to = area;
+    mlod__store_leaf_floats(tree->spheres + 4 * (size_t)node, bounds, 4, node, stamp);
+    if (tree->cones) mlod__store_leaf_floats(tree->cones + 4 * (size_t)node, bounds + 4, 4, node, stamp);
 }
 
 typedef struct mlod__merge_job {
@@ -2917,13 +2899,13 @@ static void mlod__mesh_leaf(mlod_tree *tree, uint32_t node, const mlod_mesh *mes
         bounds[4] = bounds[5] = bounds[6] = bounds[7] = 0.0f;
     }
     mlod__store_leaf(tree, node, bounds, stamp);
-    if (tree->areas) mlod__store_area(tree, node, shared->area, stamp);
+    if (tree->areas) mlod__store_leaf_floats(tree->areas + node, &shared->area, 1, node, stamp);
     if (tree->colors) {
         double c[3];
         float color[3];
         mlod__interpolate(mesh->colors, mesh->color_stride, corner, s, t, c);
         for (k = 0; k < 3; k++) color[k] = (float)c[k];
-        mlod__store_color(tree, node, color, stamp);
+        mlod__store_leaf_floats(tree->colors + 3 * (size_t)node, color, 3, node, stamp);
     }
 }
 
@@ -3812,8 +3794,13 @@ static void mlod__point_leaf(mlod_tree *tree, uint32_t node, const mlod_points *
         bounds[4] = bounds[5] = bounds[6] = bounds[7] = 0.0f;
     }
     mlod__store_leaf(tree, node, bounds, stamp);
-    if (tree->areas) mlod__store_area(tree, node, (float)(radius * radius / tree->area_unit), stamp);
-    if (tree->colors) mlod__store_color(tree, node, mlod__at(points->colors, points->color_stride, item), stamp);
+    if (tree->areas) {
+        float area = (float)(radius * radius / tree->area_unit);
+        mlod__store_leaf_floats(tree->areas + node, &area, 1, node, stamp);
+    }
+    if (tree->colors)
+        mlod__store_leaf_floats(tree->colors + 3 * (size_t)node, mlod__at(points->colors, points->color_stride, item), 3,
+                                node, stamp);
 }
 
 /* Density-based radius of leaf j (before radius_scale), from the lowest

@@ -619,7 +619,7 @@ static void test_partial_merge(void)
     mlod_pool *pool = mlod_pool_create(2);
     mlod_parallel hook = mlod_pool_parallel(pool);
     const uint32_t attributes = MLOD_ATTR_CONE | MLOD_ATTR_AREA | MLOD_ATTR_COLOR | MLOD_ATTR_REFIT;
-    float *moved, *areas;
+    float *moved;
     uint64_t rng = 77;
     uint32_t i, frame, bad = 0, bad_cached = 0, bad_marks = 0, merged_less = 0, area_only = 0, skipped = 0;
     scene_torus(&s, 1.0f, 0.35f, 40, 20);
@@ -693,7 +693,6 @@ static void test_partial_merge(void)
     cached = tu_build(&square, 3000, 4, attributes | MLOD_ATTR_REFIT_CACHE);
     CHECK(t && twin && cached, "partial merge, square: builds");
     if (!t || !twin || !cached) return;
-    areas = (float *)malloc(sizeof(float) * t->node_count);
     for (frame = 0, bad = 0; frame < 16; frame++) {
         float *p = square.positions + 3 * 2;
         snapshot before;
@@ -712,7 +711,6 @@ static void test_partial_merge(void)
     }
     CHECK(bad == 0, "partial merge, square: %u of 16 refits left other bits than computing everything, or other marks", bad);
     CHECK(area_only > 0, "partial merge, square: no leaf's area changed alone (the case this part is for)");
-    free(areas);
     mlod_tree_destroy(t);
     mlod_tree_destroy(twin);
     mlod_tree_destroy(cached);
