@@ -359,7 +359,10 @@
      mlod_splat() draws every drawn node of every view's cut into the view's
      tile of one atlas (mlod_atlas: a grid of tiles, depth plus optional
      normal and colour channels), in every sub-projection the node's sphere
-     reaches, clipped to that sub-projection's sub-tile; nearest depth wins.
+     reaches, clipped to that sub-projection's sub-tile; nearest depth wins,
+     and of equal depths the lower node index, so that a pixel is the least
+     (depth, node) of what covers it and no atlas depends on the order of
+     the draws (the cut's order, threads, a device's atomics).
      The node's disc is the disc around the exact image of its bounding
      sphere, centred on the image's centre, of its diameter there
      (paraboloids: at the larger of their two pixel scales), so it covers
@@ -562,7 +565,8 @@
      eye (the view node's centre).
      Fusion: each inner node's map starts from its parent's, each pixel's
      node measured again from the node's own centre, then takes its own
-     drawn nodes, nearest first (a tie keeps the parent's); a view's tile
+     drawn nodes by the same rule (the least depth, then the least node
+     index, the parent's node among them); a view's tile
      gets its leaf's map so, each pixel at its node's depth from the view's
      own eye (depth as for paraboloids), with the node's normal and
      colour.  Measured again means: sphere discs, the distance to the
@@ -1333,6 +1337,8 @@ typedef struct mlod_atlas {
     float *normal;
     float *color;
     uint32_t *tiles;          /* per view: x, y, width, height of its tile */
+    uint32_t *ids;            /* private: per pixel, the node drawn there (equal depths: the
+                                 lower node index wins; mlod_splat) */
     uint32_t *bands;          /* private: per view, first row band (splat tasks) */
     size_t bytes;
     mlod_allocator allocator;
@@ -1345,7 +1351,8 @@ typedef struct mlod_atlas {
 } mlod_atlas;
 
 /* Sizing, before an atlas: the bytes mlod_atlas_create allocates for these
-   views and desc (the atlas's bytes, exactly): 4 bytes per pixel of depth,
+   views and desc (the atlas's bytes, exactly): 8 bytes per pixel (the
+   depth, and the node drawn there for mlod_splat's rule on equal depths),
    12 more per channel, the per-view tables (36 bytes per view and 4 per
    64 rows of its tile).  0 when mlod_atlas_create
    would refuse them (no views, an empty tile, a bad desc, a size that
@@ -1378,7 +1385,9 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
    it does; with sphere discs at the depth of the sphere's centre (as in
    mlod_view_project), and at disc_scale 1 a sphere disc covering no pixel
    centre sets the pixel holding its centre.  See SPLATTING in the manual.
-   Nearest depth wins; equal depths keep the node drawn first.  A node is
+   Nearest depth wins; of equal depths the lower node index, whatever
+   order the nodes are drawn in (mlod_splat_ism and mlod_megaviews_render
+   keep the same rule).  A node is
    not drawn in a sub-projection where its image is unbounded.  The views
    must be those of the cut's last update, byte for byte: a view moved
    since is MLOD_ERROR_MISMATCH (a cut never updated, or reset, draws
@@ -8302,6 +8311,7 @@ MLOD__PUBLIC void mlod_atlas_destroy(mlod_atlas *atlas)
     mlod__free(&a, atlas->depth);
     mlod__free(&a, atlas->normal);
     mlod__free(&a, atlas->color);
+    mlod__free(&a, atlas->ids);
     mlod__free(&a, atlas->tiles);
     mlod__free(&a, atlas->bands);
     mlod__free(&a, atlas->shown);
@@ -8362,6 +8372,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         ok = ok && (atlas->normal = (float *)mlod__alloc_array(&a, (size_t)pixels, 3 * sizeof(float), &atlas->bytes));
     if (desc->channels & MLOD_ATLAS_COLOR)
         ok = ok && (atlas->color = (float *)mlod__alloc_array(&a, (size_t)pixels, 3 * sizeof(float), &atlas->bytes));
+    ok = ok && (atlas->ids = (uint32_t *)mlod__alloc_array(&a, (size_t)pixels, sizeof(uint32_t), &atlas->bytes));
     ok = ok && (atlas->tiles = (uint32_t *)mlod__alloc_array(&a, view_count, 4 * sizeof(uint32_t), &atlas->bytes));
     ok = ok && (atlas->bands = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &atlas->bytes));
     ok = ok && (atlas->shown = (uint64_t *)mlod__alloc_array(&a, view_count, 2 * sizeof(uint64_t), &atlas->bytes));
@@ -8396,6 +8407,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     }
     if (atlas->normal) memset(atlas->normal, 0, (size_t)pixels * 3 * sizeof(float));
     if (atlas->color) memset(atlas->color, 0, (size_t)pixels * 3 * sizeof(float));
+    memset(atlas->ids, 0, (size_t)pixels * sizeof(uint32_t));
     mlod_atlas_invalidate(atlas);
     *out_atlas = atlas;
     return mlod__succeed(error);
@@ -8441,8 +8453,9 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
     if (L->width > 0xffffffffu || L->height > 0xffffffffu || L->pixels > (size_t)-1 / (3 * sizeof(float)))
         return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
                           (unsigned long long)L->width, (unsigned long long)L->height);
-    /* depth and the channels per pixel, the tile and band tables per view */
-    per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
+    /* depth, the node drawn and the channels per pixel, the tile and band
+       tables per view */
+    per_pixel = sizeof(float) + sizeof(uint32_t) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
                 ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
     L->bands = (uint32_t)bands;
     tables = sizeof(mlod_atlas) + (size_t)view_count * (4 * sizeof(uint32_t) + 2 * sizeof(uint64_t)) +
@@ -8472,8 +8485,10 @@ typedef struct mlod__splat_job {
 /* One band of rows of one tile while it is drawn: the tile's pixel
    (col, row) is depth[row * stride + col] (normal and colour 3 floats per
    pixel likewise, or NULL), holding the nearest drawn node's depth and
-   channels; a MegaViews map (mlod_megaviews_render) keeps the node's index
-   in ids instead of channels. */
+   channels, and its index in ids[row * stride + col] (a MegaViews map,
+   mlod_megaviews_render's, has no channels).  Of nodes at equal depths
+   the lower index wins (mlod__wins), so a pixel does not depend on the
+   order of the draws. */
 typedef struct mlod__band {
     const mlod_tree *tree;
     float *depth, *normal, *color;
@@ -8498,21 +8513,33 @@ static void mlod__band_set(const mlod__band *band, size_t at, float depth, uint3
 {
     int k;
     band->depth[at] = depth;
-    if (band->ids) band->ids[at] = node;
+    band->ids[at] = node;
     for (k = 0; k < 3 && band->normal; k++) band->normal[3 * at + k] = band->tree->cones[4 * (size_t)node + k];
     for (k = 0; k < 3 && band->color; k++) band->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
 }
 
-/* Keep the node's depth (and channels, or index) at a tile pixel if it is nearer. */
+/* Whether a node drawn at depth takes a pixel that holds node `held` at
+   depth `old`: it is nearer, or as near with a lower index (0 or 1,
+   without a branch).  The pixel's value is then the least (depth, node)
+   of its draws in that order, whatever order they come in.  An empty
+   pixel holds +inf and node 0: no depth is less, and a node at +inf,
+   were there one, takes no pixel.  The shaders keep the same minimum with
+   atomics (shaders/splat_draw.comp and mv_draw.comp, plot). */
+MLOD__FORCE_INLINE uint32_t mlod__wins(float depth, uint32_t node, float old, uint32_t held)
+{
+    return (uint32_t)(depth < old) | ((uint32_t)(depth == old) & (uint32_t)(node < held));
+}
+
+/* Keep the node's depth, index and channels at a tile pixel if it wins there. */
 static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node)
 {
     size_t at = (size_t)row * band->stride + col;
-    if (depth < band->depth[at]) mlod__band_set(band, at, depth, node);
+    if (mlod__wins(depth, node, band->depth[at], band->ids[at])) mlod__band_set(band, at, depth, node);
 }
 
-/* mlod__plot where cond (0 or 1) holds.  A band of depth (and ids) alone
+/* mlod__plot where cond (0 or 1) holds.  A band of depth and ids alone
    takes it as a select, not a branch: whether a pixel centre lies in a
-   small disc, and whether it is nearer, are hard to predict. */
+   small disc, and whether it wins, are hard to predict. */
 MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node,
                           uint32_t cond)
 {
@@ -8524,12 +8551,12 @@ MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint
         return;
     }
     old = band->depth[at];
-    mask = 0u - (cond & (depth < old));
+    mask = 0u - (cond & mlod__wins(depth, node, old, band->ids[at]));
     memcpy(&depth_bits, &depth, sizeof depth_bits);
     memcpy(&old_bits, &old, sizeof old_bits);
     old_bits = (depth_bits & mask) | (old_bits & ~mask);
     memcpy(&band->depth[at], &old_bits, sizeof old_bits);
-    if (band->ids) band->ids[at] = (node & mask) | (band->ids[at] & ~mask);
+    band->ids[at] = (node & mask) | (band->ids[at] & ~mask);
 }
 
 
@@ -8908,7 +8935,7 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
             rows[l] = (float)row;
         }
         mlod__tangent_hits(pv, s, band->tree, nodes, cols, rows, count, band->disc_scale, hit, depth);
-        for (l = 0; l < count; l++) /* in order: equal depths keep the node drawn first */
+        for (l = 0; l < count; l++)
             if (plot >> l & 1u) {
                 int plane = hit[l] >> 1;
                 float at = plane ? depth[l] : mlod__centre_depth(pv, s, spheres + 4 * (size_t)nodes[l]);
@@ -9026,7 +9053,7 @@ static void mlod__tile_band(mlod_atlas *atlas, const mlod_tree *tree, uint32_t v
     band->depth = atlas->depth + origin;
     band->normal = atlas->normal ? atlas->normal + 3 * origin : NULL;
     band->color = atlas->color ? atlas->color + 3 * origin : NULL;
-    band->ids = NULL;
+    band->ids = atlas->ids + origin;
     band->fast = NULL;
     band->stride = atlas->width;
     band->disc_scale = atlas->disc_scale;
@@ -9035,13 +9062,14 @@ static void mlod__tile_band(mlod_atlas *atlas, const mlod_tree *tree, uint32_t v
     band->row_end = tile[3];
 }
 
-/* Empty the band's rows: depth +inf, channels 0. */
+/* Empty the band's rows: depth +inf, node 0, channels 0. */
 static void mlod__band_clear(const mlod__band *band, uint32_t width)
 {
     uint32_t row, col;
     for (row = band->row_begin; row < band->row_end; row++) {
         size_t at = (size_t)row * band->stride;
         for (col = 0; col < width; col++) band->depth[at + col] = INFINITY;
+        memset(band->ids + at, 0, sizeof(uint32_t) * width);
         if (band->normal) memset(band->normal + 3 * at, 0, 3 * sizeof(float) * width);
         if (band->color) memset(band->color + 3 * at, 0, 3 * sizeof(float) * width);
     }
@@ -11211,12 +11239,13 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
     }
     for (row = 0; row < job->resolution; row++) {
         float *out = band->depth + (size_t)row * band->stride;
-        uint32_t *out_ids = band->ids ? band->ids + (size_t)row * band->stride : NULL;
+        uint32_t *out_ids = band->ids + (size_t)row * band->stride;
         for (col = 0; col < width;) { /* the row's drawn pixels, up to a chunk at a time */
             const size_t at = (size_t)row * width;
             const uint32_t end = col < job->resolution ? job->resolution : width; /* a chunk within one half */
             for (n = 0; col < end && n < MLOD__DRAW_CHUNK; col++) {
                 out[col] = INFINITY;
+                out_ids[col] = 0;
                 cols[n] = col;
                 ids[n] = parent_ids[at + col];
                 n += parent_depth[at + col] < INFINITY;
@@ -11241,7 +11270,7 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
                 continue;
             }
             for (l = 0; l < n; l++) out[cols[l]] = depth[l];
-            for (l = 0; out_ids && l < n; l++) out_ids[cols[l]] = ids[l];
+            for (l = 0; l < n; l++) out_ids[cols[l]] = ids[l];
         }
     }
 }
@@ -12357,7 +12386,7 @@ MLOD__PUBLIC int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlo
             at_depth = mlod__node_distance(scene, at_node, centre); /* measured again from this node's centre */
         if (m == MLOD__NO_MAP) continue;
         at = (size_t)m * 2 * maps->resolution * maps->resolution + pixel;
-        if (!(maps->depth[level][at] < at_depth)) continue;
+        if (!mlod__wins(maps->depth[level][at], maps->ids[level][at], at_depth, at_node)) continue;
         own = maps->ids[level][at];
         at_depth = maps->depth[level][at];
         at_node = own;

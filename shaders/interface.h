@@ -174,8 +174,8 @@
 #define MLOD_IF_MV_BINDINGS 16
 
 /* An empty map slot, and the words of a map pixel: its depth as an
-   order-preserving pattern, who drew it (0: inherited from the parent's
-   map, else 1 + the drawn node's place from the left), and the node. */
+   order-preserving pattern, the least node at that depth (inherited from
+   the parent's map or drawn; NONE: none yet), and the node. */
 #define MLOD_IF_MV_NONE 0xffffffffu
 #define MLOD_IF_MV_WORDS 3u
 

@@ -11,9 +11,9 @@
 // tangent_hit; a node whose cone has no axis: all of them, at its
 // centre's depth), and no fallback pixel.  Pass pc.pass of three
 // (mv_layout.glsl): the nearest depth, a draw nearer than what it finds
-// taking the pixel from the inherited node (`who` 0 after mv_inherit);
-// the least `who` at it, unless the inherited node kept it; the node
-// whose `who` won.
+// taking the pixel from the inherited node (`who` that node after
+// mv_inherit); the least node at that depth, the inherited one among
+// them (mlod__wins); the node whose `who` won.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_EXT_control_flow_attributes : require
@@ -93,8 +93,7 @@ void main()
     if (i >= pc.items) return;
     uvec2 e = lists[ctl.next_capacity + i];
     uint v = e.x, s = e.y, slot = level[ctl.off_slots + v - ctl.first];
-    // who: 1 + the node's place from the left, (s + 1) << (deepest - depth of s)
-    uint who = (s + 1u) << (depth_of(2u * ctl.scene_leaves - 2u) - depth_of(s));
+    uint who = s; // equal depths: the lower node index wins
     vec4 sphere = spheres[s];
     real3 c = r3_f(sphere.xyz);
     real4 disc;

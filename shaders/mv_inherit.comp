@@ -1,7 +1,7 @@
 #version 450
 // shaders/mv_inherit.comp - one thread per pixel of the level's slots
 // (pc.items = slots x pixels): the pixel from the parent's map (where it
-// holds a node; `who` 0), its depth measured again from this node's
+// holds a node; `who` that node), its depth measured again from this node's
 // centre (common.glsl: node_distance, or with tangent discs remeasure:
 // along the pixel's ray), as mlod__mv_inherit; empty otherwise.
 #extension GL_GOOGLE_include_directive : require
@@ -25,6 +25,6 @@ void main()
     uint node = prev_maps[from + 2u], row = p / (2u * ctl.resolution), col = p - row * 2u * ctl.resolution;
     mv_eye = r3_f(eye_spheres[v].xyz);
     maps[at] = mv_ordered(ctl.tangent != 0u ? remeasure(node, col, row, true) : node_distance(node, mv_eye));
-    maps[at + 1u] = 0u;
+    maps[at + 1u] = node;
     maps[at + 2u] = node;
 }

@@ -19,20 +19,14 @@
 //   mv_resolve  the view leaves' slots into their tiles of the atlas
 //
 // A map pixel is three words (MLOD_IF_MV_WORDS): the depth as a pattern
-// whose unsigned order is the depth's, which draw set it (`who`, 1 + the
-// drawn scene node's place from the left; 0: inherited from the parent's
-// map; MLOD_IF_MV_NONE: none), and the node.  The CPU sets the inherited
-// pixels first and then draws a view node's nodes in scene pre-order (its
-// pair lists stay in that order level after level), keeping a pixel's
-// first nearest: the nearest depth wins, at equal depths the inherited
-// node, then the least `who`.  The drawn
-// nodes are disjoint subtrees, whose pre-order is their order from the
-// left, i.e. that of their leftmost descendant on the deepest level:
-// `who` = (i + 1) << (depth of the tree - depth of i), at most 2^31.  Pass
-// 0 keeps the nearest depth, and a draw that finds a farther one sets
-// `who` to none (an inherited node then no longer holds the nearest
-// depth), pass 1 the least `who` at it (an inherited node's 0 stays),
-// pass 2 writes the winner's node.
+// whose unsigned order is the depth's, the least scene node at that depth
+// (`who`; MLOD_IF_MV_NONE: none yet), and the node.  As on the CPU
+// (mlod__wins), a pixel holds the least (depth, node) of the node
+// inherited from the parent's map and the draws, whatever their order.
+// Pass 0 keeps the nearest depth, and a draw that finds a farther one sets
+// `who` to none (the inherited node then no longer holds the nearest
+// depth), pass 1 the least node at it (the inherited node's index among
+// them), pass 2 writes the winner's node.
 #include "interface.h"
 
 layout(std430, set = 0, binding = MLOD_IF_MV_SCENE_SPHERES) readonly buffer tree_spheres { vec4 spheres[]; };

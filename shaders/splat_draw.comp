@@ -34,23 +34,24 @@ uint ordered_bits(float depth)
 }
 
 // The least key (splat_layout.glsl): one 64-bit atomicMin, or with
-// emulated doubles pass 0 the nearest depth, pass 1 the first entry at it.
-void plot(uint view, uint row, uint col, uint depth_bits, uint entry)
+// emulated doubles pass 0 the nearest depth, pass 1 the least node at it
+// (mlod__wins in manylods.h).
+void plot(uint view, uint row, uint col, uint depth_bits, uint node)
 {
     uint x = tiles[4u * view] + col, y = tiles[4u * view + 1u] + row, p = y * pc.atlas_width + x;
 #ifdef MLOD_F64_EMULATED
     if (pc.pass == 0u)
         atomicMin(keys[2u * p + 1u], depth_bits);
     else if (keys[2u * p + 1u] == depth_bits)
-        atomicMin(keys[2u * p], entry);
+        atomicMin(keys[2u * p], node);
 #else
-    atomicMin(keys[p], (uint64_t(depth_bits) << 32) | uint64_t(entry));
+    atomicMin(keys[p], (uint64_t(depth_bits) << 32) | uint64_t(node));
 #endif
 }
 
 // Clipped to the sub-tile of the view's sub-projection s (whole pixels:
 // columns floor(x) .. floor(x + width) - 1, rows likewise).
-void raster_disc(uint view, uint s, real4 disc, uint node, uint entry)
+void raster_disc(uint view, uint s, real4 disc, uint node)
 {
     uint sub = sub_base(view, s);
     real sub_right = r_add(sd(sub, MLOD_IF_S_X), sd(sub, MLOD_IF_S_WIDTH));
@@ -85,12 +86,12 @@ void raster_disc(uint view, uint s, real4 disc, uint node, uint entry)
             if (!r_le(r_add(r_mul(dx, dx), r_mul(dy, dy)), r2) ||
                 (plane && !tangent_hit(view, s, spheres[node], cones[node], pc.disc_scale, col, row, at)))
                 continue;
-            plot(view, row, col, plane ? ordered_bits(at) : depth_bits, entry);
+            plot(view, row, col, plane ? ordered_bits(at) : depth_bits, node);
             if (r_ge(r_u(row), band_begin) && r_lt(r_u(row), band_end)) hit_in_band = true;
         }
     }
     if (pc.tangent == 0u && !hit_in_band && centre_inside && pc.disc_scale >= 1.0)
-        plot(view, r_to_u(r_floor(disc.y)), r_to_u(r_floor(disc.x)), depth_bits, entry);
+        plot(view, r_to_u(r_floor(disc.y)), r_to_u(r_floor(disc.x)), depth_bits, node);
 }
 
 // As mlod__draw_nodes: in every sub-projection the sphere reaches (a view
@@ -107,5 +108,5 @@ void main()
     real4 disc;
     uint reached = count == 1u ? 1u : reached_subs(view, s);
     for (uint k = 0u; k < count; k++)
-        if (((reached >> k) & 1u) != 0u && image_disc(view, k, c, r_f(s.w), disc)) raster_disc(view, k, disc, node, i);
+        if (((reached >> k) & 1u) != 0u && image_disc(view, k, c, r_f(s.w), disc)) raster_disc(view, k, disc, node);
 }

@@ -1,15 +1,15 @@
 // shaders/splat_layout.glsl - buffers and push constants of the splat
 // shaders (splat_clear, splat_draw, splat_resolve); host side:
 // mlodvk_splat in manylods_vk.h.  Each atlas pixel holds a key of two words
-// while drawing: the index of the cut entry, then the depth as an
-// order-preserving 32-bit pattern (as a uint64: the depth above the
-// entry).  The least key wins: the nearest depth and, among equal depths,
-// the entry first in cut order (as mlod_splat: the node drawn first).
+// while drawing: the node's index, then the depth as an order-preserving
+// 32-bit pattern (as a uint64: the depth above the node).  The least key
+// wins: the nearest depth and, among equal depths, the lower node index
+// (as mlod_splat: mlod__wins), whatever order the draws come in.
 // splat_draw keeps it with one 64-bit atomicMin where the device's
 // doubles are used (those devices have shaderInt64 and 64-bit buffer
 // atomics: manylods_vk.h, DOUBLES), and with 32-bit atomics in two passes
 // with emulated doubles (MLOD_F64_EMULATED): the nearest depth, then the
-// least entry at that depth.  splat_resolve turns keys into depth, normal
+// least node at that depth.  splat_resolve turns keys into depth, normal
 // and colour.  The includer may declare the keys' element type first
 // (MLOD_SPLAT_KEY: uint, two a pixel, unless splat_draw's one 64-bit word).
 #ifndef MLOD_SPLAT_KEY

@@ -12,15 +12,14 @@ void main()
 {
     uint p = group_index() * MLOD_IF_GROUP + gl_LocalInvocationID.x;
     if (p >= pc.pixel_count) return;
-    uint entry = keys[2u * p], ordered = keys[2u * p + 1u];
-    if (ordered == EMPTY_WORD && entry == EMPTY_WORD) {
+    uint node = keys[2u * p], ordered = keys[2u * p + 1u];
+    if (ordered == EMPTY_WORD && node == EMPTY_WORD) {
         depth_out[p] = uintBitsToFloat(0x7f800000u);
         if (pc.want_normal != 0u) normal_out[3u * p] = normal_out[3u * p + 1u] = normal_out[3u * p + 2u] = 0.0;
         if (pc.want_color != 0u) color_out[3u * p] = color_out[3u * p + 1u] = color_out[3u * p + 2u] = 0.0;
         return;
     }
     uint bits = (ordered & 0x80000000u) != 0u ? ordered & 0x7fffffffu : ~ordered;
-    uint node = list[entry].x;
     depth_out[p] = uintBitsToFloat(bits);
     if (pc.want_normal != 0u) {
         vec4 cone = cones[node];

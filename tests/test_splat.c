@@ -1457,7 +1457,7 @@ static void test_overlap(void)
 {
     static const float colors[6] = {1, 0, 0, 0, 0, 1};
     static const float normals[6] = {0, 0, 1, 0, 0, 1};
-    uint64_t overlap = 0, overlap_bad = 0, single = 0, single_bad = 0, tie = 0, tie_bad = 0;
+    uint64_t overlap = 0, overlap_bad = 0, single = 0, single_bad = 0;
     int config;
     /* nearest depth wins, whichever node comes first */
     for (config = 0; config < 2; config++) {
@@ -1511,48 +1511,118 @@ static void test_overlap(void)
           (unsigned long long)overlap_bad, (unsigned long long)overlap);
     CHECK(single > 20 && single_bad == 0, "overlapping discs: %llu of %llu pixels of one disc do not hold it",
           (unsigned long long)single_bad, (unsigned long long)single);
-    /* equal depths: the node drawn first (first in the cut's list) stays */
-    {
-        float pos[6] = {-0.1f, 0, -2, 0.1f, 0.02f, -2}, rad[2] = {0.3f, 0.3f};
-        mlod_view view = tu_view(MLOD_VIEW_ORTHOGRAPHIC);
-        mlod_tree *tree = points_tree(2, pos, rad, normals, colors);
-        mlod_cut *cut = NULL;
-        mlod_atlas *atlas;
-        mlod_cut_params cp = cut_params(1e-3f);
-        mlod_cut_view cv;
-        frame F;
-        disc d[2];
-        uint32_t i, j, n;
-        view.width = view.height = 32;
-        view.half_width = view.half_height = 1.0f;
-        atlas = make_atlas(&view, 1, MLOD_ATLAS_COLOR);
-        if (!tree || !atlas || mlod_cut_create(1, NULL, &cut, NULL) != MLOD_OK ||
-            mlod_cut_update(cut, tree, &view, &cp, NULL) != MLOD_OK || mlod_splat(atlas, tree, cut, &view, NULL, NULL) != MLOD_OK) {
-            CHECK(0, "ties: set-up failed");
-            return;
-        }
-        cv = mlod_cut_get(cut, 0);
-        frame_of(&view, &F);
-        for (n = 0; n < 2; n++) {
-            const float *s = tree->spheres + 4 * (size_t)(1 + n);
-            double c[3] = {s[0], s[1], s[2]};
-            my_disc(&F, c, s[3], 0, &d[n]);
-        }
-        CHECK(cv.count == 2 && d[0].depth == d[1].depth, "ties: the set-up should give two leaves at one depth");
-        for (j = 0; j < 32; j++)
-            for (i = 0; i < 32; i++) {
-                size_t at = (size_t)j * atlas->width + i;
-                if (cv.count == 2 && strictly_in(&d[0], i, j) && strictly_in(&d[1], i, j)) {
-                    tie++;
-                    tie_bad += atlas->color[3 * at + 2] != tree->colors[3 * (size_t)cv.nodes[0] + 2];
-                }
-            }
-        CHECK(tie > 20 && tie_bad == 0, "equal depths: %llu of %llu shared pixels not of the node first in the cut",
-              (unsigned long long)tie_bad, (unsigned long long)tie);
-        mlod_atlas_destroy(atlas);
-        mlod_cut_destroy(cut);
-        mlod_tree_destroy(tree);
+}
+
+/* Equal depths: the lower node index wins, whatever the order of the
+   draws.  Points on one plane facing an orthographic view, so that every
+   node's centre lies at one depth; cuts of leaves and inner nodes at
+   several levels (epsilon 0.75 to 6 px), so that in many shared pixels
+   the entry first in the cut is not the lowest index.  The reference, per
+   pixel: the least (depth, node) of the drawn entries whose disc (my_disc,
+   the documented projection) holds the pixel's centre by more than
+   1e-3 px; pixels near a disc's edge, or holding the centre of a disc too
+   small to be sure of covering a centre, are not compared.  One thread
+   and two; the node is read from the atlas's record of it and from the
+   colour channel. */
+static void test_ties(void)
+{
+    enum { N = 700, S = 48 };
+    static float pos[3 * N], rad[N], col[3 * N];
+    static const float eps[4] = {0.75f, 1.5f, 3.0f, 6.0f};
+    static disc d[2 * N];
+    uint64_t rng = 0x71e5ull, compared = 0, ties = 0, reordered = 0, bad = 0;
+    mlod_view view = tu_view(MLOD_VIEW_ORTHOGRAPHIC);
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel two = mlod_pool_parallel(pool);
+    mlod_tree *tree;
+    frame F;
+    uint32_t i, e, t;
+    for (i = 0; i < N; i++) {
+        pos[3 * i] = (float)(2.0 * scene_rng_double(&rng) - 1.0);
+        pos[3 * i + 1] = (float)(2.0 * scene_rng_double(&rng) - 1.0);
+        pos[3 * i + 2] = -2.0f; /* one depth for every centre, inner nodes' too */
+        rad[i] = (float)(0.02 + 0.06 * scene_rng_double(&rng));
+        col[3 * i] = (float)i;
+        col[3 * i + 1] = col[3 * i + 2] = 0.5f;
     }
+    view.width = view.height = S;
+    view.half_width = view.half_height = 1.1f;
+    frame_of(&view, &F);
+    tree = points_tree(N, pos, rad, NULL, col);
+    if (!tree) {
+        CHECK(0, "ties: set-up failed");
+        mlod_pool_destroy(pool);
+        return;
+    }
+    for (e = 0; e < 4; e++)
+        for (t = 0; t < 2; t++) {
+            mlod_cut *cut = NULL;
+            mlod_atlas *atlas = make_atlas(&view, 1, MLOD_ATLAS_COLOR);
+            mlod_cut_params cp = cut_params(eps[e]);
+            mlod_cut_view cv;
+            uint32_t x, y;
+            cp.parallel = t ? &two : NULL;
+            if (!atlas || mlod_cut_create(1, NULL, &cut, NULL) != MLOD_OK ||
+                mlod_cut_update(cut, tree, &view, &cp, NULL) != MLOD_OK ||
+                mlod_splat(atlas, tree, cut, &view, cp.parallel, NULL) != MLOD_OK) {
+                CHECK(0, "ties: cut or splat failed");
+                mlod_atlas_destroy(atlas);
+                mlod_cut_destroy(cut);
+                continue;
+            }
+            cv = mlod_cut_get(cut, 0);
+            for (i = 0; i < cv.count && i < 2 * N; i++) {
+                const float *sp = tree->spheres + 4 * (size_t)cv.nodes[i];
+                double c[3] = {sp[0], sp[1], sp[2]};
+                my_disc(&F, c, sp[3], 0, &d[i]);
+            }
+            for (y = 0; y < S; y++)
+                for (x = 0; x < S; x++) {
+                    size_t at = (size_t)y * atlas->width + x;
+                    uint32_t best = 0, first = 0, found = 0, unsure = 0, at_best = 0;
+                    float best_depth = INFINITY;
+                    for (i = 0; i < cv.count && i < 2 * N && !unsure; i++) {
+                        float depth = (float)d[i].depth;
+                        if (cv.status[i] == MLOD_STATUS_CULLED) continue;
+                        if ((uint32_t)floor(d[i].x) == x && (uint32_t)floor(d[i].y) == y && d[i].radius < 0.75)
+                            unsure = 1; /* a disc that may cover no centre sets the pixel holding its own */
+                        if (!strictly_in(&d[i], x, y)) {
+                            unsure |= !strictly_out(&d[i], x, y);
+                            continue;
+                        }
+                        if (!found++) first = cv.nodes[i];
+                        if (depth < best_depth || (depth == best_depth && cv.nodes[i] < best)) {
+                            at_best = depth == best_depth ? at_best + 1 : 1;
+                            best_depth = depth;
+                            best = cv.nodes[i];
+                        } else if (depth == best_depth) {
+                            at_best++;
+                        }
+                    }
+                    if (unsure || !found || cv.count > 2 * N) continue;
+                    compared++;
+                    ties += at_best > 1;
+                    reordered += first != best;
+                    if (atlas->depth[at] != best_depth || atlas->ids[at] != best ||
+                        atlas->color[3 * at] != tree->colors[3 * (size_t)best])
+                        if (bad++ < 3)
+                            CHECK(0, "ties: epsilon %g, %s, pixel (%u, %u): node %u at depth %.9g, the least (depth, "
+                                     "node) is node %u at %.9g (first in the cut: %u)",
+                                  (double)eps[e], t ? "two threads" : "one thread", x, y, atlas->ids[at],
+                                  (double)atlas->depth[at], best, (double)best_depth, first);
+                }
+            mlod_atlas_destroy(atlas);
+            mlod_cut_destroy(cut);
+        }
+    CHECK(bad == 0, "ties: %llu of %llu pixels do not hold the least (depth, node)", (unsigned long long)bad,
+          (unsigned long long)compared);
+    /* the set-up must be able to tell the rule from "the first drawn stays" */
+    CHECK(compared > 4000 && ties > 1000 && reordered > 200,
+          "ties: the set-up should compare many pixels (%llu), many of them ties (%llu), many where the entry first "
+          "in the cut is not the least index (%llu)",
+          (unsigned long long)compared, (unsigned long long)ties, (unsigned long long)reordered);
+    mlod_tree_destroy(tree);
+    mlod_pool_destroy(pool);
 }
 
 /* A paraboloid's image of a sphere is unbounded once the sphere's cone of
@@ -1643,6 +1713,7 @@ static void test_filtered_discs(void)
     static float depth[3][W * H], normal[3][3 * W * H];
     static uint32_t ids[3][W * H];
     static float scratch[W * H];
+    static uint32_t scratch_ids[W * H]; /* (what the node alone leaves there is not looked at) */
     uint64_t rng = 0xf17e5ull;
     uint32_t nodes[NODES], trial, i, l, k, wrong = 0, differ = 0, plotted = 0, outside = 0, unsure = 0, views = 0;
     uint32_t clear = 0, clear_decided = 0;
@@ -1763,7 +1834,7 @@ static void test_filtered_discs(void)
                     uint32_t written = 0, wc = 0, wr = 0, p;
                     alone.fast = NULL;
                     alone.depth = scratch;
-                    alone.ids = NULL;
+                    alone.ids = scratch_ids;
                     alone.normal = NULL;
                     if (bounded) mlod__raster_disc(&alone, &pv, s, &one, i, pv.columns[s], pv.rows[s]);
                     double reach = bounded ? one.radius * band.disc_scale + 2.0 : 0.0; /* where it can draw */
@@ -3850,6 +3921,7 @@ int main(int argc, char **argv)
     TEST_GROUP("cube_world_axes", test_cube_world_axes());
     TEST_GROUP("single_node", test_single_node());
     TEST_GROUP("overlap", test_overlap());
+    TEST_GROUP("ties", test_ties());
     TEST_GROUP("culling_and_clearing", test_culling_and_clearing());
     TEST_GROUP("unbounded_paraboloid", test_unbounded_paraboloid());
     TEST_GROUP("image_lanes", test_image_lanes());

@@ -442,6 +442,88 @@ static void test_splat_parity(void)
     scene_free(&s);
 }
 
+/* Equal depths: the device keeps the least (depth, node) of a pixel's
+   draws, as mlod_splat does (the lower node index wins).  Points on one
+   plane facing orthographic views, so that every node's centre lies at
+   one depth and most shared pixels are ties; sphere discs; cuts of mixed
+   levels.  The atlases must be equal bit for bit, node (colour) for
+   node; the CPU's rule itself is tested against a reference in
+   tests/test_splat.c (ties). */
+static void test_tie_parity(void)
+{
+    enum { N = 3000, V = 8 };
+    static float pos[3 * N], rad[N], col[3 * N];
+    uint64_t rng = 0x71e5ull;
+    mlod_points pts;
+    mlod_build_desc bd = tu_desc(0, 1, MLOD_ATTR_COLOR);
+    mlod_tree *tree = NULL;
+    mlodvk_tree *vtree = NULL;
+    mlod_view views[V];
+    mlod_atlas_desc ad;
+    mlod_atlas *cpu_atlas = NULL, *gpu_atlas = NULL;
+    mlodvk_atlas *vatlas = NULL;
+    mlod_cut *cpu = NULL;
+    mlodvk_cut *gpu = NULL;
+    mlod_cut_params p;
+    mlod_error e;
+    uint32_t i, v;
+    size_t pixels, depth_diff = 0, color_diff = 0, drawn = 0;
+    for (i = 0; i < N; i++) {
+        pos[3 * i] = (float)(2.0 * scene_rng_double(&rng) - 1.0);
+        pos[3 * i + 1] = (float)(2.0 * scene_rng_double(&rng) - 1.0);
+        pos[3 * i + 2] = -2.0f; /* one depth for every centre */
+        rad[i] = (float)(0.01 + 0.04 * scene_rng_double(&rng));
+        col[3 * i] = (float)i; /* the colour names the leaf; inner nodes' means differ too */
+        col[3 * i + 1] = col[3 * i + 2] = 0.5f;
+    }
+    memset(&pts, 0, sizeof pts);
+    pts.positions = pos;
+    pts.count = N;
+    pts.radii = rad;
+    pts.colors = col;
+    for (v = 0; v < V; v++) {
+        views[v] = tu_view(MLOD_VIEW_ORTHOGRAPHIC);
+        views[v].position[0] = (float)(0.8 * scene_rng_double(&rng) - 0.4);
+        views[v].position[1] = (float)(0.8 * scene_rng_double(&rng) - 0.4);
+        views[v].width = views[v].height = lean ? 24 : 40;
+        views[v].half_width = views[v].half_height = (float)(0.3 + 0.5 * scene_rng_double(&rng));
+    }
+    memset(&p, 0, sizeof p);
+    p.mode = MLOD_CUT_BASIC;
+    p.epsilon = 2.0f;
+    memset(&ad, 0, sizeof ad);
+    ad.channels = MLOD_ATLAS_COLOR;
+    ad.splat = MLOD_SPLAT_SPHERES;
+    if (mlod_build_points(&pts, &bd, &tree, &e) != MLOD_OK || mlodvk_tree_upload(context, tree, &vtree, &e) != MLOD_OK ||
+        mlod_atlas_create(views, V, &ad, NULL, &cpu_atlas, &e) != MLOD_OK ||
+        mlod_atlas_create(views, V, &ad, NULL, &gpu_atlas, &e) != MLOD_OK ||
+        mlodvk_atlas_create(context, cpu_atlas, &vatlas, &e) != MLOD_OK || mlod_cut_create(V, NULL, &cpu, &e) != MLOD_OK ||
+        mlodvk_cut_create(context, V, 0, &gpu, &e) != MLOD_OK || mlod_cut_update(cpu, tree, views, &p, &e) != MLOD_OK ||
+        mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK ||
+        mlod_splat(cpu_atlas, tree, cpu, views, NULL, &e) != MLOD_OK || mlodvk_splat(context, vatlas, vtree, gpu, &e) != MLOD_OK ||
+        mlodvk_atlas_download(context, vatlas, gpu_atlas, &e) != MLOD_OK) {
+        CHECK(0, "tie parity: set-up failed: %s", e.message);
+    } else {
+        pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
+        for (i = 0; i < pixels; i++) {
+            drawn += isfinite(cpu_atlas->depth[i]);
+            depth_diff += memcmp(&cpu_atlas->depth[i], &gpu_atlas->depth[i], sizeof(float)) != 0;
+            color_diff += memcmp(cpu_atlas->color + 3 * i, gpu_atlas->color + 3 * i, 3 * sizeof(float)) != 0;
+        }
+        CHECK(drawn > pixels / 2, "tie parity: only %zu of %zu pixels drawn", drawn, pixels);
+        CHECK(depth_diff == 0 && color_diff == 0, "tie parity: %zu depth, %zu colour pixels of %zu differ", depth_diff,
+              color_diff, pixels);
+    }
+    mlodvk_atlas_destroy(context, vatlas);
+    mlodvk_cut_destroy(context, gpu);
+    mlod_cut_destroy(cpu);
+    mlod_atlas_destroy(cpu_atlas);
+    mlod_atlas_destroy(gpu_atlas);
+    mlodvk_tree_destroy(context, vtree);
+    mlod_tree_destroy(tree);
+    check_validation("tie parity");
+}
+
 /* Bit-for-bit equal bounds (spheres, cones, colours) of two trees of one
    shape; returns the number of nodes that differ. */
 static uint32_t differing_nodes(const mlod_tree *a, const mlod_tree *b)
@@ -1496,6 +1578,7 @@ static void run_parity(const char *label)
     test_cut_parity();
     t1 = seconds();
     test_splat_parity();
+    test_tie_parity();
     test_refit_parity();
     test_opposite_cone_parity();
     test_megaviews_parity();
