@@ -347,6 +347,164 @@ static void test_view_tree(void)
     }
 }
 
+/* The view tree's leaf order with directions (MLOD__VIEW_TURN): a
+   reference by the rule's words, each node's candidates sorted whole by
+   qsort (the library selects in place), on views around a room's corner:
+   a floor, two walls and the corner's edge, each view along its surface's
+   normal (some turned a little), some eyes shared by views looking
+   different ways.  Fewer views than MLOD__VIEW_SAMPLE, so every node is
+   decided on all its views; the reference must choose a direction at some
+   nodes, or the test could not tell the rule from the position-only
+   order.  Without directions the order is mlod_build_points's. */
+static const float *order_keys; /* 6 per view: eye, unit direction */
+static int order_dim;
+static int order_cmp(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    float kx = order_keys[6 * (size_t)x + order_dim], ky = order_keys[6 * (size_t)y + order_dim];
+    return kx < ky ? -1 : kx > ky ? 1 : x < y ? -1 : x > y;
+}
+
+static double order_cost(const uint32_t *items, uint32_t n, double turn)
+{
+    double lo[6], hi[6], p = 0, q = 0, d;
+    uint32_t i;
+    int k;
+    for (k = 0; k < 6; k++) lo[k] = hi[k] = order_keys[6 * (size_t)items[0] + k];
+    for (i = 1; i < n; i++)
+        for (k = 0; k < 6; k++) {
+            double x = order_keys[6 * (size_t)items[i] + k];
+            lo[k] = x < lo[k] ? x : lo[k];
+            hi[k] = x > hi[k] ? x : hi[k];
+        }
+    for (k = 0; k < 3; k++) {
+        p += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+        q += (hi[k + 3] - lo[k + 3]) * (hi[k + 3] - lo[k + 3]);
+    }
+    d = sqrt(p) + turn * sqrt(q);
+    return d * d * d;
+}
+
+static void order_reference(uint32_t *items, uint32_t node, uint32_t n, double turn, uint32_t *order,
+                            uint32_t *by_direction)
+{
+    uint32_t count = mlod__leaves_below(node, n), nl, i;
+    double extent[6], widest = 0, best = 0;
+    int k, axis = 0, first = 1;
+    if (count == 1) {
+        order[node - (n - 1)] = items[0];
+        return;
+    }
+    nl = mlod__leaves_below(2 * node + 1, n);
+    for (k = 0; k < 6; k++) {
+        double lo = order_keys[6 * (size_t)items[0] + k], hi = lo;
+        for (i = 1; i < count; i++) {
+            double x = order_keys[6 * (size_t)items[i] + k];
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
+        }
+        extent[k] = (hi - lo) * (k < 3 ? 1.0 : turn);
+        widest = extent[k] > widest ? extent[k] : widest;
+    }
+    for (k = 0; k < 6; k++) {
+        double cost;
+        if (!(extent[k] > 1e-3 * widest)) continue;
+        order_dim = k;
+        qsort(items, count, sizeof *items, order_cmp);
+        cost = order_cost(items, nl, turn) + order_cost(items + nl, count - nl, turn);
+        if (first || cost < best) {
+            best = cost;
+            axis = k;
+        }
+        first = 0;
+    }
+    *by_direction += axis >= 3;
+    order_dim = axis;
+    qsort(items, count, sizeof *items, order_cmp);
+    order_reference(items, 2 * node + 1, n, turn, order, by_direction);
+    order_reference(items + nl, 2 * node + 2, n, turn, order, by_direction);
+}
+
+static void test_view_order(void)
+{
+    enum { N = 400 };
+    static float eyes[3 * N], dirs[3 * N], keys[6 * N];
+    static const float normals[4][3] = {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0.70710678f, 0, 0.70710678f}};
+    uint32_t items[N], order[N], i, by_direction = 0, differ = 0;
+    uint64_t rng = 4711;
+    double lo[3], hi[3], diagonal = 0;
+    mlod_pool *pool = mlod_pool_create(2);
+    mlod_parallel two = mlod_pool_parallel(pool);
+    int k, threads;
+    for (i = 0; i < N; i++) {
+        int surface = (int)(i % 4);
+        float a = scene_rng_range(&rng, 0.0f, 2.0f), b = scene_rng_range(&rng, 0.0f, 2.0f);
+        float *e = eyes + 3 * i, *d = dirs + 3 * i;
+        if (surface == 0) { e[0] = a; e[1] = 0.01f; e[2] = b; }              /* the floor */
+        else if (surface == 1) { e[0] = 0.01f; e[1] = a; e[2] = b; }         /* a wall */
+        else if (surface == 2) { e[0] = a; e[1] = b; e[2] = 0.01f; }         /* the other wall */
+        else { e[0] = 0.01f; e[1] = a; e[2] = 0.01f; }                        /* their edge */
+        for (k = 0; k < 3; k++) d[k] = normals[surface][k];
+        if (i % 7 == 3) d[surface == 0 ? 0 : 1] += scene_rng_range(&rng, -0.2f, 0.2f); /* turned a little */
+        if (i % 11 == 5 && i > 0) { /* an eye shared with the view before, looking another way */
+            memcpy(e, eyes + 3 * (i - 1), sizeof(float) * 3);
+        }
+    }
+    for (i = 0; i < N; i++) {
+        double length = sqrt((double)dirs[3 * i] * dirs[3 * i] + (double)dirs[3 * i + 1] * dirs[3 * i + 1] +
+                             (double)dirs[3 * i + 2] * dirs[3 * i + 2]);
+        for (k = 0; k < 3; k++) {
+            keys[6 * i + k] = eyes[3 * i + k];
+            keys[6 * i + 3 + k] = (float)(dirs[3 * i + k] / length);
+            lo[k] = i == 0 || eyes[3 * i + k] < lo[k] ? eyes[3 * i + k] : lo[k];
+            hi[k] = i == 0 || eyes[3 * i + k] > hi[k] ? eyes[3 * i + k] : hi[k];
+        }
+        items[i] = i;
+    }
+    for (k = 0; k < 3; k++) diagonal += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    order_keys = keys;
+    order_reference(items, 0, N, MLOD__VIEW_TURN * sqrt(diagonal), order, &by_direction);
+    CHECK(by_direction > 10, "view order: the reference splits %u nodes by direction (the set-up should make it "
+                             "choose directions)", by_direction);
+    for (threads = 0; threads < 2; threads++) {
+        mlod_view_set s;
+        mlod_view_tree *t;
+        memset(&s, 0, sizeof s);
+        s.eyes = eyes;
+        s.directions = dirs;
+        s.count = N;
+        t = build_views(&s, threads ? &two : NULL);
+        CHECK(t != NULL, "view order: built");
+        if (!t) continue;
+        for (i = 0, differ = 0; i < N; i++) differ += t->eyes->leaf_sources[i] != order[i];
+        CHECK(differ == 0, "view order (%s): %u of %u leaves hold another view than the rule's", threads ? "two threads" : "one thread", differ, N);
+        mlod_view_tree_destroy(t);
+    }
+    { /* without directions: the scene tree's order of the eyes */
+        mlod_view_set s;
+        mlod_view_tree *t;
+        mlod_points pts;
+        mlod_build_desc d;
+        mlod_tree *plain = NULL;
+        memset(&s, 0, sizeof s);
+        s.eyes = eyes;
+        s.count = N;
+        memset(&pts, 0, sizeof pts);
+        pts.positions = eyes;
+        pts.count = N;
+        memset(&d, 0, sizeof d);
+        d.attributes = MLOD_ATTR_REFIT;
+        t = build_views(&s, NULL);
+        CHECK(t && mlod_build_points(&pts, &d, &plain, NULL) == MLOD_OK, "view order: built without directions");
+        if (t && plain)
+            CHECK(memcmp(t->eyes->leaf_sources, plain->leaf_sources, N * sizeof(uint32_t)) == 0,
+                  "view order: without directions the leaves are in the order of mlod_build_points");
+        mlod_view_tree_destroy(t);
+        mlod_tree_destroy(plain);
+    }
+    mlod_pool_destroy(pool);
+}
+
 /* ================================================= delta 0: per view */
 
 static void test_equals_per_view(const mlod_tree *scene, const char *scene_name)
@@ -2297,6 +2455,7 @@ int main(int argc, char **argv)
     bare = tu_build(&room, 3000, 2, 0);
     if (!scene || !bare) return 1;
     TEST_GROUP("view_tree", test_view_tree());
+    TEST_GROUP("view_order", test_view_order());
     TEST_GROUP("equals_per_view", (test_equals_per_view(scene, "room with cones and colours"),
                                    test_equals_per_view(bare, "room without attributes")));
     TEST_GROUP("culling", test_culling(scene));
