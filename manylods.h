@@ -593,11 +593,8 @@
      splat (mlod_splat) of the views' mlod_megaviews_view (in the params'
      orientation: mlod_megaviews_view_oriented); with
      directions, the per-view cut less what each view's field of view
-     culls.  One exception: where two drawn nodes lie at exactly the same
-     distance for a pixel (the same centre: duplicate points), the splat
-     keeps the one it drew first and the fusion the one an ancestor's map
-     holds, so the depth is the same and the node, normal and colour may
-     differ.  delta > 0: a shared node's disc lies within delta pixels of
+     culls (nodes at equal distances included: the splat and the fusion
+     both keep the least (depth, node)).  delta > 0: a shared node's disc lies within delta pixels of
      the disc the view would draw (centre and radius), the node is one the
      view would draw (or, wholly outside its field of view, one it culls),
      at its exact distance, with one exception: a node within rho (the
@@ -638,6 +635,18 @@
      so the writes go out in sequence rather than scattered over the
      atlas: the same pixels in each tile, a seventh less time at a million
      views (docs/GUIDE.md).
+     When it pays: against the per-view cut and splat of the same maps
+     (make bench, docs/BENCHMARKS.md "From how many lights the view tree
+     pays": 2 threads, epsilon 1, delta 0.5, maps 2 x 11 x 11, the view
+     tree's build counted), lights inside a scene (the bench's room, on
+     its walls looking in) take 0.6 to 0.8 times the per-view time from
+     16 lights on and a quarter at 16 k; lights around a compact object
+     (the bench's object, on a sphere looking at it) take 1.2 times at 16
+     to 64 lights, as much at 256, 0.9 times at 1 k and 0.3 at 16 k.
+     Larger maps move the point up (2 x 32 x 32 around the object: the
+     per-view path faster up to 1 k lights, the view tree from 4 k): use
+     the view tree for lights inside the scene at any count, and for
+     lights around it from a thousand or so.
 
    THREADS
      mlod_cut_update, mlod_refit_*, mlod_splat*, mlod_atlas_fill_holes,
@@ -10101,11 +10110,9 @@ static void mlod__vkey_select(mlod__vkey *keys, uint32_t count, uint32_t nth, in
     }
 }
 
-/* (p + turn q)^3 of count keys (see MLOD__VIEW_TURN). */
-static double mlod__vkey_cost(const mlod__vkey *keys, uint32_t count, double turn)
+/* The box of count >= 1 keys in their six coordinates. */
+static void mlod__vkey_box(const mlod__vkey *keys, uint32_t count, float lo[6], float hi[6])
 {
-    float lo[6], hi[6];
-    double p = 0.0, q = 0.0, d;
     uint32_t i;
     int k;
     for (k = 0; k < 6; k++) lo[k] = hi[k] = keys[0].k[k];
@@ -10114,6 +10121,15 @@ static double mlod__vkey_cost(const mlod__vkey *keys, uint32_t count, double tur
             lo[k] = keys[i].k[k] < lo[k] ? keys[i].k[k] : lo[k];
             hi[k] = keys[i].k[k] > hi[k] ? keys[i].k[k] : hi[k];
         }
+}
+
+/* (p + turn q)^3 of count keys (see MLOD__VIEW_TURN). */
+static double mlod__vkey_cost(const mlod__vkey *keys, uint32_t count, double turn)
+{
+    float lo[6], hi[6];
+    double p = 0.0, q = 0.0, d;
+    int k;
+    mlod__vkey_box(keys, count, lo, hi);
     for (k = 0; k < 3; k++) {
         p += ((double)hi[k] - lo[k]) * ((double)hi[k] - lo[k]);
         q += ((double)hi[k + 3] - lo[k + 3]) * ((double)hi[k + 3] - lo[k + 3]);
@@ -10153,12 +10169,7 @@ static int mlod__view_axis(const mlod__view_order_job *job, mlod__vkey *keys, ui
         ml = ml < 1 ? 1 : ml > m - 1 ? m - 1 : ml;
         set = sample;
     }
-    for (dim = 0; dim < 6; dim++) lo[dim] = hi[dim] = set[0].k[dim];
-    for (i = 1; i < m; i++)
-        for (dim = 0; dim < 6; dim++) {
-            lo[dim] = set[i].k[dim] < lo[dim] ? set[i].k[dim] : lo[dim];
-            hi[dim] = set[i].k[dim] > hi[dim] ? set[i].k[dim] : hi[dim];
-        }
+    mlod__vkey_box(set, m, lo, hi);
     for (dim = 0; dim < 6; dim++) {
         extent[dim] = ((double)hi[dim] - lo[dim]) * (dim < 3 ? 1.0 : job->turn);
         widest = extent[dim] > widest ? extent[dim] : widest;

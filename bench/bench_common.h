@@ -22,6 +22,7 @@
 #ifndef MANYLODS_BENCH_COMMON_H
 #define MANYLODS_BENCH_COMMON_H
 
+#define BENCH_CROSSOVER 6 /* light counts of views_crossover: 16 .. 16 k, times 4 */
 #define BENCH_MAX_LIST 8
 /* Grouping radii the views section sweeps at its most views, as fractions
    of the room's diameter (1/200 is the scaling table's). */
@@ -315,6 +316,14 @@ typedef struct bench {
         metrics mega_m, per_m, group_m;
     } views[BENCH_MAX_LIST];
     int views_rows;
+    /* from how many lights the view tree pays (views_crossover): per scene (0 the room, 1 the object), per
+       light count, the per-view cut + splat of the same maps and the render with its view tree's build */
+    struct crossover_row {
+        uint32_t views;
+        double per_ms, mega_ms, tree_ms;
+    } crossover[2][BENCH_CROSSOVER];
+    int crossover_rows;
+    uint32_t crossover_leaves[2]; /* the scenes' leaves */
     /* the grouping radius's cost and accuracy at the most views: radii as fractions of the room's diameter
        (0: ungrouped), the first render's time, pairs, peak bytes and errors */
     struct group_sweep_row {

@@ -176,6 +176,10 @@ static void views_group_sweep(bench *b, mlod_atlas *atlas, const mlod_tree *tree
     free(ungrouped);
 }
 
+static void crossover_row_of(bench *b, int scene, uint32_t k, const mlod_tree *tree, const float *eyes,
+                             const float *directions, float eps);
+static void crossover_object(bench *b, float eps, uint32_t most);
+
 static void run_views(bench *b)
 {
     const config *c = &b->cfg;
@@ -441,6 +445,9 @@ static void run_views(bench *b)
         mlod_view_tree_destroy(vt);
         free(views);
     }
+    for (i = 0; i < BENCH_CROSSOVER && (16u << (2 * i)) <= most; i++) /* from how many lights the view tree pays */
+        crossover_row_of(b, 0, i, tree, eyes, directions, eps);
+    crossover_object(b, eps, most);
     rt_destroy(&rt);
     mlod_tree_destroy(tree);
     free(eyes);
@@ -448,6 +455,135 @@ static void run_views(bench *b)
     free(receivers);
     free(receiver_normals);
     scene_free(&mesh);
+}
+
+/* Per-view cut + splat of these maps (a basic cut from nothing, as the
+   views table's per-view column), median of `repeats`. */
+static double crossover_per_view(bench *b, const mlod_tree *tree, const mlod_view *views, uint32_t count, float eps,
+                                 int repeats)
+{
+    mlod_atlas_desc desc;
+    mlod_atlas *atlas = NULL;
+    mlod_cut *cut = NULL;
+    mlod_cut_params cp;
+    mlod_error e;
+    double times[4], t0;
+    int rep;
+    memset(&desc, 0, sizeof desc);
+    memset(&cp, 0, sizeof cp);
+    cp.epsilon = eps;
+    cp.parallel = &b->parallel;
+    if (mlod_atlas_create(views, count, &desc, NULL, &atlas, &e) != MLOD_OK || mlod_cut_create(count, NULL, &cut, &e) != MLOD_OK)
+        fail("crossover: %s", e.message);
+    for (rep = 0; rep < repeats; rep++) {
+        mlod_cut_reset(cut);
+        t0 = now_ms();
+        if (mlod_cut_update(cut, tree, views, &cp, &e) != MLOD_OK || mlod_splat(atlas, tree, cut, views, &b->parallel, &e) != MLOD_OK)
+            fail("crossover, per view: %s", e.message);
+        times[rep] = now_ms() - t0;
+    }
+    mlod_cut_destroy(cut);
+    mlod_atlas_destroy(atlas);
+    return median(times, repeats);
+}
+
+/* From how many lights the view tree pays: row k of a scene's crossover
+   (count = 16 * 4^k lights, eyes and directions given), the render
+   (ungrouped, delta 0.5) with its view tree's build against the per-view
+   cut + splat of the same maps, each a median of 3. */
+static void crossover_row_of(bench *b, int scene, uint32_t k, const mlod_tree *tree, const float *eyes,
+                             const float *directions, float eps)
+{
+    const config *c = &b->cfg;
+    struct crossover_row *r = &b->crossover[scene][k];
+    uint32_t i, count = 16u << (2 * k);
+    mlod_view *views = (mlod_view *)checked_malloc(sizeof(mlod_view) * count);
+    mlod_view_set set;
+    mlod_view_tree *vt = NULL;
+    mlod_atlas_desc desc;
+    mlod_atlas *atlas = NULL;
+    mlod_megaviews_params mp;
+    mlod_error e;
+    double times[3], builds[3], t0;
+    int rep;
+    b->crossover_leaves[scene] = tree->leaf_count;
+    for (i = 0; i < count; i++) views[i] = mlod_megaviews_view(eyes + 3 * (size_t)i, c->views_resolution, 0);
+    memset(&set, 0, sizeof set);
+    set.eyes = eyes;
+    set.directions = directions;
+    set.count = count;
+    memset(&mp, 0, sizeof mp);
+    mp.epsilon = eps;
+    mp.delta = MLOD_MEGAVIEWS_DELTA;
+    mp.resolution = c->views_resolution;
+    mp.parallel = &b->parallel;
+    for (rep = 0; rep < 3; rep++) {
+        mlod_view_tree_destroy(vt);
+        vt = NULL;
+        t0 = now_ms();
+        if (mlod_view_tree_build(&set, NULL, &b->parallel, &vt, &e) != MLOD_OK) fail("crossover: %s", e.message);
+        builds[rep] = now_ms() - t0;
+        if (rep == 0) {
+            memset(&desc, 0, sizeof desc);
+            desc.order = vt->eyes->leaf_sources;
+            if (mlod_atlas_create(views, count, &desc, NULL, &atlas, &e) != MLOD_OK) fail("crossover: %s", e.message);
+        }
+        t0 = now_ms();
+        if (mlod_megaviews_render(atlas, tree, vt, &mp, NULL, &e) != MLOD_OK) fail("crossover: %s", e.message);
+        times[rep] = now_ms() - t0;
+    }
+    r->views = count;
+    r->mega_ms = median(times, 3);
+    r->tree_ms = median(builds, 3);
+    r->per_ms = crossover_per_view(b, tree, views, count, eps, 3);
+    printf("crossover, %s, %u lights: view tree %.1f ms + render %.1f ms, per-view cut + splat %.1f ms (%.2fx)\n",
+           scene ? "object" : "room", count, r->tree_ms, r->mega_ms, r->per_ms, (r->tree_ms + r->mega_ms) / r->per_ms);
+    fflush(stdout);
+    mlod_atlas_destroy(atlas);
+    mlod_view_tree_destroy(vt);
+    free(views);
+    if (k + 1 > (uint32_t)b->crossover_rows) b->crossover_rows = (int)k + 1;
+}
+
+/* The object's side of the crossover, up to `most` lights as the room's:
+   its mesh as the object protocol builds it (its largest N), each count's
+   lights the object rig of that count (Fibonacci points on a sphere of
+   radius 1.2 around it, each looking at the centre). */
+static void crossover_object(bench *b, float eps, uint32_t most)
+{
+    const config *c = &b->cfg;
+    uint32_t i, k, largest = 16u << (2 * (BENCH_CROSSOVER - 1));
+    scene_mesh knot;
+    protocol shell;
+    mlod_tree *tree;
+    mlod_view *rig;
+    float *eyes, *directions;
+    double build_ms;
+    most = most < largest ? most : largest;
+    rig = (mlod_view *)checked_malloc(sizeof(mlod_view) * most);
+    eyes = (float *)checked_malloc(sizeof(float) * 3 * most);
+    directions = (float *)checked_malloc(sizeof(float) * 3 * most);
+    memset(&knot, 0, sizeof knot);
+    if (!shape_torus_knot(&knot, c->knot_segments, c->knot_sides)) fail("out of memory for the object");
+    memset(&shell, 0, sizeof shell);
+    shell.rest = knot;
+    shell.frame_count = 1;
+    shell.positions = knot.positions;
+    tree = build_tree(b, &shell, c->sizes[c->size_count - 1], &build_ms);
+    for (k = 0; k < BENCH_CROSSOVER && (16u << (2 * k)) <= most; k++) {
+        uint32_t count = 16u << (2 * k);
+        shape_object_rig(count, 32, 0.0, 0, rig);
+        for (i = 0; i < count; i++) {
+            memcpy(eyes + 3 * (size_t)i, rig[i].position, sizeof rig[i].position);
+            memcpy(directions + 3 * (size_t)i, rig[i].forward, sizeof rig[i].forward);
+        }
+        crossover_row_of(b, 1, k, tree, eyes, directions, eps);
+    }
+    mlod_tree_destroy(tree);
+    scene_free(&knot);
+    free(rig);
+    free(eyes);
+    free(directions);
 }
 
 /* The growth exponent of y between view counts a and b: log(y_b / y_a) /
@@ -476,6 +612,65 @@ static double views_memory(const bench *b, const struct views_row *m)
 }
 
 /* The targets of issue 17 (MegaViews), from the rows of the views table. */
+/* Issue 55's rows: the render against the lean Embree peer's exact maps
+   of the same lights, grouped and ungrouped, at 64 k, 256 k and 1 M
+   lights, and the growth of its time from 64 k to 1 M. */
+static void write_views_lean_targets(const bench *b, FILE *f)
+{
+    static const uint32_t counts[3] = {1u << 16, 1u << 18, 1u << 20};
+    static const char *names[3] = {"64 k", "256 k", "1 M"};
+    static const double grouped_target[3] = {1.0, 0.5, 0.25}, ungrouped_target[3] = {1.3, 0.7, 0.4};
+    const struct views_row *k64 = views_row_of(b, counts[0]), *m = views_row_of(b, counts[2]);
+    const char *none = "no row for that many lights in this run (bench --views)";
+    char what[160], ours[64], target[64], anchor[400];
+    int i;
+    fprintf(f, "### Targets (issue 55): MegaViews against the lean exact ray cast\n\nThe table above's renders and "
+               "Embree's exact maps of the same lights (the lean peer: each light's hemisphere only, rays set up once "
+               "per map; bench/rt.h), 2 threads. Ratio = ours / target; 1 or less meets it.\n\n| what | ours | target | "
+               "anchor | ratio | met |\n|---|---:|---:|---|---:|---|\n");
+    for (i = 0; i < 3; i++) {
+        const struct views_row *r = views_row_of(b, counts[i]);
+        int grouped;
+        for (grouped = 1; grouped >= 0; grouped--) {
+            double limit = grouped ? grouped_target[i] : ungrouped_target[i];
+            snprintf(what, sizeof what, "%s lights, %s / lean Embree", names[i],
+                     grouped ? "grouped (1/200 of the diameter)" : "ungrouped");
+            snprintf(target, sizeof target, "<= %g", limit);
+            if (!r || !(r->cast_ms > 0)) {
+                target_missing(f, what, target, none);
+                continue;
+            }
+            snprintf(ours, sizeof ours, "%.2f", (grouped ? r->group_ms : r->mega_ms) / r->cast_ms);
+            snprintf(anchor, sizeof anchor, "MegaViews %s, Embree's exact maps %s (%.3g pairs%s)",
+                     ms_text(grouped ? r->group_ms : r->mega_ms), ms_text(r->cast_ms),
+                     grouped ? r->group_pairs : r->pairs, grouped ? ", grouped" : "");
+            target_line(f, what, ours, target, anchor, (grouped ? r->group_ms : r->mega_ms) / r->cast_ms / limit, NULL);
+        }
+    }
+    if (m) {
+        snprintf(anchor, sizeof anchor, "MegaViews grouped %s", ms_text(m->group_ms));
+        target_line(f, "1 M lights, grouped", ms_text(m->group_ms), "<= 1.5 s", anchor, m->group_ms / 1500.0, NULL);
+    } else {
+        target_missing(f, "1 M lights, grouped", "<= 1.5 s", none);
+    }
+    for (i = 1; i >= 0; i--) {
+        snprintf(what, sizeof what, "time growth exponent, 64 k -> 1 M lights, %s", i ? "grouped" : "ungrouped");
+        if (k64 && m) {
+            double e = i ? growth(k64->group_ms, m->group_ms, k64->views, m->views)
+                         : growth(k64->mega_ms, m->mega_ms, k64->views, m->views);
+            snprintf(ours, sizeof ours, "%.2f", e);
+            snprintf(anchor, sizeof anchor, "pairs %.2f; Embree %.2f",
+                     i ? growth(k64->group_pairs, m->group_pairs, k64->views, m->views)
+                       : growth(k64->pairs, m->pairs, k64->views, m->views),
+                     growth(k64->cast_ms, m->cast_ms, k64->views, m->views));
+            target_line(f, what, ours, "<= 0.5", anchor, e / 0.5, NULL);
+        } else {
+            target_missing(f, what, "<= 0.5", none);
+        }
+    }
+    fprintf(f, "\n");
+}
+
 static void write_views_targets(const bench *b, FILE *f)
 {
     const struct views_row *m = views_row_of(b, 1u << 20), *k64 = views_row_of(b, 1u << 16), *k1 = views_row_of(b, 1024);
@@ -538,6 +733,58 @@ static void write_views_targets(const bench *b, FILE *f)
                 "depth RMS, holes and shadow tests against Embree's maps; delta bounds how far a shared disc lies "
                 "from the view's own", NAN, "reported");
     fprintf(f, "\n");
+    write_views_lean_targets(b, f);
+}
+
+/* The smallest light count of a scene's crossover from which the view
+   tree (its build included) takes no longer than the per-view path at
+   every larger count measured; 0: at none. */
+static uint32_t crossover_from(const bench *b, int scene)
+{
+    int k;
+    uint32_t from = 0;
+    for (k = b->crossover_rows - 1; k >= 0; k--) {
+        const struct crossover_row *r = &b->crossover[scene][k];
+        if (!(r->views > 0 && r->tree_ms + r->mega_ms <= r->per_ms)) break;
+        from = r->views;
+    }
+    return from;
+}
+
+static void write_views_crossover(const bench *b, FILE *f)
+{
+    static const char *names[2] = {"room", "object"};
+    int k, s;
+    if (!b->crossover_rows) return;
+    fprintf(f, "### From how many lights the view tree pays\n\nThe view tree's build and the render (ungrouped, "
+               "delta %g px, epsilon 1 px, maps 2 x %u x %u px) against the per-view cut (basic, from nothing) and "
+               "splat of the same maps, medians of 3, 2 threads. The room: the lights of the table above (random "
+               "surface points, looking along the normal; N = %u). The object (N = %u): the object protocol's rig of "
+               "that many lights, a sphere of radius 1.2 around it, each looking at the centre.\n\n"
+               "| lights | room: tree + render ms | room: per-view ms | room: ratio | object: tree + render ms | "
+               "object: per-view ms | object: ratio |\n|---:|---:|---:|---:|---:|---:|---:|\n",
+            (double)MLOD_MEGAVIEWS_DELTA, b->cfg.views_resolution, b->cfg.views_resolution, b->crossover_leaves[0],
+            b->crossover_leaves[1]);
+    for (k = 0; k < b->crossover_rows; k++) {
+        fprintf(f, "| %u |", 16u << (2 * k));
+        for (s = 0; s < 2; s++) {
+            const struct crossover_row *r = &b->crossover[s][k];
+            if (r->views)
+                fprintf(f, " %.1f + %.1f | %.1f | %.2f |", r->tree_ms, r->mega_ms, r->per_ms, (r->tree_ms + r->mega_ms) / r->per_ms);
+            else
+                fprintf(f, " - | - | - |");
+        }
+        fprintf(f, "\n");
+    }
+    fprintf(f, "\nThe view tree pays");
+    for (s = 0; s < 2; s++) {
+        uint32_t from = crossover_from(b, s);
+        if (from)
+            fprintf(f, "%s from %u lights %s the %s", s ? "," : "", from, s ? "around" : "in", names[s]);
+        else
+            fprintf(f, "%s at no light count measured %s the %s", s ? "," : "", s ? "around" : "in", names[s]);
+    }
+    fprintf(f, " (ratio = view tree / per-view; 1 or less: the view tree is as fast or faster).\n\n");
 }
 
 static void write_views_markdown(const bench *b, FILE *f)
@@ -655,6 +902,7 @@ static void write_views_markdown(const bench *b, FILE *f)
                 growth(a->group_ms, r->group_ms, a->views, r->views), per, growth(a->cast_ms, r->cast_ms, a->views, r->views));
     }
     fprintf(f, "\n");
+    write_views_crossover(b, f);
     write_views_targets(b, f);
 }
 

@@ -33,8 +33,8 @@
    with the flicker, error, VPLs kept and incremental cut time of each
    (compare_samplers, below).
 
-   With --megaviews N it instead renders N VPLs (64 k and more) through
-   the view tree (mlod_megaviews_render: global dual paraboloid maps,
+   With --megaviews N it instead renders N VPLs through the view tree
+   (mlod_megaviews_render: global dual paraboloid maps,
    shared among nearby VPLs), shades each pixel with an interleaved 1/64 of
    them and filters the sets over each surface, and compares it, against
    exact visibility of the same N VPLs, with --views VPLs through per-view
@@ -71,9 +71,10 @@ static const char usage[] =
     "  --sampling         compare how the VPLs are chosen (mlod_sample: inverse transform and Metropolis-\n"
     "                     Hastings) over the frames: flicker, error, VPLs kept, cut time; writes no image\n"
     "  --still            with --sampling: the object stays at rest (the tree is not refitted)\n"
-    "  --megaviews N      instead, N virtual point lights (64 k and more) through the view tree (MegaViews) beside\n"
-    "                     --views VPLs through per-view cuts and ISM, against exact visibility; writes\n"
-    "                     instant_radiosity_megaviews.png\n"
+    "  --megaviews N      instead, N virtual point lights through the view tree (MegaViews) beside --views VPLs\n"
+    "                     through per-view cuts and ISM, against exact visibility; writes\n"
+    "                     instant_radiosity_megaviews.png (the view tree pays from a thousand or so VPLs around\n"
+    "                     an object, from a few inside a room: the manual, MANY VIEWS AT ONCE)\n"
     "  --bounces B        with --megaviews: light paths leave a VPL at each of their first B hits (default 1)\n"
     "  --tiny             a small run for the tests: 64 VPLs, 80x60 pixels, 2 frames\n";
 
@@ -762,7 +763,7 @@ done:
 
 /* ------------------------------------------------ many VPLs (--megaviews) */
 
-/* --megaviews N: N VPLs (64 k and more) through the view tree
+/* --megaviews N: N VPLs through the view tree
    (mlod_megaviews_render), beside the per-view pipeline's o.views VPLs
    (mlod_cut_update + mlod_splat) and ISM given its time, all from the same
    light on the first frame.  N VPLs cost N lookups per pixel: each pixel

@@ -370,6 +370,45 @@ static int room_tree(scene_mesh *s, uint32_t n, const char *what, mlod_tree **tr
     return 1;
 }
 
+/* The basic cut and splat of these views on the CPU and on the device
+   (downloaded): two new atlases (the caller destroys them, also on
+   failure) and the pixels whose depth, normal or colour differ (diffs[0 ..
+   2]; a channel the atlas lacks counts none), and the CPU's drawn pixels.
+   0 when a call fails, with e's message. */
+static int splat_on_both(const mlod_tree *tree, const mlodvk_tree *vtree, const mlod_view *views, uint32_t count,
+                         const mlod_atlas_desc *ad, const mlod_cut_params *p, mlod_atlas **cpu_atlas,
+                         mlod_atlas **gpu_atlas, size_t diffs[3], size_t *drawn, mlod_error *e)
+{
+    mlodvk_atlas *vatlas = NULL;
+    mlod_cut *cpu = NULL;
+    mlodvk_cut *gpu = NULL;
+    size_t i, pixels;
+    int ok;
+    *cpu_atlas = *gpu_atlas = NULL;
+    diffs[0] = diffs[1] = diffs[2] = *drawn = 0;
+    ok = mlod_atlas_create(views, count, ad, NULL, cpu_atlas, e) == MLOD_OK &&
+         mlod_atlas_create(views, count, ad, NULL, gpu_atlas, e) == MLOD_OK &&
+         mlodvk_atlas_create(context, *cpu_atlas, &vatlas, e) == MLOD_OK && mlod_cut_create(count, NULL, &cpu, e) == MLOD_OK &&
+         mlodvk_cut_create(context, count, 0, &gpu, e) == MLOD_OK && mlod_cut_update(cpu, tree, views, p, e) == MLOD_OK &&
+         mlodvk_cut_update(context, gpu, vtree, views, p, e) == MLOD_OK &&
+         mlod_splat(*cpu_atlas, tree, cpu, views, NULL, e) == MLOD_OK && mlodvk_splat(context, vatlas, vtree, gpu, e) == MLOD_OK &&
+         mlodvk_atlas_download(context, vatlas, *gpu_atlas, e) == MLOD_OK;
+    if (ok) {
+        const mlod_atlas *a = *cpu_atlas, *b = *gpu_atlas;
+        pixels = (size_t)a->width * a->height;
+        for (i = 0; i < pixels; i++) {
+            *drawn += isfinite(a->depth[i]);
+            diffs[0] += memcmp(&a->depth[i], &b->depth[i], sizeof(float)) != 0;
+            diffs[1] += a->normal && memcmp(a->normal + 3 * i, b->normal + 3 * i, 3 * sizeof(float)) != 0;
+            diffs[2] += a->color && memcmp(a->color + 3 * i, b->color + 3 * i, 3 * sizeof(float)) != 0;
+        }
+    }
+    mlodvk_atlas_destroy(context, vatlas);
+    mlodvk_cut_destroy(context, gpu);
+    mlod_cut_destroy(cpu);
+    return ok;
+}
+
 static void test_splat_parity(void)
 {
     scene_mesh s;
@@ -387,12 +426,9 @@ static void test_splat_parity(void)
         mlod_view views[16];
         mlod_atlas_desc ad;
         mlod_atlas *cpu_atlas = NULL, *gpu_atlas = NULL;
-        mlodvk_atlas *vatlas = NULL;
-        mlod_cut *cpu = NULL;
-        mlodvk_cut *gpu = NULL;
         mlod_cut_params p;
         uint32_t v;
-        size_t pixels, i, depth_diff = 0, normal_diff = 0, color_diff = 0, drawn = 0;
+        size_t diffs[3], drawn;
         kind = spheres ? VIEW_KINDS : round % (VIEW_KINDS + 1);
         memset(&p, 0, sizeof p);
         p.mode = MLOD_CUT_BASIC;
@@ -407,32 +443,17 @@ static void test_splat_parity(void)
         ad.channels = MLOD_ATLAS_NORMAL | MLOD_ATLAS_COLOR;
         ad.disc_scale = disc_scale;
         ad.splat = spheres ? MLOD_SPLAT_SPHERES : MLOD_SPLAT_AUTO;
-        if (mlod_atlas_create(views, 16, &ad, NULL, &cpu_atlas, &e) != MLOD_OK ||
-            mlod_atlas_create(views, 16, &ad, NULL, &gpu_atlas, &e) != MLOD_OK ||
-            mlodvk_atlas_create(context, cpu_atlas, &vatlas, &e) != MLOD_OK || mlod_cut_create(16, NULL, &cpu, &e) != MLOD_OK ||
-            mlodvk_cut_create(context, 16, 0, &gpu, &e) != MLOD_OK || mlod_cut_update(cpu, tree, views, &p, &e) != MLOD_OK ||
-            mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK ||
-            mlod_splat(cpu_atlas, tree, cpu, views, NULL, &e) != MLOD_OK || mlodvk_splat(context, vatlas, vtree, gpu, &e) != MLOD_OK ||
-            mlodvk_atlas_download(context, vatlas, gpu_atlas, &e) != MLOD_OK) {
+        if (!splat_on_both(tree, vtree, views, 16, &ad, &p, &cpu_atlas, &gpu_atlas, diffs, &drawn, &e)) {
             CHECK(0, "splat parity, %s, kind %d, disc_scale %g: set-up failed: %s", splat, kind, (double)disc_scale,
                   e.message);
         } else {
-            pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
-            for (i = 0; i < pixels; i++) {
-                drawn += isfinite(cpu_atlas->depth[i]);
-                depth_diff += memcmp(&cpu_atlas->depth[i], &gpu_atlas->depth[i], sizeof(float)) != 0;
-                normal_diff += memcmp(cpu_atlas->normal + 3 * i, gpu_atlas->normal + 3 * i, 3 * sizeof(float)) != 0;
-                color_diff += memcmp(cpu_atlas->color + 3 * i, gpu_atlas->color + 3 * i, 3 * sizeof(float)) != 0;
-            }
+            size_t pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
             CHECK(drawn > pixels / 20, "splat parity, %s, kind %d, disc_scale %g: only %zu of %zu pixels drawn", splat,
                   kind, (double)disc_scale, drawn, pixels);
-            CHECK(depth_diff == 0 && normal_diff == 0 && color_diff == 0,
+            CHECK(diffs[0] == 0 && diffs[1] == 0 && diffs[2] == 0,
                   "splat parity, %s, kind %d, disc_scale %g: %zu depth, %zu normal, %zu colour pixels of %zu differ",
-                  splat, kind, (double)disc_scale, depth_diff, normal_diff, color_diff, pixels);
+                  splat, kind, (double)disc_scale, diffs[0], diffs[1], diffs[2], pixels);
         }
-        mlodvk_atlas_destroy(context, vatlas);
-        mlodvk_cut_destroy(context, gpu);
-        mlod_cut_destroy(cpu);
         mlod_atlas_destroy(cpu_atlas);
         mlod_atlas_destroy(gpu_atlas);
         check_validation("splat parity");
@@ -461,13 +482,10 @@ static void test_tie_parity(void)
     mlod_view views[V];
     mlod_atlas_desc ad;
     mlod_atlas *cpu_atlas = NULL, *gpu_atlas = NULL;
-    mlodvk_atlas *vatlas = NULL;
-    mlod_cut *cpu = NULL;
-    mlodvk_cut *gpu = NULL;
     mlod_cut_params p;
     mlod_error e;
     uint32_t i, v;
-    size_t pixels, depth_diff = 0, color_diff = 0, drawn = 0;
+    size_t diffs[3], drawn;
     for (i = 0; i < N; i++) {
         pos[3 * i] = (float)(2.0 * scene_rng_double(&rng) - 1.0);
         pos[3 * i + 1] = (float)(2.0 * scene_rng_double(&rng) - 1.0);
@@ -495,28 +513,14 @@ static void test_tie_parity(void)
     ad.channels = MLOD_ATLAS_COLOR;
     ad.splat = MLOD_SPLAT_SPHERES;
     if (mlod_build_points(&pts, &bd, &tree, &e) != MLOD_OK || mlodvk_tree_upload(context, tree, &vtree, &e) != MLOD_OK ||
-        mlod_atlas_create(views, V, &ad, NULL, &cpu_atlas, &e) != MLOD_OK ||
-        mlod_atlas_create(views, V, &ad, NULL, &gpu_atlas, &e) != MLOD_OK ||
-        mlodvk_atlas_create(context, cpu_atlas, &vatlas, &e) != MLOD_OK || mlod_cut_create(V, NULL, &cpu, &e) != MLOD_OK ||
-        mlodvk_cut_create(context, V, 0, &gpu, &e) != MLOD_OK || mlod_cut_update(cpu, tree, views, &p, &e) != MLOD_OK ||
-        mlodvk_cut_update(context, gpu, vtree, views, &p, &e) != MLOD_OK ||
-        mlod_splat(cpu_atlas, tree, cpu, views, NULL, &e) != MLOD_OK || mlodvk_splat(context, vatlas, vtree, gpu, &e) != MLOD_OK ||
-        mlodvk_atlas_download(context, vatlas, gpu_atlas, &e) != MLOD_OK) {
+        !splat_on_both(tree, vtree, views, V, &ad, &p, &cpu_atlas, &gpu_atlas, diffs, &drawn, &e)) {
         CHECK(0, "tie parity: set-up failed: %s", e.message);
     } else {
-        pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
-        for (i = 0; i < pixels; i++) {
-            drawn += isfinite(cpu_atlas->depth[i]);
-            depth_diff += memcmp(&cpu_atlas->depth[i], &gpu_atlas->depth[i], sizeof(float)) != 0;
-            color_diff += memcmp(cpu_atlas->color + 3 * i, gpu_atlas->color + 3 * i, 3 * sizeof(float)) != 0;
-        }
+        size_t pixels = (size_t)cpu_atlas->width * cpu_atlas->height;
         CHECK(drawn > pixels / 2, "tie parity: only %zu of %zu pixels drawn", drawn, pixels);
-        CHECK(depth_diff == 0 && color_diff == 0, "tie parity: %zu depth, %zu colour pixels of %zu differ", depth_diff,
-              color_diff, pixels);
+        CHECK(diffs[0] == 0 && diffs[2] == 0, "tie parity: %zu depth, %zu colour pixels of %zu differ", diffs[0],
+              diffs[2], pixels);
     }
-    mlodvk_atlas_destroy(context, vatlas);
-    mlodvk_cut_destroy(context, gpu);
-    mlod_cut_destroy(cpu);
     mlod_atlas_destroy(cpu_atlas);
     mlod_atlas_destroy(gpu_atlas);
     mlodvk_tree_destroy(context, vtree);
