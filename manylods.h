@@ -1353,8 +1353,8 @@ typedef struct mlod_atlas {
     float *normal;
     float *color;
     uint32_t *tiles;          /* per view: x, y, width, height of its tile */
-    uint32_t *ids;            /* private: per pixel, the node drawn there (equal depths: the
-                                 lower node index wins; mlod_splat) */
+    uint32_t *ids;            /* private: per pixel, the node mlod_splat or mlod_splat_ism drew there
+                                 (equal depths: the lower node index wins); NULL until the first */
     uint32_t *bands;          /* private: per view, first row band (splat tasks) */
     size_t bytes;
     mlod_allocator allocator;
@@ -1367,8 +1367,7 @@ typedef struct mlod_atlas {
 } mlod_atlas;
 
 /* Sizing, before an atlas: the bytes mlod_atlas_create allocates for these
-   views and desc (the atlas's bytes, exactly): 8 bytes per pixel (the
-   depth, and the node drawn there for mlod_splat's rule on equal depths),
+   views and desc (the atlas's bytes, exactly): 4 bytes per pixel of depth,
    12 more per channel, the per-view tables (36 bytes per view and 4 per
    64 rows of its tile).  0 when mlod_atlas_create
    would refuse them (no views, an empty tile, a bad desc, a size that
@@ -1403,7 +1402,10 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
    centre sets the pixel holding its centre.  See SPLATTING in the manual.
    Nearest depth wins; of equal depths the lower node index, whatever
    order the nodes are drawn in (mlod_splat_ism and mlod_megaviews_render
-   keep the same rule).  A node is
+   keep the same rule); for it the first mlod_splat or mlod_splat_ism on
+   an atlas allocates a record of the node drawn at each pixel, 4 bytes
+   per pixel that the atlas holds (atlas->bytes counts them, not
+   mlod_atlas_bound; MLOD_ERROR_OUT_OF_MEMORY when they do not fit).  A node is
    not drawn in a sub-projection where its image is unbounded.  The views
    must be those of the cut's last update, byte for byte: a view moved
    since is MLOD_ERROR_MISMATCH (a cut never updated, or reset, draws
@@ -1438,7 +1440,8 @@ MANYLODS_DEF void mlod_atlas_invalidate(mlod_atlas *atlas);
    (outside the view, or back-facing where the view culls back faces).
    The points go through the same float filters as the cut and the splat,
    64 at a time: the atlas is the one drawing them one by one in double
-   would give, bit for bit.  Parallel as mlod_splat. */
+   would give, bit for bit.  Equal depths and memory as mlod_splat.
+   Parallel as mlod_splat. */
 MANYLODS_DEF mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree, const mlod_view *views,
                                         uint32_t points_per_view, uint64_t seed, const mlod_parallel *parallel,
                                         mlod_error *error);
@@ -8404,7 +8407,6 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         ok = ok && (atlas->normal = (float *)mlod__alloc_array(&a, (size_t)pixels, 3 * sizeof(float), &atlas->bytes));
     if (desc->channels & MLOD_ATLAS_COLOR)
         ok = ok && (atlas->color = (float *)mlod__alloc_array(&a, (size_t)pixels, 3 * sizeof(float), &atlas->bytes));
-    ok = ok && (atlas->ids = (uint32_t *)mlod__alloc_array(&a, (size_t)pixels, sizeof(uint32_t), &atlas->bytes));
     ok = ok && (atlas->tiles = (uint32_t *)mlod__alloc_array(&a, view_count, 4 * sizeof(uint32_t), &atlas->bytes));
     ok = ok && (atlas->bands = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &atlas->bytes));
     ok = ok && (atlas->shown = (uint64_t *)mlod__alloc_array(&a, view_count, 2 * sizeof(uint64_t), &atlas->bytes));
@@ -8439,7 +8441,6 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
     }
     if (atlas->normal) memset(atlas->normal, 0, (size_t)pixels * 3 * sizeof(float));
     if (atlas->color) memset(atlas->color, 0, (size_t)pixels * 3 * sizeof(float));
-    memset(atlas->ids, 0, (size_t)pixels * sizeof(uint32_t));
     mlod_atlas_invalidate(atlas);
     *out_atlas = atlas;
     return mlod__succeed(error);
@@ -8485,9 +8486,8 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
     if (L->width > 0xffffffffu || L->height > 0xffffffffu || L->pixels > (size_t)-1 / (3 * sizeof(float)))
         return mlod__fail(error, MLOD_ERROR_OVERFLOW, "an atlas of %llu x %llu pixels is too large",
                           (unsigned long long)L->width, (unsigned long long)L->height);
-    /* depth, the node drawn and the channels per pixel, the tile and band
-       tables per view */
-    per_pixel = sizeof(float) + sizeof(uint32_t) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
+    /* depth and the channels per pixel, the tile and band tables per view */
+    per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
                 ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
     L->bands = (uint32_t)bands;
     tables = sizeof(mlod_atlas) + (size_t)view_count * (4 * sizeof(uint32_t) + 2 * sizeof(uint64_t)) +
@@ -8517,15 +8517,17 @@ typedef struct mlod__splat_job {
 /* One band of rows of one tile while it is drawn: the tile's pixel
    (col, row) is depth[row * stride + col] (normal and colour 3 floats per
    pixel likewise, or NULL), holding the nearest drawn node's depth and
-   channels, and its index in ids[row * stride + col] (a MegaViews map,
-   mlod_megaviews_render's, has no channels).  Of nodes at equal depths
-   the lower index wins (mlod__wins), so a pixel does not depend on the
-   order of the draws. */
+   channels, and its index in ids[row * id_stride + col] (a MegaViews map,
+   mlod_megaviews_render's, has no channels; a band that draws nothing,
+   only cleared or begun from a parent's map, may have no ids).  Of nodes
+   at equal depths the lower index wins (mlod__wins), so a pixel does not
+   depend on the order of the draws. */
 typedef struct mlod__band {
     const mlod_tree *tree;
     float *depth, *normal, *color;
     uint32_t *ids;
     size_t stride;               /* pixels from one row to the next */
+    size_t id_stride;            /* ids from one row to the next */
     float disc_scale;
     int tangent;                 /* MLOD_SPLAT_TANGENT (mlod__splat_tangent), else MLOD_SPLAT_SPHERES */
     uint32_t row_begin, row_end; /* tile rows */
@@ -8539,13 +8541,13 @@ static int mlod__splat_tangent(uint32_t splat, const mlod_tree *tree)
     return splat == MLOD_SPLAT_TANGENT || (splat == MLOD_SPLAT_AUTO && tree->cones != NULL);
 }
 
-/* Set a pixel (index `at` of the band's arrays) to the node: its depth and
-   channels, or its index. */
-static void mlod__band_set(const mlod__band *band, size_t at, float depth, uint32_t node)
+/* Set a tile pixel to the node: its depth, index and channels. */
+static void mlod__band_set(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node)
 {
+    size_t at = (size_t)row * band->stride + col;
     int k;
     band->depth[at] = depth;
-    band->ids[at] = node;
+    if (band->ids) band->ids[(size_t)row * band->id_stride + col] = node;
     for (k = 0; k < 3 && band->normal; k++) band->normal[3 * at + k] = band->tree->cones[4 * (size_t)node + k];
     for (k = 0; k < 3 && band->color; k++) band->color[3 * at + k] = band->tree->colors[3 * (size_t)node + k];
 }
@@ -8566,7 +8568,8 @@ MLOD__FORCE_INLINE uint32_t mlod__wins(float depth, uint32_t node, float old, ui
 static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node)
 {
     size_t at = (size_t)row * band->stride + col;
-    if (mlod__wins(depth, node, band->depth[at], band->ids[at])) mlod__band_set(band, at, depth, node);
+    if (mlod__wins(depth, node, band->depth[at], band->ids[(size_t)row * band->id_stride + col]))
+        mlod__band_set(band, row, col, depth, node);
 }
 
 /* mlod__plot where cond (0 or 1) holds.  A band of depth and ids alone
@@ -8575,7 +8578,7 @@ static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float
 MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node,
                           uint32_t cond)
 {
-    size_t at = (size_t)row * band->stride + col;
+    size_t at = (size_t)row * band->stride + col, id_at = (size_t)row * band->id_stride + col;
     float old;
     uint32_t mask, depth_bits, old_bits;
     if (band->normal || band->color) {
@@ -8583,12 +8586,12 @@ MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint
         return;
     }
     old = band->depth[at];
-    mask = 0u - (cond & mlod__wins(depth, node, old, band->ids[at]));
+    mask = 0u - (cond & mlod__wins(depth, node, old, band->ids[id_at]));
     memcpy(&depth_bits, &depth, sizeof depth_bits);
     memcpy(&old_bits, &old, sizeof old_bits);
     old_bits = (depth_bits & mask) | (old_bits & ~mask);
     memcpy(&band->depth[at], &old_bits, sizeof old_bits);
-    band->ids[at] = (node & mask) | (band->ids[at] & ~mask);
+    band->ids[id_at] = (node & mask) | (band->ids[id_at] & ~mask);
 }
 
 
@@ -9085,7 +9088,8 @@ static void mlod__tile_band(mlod_atlas *atlas, const mlod_tree *tree, uint32_t v
     band->depth = atlas->depth + origin;
     band->normal = atlas->normal ? atlas->normal + 3 * origin : NULL;
     band->color = atlas->color ? atlas->color + 3 * origin : NULL;
-    band->ids = atlas->ids + origin;
+    band->ids = atlas->ids ? atlas->ids + origin : NULL; /* (mlod__atlas_ids) */
+    band->id_stride = atlas->width;
     band->fast = NULL;
     band->stride = atlas->width;
     band->disc_scale = atlas->disc_scale;
@@ -9101,7 +9105,7 @@ static void mlod__band_clear(const mlod__band *band, uint32_t width)
     for (row = band->row_begin; row < band->row_end; row++) {
         size_t at = (size_t)row * band->stride;
         for (col = 0; col < width; col++) band->depth[at + col] = INFINITY;
-        memset(band->ids + at, 0, sizeof(uint32_t) * width);
+        if (band->ids) memset(band->ids + (size_t)row * band->id_stride, 0, sizeof(uint32_t) * width);
         if (band->normal) memset(band->normal + 3 * at, 0, 3 * sizeof(float) * width);
         if (band->color) memset(band->color + 3 * at, 0, 3 * sizeof(float) * width);
     }
@@ -9269,6 +9273,18 @@ static void mlod__shown_task(void *context, uint32_t index)
     }
 }
 
+/* The atlas's record of the node drawn at each pixel (atlas->ids), which
+   mlod_splat and mlod_splat_ism draw with, allocated at their first call
+   (4 bytes per pixel, counted in atlas->bytes).  0 when out of memory. */
+static int mlod__atlas_ids(mlod_atlas *atlas)
+{
+    size_t pixels = (size_t)atlas->width * atlas->height;
+    if (atlas->ids) return 1;
+    atlas->ids = (uint32_t *)mlod__alloc_array(&atlas->allocator, pixels, sizeof(uint32_t), &atlas->bytes);
+    if (atlas->ids) memset(atlas->ids, 0, pixels * sizeof(uint32_t));
+    return atlas->ids != NULL;
+}
+
 MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
                                     const mlod_view *views, const mlod_parallel *parallel, mlod_error *error)
 {
@@ -9288,6 +9304,8 @@ MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
                 return mlod__fail(error, MLOD_ERROR_MISMATCH,
                                   "view %u differs from the view of the cut's last update: update the cut first", v);
     }
+    if (!mlod__atlas_ids(atlas))
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the atlas's record of the nodes drawn");
     memset(&job, 0, sizeof job);
     job.atlas = atlas;
     job.tree = tree;
@@ -9336,6 +9354,8 @@ MLOD__PUBLIC mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree
     mlod__splat_job job;
     mlod_result res = mlod__check_splat(atlas, tree, views, error);
     if (res != MLOD_OK) return res;
+    if (!mlod__atlas_ids(atlas))
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the atlas's record of the nodes drawn");
     memset(&job, 0, sizeof job);
     mlod_atlas_invalidate(atlas);
     job.atlas = atlas;
@@ -10635,6 +10655,8 @@ typedef struct mlod__mv_job {
     const size_t *draw_off;
     float *depth;           /* this level's maps: pixels per map, depth and node */
     uint32_t *ids;
+    uint32_t *leaf_ids;     /* a level's classification that draws view leaves: pixels per chunk, the node
+                               drawn at each pixel of the leaf the chunk draws (mlod__mv_leaf_begin) */
     const uint32_t *map_of; /* per node of the level: its map, or UINT32_MAX */
     const float *parent_depth; /* the previous level's maps */
     const uint32_t *parent_ids, *parent_map_of;
@@ -11514,13 +11536,13 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
     }
     for (row = 0; row < job->resolution; row++) {
         float *out = band->depth + (size_t)row * band->stride;
-        uint32_t *out_ids = band->ids + (size_t)row * band->stride;
+        uint32_t *out_ids = band->ids ? band->ids + (size_t)row * band->id_stride : NULL;
         for (col = 0; col < width;) { /* the row's drawn pixels, up to a chunk at a time */
             const size_t at = (size_t)row * width;
             const uint32_t end = col < job->resolution ? job->resolution : width; /* a chunk within one half */
             for (n = 0; col < end && n < MLOD__DRAW_CHUNK; col++) {
                 out[col] = INFINITY;
-                out_ids[col] = 0;
+                if (out_ids) out_ids[col] = 0;
                 cols[n] = col;
                 ids[n] = parent_ids[at + col];
                 n += parent_depth[at + col] < INFINITY;
@@ -11541,11 +11563,11 @@ static void mlod__mv_inherit(const mlod__mv_job *job, const mlod__band *band, co
             } else
                 mlod__node_distances(job->scene, ids, n, centre, depth);
             if (band->normal || band->color) { /* the node's channels too */
-                for (l = 0; l < n; l++) mlod__band_set(band, (size_t)row * band->stride + cols[l], depth[l], ids[l]);
+                for (l = 0; l < n; l++) mlod__band_set(band, row, cols[l], depth[l], ids[l]);
                 continue;
             }
             for (l = 0; l < n; l++) out[cols[l]] = depth[l];
-            for (l = 0; l < n; l++) out_ids[cols[l]] = ids[l];
+            for (l = 0; out_ids && l < n; l++) out_ids[cols[l]] = ids[l];
         }
     }
 }
@@ -11560,13 +11582,16 @@ static void mlod__mv_parent_map(const mlod__mv_job *job, uint32_t node, const fl
 }
 
 /* A view leaf's tile, cleared and initialised from its parent's map (NULL:
-   none). */
+   none); ids: pixels for the node drawn at each of its pixels while it
+   draws (NULL: it draws nothing). */
 static void mlod__mv_leaf_begin(const mlod__mv_job *job, uint32_t node, mlod__band *band, const float *parent_depth,
-                                const uint32_t *parent_ids)
+                                const uint32_t *parent_ids, uint32_t *ids)
 {
     const mlod_tree *eyes = job->views->eyes;
     uint32_t leaf = node - (eyes->leaf_count - 1), row;
     mlod__tile_band(job->atlas, job->scene, eyes->leaf_sources[leaf], band);
+    band->ids = ids;
+    band->id_stride = 2 * (size_t)job->resolution; /* the tile's width */
     /* the walks go on in leaf order: the place of the leaf 8 on (the tiles' table is in view order), and
        the next leaf's tile rows out in the atlas, unless that tile follows this one in its row of cells
        (mlod_atlas_desc.order), where the processor's own prefetch has them */
@@ -11593,7 +11618,7 @@ static void mlod__mv_map_begin(const mlod__mv_job *job, uint32_t node, float *de
     band->tree = job->scene;
     band->depth = depth;
     band->ids = ids;
-    band->stride = 2 * job->resolution;
+    band->stride = band->id_stride = 2 * job->resolution;
     band->disc_scale = job->disc_scale;
     band->tangent = job->tangent;
     band->row_end = job->resolution;
@@ -11772,9 +11797,9 @@ static int mlod__mv_descend(const mlod__mv_job *job, const mlod__vnode *vn, cons
 
 /* A view leaf's drawer: its tile, begun from its parent's map. */
 static void mlod__mv_leaf_drawer(const mlod__mv_job *job, mlod__vnode *vn, const float *parent_depth,
-                                 const uint32_t *parent_ids, mlod__mv_drawer *dr)
+                                 const uint32_t *parent_ids, uint32_t *ids, mlod__mv_drawer *dr)
 {
-    mlod__mv_leaf_begin(job, vn->node, &dr->band, parent_depth, parent_ids);
+    mlod__mv_leaf_begin(job, vn->node, &dr->band, parent_depth, parent_ids, ids);
     dr->pv = &vn->pv; /* the leaf's own view (mlod__vnode_set) */
     dr->ready = 1;
     dr->filter_ready = 0;
@@ -11864,7 +11889,8 @@ static void mlod__mv_classify_task(void *context, uint32_t index)
                 const float *parent_depth;
                 const uint32_t *parent_ids;
                 mlod__mv_parent_map(job, view, &parent_depth, &parent_ids);
-                mlod__mv_leaf_drawer(job, &vn, parent_depth, parent_ids, &dr);
+                mlod__mv_leaf_drawer(job, &vn, parent_depth, parent_ids, job->leaf_ids + (size_t)chunk * job->pixels,
+                                     &dr);
                 drawing = &dr;
             }
         }
@@ -11892,7 +11918,7 @@ static void mlod__mv_draw_task(void *context, uint32_t index)
         if (node >= eyes->leaf_count - 1 && !job->keep) { /* leaves given no pair: the parent's map alone */
             uint32_t p = (node - 1) / 2 - job->prev_first;
             if (node > 0 && job->in_off[p + 1] == job->in_off[p])
-                mlod__mv_leaf_begin(job, node, &dr.band, parent_depth, parent_ids);
+                mlod__mv_leaf_begin(job, node, &dr.band, parent_depth, parent_ids, NULL);
             continue;
         }
         if (job->map_of[i] == MLOD__NO_MAP) continue;
@@ -12059,7 +12085,8 @@ typedef struct mlod__mv_walk {
     uint32_t *list;                     /* the lists along the path */
     size_t capacity;
     float *depth;                       /* one map per inner level */
-    uint32_t *ids;
+    uint32_t *ids;                      /* the maps' nodes, then a leaf's while it draws */
+    uint32_t *leaf_ids;                 /* (in ids: after the maps') */
     mlod__vnode *vn;                    /* one per level */
     mlod__pview *pv;                    /* one per level: the inner maps' views */
     int overflow;
@@ -12098,7 +12125,7 @@ static void mlod__mv_walk_node(const mlod__mv_job *job, mlod__mv_walk *w, uint32
     if (node == w->resume) w->resume = MLOD__NO_MAP; /* from here on, all again */
     if (n) mlod__vnode_set(job, node, vn);
     if (node >= eyes->leaf_count - 1) {
-        mlod__mv_leaf_drawer(job, vn, parent_depth, parent_ids, &dr);
+        mlod__mv_leaf_drawer(job, vn, parent_depth, parent_ids, w->leaf_ids, &dr);
         mlod__mv_descend(job, vn, in, n, &out, &dr); /* a leaf splits no view */
         mlod__mv_flush(job, &dr);
         leaf_draws = out.drawn;
@@ -12186,7 +12213,8 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
         w->capacity = 4 * w->in_count + job->walk_room;
         w->list = (uint32_t *)mlod__mv_alloc(m, w->capacity, sizeof(uint32_t));
         w->depth = (float *)mlod__mv_alloc(m, inner * job->pixels, sizeof(float));
-        w->ids = (uint32_t *)mlod__mv_alloc(m, inner * job->pixels, sizeof(uint32_t));
+        w->ids = (uint32_t *)mlod__mv_alloc(m, (inner + 1) * job->pixels, sizeof(uint32_t));
+        w->leaf_ids = w->ids ? w->ids + inner * job->pixels : NULL;
         w->vn = (mlod__vnode *)mlod__mv_alloc(m, depth, sizeof(mlod__vnode));
         w->pv = (mlod__pview *)mlod__mv_alloc(m, depth, sizeof(mlod__pview));
     }
@@ -12219,7 +12247,7 @@ static int mlod__mv_walks(mlod__mv_job *job, mlod__mv_memory *m, const mlod_para
         if (w->node_pairs > st->node_pairs) st->node_pairs = w->node_pairs;
         mlod__mv_free(m, w->list, w->capacity, sizeof(uint32_t));
         mlod__mv_free(m, w->depth, inner * job->pixels, sizeof(float));
-        mlod__mv_free(m, w->ids, inner * job->pixels, sizeof(uint32_t));
+        mlod__mv_free(m, w->ids, (inner + 1) * job->pixels, sizeof(uint32_t));
         mlod__mv_free(m, w->vn, depth, sizeof(mlod__vnode));
         mlod__mv_free(m, w->pv, depth, sizeof(mlod__pview));
     }
@@ -12381,7 +12409,7 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
     job.descend_room = descend_room ? descend_room : MLOD__MV_ROOM;
     job.exact = exact;
     for (d = 0; d < levels && !m.failed; d++) {
-        uint32_t first = (uint32_t)((1ull << d) - 1), count, chunks, c;
+        uint32_t first = (uint32_t)((1ull << d) - 1), count, chunks, c, leaf_slots;
         size_t draws = 0, splits = 0, room, *draw_off, *split_off, *chunk_begin;
         uint32_t *draw, *split, *map_of;
         mlod__mv_out *outs;
@@ -12425,7 +12453,12 @@ static mlod_result mlod__megaviews_run(mlod_atlas *atlas, mlod_megaviews_maps **
             u += outs[c].capacity;
         }
         job.outs = outs;
-        if (chunks) mlod__mv_classify_level(&job, &m, params->parallel, chunks);
+        /* a level of view leaves: each chunk draws its leaves one after the other */
+        leaf_slots = !job.keep && first + count > eyes->leaf_count - 1 ? chunks : 0;
+        job.leaf_ids = leaf_slots ? (uint32_t *)mlod__mv_alloc(&m, (size_t)leaf_slots * job.pixels, sizeof(uint32_t)) : NULL;
+        if (chunks && !m.failed) mlod__mv_classify_level(&job, &m, params->parallel, chunks);
+        mlod__mv_free(&m, job.leaf_ids, (size_t)leaf_slots * job.pixels, sizeof(uint32_t));
+        job.leaf_ids = NULL;
         draw_off = (size_t *)mlod__mv_alloc(&m, (size_t)count + 1, sizeof(size_t));
         split_off = (size_t *)mlod__mv_alloc(&m, (size_t)count + 1, sizeof(size_t));
         if (!m.failed) {
@@ -12586,13 +12619,13 @@ static double mlod__mv_bound(const mlod_tree *eyes, uint32_t resolution, uint64_
             double grown = 2.0 * (depth - 1.0) * p; /* twice a path's lists */
             if (grown > list) list = grown;
             level = prev + C * ((double)sizeof(mlod__mv_walk) + 4.0) + 2.0 +
-                    C * (4.0 * list + 8.0 * inner_maps * px + depth * per_level + 5.0);
+                    C * (4.0 * list + (8.0 * inner_maps + 4.0) * px + depth * per_level + 5.0); /* + a leaf's ids */
             return level > most ? level : most;
         }
         U = d == 0 ? 1.0 : (Q < 2.0 * splits_above ? Q : 2.0 * splits_above);
         K = floor(U / MLOD__MV_CHUNK) + 1.0;
         classify = 8.0 * (K + 1.0) + (double)sizeof(mlod__mv_out) * K + 16.0 * (U + floor(U / 2.0) + 64.0 * K + 1.0) +
-                   4.0 * K + 80.0 * Q + 2.0 * K + 4.0;
+                   4.0 * K + 80.0 * Q + 2.0 * K + 4.0 + (C > I ? 4.0 * K * px + 1.0 : 0.0); /* + the leaves' ids */
         gather = 16.0 * (C + 1.0) + 4.0 * Q + 4.0 * C + 5.0; /* offsets, draw and split lists, map table */
         maps = 8.0 * I * px + 2.0;
         level = prev + classify + gather + maps;

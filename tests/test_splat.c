@@ -1742,7 +1742,7 @@ static void test_filtered_discs(void)
         mlod__fast_prepare(&pv_fast, 1.0);
         memset(&band, 0, sizeof band);
         band.tree = &tree;
-        band.stride = W;
+        band.stride = band.id_stride = W;
         band.disc_scale = scales[trial / 4 % 4];
         band.row_begin = trial % 4 == 1 ? (uint32_t)(scene_rng_double(&rng) * view.height) : 0u;
         band.row_end = trial % 4 == 1 ? band.row_begin + 1 + (uint32_t)(scene_rng_double(&rng) * 8) : view.height;
@@ -1998,7 +1998,7 @@ static void test_reached_lanes(void)
         /* whole tiles, 64 nodes at a time: through the filter [1], by the exact test alone [0] */
         memset(&band, 0, sizeof band);
         band.tree = &tree;
-        band.stride = W;
+        band.stride = band.id_stride = W;
         band.disc_scale = 1.0f;
         band.row_end = view.height;
         for (k = 0; k < 2; k++) {
@@ -2228,6 +2228,7 @@ static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_v
                           uint64_t seed)
 {
     uint32_t v, k;
+    if (!mlod__atlas_ids(atlas)) return; /* (the record of the node at each pixel the library draws with) */
     for (v = 0; v < atlas->view_count; v++) {
         mlod__band band;
         mlod__pview pv;
@@ -2257,6 +2258,7 @@ static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_v
 static void tangent_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, const mlod_view *views)
 {
     uint32_t v, i, row, col;
+    if (!mlod__atlas_ids(atlas)) return; /* (as ism_reference) */
     for (v = 0; v < atlas->view_count; v++) {
         mlod_cut_view cv = mlod_cut_get(cut, v);
         mlod__band band;
@@ -2589,7 +2591,7 @@ static void test_small_discs(void)
     memset(&band, 0, sizeof band);
     band.depth = depth;
     band.ids = ids;
-    band.stride = W;
+    band.stride = band.id_stride = W;
     for (i = 0; i < 200000; i++) {
         mlod__disc disc;
         uint32_t p, row, col, rb, re;
@@ -3873,9 +3875,10 @@ static void test_errors(void)
         /* mlod_atlas_fill_holes: each of its scratch allocations in turn */
         memset(&counter, 0, sizeof counter);
         if (mlod_atlas_create(views, 3, &desc, &a, &out, &e) == MLOD_OK) {
-            unsigned long live = counter.live_blocks, calls_before, fill_calls;
+            unsigned long live, calls_before, fill_calls;
             snapshot before;
             mlod_splat(out, tree, cut, views, NULL, NULL);
+            live = counter.live_blocks; /* (the splat's record of the nodes drawn stays with the atlas) */
             snap_take(&before, out);
             calls_before = counter.calls;
             mlod_atlas_fill_holes(out, NULL, NULL);
