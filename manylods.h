@@ -639,8 +639,8 @@
      (make bench, docs/BENCHMARKS.md "From how many lights the view tree
      pays": 2 threads, epsilon 1, delta 0.5, maps 2 x 11 x 11, the view
      tree's build counted), lights inside a scene (the bench's room, on
-     its walls looking in) take 0.6 to 0.8 times the per-view time from
-     16 lights on and a quarter at 16 k; lights around a compact object
+     its walls looking in) take 0.5 to 0.8 times the per-view time from
+     16 lights to 1 k and a quarter at 16 k; lights around a compact object
      (the bench's object, on a sphere looking at it) take 1.2 times at 16
      to 64 lights, as much at 256, 0.9 times at 1 k and 0.3 at 16 k.
      Larger maps move the point up (2 x 32 x 32 around the object: the
