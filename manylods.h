@@ -3901,19 +3901,21 @@ static mlod_result mlod__build_points_in(const mlod_points *points, const mlod_b
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "MLOD_ATTR_COLOR asks for colours the points lack");
     n = points->count;
     a = mlod__allocator(desc->allocator);
-    pos = (float *)mlod__alloc_array(&a, n, 3 * sizeof(float), NULL);
-    leaf_item = (uint32_t *)mlod__alloc_array(&a, n, sizeof(uint32_t), NULL);
+    if (!order) { /* the median splits' order, from the positions */
+        pos = (float *)mlod__alloc_array(&a, n, 3 * sizeof(float), NULL);
+        leaf_item = (uint32_t *)mlod__alloc_array(&a, n, sizeof(uint32_t), NULL);
+    }
     radius = (double *)mlod__alloc_array(&a, n, sizeof(double), NULL);
-    if (!pos || !leaf_item || !radius) {
+    if ((!order && (!pos || !leaf_item)) || !radius) {
         res = mlod__build_error(error, MLOD_ERROR_OUT_OF_MEMORY);
         goto done;
     }
-    for (i = 0; i < n; i++) memcpy(pos + 3 * (size_t)i, mlod__at(points->positions, points->position_stride, i), 3 * sizeof(float));
     if (order) {
         tree = mlod__tree_create(&a, n, desc->attributes, 0, 0);
         res = tree ? MLOD_OK : MLOD_ERROR_OUT_OF_MEMORY;
-        if (tree) memcpy(leaf_item, order, n * sizeof(uint32_t));
     } else {
+        for (i = 0; i < n; i++)
+            memcpy(pos + 3 * (size_t)i, mlod__at(points->positions, points->position_stride, i), 3 * sizeof(float));
         res = mlod__tree_ordered(&a, desc, pos, n, 0, 0, leaf_item, 0.0f, &tree);
     }
     if (res != MLOD_OK) {
@@ -3924,7 +3926,7 @@ static mlod_result mlod__build_points_in(const mlod_points *points, const mlod_b
     tree->area_unit = 1.0;
     leaves.tree = tree;
     leaves.points = points;
-    leaves.leaf_item = leaf_item;
+    leaves.leaf_item = order ? order : leaf_item;
     leaves.radius = radius;
     if (points->radii) {
         mlod__point_leaves(&leaves, 0, desc->parallel);
@@ -4033,11 +4035,12 @@ static void mlod__refit_slice(const mlod_tree *tree, uint32_t index, uint32_t *f
 }
 
 /* MLOD_ATTR_REFIT_CACHE, before the leaves: which triangles' corners
-   differ, bit for bit, from those the last refit read.  A leaf's bits are
-   a function of its triangle's corners (with its barycentrics, the
-   triangle's area at build and the tree's constants, which no refit
-   changes), so the leaves of the others would be written with the same
-   bits. */
+   differ, bit for bit, from those the last refit read, those kept in
+   their place.  A leaf's bits are a function of its triangle's corners
+   (with its barycentrics, the triangle's area at build and the tree's
+   constants, which no refit changes), so the leaves of the others would
+   be written with the same bits.  (A refit that fails after this marks
+   the cache unknown: mlod_refit_mesh.) */
 static void mlod__corners_compare_task(void *context, uint32_t index)
 {
     const mlod__refit_job *job = (const mlod__refit_job *)context;
@@ -4046,22 +4049,21 @@ static void mlod__corners_compare_task(void *context, uint32_t index)
     float now[27];
     mlod__refit_slice(tree, index, &t, &end);
     for (; t < end; t++) {
+        float *kept = tree->corners + (size_t)floats * t;
         mlod__corners_of(tree, job->mesh, t, job->normals, now);
-        tree->corners_changed[t] = memcmp(now, tree->corners + (size_t)floats * t, floats * sizeof(float)) != 0;
+        tree->corners_changed[t] = memcmp(now, kept, floats * sizeof(float)) != 0;
+        if (tree->corners_changed[t]) memcpy(kept, now, floats * sizeof(float));
     }
 }
 
-/* After the leaves: the corners this refit read, where they changed (or
-   all of them). */
+/* A refit that computed every leaf, after them: the corners it read. */
 static void mlod__corners_store_task(void *context, uint32_t index)
 {
     const mlod__refit_job *job = (const mlod__refit_job *)context;
     mlod_tree *tree = job->tree;
     uint32_t floats = mlod__corner_floats(tree->attributes), t, end;
     mlod__refit_slice(tree, index, &t, &end);
-    for (; t < end; t++)
-        if (!job->cached || tree->corners_changed[t])
-            mlod__corners_of(tree, job->mesh, t, job->normals, tree->corners + (size_t)floats * t);
+    for (; t < end; t++) mlod__corners_of(tree, job->mesh, t, job->normals, tree->corners + (size_t)floats * t);
 }
 
 static void mlod__refit_triangles_task(void *context, uint32_t index)
@@ -4180,15 +4182,16 @@ MLOD__PUBLIC mlod_result mlod_refit_mesh(mlod_tree *tree, const mlod_mesh *mesh,
             if (job.slice_growth[i] > growth) growth = job.slice_growth[i];
         res = mlod_refit_check_growth(tree->radius_scale, tree->area_unit, tree->leaf_count, growth, error);
         if (res != MLOD_OK) {
-            /* the scratch now holds shares of corners the cache does not */
+            /* the scratch holds shares of this mesh's corners, the cache
+               some of them: neither is the last writer's */
             tree->corners_state = 0;
             return res;
         }
     }
     mlod__run(parallel, (tree->leaf_count - 1) / MLOD__LEAF_CHUNK + 1, mlod__refit_mesh_task, &job);
     mlod__merge_all(tree, parallel, &job.stamp);
-    if (tree->corners) {
-        mlod__run(parallel, MLOD__REFIT_SLICES, mlod__corners_store_task, &job);
+    if (tree->corners) { /* (a cached refit stored the changed ones as it compared) */
+        if (!job.cached) mlod__run(parallel, MLOD__REFIT_SLICES, mlod__corners_store_task, &job);
         tree->corners_state = 1u + (uint32_t)job.normals;
     }
     mlod__set_precision(tree, tree->radius_scale * sqrt(tree->area_unit));
@@ -10167,21 +10170,19 @@ typedef struct mlod__view_order_job {
     uint32_t stop;    /* their splits stop above this depth */
 } mlod__view_order_job;
 
-/* Split node `node` (its views keys[0 .. its leaves)) and, below
-   depth `stop`, its subtree; a leaf writes its view. */
-/* The coordinate to split node's count keys along, nl to the left: the
-   least summed cost of the halves (mlod__vkey_cost) of the coordinates
-   along which the views spread (above MLOD__VIEW_NARROW of the widest,
+/* Split node's count keys, nl to the left, along the coordinate whose
+   halves have the least summed cost (mlod__vkey_cost), of those along
+   which the views spread (above MLOD__VIEW_NARROW of the widest,
    directions weighed by turn), the first on a tie; for a node of more
-   than MLOD__VIEW_SAMPLE views, of that many of them, evenly spaced in
-   their order.  Reorders the keys (or not, for a sample). */
-static int mlod__view_axis(const mlod__view_order_job *job, mlod__vkey *keys, uint32_t count, uint32_t nl)
+   than MLOD__VIEW_SAMPLE views, the coordinate chosen on that many of
+   them, evenly spaced in their order. */
+static void mlod__view_partition(const mlod__view_order_job *job, mlod__vkey *keys, uint32_t count, uint32_t nl)
 {
     mlod__vkey sample[MLOD__VIEW_SAMPLE], *set = keys;
     uint32_t i, m = count, ml = nl;
     double best = 0.0, widest = 0.0, extent[6];
     float lo[6], hi[6];
-    int dim, axis = 0, first = 1;
+    int dim, axis = 0, last = -1;
     if (count > MLOD__VIEW_SAMPLE) {
         for (i = 0; i < MLOD__VIEW_SAMPLE; i++) sample[i] = keys[(uint64_t)i * count / MLOD__VIEW_SAMPLE];
         m = MLOD__VIEW_SAMPLE;
@@ -10199,13 +10200,14 @@ static int mlod__view_axis(const mlod__view_order_job *job, mlod__vkey *keys, ui
         if (!(extent[dim] > MLOD__VIEW_NARROW * widest)) continue;
         mlod__vkey_select(set, m, ml, dim);
         cost = mlod__vkey_cost(set, ml, job->turn) + mlod__vkey_cost(set + ml, m - ml, job->turn);
-        if (first || cost < best) {
+        if (last < 0 || cost < best) {
             best = cost;
             axis = dim;
         }
-        first = 0;
+        last = dim;
     }
-    return axis;
+    /* the keys themselves, unless the last coordinate tried split them so */
+    if (set != keys || axis != last) mlod__vkey_select(keys, count, nl, axis);
 }
 
 /* Split node `node` (its views keys[0 .. its leaves)) and, above depth
@@ -10219,7 +10221,7 @@ static void mlod__view_split(const mlod__view_order_job *job, mlod__vkey *keys, 
     }
     if (mlod__depth_of(node) >= stop) return;
     nl = mlod__leaves_below(2 * node + 1, job->n);
-    mlod__vkey_select(keys, count, nl, mlod__view_axis(job, keys, count, nl));
+    mlod__view_partition(job, keys, count, nl);
     mlod__view_split(job, keys, 2 * node + 1, stop);
     mlod__view_split(job, keys + nl, 2 * node + 2, stop);
 }
@@ -10256,8 +10258,7 @@ static int mlod__view_order(const mlod_view_set *views, const mlod_allocator *a,
 {
     mlod__view_order_job job;
     uint32_t i, n = views->count, depth;
-    float lo[3], hi[3];
-    double diagonal = 0.0;
+    double lo[3], hi[3], diagonal = 0.0;
     int k;
     job.keys = (mlod__vkey *)mlod__alloc_array(a, n, sizeof(mlod__vkey), NULL);
     if (!job.keys) return 0;
@@ -10268,12 +10269,11 @@ static int mlod__view_order(const mlod_view_set *views, const mlod_allocator *a,
         for (k = 0; k < 3; k++) {
             job.keys[i].k[k] = e[k];
             job.keys[i].k[k + 3] = (float)(d[k] / length);
-            lo[k] = i == 0 || e[k] < lo[k] ? e[k] : lo[k];
-            hi[k] = i == 0 || e[k] > hi[k] ? e[k] : hi[k];
         }
         job.keys[i].item = i;
     }
-    for (k = 0; k < 3; k++) diagonal += ((double)hi[k] - lo[k]) * ((double)hi[k] - lo[k]);
+    mlod__box_of(views->eyes, views->eye_stride, n, lo, hi);
+    for (k = 0; k < 3; k++) diagonal += (hi[k] - lo[k]) * (hi[k] - lo[k]);
     job.order = order;
     job.n = n;
     job.turn = MLOD__VIEW_TURN * sqrt(diagonal);
