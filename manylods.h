@@ -301,8 +301,10 @@
      (a lazy step finds nothing to do on the basic cut), so results do not
      change; one byte of the view, epsilon, a refit, another tree or
      mlod_cut_reset recomputes the view as before.  A skipped view costs a
-     comparison of its bytes (about 4 ns), plus a copy of its list while
-     other views change.  A tree is known by its address and revision,
+     comparison of its bytes (about 4 ns), plus two copies of its list
+     while other views of its window change (an update goes through the
+     views a window of about 2^18 entries at a time; a window of
+     unchanged views is not touched).  A tree is known by its address and revision,
      which starts at a number no earlier tree of the process had: a tree
      built where a destroyed one stood is another tree to the cut.
      Unchanged nodes are not evaluated either, in incremental and lazy
@@ -671,9 +673,12 @@
      needs 104 GiB: a build allocates its tree first and keeps the scratch
      of its ordering in the tree's arrays until it writes them, so it
      touches little more memory than the tree and its samples),
-     mlod_cut_bound a cut's bytes for a mean cut size
-     (exactly what mlod_cut_reserve gives it, after which its updates
-     allocate nothing; an upper bound otherwise), mlod_atlas_bound an
+     mlod_cut_bound a cut's bytes, between and during updates, for a mean
+     cut size (5 bytes per entry with at most an eighth to spare, about
+     200 per view, and, during an update, 3 to 16 MB of buffers for one
+     window of views; mlod_cut_reserve allocates those buffers beforehand
+     and keeps them, after which steady frames allocate nothing),
+     mlod_atlas_bound an
      atlas's bytes (exactly), mlod_sample_bound what mlod_sample takes for
      the length of the call (exactly).  Every
      object reports its bytes (mlod_tree.bytes, mlod_cut_bytes,
@@ -1204,30 +1209,40 @@ typedef struct mlod_cut_view {
 
 typedef struct mlod_cut mlod_cut;
 
-/* Sizing, before a cut: the bytes a cut of view_count views holds once
-   mlod_cut_reserve(cut, mean_cut_nodes) has grown it, exactly, and so the
-   peak of its updates while its views' cuts average at most
-   mean_cut_nodes nodes, in any mode (they then allocate nothing): the
-   per-view arrays, three lists of the cuts, the scratch of an update's
-   rounds and its segments, each with a spare eighth.  A cut that is not
-   reserved grows as its updates need; what it holds between updates
-   stays at or below the bound; how far below depends on how the cuts
-   spread over views (the rounds' scratch is allotted up to 2^21 entries,
-   10.5 MB, whatever the cuts' sizes): cuts of millions of nodes held
-   1/1.6 to 1/1.1 of it in the tests and examples.  During an update that
-   grows an unreserved cut, the arrays it replaces are held until it
-   returns, so its peak may pass the bound, staying below twice it (up
-   to 1.16 times it in tests/test_memory.c): reserve for a hard limit.  (Not covered: a round that leaves more than one entry in 16 of
-   its input to split, which the tests never saw.)  0 for view_count 0,
-   (size_t)-1 beyond size_t.  Pure. */
+/* Sizing, before a cut: the most bytes a cut of view_count views holds,
+   between and during its updates, while its views' cuts average at most
+   mean_cut_nodes nodes, in any mode.  A cut holds each view's list (5
+   bytes per entry: 4 for the node, 1 for its status) in chunks, each the
+   lists of a run of consecutive views, with at most an eighth to spare;
+   about 200 bytes per view (offsets, counts, statistics, the view its
+   list was computed for); and, during an update, the buffers it works
+   in, sized for one window of views: an update goes through the views a
+   window at a time (a chunk's views, about 2^18 entries) and writes each
+   window's lists back into its chunk.  The buffers take 3 to 16 MB
+   whatever the cut's total size, and are given back at the end of each
+   update unless mlod_cut_reserve grew them.  Between updates a cut of
+   4.1 M entries over 1024 views holds 5.4 bytes per entry (7.2 while
+   reserved or during an update).  The bound counts the buffers, windows
+   of up to 2^19 entries and one chunk replaced during an update.  (Not covered: a window whose cuts grow past that
+   within one update, as a single view's cut above 2^19 entries, cuts
+   that multiply from one update to the next, or, in a cut's first
+   update, views whose cuts are far above those of the views before
+   them; its buffers then grow to its size.  Nor a round that leaves more
+   than one entry in 16 of its input to split, which the tests never
+   saw.)  0 for view_count 0, (size_t)-1 beyond size_t.  Pure. */
 MANYLODS_DEF size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes);
 
-/* Grow the cut now to mlod_cut_bound(view_count, mean_cut_nodes) bytes, so
-   that its updates allocate nothing while its views' cuts average at most
-   mean_cut_nodes nodes (allocation-free frames; the bound is then exactly
-   what the cut holds when it held less before).  A cut never shrinks: one
-   that already holds more keeps it.  MLOD_OK, or MLOD_ERROR_OUT_OF_MEMORY
-   / MLOD_ERROR_OVERFLOW with the cut as it was.  Not thread-safe for one
+/* Grow the buffers an update works in now, to what windows of cuts
+   averaging mean_cut_nodes nodes need (all mlod_cut_bound counts but the
+   lists and the chunks' records), and keep them between updates, so
+   that updates allocate only the chunks that hold the lists: in the
+   first update, and where a window's lists outgrow their chunk or fall
+   below 8/9 of it (a chunk is allocated with a sixteenth to spare).
+   Frames whose cuts change by a few percent allocate nothing: 3 to 16
+   MB held for allocation-free frames.  Buffers that already hold more
+   keep it.  An update that runs out of memory gives them back and ends
+   the reservation.  MLOD_OK, or MLOD_ERROR_OUT_OF_MEMORY /
+   MLOD_ERROR_OVERFLOW with the cut as it was.  Not thread-safe for one
    cut. */
 MANYLODS_DEF mlod_result mlod_cut_reserve(mlod_cut *cut, uint32_t mean_cut_nodes, mlod_error *error);
 
@@ -1239,14 +1254,19 @@ MANYLODS_DEF mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
 /* Compute the cuts of all views (views[0 .. view_count-1]) in the tree.
    Incremental and lazy modes start from the previous update's cuts when the
    previous update used a tree of the same node count, else from the root.
-   All views are checked before any work; on error the previous cuts stay,
-   and so does the cut's memory: what the call grew is given back
+   All views and params are checked before any work; when they are
+   refused the previous cuts stay, and so does the cut's memory
    (mlod_cut_bytes and the allocator's live bytes as before the call).
-   A view whose view, tree and epsilon did not change since the previous
-   update is not evaluated (THE CUT, above): an update where none changed
-   costs about 4 ns per view.  Memory grows with the cut sizes, not with
-   views x N; an update that grows the cut holds the arrays it replaces
-   until it returns. */
+   The update goes through the views a window at a time, writing each
+   window's lists over its previous ones (mlod_cut_bound), so an update
+   that runs out of memory midway has no previous cuts left to keep: it
+   resets the cut (as mlod_cut_reset: no entries, every version new; the
+   next update starts from the root) and gives back all it held beyond
+   what mlod_cut_create allocated.  A view whose view, tree and epsilon
+   did not change since the previous update is not evaluated (THE CUT,
+   above), and a window of such views is not touched: an update where
+   none changed costs about 4 ns per view.  Memory grows with the cut
+   sizes, not with views x N. */
 MANYLODS_DEF mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                          const mlod_cut_params *params, mlod_error *error);
 
@@ -5525,7 +5545,7 @@ static uint32_t mlod__vundecided(mlod__vf codes) { return (uint32_t)MLOD__VBITS(
    Internal; tests/compile/matrix.sh builds the cut's tests with smaller
    ones, where small trees take every path of the planning. */
 #ifndef MLOD__ROUND_BUDGET
-#define MLOD__ROUND_BUDGET ((size_t)1 << 21)
+#define MLOD__ROUND_BUDGET ((size_t)1 << 19)
 #endif
 #define MLOD__MIN_SHARE 16u
 #ifndef MLOD__SEGMENT_GROWTH
@@ -5572,12 +5592,45 @@ typedef struct mlod__work_buffer {
     size_t sizes[2];
 } mlod__work_buffer;
 
+/* The committed lists live in chunks, each the lists of a run of
+   consecutive views (first .. first + views - 1), nodes then statuses in
+   one allocation of `capacity` entries (none for capacity 0), used
+   entries of it; lists[MLOD__COMMITTED].offset[v] is view v's first entry
+   in its chunk.  An update goes through the views a window at a time: the
+   views of a chunk, or, where the cut has no chunks, windows of about
+   MLOD__WINDOW entries by the cuts computed so far (one view first, then
+   at most as many views as those done, and MLOD__WINDOW_VIEWS).  A window runs the
+   rounds on a cut restricted to its views (mlod__window_enter), its work
+   lists sized to it; its result goes back into its chunk where that fits
+   (mlod__commit_window), in runs of about MLOD__WINDOW entries where the
+   result holds more than twice that.  A window whose views are all
+   skipped is not touched.  Internal; tests/compile/matrix.sh builds the
+   cut's tests with a small one. */
+#ifndef MLOD__WINDOW
+#define MLOD__WINDOW ((size_t)1 << 18)
+#endif
+/* A window of a cut without chunks takes at most this many views (a
+   round's scratch gives each of its views' roots a share). */
+#define MLOD__WINDOW_VIEWS ((uint32_t)(MLOD__WINDOW / MLOD__MIN_SHARE))
+#define MLOD__COMMITTED 2
+typedef struct mlod__chunk {
+    uint32_t first, views;
+    uint32_t *nodes;
+    size_t capacity, used;
+} mlod__chunk;
+
 struct mlod_cut {
     mlod_allocator allocator;
     uint32_t view_count;
     uint32_t tree_nodes; /* node count the committed lists belong to; 0: none */
-    int committed;       /* which of lists[] holds the result */
+    int committed;       /* which of lists[] holds the result: MLOD__COMMITTED (a window's
+                            restriction reads it; its nodes and statuses are a chunk's) */
     mlod__list lists[3];
+    mlod__chunk *chunks; /* chunk_count chunks in view order, covering every view, or none */
+    uint32_t chunk_count, chunk_capacity;
+    mlod__chunk *fresh; /* during an update: the chunks of the windows done */
+    uint32_t fresh_capacity;
+    int reserved; /* mlod_cut_reserve succeeded: the work buffers stay between updates */
     mlod__view_stats *stats[2]; /* [0] committed, [1] work */
     uint32_t *scratch_nodes;
     uint8_t *scratch_status;
@@ -6783,6 +6836,28 @@ static void mlod__work_end(mlod_cut *cut, int success)
     }
 }
 
+/* The bytes of a chunk of `capacity` entries. */
+static size_t mlod__chunk_bytes(size_t capacity) { return capacity * (sizeof(uint32_t) + 1); }
+
+static void mlod__chunk_free(mlod_cut *cut, mlod__chunk *c)
+{
+    if (!c->nodes) return;
+    mlod__free(&cut->allocator, c->nodes);
+    cut->bytes -= mlod__chunk_bytes(c->capacity);
+    c->nodes = NULL;
+    c->capacity = 0;
+}
+
+/* Free every chunk's entries (cut->chunks and, during an update, the
+   fresh ones) and forget them: the cut has no chunks. */
+static void mlod__chunks_drop(mlod_cut *cut, uint32_t fresh_count)
+{
+    uint32_t i;
+    for (i = 0; i < cut->chunk_count; i++) mlod__chunk_free(cut, &cut->chunks[i]);
+    for (i = 0; i < fresh_count; i++) mlod__chunk_free(cut, &cut->fresh[i]);
+    cut->chunk_count = 0;
+}
+
 MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
 {
     int i;
@@ -6791,6 +6866,9 @@ MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
         mlod__work_buffer b = mlod__work_get(cut, i);
         mlod__work_free(cut, &b);
     }
+    mlod__chunks_drop(cut, 0);
+    mlod__free(&cut->allocator, cut->chunks);
+    mlod__free(&cut->allocator, cut->fresh);
     for (i = 0; i < 3; i++) {
         mlod__free(&cut->allocator, cut->lists[i].offset);
         mlod__free(&cut->allocator, cut->lists[i].count);
@@ -6829,6 +6907,7 @@ MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
     memset(cut, 0, sizeof *cut);
     cut->allocator = a;
     cut->view_count = view_count;
+    cut->committed = MLOD__COMMITTED;
     cut->bytes = sizeof *cut;
     for (i = 0; i < 3; i++) {
         ok = ok && (cut->lists[i].offset = (size_t *)mlod__alloc_array(&a, view_count, sizeof(size_t), &cut->bytes));
@@ -6879,9 +6958,18 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
     if (cut && view < cut->view_count) {
         const mlod__list *list = &cut->lists[cut->committed];
         const mlod__view_stats *s = &cut->stats[0][view];
-        r.nodes = list->nodes ? list->nodes + list->offset[view] : NULL;
-        r.status = list->status ? list->status + list->offset[view] : NULL;
         r.count = list->count[view];
+        if (r.count) { /* its chunk: the last that starts at or before it */
+            uint32_t lo = 0, hi = cut->chunk_count;
+            const mlod__chunk *c;
+            while (hi - lo > 1) {
+                uint32_t mid = lo + (hi - lo) / 2;
+                if (cut->chunks[mid].first <= view) lo = mid; else hi = mid;
+            }
+            c = &cut->chunks[lo];
+            r.nodes = c->nodes + list->offset[view];
+            r.status = (const uint8_t *)(c->nodes + c->capacity) + list->offset[view];
+        }
         r.drawn = s->drawn;
         r.culled = s->culled;
         r.oversize = s->oversize;
@@ -6894,69 +6982,81 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
     return r;
 }
 
-/* What mlod_cut_bound counts and mlod_cut_reserve allocates, for views
-   whose cuts average at most mean_cut_nodes: the capacity, in elements, of
-   each work buffer (MLOD__WORK_*), and the bytes of the per-view arrays a
-   cut holds from its creation.  Doubles: the caller checks the range.
-   A round's scratch holds its input and the room of its splits.  A first
-   round splits the roots with a share of the round's budget each (at
-   least MLOD__MIN_SHARE, at most MLOD__SEGMENT_GROWTH), plus, for a basic
-   cut, 1.25 times each view's previous cut and MLOD__MIN_SHARE; an
+/* What mlod_cut_bound counts, for views whose cuts average at most
+   mean_cut_nodes: the capacity, in elements, of each work buffer
+   (MLOD__WORK_*; none for the committed lists), the entries of the chunks
+   (*committed), and the bytes of the per-view arrays a cut holds from its
+   creation with two chunk records per view (their most).  Doubles: the
+   caller checks the range.  The work buffers serve one window at a time,
+   of at most 2 MLOD__WINDOW entries (mlod__commit_window) and
+   MLOD__WINDOW_VIEWS views.  A round's scratch holds its input and the room of its splits.
+   A first round splits the roots with a share of the round's budget each
+   (at least MLOD__MIN_SHARE, at most MLOD__SEGMENT_GROWTH), plus, for a
+   basic cut, 1.25 times each view's previous cut and MLOD__MIN_SHARE; an
    incremental one reads the previous cuts with a quarter more and
    MLOD__MIN_SHARE per segment; later rounds give their splits max(budget,
    input) in all (the leaves below each, or rooms from the previous cut,
    where those fit it, else equal shares; see mlod__plan_round; a wide
    view's roots take less in the first round, see mlod__root_room); a
-   lazy round at most doubles its input.
-   Segments: one per view, per MLOD__SEGMENT_INPUT / 4 entries, per
-   MLOD__SEGMENT_GROWTH entries of the budget's room.  Each buffer with
-   the eighth it grows by. */
-static double mlod__cut_capacities(uint32_t view_count, uint32_t mean_cut_nodes, double capacity[MLOD__WORK_COUNT])
+   lazy round at most doubles its input.  Segments: one per view, per
+   MLOD__SEGMENT_INPUT / 4 entries, per MLOD__SEGMENT_GROWTH entries of
+   the budget's room.  Each buffer with the eighth it grows by; chunks
+   with at most an eighth to spare, and a window's new chunk while it
+   replaces the old one. */
+static double mlod__cut_capacities(uint32_t view_count, uint32_t mean_cut_nodes, double capacity[MLOD__WORK_COUNT],
+                                   double *committed)
 {
     double v = view_count, total = v * mean_cut_nodes, most = total > v ? total : v;
+    double window = most < 2.0 * MLOD__WINDOW ? most : 2.0 * MLOD__WINDOW;
+    double wv = v < window ? v : window, wt = total < window ? total : window;
+    if (wv > MLOD__WINDOW_VIEWS) wv = MLOD__WINDOW_VIEWS;
     double budget = (double)MLOD__ROUND_BUDGET;
     double roots, first, later, segments;
-    int i;
-    roots = MLOD__MIN_SHARE * v > budget ? MLOD__MIN_SHARE * v : budget;
-    if (roots > MLOD__SEGMENT_GROWTH * v) roots = MLOD__SEGMENT_GROWTH * v;
-    first = v + roots + 1.25 * total + MLOD__MIN_SHARE * (v + total / 64);
-    later = most + (budget > most ? budget : most);
-    segments = v + total / (MLOD__SEGMENT_INPUT / 4) + budget / MLOD__SEGMENT_GROWTH;
-    for (i = 0; i < MLOD__WORK_SCRATCH; i++) capacity[i] = ceil(1.125 * most);
+    roots = MLOD__MIN_SHARE * wv > budget ? MLOD__MIN_SHARE * wv : budget;
+    if (roots > MLOD__SEGMENT_GROWTH * wv) roots = MLOD__SEGMENT_GROWTH * wv;
+    first = wv + roots + 1.25 * wt + MLOD__MIN_SHARE * (wv + wt / 64);
+    later = window + (budget > window ? budget : window);
+    segments = wv + wt / (MLOD__SEGMENT_INPUT / 4) + budget / MLOD__SEGMENT_GROWTH;
+    capacity[0] = capacity[1] = ceil(1.125 * window);
+    capacity[MLOD__COMMITTED] = 0.0;
     capacity[MLOD__WORK_SCRATCH] = ceil(1.125 * (first > later ? first : later));
     capacity[MLOD__WORK_SEGMENTS] = ceil(1.125 * segments);
     capacity[MLOD__WORK_TASKS] = capacity[MLOD__WORK_SEGMENTS] + 1.0;
+    *committed = floor(1.125 * total + 1.0625 * window);
     return (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
            v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t) +
-                sizeof(mlod_view) + 1 + sizeof(uint64_t));
+                sizeof(mlod_view) + 1 + sizeof(uint64_t) + 2 * sizeof(mlod__chunk));
 }
 
 MLOD__PUBLIC size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
 {
-    double capacity[MLOD__WORK_COUNT], bytes;
+    double capacity[MLOD__WORK_COUNT], bytes, committed;
     mlod_cut empty;
     int i;
     if (view_count == 0) return 0;
     memset(&empty, 0, sizeof empty);
-    bytes = mlod__cut_capacities(view_count, mean_cut_nodes, capacity);
+    bytes = mlod__cut_capacities(view_count, mean_cut_nodes, capacity, &committed);
     for (i = 0; i < MLOD__WORK_COUNT; i++) {
         mlod__work_buffer b = mlod__work_get(&empty, i);
         bytes += capacity[i] * (double)(b.sizes[0] + b.sizes[1]);
     }
+    bytes += committed * (double)mlod__chunk_bytes(1);
     return bytes >= (double)(size_t)-1 ? (size_t)-1 : (size_t)bytes;
 }
 
 MLOD__PUBLIC mlod_result mlod_cut_reserve(mlod_cut *cut, uint32_t mean_cut_nodes, mlod_error *error)
 {
-    double capacity[MLOD__WORK_COUNT];
+    double capacity[MLOD__WORK_COUNT], committed;
     int i, ok = 1;
     if (!cut) return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "cut is NULL");
     if (mlod_cut_bound(cut->view_count, mean_cut_nodes) == (size_t)-1)
         return mlod__fail(error, MLOD_ERROR_OVERFLOW, "a cut of %u views of %u nodes each does not fit in memory",
                           cut->view_count, mean_cut_nodes);
-    mlod__cut_capacities(cut->view_count, mean_cut_nodes, capacity);
-    for (i = 0; i < MLOD__WORK_COUNT && ok; i++) ok = mlod__work_grow(cut, i, (size_t)capacity[i], 0);
+    mlod__cut_capacities(cut->view_count, mean_cut_nodes, capacity, &committed);
+    for (i = 0; i < MLOD__WORK_COUNT && ok; i++)
+        if (i != MLOD__COMMITTED) ok = mlod__work_grow(cut, i, (size_t)capacity[i], 0);
     mlod__work_end(cut, ok);
+    if (ok) cut->reserved = 1;
     return ok ? mlod__succeed(error)
               : mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory reserving the cut of %u views",
                            cut->view_count);
@@ -7449,16 +7549,260 @@ static void mlod__remember_views(mlod_cut *cut, const mlod_tree *tree, const mlo
     cut->seen_epsilon = params->epsilon;
 }
 
+/* The rounds of one window (mlod_cut_update), on w, the cut restricted to
+   the window's views (mlod__window_enter), job prepared by the update.
+   same_tree: the committed lists are cuts of a tree of this node count.
+   After the last round: the skipped views' lists copied, the versions
+   given, the counts committed (stats[0]).  Returns the list holding the
+   window's result, or NULL when out of memory. */
+static mlod__list *mlod__window_rounds(mlod_cut *w, const mlod_tree *tree, const mlod_cut_params *params,
+                                       mlod__cut_job *job, int same_tree)
+{
+    mlod__list *in, *out;
+    uint32_t v, round, tasks, skipped = 0;
+    uint64_t round_steps = 0; /* steps up to the last round */
+    int idle = 0;
+    const int from_root = params->mode == MLOD_CUT_BASIC || !same_tree;
+    /* a basic cut's first round is sized by the previous cut of the tree */
+    const uint32_t *hint = params->mode == MLOD_CUT_BASIC && same_tree ? w->lists[w->committed].count : NULL;
+    /* ... and its later rounds by the previous cut below each entry to split */
+    const mlod__list *hint_list = hint ? &w->lists[w->committed] : NULL;
+    job->cut = w;
+    in = &w->lists[w->committed];
+    if (from_root) {
+        in = &w->lists[(w->committed + 1) % 3];
+        if (!mlod__work_reserve(w, (int)(in - w->lists), w->view_count)) return NULL;
+        for (v = 0; v < w->view_count; v++) {
+            in->nodes[v] = 0;
+            in->status[v] = MLOD__PENDING;
+            in->offset[v] = v;
+            in->count[v] = 1;
+        }
+    }
+    for (v = 0; v < w->view_count; v++) {
+        if (w->view_done[v] == MLOD__SKIPPED) { /* its counts, with no work */
+            w->stats[1][v] = w->stats[0][v];
+            w->stats[1][v].evaluated = w->stats[1][v].steps = 0;
+            skipped++;
+        } else {
+            w->stats[1][v].coarse = 0;
+        }
+    }
+    for (round = 0;; round++) {
+        uint64_t coarse = 0, steps = 0;
+        out = &w->lists[(w->committed + 1) % 3];
+        if (out == in) out = &w->lists[(w->committed + 2) % 3];
+        job->trust = round > 0;
+        /* lazy: a round without a move leaves a cut the next rounds keep,
+           so the round after it is the last whatever lazy_steps says */
+        job->last = !job->lazy || round + 1 >= params->lazy_steps || (round > 0 && idle);
+        job->merge = params->mode == MLOD_CUT_INCREMENTAL && round == 0 && !from_root;
+        job->in = in;
+        job->out = out;
+        job->done_in = round == 0 ? &w->lists[w->committed] : in;
+        /* a lazy round before the last marks the unchanged pairs' parents
+           as invalid for the next rounds (MLOD__PARENT_INVALID): its
+           segments are not copied from the input, which holds no marks */
+        if (!mlod__plan_round(w, in, job->lazy, job->trust, round == 0 ? hint : NULL, round > 0 ? hint_list : NULL,
+                              tree, job->lazy && !job->last ? 0u : job->age, params->parallel, &tasks))
+            return NULL;
+        mlod__run(params->parallel, tasks, mlod__segment_task, job);
+        if (!mlod__place_output(w, job->done_in, out)) return NULL;
+        mlod__run(params->parallel, mlod__view_chunks(w), mlod__join_task, job);
+        in = out;
+        for (v = 0; v < w->view_count; v++) {
+            coarse += w->stats[1][v].coarse;
+            steps += w->stats[1][v].steps;
+        }
+        if (job->lazy ? job->last : coarse == 0) break;
+        idle = steps == round_steps;
+        round_steps = steps;
+    }
+    job->done_in = &w->lists[w->committed];
+    job->out = in;
+    if (skipped) mlod__run(params->parallel, mlod__view_chunks(w), mlod__copy_skipped_task, job);
+    mlod__run(params->parallel, mlod__view_chunks(w), mlod__version_task, job);
+    memcpy(w->stats[0], w->stats[1], w->view_count * sizeof(mlod__view_stats));
+    return in;
+}
+
+/* w: the cut restricted to views first .. first + n - 1, their committed
+   lists in chunk c (NULL: none), sharing the cut's work buffers;
+   mlod__window_leave gives the buffers back. */
+static void mlod__window_enter(const mlod_cut *cut, mlod_cut *w, uint32_t first, uint32_t n, const mlod__chunk *c)
+{
+    int i;
+    *w = *cut;
+    w->view_count = n;
+    for (i = 0; i < 3; i++) {
+        w->lists[i].offset += first;
+        w->lists[i].count += first;
+    }
+    w->lists[MLOD__COMMITTED].nodes = c && c->capacity ? c->nodes : NULL;
+    w->lists[MLOD__COMMITTED].status = c && c->capacity ? (uint8_t *)(c->nodes + c->capacity) : NULL;
+    w->lists[MLOD__COMMITTED].capacity = c ? c->capacity : 0;
+    w->stats[0] += first;
+    w->stats[1] += first;
+    w->view_segment += first;
+    w->view_done += first;
+    w->view_work += first;
+    w->seen += first;
+    w->known += first;
+    w->version += first;
+    memset(w->grown, 0, sizeof w->grown);
+}
+
+static void mlod__window_leave(mlod_cut *cut, mlod_cut *w, int success)
+{
+    int which;
+    mlod__work_end(w, success);
+    for (which = 0; which < MLOD__WORK_COUNT; which++)
+        if (which != MLOD__COMMITTED) {
+            mlod__work_buffer b = mlod__work_get(w, which);
+            mlod__work_set(cut, which, &b);
+        }
+    cut->bytes = w->bytes;
+}
+
+/* Give back the buffers an update works in. */
+static void mlod__work_release(mlod_cut *cut)
+{
+    int which;
+    for (which = 0; which < MLOD__WORK_COUNT; which++) {
+        mlod__work_buffer b = mlod__work_get(cut, which);
+        mlod__work_free(cut, &b);
+        b.first = b.second = NULL;
+        b.capacity = 0;
+        mlod__work_set(cut, which, &b);
+    }
+}
+
+/* Give back all a cut holds beyond what mlod_cut_create gave it: its
+   chunks (the fresh ones, fresh_count, too) and work buffers. */
+static void mlod__cut_release(mlod_cut *cut, uint32_t fresh_count)
+{
+    mlod__chunks_drop(cut, fresh_count);
+    mlod__free(&cut->allocator, cut->chunks);
+    mlod__free(&cut->allocator, cut->fresh);
+    cut->bytes -= ((size_t)cut->chunk_capacity + cut->fresh_capacity) * sizeof(mlod__chunk);
+    cut->chunks = cut->fresh = NULL;
+    cut->chunk_capacity = cut->fresh_capacity = 0;
+    mlod__work_release(cut);
+    cut->reserved = 0;
+}
+
+/* Room for chunk record `index` of the fresh ones; NULL when out of memory. */
+static mlod__chunk *mlod__fresh_chunk(mlod_cut *cut, uint32_t index)
+{
+    if (index >= cut->fresh_capacity) {
+        uint32_t capacity = cut->fresh_capacity ? 2 * cut->fresh_capacity : 16u;
+        mlod__chunk *grown;
+        if (capacity > cut->view_count) capacity = cut->view_count;
+        grown = (mlod__chunk *)mlod__alloc_array(&cut->allocator, capacity, sizeof(mlod__chunk), NULL);
+        if (!grown) return NULL;
+        if (index) memcpy(grown, cut->fresh, index * sizeof(mlod__chunk));
+        mlod__free(&cut->allocator, cut->fresh);
+        cut->bytes += (capacity - cut->fresh_capacity) * sizeof(mlod__chunk);
+        cut->fresh = grown;
+        cut->fresh_capacity = capacity;
+    }
+    return &cut->fresh[index];
+}
+
+/* Commit a window's result (res, restricted to views first .. first + n -
+   1 as in mlod__window_enter) as fresh chunks from *fresh_count on: into
+   old's entries where it fits them with at most an eighth to spare, else
+   into new chunks with a sixteenth to spare; in runs of views of about
+   MLOD__WINDOW entries where it holds more than twice that.  old's
+   entries are freed or taken (old->nodes NULL after).  Returns 0 when out
+   of memory. */
+typedef struct mlod__commit_job {
+    const mlod__list *res;
+    const mlod__list *to;
+    const mlod__chunk *chunk;
+    uint32_t first, start, end;
+} mlod__commit_job;
+
+/* Views start + MLOD__VIEW_CHUNK index .. of a window's result into their chunk. */
+static void mlod__commit_task(void *context, uint32_t index)
+{
+    const mlod__commit_job *job = (const mlod__commit_job *)context;
+    uint32_t v = job->start + index * MLOD__VIEW_CHUNK, end = v + MLOD__VIEW_CHUNK < job->end ? v + MLOD__VIEW_CHUNK : job->end;
+    uint8_t *status = (uint8_t *)(job->chunk->nodes + job->chunk->capacity);
+    for (; v < end; v++) {
+        uint32_t count = job->res->count[v];
+        size_t at = job->to->offset[job->first + v];
+        if (!count) continue;
+        memcpy(job->chunk->nodes + at, job->res->nodes + job->res->offset[v], count * sizeof(uint32_t));
+        memcpy(status + at, job->res->status + job->res->offset[v], count);
+    }
+}
+
+static int mlod__commit_window(mlod_cut *cut, uint32_t first, uint32_t n, const mlod__list *res, mlod__chunk *old,
+                               uint32_t *fresh_count, const mlod_parallel *parallel)
+{
+    mlod__list *to = &cut->lists[MLOD__COMMITTED];
+    mlod__commit_job job;
+    size_t total = 0;
+    uint32_t v, start = 0;
+    for (v = 0; v < n; v++) total += res->count[v];
+    while (start < n) {
+        uint32_t end = n;
+        size_t size = total, at = 0;
+        mlod__chunk *c = mlod__fresh_chunk(cut, *fresh_count);
+        if (!c) return 0;
+        if (total > 2 * MLOD__WINDOW)
+            for (end = start, size = 0; end < n && (end == start || size < MLOD__WINDOW); end++) size += res->count[end];
+        c->first = first + start;
+        c->views = end - start;
+        c->used = size;
+        if (old && old->nodes && size == total && size <= old->capacity && old->capacity - size <= size / 8) {
+            c->nodes = old->nodes; /* in place: the result is in a work list */
+            c->capacity = old->capacity;
+            old->nodes = NULL;
+        } else {
+            c->capacity = size + size / 16;
+            c->nodes = c->capacity ? (uint32_t *)mlod__alloc_array(&cut->allocator, c->capacity, sizeof(uint32_t) + 1, NULL)
+                                   : NULL;
+            if (c->capacity && !c->nodes) return 0;
+            cut->bytes += mlod__chunk_bytes(c->capacity);
+        }
+        ++*fresh_count;
+        for (v = start; v < end; v++) {
+            to->offset[first + v] = at;
+            to->count[first + v] = res->count[v];
+            at += res->count[v];
+        }
+        job.res = res;
+        job.to = to;
+        job.chunk = c;
+        job.first = first;
+        job.start = start;
+        job.end = end;
+        mlod__run(parallel, (end - start - 1) / MLOD__VIEW_CHUNK + 1, mlod__commit_task, &job);
+        start = end;
+    }
+    if (old) mlod__chunk_free(cut, old);
+    return 1;
+}
+
+/* Whether every view of first .. first + n - 1 is skipped. */
+static int mlod__window_skipped(const mlod_cut *cut, uint32_t first, uint32_t n)
+{
+    uint32_t v;
+    for (v = first; v < first + n; v++)
+        if (cut->view_done[v] != MLOD__SKIPPED) return 0;
+    return 1;
+}
+
 MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                          const mlod_cut_params *params, mlod_error *error)
 {
     mlod__cut_job job;
-    mlod__list *in, *out;
-    uint32_t v, round, tasks, skipped;
-    uint64_t round_steps = 0; /* steps up to the last round */
-    int from_root, idle = 0;
-    const uint32_t *hint;
-    const mlod__list *hint_list;
+    uint32_t v, skipped, next = 0, fresh_count = 0, done_views = 0;
+    uint64_t done_entries = 0;
+    const int have = cut && cut->chunk_count > 0; /* windows: the chunks */
+    int same_tree;
     mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
     if (res != MLOD_OK) return res;
     memset(&job, 0, sizeof job);
@@ -7478,84 +7822,64 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         cut->seen_revision = tree->revision;
         return mlod__succeed(error);
     }
-    from_root = params->mode == MLOD_CUT_BASIC || cut->tree_nodes != tree->node_count;
-    /* a basic cut's first round is sized by the previous cut of the tree */
-    hint = params->mode == MLOD_CUT_BASIC && cut->tree_nodes == tree->node_count ? cut->lists[cut->committed].count : NULL;
-    /* ... and its later rounds by the previous cut below each entry to split */
-    hint_list = hint ? &cut->lists[cut->committed] : NULL;
+    same_tree = cut->tree_nodes == tree->node_count;
     job.tree = tree;
-    job.views = views;
     job.epsilon = params->epsilon;
     job.lazy = params->mode == MLOD_CUT_LAZY;
-    job.cut = cut;
-    in = &cut->lists[cut->committed];
-    if (from_root) {
-        in = &cut->lists[(cut->committed + 1) % 3];
-        if (!mlod__work_reserve(cut, (int)(in - cut->lists), cut->view_count)) goto out_of_memory;
-        for (v = 0; v < cut->view_count; v++) {
-            in->nodes[v] = 0;
-            in->status[v] = MLOD__PENDING;
-            in->offset[v] = v;
-            in->count[v] = 1;
-        }
-    }
-    for (v = 0; v < cut->view_count; v++) {
-        if (cut->view_done[v] == MLOD__SKIPPED) { /* its counts, with no work */
-            cut->stats[1][v] = cut->stats[0][v];
-            cut->stats[1][v].evaluated = cut->stats[1][v].steps = 0;
-        } else {
-            cut->stats[1][v].coarse = 0;
-        }
-    }
-    for (round = 0;; round++) {
-        uint64_t coarse = 0, steps = 0;
-        out = &cut->lists[(cut->committed + 1) % 3];
-        if (out == in) out = &cut->lists[(cut->committed + 2) % 3];
-        job.trust = round > 0;
-        /* lazy: a round without a move leaves a cut the next rounds keep,
-           so the round after it is the last whatever lazy_steps says */
-        job.last = !job.lazy || round + 1 >= params->lazy_steps || (round > 0 && idle);
-        job.merge = params->mode == MLOD_CUT_INCREMENTAL && round == 0 && !from_root;
-        job.in = in;
-        job.out = out;
-        job.done_in = round == 0 ? &cut->lists[cut->committed] : in;
-        /* a lazy round before the last marks the unchanged pairs' parents
-           as invalid for the next rounds (MLOD__PARENT_INVALID): its
-           segments are not copied from the input, which holds no marks */
-        if (!mlod__plan_round(cut, in, job.lazy, job.trust, round == 0 ? hint : NULL, round > 0 ? hint_list : NULL,
-                              tree, job.lazy && !job.last ? 0u : job.age, params->parallel, &tasks))
-            goto out_of_memory;
-        mlod__run(params->parallel, tasks, mlod__segment_task, &job);
-        if (!mlod__place_output(cut, job.done_in, out)) goto out_of_memory;
-        mlod__run(params->parallel, mlod__view_chunks(cut), mlod__join_task, &job);
-        in = out;
-        for (v = 0; v < cut->view_count; v++) {
-            coarse += cut->stats[1][v].coarse;
-            steps += cut->stats[1][v].steps;
-        }
-        if (job.lazy ? job.last : coarse == 0) break;
-        idle = steps == round_steps;
-        round_steps = steps;
-    }
-    job.done_in = &cut->lists[cut->committed];
-    job.out = in;
-    if (skipped) mlod__run(params->parallel, mlod__view_chunks(cut), mlod__copy_skipped_task, &job);
     job.serial = cut->serial + 1;
-    mlod__run(params->parallel, mlod__view_chunks(cut), mlod__version_task, &job);
-    cut->serial++;
-    {
-        mlod__view_stats *t = cut->stats[0];
-        cut->stats[0] = cut->stats[1];
-        cut->stats[1] = t;
+    for (v = 0; v < cut->view_count;) {
+        mlod__chunk *old = have ? &cut->chunks[next++] : NULL;
+        uint32_t n;
+        if (old) {
+            n = old->views;
+        } else { /* about MLOD__WINDOW entries by the cuts so far, at most as many views as
+                    those: one view, then at most doubling */
+            double guess = (double)MLOD__WINDOW * done_views / (double)(done_entries ? done_entries : 1);
+            n = done_views == 0 ? 1u : guess < 1.0 ? 1u : guess > (double)done_views ? done_views : (uint32_t)guess;
+            if (n > MLOD__WINDOW_VIEWS) n = MLOD__WINDOW_VIEWS;
+            if (n > cut->view_count - v) n = cut->view_count - v;
+        }
+        if (old && mlod__window_skipped(cut, v, n)) { /* kept as it is */
+            uint32_t u;
+            mlod__chunk *c = mlod__fresh_chunk(cut, fresh_count);
+            if (!c) goto out_of_memory;
+            *c = *old;
+            old->nodes = NULL;
+            fresh_count++;
+            for (u = v; u < v + n; u++) cut->stats[0][u].evaluated = cut->stats[0][u].steps = 0;
+        } else {
+            mlod_cut w;
+            mlod__list *out;
+            uint32_t u;
+            mlod__window_enter(cut, &w, v, n, old);
+            job.views = views + v;
+            out = mlod__window_rounds(&w, tree, params, &job, same_tree);
+            mlod__window_leave(cut, &w, out != NULL);
+            if (!out || !mlod__commit_window(cut, v, n, out, old, &fresh_count, params->parallel)) goto out_of_memory;
+            for (u = v; u < v + n; u++) done_entries += cut->lists[MLOD__COMMITTED].count[u];
+        }
+        done_views += n;
+        v += n;
     }
-    cut->committed = (int)(in - cut->lists);
+    {
+        mlod__chunk *t = cut->chunks;
+        uint32_t capacity = cut->chunk_capacity;
+        cut->chunks = cut->fresh;
+        cut->chunk_capacity = cut->fresh_capacity;
+        cut->chunk_count = fresh_count;
+        cut->fresh = t;
+        cut->fresh_capacity = capacity;
+    }
+    cut->serial++;
     cut->tree_nodes = tree->node_count;
     mlod__remember_views(cut, tree, views, params);
-    mlod__work_end(cut, 1);
+    if (!cut->reserved) mlod__work_release(cut);
     return mlod__succeed(error);
 out_of_memory:
-    mlod__work_end(cut, 0);
-    return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory updating the cut of %u views", cut->view_count);
+    mlod__cut_release(cut, fresh_count);
+    mlod_cut_reset(cut);
+    return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory updating the cut of %u views (the cut is reset)",
+                      cut->view_count);
 }
 
 

@@ -191,6 +191,42 @@ static void *checked_malloc(size_t bytes)
     return p;
 }
 
+/* An allocator that counts the bytes it holds and their peak (calls from
+   one thread at a time: a cut allocates on its update's calling thread). */
+typedef struct bench_counter {
+    size_t live, peak;
+} bench_counter;
+
+static void *bench_counter_alloc(void *user, size_t bytes)
+{
+    bench_counter *c = (bench_counter *)user;
+    size_t *block = (size_t *)malloc(bytes + 16);
+    if (!block) return NULL;
+    block[0] = bytes;
+    c->live += bytes;
+    if (c->live > c->peak) c->peak = c->live;
+    return (unsigned char *)block + 16;
+}
+
+static void bench_counter_free(void *user, void *pointer)
+{
+    bench_counter *c = (bench_counter *)user;
+    size_t *block;
+    if (!pointer) return;
+    block = (size_t *)(void *)((unsigned char *)pointer - 16);
+    c->live -= block[0];
+    free(block);
+}
+
+static mlod_allocator bench_counter_allocator(bench_counter *c)
+{
+    mlod_allocator a;
+    a.alloc = bench_counter_alloc;
+    a.free = bench_counter_free;
+    a.user = c;
+    return a;
+}
+
 static void set3(float out[3], double x, double y, double z)
 {
     out[0] = (float)x;
@@ -271,6 +307,7 @@ typedef struct row {
     double evaluated, per_view;                             /* per frame; NAN: n/a */
     double tree_bytes, cut_bytes, atlas_bytes;              /* NAN: n/a */
     double entry_bytes; /* mlod_cut_bytes / cut entries after the last frame's update; NAN: n/a */
+    double peak_bytes;  /* the cut's most bytes during the measured frames' updates; NAN: n/a */
     double redrawn, changed_pixels; /* target_rigs: tiles mlod_splat drew and % of pixels that changed, per frame */
     int has_metrics;
     metrics m;
@@ -359,7 +396,7 @@ static row *add_row(bench *b, int kind, const char *scene, const char *method)
     r->scene = scene;
     snprintf(r->method, sizeof r->method, "%s", method);
     r->build_ms = r->refit_ms = r->cut_ms = r->splat_ms = r->total_ms = r->cpu_ms = NAN;
-    r->evaluated = r->per_view = r->tree_bytes = r->cut_bytes = r->atlas_bytes = r->entry_bytes = NAN;
+    r->evaluated = r->per_view = r->tree_bytes = r->cut_bytes = r->atlas_bytes = r->entry_bytes = r->peak_bytes = NAN;
     return r;
 }
 

@@ -21,6 +21,8 @@ typedef struct mode_stats {
     double evaluated, nodes; /* sums over measured frames */
     size_t cut_bytes;
     double last_bytes, last_entries; /* mlod_cut_bytes and cut entries after the last frame's update */
+    bench_counter counter; /* the cut's allocator */
+    size_t peak;           /* its peak during the measured frames' updates */
     float *last_depth; /* the last frame's atlas depth, compared after the frames */
     metrics m;
 } mode_stats;
@@ -140,6 +142,7 @@ static void fill_ours(row *r, const protocol *p, float eps, uint32_t n, const mo
     r->tree_bytes = (double)tree->bytes;
     r->cut_bytes = (double)s->cut_bytes;
     r->entry_bytes = s->last_bytes / s->last_entries;
+    r->peak_bytes = (double)s->peak;
     r->atlas_bytes = (double)p->atlas->bytes;
     r->has_metrics = 1;
     r->m = s->m;
@@ -254,8 +257,9 @@ static void run_size(bench *b, protocol *p, uint32_t n, const float *eps_list, i
         float eps = eps_list[e];
         mode_stats *stats = runs[e].stats;
         for (m = 0; m < BENCH_MODES; m++) {
+            mlod_allocator counted = bench_counter_allocator(&stats[m].counter);
             stats[m].present = (modes >> m) & 1;
-            if (stats[m].present && mlod_cut_create(p->view_count, NULL, &stats[m].cut, &error) != MLOD_OK)
+            if (stats[m].present && mlod_cut_create(p->view_count, &counted, &stats[m].cut, &error) != MLOD_OK)
                 fail("mlod_cut_create: %s", error.message);
         }
         for (f = 0; f < p->frame_count; f++) {
@@ -278,10 +282,12 @@ static void run_size(bench *b, protocol *p, uint32_t n, const float *eps_list, i
                 params.epsilon = eps;
                 params.lazy_steps = mode_steps[m];
                 params.parallel = &b->parallel;
+                s->counter.peak = s->counter.live;
                 t0 = now_ms();
                 if (mlod_cut_update(s->cut, tree, views, &params, &error) != MLOD_OK)
                     fail("mlod_cut_update: %s", error.message);
                 cut_ms = now_ms() - t0;
+                if (measured && s->counter.peak > s->peak) s->peak = s->counter.peak;
                 t0 = now_ms();
                 snprintf(what, sizeof what, "%s, N %u, eps %g, %s, frame %d", p->name, n, (double)eps, mode_names[m], f);
                 check_cut(&rk, s->cut, what, mode_kinds[m] == MLOD_CUT_LAZY);

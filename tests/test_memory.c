@@ -1,13 +1,16 @@
 /* tests/test_memory.c - memory a caller can plan for.
 
-   1. A failed mlod_cut_update gives back what it grew: after any error (an
-      allocator failing its k-th call, a live-bytes budget, a bad view or
-      epsilon), in every mode, with and without a parallel hook, the cut
-      holds the same cuts, reports the same bytes and holds the same live
-      bytes of its allocator as before the call; it still skips the views
-      its lists were computed for (an update with them allocates nothing
-      and evaluates nothing); and the next update with room to spare gives
-      the cut an undisturbed cut gives.
+   1. A failed mlod_cut_update: in every mode, with and without a
+      parallel hook.  After an error found before any work (a bad view or
+      epsilon) the cut holds the same cuts, reports the same bytes and
+      holds the same live bytes of its allocator as before the call, and
+      still skips the views its lists were computed for (an update with
+      them allocates nothing and evaluates nothing).  After running out of
+      memory (an allocator failing its k-th call, a live-bytes budget) the
+      cut is reset: no entries, every version new, no more bytes than
+      before, reported exactly; the same updates again give the same cuts
+      in the same bytes; and the next update with room to spare gives the
+      cut an undisturbed cut gives.
    2. The sizing functions: mlod_build_mesh_bound / mlod_build_points_bound
       against the allocator's high-water mark of live bytes (at or above
       it, at most 10 % above), mlod_cut_bound against a cut's bytes and
@@ -171,6 +174,35 @@ static int check_unchanged(const snapshot *s, const mlod_cut *cut, const budget 
     return ok;
 }
 
+/* After an update that ran out of memory: the cut is reset (no entries,
+   every version new), holds no more than before (live bytes) and reports
+   what it holds.  Then the settled cut's updates again give the settled
+   cuts (the snapshot s) in the same bytes.  Returns 1 when all held. */
+static int check_reset(const snapshot *s, mlod_cut *cut, const budget *b, size_t live, mlod_result got,
+                       mlod_cut_params p, const char *what, unsigned long at)
+{
+    uint32_t v, kept = 0, old_versions = 0;
+    int i, ok;
+    long view;
+    for (v = 0; v < s->views; v++) {
+        mlod_cut_view cv = mlod_cut_get(cut, v);
+        kept += cv.count != 0;
+        old_versions += cv.version == s->cv[v].version;
+    }
+    CHECK(got == MLOD_ERROR_OUT_OF_MEMORY, "%s %lu: returned %s", what, at, mlod_result_name(got));
+    CHECK(kept == 0 && old_versions == 0, "%s %lu: not reset: %u views hold entries, %u kept their version", what, at,
+          kept, old_versions);
+    CHECK(b->live_bytes <= live && mlod_cut_bytes(cut) == b->live_bytes,
+          "%s %lu: the cut reports %zu bytes, holds %zu, held %zu before", what, at, mlod_cut_bytes(cut), b->live_bytes, live);
+    ok = got == MLOD_ERROR_OUT_OF_MEMORY && kept == 0 && old_versions == 0 && b->live_bytes <= live;
+    p.epsilon = 3.0f;
+    for (i = 0; i < 2; i++) CHECK(mlod_cut_update(cut, room_tree, far_views, &p, NULL) == MLOD_OK, "%s %lu: settle again", what, at);
+    view = snapshot_differs(s, cut);
+    CHECK(view < 0 && mlod_cut_bytes(cut) == s->bytes && b->live_bytes == live,
+          "%s %lu: settled again, view %ld differs; %zu bytes, %zu before", what, at, view, mlod_cut_bytes(cut), s->bytes);
+    return ok && view < 0 && b->live_bytes == live;
+}
+
 /* After a failed update the cut still knows what its lists were computed
    for: when the settled cut's last update evaluated no view (its lists are
    exact for the far views), an update with those views again skips every
@@ -275,9 +307,11 @@ static void test_failed_updates(void)
             snprintf(what, sizeof what, "%s, %s, failing allocation", mode_names[mode], hook_names[h]);
             for (k = 1; k <= calls; k++) {
                 mlod_error e;
+                mlod_result r;
                 b.fail_at = b.calls + k;
-                check_unchanged(&s, cut, &b, live, mlod_cut_update(cut, room_tree, near_views, &p, &e), MLOD_ERROR_OUT_OF_MEMORY,
-                                what, k);
+                r = mlod_cut_update(cut, room_tree, near_views, &p, &e);
+                b.fail_at = 0;
+                check_reset(&s, cut, &b, live, r, p, what, k);
                 known += check_still_known(&s, cut, &b, live, p, what, k);
                 fails++;
             }
@@ -294,7 +328,8 @@ static void test_failed_updates(void)
                 b.budget_bytes = f < 1000 ? live + growth * (size_t)f / 1000 : 0;
                 r = mlod_cut_update(cut, room_tree, near_views, &p, NULL);
                 if (r == MLOD_OK) break;
-                check_unchanged(&s, cut, &b, live, r, MLOD_ERROR_OUT_OF_MEMORY, what, (unsigned long)f);
+                b.budget_bytes = 0;
+                check_reset(&s, cut, &b, live, r, p, what, (unsigned long)f);
                 known += check_still_known(&s, cut, &b, live, p, what, (unsigned long)f);
                 budgets++;
             }
@@ -417,15 +452,17 @@ static void test_build_bounds(void)
 
 /* ------------------------------------------------ 2. sizing: the cut */
 
-/* mlod_cut_reserve's allocations: nodes and statuses of three lists and of
-   the scratch, the segments, the tasks. */
-#define MLOD_TEST_WORK_BUFFERS 10u
+/* mlod_cut_reserve's allocations: nodes and statuses of a window's two
+   work lists and of the scratch, the segments, the tasks. */
+#define MLOD_TEST_WORK_BUFFERS 8u
 
 /* A cut reserved with mlod_cut_reserve for the largest mean cut the same
    sequence of updates reached (views[call % 2 * V], `calls` updates): it
-   holds exactly mlod_cut_bound, its updates allocate nothing and give the
-   cuts of an unreserved cut (compared by hash), so the bound is the real
-   peak, exactly. */
+   holds at most mlod_cut_bound, its updates peak at most there and give
+   the cuts of an unreserved cut (compared by hash); then steady frames
+   (the first views moved by a millionth of the scene, four times)
+   allocate nothing after the first (basic and incremental: a lazy cut
+   still converges). */
 static void check_reserved(const mlod_view *views, uint32_t V, mlod_cut_params p, uint32_t calls, uint64_t most,
                            uint64_t hash, const char *what)
 {
@@ -433,16 +470,22 @@ static void check_reserved(const mlod_view *views, uint32_t V, mlod_cut_params p
     mlod_allocator a = budget_allocator(&b);
     mlod_cut *cut = NULL;
     uint32_t mean = (uint32_t)((most + V - 1) / V), call, v;
-    size_t bound = mlod_cut_bound(V, mean);
+    size_t bound = mlod_cut_bound(V, mean), reserved;
     unsigned long allocations;
     uint64_t h = TU_HASH_START;
+    mlod_view *steady = (mlod_view *)malloc(V * sizeof(mlod_view));
     CHECK(mlod_cut_create(V, &a, &cut, NULL) == MLOD_OK && mlod_cut_reserve(cut, mean, NULL) == MLOD_OK,
           "%s: reserve", what);
-    if (!cut) return;
-    CHECK(b.live_bytes == bound && mlod_cut_bytes(cut) == bound,
+    if (!cut || !steady) {
+        free(steady);
+        mlod_cut_destroy(cut);
+        return;
+    }
+    reserved = b.live_bytes;
+    CHECK(reserved <= bound && mlod_cut_bytes(cut) == reserved,
           "%s: reserved for %u nodes per view, holds %zu bytes (reports %zu), the bound is %zu", what, mean, b.live_bytes,
           mlod_cut_bytes(cut), bound);
-    allocations = b.calls;
+    b.peak_bytes = b.live_bytes;
     for (call = 0; call < calls; call++) {
         CHECK(mlod_cut_update(cut, room_tree, views + (call % 2) * V, &p, NULL) == MLOD_OK, "%s: update", what);
         for (v = 0; v < V; v++) {
@@ -450,10 +493,21 @@ static void check_reserved(const mlod_view *views, uint32_t V, mlod_cut_params p
             h = tu_hash(h, c.nodes, c.count * sizeof *c.nodes);
         }
     }
-    CHECK(b.calls == allocations && b.peak_bytes == bound,
-          "%s: after reserving %zu bytes, %lu allocations in the updates, peak %zu", what, bound,
-          b.calls - allocations, b.peak_bytes);
+    CHECK(b.peak_bytes <= bound, "%s: after reserving %zu bytes, the updates peak at %zu, above the bound %zu", what,
+          reserved, b.peak_bytes, bound);
     CHECK(h == hash, "%s: the reserved cut's cuts differ from an unreserved cut's", what);
+    for (call = 0; call < 4; call++) {
+        double c[3], R;
+        tu_bounds(&room, c, &R);
+        memcpy(steady, views, V * sizeof(mlod_view));
+        for (v = 0; v < V; v++) steady[v].position[0] += (float)(1e-6 * R * (call + 1));
+        allocations = b.calls;
+        CHECK(mlod_cut_update(cut, room_tree, steady, &p, NULL) == MLOD_OK, "%s: steady update", what);
+        /* (a lazy cut still converges) */
+        CHECK(call == 0 || p.mode == MLOD_CUT_LAZY || b.calls == allocations, "%s: steady frame %u: %lu allocations", what,
+              call, b.calls - allocations);
+    }
+    free(steady);
     mlod_cut_destroy(cut);
     CHECK(b.live_bytes == 0, "%s: %zu bytes left after destroy", what, b.live_bytes);
     /* a reserve that runs out of memory leaves the cut as it was */
@@ -485,7 +539,7 @@ static void test_cut_bounds(void)
     static const float eps[3] = {8.0f, 1.0f, 0.35f};
     mlod_pool *pool = mlod_pool_create(2);
     mlod_parallel par = mlod_pool_parallel(pool);
-    double c[3], R, worst_large = 0.0, worst_peak = 0.0;
+    double c[3], R, worst_large = 0.0, worst_peak = 0.0, worst_entry = 0.0;
     uint32_t ci, ei, mode, cases = 0;
     tu_bounds(&room, c, &R);
     for (ci = 0; ci < 3; ci++)
@@ -531,7 +585,7 @@ static void test_cut_bounds(void)
                     hash = tu_hash(hash, cv.nodes, cv.count * sizeof *cv.nodes);
                 }
                 /* later updates, the views moving between two sets: what the cut holds, and the updates'
-                   peak (an update that grows the cut holds the arrays it replaces until it returns) */
+                   peak */
                 b.peak_bytes = b.live_bytes;
                 for (call = 1; call < calls; call++) {
                     uint64_t total = 0;
@@ -550,14 +604,26 @@ static void test_cut_bounds(void)
                       b.live_bytes);
                 CHECK(mlod_cut_bytes(cut) <= bound, "cut bound, %u views, eps %g, mode %u, %llu nodes at most: holds %zu bytes, above the bound %zu",
                       V, eps[ei], mode, (unsigned long long)most, mlod_cut_bytes(cut), bound);
-                CHECK(b.peak_bytes < 2 * bound, "cut bound, %u views, eps %g, mode %u: later updates peak at %zu bytes, not below twice the bound %zu",
+                CHECK(b.peak_bytes <= bound, "cut bound, %u views, eps %g, mode %u: later updates peak at %zu bytes, above the bound %zu",
                       V, eps[ei], mode, b.peak_bytes, bound);
                 if ((double)b.peak_bytes / (double)bound > worst_peak) worst_peak = (double)b.peak_bytes / (double)bound;
                 if (most >= ((uint64_t)1 << 20)) {
-                    double ratio = (double)bound / (double)mlod_cut_bytes(cut);
-                    CHECK(ratio <= 1.5, "cut bound, %llu nodes: %zu bytes, %.2f times what the cut holds", (unsigned long long)most,
+                    double ratio = (double)bound / (double)b.peak_bytes;
+                    /* (it counts windows of twice MLOD__WINDOW entries, a third of it here) */
+                    CHECK(ratio <= 1.6, "cut bound, %llu nodes: %zu bytes, %.2f times the updates' peak", (unsigned long long)most,
                           bound, ratio);
                     if (ratio > worst_large) worst_large = ratio;
+                }
+                /* between updates: the lists, compact (issue 53: at most 6 bytes per entry beyond the
+                   per-view arrays a new cut holds) */
+                if (most >= ((uint64_t)1 << 16)) {
+                    uint64_t now = 0;
+                    double per_entry;
+                    for (v = 0; v < V; v++) now += mlod_cut_get(cut, v).count;
+                    per_entry = (double)(mlod_cut_bytes(cut) - created) / (double)now;
+                    CHECK(per_entry <= 6.0, "cut bound, %u views, eps %g, mode %u: %.2f bytes per entry between updates",
+                          V, eps[ei], mode, per_entry);
+                    if (per_entry > worst_entry) worst_entry = per_entry;
                 }
                 CHECK(created <= mlod_cut_bound(V, 0),
                       "cut bound: a new cut of %u views holds %zu bytes, above the bound for empty cuts %zu", V, created,
@@ -567,9 +633,10 @@ static void test_cut_bounds(void)
                 free(views);
             }
     CHECK(mlod_cut_bound(0, 10) == 0 && mlod_cut_bound(1000, 100) < mlod_cut_bound(1000, 200), "cut bound: 0 views or not increasing");
-    printf("  cut bounds: %u cases at or above what cuts held and first updates peaked at; %.2f times it for cuts of a million nodes;\n"
-           "  later updates peaked at up to %.2f times it\n",
-           cases, worst_large, worst_peak);
+    printf("  cut bounds: %u cases at or above what cuts held and first updates peaked at; later updates peaked at up to\n"
+           "  %.2f times it (for cuts of a million nodes, it is %.2f times their peak at most); between updates, cuts of\n"
+           "  64 k entries or more held %.2f bytes per entry at most\n",
+           cases, worst_peak, worst_large, worst_entry);
     mlod_pool_destroy(pool);
 }
 
