@@ -209,6 +209,13 @@ static inline double app_machine_bytes(void)
 
 static inline double app_mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
+/* What mlod_splat adds to an atlas beyond mlod_atlas_bound: the node drawn
+   at each pixel, 4 bytes per pixel (the manual, SPLATTING). */
+static inline double app_splat_record_bytes(const mlod_atlas *atlas)
+{
+    return 4.0 * (double)atlas->width * (double)atlas->height;
+}
+
 /* A cut's nodes over its first `views` views: all of them (culled ones
    included) and those the splat draws (drawn, oversize and coarse). */
 static inline void app_cut_counts(const mlod_cut *cut, uint32_t views, uint64_t *nodes, uint64_t *drawn)

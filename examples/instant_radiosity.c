@@ -1215,10 +1215,11 @@ int main(int argc, char **argv)
         if (frame == 0) exposure = app_auto_exposure(&lit);
     }
     printf("memory  cut %.1f MiB (mlod_cut_bound for %.0f nodes per view at most: %.1f MiB);"
-           " atlas %.1f MiB (mlod_atlas_bound: %.1f MiB)\n",
+           " atlas %.1f MiB (mlod_atlas_bound: %.1f MiB, and the splat's node record: %.1f MiB)\n",
            app_mib((double)mlod_cut_bytes(cut)), (double)nodes_most / o.views,
            app_mib((double)mlod_cut_bound(o.views, (uint32_t)((nodes_most + o.views - 1) / o.views))),
-           app_mib((double)atlas->bytes), app_mib((double)mlod_atlas_bound(views, o.views, &atlas_desc)));
+           app_mib((double)atlas->bytes), app_mib((double)mlod_atlas_bound(views, o.views, &atlas_desc)),
+           app_mib(app_splat_record_bytes(atlas)));
 
     { /* the last frame three ways: manylods, ISM at equal time (or equal drawn count), exact visibility */
         uint32_t points = (uint32_t)((drawn_total + o.views - 1) / o.views), r, v;
