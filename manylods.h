@@ -7728,7 +7728,9 @@ static void mlod__commit_task(void *context, uint32_t index)
 {
     const mlod__commit_job *job = (const mlod__commit_job *)context;
     uint32_t v = job->start + index * MLOD__VIEW_CHUNK, end = v + MLOD__VIEW_CHUNK < job->end ? v + MLOD__VIEW_CHUNK : job->end;
-    uint8_t *status = (uint8_t *)(job->chunk->nodes + job->chunk->capacity);
+    uint8_t *status;
+    if (!job->chunk->nodes) return; /* no entries */
+    status = (uint8_t *)(job->chunk->nodes + job->chunk->capacity);
     for (; v < end; v++) {
         uint32_t count = job->res->count[v];
         size_t at = job->to->offset[job->first + v];
