@@ -7833,6 +7833,7 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         mlod__chunk *old = have ? &cut->chunks[next++] : NULL;
         uint32_t n;
         if (old) {
+            MANYLODS_ASSERT(next <= cut->chunk_count && old->first == v); /* the chunks cover the views in order */
             n = old->views;
         } else { /* about MLOD__WINDOW entries by the cuts so far, at most as many views as
                     those: one view, then at most doubling */
