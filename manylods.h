@@ -5594,9 +5594,9 @@ typedef struct mlod__work_buffer {
 
 /* The committed lists live in chunks, each the lists of a run of
    consecutive views (first .. first + views - 1), nodes then statuses in
-   one allocation of `capacity` entries (none for capacity 0), used
-   entries of it; lists[MLOD__COMMITTED].offset[v] is view v's first entry
-   in its chunk.  An update goes through the views a window at a time: the
+   one allocation of `capacity` entries (none for capacity 0);
+   lists[MLOD__COMMITTED].offset[v] is view v's first entry in its chunk
+   and count[v] its entries.  An update goes through the views a window at a time: the
    views of a chunk, or, where the cut has no chunks, windows of about
    MLOD__WINDOW entries by the cuts computed so far (one view first, then
    at most as many views as those done, and MLOD__WINDOW_VIEWS).  A window runs the
@@ -5616,7 +5616,7 @@ typedef struct mlod__work_buffer {
 typedef struct mlod__chunk {
     uint32_t first, views;
     uint32_t *nodes;
-    size_t capacity, used;
+    size_t capacity;
 } mlod__chunk;
 
 struct mlod_cut {
@@ -6858,17 +6858,38 @@ static void mlod__chunks_drop(mlod_cut *cut, uint32_t fresh_count)
     cut->chunk_count = 0;
 }
 
+/* Give back the buffers an update works in. */
+static void mlod__work_release(mlod_cut *cut)
+{
+    int which;
+    for (which = 0; which < MLOD__WORK_COUNT; which++) {
+        mlod__work_buffer b = mlod__work_get(cut, which);
+        mlod__work_free(cut, &b);
+        b.first = b.second = NULL;
+        b.capacity = 0;
+        mlod__work_set(cut, which, &b);
+    }
+}
+
+/* Give back all a cut holds beyond what mlod_cut_create gave it: its
+   chunks (the fresh ones, fresh_count, too) and work buffers. */
+static void mlod__cut_release(mlod_cut *cut, uint32_t fresh_count)
+{
+    mlod__chunks_drop(cut, fresh_count);
+    mlod__free(&cut->allocator, cut->chunks);
+    mlod__free(&cut->allocator, cut->fresh);
+    cut->bytes -= ((size_t)cut->chunk_capacity + cut->fresh_capacity) * sizeof(mlod__chunk);
+    cut->chunks = cut->fresh = NULL;
+    cut->chunk_capacity = cut->fresh_capacity = 0;
+    mlod__work_release(cut);
+    cut->reserved = 0;
+}
+
 MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
 {
     int i;
     if (!cut) return;
-    for (i = 0; i < MLOD__WORK_COUNT; i++) {
-        mlod__work_buffer b = mlod__work_get(cut, i);
-        mlod__work_free(cut, &b);
-    }
-    mlod__chunks_drop(cut, 0);
-    mlod__free(&cut->allocator, cut->chunks);
-    mlod__free(&cut->allocator, cut->fresh);
+    mlod__cut_release(cut, 0);
     for (i = 0; i < 3; i++) {
         mlod__free(&cut->allocator, cut->lists[i].offset);
         mlod__free(&cut->allocator, cut->lists[i].count);
@@ -7664,33 +7685,6 @@ static void mlod__window_leave(mlod_cut *cut, mlod_cut *w, int success)
     cut->bytes = w->bytes;
 }
 
-/* Give back the buffers an update works in. */
-static void mlod__work_release(mlod_cut *cut)
-{
-    int which;
-    for (which = 0; which < MLOD__WORK_COUNT; which++) {
-        mlod__work_buffer b = mlod__work_get(cut, which);
-        mlod__work_free(cut, &b);
-        b.first = b.second = NULL;
-        b.capacity = 0;
-        mlod__work_set(cut, which, &b);
-    }
-}
-
-/* Give back all a cut holds beyond what mlod_cut_create gave it: its
-   chunks (the fresh ones, fresh_count, too) and work buffers. */
-static void mlod__cut_release(mlod_cut *cut, uint32_t fresh_count)
-{
-    mlod__chunks_drop(cut, fresh_count);
-    mlod__free(&cut->allocator, cut->chunks);
-    mlod__free(&cut->allocator, cut->fresh);
-    cut->bytes -= ((size_t)cut->chunk_capacity + cut->fresh_capacity) * sizeof(mlod__chunk);
-    cut->chunks = cut->fresh = NULL;
-    cut->chunk_capacity = cut->fresh_capacity = 0;
-    mlod__work_release(cut);
-    cut->reserved = 0;
-}
-
 /* Room for chunk record `index` of the fresh ones; NULL when out of memory. */
 static mlod__chunk *mlod__fresh_chunk(mlod_cut *cut, uint32_t index)
 {
@@ -7709,13 +7703,6 @@ static mlod__chunk *mlod__fresh_chunk(mlod_cut *cut, uint32_t index)
     return &cut->fresh[index];
 }
 
-/* Commit a window's result (res, restricted to views first .. first + n -
-   1 as in mlod__window_enter) as fresh chunks from *fresh_count on: into
-   old's entries where it fits them with at most an eighth to spare, else
-   into new chunks with a sixteenth to spare; in runs of views of about
-   MLOD__WINDOW entries where it holds more than twice that.  old's
-   entries are freed or taken (old->nodes NULL after).  Returns 0 when out
-   of memory. */
 typedef struct mlod__commit_job {
     const mlod__list *res;
     const mlod__list *to;
@@ -7740,6 +7727,13 @@ static void mlod__commit_task(void *context, uint32_t index)
     }
 }
 
+/* Commit a window's result (res, restricted to views first .. first + n -
+   1 as in mlod__window_enter) as fresh chunks from *fresh_count on: into
+   old's entries where it fits them with at most an eighth to spare, else
+   into new chunks with a sixteenth to spare; in runs of views of about
+   MLOD__WINDOW entries where it holds more than twice that.  old's
+   entries are freed or taken (old->nodes NULL after).  Returns 0 when out
+   of memory. */
 static int mlod__commit_window(mlod_cut *cut, uint32_t first, uint32_t n, const mlod__list *res, mlod__chunk *old,
                                uint32_t *fresh_count, const mlod_parallel *parallel)
 {
@@ -7757,7 +7751,6 @@ static int mlod__commit_window(mlod_cut *cut, uint32_t first, uint32_t n, const 
             for (end = start, size = 0; end < n && (end == start || size < MLOD__WINDOW); end++) size += res->count[end];
         c->first = first + start;
         c->views = end - start;
-        c->used = size;
         if (old && old->nodes && size == total && size <= old->capacity && old->capacity - size <= size / 8) {
             c->nodes = old->nodes; /* in place: the result is in a work list */
             c->capacity = old->capacity;
@@ -7803,10 +7796,10 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     mlod__cut_job job;
     uint32_t v, skipped, next = 0, fresh_count = 0, done_views = 0;
     uint64_t done_entries = 0;
-    const int have = cut && cut->chunk_count > 0; /* windows: the chunks */
-    int same_tree;
+    int have, same_tree;
     mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
     if (res != MLOD_OK) return res;
+    have = cut->chunk_count > 0; /* windows: the chunks */
     memset(&job, 0, sizeof job);
     skipped = mlod__skip_views(cut, tree, params, &job.age);
     if (job.age && (uint32_t)tree->revision - tree->changes[0] >= job.age) {
@@ -9605,14 +9598,17 @@ static void mlod__shown_task(void *context, uint32_t index)
 
 /* The atlas's record of the node drawn at each pixel (atlas->ids), which
    mlod_splat and mlod_splat_ism draw with, allocated at their first call
-   (4 bytes per pixel, counted in atlas->bytes).  0 when out of memory. */
-static int mlod__atlas_ids(mlod_atlas *atlas)
+   (4 bytes per pixel, counted in atlas->bytes).  MLOD_OK, or
+   MLOD_ERROR_OUT_OF_MEMORY with the atlas as it was. */
+static mlod_result mlod__atlas_ids(mlod_atlas *atlas, mlod_error *error)
 {
     size_t pixels = (size_t)atlas->width * atlas->height;
-    if (atlas->ids) return 1;
+    if (atlas->ids) return MLOD_OK;
     atlas->ids = (uint32_t *)mlod__alloc_array(&atlas->allocator, pixels, sizeof(uint32_t), &atlas->bytes);
-    if (atlas->ids) memset(atlas->ids, 0, pixels * sizeof(uint32_t));
-    return atlas->ids != NULL;
+    if (!atlas->ids)
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the atlas's record of the nodes drawn");
+    memset(atlas->ids, 0, pixels * sizeof(uint32_t));
+    return MLOD_OK;
 }
 
 MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut,
@@ -9634,8 +9630,7 @@ MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
                 return mlod__fail(error, MLOD_ERROR_MISMATCH,
                                   "view %u differs from the view of the cut's last update: update the cut first", v);
     }
-    if (!mlod__atlas_ids(atlas))
-        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the atlas's record of the nodes drawn");
+    if ((res = mlod__atlas_ids(atlas, error)) != MLOD_OK) return res;
     memset(&job, 0, sizeof job);
     job.atlas = atlas;
     job.tree = tree;
@@ -9684,8 +9679,7 @@ MLOD__PUBLIC mlod_result mlod_splat_ism(mlod_atlas *atlas, const mlod_tree *tree
     mlod__splat_job job;
     mlod_result res = mlod__check_splat(atlas, tree, views, error);
     if (res != MLOD_OK) return res;
-    if (!mlod__atlas_ids(atlas))
-        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory for the atlas's record of the nodes drawn");
+    if ((res = mlod__atlas_ids(atlas, error)) != MLOD_OK) return res;
     memset(&job, 0, sizeof job);
     mlod_atlas_invalidate(atlas);
     job.atlas = atlas;

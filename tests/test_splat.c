@@ -2228,7 +2228,7 @@ static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_v
                           uint64_t seed)
 {
     uint32_t v, k;
-    if (!mlod__atlas_ids(atlas)) return; /* (the record of the node at each pixel the library draws with) */
+    if (mlod__atlas_ids(atlas, NULL) != MLOD_OK) return; /* (the record of the node at each pixel the library draws with) */
     for (v = 0; v < atlas->view_count; v++) {
         mlod__band band;
         mlod__pview pv;
@@ -2258,7 +2258,7 @@ static void ism_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_v
 static void tangent_reference(mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, const mlod_view *views)
 {
     uint32_t v, i, row, col;
-    if (!mlod__atlas_ids(atlas)) return; /* (as ism_reference) */
+    if (mlod__atlas_ids(atlas, NULL) != MLOD_OK) return; /* (as ism_reference) */
     for (v = 0; v < atlas->view_count; v++) {
         mlod_cut_view cv = mlod_cut_get(cut, v);
         mlod__band band;
