@@ -23,7 +23,7 @@ static uint64_t mvref_draw_view(mlod_atlas *ref, const mlod_tree *scene, const m
     double len = 0.0;
     float cone[4] = {0, 0, 0, 0};
     int k;
-    if (mlod__view_prepare(view, &pv, NULL) != MLOD_OK || !mlod__atlas_ids(ref)) return 0;
+    if (mlod__view_prepare(view, &pv, NULL) != MLOD_OK || mlod__atlas_ids(ref, NULL) != MLOD_OK) return 0;
     mlod__tile_band(ref, scene, tile, &band); /* (drawing with the atlas's record of the nodes, as mlod_splat) */
     mlod__band_clear(&band, ref->tiles[4 * (size_t)tile + 2]);
     for (k = 0; direction && k < 3; k++) len += (double)direction[k] * direction[k];
