@@ -9292,15 +9292,26 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
             cols[l] = (float)col; /* below 2^24 */
             rows[l] = (float)row;
         }
-        mlod__tangent_hits(pv, s, band->tree, nodes, cols, rows, count, band->disc_scale, hit, depth);
-        for (l = 0; l < count; l++)
-            if (plot >> l & 1u) {
-                int plane = hit[l] >> 1;
-                float at = plane ? depth[l] : mlod__centre_depth(pv, s, spheres + 4 * (size_t)nodes[l]);
-                mlod__plot_if(band, (uint32_t)rows[l], (uint32_t)cols[l], at, nodes[l], (uint32_t)(plane == 0) | (hit[l] & 1u));
-            } else if (!(none >> l & 1u)) {
-                mlod__draw_exact(band, pv, s, nodes + l, 1);
+        if (plot) { /* the rays of the discs that plot, together */
+            uint32_t at_lane[MLOD__DRAW_CHUNK], picked[MLOD__DRAW_CHUNK], m = 0;
+            float pc[MLOD__DRAW_CHUNK], pr[MLOD__DRAW_CHUNK];
+            for (l = 0; l < count; l++) {
+                at_lane[m] = l;
+                picked[m] = nodes[l];
+                pc[m] = cols[l];
+                pr[m] = rows[l];
+                m += (uint32_t)(plot >> l) & 1u;
             }
+            mlod__tangent_hits(pv, s, band->tree, picked, pc, pr, m, band->disc_scale, hit, depth);
+            for (l = 0; l < m; l++) {
+                uint32_t j = at_lane[l];
+                int plane = hit[l] >> 1;
+                float at = plane ? depth[l] : mlod__centre_depth(pv, s, spheres + 4 * (size_t)nodes[j]);
+                mlod__plot_if(band, (uint32_t)rows[j], (uint32_t)cols[j], at, nodes[j], (uint32_t)(plane == 0) | (hit[l] & 1u));
+            }
+        }
+        for (l = 0; l < count; l++)
+            if (!((plot | none) >> l & 1u)) mlod__draw_exact(band, pv, s, nodes + l, 1);
         return;
     }
     /* the double path's depths, as it computes them */
