@@ -427,7 +427,8 @@
      filtered_discs and reached_lanes); the object protocol's splat takes
      0.55x the double path's time (0.75x with half discs, disc_scale 0.5).
      An atlas follows its cut: mlod_splat keeps each tile that shows what
-     it would draw, and clears and draws the others whole.  A tile is kept
+     it would draw, patches those where it can (below), and clears and
+     draws the others whole.  A tile is kept
      when this atlas's last mlod_splat drew or kept it from the same cut
      at the same mlod_cut_view.version, no drawn node of it changed since
      by the tree's record of changes, and disc_scale and splat are as
@@ -444,10 +445,42 @@
      (tests/test_redraw.c compares every step with one).  A frame where
      nothing changed costs a comparison per tile; a refit costs a pass
      over the drawn entries of the tiles whose version did not move, and
-     the tiles that draw what moved.  Other writers of the pixels
-     (mlod_splat_ism, mlod_atlas_fill_holes, mlod_megaviews_render,
-     mlodvk_atlas_download) and mlod_atlas_invalidate make the next
-     mlod_splat draw every tile; atlas->redrawn counts the tiles drawn.
+     the tiles that draw what moved.
+     A tile that draws what moved is patched rather than drawn whole when
+     it showed the basic cut of its view at an earlier revision of the
+     tree and the cut holds the basic cut of the same view and epsilon
+     now (mlod_splat says when exactly).  Call a node suspect when a
+     refit since changed its parent (the root: itself); a refit that
+     changes a node changes every node above it, so a node that is not
+     suspect kept its bits, and so did its parent: the node has the
+     status it had, its parent stays invalid, and it is an entry of the
+     basic cut now exactly when it was one then (a basic cut is the
+     valid nodes and oversize leaves whose parent is invalid; an
+     invalid parent has invalid ancestors, as a parent's sphere and cone
+     contain its children's).  So the drawn entries that are not suspect
+     were drawn then with the same bits, and the others are suspect.  A
+     pixel holds the least (depth, node) of the discs drawn over it; one
+     whose node is not suspect holds a disc still drawn, and the least of
+     those still drawn that were drawn then.  A patch empties the pixels
+     whose node is suspect and marks them, draws the suspect entries over
+     the whole tile and the others over the marked pixels only: every
+     pixel gets the least of all the drawn entries' discs, as a full
+     redraw gives it, bit for bit (tests/test_redraw.c; the bench checks
+     every frame).  A band of rows (64) with most of its pixels marked is
+     cleared and drawn whole instead.  In a view of one square paraboloid sub-projection
+     (virtual point lights) a patch draws the entries that are not
+     suspect only where their directions come within reach of a marked
+     pixel: each block of a quarter of the tile's width and height
+     bounds its marked pixels' directions by a cone, and a sphere wholly
+     outside the cones draws none of them (mlod__patch_outside gives the
+     bound).  With the top eighth of the object moving under still
+     lights (the bench's Targets table) every tile is patched, and the
+     entries that moved, a fifth of those drawn, are most of its time.
+     Other writers of the pixels (mlod_splat_ism,
+     mlod_atlas_fill_holes, mlod_megaviews_render, mlodvk_atlas_download)
+     and mlod_atlas_invalidate make the next mlod_splat draw every tile;
+     atlas->redrawn counts the tiles drawn whole, atlas->patched the
+     tiles patched.
 
    CHOOSING THE VIEWS (importance sampling, e.g. of virtual point lights)
      mlod_sample() draws N samples from a discrete domain of D candidates
@@ -1214,7 +1247,7 @@ typedef struct mlod_cut mlod_cut;
    mean_cut_nodes nodes, in any mode.  A cut holds each view's list (5
    bytes per entry: 4 for the node, 1 for its status) in chunks, each the
    lists of a run of consecutive views, with at most an eighth to spare;
-   about 200 bytes per view (offsets, counts, statistics, the view its
+   about 250 bytes per view (offsets, counts, statistics, versions, the view its
    list was computed for); and, during an update, the buffers it works
    in, sized for one window of views: an update goes through the views a
    window at a time (a chunk's views, about 2^18 entries) and writes each
@@ -1378,9 +1411,15 @@ typedef struct mlod_atlas {
     uint32_t *bands;          /* private: per view, first row band (splat tasks) */
     size_t bytes;
     mlod_allocator allocator;
-    uint32_t redrawn;         /* the tiles the last mlod_splat drew; the others kept their pixels */
+    uint32_t redrawn;         /* the tiles the last mlod_splat drew whole */
+    uint32_t patched;         /* the tiles it patched (cleared and drew only the pixels that could
+                                 change); the others kept their pixels */
     uint64_t *shown;          /* private: per view, what its tile shows (mlod_splat): the cut's
-                                 version and the tree's revision it was drawn from; 0: unknown */
+                                 version, the tree's revision and the cut's basis it was drawn from
+                                 (the basis 0: the list was not the basic cut of that revision);
+                                 version 0: unknown */
+    uint8_t *dirty;           /* private: per pixel, mlod_splat's mask of the pixels a patch draws;
+                                 NULL until the first patch */
     uint32_t *redraw;         /* private: mlod_splat's band tasks (the bands of the tiles it draws) */
     float shown_scale;        /* private: the disc_scale, splat and fill_holes the known tiles were */
     uint32_t shown_splat, shown_fill; /* drawn with */
@@ -1388,7 +1427,7 @@ typedef struct mlod_atlas {
 
 /* Sizing, before an atlas: the bytes mlod_atlas_create allocates for these
    views and desc (the atlas's bytes, exactly): 4 bytes per pixel of depth,
-   12 more per channel, the per-view tables (36 bytes per view and 4 per
+   12 more per channel, the per-view tables (44 bytes per view and 4 per
    64 rows of its tile).  0 when mlod_atlas_create
    would refuse them (no views, an empty tile, a bad desc, a size that
    overflows; desc->order is not read: it changes no byte count, and
@@ -1435,9 +1474,24 @@ MANYLODS_DEF void mlod_atlas_destroy(mlod_atlas *atlas);
    last mlod_splat drew or kept, whose view and drawn entries did not
    change since (mlod_cut_view.version) and none of whose drawn nodes a
    refit changed (sphere, cone or colour bits; a tree without
-   MLOD_ATTR_REFIT: any refit), with the same disc_scale and splat; the
-   others are cleared and drawn whole (and, with mlod_atlas_desc.fill_holes,
-   their holes filled).  atlas->redrawn counts the tiles drawn.  What else writes the pixels (mlod_splat_ism,
+   MLOD_ATTR_REFIT: any refit), with the same disc_scale and splat.  A
+   tile that does not is patched where that gives the same bits: it
+   showed the basic cut of its view at an earlier revision of this tree,
+   refitted since with its record of changes (MLOD_ATTR_REFIT; not
+   written by hand since the last refit), the cut holds the basic cut of
+   the same view bytes and epsilon for the tree as it is (a basic or
+   incremental update, or a lazy one that made no move, each update since
+   of the same view and epsilon), the atlas does not fill holes, and the
+   last refit changed at most half of the tree's internal nodes at depth
+   10 (more, and a patch costs more than a redraw).  A
+   patch empties the pixels whose node's parent a refit changed since,
+   draws the entries whose parent changed over the whole tile and the
+   others over those pixels only (see SPLATTING); the first patch
+   allocates a mask of 1 byte per pixel (atlas->bytes counts it, not
+   mlod_atlas_bound; without it tiles are drawn whole).  The others are
+   cleared and drawn whole (and, with mlod_atlas_desc.fill_holes, their
+   holes filled).  atlas->redrawn counts the tiles drawn whole,
+   atlas->patched those patched.  What else writes the pixels (mlod_splat_ism,
    mlod_atlas_fill_holes, mlod_megaviews_render, mlodvk_atlas_download)
    makes the next mlod_splat draw every tile; code of yours that writes
    them calls mlod_atlas_invalidate.  Parallel over tiles and row bands;
@@ -5653,6 +5707,11 @@ struct mlod_cut {
     const float *seen_spheres, *seen_cones;
     float seen_epsilon;
     uint64_t *version; /* per view: mlod_cut_view.version */
+    uint64_t *basis;   /* per view: changes when an update's list is not the basic cut of the view
+                          bytes, epsilon and tree (object, arrays) of the update before (a reset, a
+                          failed update, another view, epsilon or tree, a lazy list that moved),
+                          so that two lists of one basis are the basic cuts of one view (mlod_splat
+                          patches tiles by it) */
     uint64_t serial;   /* the last version given out */
     mlod__work_buffer kept[MLOD__WORK_COUNT]; /* during an update: what its growth replaced */
     uint8_t grown[MLOD__WORK_COUNT];          /* during an update: kept[i] holds buffer i's old arrays */
@@ -6902,6 +6961,7 @@ MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
     mlod__free(&cut->allocator, cut->seen);
     mlod__free(&cut->allocator, cut->known);
     mlod__free(&cut->allocator, cut->version);
+    mlod__free(&cut->allocator, cut->basis);
     cut->allocator.free(cut->allocator.user, cut);
 }
 
@@ -6910,7 +6970,7 @@ static void mlod__new_versions(mlod_cut *cut)
 {
     uint32_t v;
     cut->serial++;
-    for (v = 0; v < cut->view_count; v++) cut->version[v] = cut->serial;
+    for (v = 0; v < cut->view_count; v++) cut->version[v] = cut->basis[v] = cut->serial;
 }
 
 MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator, mlod_cut **out_cut,
@@ -6942,6 +7002,7 @@ MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
     ok = ok && (cut->seen = (mlod_view *)mlod__alloc_array(&a, view_count, sizeof(mlod_view), &cut->bytes));
     ok = ok && (cut->known = (uint8_t *)mlod__alloc_array(&a, view_count, 1, &cut->bytes));
     ok = ok && (cut->version = (uint64_t *)mlod__alloc_array(&a, view_count, sizeof(uint64_t), &cut->bytes));
+    ok = ok && (cut->basis = (uint64_t *)mlod__alloc_array(&a, view_count, sizeof(uint64_t), &cut->bytes));
     if (!ok) {
         mlod_cut_destroy(cut);
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating a cut for %u views", view_count);
@@ -7046,7 +7107,7 @@ static double mlod__cut_capacities(uint32_t view_count, uint32_t mean_cut_nodes,
     *committed = floor(1.125 * total + 1.0625 * window);
     return (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
            v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t) +
-                sizeof(mlod_view) + 1 + sizeof(uint64_t) + 2 * sizeof(mlod__chunk));
+                sizeof(mlod_view) + 1 + 2 * sizeof(uint64_t) + 2 * sizeof(mlod__chunk));
 }
 
 MLOD__PUBLIC size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
@@ -7550,19 +7611,28 @@ static uint32_t mlod__skip_views(mlod_cut *cut, const mlod_tree *tree, const mlo
     return skipped;
 }
 
-/* A successful update's record of what its lists were computed for. */
+/* A successful update's record of what its lists were computed for, and
+   their bases (mlod_cut.basis; cut->serial the update's). */
 static void mlod__remember_views(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
                                  const mlod_cut_params *params)
 {
     uint32_t v;
-    memcpy(cut->seen, views, cut->view_count * sizeof(mlod_view));
+    /* the lists before were basic cuts of this tree (the same object and
+       arrays, refitted since) at this epsilon */
+    const int same_tree = cut->seen_tree == tree && cut->seen_spheres == tree->spheres &&
+                          cut->seen_cones == tree->cones && cut->seen_epsilon == params->epsilon &&
+                          tree->revision - cut->seen_revision < ((uint64_t)1 << 32);
     for (v = 0; v < cut->view_count; v++) {
         const mlod__view_stats *s = &cut->stats[0][v];
         /* lazy: a view that made no move in this call (its first round
            evaluated every entry and every pair's parent afresh) */
         int exact = params->mode != MLOD_CUT_LAZY || (s->steps == 0 && s->coarse == 0);
+        int kept = exact && same_tree && (cut->known[v] & MLOD__SEEN) && (cut->known[v] & MLOD__EXACT) &&
+                   memcmp(&cut->seen[v], &views[v], sizeof(mlod_view)) == 0;
+        if (!kept) cut->basis[v] = cut->serial;
         cut->known[v] = (uint8_t)(MLOD__SEEN | (exact ? MLOD__EXACT : 0u));
     }
+    memcpy(cut->seen, views, cut->view_count * sizeof(mlod_view));
     cut->seen_tree = tree;
     cut->seen_revision = tree->revision;
     cut->seen_spheres = tree->spheres;
@@ -8670,6 +8740,7 @@ MLOD__PUBLIC void mlod_atlas_destroy(mlod_atlas *atlas)
     mlod__free(&a, atlas->normal);
     mlod__free(&a, atlas->color);
     mlod__free(&a, atlas->ids);
+    mlod__free(&a, atlas->dirty);
     mlod__free(&a, atlas->tiles);
     mlod__free(&a, atlas->bands);
     mlod__free(&a, atlas->shown);
@@ -8689,6 +8760,9 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
                                          mlod__atlas_layout *L, mlod_error *error);
 
 #define MLOD__BAND_ROWS 64u
+/* mlod_atlas.shown: per view, the cut's version, the tree's revision, the
+   cut's basis (mlod__tile_current, mlod__tile_patchable) */
+#define MLOD__SHOWN 3u
 
 MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view_count, const mlod_atlas_desc *desc,
                                            const mlod_allocator *allocator, mlod_atlas **out_atlas, mlod_error *error)
@@ -8732,7 +8806,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_create(const mlod_view *views, uint32_t view
         ok = ok && (atlas->color = (float *)mlod__alloc_array(&a, (size_t)pixels, 3 * sizeof(float), &atlas->bytes));
     ok = ok && (atlas->tiles = (uint32_t *)mlod__alloc_array(&a, view_count, 4 * sizeof(uint32_t), &atlas->bytes));
     ok = ok && (atlas->bands = (uint32_t *)mlod__alloc_array(&a, (size_t)view_count + 1, sizeof(uint32_t), &atlas->bytes));
-    ok = ok && (atlas->shown = (uint64_t *)mlod__alloc_array(&a, view_count, 2 * sizeof(uint64_t), &atlas->bytes));
+    ok = ok && (atlas->shown = (uint64_t *)mlod__alloc_array(&a, view_count, MLOD__SHOWN * sizeof(uint64_t), &atlas->bytes));
     ok = ok && (atlas->redraw = (uint32_t *)mlod__alloc_array(&a, L.bands, sizeof(uint32_t), &atlas->bytes));
     if (!ok) {
         mlod_atlas_destroy(atlas);
@@ -8813,7 +8887,7 @@ static mlod_result mlod__atlas_layout_of(const mlod_view *views, uint32_t view_c
     per_pixel = sizeof(float) + ((desc->channels & MLOD_ATLAS_NORMAL) ? 3 * sizeof(float) : 0) +
                 ((desc->channels & MLOD_ATLAS_COLOR) ? 3 * sizeof(float) : 0);
     L->bands = (uint32_t)bands;
-    tables = sizeof(mlod_atlas) + (size_t)view_count * (4 * sizeof(uint32_t) + 2 * sizeof(uint64_t)) +
+    tables = sizeof(mlod_atlas) + (size_t)view_count * (4 * sizeof(uint32_t) + MLOD__SHOWN * sizeof(uint64_t)) +
              ((size_t)view_count + 1 + bands) * sizeof(uint32_t);
     L->bytes = L->pixels > ((size_t)-1 - tables) / per_pixel ? (size_t)-1 : tables + (size_t)L->pixels * per_pixel;
     return MLOD_OK;
@@ -8835,6 +8909,7 @@ typedef struct mlod__splat_job {
     uint32_t points_per_view; /* ISM */
     uint64_t seed;
     const uint32_t *tasks;    /* NULL: task i draws band i; else band tasks[i] */
+    int patch;                /* the bands are patched (mlod__patch_task), not cleared */
 } mlod__splat_job;
 
 /* One band of rows of one tile while it is drawn: the tile's pixel
@@ -8855,6 +8930,8 @@ typedef struct mlod__band {
     int tangent;                 /* MLOD_SPLAT_TANGENT (mlod__splat_tangent), else MLOD_SPLAT_SPHERES */
     uint32_t row_begin, row_end; /* tile rows */
     const mlod__fdiscs *fast;    /* the view's float filter (mlod__disc_prepare), or NULL: the double path */
+    const uint8_t *mask;         /* NULL, or per pixel (id_stride apart): only the pixels whose byte is
+                                    set are drawn (a patch, mlod__patch_task) */
 } mlod__band;
 
 /* Whether an atlas's splat setting (MLOD_SPLAT_*) draws this tree's nodes
@@ -8891,6 +8968,7 @@ MLOD__FORCE_INLINE uint32_t mlod__wins(float depth, uint32_t node, float old, ui
 static void mlod__plot(const mlod__band *band, uint32_t row, uint32_t col, float depth, uint32_t node)
 {
     size_t at = (size_t)row * band->stride + col;
+    if (band->mask && !band->mask[(size_t)row * band->id_stride + col]) return;
     if (mlod__wins(depth, node, band->depth[at], band->ids[(size_t)row * band->id_stride + col]))
         mlod__band_set(band, row, col, depth, node);
 }
@@ -8904,6 +8982,7 @@ MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint
     size_t at = (size_t)row * band->stride + col, id_at = (size_t)row * band->id_stride + col;
     float old;
     uint32_t mask, depth_bits, old_bits;
+    if (band->mask) cond &= (uint32_t)(band->mask[id_at] != 0);
     if (band->normal || band->color) {
         if (cond) mlod__plot(band, row, col, depth, node);
         return;
@@ -9184,7 +9263,7 @@ static void mlod__raster_disc(const mlod__band *band, const mlod__pview *pv, int
                 fc[m] = (float)col; /* below 2^24: the sub-tiles' bounds */
                 fr[m] = (float)row;
                 ids[m] = node;
-                m += dx * dx + dy * dy <= r2;
+                m += dx * dx + dy * dy <= r2 && (!band->mask || band->mask[(size_t)row * band->id_stride + col]);
                 if (m == MLOD__DRAW_CHUNK || (m > 0 && row + 1 == re && col + 1 == ce)) {
                     mlod__tangent_hits(pv, s, band->tree, ids, fc, fr, m, band->disc_scale, in, at);
                     for (j = 0; j < m; j++) mlod__plot_if(band, (uint32_t)fr[j], (uint32_t)fc[j], at[j], node, in[j] & 1u);
@@ -9292,6 +9371,12 @@ static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, i
             cols[l] = (float)col; /* below 2^24 */
             rows[l] = (float)row;
         }
+        if (band->mask) /* a patch: a pixel it does not draw is left as it is */
+            for (l = 0; l < count; l++)
+                if ((plot >> l & 1u) && !band->mask[(size_t)rows[l] * band->id_stride + (size_t)cols[l]]) {
+                    plot &= ~((uint64_t)1 << l);
+                    none |= (uint64_t)1 << l;
+                }
         if (plot) { /* the rays of the discs that plot, together */
             uint32_t at_lane[MLOD__DRAW_CHUNK], picked[MLOD__DRAW_CHUNK], m = 0;
             float pc[MLOD__DRAW_CHUNK], pr[MLOD__DRAW_CHUNK];
@@ -9425,6 +9510,7 @@ static void mlod__tile_band(mlod_atlas *atlas, const mlod_tree *tree, uint32_t v
     band->ids = atlas->ids ? atlas->ids + origin : NULL; /* (mlod__atlas_ids) */
     band->id_stride = atlas->width;
     band->fast = NULL;
+    band->mask = NULL;
     band->stride = atlas->width;
     band->disc_scale = atlas->disc_scale;
     band->tangent = mlod__splat_tangent(atlas->splat, tree);
@@ -9445,7 +9531,8 @@ static void mlod__band_clear(const mlod__band *band, uint32_t width)
     }
 }
 
-/* Which view and rows a band task covers; clears those rows. */
+/* Which view and rows a band task covers; clears those rows (not for a
+   patch). */
 static uint32_t mlod__band_begin(const mlod__splat_job *job, uint32_t index, mlod__band *band)
 {
     mlod_atlas *atlas = job->atlas;
@@ -9463,7 +9550,7 @@ static uint32_t mlod__band_begin(const mlod__splat_job *job, uint32_t index, mlo
     height = band->row_end;
     band->row_begin = (index - atlas->bands[view]) * MLOD__BAND_ROWS;
     band->row_end = (uint64_t)band->row_begin + MLOD__BAND_ROWS > height ? height : band->row_begin + MLOD__BAND_ROWS;
-    mlod__band_clear(band, atlas->tiles[4 * (size_t)view + 2]);
+    if (!job->patch) mlod__band_clear(band, atlas->tiles[4 * (size_t)view + 2]);
     return view;
 }
 
@@ -9479,23 +9566,231 @@ static uint32_t mlod__draw_begin(const mlod__splat_job *job, uint32_t index, mlo
     return view;
 }
 
+/* Draw a view's cut (its entries not culled) into the band,
+   MLOD__DRAW_CHUNK nodes at a time, in order. */
+static void mlod__draw_cut(const mlod__band *band, const mlod__pview *pv, const mlod_cut_view *cv)
+{
+    uint32_t i, batch[MLOD__DRAW_CHUNK], n = 0;
+    for (i = 0; i < cv->count; i++) {
+        if (cv->status[i] == MLOD_STATUS_CULLED) continue;
+        batch[n++] = cv->nodes[i];
+        if (n == MLOD__DRAW_CHUNK) {
+            mlod__draw_nodes(band, pv, batch, n);
+            n = 0;
+        }
+    }
+    mlod__draw_nodes(band, pv, batch, n);
+}
+
 static void mlod__splat_task(void *context, uint32_t index)
 {
     const mlod__splat_job *job = (const mlod__splat_job *)context;
     mlod__band band;
     mlod__pview pv;
     mlod__fdiscs fast;
-    uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), i, batch[MLOD__DRAW_CHUNK], n = 0;
+    uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast);
     mlod_cut_view cv = mlod_cut_get(job->cut, view);
-    for (i = 0; i < cv.count; i++) { /* MLOD__DRAW_CHUNK drawn nodes at a time, in order */
-        if (cv.status[i] == MLOD_STATUS_CULLED) continue;
-        batch[n++] = cv.nodes[i];
-        if (n == MLOD__DRAW_CHUNK) {
-            mlod__draw_nodes(&band, &pv, batch, n);
-            n = 0;
+    mlod__draw_cut(&band, &pv, &cv);
+}
+
+/* Whether a refit of the last `age` (the tree's record of changes) may
+   have changed a node's entry in a basic cut or its disc: it changed the
+   node's parent (the root: the root).  A refit that changes a node marks
+   every node above it, so this takes the node's own changes too; a node
+   whose parent did not change keeps its status and its parent's, so it
+   is an entry of the basic cut before the refits exactly when it is one
+   after (mlod__patch_task).  The entries of a list that are not suspect
+   are those mlod__unchanged_run finds. */
+static int mlod__suspect(const mlod_tree *tree, uint32_t age, uint32_t node)
+{
+    return (uint32_t)tree->revision - tree->changes[node ? (node - 1) / 2 : 0] < age;
+}
+
+/* The marked pixels of a patch, by blocks (at most MLOD__CONES), each as
+   a cone of directions: axis (unit) and the cosine and sine of its
+   half-angle g, widened by 3 / width (mlod__patch_outside). */
+#define MLOD__CONES 17
+typedef struct mlod__cones {
+    uint32_t count; /* the blocks', then the band's (the last) */
+    double axis[MLOD__CONES][3], cs[MLOD__CONES][2];
+} mlod__cones;
+
+/* The cones of the marked pixels' centres (the band's mask, its rows, the
+   tile's `width` columns) in blocks of a quarter of the band's width and
+   rows, for a view of one square paraboloid sub-projection.  0 where they
+   cannot serve: another view, a disc_scale above 1, a half-angle of pi / 2
+   or more. */
+static int mlod__marked_cones(const mlod__pview *pv, const mlod__band *band, uint32_t width, mlod__cones *out)
+{
+    const mlod_view_sub *sub = &pv->f.subs[0];
+    uint32_t rows = band->row_end - band->row_begin, bw = (width + 3) / 4, bh = (rows + 3) / 4, b;
+    out->count = 0;
+    if (pv->sub_count != 1 || pv->kind[0] != MLOD_VIEW_PARABOLOID || sub->width != sub->height ||
+        sub->scale != 0.5 * sub->width || !(band->disc_scale <= 1.0f))
+        return 0;
+    for (b = 0; b <= 16; b++) { /* the band's blocks, then the whole band (cones->all) */
+        uint32_t r0 = b < 16 ? band->row_begin + (b / 4) * bh : band->row_begin, c0 = b < 16 ? (b % 4) * bw : 0;
+        uint32_t h = b < 16 ? bh : rows, w = b < 16 ? bw : width, row, col, pass, marked = 0;
+        double sum[3] = {0.0, 0.0, 0.0}, len, lowest = 1.0, gamma, *axis = out->axis[out->count];
+        int k;
+        for (pass = 0; pass < 2; pass++) { /* the axis, then the widest angle from it */
+            for (row = r0; row < r0 + h && row < band->row_end; row++)
+                for (col = c0; col < c0 + w && col < width; col++) {
+                    /* the inverse stereographic projection (mlod__centre_ray), any distance off the axis */
+                    double px = (col + 0.5 - sub->x) * (2.0 / sub->width) - 1.0;
+                    double py = 1.0 - (row + 0.5 - sub->y) * (2.0 / sub->height), q = px * px + py * py, d[3], n;
+                    if (!band->mask[(size_t)row * band->id_stride + col]) continue;
+                    for (k = 0; k < 3; k++)
+                        d[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
+                    n = mlod__length3(d);
+                    for (k = 0; k < 3; k++) d[k] /= n;
+                    if (pass == 0) {
+                        for (k = 0; k < 3; k++) sum[k] += d[k];
+                        marked++;
+                    } else {
+                        double c = mlod__dot3(d, axis);
+                        if (c < lowest) lowest = c;
+                    }
+                }
+            if (marked == 0) break;
+            if (pass == 0) {
+                len = mlod__length3(sum);
+                if (!(len > 0.0)) return 0;
+                for (k = 0; k < 3; k++) axis[k] = sum[k] / len;
+            }
         }
+        if (marked == 0) continue;
+        gamma = acos(lowest < -1.0 ? -1.0 : lowest > 1.0 ? 1.0 : lowest) + 3.0 / sub->width + 1e-6;
+        if (!(gamma < 0.5 * MLOD__PI)) return 0;
+        out->cs[out->count][0] = cos(gamma);
+        out->cs[out->count][1] = sin(gamma);
+        out->count++;
     }
-    mlod__draw_nodes(&band, &pv, batch, n);
+    return out->count > 0;
+}
+
+/* Whether a node draws no pixel whose centre's direction lies in a cone of
+   mlod__marked_cones.  In such a view the disc of a sphere (centre x from
+   the eye, radius r < |x|) is the stereographic image of the directions
+   within b = asin(r / |x|) of x, exactly: its radial extent from
+   tan((t - b) / 2) to tan((t + b) / 2) at angle t off the axis
+   (mlod__image_discs), and the projection maps circles of directions to
+   circles.  A drawn pixel's centre lies in the disc (scaled by at most 1),
+   or, a sphere disc of no pixel centre, within 0.75 pixel of its centre,
+   an angle of at most 0.75 * 2 / (width / 2) (the projection stretches
+   angles least on its axis, where a pixel spans 2 / (width / 2) radians);
+   the cones were widened by that.  So a node whose directions all lie
+   more than a cone's half-angle g off its axis draws none of its pixels:
+   x.axis < |x| cos(g + b) = t cos g - r sin g, t = |x| cos b, with a
+   margin of 2^-30 (t + 2 r) for rounding. */
+static int mlod__patch_outside(const mlod__pview *pv, const float *sphere, const mlod__cones *cones)
+{
+    double x[3], r = sphere[3], d2, t, margin;
+    uint32_t i;
+    int k;
+    for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+    d2 = mlod__dot3(x, x);
+    if (!(r * r < d2)) return 0;
+    t = sqrt(d2 - r * r);
+    margin = (t + 2.0 * r) * (1.0 / 1073741824.0);
+    for (i = cones->count; i-- > 0;) { /* the band's first (it holds the blocks'): most nodes lie outside it */
+        int outside = mlod__dot3(x, cones->axis[i]) < cones->cs[i][0] * t - cones->cs[i][1] * r - margin;
+        if (outside != (i + 1 < cones->count)) return outside; /* outside the band's, or inside a block's */
+    }
+    return cones->count > 1;
+}
+
+/* A patch's drawing (mlod__patch_task): its bands, view, cut list, the
+   batches waiting, the cones of its marked pixels. */
+typedef struct mlod__patch {
+    const mlod__band *band, *masked;
+    const mlod__pview *pv;
+    mlod_cut_view cv;
+    uint32_t batch[2][MLOD__DRAW_CHUNK], waiting[2]; /* the suspect entries, the others */
+    const mlod__cones *cones;                      /* NULL: no pruning */
+} mlod__patch;
+
+/* Add entry j to batch b (0 drawn over the band, 1 over the marked pixels),
+   drawing the batch when full. */
+static void mlod__patch_add(mlod__patch *p, int b, uint32_t j)
+{
+    if (p->cv.status[j] == MLOD_STATUS_CULLED) return;
+    p->batch[b][p->waiting[b]++] = p->cv.nodes[j];
+    if (p->waiting[b] < MLOD__DRAW_CHUNK) return;
+    mlod__draw_nodes(b ? p->masked : p->band, p->pv, p->batch[b], p->waiting[b]);
+    p->waiting[b] = 0;
+}
+
+/* A patch of a band of a tile (mlod_splat, mlod__tile_patchable): the tile
+   shows the basic cut of its view at an earlier revision of the tree, and
+   the cut holds the basic cut of the same view and epsilon now.  A drawn
+   entry that is not suspect (mlod__suspect) was drawn then with the same
+   bits, and a pixel whose node is not suspect holds the least of the
+   discs of entries that are still drawn, with the same bits.  So the
+   pixels whose node is suspect are emptied and marked, the suspect
+   entries drawn over the whole band and the others over the marked
+   pixels only (those that cannot reach one left out: mlod__patch_outside):
+   each pixel gets the least of all the drawn entries' discs (nearest
+   depth, then lowest node, whatever the order), what a full redraw gives,
+   bit for bit. */
+static void mlod__patch_task(void *context, uint32_t index)
+{
+    const mlod__splat_job *job = (const mlod__splat_job *)context;
+    const mlod_tree *tree = job->tree;
+    mlod__band band, masked;
+    mlod__pview pv;
+    mlod__fdiscs fast;
+    mlod__patch p;
+    mlod__cones cones;
+    uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), i, end, row, col, some = 0, marked = 0;
+    const uint32_t *tile = job->atlas->tiles + 4 * (size_t)view;
+    uint32_t age = (uint32_t)(tree->revision - job->atlas->shown[MLOD__SHOWN * (size_t)view + 1]);
+    uint8_t *mask = job->atlas->dirty + (size_t)tile[1] * job->atlas->width + tile[0];
+    for (row = band.row_begin; row < band.row_end; row++)
+        for (col = 0; col < tile[2]; col++) {
+            size_t at = (size_t)row * band.stride + col, id_at = (size_t)row * band.id_stride + col;
+            int k, empty = band.depth[at] < INFINITY && mlod__suspect(tree, age, band.ids[id_at]);
+            mask[id_at] = (uint8_t)empty;
+            if (!empty) continue;
+            band.depth[at] = INFINITY;
+            band.ids[id_at] = 0;
+            for (k = 0; k < 3 && band.normal; k++) band.normal[3 * at + k] = 0.0f;
+            for (k = 0; k < 3 && band.color; k++) band.color[3 * at + k] = 0.0f;
+            some = 1;
+            marked++;
+        }
+    if (2 * (size_t)marked > (size_t)(band.row_end - band.row_begin) * tile[2]) {
+        /* most pixels marked: the band drawn whole is the same, for less */
+        mlod__band_clear(&band, tile[2]);
+        p.cv = mlod_cut_get(job->cut, view);
+        mlod__draw_cut(&band, &pv, &p.cv);
+        return;
+    }
+    masked = band;
+    masked.mask = mask;
+    p.band = &band;
+    p.masked = &masked;
+    p.pv = &pv;
+    p.cv = mlod_cut_get(job->cut, view);
+    p.waiting[0] = p.waiting[1] = 0;
+    p.cones = some && mlod__marked_cones(&pv, &masked, tile[2], &cones) ? &cones : NULL;
+    /* the entries whose parent did not change come in runs
+       (mlod__unchanged_run: the same test, a climb per run) */
+    for (i = 0; i < p.cv.count; i = end) {
+        uint32_t j;
+        end = mlod__unchanged_run(tree, age, p.cv.nodes, i, p.cv.count);
+        if (end == i) { /* suspect */
+            mlod__patch_add(&p, 0, i);
+            end = i + 1;
+            continue;
+        }
+        for (j = i; some && j < end; j++) /* (no pixel marked: none to draw them over) */
+            if (p.cv.status[j] != MLOD_STATUS_CULLED &&
+                (!p.cones || !mlod__patch_outside(&pv, tree->spheres + 4 * (size_t)p.cv.nodes[j], p.cones)))
+                mlod__patch_add(&p, 1, j);
+    }
+    mlod__draw_nodes(&band, &pv, p.batch[0], p.waiting[0]);
+    mlod__draw_nodes(&masked, &pv, p.batch[1], p.waiting[1]);
 }
 
 /* ISM's point k of view `view` (mlod_splat_ism): the node of the leaf
@@ -9558,7 +9853,7 @@ static mlod_result mlod__check_splat(const mlod_atlas *atlas, const mlod_tree *t
 MLOD__PUBLIC void mlod_atlas_invalidate(mlod_atlas *atlas)
 {
     if (!atlas) return;
-    memset(atlas->shown, 0, atlas->view_count * 2 * sizeof(uint64_t));
+    memset(atlas->shown, 0, atlas->view_count * MLOD__SHOWN * sizeof(uint64_t));
 }
 
 /* Whether the tile of `view` shows what mlod_splat would draw now: it was
@@ -9571,7 +9866,7 @@ MLOD__PUBLIC void mlod_atlas_invalidate(mlod_atlas *atlas)
    draws nothing, which no tree changes (whatever the record says). */
 static int mlod__tile_current(const mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, uint32_t view)
 {
-    const uint64_t *shown = atlas->shown + 2 * (size_t)view;
+    const uint64_t *shown = atlas->shown + MLOD__SHOWN * (size_t)view;
     uint64_t refits = tree->revision - shown[1];
     uint32_t i, now = (uint32_t)tree->revision, age = (uint32_t)refits;
     int record = tree->changes && tree->changes_revision == tree->revision && refits < ((uint64_t)1 << 32);
@@ -9584,6 +9879,33 @@ static int mlod__tile_current(const mlod_atlas *atlas, const mlod_tree *tree, co
     return 1;
 }
 
+/* The basis a tile drawn now from the cut's list of `view` records: the
+   cut's (mlod_cut.basis) where the list is the basic cut of the tree as it
+   is, else 0. */
+static uint64_t mlod__tile_basis(const mlod_tree *tree, const mlod_cut *cut, uint32_t view)
+{
+    int basic = (cut->known[view] & MLOD__EXACT) && cut->seen_tree == tree && cut->seen_revision == tree->revision &&
+                cut->seen_spheres == tree->spheres && cut->seen_cones == tree->cones;
+    return basic ? cut->basis[view] : 0;
+}
+
+/* Whether mlod_splat may patch the tile of `view` (mlod__patch_task) rather
+   than draw it whole: it shows the basic cut of its view at an earlier
+   revision of this tree, refitted fewer than 2^32 times since with its
+   record of changes kept, the cut holds the basic cut of the same view and
+   epsilon now (the same basis), and the atlas does not fill holes.  Not
+   where the last refit changed most of the tree (as mlod__skip_views):
+   nearly every pixel would be marked, and a patch costs more than a
+   redraw. */
+static int mlod__tile_patchable(const mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, uint32_t view)
+{
+    const uint64_t *shown = atlas->shown + MLOD__SHOWN * (size_t)view;
+    uint64_t refits = tree->revision - shown[1];
+    return shown[0] != 0 && shown[2] != 0 && shown[2] == mlod__tile_basis(tree, cut, view) && !atlas->fill_holes &&
+           tree->changes && tree->changes_revision == tree->revision && refits > 0 && refits < ((uint64_t)1 << 32) &&
+           tree->changes_share <= MLOD__STAMPED_SHARE;
+}
+
 static int mlod__fill_tiles(mlod_atlas *atlas, const uint32_t *list, uint32_t count, const mlod_parallel *parallel,
                             size_t *floats);
 
@@ -9591,8 +9913,10 @@ static int mlod__fill_tiles(mlod_atlas *atlas, const uint32_t *list, uint32_t co
 static uint32_t mlod__atlas_chunks(const mlod_atlas *atlas) { return (atlas->view_count - 1) / MLOD__ATLAS_CHUNK + 1; }
 
 /* mlod_splat's decision for MLOD__ATLAS_CHUNK views: a current tile
-   (mlod__tile_current) is now known to show this revision; the others are
-   marked unknown, to draw. */
+   (mlod__tile_current) is now known to show this revision and basis; the others
+   are marked unknown (version 0), to draw: those to patch
+   (mlod__tile_patchable) keep their basis, the others, drawn whole, get
+   basis 0. */
 static void mlod__shown_task(void *context, uint32_t index)
 {
     const mlod__splat_job *job = (const mlod__splat_job *)context;
@@ -9600,10 +9924,14 @@ static void mlod__shown_task(void *context, uint32_t index)
     uint32_t v = index * MLOD__ATLAS_CHUNK,
              end = atlas->view_count - v < MLOD__ATLAS_CHUNK ? atlas->view_count : v + MLOD__ATLAS_CHUNK;
     for (; v < end; v++) {
-        if (mlod__tile_current(atlas, job->tree, job->cut, v))
-            atlas->shown[2 * (size_t)v + 1] = job->tree->revision;
-        else
-            atlas->shown[2 * (size_t)v] = 0;
+        uint64_t *shown = atlas->shown + MLOD__SHOWN * (size_t)v;
+        if (mlod__tile_current(atlas, job->tree, job->cut, v)) { /* as if drawn now */
+            shown[1] = job->tree->revision;
+            shown[2] = mlod__tile_basis(job->tree, job->cut, v);
+            continue;
+        }
+        if (!mlod__tile_patchable(atlas, job->tree, job->cut, v)) shown[2] = 0;
+        shown[0] = 0;
     }
 }
 
@@ -9652,30 +9980,52 @@ MLOD__PUBLIC mlod_result mlod_splat(mlod_atlas *atlas, const mlod_tree *tree, co
         mlod_atlas_invalidate(atlas);
     mlod__run(parallel, mlod__atlas_chunks(atlas), mlod__shown_task, &job);
     {
-        uint32_t v, b, tasks = 0;
-        atlas->redrawn = 0;
+        uint32_t v, b, tasks = 0, patches;
+        /* patches need the mask (1 byte per pixel), allocated at the first;
+           without it, their tiles are drawn whole */
+        for (v = 0; v < atlas->view_count && !atlas->dirty; v++)
+            if (atlas->shown[MLOD__SHOWN * (size_t)v] == 0 && atlas->shown[MLOD__SHOWN * (size_t)v + 2] != 0) {
+                atlas->dirty = (uint8_t *)mlod__alloc_array(&atlas->allocator, (size_t)atlas->width * atlas->height,
+                                                            1, &atlas->bytes);
+                if (!atlas->dirty)
+                    for (; v < atlas->view_count; v++)
+                        if (atlas->shown[MLOD__SHOWN * (size_t)v] == 0) atlas->shown[MLOD__SHOWN * (size_t)v + 2] = 0;
+                break;
+            }
+        atlas->redrawn = atlas->patched = 0;
         for (v = 0; v < atlas->view_count; v++)
-            if (atlas->shown[2 * (size_t)v] == 0) {
+            if (atlas->shown[MLOD__SHOWN * (size_t)v] == 0 && atlas->shown[MLOD__SHOWN * (size_t)v + 2] == 0) {
                 for (b = atlas->bands[v]; b < atlas->bands[v + 1]; b++) atlas->redraw[tasks++] = b;
                 atlas->redrawn++;
             }
+        for (v = 0, patches = tasks; v < atlas->view_count; v++)
+            if (atlas->shown[MLOD__SHOWN * (size_t)v] == 0 && atlas->shown[MLOD__SHOWN * (size_t)v + 2] != 0) {
+                for (b = atlas->bands[v]; b < atlas->bands[v + 1]; b++) atlas->redraw[patches++] = b;
+                atlas->patched++;
+            }
         job.tasks = atlas->redraw;
+        job.patch = 0;
         mlod__run(parallel, tasks, mlod__splat_task, &job);
+        job.tasks = atlas->redraw + tasks;
+        job.patch = 1;
+        mlod__run(parallel, patches - tasks, mlod__patch_task, &job);
         if (atlas->fill_holes && atlas->redrawn) { /* the drawn tiles' holes, the list in place of the bands */
             uint32_t n = 0;
             size_t floats;
             for (v = 0; v < atlas->view_count; v++)
-                if (atlas->shown[2 * (size_t)v] == 0) atlas->redraw[n++] = v;
+                if (atlas->shown[MLOD__SHOWN * (size_t)v] == 0) atlas->redraw[n++] = v;
             if (!mlod__fill_tiles(atlas, atlas->redraw, n, parallel, &floats))
                 return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY,
                                   "out of memory filling the holes of %u tiles (%zu floats); they stay unfilled, "
                                   "and the next mlod_splat draws them again", n, floats);
         }
-        for (v = 0; v < atlas->view_count; v++)
-            if (atlas->shown[2 * (size_t)v] == 0) {
-                atlas->shown[2 * (size_t)v] = cut->version[v];
-                atlas->shown[2 * (size_t)v + 1] = tree->revision;
-            }
+        for (v = 0; v < atlas->view_count; v++) {
+            uint64_t *shown = atlas->shown + MLOD__SHOWN * (size_t)v;
+            if (shown[0] != 0) continue;
+            shown[0] = cut->version[v];
+            shown[1] = tree->revision;
+            shown[2] = mlod__tile_basis(tree, cut, v);
+        }
     }
     atlas->shown_scale = atlas->disc_scale;
     atlas->shown_splat = atlas->splat;
@@ -9842,7 +10192,7 @@ MLOD__PUBLIC mlod_result mlod_atlas_fill_holes(mlod_atlas *atlas, const mlod_par
         list = (uint32_t *)mlod__alloc_array(&atlas->allocator, atlas->view_count, sizeof(uint32_t), NULL);
         if (!list) return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory filling holes");
         for (v = 0; v < atlas->view_count; v++)
-            if (atlas->shown[2 * (size_t)v] == 0) list[count++] = v;
+            if (atlas->shown[MLOD__SHOWN * (size_t)v] == 0) list[count++] = v;
     }
     ok = mlod__fill_tiles(atlas, list, list ? count : atlas->view_count, parallel, &floats);
     mlod__free(&atlas->allocator, list);

@@ -210,10 +210,11 @@ static inline double app_machine_bytes(void)
 static inline double app_mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
 /* What mlod_splat adds to an atlas beyond mlod_atlas_bound: the node drawn
-   at each pixel, 4 bytes per pixel (the manual, SPLATTING). */
+   at each pixel, 4 bytes per pixel, and once it patched a tile its mask, 1
+   byte per pixel (mlod_splat). */
 static inline double app_splat_record_bytes(const mlod_atlas *atlas)
 {
-    return 4.0 * (double)atlas->width * (double)atlas->height;
+    return (atlas->dirty ? 5.0 : 4.0) * (double)atlas->width * (double)atlas->height;
 }
 
 /* A cut's nodes over its first `views` views: all of them (culled ones

@@ -581,7 +581,7 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
            "at %u surface points, exact visibility: error against every candidate as a VPL (the converged\n"
            "reference), flicker = frame-to-frame change where the reference changes by <= %.0f %%; kept = VPLs\n"
            "whose view is the previous frame's; cut: %s, epsilon %g px, %u x %u px paraboloids; splat: their\n"
-           "shadow maps in an atlas kept from frame to frame (redrawn = its tiles drawn again, the others kept).\n\n",
+           "shadow maps in an atlas kept from frame to frame (redrawn = its tiles drawn again, whole or patched; the others kept).\n\n",
            n, d, IMPORTANCE_POINTS, CHAIN_LENGTH, (double)CAMERA_TURN * 180.0 / SCENE_PI,
            o->still ? "stays at rest" : "twists", receivers, 100.0 * STABLE,
            app_mode_name(MLOD_CUT_INCREMENTAL), (double)o->epsilon, o->tile, o->tile);
@@ -698,12 +698,12 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
                 run->error += err;
                 run->cut_ms += cut_ms;
                 run->splat_ms += splat_ms;
-                run->redrawn += (double)run->atlas->redrawn / n;
+                run->redrawn += (double)(run->atlas->redrawn + run->atlas->patched) / n;
                 printf("  %6.1f  %9.2f  %7.2f  %6.1f  %8.1f  %9.1f", 100.0 * kept / n, 100.0 * flicker, 100.0 * err,
-                       cut_ms, splat_ms, 100.0 * run->atlas->redrawn / n);
+                       cut_ms, splat_ms, 100.0 * (run->atlas->redrawn + run->atlas->patched) / n);
             } else {
                 printf("  %6s  %9s  %7.2f  %6.1f  %8.1f  %9.1f", "-", "-", 100.0 * err, cut_ms, splat_ms,
-                       100.0 * run->atlas->redrawn / n);
+                       100.0 * (run->atlas->redrawn + run->atlas->patched) / n);
             }
         }
         printf("%s\n", frame == 0 ? "   (basic cuts from the root)" : "");
@@ -1215,7 +1215,7 @@ int main(int argc, char **argv)
         if (frame == 0) exposure = app_auto_exposure(&lit);
     }
     printf("memory  cut %.1f MiB (mlod_cut_bound for %.0f nodes per view at most: %.1f MiB);"
-           " atlas %.1f MiB (mlod_atlas_bound: %.1f MiB, and the splat's node record: %.1f MiB)\n",
+           " atlas %.1f MiB (mlod_atlas_bound: %.1f MiB, and the splat's records: %.1f MiB)\n",
            app_mib((double)mlod_cut_bytes(cut)), (double)nodes_most / o.views,
            app_mib((double)mlod_cut_bound(o.views, (uint32_t)((nodes_most + o.views - 1) / o.views))),
            app_mib((double)atlas->bytes), app_mib((double)mlod_atlas_bound(views, o.views, &atlas_desc)),

@@ -335,7 +335,7 @@ int main(int argc, char **argv)
     printf("camera  %8.1f  ray trace the image, direct light with shadow rays\n", camera_ms);
     printf("cut     %8.1f  %.0f nodes per micro-view (%.0f drawn)\n", cut_ms, (double)nodes / count,
            (double)drawn / count);
-    printf("splat   %8.1f  atlas of %ux%u px, %.1f MiB (mlod_atlas_bound: %.1f MiB, and the splat's node record: %.1f MiB)\n",
+    printf("splat   %8.1f  atlas of %ux%u px, %.1f MiB (mlod_atlas_bound: %.1f MiB, and the splat's records: %.1f MiB)\n",
            splat_ms, atlas->width, atlas->height, app_mib((double)atlas->bytes), app_mib((double)atlas_bound),
            app_mib(app_splat_record_bytes(atlas)));
     printf("gather  %8.1f  sum every micro-view: one bounce of indirect light\n", gather_ms);

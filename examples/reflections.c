@@ -349,8 +349,8 @@ int main(int argc, char **argv)
     printf("points   %u surface samples lit by the spot light (exact shadow rays), a tree of %u nodes, %.1f MiB\n",
            tree->leaf_count, tree->node_count, app_mib((double)tree->bytes));
     printf("memory   baking peaked at %.1f MiB of the library's (at most %.1f MiB with the baked arrays: app_bake_bound);"
-           " cut %.1f MiB (mlod_cut_bound: %.1f MiB); atlas %.1f MiB (mlod_atlas_bound: %.1f MiB, and the splat's node"
-           " record: %.1f MiB)\n",
+           " cut %.1f MiB (mlod_cut_bound: %.1f MiB); atlas %.1f MiB (mlod_atlas_bound: %.1f MiB, and the splat's"
+           " records: %.1f MiB)\n",
            app_mib((double)bake_memory.peak), app_mib((double)bake_bound), app_mib((double)mlod_cut_bytes(cut)),
            app_mib((double)mlod_cut_bound(count, (uint32_t)((nodes + count - 1) / count))), app_mib((double)atlas->bytes),
            app_mib((double)atlas_bound), app_mib(app_splat_record_bytes(atlas)));

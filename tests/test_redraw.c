@@ -16,6 +16,13 @@
      any update since it was drawn, and no drawn node changed (its sphere,
      cone or colour bits, or those of a leaf below it) in any refit since,
      found by comparing the tree's arrays before and after each refit;
+   - atlas->patched is the number of the others this file expects patched
+     rather than drawn whole: a tile of an atlas that does not fill holes,
+     drawn from a basic cut (an incremental or basic update, or a lazy one
+     that made no move) of the same cut object, view bytes and tree object
+     as now, every update since giving a basic cut of that view, with a
+     refit since and no arrays written by hand since the last refit,
+     which changed at most half of the tree's internal nodes at depth 10;
    - mlod_cut_view.version moves exactly when the view or the entries
      change, and no two cuts share one.
    REDRAW_VERBOSE=1 in the environment prints each step's redrawn tiles. */
@@ -32,6 +39,9 @@
 typedef struct shadow_tree {
     float *spheres, *cones, *colors;
     int *changed_at;
+    int refit_at; /* the last refit's step (-1: none) */
+    int by_hand;  /* arrays written by hand, the revision counted up, since the last refit */
+    double share; /* of the internal nodes at depth 10 (or the deepest there are), those the last refit changed */
 } shadow_tree;
 
 /* What this file knows of one cut: per view the entries of its last
@@ -44,6 +54,10 @@ typedef struct shadow_cut {
     int known[VIEWS];
     int changed_at[VIEWS];
     uint64_t version[VIEWS];
+    int basis_at[VIEWS]; /* the last step whose update did not give the basic cut of the same view and tree */
+    int basic[VIEWS];    /* the list is a basic cut (of the tree of the last update) */
+    const mlod_tree *tree; /* of the last update */
+    int updated_at;
 } shadow_cut;
 
 /* What a tile shows, by this file's record: the step it was drawn or last
@@ -52,6 +66,7 @@ typedef struct shadow_atlas {
     int shown_at[VIEWS];
     const shadow_cut *cut[VIEWS];
     const mlod_tree *tree[VIEWS];
+    int basis_at[VIEWS]; /* the cut's basis_at when drawn from a basic cut of the tree as it was; else -2 */
     float scale;
 } shadow_atlas;
 
@@ -70,6 +85,9 @@ static void shadow_tree_init(shadow_tree *s, const mlod_tree *t)
     s->cones = (float *)malloc(16 * n);
     s->colors = (float *)malloc(12 * n);
     s->changed_at = (int *)calloc(n, sizeof(int));
+    s->refit_at = -1;
+    s->by_hand = 0;
+    s->share = 0.0;
     shadow_tree_copy(s, t);
 }
 
@@ -97,6 +115,8 @@ static void shadow_tree_refitted(shadow_tree *s, const mlod_tree *t, int step)
             moved[i] = (uint8_t)differ;
         if (moved[i]) s->changed_at[i] = step;
     }
+    s->refit_at = step;
+    s->by_hand = 0;
     free(moved);
     shadow_tree_copy(s, t);
 }
@@ -115,14 +135,35 @@ static void shadow_cut_free(shadow_cut *s)
     }
 }
 
-/* After an update at `step`: which views changed (view bytes, entries,
-   culled flags), and the versions' rule. */
-static void shadow_cut_updated(shadow_cut *s, const mlod_cut *cut, const mlod_view *views, int step)
+/* After an update at `step` of a cut in `mode` with `tree`: which views
+   changed (view bytes, entries, culled flags), the versions' rule, and
+   which lists are basic cuts (a lazy update's when it made no move: then
+   its list must equal a basic cut, checked against one). */
+static void shadow_cut_updated(shadow_cut *s, const mlod_cut *cut, const mlod_view *views, int step, mlod_cut_mode mode,
+                               const mlod_tree *tree)
 {
     uint32_t v, i;
+    mlod_cut *basic = NULL;
+    mlod_cut_params bp;
+    mlod_error e;
+    memset(&bp, 0, sizeof bp);
+    bp.mode = MLOD_CUT_BASIC;
+    bp.epsilon = 1.5f; /* run_steps's */
+    if (mode == MLOD_CUT_LAZY)
+        CHECK(mlod_cut_create(VIEWS, NULL, &basic, &e) == MLOD_OK && mlod_cut_update(basic, tree, views, &bp, &e) == MLOD_OK,
+              "a basic cut to compare with: %s", e.message);
     for (v = 0; v < VIEWS; v++) {
         mlod_cut_view cv = mlod_cut_get(cut, v);
-        int same = s->known[v] && memcmp(&s->view[v], &views[v], sizeof(mlod_view)) == 0 && s->count[v] == cv.count;
+        int view_same = s->known[v] && memcmp(&s->view[v], &views[v], sizeof(mlod_view)) == 0;
+        int is_basic = mode != MLOD_CUT_LAZY || (cv.steps == 0 && cv.coarse == 0);
+        int same = view_same && s->count[v] == cv.count;
+        if (mode == MLOD_CUT_LAZY && is_basic && basic) {
+            mlod_cut_view b = mlod_cut_get(basic, v);
+            CHECK(b.count == cv.count && memcmp(b.nodes, cv.nodes, 4 * (size_t)cv.count) == 0,
+                  "view %u, step %d: a lazy list that made no move is the basic cut", v, step);
+        }
+        if (!(view_same && s->basic[v] && is_basic && s->tree == tree)) s->basis_at[v] = step;
+        s->basic[v] = is_basic;
         for (i = 0; same && i < cv.count; i++)
             same = s->nodes[v][i] == cv.nodes[i] && s->culled[v][i] == (cv.status[i] == MLOD_STATUS_CULLED);
         if (!same) s->changed_at[v] = step;
@@ -142,6 +183,9 @@ static void shadow_cut_updated(shadow_cut *s, const mlod_cut *cut, const mlod_vi
         s->known[v] = 1;
         s->version[v] = cv.version;
     }
+    s->tree = tree;
+    s->updated_at = step;
+    mlod_cut_destroy(basic);
 }
 
 /* After a reset: every view's entries are gone (the version moves). */
@@ -154,27 +198,37 @@ static void shadow_cut_reset(shadow_cut *s, const mlod_cut *cut, int step)
         s->count[v] = 0;
         s->version[v] = cv.version;
         s->changed_at[v] = step;
+        s->basic[v] = 0;
+        s->basis_at[v] = step;
     }
 }
 
-/* The tiles this file expects mlod_splat to draw at `step` from cut (its
-   record sc) and tree (its record st), and its record updated. */
+/* The tiles this file expects mlod_splat to draw whole at `step` from cut
+   (its record sc) and tree (its record st), and to patch (*patches), and
+   its record updated. */
 static uint32_t expected_redraws(shadow_atlas *sa, const shadow_cut *sc, const shadow_tree *st, const mlod_tree *tree,
-                                 const mlod_atlas *atlas, int step)
+                                 const mlod_atlas *atlas, int step, uint32_t *patches)
 {
     uint32_t v, i, redraws = 0;
+    *patches = 0;
     for (v = 0; v < VIEWS; v++) {
         int keep = sa->shown_at[v] >= 0 && sa->cut[v] == sc && sa->scale == atlas->disc_scale &&
                    sc->changed_at[v] <= sa->shown_at[v];
+        int patch = sa->shown_at[v] >= 0 && sa->cut[v] == sc && sa->scale == atlas->disc_scale && sa->tree[v] == tree &&
+                    !atlas->fill_holes && sa->basis_at[v] == sc->basis_at[v] && st->refit_at > sa->shown_at[v] &&
+                    !st->by_hand && st->share <= 0.5;
         /* a drawn node changed, or drawn from another tree; a tile that
            draws nothing is the same whatever the tree */
         for (i = 0; keep && i < sc->count[v]; i++)
             if (!sc->culled[v][i] && (sa->tree[v] != tree || st->changed_at[sc->nodes[v][i]] > sa->shown_at[v]))
                 keep = 0;
-        redraws += (uint32_t)!keep;
+        redraws += (uint32_t)(!keep && !patch);
+        *patches += (uint32_t)(!keep && patch);
         sa->shown_at[v] = step;
         sa->cut[v] = sc;
         sa->tree[v] = tree;
+        /* a basic cut of the tree as it is: updated with it since its last refit */
+        sa->basis_at[v] = sc->basic[v] && sc->tree == tree && sc->updated_at >= st->refit_at ? sc->basis_at[v] : -2;
     }
     sa->scale = atlas->disc_scale;
     return redraws;
@@ -229,15 +283,22 @@ static void pose(const scene_mesh *rest, scene_mesh *out, float t, float above, 
 }
 
 /* A refit at `step`; all: the revision was counted up by hand before, so
-   the refit marks every node (mlod_refit_mesh). */
+   the refit marks every node (mlod_refit_mesh).  Then the share of the
+   internal nodes at depth 10 (or the deepest there are) it changed. */
 static void refit(mlod_tree *tree, shadow_tree *st, const scene_mesh *m, const mlod_parallel *par, int step, int all)
 {
     mlod_mesh mesh = tu_mesh(m);
     mlod_error e;
-    uint32_t i;
+    uint32_t i, depth = 0, first = 0, last = 0, changed = 0;
     CHECK(mlod_refit_mesh(tree, &mesh, par, &e) == MLOD_OK, "refit: %s", e.message);
     shadow_tree_refitted(st, tree, step);
     for (i = 0; all && i < tree->node_count; i++) st->changed_at[i] = step;
+    while (((uint64_t)2 << depth) <= 2 * (uint64_t)tree->leaf_count - 1) depth++; /* the deepest node's, then 10 */
+    if (depth > 10) depth = 10;
+    while (depth > 0 && !mlod_tree_depth_nodes(tree->leaf_count, depth, &first, &last)) depth--;
+    if (depth == 0) first = last = 0;
+    for (i = first; i <= last; i++) changed += st->changed_at[i] == step;
+    st->share = (double)changed / (double)(last - first + 1);
 }
 
 /* One mode's run through the steps, into an atlas that fills holes or not. */
@@ -258,7 +319,7 @@ static void run_steps(mlod_cut_mode mode, uint32_t fill, const mlod_parallel *pa
     mlod_error e;
     uint64_t rng = 77 + (uint64_t)mode;
     double c[3], R;
-    uint32_t v, expect;
+    uint32_t v, expect, patches;
     int step = 0;
     char what[96];
     const char *mode_name = mode == MLOD_CUT_BASIC ? "basic" : mode == MLOD_CUT_INCREMENTAL ? "incremental" : "lazy";
@@ -305,15 +366,16 @@ static void run_steps(mlod_cut_mode mode, uint32_t fill, const mlod_parallel *pa
 #define UPDATE(CUT, SC, TREE)                                                                                          \
     do {                                                                                                               \
         CHECK(mlod_cut_update(CUT, TREE, views, &params, &e) == MLOD_OK, "update: %s", e.message);                  \
-        shadow_cut_updated(&SC, CUT, views, step);                                                                     \
+        shadow_cut_updated(&SC, CUT, views, step, mode, TREE);                                                         \
     } while (0)
 #define SPLAT(CUT, SC, TREE, ST, NAME)                                                                                 \
     do {                                                                                                               \
         snprintf(what, sizeof what, "%s%s, step %d (%s)", mode_name, fill ? " filled" : "", step, NAME);             \
-        expect = expected_redraws(&sa, &SC, &ST, TREE, atlas, step);                                                   \
+        expect = expected_redraws(&sa, &SC, &ST, TREE, atlas, step, &patches);                                         \
         CHECK(mlod_splat(atlas, TREE, CUT, views, par, &e) == MLOD_OK, "%s: splat: %s", what, e.message);            \
         CHECK(atlas->redrawn == expect, "%s: %u tiles redrawn, %u expected", what, atlas->redrawn, expect);           \
-        if (getenv("REDRAW_VERBOSE")) printf("%s: %u redrawn\n", what, atlas->redrawn);                               \
+        CHECK(atlas->patched == patches, "%s: %u tiles patched, %u expected", what, atlas->patched, patches);        \
+        if (getenv("REDRAW_VERBOSE")) printf("%s: %u redrawn, %u patched\n", what, atlas->redrawn, atlas->patched);   \
         check_full(atlas, &desc, TREE, CUT, views, par, what);                                                         \
         step++;                                                                                                        \
     } while (0)
@@ -389,6 +451,7 @@ static void run_steps(mlod_cut_mode mode, uint32_t fill, const mlod_parallel *pa
     other->spheres[4 * (size_t)(other->node_count - 1) + 3] *= 1.0f;
     other->revision++;
     for (v = 0; v < other->node_count; v++) st2.changed_at[v] = step;
+    st2.by_hand = 1;
     UPDATE(cut, sc, other);
     SPLAT(cut, sc, other, st2, "revision counted up by hand");
     /* 19, 20: the whole torus twisting, the views turning */
@@ -416,6 +479,87 @@ done:
     scene_free(&posed);
 }
 
+/* A patch leaves out the entries whose sphere lies outside the cones of
+   the marked pixels (mlod__marked_cones, mlod__patch_outside): checked
+   against drawing each node alone.  Square paraboloid views at random,
+   sphere and tangent discs, disc_scale 1 and 0.5, marked pixels at random
+   (scattered, or a few clusters); for every node of the tree the cones
+   leave out, none of the pixels its disc draws into an empty tile is
+   marked.  The cones must leave out a good share of the nodes (else the
+   check says little). */
+static void test_patch_cones(void)
+{
+    scene_mesh mesh;
+    mlod_tree *tree;
+    uint64_t rng = 4242;
+    double c[3], R;
+    uint32_t trial, left_out = 0, looked = 0;
+    memset(&mesh, 0, sizeof mesh);
+    if (!scene_torus(&mesh, 1.0f, 0.35f, 48, 24)) {
+        CHECK(0, "scene");
+        return;
+    }
+    tree = tu_build(&mesh, 3000, 9, MLOD_ATTR_CONE);
+    tu_bounds(&mesh, c, &R);
+    for (trial = 0; trial < 48 && tree; trial++) {
+        mlod_view view = tu_random_view(&rng, MLOD_VIEW_PARABOLOID, c, R);
+        mlod_atlas_desc desc;
+        mlod_atlas *atlas = NULL;
+        mlod__band band;
+        mlod__pview pv;
+        mlod__fdiscs fast;
+        mlod__cones cones;
+        mlod_error e;
+        uint8_t *mask;
+        uint32_t side = 8 + (uint32_t)(scene_rng_double(&rng) * 56), x, y, k, node, clusters;
+        view.width = view.height = side;
+        memset(&desc, 0, sizeof desc);
+        desc.splat = trial % 2 ? MLOD_SPLAT_SPHERES : MLOD_SPLAT_TANGENT;
+        desc.disc_scale = trial % 4 < 2 ? 1.0f : 0.5f;
+        if (mlod_atlas_create(&view, 1, &desc, NULL, &atlas, &e) != MLOD_OK || mlod__atlas_ids(atlas, NULL) != MLOD_OK) {
+            CHECK(0, "atlas: %s", e.message);
+            mlod_atlas_destroy(atlas);
+            break;
+        }
+        mask = (uint8_t *)calloc((size_t)atlas->width * atlas->height, 1);
+        clusters = trial % 3; /* 0: scattered pixels, else that many clusters */
+        for (k = 0; k < (clusters ? clusters : 6u); k++) {
+            uint32_t cx = (uint32_t)(scene_rng_double(&rng) * side), cy = (uint32_t)(scene_rng_double(&rng) * side);
+            uint32_t reach = clusters ? 1 + (uint32_t)(scene_rng_double(&rng) * 3) : 0;
+            for (y = cy >= reach ? cy - reach : 0; y <= cy + reach && y < side; y++)
+                for (x = cx >= reach ? cx - reach : 0; x <= cx + reach && x < side; x++) mask[y * atlas->width + x] = 1;
+        }
+        mlod__tile_band(atlas, tree, 0, &band);
+        band.mask = mask;
+        CHECK(mlod__view_prepare(&view, &pv, NULL) == MLOD_OK, "trial %u: the view", trial);
+        mlod__fast_prepare(&pv, 1.0);
+        if (mlod__marked_cones(&pv, &band, side, &cones)) {
+            uint32_t wrong = 0, first = 0;
+            band.mask = NULL;
+            band.fast = mlod__disc_prepare(&pv, &fast) ? &fast : NULL;
+            for (node = 0; node < tree->node_count; node++) {
+                uint32_t hits = 0;
+                if (!mlod__patch_outside(&pv, tree->spheres + 4 * (size_t)node, &cones)) continue;
+                left_out++;
+                mlod__band_clear(&band, side);
+                mlod__draw_nodes(&band, &pv, &node, 1);
+                for (y = 0; y < side; y++)
+                    for (x = 0; x < side; x++)
+                        hits += mask[y * atlas->width + x] && atlas->depth[y * atlas->width + x] < INFINITY;
+                if (hits && !wrong++) first = node;
+            }
+            CHECK(wrong == 0, "trial %u (%ux%u, %s, disc_scale %g): %u nodes left out draw marked pixels (node %u)",
+                  trial, side, side, trial % 2 ? "spheres" : "tangent", desc.disc_scale, wrong, first);
+            looked += tree->node_count;
+        }
+        free(mask);
+        mlod_atlas_destroy(atlas);
+    }
+    CHECK(looked > 0 && left_out > looked / 4, "the cones left out %u of %u node-views", left_out, looked);
+    mlod_tree_destroy(tree);
+    scene_free(&mesh);
+}
+
 /* The atlas's bytes: mlod_atlas_bound, with its per-view record. */
 static void test_bytes(void)
 {
@@ -433,8 +577,8 @@ static void test_bytes(void)
     if (!atlas) return;
     CHECK(atlas->bytes == mlod_atlas_bound(views, 3, &desc), "bytes %zu = bound %zu", atlas->bytes,
           mlod_atlas_bound(views, 3, &desc));
-    CHECK(atlas->bytes == sizeof(mlod_atlas) + 4 * (size_t)atlas->width * atlas->height + 3 * 36 + 4 + 6 * 4,
-          "bytes: pixels, 36 per view and 4 more, 4 per band (%zu)", atlas->bytes);
+    CHECK(atlas->bytes == sizeof(mlod_atlas) + 4 * (size_t)atlas->width * atlas->height + 3 * 44 + 4 + 6 * 4,
+          "bytes: pixels, 44 per view and 4 more, 4 per band (%zu)", atlas->bytes);
     mlod_atlas_invalidate(NULL);
     mlod_atlas_destroy(atlas);
     atlas = NULL;
@@ -457,6 +601,7 @@ int main(int argc, char **argv)
     TEST_GROUP("filled", run_steps(MLOD_CUT_INCREMENTAL, 1, &hooks[3]));
     TEST_GROUP("filled_lazy", run_steps(MLOD_CUT_LAZY, 1, &hooks[0]));
     TEST_GROUP("bytes", test_bytes());
+    TEST_GROUP("patch_cones", test_patch_cones());
     mlod_pool_destroy(pools[0]);
     mlod_pool_destroy(pools[1]);
     mlod_pool_destroy(pools[2]);
