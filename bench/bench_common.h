@@ -308,7 +308,8 @@ typedef struct row {
     double tree_bytes, cut_bytes, atlas_bytes;              /* NAN: n/a */
     double entry_bytes; /* mlod_cut_bytes / cut entries after the last frame's update; NAN: n/a */
     double peak_bytes;  /* the cut's most bytes during the measured frames' updates; NAN: n/a */
-    double redrawn, changed_pixels; /* target_rigs: tiles mlod_splat drew and % of pixels that changed, per frame */
+    double redrawn, patched, changed_pixels; /* target_rigs, per frame: tiles mlod_splat drew whole and patched, % of
+                                                the pixels that changed */
     int has_metrics;
     metrics m;
 } row;

@@ -13,7 +13,7 @@
 #   object.views object.map_px object.n object.cut_splat_ms object.embree_ms
 #   object.wrong object.exact_wrong object.splat_pts object.spheres_pts
 #   object.spheres_time object.ism_pts        (largest N, epsilon 1, basic cut)
-#   object.same_ms object.full_splat object.part_kept object.part_tiles
+#   object.same_ms object.full_splat object.part_kept object.part_tiles object.part_patched
 #   object.part_pixels object.part_cut        (the Targets' frames that change little)
 #   room.wrong room.exact_wrong room.splat_pts room.spheres_pts room.spheres_time
 #   views.map_px views.group_radius views.COUNT.ms views.COUNT.embree_ms
@@ -97,8 +97,8 @@ block() {
         say("A frame where nothing changed costs " fig("object.same_ms") " ms for the object'"'"'s cut + splat (a full splat: " \
             fig("object.full_splat") "); with the top eighth of the object moving under still lights the incremental cut takes " \
             fig("object.part_cut") " a basic cut'"'"'s time and the splat draws " \
-            fig("object.part_tiles") " tiles again (" fig("object.part_kept") " the full splat'"'"'s time) where " \
-            fig("object.part_pixels") " of the pixels change.")
+            fig("object.part_tiles") " tiles whole and patches " fig("object.part_patched") " (" fig("object.part_kept") \
+            " the full splat'"'"'s time) where " fig("object.part_pixels") " of the pixels change.")
         say("<!-- bench:end -->")
         if (missing != "") {
             print "bench/readme_figures.sh: " source " lacks" missing " (make bench writes them)" > "/dev/stderr"

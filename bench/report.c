@@ -547,9 +547,9 @@ static void write_figures(const bench *b, FILE *f, protocol *const *protocols, i
         const row *kept = find_row(b, ROW_TARGET, "object", "static rig, a part moving: incremental", 1.0f, 0);
         if (same && full) fprintf(f, "object.same_ms=%.2f\nobject.full_splat=%s\n", same->total_ms, ms_text(full->splat_ms));
         if (part && kept)
-            fprintf(f, "object.part_kept=%.2fx\nobject.part_tiles=%.0f of %u\nobject.part_pixels=%.1f%%\n"
-                       "object.part_cut=%.2fx\n",
-                    kept->splat_ms / part->splat_ms, kept->redrawn, c->view_count, kept->changed_pixels,
+            fprintf(f, "object.part_kept=%.2fx\nobject.part_tiles=%.0f of %u\nobject.part_patched=%.0f\n"
+                       "object.part_pixels=%.1f%%\nobject.part_cut=%.2fx\n",
+                    kept->splat_ms / part->splat_ms, kept->redrawn, c->view_count, kept->patched, kept->changed_pixels,
                     kept->cut_ms / part->cut_ms);
     }
     for (k = 0; k < b->views_rows; k++)
