@@ -5653,7 +5653,9 @@ typedef struct mlod__work_buffer {
    and count[v] its entries.  An update goes through the views a window at a time: the
    views of a chunk, or, where the cut has no chunks, windows of about
    MLOD__WINDOW entries by the cuts computed so far (one view first, then
-   at most as many views as those done, and MLOD__WINDOW_VIEWS).  A window runs the
+   at most as many views as those done, and MLOD__WINDOW_VIEWS; a chunk
+   whose cuts shrank below MLOD__WINDOW / 4 entries first takes in the
+   chunks after it, mlod__merge_chunks).  A window runs the
    rounds on a cut restricted to its views (mlod__window_enter), its work
    lists sized to it; its result goes back into its chunk where that fits
    (mlod__commit_window), in runs of about MLOD__WINDOW entries where the
@@ -7851,6 +7853,63 @@ static int mlod__commit_window(mlod_cut *cut, uint32_t first, uint32_t n, const 
     return 1;
 }
 
+/* The entries of chunk c: its views' counts. */
+static size_t mlod__chunk_entries(const mlod_cut *cut, const mlod__chunk *c)
+{
+    size_t total = 0;
+    uint32_t v;
+    for (v = c->first; v < c->first + c->views; v++) total += cut->lists[MLOD__COMMITTED].count[v];
+    return total;
+}
+
+/* Where chunks[at] holds fewer than MLOD__WINDOW / 4 entries (its views'
+   cuts shrank), the chunks after it join it, while the whole holds at most
+   MLOD__WINDOW entries and MLOD__WINDOW_VIEWS views: their lists are copied
+   into one chunk with a sixteenth to spare, which takes chunks[at]'s place,
+   and the others' entries are freed.  So a window is never much smaller
+   than it need be, whatever the cuts were before.  Returns how many chunks
+   joined it (0 also when out of memory: the chunks stay as they are). */
+static uint32_t mlod__merge_chunks(mlod_cut *cut, uint32_t at)
+{
+    mlod__list *list = &cut->lists[MLOD__COMMITTED];
+    mlod__chunk merged = cut->chunks[at];
+    size_t total = mlod__chunk_entries(cut, &cut->chunks[at]), at_entry = 0;
+    uint32_t last = at + 1, i, v;
+    uint8_t *status;
+    if (total >= MLOD__WINDOW / 4) return 0;
+    while (last < cut->chunk_count) {
+        size_t more = mlod__chunk_entries(cut, &cut->chunks[last]);
+        if (total + more > MLOD__WINDOW || merged.views + cut->chunks[last].views > MLOD__WINDOW_VIEWS) break;
+        total += more;
+        merged.views += cut->chunks[last].views;
+        last++;
+    }
+    if (last == at + 1) return 0;
+    merged.capacity = total + total / 16;
+    merged.nodes = merged.capacity
+                       ? (uint32_t *)mlod__alloc_array(&cut->allocator, merged.capacity, sizeof(uint32_t) + 1, NULL)
+                       : NULL;
+    if (merged.capacity && !merged.nodes) return 0;
+    cut->bytes += mlod__chunk_bytes(merged.capacity);
+    status = merged.nodes ? (uint8_t *)(merged.nodes + merged.capacity) : NULL;
+    for (i = at; i < last; i++) {
+        mlod__chunk *from = &cut->chunks[i];
+        const uint8_t *from_status = from->nodes ? (const uint8_t *)(from->nodes + from->capacity) : NULL;
+        for (v = from->first; v < from->first + from->views; v++) {
+            uint32_t n = list->count[v];
+            if (n) { /* (a chunk without entries has no arrays) */
+                memcpy(merged.nodes + at_entry, from->nodes + list->offset[v], n * sizeof(uint32_t));
+                memcpy(status + at_entry, from_status + list->offset[v], n);
+            }
+            list->offset[v] = at_entry;
+            at_entry += n;
+        }
+        mlod__chunk_free(cut, from);
+    }
+    cut->chunks[at] = merged;
+    return last - at - 1;
+}
+
 /* Whether every view of first .. first + n - 1 is skipped. */
 static int mlod__window_skipped(const mlod_cut *cut, uint32_t first, uint32_t n)
 {
@@ -7897,6 +7956,7 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         uint32_t n;
         if (old) {
             MANYLODS_ASSERT(next <= cut->chunk_count && old->first == v); /* the chunks cover the views in order */
+            next += mlod__merge_chunks(cut, next - 1);
             n = old->views;
         } else { /* about MLOD__WINDOW entries by the cuts so far, at most as many views as
                     those: one view, then at most doubling */

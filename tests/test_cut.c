@@ -1699,6 +1699,72 @@ static void test_restart(void)
     scene_free(&s);
 }
 
+/* ----------------------------------------------- cuts that shrink */
+
+/* Chunks of a cut whose cuts shrank join (mlod__merge_chunks): after the
+   update that shrinks them and one more that goes through the windows
+   (the views moved a little), every chunk but the last holds at
+   least a quarter of a window's entries, or could not take the next one
+   in (a window's entries or views); the chunks cover the views in order,
+   hold their lists, and the cuts equal a basic cut of the same views
+   throughout.  With the default window every cut here fits one chunk; the
+   compile matrix runs this with windows of 2^10 entries, where the cuts
+   at epsilon 0.5 take dozens. */
+static void test_shrinking(void)
+{
+    scene_mesh s;
+    mlod_tree *t;
+    mlod_cut *ci = NULL, *cb = NULL;
+    enum { NV = 96 };
+    mlod_view views[NV];
+    uint64_t rng = 11;
+    double c[3] = {0, 0, 0};
+    static const float eps[4] = {0.5f, 8.0f, 8.0f, 0.5f};
+    uint32_t v, k, i;
+    scene_torus(&s, 1.0f, 0.3f, 32, 16);
+    t = tu_build(&s, 20000, 2, MLOD_ATTR_CONE);
+    mlod_cut_create(NV, NULL, &ci, NULL);
+    mlod_cut_create(NV, NULL, &cb, NULL);
+    for (v = 0; v < NV; v++) views[v] = tu_random_view(&rng, v % 2 ? MLOD_VIEW_PARABOLOID : MLOD_VIEW_PERSPECTIVE, c, 1.3);
+    for (k = 0; k < 4 && t && ci && cb; k++) {
+        mlod_cut_params pi = params(MLOD_CUT_INCREMENTAL, eps[k], 1, NULL), pb = params(MLOD_CUT_BASIC, eps[k], 1, NULL);
+        uint32_t same = 0, covered = 0, small = 0;
+        size_t held = 0;
+        if (k == 2) /* the views a little further: an update that goes through every window (none skipped) */
+            for (v = 0; v < NV; v++) views[v].position[0] += 1e-3f;
+        CHECK(mlod_cut_update(ci, t, views, &pi, NULL) == MLOD_OK && mlod_cut_update(cb, t, views, &pb, NULL) == MLOD_OK,
+              "shrinking, step %u: updates", k);
+        for (v = 0; v < NV; v++) {
+            mlod_cut_view x = mlod_cut_get(ci, v), y = mlod_cut_get(cb, v);
+            same += tu_same_cut(&x, &y);
+        }
+        CHECK(same == NV, "shrinking, step %u (epsilon %g): the incremental cut equals the basic cut in %u of %u views", k,
+              eps[k], same, NV);
+        for (i = 0; i < ci->chunk_count; i++) {
+            const mlod__chunk *ch = &ci->chunks[i];
+            size_t entries = mlod__chunk_entries(ci, ch);
+            CHECK(ch->first == covered && entries <= ch->capacity, "shrinking, step %u: chunk %u covers views %u.. "
+                  "(expected %u) and holds its %zu entries (capacity %zu)", k, i, ch->first, covered, entries, ch->capacity);
+            covered += ch->views;
+            held += entries;
+            if (k == 2 && i + 1 < ci->chunk_count) {
+                const mlod__chunk *next = &ci->chunks[i + 1];
+                small += entries < MLOD__WINDOW / 4 && entries + mlod__chunk_entries(ci, next) <= MLOD__WINDOW &&
+                         ch->views + next->views <= MLOD__WINDOW_VIEWS;
+            }
+        }
+        CHECK(covered == NV, "shrinking, step %u: the chunks cover %u of %u views", k, covered, NV);
+        if (k == 2)
+            CHECK(small == 0, "shrinking: %u of %u chunks hold under a quarter of a window and could have joined the next",
+                  small, ci->chunk_count);
+        if (getenv("SHRINK_VERBOSE")) printf("step %u: %u chunks, %zu entries\n", k, ci->chunk_count, held);
+    }
+    mlod_cut_destroy(ci);
+    mlod_cut_destroy(cb);
+    mlod_tree_destroy(t);
+    scene_free(&s);
+}
+
 /* ------------------------------------------ unchanged views are skipped */
 
 /* An update skips a view whose view (every byte), tree (the same object,
@@ -2737,6 +2803,7 @@ int main(int argc, char **argv)
     TEST_GROUP("hand_made", test_hand_made());
     TEST_GROUP("zero_radius", test_zero_radius());
     TEST_GROUP("restart", test_restart());
+    TEST_GROUP("shrinking", test_shrinking());
     TEST_GROUP("criterion_reference", test_criterion_reference());
     TEST_GROUP("backface_boundary", test_backface_boundary());
     TEST_GROUP("fast_filter", test_fast_filter());

@@ -310,9 +310,9 @@ entry cut-small-budget "tests/test_cut.c's cut groups with a round budget of 2^1
 # Windows of 2^10 entries: every update goes through many windows, chunks split and are written in place,
 # and windows whose views are all unchanged are passed over; the cuts and the versions the splat reads stay
 # those of one window.
-entry cut-small-window "tests/test_cut.c's cut groups and tests/test_redraw.c with windows of 2^10 entries, $CC" \
+entry cut-small-window "tests/test_cut.c's cut groups (shrinking cuts: chunks joining) and tests/test_redraw.c with windows of 2^10 entries, $CC" \
     "$CC -std=c99 $STRICT '-DMLOD__WINDOW=((size_t)1 << 10)' tests/test_cut.c -o $OUT/cut-small-window $LIBS && $CC -std=c99 $STRICT '-DMLOD__WINDOW=((size_t)1 << 10)' tests/test_redraw.c -o $OUT/redraw-small-window $LIBS" \
-    "$OUT/cut-small-window random_trees hand_made restart motion threads skip one_view && $OUT/redraw-small-window"
+    "$OUT/cut-small-window random_trees hand_made restart shrinking motion threads skip one_view && $OUT/redraw-small-window"
 entry cut-native "tests/test_cut.c with $native, $CLANG" \
     "$CLANG -std=c99 $STRICT $native tests/test_cut.c -o $OUT/cut-native $LIBS" "$OUT/cut-native"
 # The same under the address and undefined-behaviour sanitizers: the vector paths' widest lanes (make
