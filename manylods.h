@@ -6171,12 +6171,25 @@ static inline int mlod__below(uint32_t x, uint32_t a)
    The highest node above x, a strict ancestor, that no refit of the last
    `age` changed, or MLOD__CHANGED when one changed x's parent (or x is
    the root). */
+/* Whether a refit of the last `age` (the tree's record of changes) may
+   have changed a node's entry in a basic cut or its disc: it changed the
+   node's parent (the root: the root).  A refit that changes a node marks
+   every node above it, so this takes the node's own changes too; a node
+   whose parent did not change keeps its status and its parent's, so it
+   is an entry of the basic cut before the refits exactly when it is one
+   after (mlod__patch_task).  The entries of a list that are not suspect
+   are those mlod__unchanged_run finds. */
+static int mlod__suspect(const mlod_tree *tree, uint32_t age, uint32_t node)
+{
+    return (uint32_t)tree->revision - tree->changes[node ? (node - 1) / 2 : 0] < age;
+}
+
 #define MLOD__CHANGED ((uint32_t)-1)
 static uint32_t mlod__unchanged_top(const mlod_tree *tree, uint32_t age, uint32_t x)
 {
     const uint32_t *changes = tree->changes, now = (uint32_t)tree->revision;
     uint32_t top;
-    if (x == 0 || now - changes[(x - 1) / 2] < age) return MLOD__CHANGED;
+    if (x == 0 || mlod__suspect(tree, age, x)) return MLOD__CHANGED;
     top = (x - 1) / 2;
     while (top > 0 && now - changes[(top - 1) / 2] >= age) top = (top - 1) / 2;
     return top;
@@ -6187,7 +6200,7 @@ static uint32_t mlod__unchanged_top(const mlod_tree *tree, uint32_t age, uint32_
 static uint32_t mlod__unchanged_run(const mlod_tree *tree, uint32_t age, const uint32_t *nodes, uint32_t k, uint32_t n)
 {
     uint32_t x = nodes[k], top = mlod__unchanged_top(tree, age, x), lo, hi;
-    if (top == MLOD__CHANGED) return x == 0 && (uint32_t)tree->revision - tree->changes[0] >= age ? k + 1 : k;
+    if (top == MLOD__CHANGED) return x == 0 && !mlod__suspect(tree, age, 0) ? k + 1 : k;
     /* the usual case, where a run is long, at once: the entries are not
        in cache, and each step of the search below loads one more line */
     if (mlod__below(nodes[n - 1], top)) return n;
@@ -7575,6 +7588,17 @@ static mlod_result mlod__check_cut_params(mlod_cut *cut, const mlod_tree *tree, 
     return MLOD_OK;
 }
 
+/* The refits of a tree since its revision `since` (1 .. 2^32 - 1) where its
+   record of changes (mlod_tree.changes) tells which nodes they changed;
+   else 0 (none since, or no such record). */
+static uint32_t mlod__record_age(const mlod_tree *tree, uint64_t since)
+{
+    uint64_t refits = tree->revision - since;
+    return tree->changes && tree->changes_revision == tree->revision && refits < ((uint64_t)1 << 32)
+               ? (uint32_t)refits
+               : 0u;
+}
+
 /* Which views this update skips, after mlod__check_cut_params: those whose
    view (every byte), tree (the same object, revision and arrays) and
    epsilon are those of the committed list, when that list is exact (the
@@ -7593,14 +7617,13 @@ static uint32_t mlod__skip_views(mlod_cut *cut, const mlod_tree *tree, const mlo
                     cut->seen_spheres == tree->spheres && cut->seen_cones == tree->cones &&
                     cut->seen_epsilon == params->epsilon;
     int same = same_tree && cut->seen_revision == tree->revision;
-    uint64_t refits = tree->revision - cut->seen_revision;
+    uint32_t refits = mlod__record_age(tree, cut->seen_revision);
     /* where the last refit changed most of the tree, looking at the record
        costs more than it saves (an evaluation costs several record loads;
        the object protocol twisting all over: 40 -> 45 ms per update) */
-    int stamped = same_tree && params->mode != MLOD_CUT_BASIC && tree->changes &&
-                  tree->changes_revision == tree->revision && refits > 0 && refits < ((uint64_t)1 << 32) &&
+    int stamped = same_tree && params->mode != MLOD_CUT_BASIC && refits > 0 &&
                   tree->changes_share <= MLOD__STAMPED_SHARE;
-    *age = stamped ? (uint32_t)refits : 0;
+    *age = stamped ? refits : 0;
     for (v = 0; v < cut->view_count; v++) {
         /* coarse == 0 follows from MLOD__EXACT; tested again, as the
            rounds end only once no view holds a coarse entry */
@@ -9067,6 +9090,18 @@ MLOD__FORCE_INLINE void mlod__plot_if(const mlod__band *band, uint32_t row, uint
    for paraboloids (|dir| in exact arithmetic), else 1 (dir.w).  The
    position's offsets are multiplied by the reciprocal of the scale.  0
    when the position lies outside a paraboloid's disc. */
+/* The direction of the paraboloid sub-projection's position (x, y) in tile
+   pixels, at any distance off the axis: the inverse stereographic
+   projection, times 1 + q (returned; q <= 1 within the paraboloid's disc). */
+static double mlod__paraboloid_dir(const mlod_view_sub *sub, double x, double y, double *dir)
+{
+    double px = (x - sub->x) * (2.0 / sub->width) - 1.0, py = 1.0 - (y - sub->y) * (2.0 / sub->height);
+    double q = px * px + py * py;
+    int k;
+    for (k = 0; k < 3; k++) dir[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
+    return q;
+}
+
 /* GLSL twin: centre_ray */
 static int mlod__centre_ray(const mlod_view_sub *sub, int kind, double x, double y, double *o, double *dir,
                             double *depth_per_t)
@@ -9088,12 +9123,8 @@ static int mlod__centre_ray(const mlod_view_sub *sub, int kind, double x, double
             dir[k] = sub->forward[k];
         }
     } else {
-        px = (x - sub->x) * (2.0 / sub->width) - 1.0;
-        py = 1.0 - (y - sub->y) * (2.0 / sub->height);
-        q = px * px + py * py;
+        q = mlod__paraboloid_dir(sub, x, y, dir);
         if (!(q <= 1.0)) return 0;
-        /* the inverse stereographic projection, times 1 + q */
-        for (k = 0; k < 3; k++) dir[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
         *depth_per_t = 1.0 + q;
     }
     return 1;
@@ -9653,26 +9684,13 @@ static void mlod__splat_task(void *context, uint32_t index)
     mlod__draw_cut(&band, &pv, &cv);
 }
 
-/* Whether a refit of the last `age` (the tree's record of changes) may
-   have changed a node's entry in a basic cut or its disc: it changed the
-   node's parent (the root: the root).  A refit that changes a node marks
-   every node above it, so this takes the node's own changes too; a node
-   whose parent did not change keeps its status and its parent's, so it
-   is an entry of the basic cut before the refits exactly when it is one
-   after (mlod__patch_task).  The entries of a list that are not suspect
-   are those mlod__unchanged_run finds. */
-static int mlod__suspect(const mlod_tree *tree, uint32_t age, uint32_t node)
-{
-    return (uint32_t)tree->revision - tree->changes[node ? (node - 1) / 2 : 0] < age;
-}
-
 /* The marked pixels of a patch, by blocks (at most MLOD__CONES), each as
    a cone of directions: axis (unit) and the cosine and sine of its
    half-angle g, widened by 3 / width (mlod__patch_outside). */
-#define MLOD__CONES 17
+#define MLOD__CONES 16
 typedef struct mlod__cones {
-    uint32_t count; /* the blocks', then the band's (the last) */
-    double axis[MLOD__CONES][3], cs[MLOD__CONES][2];
+    uint32_t count;                             /* the blocks with a marked pixel */
+    double axis[MLOD__CONES + 1][3], cs[MLOD__CONES + 1][2]; /* theirs, then the whole band's */
 } mlod__cones;
 
 /* The cones of the marked pixels' centres (the band's mask, its rows, the
@@ -9688,20 +9706,18 @@ static int mlod__marked_cones(const mlod__pview *pv, const mlod__band *band, uin
     if (pv->sub_count != 1 || pv->kind[0] != MLOD_VIEW_PARABOLOID || sub->width != sub->height ||
         sub->scale != 0.5 * sub->width || !(band->disc_scale <= 1.0f))
         return 0;
-    for (b = 0; b <= 16; b++) { /* the band's blocks, then the whole band (cones->all) */
-        uint32_t r0 = b < 16 ? band->row_begin + (b / 4) * bh : band->row_begin, c0 = b < 16 ? (b % 4) * bw : 0;
-        uint32_t h = b < 16 ? bh : rows, w = b < 16 ? bw : width, row, col, pass, marked = 0;
+    for (b = 0; b <= MLOD__CONES; b++) { /* the band's blocks, then the whole band (held after them) */
+        uint32_t r0 = b < MLOD__CONES ? band->row_begin + (b / 4) * bh : band->row_begin;
+        uint32_t c0 = b < MLOD__CONES ? (b % 4) * bw : 0, h = b < MLOD__CONES ? bh : rows, w = b < MLOD__CONES ? bw : width;
+        uint32_t row, col, pass, marked = 0;
         double sum[3] = {0.0, 0.0, 0.0}, len, lowest = 1.0, gamma, *axis = out->axis[out->count];
         int k;
         for (pass = 0; pass < 2; pass++) { /* the axis, then the widest angle from it */
             for (row = r0; row < r0 + h && row < band->row_end; row++)
                 for (col = c0; col < c0 + w && col < width; col++) {
-                    /* the inverse stereographic projection (mlod__centre_ray), any distance off the axis */
-                    double px = (col + 0.5 - sub->x) * (2.0 / sub->width) - 1.0;
-                    double py = 1.0 - (row + 0.5 - sub->y) * (2.0 / sub->height), q = px * px + py * py, d[3], n;
+                    double d[3], n;
                     if (!band->mask[(size_t)row * band->id_stride + col]) continue;
-                    for (k = 0; k < 3; k++)
-                        d[k] = 2.0 * px * sub->right[k] + 2.0 * py * sub->up[k] + (1.0 - q) * sub->forward[k];
+                    mlod__paraboloid_dir(sub, col + 0.5, row + 0.5, d);
                     n = mlod__length3(d);
                     for (k = 0; k < 3; k++) d[k] /= n;
                     if (pass == 0) {
@@ -9724,7 +9740,7 @@ static int mlod__marked_cones(const mlod__pview *pv, const mlod__band *band, uin
         if (!(gamma < 0.5 * MLOD__PI)) return 0;
         out->cs[out->count][0] = cos(gamma);
         out->cs[out->count][1] = sin(gamma);
-        out->count++;
+        if (b < MLOD__CONES) out->count++;
     }
     return out->count > 0;
 }
@@ -9753,11 +9769,11 @@ static int mlod__patch_outside(const mlod__pview *pv, const float *sphere, const
     if (!(r * r < d2)) return 0;
     t = sqrt(d2 - r * r);
     margin = (t + 2.0 * r) * (1.0 / 1073741824.0);
-    for (i = cones->count; i-- > 0;) { /* the band's first (it holds the blocks'): most nodes lie outside it */
+    for (i = cones->count + 1; i-- > 0;) { /* the band's first (it holds the blocks'): most nodes lie outside it */
         int outside = mlod__dot3(x, cones->axis[i]) < cones->cs[i][0] * t - cones->cs[i][1] * r - margin;
-        if (outside != (i + 1 < cones->count)) return outside; /* outside the band's, or inside a block's */
+        if (i == cones->count ? outside : !outside) return outside;
     }
-    return cones->count > 1;
+    return 1;
 }
 
 /* A patch's drawing (mlod__patch_task): its bands, view, cut list, the
@@ -9802,9 +9818,9 @@ static void mlod__patch_task(void *context, uint32_t index)
     mlod__fdiscs fast;
     mlod__patch p;
     mlod__cones cones;
-    uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), i, end, row, col, some = 0, marked = 0;
+    uint32_t view = mlod__draw_begin(job, index, &band, &pv, &fast), i, end, row, col, marked = 0;
     const uint32_t *tile = job->atlas->tiles + 4 * (size_t)view;
-    uint32_t age = (uint32_t)(tree->revision - job->atlas->shown[MLOD__SHOWN * (size_t)view + 1]);
+    uint32_t age = mlod__record_age(tree, job->atlas->shown[MLOD__SHOWN * (size_t)view + 1]);
     uint8_t *mask = job->atlas->dirty + (size_t)tile[1] * job->atlas->width + tile[0];
     for (row = band.row_begin; row < band.row_end; row++)
         for (col = 0; col < tile[2]; col++) {
@@ -9816,13 +9832,12 @@ static void mlod__patch_task(void *context, uint32_t index)
             band.ids[id_at] = 0;
             for (k = 0; k < 3 && band.normal; k++) band.normal[3 * at + k] = 0.0f;
             for (k = 0; k < 3 && band.color; k++) band.color[3 * at + k] = 0.0f;
-            some = 1;
             marked++;
         }
+    p.cv = mlod_cut_get(job->cut, view);
     if (2 * (size_t)marked > (size_t)(band.row_end - band.row_begin) * tile[2]) {
         /* most pixels marked: the band drawn whole is the same, for less */
         mlod__band_clear(&band, tile[2]);
-        p.cv = mlod_cut_get(job->cut, view);
         mlod__draw_cut(&band, &pv, &p.cv);
         return;
     }
@@ -9831,9 +9846,8 @@ static void mlod__patch_task(void *context, uint32_t index)
     p.band = &band;
     p.masked = &masked;
     p.pv = &pv;
-    p.cv = mlod_cut_get(job->cut, view);
     p.waiting[0] = p.waiting[1] = 0;
-    p.cones = some && mlod__marked_cones(&pv, &masked, tile[2], &cones) ? &cones : NULL;
+    p.cones = marked && mlod__marked_cones(&pv, &masked, tile[2], &cones) ? &cones : NULL;
     /* the entries whose parent did not change come in runs
        (mlod__unchanged_run: the same test, a climb per run) */
     for (i = 0; i < p.cv.count; i = end) {
@@ -9844,7 +9858,7 @@ static void mlod__patch_task(void *context, uint32_t index)
             end = i + 1;
             continue;
         }
-        for (j = i; some && j < end; j++) /* (no pixel marked: none to draw them over) */
+        for (j = i; marked && j < end; j++) /* (no pixel marked: none to draw them over) */
             if (p.cv.status[j] != MLOD_STATUS_CULLED &&
                 (!p.cones || !mlod__patch_outside(&pv, tree->spheres + 4 * (size_t)p.cv.nodes[j], p.cones)))
                 mlod__patch_add(&p, 1, j);
@@ -9927,15 +9941,13 @@ MLOD__PUBLIC void mlod_atlas_invalidate(mlod_atlas *atlas)
 static int mlod__tile_current(const mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, uint32_t view)
 {
     const uint64_t *shown = atlas->shown + MLOD__SHOWN * (size_t)view;
-    uint64_t refits = tree->revision - shown[1];
-    uint32_t i, now = (uint32_t)tree->revision, age = (uint32_t)refits;
-    int record = tree->changes && tree->changes_revision == tree->revision && refits < ((uint64_t)1 << 32);
+    uint32_t i, now = (uint32_t)tree->revision, age = mlod__record_age(tree, shown[1]);
     mlod_cut_view cv;
     if (shown[0] != cut->version[view]) return 0; /* versions are never 0: a tile not known */
-    if (refits == 0) return 1;
+    if (tree->revision == shown[1]) return 1;
     cv = mlod_cut_get(cut, view);
     for (i = 0; i < cv.count; i++) /* without the record, every node counts as changed */
-        if (cv.status[i] != MLOD_STATUS_CULLED && (!record || now - tree->changes[cv.nodes[i]] < age)) return 0;
+        if (cv.status[i] != MLOD_STATUS_CULLED && (!age || now - tree->changes[cv.nodes[i]] < age)) return 0;
     return 1;
 }
 
@@ -9960,10 +9972,8 @@ static uint64_t mlod__tile_basis(const mlod_tree *tree, const mlod_cut *cut, uin
 static int mlod__tile_patchable(const mlod_atlas *atlas, const mlod_tree *tree, const mlod_cut *cut, uint32_t view)
 {
     const uint64_t *shown = atlas->shown + MLOD__SHOWN * (size_t)view;
-    uint64_t refits = tree->revision - shown[1];
     return shown[0] != 0 && shown[2] != 0 && shown[2] == mlod__tile_basis(tree, cut, view) && !atlas->fill_holes &&
-           tree->changes && tree->changes_revision == tree->revision && refits > 0 && refits < ((uint64_t)1 << 32) &&
-           tree->changes_share <= MLOD__STAMPED_SHARE;
+           mlod__record_age(tree, shown[1]) > 0 && tree->changes_share <= MLOD__STAMPED_SHARE;
 }
 
 static int mlod__fill_tiles(mlod_atlas *atlas, const uint32_t *list, uint32_t count, const mlod_parallel *parallel,
