@@ -356,6 +356,40 @@
      for, and the children of a lazy round's splits, in the same lanes
      (a segment's at once), and pass over runs of statuses with nothing
      to split 8 at a time while planning.
+     A budget.  A lazy update given mlod_cut_params.budget = B > 0 (node-
+     views, the unit of mlod_cut_view.evaluated) evaluates at most B in
+     all: for a real-time frame of fixed cost, whatever the views and
+     the tree did.  The views it would update (those not skipped as
+     unchanged) are taken oldest first, by the update that last evaluated
+     them (equal ones in view order), and each is updated while its bound
+     still fits in what is left of B; the others are deferred.  What the
+     views taken cost below their bounds goes to the deferred ones in
+     another pass over the windows, the same way, up to four passes in
+     all (each pass about halves what is left).  The bound
+     of a view whose list holds n entries is 3 n (2^q - 1) node-views for
+     q = lazy_steps: a round evaluates at most 3 per entry of its input
+     (the entry itself, then either the two children it splits into or
+     its pair's parent) and at most doubles the entries.  A deferred view
+     keeps its list entry for entry, unevaluated (mlod_cut_view.deferred
+     = 1, evaluated = steps = 0): still a partition of the leaves, drawn
+     as it is, but its statuses are those of the view and tree it was
+     computed for (a node since culled is drawn, one since turned towards
+     the view may stay culled) until an update reaches it.  Its version
+     moves when its view's bytes did (mlod_splat then redraws its tile
+     with the view it is given).  The oldest-first order visits every view
+     in turn, so once the views and the tree stop, the lists converge to
+     the basic cuts as without a budget, provided B holds the bound of
+     the largest view's list (a view whose bound exceeds B is never
+     updated).  The views' actual cost is below their bounds (about 1.4
+     node-views per entry rather than 3 on the protocol of bench/, the
+     object under the rig turning 10 degrees per frame), so the passes
+     spend most of B: 0.99 B there with B = 1 M.  Views
+     that a budget leaves out for many updates stay coarse or fine where
+     the view has moved since; spend more where that shows.  Updates
+     from the roots (a cut's first, after mlod_cut_reset, or with a tree
+     of another node count) give every view its list whatever the budget:
+     at most 3 (2^q - 1) node-views per view.  The other modes refuse a
+     budget (MLOD_ERROR_INVALID_ARGUMENT), and so does manylods_vk.h.
 
    SPLATTING
      mlod_splat() draws every drawn node of every view's cut into the view's
@@ -1222,6 +1256,9 @@ typedef struct mlod_cut_params {
     float epsilon;               /* pixels, > 0, may be +inf */
     uint32_t lazy_steps;         /* lazy mode: moves per node-view and call, >= 1 */
     const mlod_parallel *parallel; /* optional */
+    uint64_t budget;             /* lazy mode: at most this many node-views evaluated by an
+                                    update from the previous cuts, 0 for no limit (THE CUT,
+                                    "A budget"); 0 in the other modes */
 } mlod_cut_params;
 
 /* One view's cut, valid until the next mlod_cut_update or mlod_cut_destroy. */
@@ -1238,6 +1275,9 @@ typedef struct mlod_cut_view {
                                are culled); no two cuts of the process share a value.  With the
                                tree's record of changes it tells what a tile shows (mlod_splat
                                keeps the tiles whose version and drawn nodes did not change) */
+    int deferred;           /* 1: a lazy update's budget left the view out of the last update, so its
+                               list is the one before, computed for an earlier view or tree (its
+                               statuses may be out of date); 0: evaluated, or skipped unchanged */
 } mlod_cut_view;
 
 typedef struct mlod_cut mlod_cut;
@@ -1247,8 +1287,9 @@ typedef struct mlod_cut mlod_cut;
    mean_cut_nodes nodes, in any mode.  A cut holds each view's list (5
    bytes per entry: 4 for the node, 1 for its status) in chunks, each the
    lists of a run of consecutive views, with at most an eighth to spare;
-   about 250 bytes per view (offsets, counts, statistics, versions, the view its
-   list was computed for); and, during an update, the buffers it works
+   about 255 bytes per view (offsets, counts, statistics, versions, the view its
+   list was computed for; 16 more during an update with a budget, for
+   its order); and, during an update, the buffers it works
    in, sized for one window of views: an update goes through the views a
    window at a time (a chunk's views, about 2^18 entries) and writes each
    window's lists back into its chunk.  The buffers take 3 to 16 MB
@@ -5714,6 +5755,8 @@ struct mlod_cut {
                           failed update, another view, epsilon or tree, a lazy list that moved),
                           so that two lists of one basis are the basic cuts of one view (mlod_splat
                           patches tiles by it) */
+    uint64_t *touched; /* per view: the serial of the last update that evaluated it (or of the
+                          cut's creation or reset): a budget goes to the oldest first */
     uint64_t serial;   /* the last version given out */
     mlod__work_buffer kept[MLOD__WORK_COUNT]; /* during an update: what its growth replaced */
     uint8_t grown[MLOD__WORK_COUNT];          /* during an update: kept[i] holds buffer i's old arrays */
@@ -5738,6 +5781,10 @@ struct mlod_cut {
    (mlod__join_view): its list differs from the committed one in what the
    splat draws (mlod__same_drawn). */
 #define MLOD__DIFFERS 8u
+/* Set by mlod__budget_views: the view is left out of a lazy update with
+   a budget; its list stays as it is (not evaluated).  Kept after the
+   update (mlod_cut_view.deferred) until the next one starts. */
+#define MLOD__DEFERRED 16u
 /* cut->view_done[v] for a view the update skips. */
 #define MLOD__SKIPPED 2u
 
@@ -5780,6 +5827,7 @@ typedef struct mlod__cut_job {
     int last;   /* the call's last round: clear MLOD__PARENT_INVALID */
     uint32_t age; /* refits since the committed lists (low 32 bits), for MLOD__STAMPED views */
     uint64_t serial; /* the version a view gets whose view or drawn entries changed */
+    int again;  /* a later pass of a budgeted update: the views skipped keep their counts */
     const mlod__list *in;
     mlod__list *out;
     const mlod__list *done_in; /* where the views done this round are copied from: in, or in
@@ -6977,6 +7025,7 @@ MLOD__PUBLIC void mlod_cut_destroy(mlod_cut *cut)
     mlod__free(&cut->allocator, cut->known);
     mlod__free(&cut->allocator, cut->version);
     mlod__free(&cut->allocator, cut->basis);
+    mlod__free(&cut->allocator, cut->touched);
     cut->allocator.free(cut->allocator.user, cut);
 }
 
@@ -6985,7 +7034,7 @@ static void mlod__new_versions(mlod_cut *cut)
 {
     uint32_t v;
     cut->serial++;
-    for (v = 0; v < cut->view_count; v++) cut->version[v] = cut->basis[v] = cut->serial;
+    for (v = 0; v < cut->view_count; v++) cut->version[v] = cut->basis[v] = cut->touched[v] = cut->serial;
 }
 
 MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocator *allocator, mlod_cut **out_cut,
@@ -7018,6 +7067,7 @@ MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
     ok = ok && (cut->known = (uint8_t *)mlod__alloc_array(&a, view_count, 1, &cut->bytes));
     ok = ok && (cut->version = (uint64_t *)mlod__alloc_array(&a, view_count, sizeof(uint64_t), &cut->bytes));
     ok = ok && (cut->basis = (uint64_t *)mlod__alloc_array(&a, view_count, sizeof(uint64_t), &cut->bytes));
+    ok = ok && (cut->touched = (uint64_t *)mlod__alloc_array(&a, view_count, sizeof(uint64_t), &cut->bytes));
     if (!ok) {
         mlod_cut_destroy(cut);
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory creating a cut for %u views", view_count);
@@ -7041,6 +7091,10 @@ MLOD__PUBLIC void mlod_cut_reset(mlod_cut *cut)
     cut->seen_tree = NULL; /* nothing skipped: the views stay known to be valid */
     memset(cut->lists[cut->committed].count, 0, cut->view_count * sizeof(uint32_t));
     memset(cut->stats[0], 0, cut->view_count * sizeof(mlod__view_stats));
+    {
+        uint32_t v;
+        for (v = 0; v < cut->view_count; v++) cut->known[v] &= (uint8_t)~MLOD__DEFERRED;
+    }
     mlod__new_versions(cut);
 }
 
@@ -7074,6 +7128,7 @@ MLOD__PUBLIC mlod_cut_view mlod_cut_get(const mlod_cut *cut, uint32_t view)
         r.evaluated = s->evaluated;
         r.steps = s->steps;
         r.splatted = s->drawn + s->oversize + s->coarse;
+        r.deferred = (cut->known[view] & MLOD__DEFERRED) != 0;
         r.version = cut->version[view];
     }
     return r;
@@ -7122,7 +7177,8 @@ static double mlod__cut_capacities(uint32_t view_count, uint32_t mean_cut_nodes,
     *committed = floor(1.125 * total + 1.0625 * window);
     return (double)sizeof(mlod_cut) + 4.0 * (v + 1) +
            v * (3 * (sizeof(size_t) + sizeof(uint32_t)) + 2 * sizeof(mlod__view_stats) + 1 + sizeof(size_t) +
-                sizeof(mlod_view) + 1 + 2 * sizeof(uint64_t) + 2 * sizeof(mlod__chunk));
+                sizeof(mlod_view) + 1 + 3 * sizeof(uint64_t) /* version, basis, touched */ +
+                2 * sizeof(uint64_t) /* a budget's order, during an update */ + 2 * sizeof(mlod__chunk));
 }
 
 MLOD__PUBLIC size_t mlod_cut_bound(uint32_t view_count, uint32_t mean_cut_nodes)
@@ -7557,6 +7613,9 @@ MLOD__PUBLIC mlod_result mlod_cut_params_check(const mlod_cut_params *params, ml
         return mlod__fail(error, MLOD_ERROR_BAD_EPSILON, "epsilon %g must be > 0 (pixels)", params->epsilon);
     if (params->mode == MLOD_CUT_LAZY && params->lazy_steps == 0)
         return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "lazy mode needs lazy_steps >= 1");
+    if (params->mode != MLOD_CUT_LAZY && params->budget != 0)
+        return mlod__fail(error, MLOD_ERROR_INVALID_ARGUMENT, "a budget (%llu node-views) needs lazy mode",
+                          (unsigned long long)params->budget);
     return mlod__succeed(error);
 }
 
@@ -7630,10 +7689,78 @@ static uint32_t mlod__skip_views(mlod_cut *cut, const mlod_tree *tree, const mlo
         int exact = cut->view_done[v] && (cut->known[v] & MLOD__EXACT) && cut->stats[0][v].coarse == 0;
         int skip = same && exact;
         cut->view_done[v] = (uint8_t)(skip ? MLOD__SKIPPED : 0);
-        cut->known[v] = (uint8_t)((cut->known[v] & ~MLOD__STAMPED) | (stamped && exact ? MLOD__STAMPED : 0u));
+        cut->known[v] = (uint8_t)((cut->known[v] & ~(MLOD__STAMPED | MLOD__DEFERRED)) |
+                                  (stamped && exact ? MLOD__STAMPED : 0u));
         skipped += (uint32_t)skip;
     }
     return skipped;
+}
+
+/* The most node-views a lazy update of lazy_steps rounds evaluates for a
+   view whose list holds n entries: a round evaluates at most 3 per entry
+   of its input (the entry, or its parent where it pairs with a sibling,
+   or the two children it splits into; an entry is classified at most once
+   and either splits or pairs) and at most doubles the entries, so rounds
+   1 .. q evaluate at most 3 n (1 + 2 + ... + 2^(q-1)) = 3 n (2^q - 1).
+   UINT64_MAX where that does not fit. */
+static uint64_t mlod__lazy_bound(uint32_t n, uint32_t lazy_steps)
+{
+    uint64_t rounds = lazy_steps >= 40 ? UINT64_MAX : ((uint64_t)1 << lazy_steps) - 1;
+    uint64_t per = 3 * (uint64_t)n;
+    return rounds > UINT64_MAX / (per ? per : 1) ? UINT64_MAX : rounds * per;
+}
+
+/* A budget (mlod_cut_params.budget) for a lazy update from the previous
+   lists of this tree: of the views to update (the first pass: view_done 0
+   after mlod__skip_views; a later pass: those still MLOD__DEFERRED), the
+   oldest first (the serial of the update that last evaluated them,
+   mlod_cut.touched; equal ones in view order) are chosen while each one's
+   bound (mlod__lazy_bound) fits in `left`: view_done 0, their touched the
+   update's serial.  The other candidates are MLOD__DEFERRED (view_done
+   MLOD__SKIPPED), as is every view in a later pass that is not chosen.
+   So a pass evaluates at most `left`.  *deferred = the deferred count.
+   Returns 0 when out of memory for the order (16 bytes per candidate,
+   given back before it returns). */
+static int mlod__budget_views(mlod_cut *cut, uint32_t lazy_steps, uint64_t left, int again, uint32_t *deferred)
+{
+    const mlod__list *list = &cut->lists[MLOD__COMMITTED];
+    uint64_t *order, *scratch;
+    uint32_t v, n = 0, i;
+    *deferred = 0;
+    for (v = 0; v < cut->view_count; v++) {
+        int candidate = again ? (cut->known[v] & MLOD__DEFERRED) != 0 : cut->view_done[v] != MLOD__SKIPPED;
+        n += (uint32_t)candidate;
+        if (again) cut->view_done[v] = MLOD__SKIPPED; /* the views done stay as they are */
+    }
+    if (n == 0) return 1;
+    order = (uint64_t *)mlod__alloc_array(&cut->allocator, 2 * (size_t)n, sizeof(uint64_t), NULL);
+    if (!order) return 0;
+    scratch = order + n;
+    for (v = 0, i = 0; v < cut->view_count; v++)
+        if (again ? (cut->known[v] & MLOD__DEFERRED) != 0 : cut->view_done[v] != MLOD__SKIPPED) {
+            /* oldest first: the key counts down with the updates since */
+            uint64_t since = cut->serial - cut->touched[v];
+            uint32_t key = since >= 0xffffffffu ? 0u : 0xffffffffu - (uint32_t)since;
+            order[i++] = (uint64_t)key << 32 | v;
+        }
+    mlod__radix_sort(order, scratch, n);
+    for (i = 0; i < n; i++) {
+        uint64_t bound;
+        v = (uint32_t)scratch[i];
+        bound = mlod__lazy_bound(list->count[v], lazy_steps);
+        if (bound <= left) {
+            left -= bound;
+            cut->view_done[v] = 0;
+            cut->known[v] &= (uint8_t)~MLOD__DEFERRED;
+            cut->touched[v] = cut->serial + 1;
+            continue;
+        }
+        cut->view_done[v] = MLOD__SKIPPED;
+        cut->known[v] = (uint8_t)((cut->known[v] & ~MLOD__STAMPED) | MLOD__DEFERRED);
+        ++*deferred;
+    }
+    mlod__free(&cut->allocator, order);
+    return 1;
 }
 
 /* A successful update's record of what its lists were computed for, and
@@ -7649,13 +7776,26 @@ static void mlod__remember_views(mlod_cut *cut, const mlod_tree *tree, const mlo
                           tree->revision - cut->seen_revision < ((uint64_t)1 << 32);
     for (v = 0; v < cut->view_count; v++) {
         const mlod__view_stats *s = &cut->stats[0][v];
-        /* lazy: a view that made no move in this call (its first round
-           evaluated every entry and every pair's parent afresh) */
-        int exact = params->mode != MLOD_CUT_LAZY || (s->steps == 0 && s->coarse == 0);
-        int kept = exact && same_tree && (cut->known[v] & MLOD__SEEN) && (cut->known[v] & MLOD__EXACT) &&
-                   memcmp(&cut->seen[v], &views[v], sizeof(mlod_view)) == 0;
-        if (!kept) cut->basis[v] = cut->serial;
-        cut->known[v] = (uint8_t)(MLOD__SEEN | (exact ? MLOD__EXACT : 0u));
+        const int same_view =
+            (cut->known[v] & MLOD__SEEN) && memcmp(&cut->seen[v], &views[v], sizeof(mlod_view)) == 0;
+        if (cut->known[v] & MLOD__DEFERRED) {
+            /* its list stands, computed for what seen[] held then: exact
+               for nothing now; the version moves with the view, as the
+               splat draws the list with the view it is given */
+            if (!same_view) cut->version[v] = cut->serial;
+            cut->basis[v] = cut->serial;
+            cut->known[v] = MLOD__SEEN | MLOD__DEFERRED; /* (mlod_cut_view.deferred) */
+            continue;
+        }
+        if (cut->view_done[v] != MLOD__SKIPPED) cut->touched[v] = cut->serial;
+        {
+            /* lazy: a view that made no move in this call (its first round
+               evaluated every entry and every pair's parent afresh) */
+            int exact = params->mode != MLOD_CUT_LAZY || (s->steps == 0 && s->coarse == 0);
+            int kept = exact && same_tree && (cut->known[v] & MLOD__EXACT) && same_view;
+            if (!kept) cut->basis[v] = cut->serial;
+            cut->known[v] = (uint8_t)(MLOD__SEEN | (exact ? MLOD__EXACT : 0u));
+        }
     }
     memcpy(cut->seen, views, cut->view_count * sizeof(mlod_view));
     cut->seen_tree = tree;
@@ -7698,7 +7838,7 @@ static mlod__list *mlod__window_rounds(mlod_cut *w, const mlod_tree *tree, const
     for (v = 0; v < w->view_count; v++) {
         if (w->view_done[v] == MLOD__SKIPPED) { /* its counts, with no work */
             w->stats[1][v] = w->stats[0][v];
-            w->stats[1][v].evaluated = w->stats[1][v].steps = 0;
+            if (!job->again) w->stats[1][v].evaluated = w->stats[1][v].steps = 0;
             skipped++;
         } else {
             w->stats[1][v].coarse = 0;
@@ -7942,38 +8082,21 @@ static int mlod__window_skipped(const mlod_cut *cut, uint32_t first, uint32_t n)
     return 1;
 }
 
-MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
-                                         const mlod_cut_params *params, mlod_error *error)
+/* The most passes of a budgeted update: each goes through every window,
+   and spends about half of what the views before left (their bounds are
+   about twice what they cost), so four spend about nine tenths. */
+#define MLOD__BUDGET_PASSES 4
+
+/* One pass of an update over the views (mlod_cut_update): each window
+   the views not MLOD__SKIPPED take part in goes through its rounds and is
+   committed; the others' chunks are kept as they are.  Returns 0 when out
+   of memory (the chunks then released: mlod__cut_release). */
+static int mlod__update_pass(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+                             const mlod_cut_params *params, mlod__cut_job *job, int same_tree)
 {
-    mlod__cut_job job;
-    uint32_t v, skipped, next = 0, fresh_count = 0, done_views = 0;
+    uint32_t v, next = 0, fresh_count = 0, done_views = 0;
     uint64_t done_entries = 0;
-    int have, same_tree;
-    mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
-    if (res != MLOD_OK) return res;
-    have = cut->chunk_count > 0; /* windows: the chunks */
-    memset(&job, 0, sizeof job);
-    skipped = mlod__skip_views(cut, tree, params, &job.age);
-    if (job.age && (uint32_t)tree->revision - tree->changes[0] >= job.age) {
-        /* the refits since changed no node (a changed leaf marks every
-           node above it, the root included): the MLOD__STAMPED views are
-           skipped as a whole; their lists are the basic cuts of this
-           revision too */
-        for (v = 0; v < cut->view_count; v++)
-            if (cut->known[v] & MLOD__STAMPED) cut->view_done[v] = MLOD__SKIPPED;
-        for (v = 0, skipped = 0; v < cut->view_count; v++) skipped += cut->view_done[v] == MLOD__SKIPPED;
-    }
-    if (skipped == cut->view_count) {
-        /* nothing changed: the lists stand, and nothing was evaluated */
-        for (v = 0; v < cut->view_count; v++) cut->stats[0][v].evaluated = cut->stats[0][v].steps = 0;
-        cut->seen_revision = tree->revision;
-        return mlod__succeed(error);
-    }
-    same_tree = cut->tree_nodes == tree->node_count;
-    job.tree = tree;
-    job.epsilon = params->epsilon;
-    job.lazy = params->mode == MLOD_CUT_LAZY;
-    job.serial = cut->serial + 1;
+    const int have = cut->chunk_count > 0; /* windows: the chunks */
     for (v = 0; v < cut->view_count;) {
         mlod__chunk *old = have ? &cut->chunks[next++] : NULL;
         uint32_t n;
@@ -7995,14 +8118,15 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
             *c = *old;
             old->nodes = NULL;
             fresh_count++;
-            for (u = v; u < v + n; u++) cut->stats[0][u].evaluated = cut->stats[0][u].steps = 0;
+            if (!job->again)
+                for (u = v; u < v + n; u++) cut->stats[0][u].evaluated = cut->stats[0][u].steps = 0;
         } else {
             mlod_cut w;
             mlod__list *out;
             uint32_t u;
             mlod__window_enter(cut, &w, v, n, old);
-            job.views = views + v;
-            out = mlod__window_rounds(&w, tree, params, &job, same_tree);
+            job->views = views + v;
+            out = mlod__window_rounds(&w, tree, params, job, same_tree);
             mlod__window_leave(cut, &w, out != NULL);
             if (!out || !mlod__commit_window(cut, v, n, out, old, &fresh_count, params->parallel)) goto out_of_memory;
             for (u = v; u < v + n; u++) done_entries += cut->lists[MLOD__COMMITTED].count[u];
@@ -8019,16 +8143,74 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
         cut->fresh = t;
         cut->fresh_capacity = capacity;
     }
+    return 1;
+out_of_memory:
+    mlod__cut_release(cut, fresh_count);
+    return 0;
+}
+
+MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, const mlod_view *views,
+                                         const mlod_cut_params *params, mlod_error *error)
+{
+    mlod__cut_job job;
+    uint32_t v, skipped, deferred = 0;
+    int same_tree, budgeted, pass;
+    mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
+    if (res != MLOD_OK) return res;
+    memset(&job, 0, sizeof job);
+    skipped = mlod__skip_views(cut, tree, params, &job.age);
+    if (job.age && (uint32_t)tree->revision - tree->changes[0] >= job.age) {
+        /* the refits since changed no node (a changed leaf marks every
+           node above it, the root included): the MLOD__STAMPED views are
+           skipped as a whole; their lists are the basic cuts of this
+           revision too */
+        for (v = 0; v < cut->view_count; v++)
+            if (cut->known[v] & MLOD__STAMPED) cut->view_done[v] = MLOD__SKIPPED;
+        for (v = 0, skipped = 0; v < cut->view_count; v++) skipped += cut->view_done[v] == MLOD__SKIPPED;
+    }
+    same_tree = cut->tree_nodes == tree->node_count;
+    /* (from the roots, every view needs its list: no budget) */
+    budgeted = params->budget && params->mode == MLOD_CUT_LAZY && same_tree && cut->chunk_count > 0 &&
+               skipped < cut->view_count;
+    if (budgeted && !mlod__budget_views(cut, params->lazy_steps, params->budget, 0, &deferred)) {
+        for (v = 0; v < cut->view_count; v++) cut->known[v] &= (uint8_t)~MLOD__DEFERRED;
+        return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory ordering %u views for a budget",
+                          cut->view_count - skipped);
+    }
+    if (skipped == cut->view_count) {
+        /* nothing changed: the lists stand, and nothing was evaluated */
+        for (v = 0; v < cut->view_count; v++) cut->stats[0][v].evaluated = cut->stats[0][v].steps = 0;
+        cut->seen_revision = tree->revision;
+        return mlod__succeed(error);
+    }
+    job.tree = tree;
+    job.epsilon = params->epsilon;
+    job.lazy = params->mode == MLOD_CUT_LAZY;
+    job.serial = cut->serial + 1;
+    for (pass = 1;; pass++) {
+        uint64_t spent = 0;
+        uint32_t chosen;
+        if (!mlod__update_pass(cut, tree, views, params, &job, same_tree)) {
+            mlod_cut_reset(cut);
+            return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY,
+                              "out of memory updating the cut of %u views (the cut is reset)", cut->view_count);
+        }
+        if (!budgeted || deferred == 0 || pass == MLOD__BUDGET_PASSES) break;
+        /* what the views cost below their bounds goes to the deferred
+           ones, oldest first, in another pass (the views done so far keep
+           their counts) */
+        for (v = 0; v < cut->view_count; v++) spent += cut->stats[0][v].evaluated;
+        MANYLODS_ASSERT(spent <= params->budget);
+        if (!mlod__budget_views(cut, params->lazy_steps, params->budget - spent, 1, &deferred)) break;
+        for (v = 0, chosen = 0; v < cut->view_count; v++) chosen += cut->view_done[v] != MLOD__SKIPPED;
+        if (chosen == 0) break;
+        job.again = 1;
+    }
     cut->serial++;
     cut->tree_nodes = tree->node_count;
     mlod__remember_views(cut, tree, views, params);
     if (!cut->reserved) mlod__work_release(cut);
     return mlod__succeed(error);
-out_of_memory:
-    mlod__cut_release(cut, fresh_count);
-    mlod_cut_reset(cut);
-    return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory updating the cut of %u views (the cut is reset)",
-                      cut->view_count);
 }
 
 

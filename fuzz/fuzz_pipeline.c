@@ -894,6 +894,19 @@ static void check_cut(const mlod_cut *cut, const mlod_tree *t, const fz_layout *
     }
 }
 
+/* FNV-1a over view v's list: its count, nodes and statuses. */
+static uint64_t list_hash(const mlod_cut *cut, uint32_t v)
+{
+    mlod_cut_view cv = mlod_cut_get(cut, v);
+    uint64_t h = 1469598103934665603ull ^ cv.count;
+    uint32_t i;
+    for (i = 0; i < cv.count; i++) {
+        h = (h ^ cv.nodes[i]) * 1099511628211ull;
+        h = (h ^ cv.status[i]) * 1099511628211ull;
+    }
+    return h;
+}
+
 static int same_cut(const mlod_cut *a, const mlod_cut *b, uint32_t views, uint32_t *differs)
 {
     uint32_t v;
@@ -1566,9 +1579,10 @@ static void check_params(fz_ctx *c, fz_reader *r, mlod_cut *cut, const mlod_tree
     q.epsilon = (b & 0x30) == 0x30 ? rd_raw_float(r) : (float)ldexp(1.0, (int)(rd_u8(r) % 24) - 8);
     q.lazy_steps = (b & 0x0c) == 0x0c ? 0u : (b & 0x0c) == 0x08 ? rd_u32(r) : 1u + (b & 3u);
     q.parallel = c->parallel;
+    q.budget = (b & 0x03) == 0x03 ? (uint64_t)rd_u32(r) << (rd_u8(r) % 33) : 0u; /* (refused outside lazy mode) */
     bad_mode = (unsigned)q.mode > (unsigned)MLOD_CUT_LAZY;
     bad_eps = !(q.epsilon > 0.0f);
-    bad_lazy = q.mode == MLOD_CUT_LAZY && q.lazy_steps == 0;
+    bad_lazy = (q.mode == MLOD_CUT_LAZY && q.lazy_steps == 0) || (!bad_mode && q.mode != MLOD_CUT_LAZY && q.budget);
     memset(&e, 0, sizeof e);
     res = mlod_cut_params_check(&q, &e);
     fz_where = "mlod_cut_params_check";
@@ -2041,6 +2055,35 @@ static void run_views(fz_ctx *c, fz_reader *r, mlod_tree *t, const fz_scene *s, 
                "frame 2: incremental cut (from frame 1's) differs from basic in view %u", differs);
     follow_check(c, follow, t, incremental, basic, &v2, &p);
     p.mode = MLOD_CUT_LAZY;
+    {
+        /* a budget of node-views, any size: never over it; views left out
+           keep their list entry for entry; every list a partition (statuses
+           of the views left out are from frame 1) */
+        uint8_t pick = rd_u8(r);
+        if (pick < 96) {
+            uint64_t spent = 0, *was = (uint64_t *)malloc(sizeof(uint64_t) * v2.count);
+            uint32_t v, bad = 0;
+            FZ_REQUIRE(was != NULL, "out of memory");
+            p.budget = pick < 32   ? 1u + rd_u8(r)
+                       : pick < 64 ? 1u + 256u * rd_u8(r) + rd_u8(r)
+                                   : (uint64_t)rd_u32(r) << (pick % 12);
+            if (p.budget == 0) p.budget = 1;
+            for (v = 0; v < v2.count; v++) was[v] = list_hash(lazy, v);
+            cut_update(c, lazy, t, &v2, &p, 0, 0, "lazy update with a budget, frame 2");
+            check_cut(lazy, t, &layout, &v2, eps, 0, 0, &c->rng, "lazy cut with a budget, frame 2");
+            for (v = 0; v < v2.count; v++) {
+                mlod_cut_view a = mlod_cut_get(lazy, v);
+                spent += a.evaluated;
+                if (a.deferred) bad += a.evaluated != 0 || list_hash(lazy, v) != was[v];
+            }
+            free(was);
+            FZ_REQUIRE(spent <= p.budget, "a lazy update spent %llu node-views, its budget %llu",
+                       (unsigned long long)spent, (unsigned long long)p.budget);
+            FZ_REQUIRE(bad == 0, "%u views a budget deferred changed their list or were evaluated", bad);
+            FZ_NOTE("fuzz: budget %llu, spent %llu\n", (unsigned long long)p.budget, (unsigned long long)spent);
+            p.budget = 0;
+        }
+    }
     for (call = 0; call < FZ_LAZY_CALLS; call++) {
         cut_update(c, lazy, t, &v2, &p, 0, 0, "lazy update, frame 2");
         check_cut(lazy, t, &layout, &v2, eps, 0, call == 0, &c->rng, "lazy cut, frame 2");

@@ -1659,6 +1659,285 @@ static void test_motion(void)
     run_motion(0.6f, 32);
 }
 
+/* ------------------------------------------------ a lazy update's budget */
+
+/* The documented bound of a lazy update of a view of n entries:
+   3 n (2^q - 1) node-views (saturating). */
+static uint64_t budget_bound(uint32_t n, uint32_t q)
+{
+    uint64_t rounds = q >= 40 ? UINT64_MAX : ((uint64_t)1 << q) - 1;
+    uint64_t per = 3 * (uint64_t)n;
+    return per && rounds > UINT64_MAX / per ? UINT64_MAX : rounds * per;
+}
+
+typedef struct budget_copy {
+    uint32_t count;
+    uint32_t *nodes;
+    uint8_t *status;
+    uint64_t version;
+} budget_copy;
+
+static void budget_take(budget_copy *c, const mlod_cut_view *cv)
+{
+    c->count = cv->count;
+    c->nodes = (uint32_t *)realloc(c->nodes, sizeof(uint32_t) * (cv->count + 1));
+    c->status = (uint8_t *)realloc(c->status, cv->count + 1);
+    if (cv->count) {
+        memcpy(c->nodes, cv->nodes, sizeof(uint32_t) * cv->count);
+        memcpy(c->status, cv->status, cv->count);
+    }
+    c->version = cv->version;
+}
+
+static int budget_same(const budget_copy *c, const mlod_cut_view *cv)
+{
+    return c->count == cv->count &&
+           (!cv->count || (memcmp(c->nodes, cv->nodes, sizeof(uint32_t) * cv->count) == 0 &&
+                           memcmp(c->status, cv->status, cv->count) == 0));
+}
+
+/* Lazy updates with a budget of node-views (mlod_cut_params.budget), the
+   views turning and the torus twisting every frame, checked view by view
+   against a model of the documented rule and against the definitions:
+   - no update evaluates more node-views than its budget;
+   - the views evaluated are those the rule picks: in passes, oldest
+     evaluation first (equal ones in view order), each while the
+     documented bound 3 n (2^q - 1) of its list's n entries fits in what
+     the views taken before left of the budget; the others keep their
+     list entry for entry, and their version moves exactly when their
+     view bytes did;
+   - every list is a partition with the right counts, and an evaluated
+     view's statuses are its criterion's, its nodes within q edges of its
+     list before;
+   - once views and mesh stop, the budgeted updates reach the basic cut
+     of every view, and then evaluate nothing;
+   - a budget in another mode is refused, the cut unchanged; a budget
+     below every bound evaluates nothing. */
+static void run_budget(uint32_t q, float eps, uint64_t seed)
+{
+    enum { NV = 24 };
+    scene_mesh rest;
+    float *pos, *nrm;
+    mlod_mesh mesh;
+    mlod_tree *tree;
+    mlod_cut *cut = NULL, *cb = NULL;
+    mlod_view base[NV], views[NV], before[NV];
+    double axis[NV][3];
+    budget_copy copy[NV];
+    uint32_t last[NV], order[NV];
+    uint8_t picked[NV];
+    uint64_t used;
+    tu_layout L;
+    workspace w;
+    const uint32_t frames = 16;
+    uint32_t f, v, k, over = 0, wrong_pick = 0, kept_bad = 0, version_bad = 0, partition = 0, counts = 0, status = 0,
+                      moves = 0, partial = 0, converged = 0, after = 0, calls;
+    uint64_t rng = seed, spent_total = 0, budget_total = 0;
+    double c[3] = {0, 0, 0};
+    char what[48];
+    snprintf(what, sizeof what, "budget q=%u eps %g", q, eps);
+    memset(copy, 0, sizeof copy);
+    scene_torus(&rest, 1.0f, 0.35f, 32, 16);
+    pos = (float *)malloc(sizeof(float) * 3 * rest.vertex_count);
+    nrm = (float *)malloc(sizeof(float) * 3 * rest.vertex_count);
+    tree = tu_build(&rest, 4000, seed, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
+    CHECK(tree != NULL, "%s: build", what);
+    if (!tree) return;
+    mesh = tu_mesh(&rest);
+    mesh.positions = pos;
+    mesh.normals = nrm;
+    tu_layout_init(&L, tree->leaf_count);
+    ws_init(&w, tree->node_count);
+    mlod_cut_create(NV, NULL, &cut, NULL);
+    mlod_cut_create(NV, NULL, &cb, NULL);
+    for (v = 0; v < NV; v++) {
+        base[v] = tu_random_view(&rng, (mlod_view_kind)(v % 5), c, 1.4);
+        tu_random_unit(&rng, axis[v]);
+    }
+    for (f = 0; f <= frames; f++) {
+        mlod_cut_params pl = params(MLOD_CUT_LAZY, eps, q, NULL);
+        uint64_t budget = 0, left, spent = 0;
+        memcpy(before, views, sizeof views);
+        for (v = 0; v < NV; v++) { /* turned by 3 degrees per frame, the eye with them */
+            double fw[3] = {base[v].forward[0], base[v].forward[1], base[v].forward[2]},
+                   up[3] = {base[v].up[0], base[v].up[1], base[v].up[2]},
+                   e[3] = {base[v].position[0], base[v].position[1], base[v].position[2]};
+            views[v] = base[v];
+            rotate(fw, axis[v], f * 3.0 * TU_PI / 180);
+            rotate(up, axis[v], f * 3.0 * TU_PI / 180);
+            rotate(e, axis[v], f * 3.0 * TU_PI / 180);
+            tu_set3f(views[v].forward, fw);
+            tu_set3f(views[v].up, up);
+            tu_set3f(views[v].position, e);
+        }
+        scene_deform(&rest, 0.1f * f, pos, nrm);
+        CHECK(mlod_refit_mesh(tree, &mesh, NULL, NULL) == MLOD_OK, "%s frame %u: refit", what, f);
+        if (f > 0) {
+            /* about a third of the views' bounds; odd frames a budget that
+               holds none (at most the smallest bound less one) */
+            uint64_t sum = 0, least = UINT64_MAX;
+            for (v = 0; v < NV; v++) {
+                uint64_t b = budget_bound(copy[v].count, q);
+                sum += b;
+                if (b < least) least = b;
+            }
+            budget = f % 4 == 3 ? least - 1 : sum / 3;
+            if (budget == 0) budget = 1;
+        }
+        pl.budget = budget;
+        if (f == 1) { /* refused in the other modes, before any change */
+            mlod_cut_params pi = params(MLOD_CUT_INCREMENTAL, eps, 1, NULL);
+            mlod_error e;
+            pi.budget = budget;
+            CHECK(mlod_cut_update(cut, tree, views, &pi, &e) == MLOD_ERROR_INVALID_ARGUMENT,
+                  "%s: a budget in incremental mode is not refused", what);
+            for (v = 0; v < NV; v++) {
+                mlod_cut_view cv = mlod_cut_get(cut, v);
+                kept_bad += !budget_same(&copy[v], &cv) || cv.version != copy[v].version;
+            }
+        }
+        CHECK(mlod_cut_update(cut, tree, views, &pl, NULL) == MLOD_OK, "%s frame %u: update", what, f);
+        /* the model: every view changed (the mesh moves all over) */
+        for (v = 0; v < NV; v++) order[v] = v;
+        for (v = 1; v < NV; v++) /* oldest first, then view order (insertion: stable) */
+            for (k = v; k > 0 && last[order[k - 1]] > last[order[k]]; k--) {
+                uint32_t t = order[k];
+                order[k] = order[k - 1];
+                order[k - 1] = t;
+            }
+        /* passes (at most 4): each takes, oldest first, the views not yet
+           taken while their bounds fit in what the views taken so far left
+           of the budget (their actual counts), until a pass takes none */
+        memset(picked, f == 0, sizeof picked);
+        for (used = 0, k = 0; f > 0 && k < 4; k++) { /* at most 4 passes */
+            uint32_t chosen = 0, j;
+            uint8_t now[NV];
+            memset(now, 0, sizeof now);
+            left = budget - used;
+            for (j = 0; j < NV; j++) {
+                v = order[j];
+                if (picked[v] || budget_bound(copy[v].count, q) > left) continue;
+                left -= budget_bound(copy[v].count, q);
+                picked[v] = now[v] = 1;
+                chosen++;
+            }
+            for (v = 0; v < NV; v++)
+                if (now[v]) used += mlod_cut_get(cut, v).evaluated;
+            if (!chosen || used > budget) break;
+        }
+        for (v = 0; v < NV; v++) {
+            mlod_cut_view cv = mlod_cut_get(cut, v);
+            spent += cv.evaluated;
+            wrong_pick += picked[v] != (cv.evaluated > 0) || picked[v] == cv.deferred;
+            if (!picked[v]) {
+                kept_bad += !budget_same(&copy[v], &cv) || cv.steps != 0;
+                version_bad += (cv.version != copy[v].version) != (memcmp(&views[v], &before[v], sizeof(mlod_view)) != 0);
+            }
+        }
+        if (f > 0) {
+            over += spent > budget;
+            spent_total += spent;
+            budget_total += budget;
+        }
+        for (v = 0; v < NV; v++) {
+            mlod_cut_view cv = mlod_cut_get(cut, v);
+            partition += tu_partition_errors(&L, cv.nodes, cv.count, w.hits) != 0;
+            counts += !tu_counts_ok(&cv);
+            if (cv.evaluated > 0) {
+                for (k = 0; k < cv.count; k++) {
+                    double cr = mlod_criterion(tree, cv.nodes[k], views + v);
+                    status += cv.status[k] != tu_status(cr, eps, tu_is_leaf(&L, cv.nodes[k]));
+                }
+                if (f > 0) moves += lazy_move_errors(&L, copy[v].nodes, copy[v].count, &cv, q, w.hits) != 0;
+                last[v] = f;
+            }
+            budget_take(&copy[v], &cv);
+        }
+    }
+    CHECK(over == 0, "%s: %u updates over their budget", what, over);
+    CHECK(wrong_pick == 0, "%s: %u view-updates evaluated against the rule (oldest first, while the bound fits)", what,
+          wrong_pick);
+    CHECK(kept_bad == 0, "%s: %u deferred views whose list changed", what, kept_bad);
+    CHECK(version_bad == 0, "%s: %u deferred views whose version did not follow their view", what, version_bad);
+    CHECK(partition == 0 && counts == 0, "%s: %u view-frames not a partition, %u with wrong counts", what, partition, counts);
+    CHECK(status == 0, "%s: %u entries of evaluated views whose status disagrees with the criterion", what, status);
+    CHECK(moves == 0, "%s: %u view-frames with a node more than q edges from the list before", what, moves);
+    CHECK(spent_total * 4 >= budget_total / 4, "%s: the budget went unused: %llu of %llu node-views", what,
+          (unsigned long long)spent_total, (unsigned long long)budget_total);
+    /* views and mesh stop: the budgeted updates converge to the basic cut */
+    {
+        mlod_cut_params pb = params(MLOD_CUT_BASIC, eps, 1, NULL), pl = params(MLOD_CUT_LAZY, eps, q, NULL);
+        uint64_t most = 0;
+        CHECK(mlod_cut_update(cb, tree, views, &pb, NULL) == MLOD_OK, "%s: basic update", what);
+        for (v = 0; v < NV; v++) {
+            uint64_t b = budget_bound(mlod_cut_get(cb, v).count, q) * 2 + 16;
+            if (b > most) most = b;
+        }
+        pl.budget = most; /* more than any view needs as it converges */
+        for (calls = 1; calls <= NV * (2 * L.max_depth + 2) && !converged; calls++) {
+            uint32_t same = 0;
+            uint64_t spent = 0;
+            CHECK(mlod_cut_update(cut, tree, views, &pl, NULL) == MLOD_OK, "%s: update with still views", what);
+            for (v = 0; v < NV; v++) {
+                mlod_cut_view a = mlod_cut_get(cb, v), b = mlod_cut_get(cut, v);
+                same += tu_same_cut(&a, &b);
+                spent += b.evaluated;
+                partial += tu_partition_errors(&L, b.nodes, b.count, w.hits) != 0;
+            }
+            over += spent > pl.budget;
+            if (same == NV) converged = calls;
+        }
+        CHECK(converged != 0, "%s: not equal to the basic cut after %u calls with still views", what, calls - 1);
+        CHECK(partial == 0 && over == 0, "%s: while converging, %u lists not a partition, %u updates over budget", what,
+              partial, over);
+        /* a lazy list is known to be the basic cut after a call that
+           made no move on it: each view once more, then nothing is
+           evaluated, and the lists stay the basic cuts */
+        for (k = 0; k <= NV && converged; k++) {
+            uint32_t evaluated = 0, same = 0;
+            mlod_cut_update(cut, tree, views, &pl, NULL);
+            for (v = 0; v < NV; v++) {
+                mlod_cut_view a = mlod_cut_get(cb, v), b = mlod_cut_get(cut, v);
+                evaluated += b.evaluated != 0;
+                same += tu_same_cut(&a, &b);
+            }
+            after += same != NV;
+            if (!evaluated) break;
+        }
+        CHECK(after == 0 && k <= NV, "%s: after convergence, %u updates moved a list; %u updates still evaluated", what,
+              after, k);
+        /* after a reset, an update starts every view from the root,
+           whatever the budget (none is deferred) */
+        pl.budget = 1;
+        mlod_cut_update(cut, tree, views, &pl, NULL); /* all deferred but those skipped */
+        mlod_cut_reset(cut);
+        for (v = 0, k = 0; v < NV; v++) k += mlod_cut_get(cut, v).deferred;
+        CHECK(mlod_cut_update(cut, tree, views, &pl, NULL) == MLOD_OK, "%s: update after a reset", what);
+        for (v = 0; v < NV; v++) k += mlod_cut_get(cut, v).deferred || !mlod_cut_get(cut, v).evaluated;
+        CHECK(k == 0, "%s: after a reset, %u views deferred or not evaluated", what, k);
+        printf("  %s: %llu of %llu budgeted node-views spent while moving; converged after %u calls\n", what,
+               (unsigned long long)spent_total, (unsigned long long)budget_total, converged);
+    }
+    for (v = 0; v < NV; v++) {
+        free(copy[v].nodes);
+        free(copy[v].status);
+    }
+    mlod_cut_destroy(cut);
+    mlod_cut_destroy(cb);
+    ws_free(&w);
+    tu_layout_free(&L);
+    mlod_tree_destroy(tree);
+    free(pos);
+    free(nrm);
+    scene_free(&rest);
+}
+
+static void test_budget(void)
+{
+    run_budget(1, 0.4f, 41);
+    run_budget(2, 0.7f, 42);
+}
+
 /* Incremental starts from the root after a tree of another node count, or
    after mlod_cut_reset. */
 static void test_restart(void)
@@ -2810,6 +3089,7 @@ int main(int argc, char **argv)
     TEST_GROUP("fast_conditioning", test_fast_conditioning());
     TEST_GROUP("monotonicity", test_monotonicity());
     TEST_GROUP("motion", test_motion());
+    TEST_GROUP("budget", test_budget());
     TEST_GROUP("threads", test_threads());
     TEST_GROUP("one_view", test_one_view());
     TEST_GROUP("skip", test_skip());

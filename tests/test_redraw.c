@@ -121,6 +121,8 @@ static void shadow_tree_refitted(shadow_tree *s, const mlod_tree *t, int step)
     shadow_tree_copy(s, t);
 }
 
+static uint32_t deferrals; /* view-updates a lazy update's budget deferred */
+
 static void shadow_cut_init(shadow_cut *s)
 {
     memset(s, 0, sizeof *s);
@@ -155,7 +157,9 @@ static void shadow_cut_updated(shadow_cut *s, const mlod_cut *cut, const mlod_vi
     for (v = 0; v < VIEWS; v++) {
         mlod_cut_view cv = mlod_cut_get(cut, v);
         int view_same = s->known[v] && memcmp(&s->view[v], &views[v], sizeof(mlod_view)) == 0;
-        int is_basic = mode != MLOD_CUT_LAZY || (cv.steps == 0 && cv.coarse == 0);
+        /* (a view a budget deferred holds its list before, of another view or tree) */
+        int is_basic = mode != MLOD_CUT_LAZY || (!cv.deferred && cv.steps == 0 && cv.coarse == 0);
+        deferrals += (uint32_t)cv.deferred;
         int same = view_same && s->count[v] == cv.count;
         if (mode == MLOD_CUT_LAZY && is_basic && basic) {
             mlod_cut_view b = mlod_cut_get(basic, v);
@@ -302,6 +306,20 @@ static void refit(mlod_tree *tree, shadow_tree *st, const scene_mesh *m, const m
 }
 
 /* One mode's run through the steps, into an atlas that fills holes or not. */
+/* Lazy updates with a budget (mlod_cut_params.budget) when set: a sixth
+   of what every view's bound (3 n (2^q - 1) for n entries) asks, so that
+   most updates defer views. */
+static int budgeted;
+
+static uint64_t budget_of(const mlod_cut *cut, uint32_t lazy_steps)
+{
+    uint64_t sum = 0;
+    uint32_t v;
+    if (!budgeted) return 0;
+    for (v = 0; v < VIEWS; v++) sum += 3 * (uint64_t)mlod_cut_get(cut, v).count * (((uint64_t)1 << lazy_steps) - 1);
+    return sum / 6 + 1;
+}
+
 static void run_steps(mlod_cut_mode mode, uint32_t fill, const mlod_parallel *par)
 {
     static const mlod_view_kind kinds[5] = {MLOD_VIEW_PARABOLOID, MLOD_VIEW_PERSPECTIVE, MLOD_VIEW_DUAL_PARABOLOID,
@@ -323,6 +341,7 @@ static void run_steps(mlod_cut_mode mode, uint32_t fill, const mlod_parallel *pa
     int step = 0;
     char what[96];
     const char *mode_name = mode == MLOD_CUT_BASIC ? "basic" : mode == MLOD_CUT_INCREMENTAL ? "incremental" : "lazy";
+    deferrals = 0;
 
     memset(&rest, 0, sizeof rest);
     memset(&posed, 0, sizeof posed);
@@ -365,6 +384,7 @@ static void run_steps(mlod_cut_mode mode, uint32_t fill, const mlod_parallel *pa
 
 #define UPDATE(CUT, SC, TREE)                                                                                          \
     do {                                                                                                               \
+        params.budget = budget_of(CUT, params.lazy_steps);                                                             \
         CHECK(mlod_cut_update(CUT, TREE, views, &params, &e) == MLOD_OK, "update: %s", e.message);                  \
         shadow_cut_updated(&SC, CUT, views, step, mode, TREE);                                                         \
     } while (0)
@@ -381,7 +401,7 @@ static void run_steps(mlod_cut_mode mode, uint32_t fill, const mlod_parallel *pa
     } while (0)
 
     /* 0: the first frame draws every tile (a lazy cut converged first) */
-    for (v = 0; v < (mode == MLOD_CUT_LAZY ? 20u : 1u); v++) UPDATE(cut, sc, tree);
+    for (v = 0; v < (mode != MLOD_CUT_LAZY ? 1u : budgeted ? 80u : 20u); v++) UPDATE(cut, sc, tree);
     SPLAT(cut, sc, tree, st, "first frame");
     CHECK(atlas->redrawn == VIEWS, "the first splat draws every tile");
     /* 1: nothing changed */
@@ -465,6 +485,10 @@ static void run_steps(mlod_cut_mode mode, uint32_t fill, const mlod_parallel *pa
     }
 #undef UPDATE
 #undef SPLAT
+    if (budgeted) {
+        CHECK(deferrals >= 4 * VIEWS, "a budget deferred only %u view-updates", deferrals);
+        printf("  %s%s with a budget: %u view-updates deferred\n", mode_name, fill ? " filled" : "", deferrals);
+    }
 done:
     mlod_atlas_destroy(atlas);
     mlod_cut_destroy(cut);
@@ -600,6 +624,10 @@ int main(int argc, char **argv)
     TEST_GROUP("lazy", run_steps(MLOD_CUT_LAZY, 0, &hooks[2]));
     TEST_GROUP("filled", run_steps(MLOD_CUT_INCREMENTAL, 1, &hooks[3]));
     TEST_GROUP("filled_lazy", run_steps(MLOD_CUT_LAZY, 1, &hooks[0]));
+    budgeted = 1;
+    TEST_GROUP("lazy_budget", run_steps(MLOD_CUT_LAZY, 0, &hooks[1]));
+    TEST_GROUP("filled_lazy_budget", run_steps(MLOD_CUT_LAZY, 1, &hooks[2]));
+    budgeted = 0;
     TEST_GROUP("bytes", test_bytes());
     TEST_GROUP("patch_cones", test_patch_cones());
     mlod_pool_destroy(pools[0]);

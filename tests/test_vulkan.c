@@ -841,6 +841,15 @@ static void test_refusals(void)
                   mlodvk_splat(context, vatlas, vtree, gpu, &e) == MLOD_ERROR_MISMATCH,
               "refusals: a splat whose view tile is not the atlas's is not refused as MLOD_ERROR_MISMATCH (%s)",
               mlod_result_name(e.code));
+        { /* a lazy update's budget is the CPU's alone: the device refuses it and keeps its cut */
+            mlod_cut_params q = p;
+            q.mode = MLOD_CUT_LAZY;
+            q.budget = 1000;
+            CHECK(mlodvk_cut_update(context, gpu, vtree, views, &q, &e) == MLOD_ERROR_INVALID_ARGUMENT &&
+                      compare_cuts(gpu, cpu, VIEWS, "a budget") == 0,
+                  "refusals: a lazy update with a budget is not refused by the device, or its cut changed (%s)",
+                  mlod_result_name(e.code));
+        }
     }
     if (ready) { /* tangent discs asked of a tree without cones: both splats refuse */
         mlod_tree *bare = tu_build(&s, 300, 21, 0);
