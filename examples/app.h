@@ -66,6 +66,7 @@ typedef struct app_options {
     int still;             /* --still: the object stays at rest */
     uint32_t megaviews;    /* --megaviews N: instant_radiosity's N VPLs through the view tree (0: off) */
     uint32_t bounces;      /* --bounces B: with --megaviews, VPLs at the first B hits of each light path */
+    uint32_t budget;       /* --budget NV: with --mode lazy, node-views per update (0: no limit) */
 } app_options;
 
 /* The processor cores online (sysconf), at most 256 (--threads' limit);
@@ -172,6 +173,8 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
         } else if (strcmp(arg, "--mode") == 0) {
             ok = value && (strcmp(value, "basic") == 0 || strcmp(value, "incremental") == 0 || strcmp(value, "lazy") == 0);
             if (ok) o->mode = value[0] == 'b' ? MLOD_CUT_BASIC : value[0] == 'i' ? MLOD_CUT_INCREMENTAL : MLOD_CUT_LAZY;
+        } else if (strcmp(arg, "--budget") == 0) {
+            ok = app_parse_u32(value, 1, UINT32_MAX, &o->budget);
         } else if (strcmp(arg, "--disc-scale") == 0) {
             ok = app_parse_positive(value, 1.0f, &o->disc_scale);
         } else if (strcmp(arg, "--ism-match") == 0) {
@@ -191,6 +194,10 @@ static inline int app_parse_options(int argc, char **argv, const char *usage, co
             return 0;
         }
         i += takes;
+    }
+    if (o->budget && o->mode != MLOD_CUT_LAZY) {
+        fprintf(stderr, "%s: --budget needs --mode lazy\n\n%s", program, usage);
+        return 0;
     }
     return 1;
 }

@@ -63,6 +63,8 @@ static const char usage[] =
     "  --size WxH         the image (default 256x192)\n"
     "  --frames N         animated frames after the first (default 3)\n"
     "  --mode M           basic, incremental or lazy cuts after the first frame (default incremental)\n"
+    "  --budget NV        with --mode lazy: at most NV node-views per cut update; the VPLs left out keep\n"
+    "                     their cuts (mlod_cut_params.budget)\n"
     "  --ism-match M      give ISM the same 'time' as manylods (default), as many points as it 'drawn' nodes,\n"
     "                     or K times as many (K = 1 .. 16)\n"
     "  --disc-scale S     manylods' discs: S times the sphere image's radius, 0 < S <= 1 (default 1;\n"
@@ -1071,8 +1073,8 @@ int main(int argc, char **argv)
 {
     /* threads 0: the machine's cores (app_core_count) */
     app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 1024, 32, 3, 0, MLOD_CUT_INCREMENTAL,
-                          0, 0, 1.0f, 0, 0, 0, 1};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 0, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f, 0, 0, 0, 1};
+                          0, 0, 1.0f, 0, 0, 0, 1, 0};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 100000, 64, 32, 2, 0, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f, 0, 0, 0, 1, 0};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -1150,6 +1152,7 @@ int main(int argc, char **argv)
     params.epsilon = o.epsilon;
     params.lazy_steps = 1;
     params.parallel = threads.parallel;
+    params.budget = o.budget; /* (0 unless --mode lazy: the other modes refuse one) */
 
     printf("manylods %d.%d.%d instant radiosity: %s, %s\n", MANYLODS_VERSION_MAJOR, MANYLODS_VERSION_MINOR,
            MANYLODS_VERSION_PATCH, scene.name, threads.description);
@@ -1177,6 +1180,7 @@ int main(int argc, char **argv)
 
         spawn_vpls(&scene, &light, o.views, 1, o.tile, vpls, views);
         params.mode = frame == 0 ? MLOD_CUT_BASIC : o.mode;
+        params.budget = frame == 0 ? 0 : o.budget;
         t0 = app_now_ms();
         if (mlod_cut_update(cut, tree, views, &params, &error) != MLOD_OK) goto failed;
         frame_cut_ms = app_now_ms() - t0;
@@ -1206,9 +1210,18 @@ int main(int argc, char **argv)
 
         app_cut_counts(cut, o.views, &nodes_total, &drawn_total);
         if (nodes_total > nodes_most) nodes_most = nodes_total;
-        printf("%5u  %8.1f  %6.1f  %8.1f  %8.1f  %10.0f  %10.0f%s\n", frame, refit_ms, frame_cut_ms, frame_splat_ms,
-               shade_ms, (double)nodes_total / o.views, (double)drawn_total / o.views,
-               frame == 0 ? "   (basic cut from the root)" : "");
+        {
+            char note[96] = "";
+            uint32_t v, deferred = 0;
+            for (v = 0; v < o.views; v++) deferred += (uint32_t)mlod_cut_get(cut, v).deferred;
+            if (frame == 0)
+                snprintf(note, sizeof note, "   (basic cut from the root)");
+            else if (params.budget)
+                snprintf(note, sizeof note, "   (%u VPLs deferred by the budget%s)", deferred,
+                         deferred == o.views ? ": it holds no VPL's bound, 3 x its cut's nodes" : "");
+            printf("%5u  %8.1f  %6.1f  %8.1f  %8.1f  %10.0f  %10.0f%s\n", frame, refit_ms, frame_cut_ms,
+                   frame_splat_ms, shade_ms, (double)nodes_total / o.views, (double)drawn_total / o.views, note);
+        }
         fflush(stdout);
         cut_ms = frame_cut_ms;
         splat_ms = frame_splat_ms;

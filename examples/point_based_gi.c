@@ -175,8 +175,8 @@ static void interpolate_row(void *context, uint32_t y)
 int main(int argc, char **argv)
 {
     /* threads 0: the machine's cores (app_core_count) */
-    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 3072, 16, 0, 0, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 300, 16, 0, 0, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1};
+    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 3072, 16, 0, 0, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1, 0};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 300, 16, 0, 0, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1, 0};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -267,6 +267,7 @@ int main(int argc, char **argv)
         app_perpendicular(v->forward, v->up);
     }
 
+    memset(&params, 0, sizeof params); /* every field, the ones added later too */
     params.mode = MLOD_CUT_BASIC;
     params.epsilon = o.epsilon;
     params.lazy_steps = 1;

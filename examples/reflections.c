@@ -206,8 +206,8 @@ static void render_row(void *context, uint32_t y)
 int main(int argc, char **argv)
 {
     /* threads 0: the machine's cores (app_core_count) */
-    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 400, 32, 0, 0, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1};
-    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 16, 32, 0, 0, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1};
+    app_options normal = {"build/images", NULL, 1.0f, 256, 192, 100000, 400, 32, 0, 0, MLOD_CUT_BASIC, 0, 0, 1.0f, 0, 0, 0, 1, 0};
+    app_options tiny = {"build/images", NULL, 1.0f, 80, 60, 20000, 16, 32, 0, 0, MLOD_CUT_BASIC, 0, 1, 1.0f, 0, 0, 0, 1, 0};
     app_options o;
     app_threads threads;
     app_scene scene;
@@ -290,6 +290,7 @@ int main(int argc, char **argv)
     tree = app_bake_points(&scene, &light, AMBIENT, o.samples, &threads, &bake_allocator, &error);
     if (!tree) goto failed;
     bake_ms = app_now_ms() - t0;
+    memset(&params, 0, sizeof params); /* every field, the ones added later too */
     params.mode = MLOD_CUT_BASIC;
     params.epsilon = o.epsilon;
     params.lazy_steps = 1;
