@@ -5785,6 +5785,9 @@ struct mlod_cut {
    a budget; its list stays as it is (not evaluated).  Kept after the
    update (mlod_cut_view.deferred) until the next one starts. */
 #define MLOD__DEFERRED 16u
+/* For this window (mlod__keep_in_place): a skipped view whose list the
+   commit leaves where it is in its chunk, neither copied out nor back. */
+#define MLOD__KEPT 32u
 /* cut->view_done[v] for a view the update skips. */
 #define MLOD__SKIPPED 2u
 
@@ -6802,7 +6805,7 @@ static void mlod__copy_skipped_task(void *context, uint32_t index)
     uint32_t end, v = mlod__view_chunk(job->cut, index, &end);
     for (; v < end; v++) {
         uint32_t count = job->out->count[v];
-        if (job->cut->view_done[v] != MLOD__SKIPPED) continue;
+        if (job->cut->view_done[v] != MLOD__SKIPPED || (job->cut->known[v] & MLOD__KEPT)) continue;
         MANYLODS_ASSERT(count == from->count[v]); /* every round kept the room of its list */
         memcpy(job->out->nodes + job->out->offset[v], from->nodes + from->offset[v], count * sizeof(uint32_t));
         memcpy(job->out->status + job->out->offset[v], from->status + from->offset[v], count);
@@ -7093,7 +7096,7 @@ MLOD__PUBLIC void mlod_cut_reset(mlod_cut *cut)
     memset(cut->stats[0], 0, cut->view_count * sizeof(mlod__view_stats));
     {
         uint32_t v;
-        for (v = 0; v < cut->view_count; v++) cut->known[v] &= (uint8_t)~MLOD__DEFERRED;
+        for (v = 0; v < cut->view_count; v++) cut->known[v] &= (uint8_t)~(MLOD__DEFERRED | MLOD__KEPT);
     }
     mlod__new_versions(cut);
 }
@@ -7805,6 +7808,38 @@ static void mlod__remember_views(mlod_cut *cut, const mlod_tree *tree, const mlo
     cut->seen_epsilon = params->epsilon;
 }
 
+/* Whether mlod__commit_window writes a window's total entries back into
+   its chunk (nodes, capacity) in place: one run of views (at most twice
+   a window), fitting with at most an eighth to spare. */
+static int mlod__commits_in_place(const uint32_t *nodes, size_t capacity, size_t total)
+{
+    return nodes && total <= 2 * (size_t)MLOD__WINDOW && total <= capacity && capacity - total <= total / 8;
+}
+
+/* Before a window's skipped views are copied out for the commit (w the
+   window, out its result): where the commit goes in place, a skipped
+   view whose entries land where they are in the chunk (the same counts
+   before it) is marked MLOD__KEPT, and neither copied out
+   (mlod__copy_skipped_task) nor back (mlod__commit_task): no other view's
+   entries are written over them, each view's going to its own range.
+   Returns how many were marked. */
+static uint32_t mlod__keep_in_place(mlod_cut *w, const mlod__list *out)
+{
+    const mlod__list *committed = &w->lists[MLOD__COMMITTED];
+    size_t total = 0, at = 0;
+    uint32_t v, kept = 0;
+    for (v = 0; v < w->view_count; v++) total += out->count[v];
+    if (!mlod__commits_in_place(committed->nodes, committed->capacity, total)) return 0;
+    for (v = 0; v < w->view_count; v++) {
+        if (w->view_done[v] == MLOD__SKIPPED && committed->offset[v] == at && out->count[v]) {
+            w->known[v] |= MLOD__KEPT;
+            kept++;
+        }
+        at += out->count[v];
+    }
+    return kept;
+}
+
 /* The rounds of one window (mlod_cut_update), on w, the cut restricted to
    the window's views (mlod__window_enter), job prepared by the update.
    same_tree: the committed lists are cuts of a tree of this node count.
@@ -7876,7 +7911,8 @@ static mlod__list *mlod__window_rounds(mlod_cut *w, const mlod_tree *tree, const
     }
     job->done_in = &w->lists[w->committed];
     job->out = in;
-    if (skipped) mlod__run(params->parallel, mlod__view_chunks(w), mlod__copy_skipped_task, job);
+    if (skipped && mlod__keep_in_place(w, in) < skipped)
+        mlod__run(params->parallel, mlod__view_chunks(w), mlod__copy_skipped_task, job);
     mlod__run(params->parallel, mlod__view_chunks(w), mlod__version_task, job);
     memcpy(w->stats[0], w->stats[1], w->view_count * sizeof(mlod__view_stats));
     return in;
@@ -7942,6 +7978,7 @@ typedef struct mlod__commit_job {
     const mlod__list *res;
     const mlod__list *to;
     const mlod__chunk *chunk;
+    const uint8_t *known; /* the window's (MLOD__KEPT: the entries are in place) */
     uint32_t first, start, end;
 } mlod__commit_job;
 
@@ -7956,7 +7993,7 @@ static void mlod__commit_task(void *context, uint32_t index)
     for (; v < end; v++) {
         uint32_t count = job->res->count[v];
         size_t at = job->to->offset[job->first + v];
-        if (!count) continue;
+        if (!count || (job->known[v] & MLOD__KEPT)) continue;
         memcpy(job->chunk->nodes + at, job->res->nodes + job->res->offset[v], count * sizeof(uint32_t));
         memcpy(status + at, job->res->status + job->res->offset[v], count);
     }
@@ -7986,8 +8023,8 @@ static int mlod__commit_window(mlod_cut *cut, uint32_t first, uint32_t n, const 
             for (end = start, size = 0; end < n && (end == start || size < MLOD__WINDOW); end++) size += res->count[end];
         c->first = first + start;
         c->views = end - start;
-        if (old && old->nodes && size == total && size <= old->capacity && old->capacity - size <= size / 8) {
-            c->nodes = old->nodes; /* in place: the result is in a work list */
+        if (old && mlod__commits_in_place(old->nodes, old->capacity, total)) {
+            c->nodes = old->nodes; /* in place: the result is in a work list (or there, MLOD__KEPT) */
             c->capacity = old->capacity;
             old->nodes = NULL;
         } else {
@@ -8006,12 +8043,14 @@ static int mlod__commit_window(mlod_cut *cut, uint32_t first, uint32_t n, const 
         job.res = res;
         job.to = to;
         job.chunk = c;
+        job.known = cut->known + first;
         job.first = first;
         job.start = start;
         job.end = end;
         mlod__run(parallel, (end - start - 1) / MLOD__VIEW_CHUNK + 1, mlod__commit_task, &job);
         start = end;
     }
+    for (v = 0; v < n; v++) cut->known[first + v] &= (uint8_t)~MLOD__KEPT;
     if (old) mlod__chunk_free(cut, old);
     return 1;
 }
