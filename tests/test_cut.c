@@ -1530,17 +1530,60 @@ static uint32_t lazy_move_errors(const tu_layout *L, const uint32_t *prev, uint3
     return bad;
 }
 
-static void run_motion(float eps, uint64_t seed)
-{
+/* A torus twisting frame by frame (scene_torus, scene_deform) and its tree
+   of 4000 leaves with cones, refitted to each pose; its layout and a
+   workspace.  twisting_init returns 0 (nothing held) when the build fails. */
+typedef struct twisting {
     scene_mesh rest;
     float *pos, *nrm;
     mlod_mesh mesh;
     mlod_tree *tree;
+    tu_layout L;
+    workspace w;
+} twisting;
+
+static int twisting_init(twisting *tw, uint64_t seed)
+{
+    scene_torus(&tw->rest, 1.0f, 0.35f, 32, 16);
+    tw->tree = tu_build(&tw->rest, 4000, seed, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
+    if (!tw->tree) {
+        scene_free(&tw->rest);
+        return 0;
+    }
+    tw->pos = (float *)malloc(sizeof(float) * 3 * tw->rest.vertex_count);
+    tw->nrm = (float *)malloc(sizeof(float) * 3 * tw->rest.vertex_count);
+    tw->mesh = tu_mesh(&tw->rest);
+    tw->mesh.positions = tw->pos;
+    tw->mesh.normals = tw->nrm;
+    tu_layout_init(&tw->L, tw->tree->leaf_count);
+    ws_init(&tw->w, tw->tree->node_count);
+    return 1;
+}
+
+/* The torus at time t, the tree refitted to it; 0 when the refit fails. */
+static int twisting_pose(twisting *tw, float t)
+{
+    scene_deform(&tw->rest, t, tw->pos, tw->nrm);
+    return mlod_refit_mesh(tw->tree, &tw->mesh, NULL, NULL) == MLOD_OK;
+}
+
+static void twisting_free(twisting *tw)
+{
+    ws_free(&tw->w);
+    tu_layout_free(&tw->L);
+    mlod_tree_destroy(tw->tree);
+    free(tw->pos);
+    free(tw->nrm);
+    scene_free(&tw->rest);
+}
+
+static void run_motion(float eps, uint64_t seed)
+{
+    twisting tw;
+    mlod_tree *tree;
     mlod_cut *cb = NULL, *ci = NULL, *cl[2] = {NULL, NULL};
     moving_views mv;
     mlod_view views[16];
-    tu_layout L;
-    workspace w;
     tally t;
     saved_cut prev[2];
     const uint32_t nv = 12, frames = 24;
@@ -1551,17 +1594,9 @@ static void run_motion(float eps, uint64_t seed)
     snprintf(what, sizeof what, "motion eps %g", eps);
     memset(prev, 0, sizeof prev);
     memset(&t, 0, sizeof t);
-    scene_torus(&rest, 1.0f, 0.35f, 32, 16);
-    pos = (float *)malloc(sizeof(float) * 3 * rest.vertex_count);
-    nrm = (float *)malloc(sizeof(float) * 3 * rest.vertex_count);
-    tree = tu_build(&rest, 4000, seed, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
-    CHECK(tree != NULL, "%s: build", what);
-    if (!tree) return;
-    mesh = tu_mesh(&rest);
-    mesh.positions = pos;
-    mesh.normals = nrm;
-    tu_layout_init(&L, tree->leaf_count);
-    ws_init(&w, tree->node_count);
+    CHECK(twisting_init(&tw, seed), "%s: build", what);
+    if (!tw.tree) return;
+    tree = tw.tree;
     mlod_cut_create(nv, NULL, &cb, NULL);
     mlod_cut_create(nv, NULL, &ci, NULL);
     mlod_cut_create(nv, NULL, &cl[0], NULL);
@@ -1569,8 +1604,7 @@ static void run_motion(float eps, uint64_t seed)
     moving_init(&mv, &rng, nv);
     for (f = 0; f < frames; f++) {
         mlod_cut_params pb = params(MLOD_CUT_BASIC, eps, 1, NULL), pi = params(MLOD_CUT_INCREMENTAL, eps, 1, NULL);
-        scene_deform(&rest, 0.15f * f, pos, nrm);
-        CHECK(mlod_refit_mesh(tree, &mesh, NULL, NULL) == MLOD_OK, "%s frame %u: refit", what, f);
+        CHECK(twisting_pose(&tw, 0.15f * f), "%s frame %u: refit", what, f);
         moving_at(&mv, (int)f, views);
         CHECK(mlod_cut_update(cb, tree, views, &pb, NULL) == MLOD_OK && mlod_cut_update(ci, tree, views, &pi, NULL) == MLOD_OK,
               "%s frame %u: updates", what, f);
@@ -1579,20 +1613,20 @@ static void run_motion(float eps, uint64_t seed)
             if (!tu_same_cut(&a, &b) && !inc_bad++)
                 snprintf(first_inc, sizeof first_inc, "frame %u view %u: basic %u nodes, incremental %u", f, v, a.count, b.count);
         }
-        if (f % 4 == 0) check_against_reference(tree, &L, views, 0, nv, eps, cb, &w, &t);
+        if (f % 4 == 0) check_against_reference(tree, &tw.L, views, 0, nv, eps, cb, &tw.w, &t);
         for (q = 0; q < 2; q++) {
             mlod_cut_params pl = params(MLOD_CUT_LAZY, eps, q + 1, NULL);
             CHECK(mlod_cut_update(cl[q], tree, views, &pl, NULL) == MLOD_OK, "%s frame %u: lazy update", what, f);
             for (v = 0; v < nv; v++) {
                 mlod_cut_view cv = mlod_cut_get(cl[q], v);
-                lazy_partition[q] += tu_partition_errors(&L, cv.nodes, cv.count, w.hits) != 0;
+                lazy_partition[q] += tu_partition_errors(&tw.L, cv.nodes, cv.count, tw.w.hits) != 0;
                 lazy_counts[q] += !tu_counts_ok(&cv);
                 for (k = 0; k < cv.count; k++) {
                     double c = mlod_criterion(tree, cv.nodes[k], views + v);
-                    if (cv.status[k] != tu_status(c, eps, tu_is_leaf(&L, cv.nodes[k]))) lazy_status[q]++;
+                    if (cv.status[k] != tu_status(c, eps, tu_is_leaf(&tw.L, cv.nodes[k]))) lazy_status[q]++;
                 }
-                if (f > 0 && prev[q].nodes[v] && tu_partition_errors(&L, prev[q].nodes[v], prev[q].count[v], w.hits) == 0)
-                    lazy_moves[q] += lazy_move_errors(&L, prev[q].nodes[v], prev[q].count[v], &cv, q + 1, w.hits) != 0;
+                if (f > 0 && prev[q].nodes[v] && tu_partition_errors(&tw.L, prev[q].nodes[v], prev[q].count[v], tw.w.hits) == 0)
+                    lazy_moves[q] += lazy_move_errors(&tw.L, prev[q].nodes[v], prev[q].count[v], &cv, q + 1, tw.w.hits) != 0;
             }
             save_cut(&prev[q], cl[q], nv);
         }
@@ -1608,7 +1642,7 @@ static void run_motion(float eps, uint64_t seed)
               q + 1, lazy_moves[q]);
     }
     /* views and mesh stop: lazy converges to basic within 2 depth + 2 calls */
-    bound = 2 * L.max_depth + 2;
+    bound = 2 * tw.L.max_depth + 2;
     for (q = 0; q < 2; q++) {
         mlod_cut_params pl = params(MLOD_CUT_LAZY, eps, q + 1, NULL);
         for (k = 1; k <= bound && !converged[q]; k++) {
@@ -1645,12 +1679,7 @@ static void run_motion(float eps, uint64_t seed)
     mlod_cut_destroy(ci);
     mlod_cut_destroy(cl[0]);
     mlod_cut_destroy(cl[1]);
-    ws_free(&w);
-    tu_layout_free(&L);
-    mlod_tree_destroy(tree);
-    free(pos);
-    free(nrm);
-    scene_free(&rest);
+    twisting_free(&tw);
 }
 
 static void test_motion(void)
@@ -1716,9 +1745,7 @@ static int budget_same(const budget_copy *c, const mlod_cut_view *cv)
 static void run_budget(uint32_t q, float eps, uint64_t seed)
 {
     enum { NV = 24 };
-    scene_mesh rest;
-    float *pos, *nrm;
-    mlod_mesh mesh;
+    twisting tw;
     mlod_tree *tree;
     mlod_cut *cut = NULL, *cb = NULL;
     mlod_view base[NV], views[NV], before[NV];
@@ -1727,8 +1754,6 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
     uint32_t last[NV], order[NV];
     uint8_t picked[NV];
     uint64_t used;
-    tu_layout L;
-    workspace w;
     const uint32_t frames = 16;
     uint32_t f, v, k, over = 0, wrong_pick = 0, kept_bad = 0, version_bad = 0, partition = 0, counts = 0, status = 0,
                       moves = 0, partial = 0, converged = 0, after = 0, calls;
@@ -1737,17 +1762,9 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
     char what[48];
     snprintf(what, sizeof what, "budget q=%u eps %g", q, eps);
     memset(copy, 0, sizeof copy);
-    scene_torus(&rest, 1.0f, 0.35f, 32, 16);
-    pos = (float *)malloc(sizeof(float) * 3 * rest.vertex_count);
-    nrm = (float *)malloc(sizeof(float) * 3 * rest.vertex_count);
-    tree = tu_build(&rest, 4000, seed, MLOD_ATTR_CONE | MLOD_ATTR_REFIT);
-    CHECK(tree != NULL, "%s: build", what);
-    if (!tree) return;
-    mesh = tu_mesh(&rest);
-    mesh.positions = pos;
-    mesh.normals = nrm;
-    tu_layout_init(&L, tree->leaf_count);
-    ws_init(&w, tree->node_count);
+    CHECK(twisting_init(&tw, seed), "%s: build", what);
+    if (!tw.tree) return;
+    tree = tw.tree;
     mlod_cut_create(NV, NULL, &cut, NULL);
     mlod_cut_create(NV, NULL, &cb, NULL);
     for (v = 0; v < NV; v++) {
@@ -1770,8 +1787,7 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
             tu_set3f(views[v].up, up);
             tu_set3f(views[v].position, e);
         }
-        scene_deform(&rest, 0.1f * f, pos, nrm);
-        CHECK(mlod_refit_mesh(tree, &mesh, NULL, NULL) == MLOD_OK, "%s frame %u: refit", what, f);
+        CHECK(twisting_pose(&tw, 0.1f * f), "%s frame %u: refit", what, f);
         if (f > 0) {
             /* about a third of the views' bounds; odd frames a budget that
                holds none (at most the smallest bound less one) */
@@ -1841,14 +1857,14 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
         }
         for (v = 0; v < NV; v++) {
             mlod_cut_view cv = mlod_cut_get(cut, v);
-            partition += tu_partition_errors(&L, cv.nodes, cv.count, w.hits) != 0;
+            partition += tu_partition_errors(&tw.L, cv.nodes, cv.count, tw.w.hits) != 0;
             counts += !tu_counts_ok(&cv);
             if (cv.evaluated > 0) {
                 for (k = 0; k < cv.count; k++) {
                     double cr = mlod_criterion(tree, cv.nodes[k], views + v);
-                    status += cv.status[k] != tu_status(cr, eps, tu_is_leaf(&L, cv.nodes[k]));
+                    status += cv.status[k] != tu_status(cr, eps, tu_is_leaf(&tw.L, cv.nodes[k]));
                 }
-                if (f > 0) moves += lazy_move_errors(&L, copy[v].nodes, copy[v].count, &cv, q, w.hits) != 0;
+                if (f > 0) moves += lazy_move_errors(&tw.L, copy[v].nodes, copy[v].count, &cv, q, tw.w.hits) != 0;
                 last[v] = f;
             }
             budget_take(&copy[v], &cv);
@@ -1874,7 +1890,7 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
             if (b > most) most = b;
         }
         pl.budget = most; /* more than any view needs as it converges */
-        for (calls = 1; calls <= NV * (2 * L.max_depth + 2) && !converged; calls++) {
+        for (calls = 1; calls <= NV * (2 * tw.L.max_depth + 2) && !converged; calls++) {
             uint32_t same = 0;
             uint64_t spent = 0;
             CHECK(mlod_cut_update(cut, tree, views, &pl, NULL) == MLOD_OK, "%s: update with still views", what);
@@ -1882,7 +1898,7 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
                 mlod_cut_view a = mlod_cut_get(cb, v), b = mlod_cut_get(cut, v);
                 same += tu_same_cut(&a, &b);
                 spent += b.evaluated;
-                partial += tu_partition_errors(&L, b.nodes, b.count, w.hits) != 0;
+                partial += tu_partition_errors(&tw.L, b.nodes, b.count, tw.w.hits) != 0;
             }
             over += spent > pl.budget;
             if (same == NV) converged = calls;
@@ -1924,12 +1940,7 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
     }
     mlod_cut_destroy(cut);
     mlod_cut_destroy(cb);
-    ws_free(&w);
-    tu_layout_free(&L);
-    mlod_tree_destroy(tree);
-    free(pos);
-    free(nrm);
-    scene_free(&rest);
+    twisting_free(&tw);
 }
 
 static void test_budget(void)
