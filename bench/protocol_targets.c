@@ -394,6 +394,8 @@ static void target_budget(bench *b, protocol *p, mlod_tree *tree, const ranks *r
         out->cut_ms = median(ms[m], c->measured);
         out->total_ms = out->cut_ms;
         out->evaluated = evaluated[m] / c->measured;
+        out->budget_most = m == 1 ? most : NAN;
+        out->budget_updates = m == 1 ? (double)(updates - 1) : NAN;
         if (m == 1)
             snprintf(out->note, sizeof out->note, "budget %.3g node-views per update; the most spent %.3g; %.0f of %u "
                      "views deferred per frame; %d updates to the basic cut once the rig stopped",

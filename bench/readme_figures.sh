@@ -15,6 +15,8 @@
 #   object.spheres_time object.ism_pts        (largest N, epsilon 1, basic cut)
 #   object.same_ms object.full_splat object.part_kept object.part_tiles object.part_patched
 #   object.part_pixels object.part_cut        (the Targets' frames that change little)
+#   object.budget object.budget_ms object.budget_allowed object.budget_spent
+#   object.budget_basic_ms object.budget_updates (the lazy budget's row)
 #   room.wrong room.exact_wrong room.splat_pts room.spheres_pts room.spheres_time
 #   views.map_px views.group_radius views.COUNT.ms views.COUNT.embree_ms
 #       (COUNT in VIEW_ROWS below, and views.most)
@@ -99,6 +101,11 @@ block() {
             fig("object.part_cut") " a basic cut'"'"'s time and the splat draws " \
             fig("object.part_tiles") " tiles whole and patches " fig("object.part_patched") " (" fig("object.part_kept") \
             " the full splat'"'"'s time) where " fig("object.part_pixels") " of the pixels change.")
+        say("With the lights turning 10 degrees per frame, a lazy update given a budget of " fig("object.budget") \
+            " node-views spends " fig("object.budget_spent") " of them in " fig("object.budget_ms") \
+            " (the target, 1.2 times the budget'"'"'s share of a basic cut'"'"'s " fig("object.budget_basic_ms") ": " \
+            fig("object.budget_allowed") ") and reaches the basic cuts " fig("object.budget_updates") \
+            " updates after the lights stop.")
         say("<!-- bench:end -->")
         if (missing != "") {
             print "bench/readme_figures.sh: " source " lacks" missing " (make bench writes them)" > "/dev/stderr"

@@ -552,6 +552,15 @@ static void write_figures(const bench *b, FILE *f, protocol *const *protocols, i
                     kept->splat_ms / part->splat_ms, kept->redrawn, c->view_count, kept->patched, kept->changed_pixels,
                     kept->cut_ms / part->cut_ms);
     }
+    { /* the lazy budget's row (issue 53) */
+        const row *bb = find_row(b, ROW_TARGET, "object", "protocol rig: basic", 1.0f, 0);
+        const row *bl = find_row(b, ROW_TARGET, "object", "protocol rig: lazy q=1, budget", 1.0f, 0);
+        if (bb && bl && bb->evaluated > 0.0)
+            fprintf(f, "object.budget=%.3g M\nobject.budget_ms=%s\nobject.budget_allowed=%s\n"
+                       "object.budget_spent=%.2f M\nobject.budget_basic_ms=%s\nobject.budget_updates=%.0f\n",
+                    BENCH_BUDGET / 1e6, ms_text(bl->cut_ms), ms_text(1.2 * (BENCH_BUDGET / bb->evaluated) * bb->cut_ms),
+                    bl->evaluated / 1e6, ms_text(bb->cut_ms), bl->budget_updates);
+    }
     for (k = 0; k < b->views_rows; k++)
         if (!most || b->views[k].views > most->views) most = &b->views[k];
     if (!most) return;
