@@ -33,14 +33,14 @@ static int parse(const char *usage, const app_options *normal, const app_options
 static void test_options(void)
 {
     static const char usage[] = "usage: x --out --mesh --eps --size --samples --views --tile --frames --threads "
-                                "--mode --ism-match --disc-scale --tiny\n";
+                                "--mode --budget --ism-match --disc-scale --tiny\n";
     static const char narrow[] = "usage: y --out --tiny\n";
-    app_options normal = {"out", NULL, 1.0f, 320, 240, 1000, 10, 32, 3, 2, MLOD_CUT_INCREMENTAL, 0, 0, 1.0f, 0, 0, 0, 0};
-    app_options tiny = {"out", NULL, 1.0f, 80, 60, 100, 4, 32, 1, 2, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f, 0, 0, 0, 0};
+    app_options normal = {"out", NULL, 1.0f, 320, 240, 1000, 10, 32, 3, 2, MLOD_CUT_INCREMENTAL, 0, 0, 1.0f, 0, 0, 0, 0, 0};
+    app_options tiny = {"out", NULL, 1.0f, 80, 60, 100, 4, 32, 1, 2, MLOD_CUT_INCREMENTAL, 0, 1, 1.0f, 0, 0, 0, 0, 0};
     app_options o;
     static const char *all[] = {"x", "--out", "d", "--mesh", "m.obj", "--eps", "0.5", "--size", "64x48",
                                 "--samples", "77", "--views", "5", "--tile", "16", "--frames", "0", "--threads", "1",
-                                "--mode", "lazy", "--ism-match", "drawn", "--disc-scale", "0.25"};
+                                "--mode", "lazy", "--budget", "5000", "--ism-match", "drawn", "--disc-scale", "0.25"};
     static const char *tiny_last[] = {"x", "--views", "9", "--tiny"};
     static const char *bad[][3] = {{"x", "--eps", "0"},       {"x", "--eps", "nan"},     {"x", "--eps", "-1"},
                                    {"x", "--size", "64"},      {"x", "--size", "4x4"},    {"x", "--size", "x48"},
@@ -48,13 +48,14 @@ static void test_options(void)
                                    {"x", "--tile", "3"},       {"x", "--frames", "9999"}, {"x", "--threads", "0"},
                                    {"x", "--mode", "fast"},    {"x", "--ism-match", "x"}, {"x", "--bogus", "1"},
                                    {"x", "--eps", NULL},       {"x", "--disc-scale", "0"}, {"x", "--disc-scale", "1.5"},
-                                   {"x", "--disc-scale", "nan"}, {"x", "--ism-match", "0"},  {"x", "--ism-match", "17"}};
+                                   {"x", "--disc-scale", "nan"}, {"x", "--ism-match", "0"},  {"x", "--ism-match", "17"},
+                                   {"x", "--budget", "0"},     {"x", "--budget", "5000"} /* (without --mode lazy) */};
     size_t i;
     CHECK(parse(usage, &normal, &tiny, &o, 1, all) == 1 && o.width == 320 && !o.tiny, "no arguments: the normal preset");
     CHECK(parse(usage, &normal, &tiny, &o, (int)(sizeof all / sizeof all[0]), all) == 1, "every option parses");
     CHECK(strcmp(o.out_dir, "d") == 0 && strcmp(o.mesh_path, "m.obj") == 0 && o.epsilon == 0.5f && o.width == 64 &&
               o.height == 48 && o.samples == 77 && o.views == 5 && o.tile == 16 && o.frames == 0 && o.threads == 1 &&
-              o.mode == MLOD_CUT_LAZY && o.match_drawn == 1 && o.disc_scale == 0.25f,
+              o.mode == MLOD_CUT_LAZY && o.budget == 5000 && o.match_drawn == 1 && o.disc_scale == 0.25f,
           "every option's value lands in its field");
     CHECK(parse(usage, &normal, &tiny, &o, 4, tiny_last) == 1 && o.tiny && o.views == 9 && o.width == 80,
           "--tiny picks the small preset, wherever it is, and other options override it");
