@@ -6210,18 +6210,6 @@ static inline int mlod__below(uint32_t x, uint32_t a)
     return dx > da && ((x + 1u) >> (dx - da)) == a + 1u;
 }
 
-/* Unchanged entries.  An entry of a MLOD__STAMPED view's list is
-   unchanged when no refit of the last `age` changed its parent (the root
-   entry: itself).  Changes mark every node above a changed one, so the
-   nodes no refit changed are whole subtrees, and the entries below one of
-   them are a run of the list (left to right): a run costs one climb to its
-   highest unchanged node (through the top of the tree, which stays in
-   cache) and a search for its end, rather than one look at a scattered
-   record per entry.
-
-   The highest node above x, a strict ancestor, that no refit of the last
-   `age` changed, or MLOD__CHANGED when one changed x's parent (or x is
-   the root). */
 /* Whether a refit of the last `age` (the tree's record of changes) may
    have changed a node's entry in a basic cut or its disc: it changed the
    node's parent (the root: the root).  A refit that changes a node marks
@@ -6235,14 +6223,25 @@ static int mlod__suspect(const mlod_tree *tree, uint32_t age, uint32_t node)
     return (uint32_t)tree->revision - tree->changes[node ? (node - 1) / 2 : 0] < age;
 }
 
+/* Unchanged entries.  An entry of a MLOD__STAMPED view's list is
+   unchanged when no refit of the last `age` changed its parent (the root
+   entry: itself; mlod__suspect).  Changes mark every node above a changed
+   one, so the nodes no refit changed are whole subtrees, and the entries
+   below one of them are a run of the list (left to right): a run costs one
+   climb to its highest unchanged node (through the top of the tree, which
+   stays in cache) and a search for its end, rather than one look at a
+   scattered record per entry.
+
+   The highest node above x, a strict ancestor, that no refit of the last
+   `age` changed, or MLOD__CHANGED when one changed x's parent (or x is
+   the root). */
 #define MLOD__CHANGED ((uint32_t)-1)
 static uint32_t mlod__unchanged_top(const mlod_tree *tree, uint32_t age, uint32_t x)
 {
-    const uint32_t *changes = tree->changes, now = (uint32_t)tree->revision;
     uint32_t top;
     if (x == 0 || mlod__suspect(tree, age, x)) return MLOD__CHANGED;
     top = (x - 1) / 2;
-    while (top > 0 && now - changes[(top - 1) / 2] >= age) top = (top - 1) / 2;
+    while (top > 0 && !mlod__suspect(tree, age, top)) top = (top - 1) / 2;
     return top;
 }
 
@@ -7089,15 +7088,13 @@ MLOD__PUBLIC mlod_result mlod_cut_create(uint32_t view_count, const mlod_allocat
 
 MLOD__PUBLIC void mlod_cut_reset(mlod_cut *cut)
 {
+    uint32_t v;
     if (!cut) return;
     cut->tree_nodes = 0;
     cut->seen_tree = NULL; /* nothing skipped: the views stay known to be valid */
     memset(cut->lists[cut->committed].count, 0, cut->view_count * sizeof(uint32_t));
     memset(cut->stats[0], 0, cut->view_count * sizeof(mlod__view_stats));
-    {
-        uint32_t v;
-        for (v = 0; v < cut->view_count; v++) cut->known[v] &= (uint8_t)~(MLOD__DEFERRED | MLOD__KEPT);
-    }
+    for (v = 0; v < cut->view_count; v++) cut->known[v] &= (uint8_t)~(MLOD__DEFERRED | MLOD__KEPT);
     mlod__new_versions(cut);
 }
 
@@ -7721,46 +7718,39 @@ static uint64_t mlod__lazy_bound(uint32_t n, uint32_t lazy_steps)
    bound (mlod__lazy_bound) fits in `left`: view_done 0, their touched the
    update's serial.  The other candidates are MLOD__DEFERRED (view_done
    MLOD__SKIPPED), as is every view in a later pass that is not chosen.
-   So a pass evaluates at most `left`.  *deferred = the deferred count.
-   Returns 0 when out of memory for the order (16 bytes per candidate,
-   given back before it returns). */
-static int mlod__budget_views(mlod_cut *cut, uint32_t lazy_steps, uint64_t left, int again, uint32_t *deferred)
+   So a pass evaluates at most `left`.  *chosen and *deferred count them.
+   Returns 0, with nothing changed, when out of memory for the order (16
+   bytes per view, given back before it returns). */
+static int mlod__budget_views(mlod_cut *cut, uint32_t lazy_steps, uint64_t left, int again, uint32_t *chosen,
+                              uint32_t *deferred)
 {
     const mlod__list *list = &cut->lists[MLOD__COMMITTED];
-    uint64_t *order, *scratch;
+    uint64_t *order = (uint64_t *)mlod__alloc_array(&cut->allocator, 2 * (size_t)cut->view_count, sizeof(uint64_t), NULL);
     uint32_t v, n = 0, i;
-    *deferred = 0;
-    for (v = 0; v < cut->view_count; v++) {
-        int candidate = again ? (cut->known[v] & MLOD__DEFERRED) != 0 : cut->view_done[v] != MLOD__SKIPPED;
-        n += (uint32_t)candidate;
-        if (again) cut->view_done[v] = MLOD__SKIPPED; /* the views done stay as they are */
-    }
-    if (n == 0) return 1;
-    order = (uint64_t *)mlod__alloc_array(&cut->allocator, 2 * (size_t)n, sizeof(uint64_t), NULL);
+    *chosen = *deferred = 0;
     if (!order) return 0;
-    scratch = order + n;
-    for (v = 0, i = 0; v < cut->view_count; v++)
+    for (v = 0; v < cut->view_count; v++) {
         if (again ? (cut->known[v] & MLOD__DEFERRED) != 0 : cut->view_done[v] != MLOD__SKIPPED) {
             /* oldest first: the key counts down with the updates since */
             uint64_t since = cut->serial - cut->touched[v];
             uint32_t key = since >= 0xffffffffu ? 0u : 0xffffffffu - (uint32_t)since;
-            order[i++] = (uint64_t)key << 32 | v;
+            order[n++] = (uint64_t)key << 32 | v;
         }
-    mlod__radix_sort(order, scratch, n);
+        cut->view_done[v] = MLOD__SKIPPED; /* (the first pass: the others are) */
+    }
+    mlod__radix_sort(order, order + n, n);
     for (i = 0; i < n; i++) {
-        uint64_t bound;
-        v = (uint32_t)scratch[i];
-        bound = mlod__lazy_bound(list->count[v], lazy_steps);
+        uint64_t bound = mlod__lazy_bound(list->count[v = (uint32_t)order[n + i]], lazy_steps);
         if (bound <= left) {
             left -= bound;
             cut->view_done[v] = 0;
             cut->known[v] &= (uint8_t)~MLOD__DEFERRED;
             cut->touched[v] = cut->serial + 1;
-            continue;
+            ++*chosen;
+        } else {
+            cut->known[v] = (uint8_t)((cut->known[v] & ~MLOD__STAMPED) | MLOD__DEFERRED);
+            ++*deferred;
         }
-        cut->view_done[v] = MLOD__SKIPPED;
-        cut->known[v] = (uint8_t)((cut->known[v] & ~MLOD__STAMPED) | MLOD__DEFERRED);
-        ++*deferred;
     }
     mlod__free(&cut->allocator, order);
     return 1;
@@ -7781,6 +7771,9 @@ static void mlod__remember_views(mlod_cut *cut, const mlod_tree *tree, const mlo
         const mlod__view_stats *s = &cut->stats[0][v];
         const int same_view =
             (cut->known[v] & MLOD__SEEN) && memcmp(&cut->seen[v], &views[v], sizeof(mlod_view)) == 0;
+        /* lazy: a view that made no move in this call (its first round
+           evaluated every entry and every pair's parent afresh) */
+        const int exact = params->mode != MLOD_CUT_LAZY || (s->steps == 0 && s->coarse == 0);
         if (cut->known[v] & MLOD__DEFERRED) {
             /* its list stands, computed for what seen[] held then: exact
                for nothing now; the version moves with the view, as the
@@ -7791,14 +7784,8 @@ static void mlod__remember_views(mlod_cut *cut, const mlod_tree *tree, const mlo
             continue;
         }
         if (cut->view_done[v] != MLOD__SKIPPED) cut->touched[v] = cut->serial;
-        {
-            /* lazy: a view that made no move in this call (its first round
-               evaluated every entry and every pair's parent afresh) */
-            int exact = params->mode != MLOD_CUT_LAZY || (s->steps == 0 && s->coarse == 0);
-            int kept = exact && same_tree && (cut->known[v] & MLOD__EXACT) && same_view;
-            if (!kept) cut->basis[v] = cut->serial;
-            cut->known[v] = (uint8_t)(MLOD__SEEN | (exact ? MLOD__EXACT : 0u));
-        }
+        if (!(exact && same_tree && (cut->known[v] & MLOD__EXACT) && same_view)) cut->basis[v] = cut->serial;
+        cut->known[v] = (uint8_t)(MLOD__SEEN | (exact ? MLOD__EXACT : 0u));
     }
     memcpy(cut->seen, views, cut->view_count * sizeof(mlod_view));
     cut->seen_tree = tree;
@@ -8192,13 +8179,13 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
                                          const mlod_cut_params *params, mlod_error *error)
 {
     mlod__cut_job job;
-    uint32_t v, skipped, deferred = 0;
+    uint32_t v, skipped, chosen, deferred = 0;
     int same_tree, budgeted, pass;
     mlod_result res = mlod__check_cut_params(cut, tree, views, params, error);
     if (res != MLOD_OK) return res;
     memset(&job, 0, sizeof job);
     skipped = mlod__skip_views(cut, tree, params, &job.age);
-    if (job.age && (uint32_t)tree->revision - tree->changes[0] >= job.age) {
+    if (job.age && !mlod__suspect(tree, job.age, 0)) {
         /* the refits since changed no node (a changed leaf marks every
            node above it, the root included): the MLOD__STAMPED views are
            skipped as a whole; their lists are the basic cuts of this
@@ -8211,11 +8198,9 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     /* (from the roots, every view needs its list: no budget) */
     budgeted = params->budget && params->mode == MLOD_CUT_LAZY && same_tree && cut->chunk_count > 0 &&
                skipped < cut->view_count;
-    if (budgeted && !mlod__budget_views(cut, params->lazy_steps, params->budget, 0, &deferred)) {
-        for (v = 0; v < cut->view_count; v++) cut->known[v] &= (uint8_t)~MLOD__DEFERRED;
+    if (budgeted && !mlod__budget_views(cut, params->lazy_steps, params->budget, 0, &chosen, &deferred))
         return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY, "out of memory ordering %u views for a budget",
                           cut->view_count - skipped);
-    }
     if (skipped == cut->view_count) {
         /* nothing changed: the lists stand, and nothing was evaluated */
         for (v = 0; v < cut->view_count; v++) cut->stats[0][v].evaluated = cut->stats[0][v].steps = 0;
@@ -8228,7 +8213,6 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
     job.serial = cut->serial + 1;
     for (pass = 1;; pass++) {
         uint64_t spent = 0;
-        uint32_t chosen;
         if (!mlod__update_pass(cut, tree, views, params, &job, same_tree)) {
             mlod_cut_reset(cut);
             return mlod__fail(error, MLOD_ERROR_OUT_OF_MEMORY,
@@ -8240,9 +8224,8 @@ MLOD__PUBLIC mlod_result mlod_cut_update(mlod_cut *cut, const mlod_tree *tree, c
            their counts) */
         for (v = 0; v < cut->view_count; v++) spent += cut->stats[0][v].evaluated;
         MANYLODS_ASSERT(spent <= params->budget);
-        if (!mlod__budget_views(cut, params->lazy_steps, params->budget - spent, 1, &deferred)) break;
-        for (v = 0, chosen = 0; v < cut->view_count; v++) chosen += cut->view_done[v] != MLOD__SKIPPED;
-        if (chosen == 0) break;
+        if (!mlod__budget_views(cut, params->lazy_steps, params->budget - spent, 1, &chosen, &deferred) || !chosen)
+            break;
         job.again = 1;
     }
     cut->serial++;
