@@ -310,8 +310,7 @@ typedef struct row {
     double peak_bytes;  /* the cut's most bytes during the measured frames' updates; NAN: n/a */
     double redrawn, patched, changed_pixels; /* target_rigs, per frame: tiles mlod_splat drew whole and patched, % of
                                                 the pixels that changed */
-    double budget_most, budget_updates; /* target_budget: the most node-views an update spent; the updates to
-                                           the basic cut once the rig stopped */
+    double budget_updates; /* target_budget: the updates to the basic cut once the rig stopped */
     int has_metrics;
     metrics m;
 } row;

@@ -558,7 +558,7 @@ static void write_figures(const bench *b, FILE *f, protocol *const *protocols, i
         if (bb && bl && bb->evaluated > 0.0)
             fprintf(f, "object.budget=%.3g M\nobject.budget_ms=%s\nobject.budget_allowed=%s\n"
                        "object.budget_spent=%.2f M\nobject.budget_basic_ms=%s\nobject.budget_updates=%.0f\n",
-                    BENCH_BUDGET / 1e6, ms_text(bl->cut_ms), ms_text(1.2 * (BENCH_BUDGET / bb->evaluated) * bb->cut_ms),
+                    BENCH_BUDGET / 1e6, ms_text(bl->cut_ms), ms_text(budget_allowed_ms(bb)),
                     bl->evaluated / 1e6, ms_text(bb->cut_ms), bl->budget_updates);
     }
     for (k = 0; k < b->views_rows; k++)

@@ -1690,15 +1690,6 @@ static void test_motion(void)
 
 /* ------------------------------------------------ a lazy update's budget */
 
-/* The documented bound of a lazy update of a view of n entries:
-   3 n (2^q - 1) node-views (saturating). */
-static uint64_t budget_bound(uint32_t n, uint32_t q)
-{
-    uint64_t rounds = q >= 40 ? UINT64_MAX : ((uint64_t)1 << q) - 1;
-    uint64_t per = 3 * (uint64_t)n;
-    return per && rounds > UINT64_MAX / per ? UINT64_MAX : rounds * per;
-}
-
 typedef struct budget_copy {
     uint32_t count;
     uint32_t *nodes;
@@ -1793,7 +1784,7 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
                holds none (at most the smallest bound less one) */
             uint64_t sum = 0, least = UINT64_MAX;
             for (v = 0; v < NV; v++) {
-                uint64_t b = budget_bound(copy[v].count, q);
+                uint64_t b = tu_lazy_bound(copy[v].count, q);
                 sum += b;
                 if (b < least) least = b;
             }
@@ -1832,8 +1823,8 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
             left = budget - used;
             for (j = 0; j < NV; j++) {
                 v = order[j];
-                if (picked[v] || budget_bound(copy[v].count, q) > left) continue;
-                left -= budget_bound(copy[v].count, q);
+                if (picked[v] || tu_lazy_bound(copy[v].count, q) > left) continue;
+                left -= tu_lazy_bound(copy[v].count, q);
                 picked[v] = now[v] = 1;
                 chosen++;
             }
@@ -1886,7 +1877,7 @@ static void run_budget(uint32_t q, float eps, uint64_t seed)
         uint64_t most = 0;
         CHECK(mlod_cut_update(cb, tree, views, &pb, NULL) == MLOD_OK, "%s: basic update", what);
         for (v = 0; v < NV; v++) {
-            uint64_t b = budget_bound(mlod_cut_get(cb, v).count, q) * 2 + 16;
+            uint64_t b = tu_lazy_bound(mlod_cut_get(cb, v).count, q) * 2 + 16;
             if (b > most) most = b;
         }
         pl.budget = most; /* more than any view needs as it converges */

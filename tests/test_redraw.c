@@ -307,7 +307,7 @@ static void refit(mlod_tree *tree, shadow_tree *st, const scene_mesh *m, const m
 
 /* One mode's run through the steps, into an atlas that fills holes or not. */
 /* Lazy updates with a budget (mlod_cut_params.budget) when set: a sixth
-   of what every view's bound (3 n (2^q - 1) for n entries) asks, so that
+   of what every view's bound (tu_lazy_bound) asks, so that
    most updates defer views. */
 static int budgeted;
 
@@ -316,7 +316,7 @@ static uint64_t budget_of(const mlod_cut *cut, uint32_t lazy_steps)
     uint64_t sum = 0;
     uint32_t v;
     if (!budgeted) return 0;
-    for (v = 0; v < VIEWS; v++) sum += 3 * (uint64_t)mlod_cut_get(cut, v).count * (((uint64_t)1 << lazy_steps) - 1);
+    for (v = 0; v < VIEWS; v++) sum += tu_lazy_bound(mlod_cut_get(cut, v).count, lazy_steps);
     return sum / 6 + 1;
 }
 

@@ -451,6 +451,16 @@ static inline int tu_counts_ok(const mlod_cut_view *cv)
            cv->drawn + cv->culled + cv->oversize + cv->coarse == cv->count;
 }
 
+/* The manual's bound on a lazy update of one view (THE CUT, "A budget"):
+   3 n (2^q - 1) node-views for n entries and q = lazy_steps, saturating
+   at UINT64_MAX; written from the manual, not from the library. */
+static inline uint64_t tu_lazy_bound(uint32_t n, uint32_t q)
+{
+    uint64_t rounds = q >= 40 ? UINT64_MAX : ((uint64_t)1 << q) - 1;
+    uint64_t per = 3 * (uint64_t)n;
+    return per && rounds > UINT64_MAX / per ? UINT64_MAX : rounds * per;
+}
+
 /* Two cut views have identical lists, statuses and counts. */
 static inline int tu_same_cut(const mlod_cut_view *a, const mlod_cut_view *b)
 {
