@@ -51,6 +51,7 @@
 #include "../bench/metrics.h"
 #include "app.h"
 #include "label.h"
+#include "sampling_summary.h"
 
 static const char usage[] =
     "usage: instant_radiosity [options]\n"
@@ -713,25 +714,25 @@ static int compare_samplers(const char *program, const app_options *o, app_scene
         memcpy(reference_last.rgb, reference.rgb, 3 * sizeof(float) * receivers);
     }
     if (o->frames > 0) {
+        sampling_summary sum;
+        for (s = 0; s < 2; s++) {
+            sum.kept[s] = 100.0 * runs[s].kept / o->frames;
+            sum.flicker[s] = 100.0 * runs[s].flicker / o->frames;
+            sum.error[s] = 100.0 * runs[s].error / o->frames;
+            sum.cut_ms[s] = runs[s].cut_ms / o->frames;
+            sum.splat_ms[s] = runs[s].splat_ms / o->frames;
+            sum.redrawn[s] = 100.0 * runs[s].redrawn / o->frames;
+        }
+        sum.ms = (runs[1].cut_ms + runs[1].splat_ms) / o->frames;
+        sum.anchor_ms = anchor_ms / o->frames;
+        sum.same = o->frames + 1 - anchor_differ;
+        sum.frames = o->frames + 1;
         printf("mean  ");
         for (s = 0; s < 2; s++)
-            printf("  %6.1f  %9.2f  %7.2f  %6.1f  %8.1f  %9.1f", 100.0 * runs[s].kept / o->frames,
-                   100.0 * runs[s].flicker / o->frames, 100.0 * runs[s].error / o->frames, runs[s].cut_ms / o->frames,
-                   runs[s].splat_ms / o->frames, 100.0 * runs[s].redrawn / o->frames);
+            printf("  %6.1f  %9.2f  %7.2f  %6.1f  %8.1f  %9.1f", sum.kept[s], sum.flicker[s], sum.error[s],
+                   sum.cut_ms[s], sum.splat_ms[s], sum.redrawn[s]);
         printf("   (frames 1 .. %u)\n", o->frames);
-        printf("sampling summary: kept %.1f %% vs %.1f %%, flicker %.2f %% vs %.2f %%, error %.2f %% vs %.2f %%,"
-               " cut %.1f ms vs %.1f ms, splat %.1f ms vs %.1f ms, tiles redrawn %.1f %% vs %.1f %%"
-               " (inverse transform vs Metropolis-Hastings)\n",
-               100.0 * runs[0].kept / o->frames, 100.0 * runs[1].kept / o->frames, 100.0 * runs[0].flicker / o->frames,
-               100.0 * runs[1].flicker / o->frames, 100.0 * runs[0].error / o->frames,
-               100.0 * runs[1].error / o->frames, runs[0].cut_ms / o->frames, runs[1].cut_ms / o->frames,
-               runs[0].splat_ms / o->frames, runs[1].splat_ms / o->frames, 100.0 * runs[0].redrawn / o->frames,
-               100.0 * runs[1].redrawn / o->frames);
-        printf("Metropolis-Hastings' incremental cut + kept maps against a basic cut + full splat of its VPLs: %.1f "
-               "against %.1f ms a frame (%.2fx); the same maps in %u of %u frames (the basic cut from the root, "
-               "every view evaluated)\n",
-               (runs[1].cut_ms + runs[1].splat_ms) / o->frames, anchor_ms / o->frames,
-               (runs[1].cut_ms + runs[1].splat_ms) / anchor_ms, o->frames + 1 - anchor_differ, o->frames + 1);
+        sampling_summary_print(stdout, &sum);
     }
     app_stage("done");
     ok = 1;

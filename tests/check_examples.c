@@ -57,6 +57,7 @@
 #include <sys/wait.h>
 
 #include "../examples/label.h"
+#include "../examples/sampling_summary.h"
 #include "harness.h"
 #include "pngread.h"
 
@@ -313,36 +314,36 @@ static void check_command_line(const char *name)
 static void check_sampling(void)
 {
     char path[512], line[1024];
-    double kept[2] = {0}, flicker[2] = {0}, error[2] = {0}, cut[2] = {0}, ms[2];
-    unsigned same = 0, frames = 0;
+    sampling_summary sum;
     int status = run("instant_radiosity-sampling", EXAMPLES_DIR "/instant_radiosity --tiny --sampling"), found = 0,
         maps = 0;
     FILE *f;
+    memset(&sum, 0, sizeof sum);
     CHECK(status == 0, "instant_radiosity --tiny --sampling exits with 0 (got %d)", status);
     snprintf(path, sizeof path, "%s/instant_radiosity-sampling.out", OUT_DIR);
     f = fopen(path, "r");
     while (f && fgets(line, sizeof line, f)) {
-        found |= sscanf(line, "sampling summary: kept %lf %% vs %lf %%, flicker %lf %% vs %lf %%, error %lf %% vs %lf %%,"
-                              " cut %lf ms vs %lf ms",
-                        &kept[0], &kept[1], &flicker[0], &flicker[1], &error[0], &error[1], &cut[0], &cut[1]) == 8;
-        maps |= sscanf(line, "Metropolis-Hastings' incremental cut + kept maps against a basic cut + full splat of its "
-                             "VPLs: %lf against %lf ms a frame (%*fx); the same maps in %u of %u frames",
-                       &ms[0], &ms[1], &same, &frames) == 4;
+        int which = sampling_summary_read(line, &sum);
+        found |= which == 1;
+        maps |= which == 2;
     }
     if (f) fclose(f);
-    CHECK(maps && frames == 3 && same == frames,
-          "instant_radiosity --sampling: the kept shadow maps equal a full splat's in every frame (%u of %u)", same,
-          frames);
+    CHECK(maps && sum.frames == 3 && sum.same == sum.frames,
+          "instant_radiosity --sampling: the kept shadow maps equal a full splat's in every frame (%u of %u)", sum.same,
+          sum.frames);
     CHECK(found, "instant_radiosity --sampling prints its summary line");
     if (!found) return;
-    CHECK(kept[1] > kept[0] && kept[1] >= 50.0, "Metropolis-Hastings keeps more VPLs (%.1f %%) than the inverse "
-                                                "transform (%.1f %%), at least half",
-          kept[1], kept[0]);
-    CHECK(flicker[1] < flicker[0], "Metropolis-Hastings flickers less (%.2f %%) than the inverse transform (%.2f %%)",
-          flicker[1], flicker[0]);
-    CHECK(error[0] > 0.0 && error[1] > 0.0 && error[1] < 3.0 * error[0] && error[0] < 3.0 * error[1],
-          "errors against the converged reference of the same order: %.2f %% and %.2f %%", error[0], error[1]);
-    CHECK(cut[0] > 0.0 && cut[1] > 0.0, "cut times measured: %.1f ms and %.1f ms", cut[0], cut[1]);
+    CHECK(sum.kept[1] > sum.kept[0] && sum.kept[1] >= 50.0, "Metropolis-Hastings keeps more VPLs (%.1f %%) than the "
+                                                            "inverse transform (%.1f %%), at least half",
+          sum.kept[1], sum.kept[0]);
+    CHECK(sum.flicker[1] < sum.flicker[0],
+          "Metropolis-Hastings flickers less (%.2f %%) than the inverse transform (%.2f %%)", sum.flicker[1],
+          sum.flicker[0]);
+    CHECK(sum.error[0] > 0.0 && sum.error[1] > 0.0 && sum.error[1] < 3.0 * sum.error[0] &&
+              sum.error[0] < 3.0 * sum.error[1],
+          "errors against the converged reference of the same order: %.2f %% and %.2f %%", sum.error[0], sum.error[1]);
+    CHECK(sum.cut_ms[0] > 0.0 && sum.cut_ms[1] > 0.0, "cut times measured: %.1f ms and %.1f ms", sum.cut_ms[0],
+          sum.cut_ms[1]);
 }
 
 /* instant_radiosity --megaviews: 4096 VPLs through the view tree (--tiny
