@@ -77,13 +77,14 @@ DEMO_DEFINES ?= -DMANYLODS_PTHREADS
 # The benchmark: portable -O2 (no -march=native), Embree for the reference.
 BENCH_OPT    := -std=c99 -O2
 BENCH_CFLAGS := $(BENCH_OPT) $(WARNINGS) $(CFLAGS) -DBENCH_FLAGS='"$(BENCH_OPT)"' \
-                -DBENCH_VK_HEADER='"$(CURDIR)/manylods_vk.h"'
+                -DBENCH_VK_HEADER='"$(CURDIR)/manylods_vk.h"' \
+                -DBENCH_EXAMPLES='"$(abspath $(BUILD)/examples)"'
 BENCH_LDLIBS := -lembree3 -lm -pthread
 # bench/bench.c includes its protocol files (one translation unit): they are
 # prerequisites here, not programs of their own.
 BENCH_DEPS   := bench/bench.c bench/protocol_single.c bench/protocol_targets.c bench/protocol_vulkan.c \
                 bench/protocol_sweep.c bench/protocol_views.c bench/report.c bench/cut_avx2.c \
-                $(wildcard bench/*.h) manylods.h examples/scenes.h examples/meshio.h
+                $(wildcard bench/*.h) manylods.h examples/scenes.h examples/meshio.h examples/sampling_summary.h
 # On x86-64 the bench also links a second copy of the library built with
 # -mavx2 -mfma (bench/cut_avx2.c) and reports its cut beside this build's.
 BENCH_AVX2   := $(if $(findstring x86_64,$(shell $(CC) -dumpmachine 2>/dev/null)),1)
@@ -321,7 +322,7 @@ $(BUILD)/examples/check_examples: tests/check_examples.c $(HEADERS) | $(EXAMPLES
 
 bench:
 	$(Q)tests/deps.sh
-	$(Q)$(MAKE) --no-print-directory $(BUILD)/bench/bench
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bench/bench $(BUILD)/examples/instant_radiosity
 	$(Q)$(BUILD)/bench/bench --out docs
 	$(Q)bench/readme_figures.sh --update README.md docs/bench_figures.txt
 
@@ -332,7 +333,7 @@ readme-figures:
 
 bench-quick:
 	$(Q)tests/deps.sh
-	$(Q)$(MAKE) --no-print-directory $(BUILD)/bench/bench
+	$(Q)$(MAKE) --no-print-directory $(BUILD)/bench/bench $(BUILD)/examples/instant_radiosity
 	$(Q)$(BUILD)/bench/bench --quick --out $(BUILD)/bench
 
 $(BUILD)/bench/cut_avx2.o: bench/cut_avx2.c bench/cut_avx2.h manylods.h

@@ -97,6 +97,7 @@
 #define MANYLODS_PTHREADS
 #include "../manylods.h"
 #include "../examples/meshio.h"
+#include "../examples/sampling_summary.h"
 #include "metrics.h"
 #include "plot.h"
 #include "recursive.h"

@@ -419,6 +419,83 @@ static void target_budget(bench *b, protocol *p, mlod_tree *tree, const ranks *r
     refit_last_frame(b, p, tree); /* as the other measurements expect */
 }
 
+/* Instant radiosity with Metropolis-Hastings VPLs (issue 53), measured by
+   the example that shows it, so that the bench and the example share one
+   definition: examples/instant_radiosity --sampling (compare_samplers:
+   the room, its spot light and the torus twisting, the camera turning;
+   each frame the VPLs are drawn from the light's rays by mlod_sample's
+   Metropolis-Hastings chains) updates its VPLs' cuts incrementally and
+   keeps their atlas from frame to frame, and beside it cuts the same
+   VPLs from the root and splats them whole, comparing the two atlases bit
+   for bit every frame.  Run here with this run's VPLs, tile, N and
+   threads; its summary gives the means of frames 1 .. frames.  Not run
+   where the example was not built (BENCH_EXAMPLES). */
+#define BENCH_SAMPLING_FRAMES 6
+static void target_sampling(bench *b, uint32_t n)
+{
+#ifdef BENCH_EXAMPLES
+    const config *c = &b->cfg;
+    char command[700], line[1600], tail[4][400];
+    sampling_summary sum;
+    int lines = 0, found = 0, status;
+    FILE *pipe;
+    row *out;
+    memset(&sum, 0, sizeof sum);
+    snprintf(command, sizeof command, "%s/instant_radiosity", BENCH_EXAMPLES);
+    if (!(pipe = fopen(command, "rb"))) {
+        printf("  targets    instant radiosity: %s not built (make bench builds it), its row not measured\n", command);
+        return;
+    }
+    fclose(pipe);
+    snprintf(command, sizeof command,
+             "'%s/instant_radiosity' --sampling --views %u --tile %u --samples %u --frames %d --threads %u 2>&1",
+             BENCH_EXAMPLES, c->view_count, c->tile, n, BENCH_SAMPLING_FRAMES, c->threads);
+    pipe = popen(command, "r");
+    if (!pipe) fail("could not run %s", command);
+    while (fgets(line, sizeof line, pipe)) {
+        size_t len = strlen(line) < sizeof tail[0] ? strlen(line) : sizeof tail[0] - 1; /* the last lines, cut short */
+        memcpy(tail[lines % 4], line, len);
+        tail[lines++ % 4][len] = '\0';
+        found |= sampling_summary_read(line, &sum);
+    }
+    status = pclose(pipe);
+    if (status != 0 || found != 3) {
+        int k;
+        fprintf(stderr, "bench: %s gave (exit status %d), ending:\n", command, status);
+        for (k = lines > 4 ? lines - 4 : 0; k < lines; k++) fprintf(stderr, "  %s", tail[k % 4]);
+        fail("the example's --sampling run gave no summary (above)");
+    }
+    if (sum.same != sum.frames || sum.frames != BENCH_SAMPLING_FRAMES + 1)
+        fail("instant radiosity, Metropolis-Hastings: the kept atlas equals a full redraw in %u of %u frames", sum.same,
+             sum.frames);
+    out = add_row(b, ROW_TARGET, "object", "IR, Metropolis-Hastings: incremental");
+    out->eps = 1.0f;
+    out->n = n;
+    out->cut_ms = sum.cut_ms[1];
+    out->splat_ms = sum.splat_ms[1];
+    out->total_ms = sum.ms;
+    out->redrawn = sum.redrawn[1];
+    snprintf(out->note, sizeof out->note,
+             "examples/instant_radiosity --sampling: the room, the torus twisting; %.1f%% of the VPLs kept per "
+             "frame, %.1f%% of the tiles drawn again (whole or patched); means of frames 1 .. %d",
+             sum.kept[1], sum.redrawn[1], BENCH_SAMPLING_FRAMES);
+    out = add_row(b, ROW_TARGET, "object", "IR, Metropolis-Hastings: basic");
+    out->eps = 1.0f;
+    out->n = n;
+    out->total_ms = sum.anchor_ms;
+    snprintf(out->note, sizeof out->note,
+             "the same VPLs each frame: a basic cut from the root and a full splat; the same atlas bit for bit in "
+             "%u of %u frames (checked); means of frames 1 .. %d",
+             sum.same, sum.frames, BENCH_SAMPLING_FRAMES);
+    printf("  targets    instant radiosity, Metropolis-Hastings VPLs: %.1f ms against %.1f ms a frame (%.2fx)\n",
+           sum.ms, sum.anchor_ms, sum.ms / sum.anchor_ms);
+    fflush(stdout);
+#else
+    (void)b;
+    (void)n;
+#endif
+}
+
 /* The basic cut without cones and back-face culling: a tree of the same
    mesh and N built without MLOD_ATTR_CONE, the protocol's views without
    MLOD_VIEW_CULL_BACKFACES, the same frames. */
@@ -574,6 +651,7 @@ static void run_targets(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
     time_threads(b, p, tree, frame_views(p, last), frame_mesh(p, last));
     target_rigs(b, p, tree, rk);
     target_budget(b, p, tree, rk);
+    target_sampling(b, tree->leaf_count);
     target_plain(b, p, tree->leaf_count, rk);
     target_avx2(b, p, tree);
     target_single(b, p, tree, rk);
@@ -715,6 +793,23 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
             target_line(f, name, ms_text(bl->cut_ms), target, anchor, bl->cut_ms / allowed, NULL);
         } else {
             target_missing(f, name, "<= 1.2 x budget's share of basic", "not run in this configuration");
+        }
+    }
+    {
+        const row *ir = find_row(b, ROW_TARGET, o, "IR, Metropolis-Hastings: incremental", 1.0f, 0);
+        const row *ib = find_row(b, ROW_TARGET, o, "IR, Metropolis-Hastings: basic", 1.0f, 0);
+        const char *name = "instant radiosity, Metropolis-Hastings VPLs, torus twisting";
+        if (ir && ib) {
+            double ratio = ir->total_ms / ib->total_ms;
+            snprintf(ours, sizeof ours, "%.2fx", ratio);
+            snprintf(anchor, sizeof anchor, "issue 53: cut + splat per frame against a basic cut from the root and a full "
+                     "splat of the same VPLs, %s a frame (%s); ours: incremental cut %s + kept atlas %s (%s); %u VPLs "
+                     "%ux%u, N = %u",
+                     ms_text(ib->total_ms), ib->note, ms_text(ir->cut_ms), ms_text(ir->splat_ms), ir->note,
+                     c->view_count, c->tile, c->tile, ir->n);
+            target_line(f, name, ours, "<= 0.3x", anchor, ratio / 0.3, NULL);
+        } else {
+            target_missing(f, name, "<= 0.3x", "not run: examples/instant_radiosity not built (make bench builds it)");
         }
     }
     for (k = 0; k < 3; k++) { /* the atlas that follows the cut (issue 53) against a full redraw */

@@ -17,6 +17,8 @@
 #   object.part_pixels object.part_cut        (the Targets' frames that change little)
 #   object.budget object.budget_ms object.budget_allowed object.budget_spent
 #   object.budget_basic_ms object.budget_updates (the lazy budget's row)
+#   object.ir_ms object.ir_basic_ms object.ir_ratio object.ir_redrawn
+#                                             (instant radiosity, Metropolis-Hastings VPLs)
 #   room.wrong room.exact_wrong room.splat_pts room.spheres_pts room.spheres_time
 #   views.map_px views.group_radius views.COUNT.ms views.COUNT.embree_ms
 #       (COUNT in VIEW_ROWS below, and views.most)
@@ -106,6 +108,10 @@ block() {
             " (the target, 1.2 times the budget'"'"'s share of a basic cut'"'"'s " fig("object.budget_basic_ms") ": " \
             fig("object.budget_allowed") ") and reaches the basic cuts " fig("object.budget_updates") \
             " updates after the lights stop.")
+        say("In the demo'"'"'s room with the torus twisting and the VPLs drawn by Metropolis-Hastings chains " \
+            "(examples/instant_radiosity --sampling), a frame'"'"'s incremental cut + kept atlas takes " fig("object.ir_ms") \
+            " against " fig("object.ir_basic_ms") " for basic cuts and full splats of the same VPLs (" fig("object.ir_ratio") \
+            "; " fig("object.ir_redrawn") " of the tiles drawn again), with the same maps bit for bit.")
         say("<!-- bench:end -->")
         if (missing != "") {
             print "bench/readme_figures.sh: " source " lacks" missing " (make bench writes them)" > "/dev/stderr"

@@ -561,6 +561,13 @@ static void write_figures(const bench *b, FILE *f, protocol *const *protocols, i
                     BENCH_BUDGET / 1e6, ms_text(bl->cut_ms), ms_text(budget_allowed_ms(bb)),
                     bl->evaluated / 1e6, ms_text(bb->cut_ms), bl->budget_updates);
     }
+    { /* instant radiosity with Metropolis-Hastings VPLs (issue 53) */
+        const row *ir = find_row(b, ROW_TARGET, "object", "IR, Metropolis-Hastings: incremental", 1.0f, 0);
+        const row *ib = find_row(b, ROW_TARGET, "object", "IR, Metropolis-Hastings: basic", 1.0f, 0);
+        if (ir && ib)
+            fprintf(f, "object.ir_ms=%s\nobject.ir_basic_ms=%s\nobject.ir_ratio=%.2fx\nobject.ir_redrawn=%.0f%%\n",
+                    ms_text(ir->total_ms), ms_text(ib->total_ms), ir->total_ms / ib->total_ms, ir->redrawn);
+    }
     for (k = 0; k < b->views_rows; k++)
         if (!most || b->views[k].views > most->views) most = &b->views[k];
     if (!most) return;
