@@ -7736,11 +7736,13 @@ static int mlod__budget_views(mlod_cut *cut, uint32_t lazy_steps, uint64_t left,
             uint32_t key = since >= 0xffffffffu ? 0u : 0xffffffffu - (uint32_t)since;
             order[n++] = (uint64_t)key << 32 | v;
         }
-        cut->view_done[v] = MLOD__SKIPPED; /* (the first pass: the others are) */
+        cut->view_done[v] = MLOD__SKIPPED; /* unless chosen below */
     }
     mlod__radix_sort(order, order + n, n);
     for (i = 0; i < n; i++) {
-        uint64_t bound = mlod__lazy_bound(list->count[v = (uint32_t)order[n + i]], lazy_steps);
+        uint64_t bound;
+        v = (uint32_t)order[n + i];
+        bound = mlod__lazy_bound(list->count[v], lazy_steps);
         if (bound <= left) {
             left -= bound;
             cut->view_done[v] = 0;

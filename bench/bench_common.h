@@ -309,7 +309,7 @@ typedef struct row {
     double entry_bytes; /* mlod_cut_bytes / cut entries after the last frame's update; NAN: n/a */
     double peak_bytes;  /* the cut's most bytes during the measured frames' updates; NAN: n/a */
     double redrawn, patched, changed_pixels; /* target_rigs, per frame: tiles mlod_splat drew whole and patched, % of
-                                                the pixels that changed */
+                                                the pixels that changed (target_sampling: redrawn counts both) */
     double budget_updates; /* target_budget: the updates to the basic cut once the rig stopped */
     int has_metrics;
     metrics m;

@@ -566,7 +566,8 @@ static void write_figures(const bench *b, FILE *f, protocol *const *protocols, i
         const row *ib = find_row(b, ROW_TARGET, "object", "IR, Metropolis-Hastings: basic", 1.0f, 0);
         if (ir && ib)
             fprintf(f, "object.ir_ms=%s\nobject.ir_basic_ms=%s\nobject.ir_ratio=%.2fx\nobject.ir_redrawn=%.1f%%\n",
-                    ms_text(ir->total_ms), ms_text(ib->total_ms), ir->total_ms / ib->total_ms, ir->redrawn);
+                    ms_text(ir->total_ms), ms_text(ib->total_ms), ir->total_ms / ib->total_ms,
+                    100.0 * ir->redrawn / c->view_count);
     }
     for (k = 0; k < b->views_rows; k++)
         if (!most || b->views[k].views > most->views) most = &b->views[k];
