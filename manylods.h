@@ -6497,6 +6497,9 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
     /* the nodes wholly inside every plane, where the vector filter tracks them */
     const int track = pv->fast.ok && mlod__known_planes(&pv->fast);
     uint64_t evaluated = 0, steps = 0; /* locals: neighbouring segments are other threads' */
+    /* the entry on top of the output, kept in registers rather than read
+       back from where it was just stored (UINT32_MAX: none) */
+    uint32_t top_node = UINT32_MAX, top_valid = 0;
     out.nodes = job->cut->scratch_nodes + seg->out_begin;
     out.status = job->cut->scratch_status + seg->out_begin;
     out.count = 0;
@@ -6520,17 +6523,34 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
             memcpy(out.status + out.count, fresh + k, end - k);
             out.count += end - k;
             k = end - 1;
+            top_node = in_nodes[k];
+            top_valid = (uint32_t)mlod__is_valid(fresh[k]);
             continue;
         }
         if (st != MLOD_STATUS_COARSE) {
-            if (job->merge && mlod__mergeable(out.nodes, out.status, out.count, node, st))
-                node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, hint[k], &evaluated,
-                                    &steps);
+            if (job->merge) {
+                /* whether x and the output's top are valid siblings, and
+                   whether their parent may be valid, without branches:
+                   pairs come and go unpredictably, merges are rare */
+                uint8_t h = hint[k];
+                uint32_t pair = (uint32_t)mlod__is_valid(st) & (node > 0) & ((node & 1u) == 0) & (top_node == node - 1) &
+                                top_valid;
+                if (pair & ((h == MLOD__PENDING) | (uint32_t)mlod__is_valid(h)))
+                    node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, h, &evaluated,
+                                        &steps);
+                else /* the parent is invalid: mlod__reduce would stop at once, counting the hint's evaluation */
+                    evaluated += pair & (h != MLOD__PENDING) & (h != MLOD__KNOWN_INVALID);
+            }
             mlod__emit(&out, node, st);
-        } else if (track) {
-            mlod__split_down(job, seg, pv, &out, node, st, remaining, 1, &evaluated, &steps);
+            top_node = node;
+            top_valid = (uint32_t)mlod__is_valid(st);
         } else {
-            mlod__split_down(job, seg, pv, &out, node, st, remaining, 0, &evaluated, &steps);
+            if (track)
+                mlod__split_down(job, seg, pv, &out, node, st, remaining, 1, &evaluated, &steps);
+            else
+                mlod__split_down(job, seg, pv, &out, node, st, remaining, 0, &evaluated, &steps);
+            top_node = out.nodes[out.count - 1]; /* a split emits at least one entry */
+            top_valid = (uint32_t)mlod__is_valid(out.status[out.count - 1]);
         }
     }
     seg->out_count = out.count;
