@@ -5854,13 +5854,23 @@ static void mlod__emit(mlod__emitter *out, uint32_t node, uint8_t status)
     out->count++;
 }
 
+/* 1 when x (status xs, without lazy marks) is the right sibling of node
+   `left`, both valid (left_valid: 1 when left is): their parent is worth a
+   look.  Without branches, for the loops where pairs come and go
+   unpredictably. */
+static inline uint32_t mlod__valid_pair(uint32_t left, uint32_t left_valid, uint32_t x, uint8_t xs)
+{
+    return (uint32_t)mlod__is_valid(xs) & (x > 0) & ((x & 1u) == 0) & (left == x - 1) & left_valid;
+}
+
 /* Whether x (status xs) and the entry on top of the output (nodes, status,
-   count entries) are valid siblings, x the right one: their parent is
-   worth a look. */
+   count entries) are valid siblings, x the right one (mlod__valid_pair):
+   the usual answer, no sibling on top, first and with a branch, where the
+   merges' loops meet it after a merge or at a segment's boundary. */
 static inline int mlod__mergeable(const uint32_t *nodes, const uint8_t *status, uint32_t count, uint32_t x, uint8_t xs)
 {
-    return mlod__is_valid(xs) && x > 0 && (x & 1u) == 0 && count > 0 && nodes[count - 1] == x - 1 &&
-           mlod__is_valid(status[count - 1]);
+    return count > 0 && nodes[count - 1] == x - 1 &&
+           mlod__valid_pair(nodes[count - 1], (uint32_t)mlod__is_valid(status[count - 1]), x, xs);
 }
 
 /* Merge x with its left sibling on top of the output while their parent
@@ -6396,9 +6406,10 @@ static void mlod__merge_hints(const mlod__cut_job *job, const mlod__segment *seg
         }
         for (k = k > 0 ? k : 1; k < end; k++) { /* without branches: the pairs come and go unpredictably */
             uint32_t x = in_nodes[k];
-            int pair = ((x & 1u) == 0) & (x > 0) & (in_nodes[k - 1] == x - 1) &
-                       mlod__is_valid(fresh[k] & MLOD__STATUS_MASK) &
-                       mlod__is_valid(fresh[k - 1] & MLOD__STATUS_MASK) & !(fresh[k - 1] & MLOD__PARENT_INVALID);
+            uint32_t pair = mlod__valid_pair(in_nodes[k - 1],
+                                             (uint32_t)mlod__is_valid(fresh[k - 1] & MLOD__STATUS_MASK) &
+                                                 !(fresh[k - 1] & MLOD__PARENT_INVALID),
+                                             x, fresh[k] & MLOD__STATUS_MASK);
             hint[k] = MLOD__PENDING;
             parents[count] = (x - 1) / 2; /* pairs do not overlap: at most in_count / 2, and one slot to spare */
             at[count] = k;
@@ -6533,8 +6544,7 @@ static void mlod__refine_segment(const mlod__cut_job *job, mlod__segment *seg, c
                    whether their parent may be valid, without branches:
                    pairs come and go unpredictably, merges are rare */
                 uint8_t h = hint[k];
-                uint32_t pair = (uint32_t)mlod__is_valid(st) & (node > 0) & ((node & 1u) == 0) & (top_node == node - 1) &
-                                top_valid;
+                uint32_t pair = mlod__valid_pair(top_node, top_valid, node, st);
                 if (pair & ((h == MLOD__PENDING) | (uint32_t)mlod__is_valid(h)))
                     node = mlod__reduce(job, pv, out.nodes, out.status, &out.count, node, &st, h, &evaluated,
                                         &steps);

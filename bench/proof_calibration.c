@@ -77,12 +77,6 @@ static void fail(const char *what)
     exit(1);
 }
 
-static int compare_floats(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* The node of depth <= CAL_DEPTH holding node x (x itself when shallow). */
 static uint32_t stored_slot(uint32_t x)
 {
@@ -90,12 +84,11 @@ static uint32_t stored_slot(uint32_t x)
     return depth <= CAL_DEPTH ? x : ((x + 1) >> (depth - CAL_DEPTH)) - 1;
 }
 
-static double angle_between(const float *a, const float *b)
+/* The angle between two cones' axes (floats, not unit). */
+static double axes_angle(const float *a, const float *b)
 {
-    double la = sqrt((double)a[0] * a[0] + (double)a[1] * a[1] + (double)a[2] * a[2]);
-    double lb = sqrt((double)b[0] * b[0] + (double)b[1] * b[1] + (double)b[2] * b[2]);
-    double c = la > 0 && lb > 0 ? ((double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2]) / (la * lb) : 1.0;
-    return acos(c > 1.0 ? 1.0 : c < -1.0 ? -1.0 : c);
+    double x[3] = {a[0], a[1], a[2]}, y[3] = {b[0], b[1], b[2]};
+    return mlod__angle(x, y);
 }
 
 /* The statuses a paraboloid node-view can take under the budget
@@ -140,10 +133,13 @@ static int possible_statuses(const mlod__pview *pv, const float *sphere, const f
     }
     if (may_cull || may_back) set |= 2;
     if (may_show && may_front) {
-        double near_d = d - move, den = (w - m) + sqrt(fmax(near_d * near_d - hi_r * hi_r, 0));
-        double far_d = d + move, far_den = (w + m) + sqrt(fmax(far_d * far_d - lo_r * lo_r, 0));
-        double most = near_d <= hi_r || den <= 0 ? INFINITY : sub->scale * 2 * hi_r / den * (1 + 1e-6);
-        double least = far_den <= 0 ? INFINITY : sub->scale * 2 * lo_r / far_den * (1 - 1e-6);
+        /* the diameter grows with r and shrinks with x.w and |x| */
+        double near_d = d - move, far_d = d + move;
+        double most = near_d <= hi_r ? INFINITY
+                                     : sub->scale * (1 + 1e-6) *
+                                           mlod__paraboloid_diameter(hi_r, w - m, sqrt(near_d * near_d - hi_r * hi_r));
+        double least = sub->scale * (1 - 1e-6) *
+                       mlod__paraboloid_diameter(lo_r, w + m, sqrt(fmax(far_d * far_d - lo_r * lo_r, 0)));
         if (least <= epsilon) set |= 1;
         if (most > epsilon) set |= 4;
     }
@@ -276,7 +272,8 @@ int main(int argc, char **argv)
     mlod_cut *cut;
     mlod_error error;
     mlod_view *views = (mlod_view *)malloc(sizeof(mlod_view) * CAL_VIEWS), *before = (mlod_view *)malloc(sizeof(mlod_view) * CAL_VIEWS);
-    float *positions, *moved, *heights, *spheres, *cones, limit;
+    float *positions, *moved, *spheres, *cones;
+    double limit;
     motion *per_node, *stored;
     int32_t *where;
     static book books[2];
@@ -286,10 +283,7 @@ int main(int argc, char **argv)
     vertices = scene.vertex_count;
     positions = (float *)malloc(sizeof(float) * 3 * vertices);
     moved = (float *)malloc(sizeof(float) * 3 * vertices);
-    heights = (float *)malloc(sizeof(float) * vertices);
-    for (i = 0; i < vertices; i++) heights[i] = scene.positions[3 * (size_t)i + 1];
-    qsort(heights, vertices, sizeof(float), compare_floats);
-    limit = heights[vertices - 1 - vertices / 8];
+    if (!shape_top_eighth(&scene, &limit)) fail("out of memory");
     memset(&mesh, 0, sizeof mesh);
     mesh.positions = scene.positions;
     mesh.vertex_count = vertices;
@@ -321,10 +315,7 @@ int main(int argc, char **argv)
         memcpy(spheres, tree->spheres, 16 * (size_t)tree->node_count);
         memcpy(cones, tree->cones, 16 * (size_t)tree->node_count);
         scene_deform(&scene, (float)(0.1 * f), moved, NULL);
-        for (i = 0; i < vertices; i++) {
-            const float *from = !part || scene.positions[3 * (size_t)i + 1] >= limit ? moved : scene.positions;
-            memcpy(positions + 3 * (size_t)i, from + 3 * (size_t)i, 3 * sizeof(float));
-        }
+        shape_part_positions(&scene, moved, part ? limit : -INFINITY, positions);
         mesh.positions = positions;
         if (mlod_refit_mesh(tree, &mesh, &parallel, &error) != MLOD_OK) fail(error.message);
         memset(stored, 0, sizeof(motion) * stored_count);
@@ -335,7 +326,7 @@ int main(int argc, char **argv)
             motion *m = &per_node[i], *s = &stored[stored_slot(i)];
             m->t = sqrt(dx * dx + dy * dy + dz * dz) * (1 + 1e-9);
             m->g = fabs((double)c[3] - a[3]) * (1 + 1e-9);
-            m->a = ca[3] >= MLOD__PI && cb[3] >= MLOD__PI ? 0 : (angle_between(ca, cb) + fabs((double)cb[3] - ca[3])) * (1 + 1e-9) + 1e-12;
+            m->a = ca[3] >= MLOD__PI && cb[3] >= MLOD__PI ? 0 : (axes_angle(ca, cb) + fabs((double)cb[3] - ca[3])) * (1 + 1e-9) + 1e-12;
             if (m->t == 0 && m->g == 0 && !memcmp(ca, cb, 16)) m->a = 0;
             s->t = fmax(s->t, m->t);
             s->g = fmax(s->g, m->g);
@@ -369,17 +360,10 @@ int main(int argc, char **argv)
                 mlod__view_prepare(&before[v], &old, NULL);
                 for (i = 0; i < 3; i++) de[i] = pv.f.eye[i] - old.f.eye[i];
                 vm.e = sqrt(mlod__dot3(de, de)) * (1 + 1e-9);
-                /* the frame's turn: the largest angle any of its axes turned */
-                {
-                    const mlod_view_sub *a = &old.f.subs[0], *c = &pv.f.subs[0];
-                    float fa[3], fc[3];
-                    double turn = 0;
-                    for (i = 0; i < 3; i++) { fa[i] = (float)a->forward[i]; fc[i] = (float)c->forward[i]; }
-                    turn = fmax(turn, angle_between(fa, fc));
-                    for (i = 0; i < 3; i++) { fa[i] = (float)a->right[i]; fc[i] = (float)c->right[i]; }
-                    turn = fmax(turn, angle_between(fa, fc));
-                    vm.r = turn * 1.001 + (turn > 0 ? 1e-7 : 0);
-                }
+                /* the frame's turn: the larger angle its forward or right axis turned */
+                vm.r = fmax(mlod__angle(old.f.subs[0].forward, pv.f.subs[0].forward),
+                            mlod__angle(old.f.subs[0].right, pv.f.subs[0].right));
+                vm.r = vm.r * 1.001 + (vm.r > 0 ? 1e-7 : 0);
             }
             entries += now.count;
             if (f > 0) {

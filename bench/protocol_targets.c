@@ -77,32 +77,6 @@ static void time_threads(bench *b, protocol *p, mlod_tree *tree, const mlod_view
     }
 }
 
-/* The rest height (y) from which the object's vertices are the highest
-   eighth of them. */
-static double part_limit(const protocol *p)
-{
-    uint32_t i, n = p->rest.vertex_count;
-    double *y = (double *)checked_malloc(sizeof(double) * n), limit;
-    for (i = 0; i < n; i++) y[i] = p->rest.positions[3 * (size_t)i + 1];
-    qsort(y, n, sizeof(double), compare_doubles);
-    limit = y[n - 1 - n / 8];
-    free(y);
-    return limit;
-}
-
-/* The rest positions of the object, and those of frame f for its vertices
-   at rest height limit or above (part_limit): a part moving in a still
-   scene.  out: 3 floats per vertex. */
-static void part_positions(const protocol *p, int frame, double limit, float *out)
-{
-    uint32_t i, n = p->rest.vertex_count;
-    const float *moved = frame_positions(p, frame);
-    for (i = 0; i < n; i++) {
-        const float *from = p->rest.positions[3 * (size_t)i + 1] >= limit ? moved : p->rest.positions;
-        memcpy(out + 3 * (size_t)i, from + 3 * (size_t)i, 3 * sizeof(float));
-    }
-}
-
 /* The tree refitted to the protocol's last frame again, where the Targets'
    measurements that run frames of their own leave it. */
 static void refit_last_frame(bench *b, const protocol *p, mlod_tree *tree)
@@ -119,7 +93,7 @@ static void refit_last_frame(bench *b, const protocol *p, mlod_tree *tree)
    on the static rig, incremental updates with the same views and tree
    (nothing changed since the last update): what a view costs that could
    be skipped.  Last, the static rig over frames in which only the top
-   eighth of the object twists (part_positions): what skipping unchanged
+   eighth of the object twists (shape_part_positions): what skipping unchanged
    nodes saves; the tree is then refitted to the last frame again. */
 #define BENCH_RIGS 3
 static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
@@ -131,7 +105,7 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
     const config *c = &b->cfg;
     mlod_view *views = (mlod_view *)checked_malloc(sizeof(mlod_view) * p->view_count);
     float *part = (float *)checked_malloc(sizeof(float) * 3 * p->rest.vertex_count);
-    double limit = part_limit(p);
+    double limit;
     mlod_cut *cuts[BENCH_RIGS][2];
     mlod_atlas *atlases[BENCH_RIGS][2]; /* [1] follows the incremental cut, [0] is redrawn whole */
     mlod_atlas_desc desc;
@@ -152,6 +126,7 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
     memset(redrawn, 0, sizeof redrawn);
     memset(patched, 0, sizeof patched);
     memset(changed, 0, sizeof changed);
+    if (!shape_top_eighth(&p->rest, &limit)) fail("out of memory");
     memset(&desc, 0, sizeof desc);
     memset(&params, 0, sizeof params);
     params.epsilon = 1.0f;
@@ -179,7 +154,7 @@ static void target_rigs(bench *b, protocol *p, mlod_tree *tree, const ranks *rk)
         mlod_mesh mesh = frame_mesh(p, f % p->frame_count);
         int first = f < p->frame_count ? 0 : 2, last = f < p->frame_count ? 1 : 2;
         if (f >= p->frame_count) {
-            part_positions(p, f % p->frame_count, limit, part);
+            shape_part_positions(&p->rest, frame_positions(p, f % p->frame_count), limit, part);
             mesh.positions = part;
         }
         for (k = 0; k < 2; k++) { /* the protocol's tree, then its twin with the cache: the same bits */

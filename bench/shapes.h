@@ -13,6 +13,9 @@
      shape_paraboloid_light, shape_object_rig
                         the benchmark's lights: a paraboloid view of a
                         point light, and the object's rig of them
+     shape_top_eighth, shape_part_positions
+                        a part moving in a still scene: the highest eighth
+                        of a mesh's vertices (by rest height y) moved
 
    Functions return 0 when malloc fails (outputs then empty), 1 otherwise. */
 #ifndef MANYLODS_BENCH_SHAPES_H
@@ -295,6 +298,38 @@ static inline void shape_object_rig(uint32_t view_count, uint32_t tile, double d
         fwd[1] = (float)-y;
         fwd[2] = (float)-dz;
         shape_paraboloid_light(&out[i], pos, fwd, tile);
+    }
+}
+
+static inline int shape_compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* *limit: the rest height (y) from which rest's vertices are the highest
+   eighth of them. */
+static inline int shape_top_eighth(const scene_mesh *rest, double *limit)
+{
+    uint32_t i, n = rest->vertex_count;
+    double *y = (double *)malloc(sizeof(double) * (n ? n : 1));
+    *limit = 0.0;
+    if (!y) return 0;
+    for (i = 0; i < n; i++) y[i] = rest->positions[3 * (size_t)i + 1];
+    qsort(y, n, sizeof(double), shape_compare_doubles);
+    if (n) *limit = y[n - 1 - n / 8];
+    free(y);
+    return 1;
+}
+
+/* out (3 floats per vertex): moved's position for the vertices whose rest
+   height is limit or above (shape_top_eighth), rest's for the others. */
+static inline void shape_part_positions(const scene_mesh *rest, const float *moved, double limit, float *out)
+{
+    uint32_t i;
+    for (i = 0; i < rest->vertex_count; i++) {
+        const float *from = rest->positions[3 * (size_t)i + 1] >= limit ? moved : rest->positions;
+        memcpy(out + 3 * (size_t)i, from + 3 * (size_t)i, 3 * sizeof(float));
     }
 }
 
