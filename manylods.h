@@ -115,7 +115,13 @@
                      Never used on user input: bad input returns an error.
      MANYLODS_NO_SIMD     no vector code (the cut's and the splat's float
                      filters run on scalars, MegaViews' pair filter not at
-                     all); the same results either way.
+                     all); the same results either way (VECTOR LANES).
+     MANYLODS_NO_AVX2     no AVX2 lanes beside an SSE2 build, so no
+                     processor test at run time (VECTOR LANES).
+     MANYLODS_SELF   the name under which the implementation includes its
+                     own file again, once per vector level (default
+                     "manylods.h", found in the file's own directory):
+                     define it where the file has another name.
      MANYLODS_NO_HUGE_PAGES  no madvise of large buffers (MEMORY).
      MANYLODS_DEF    what every public declaration and definition starts
                      with (default: extern, extern "C" in C++, or static
@@ -147,6 +153,32 @@
      Other translation units may use any flags.  Other compilers: build
      the implementation without floating-point contraction or fast math.
      tests/compile/matrix.sh checks every line above (the fp-* entries).
+
+   VECTOR LANES
+     The float filters that decide most node-views (the cut's, the
+     splat's small discs and plane tests, MegaViews' pair filter) run in
+     float vector lanes, at one of the levels of mlod_simd:
+       MLOD_SIMD_AVX2   x86-64: 8 lanes, where the processor and its OS
+                        have AVX2 (cpuid and xgetbv, read once)
+       MLOD_SIMD_SSE2   x86: 4 lanes (every x86-64 build)
+       MLOD_SIMD_NEON   AArch64: 4 lanes (every AArch64 build)
+       MLOD_SIMD_NONE   scalar code (other processors, MANYLODS_NO_SIMD)
+     A plain build (-O2, no -m flags) on x86-64 with gcc 5 or later or
+     clang 9 or later holds both the SSE2 and the AVX2 lanes (the latter
+     compiled for that target with gcc's and clang's target pragmas) and
+     runs the best one the processor has, with no flag; a build for AVX2
+     (-mavx2, -march=native on such a processor) has the AVX2 lanes only.
+     Every build also holds the scalar code.  mlod_simd_level says which
+     level runs; mlod_simd_limit lowers it at run time (for comparisons:
+     tests/test_simd.c runs every level in one process and compares cuts,
+     atlases and renders); MANYLODS_NO_AVX2 leaves the AVX2 lanes out,
+     MANYLODS_NO_SIMD every vector instruction.  Every level computes the
+     same bits: a lane decides only what the exact path would (THE CUT,
+     SPLATTING), so the level is a speed, never a result.  (Not AVX-512:
+     the lanes are written for 4 and 8.  clang building for FMA without
+     AVX2 keeps the SSE2 lanes: its code is compiled for a target without
+     FMA, see FLOATING POINT.)  MSVC builds the SSE2 lanes (not compiled
+     here: the dispatch to AVX2 needs gcc's or clang's target pragmas).
 
    PIPELINE
      1. Build (once):   mlod_build_mesh() samples N points on a triangle mesh
@@ -341,10 +373,9 @@
      plane or the eye) to the exact double path.  The splitting search
      splits the run of coarse entries next in line (up to 32) at once and
      classifies their children together, and an update's input entries
-     likewise, in vector lanes where the build has them: 8 lanes with
-     AVX (-mavx, -mavx2, -march=native on such a processor; a pair of
-     children's rows, adjacent in the tree, in one load), 4 with SSE2
-     (every x86-64 build) or NEON (every AArch64 build); the lanes'
+     likewise, in vector lanes (VECTOR LANES): 8 lanes with AVX2 (a pair
+     of children's rows, adjacent in the tree, in one load), 4 with SSE2
+     or NEON; the lanes'
      statuses leave as bytes in one store.  A paraboloid view (the views
      of virtual point lights) or a perspective one, eye in floats, runs a
      copy of the lanes compiled for its shape, its constants in registers
@@ -687,7 +718,7 @@
      within a group.  docs/GUIDE.md measures the error against exact maps.
      Speed: with delta > 0 and without back-face culling, the pairs of
      every view node (inner, group or leaf) are decided several at a time
-     in float (4 lanes with SSE2 or NEON, 8 with AVX), each decision taken only
+     in float (4 lanes with SSE2 or NEON, 8 with AVX2), each decision taken only
      where it clears its threshold by a margin proven to exceed the float
      rounding (under 1 % of the pairs in docs/GUIDE.md's benchmark fall within
      one and take the exact double path).  A view node's pairs are
@@ -1897,6 +1928,32 @@ MANYLODS_DEF int mlod_megaviews_query(const mlod_megaviews_maps *maps, const mlo
 MANYLODS_DEF size_t mlod_megaviews_maps_bytes(const mlod_megaviews_maps *maps);
 MANYLODS_DEF void mlod_megaviews_maps_destroy(mlod_megaviews_maps *maps);
 
+/* ------------------------------------------------------ vector lanes ---- */
+/* The vector instructions the float filters run on (the cut's, the
+   splat's, MegaViews' pair filter; see VECTOR LANES in the manual).  Every
+   level computes the same bits: a level is a speed, never a result. */
+typedef enum mlod_simd {
+    MLOD_SIMD_NONE = 0, /* scalar code */
+    MLOD_SIMD_SSE2 = 1, /* x86: 4 float lanes, the x86-64 baseline */
+    MLOD_SIMD_NEON = 2, /* AArch64: 4 float lanes */
+    MLOD_SIMD_AVX2 = 3  /* x86: 8 float lanes, where the processor and the OS have AVX2 */
+} mlod_simd;
+
+/* The level the library's calls run at now: the highest that the build
+   compiled (MANYLODS_NO_SIMD: none; the build's own flags' level, and
+   AVX2 beside an SSE2 build with gcc or clang), that the processor and
+   its OS support (cpuid and xgetbv, read once), and that mlod_simd_limit
+   allows.  Thread-safe. */
+MANYLODS_DEF mlod_simd mlod_simd_level(void);
+/* Run the calls that start from now on at no level above `highest` (any
+   mlod_simd; MLOD_SIMD_AVX2 or above lifts the limit); returns the level
+   now in use (mlod_simd_level).  MLOD_SIMD_NONE turns the float filters'
+   lanes off (the splat's exact path keeps its two double lanes: only
+   MANYLODS_NO_SIMD removes every vector instruction).  For comparisons
+   and benchmarks: the results do not change.  Thread-safe; a call in
+   flight may finish at either level. */
+MANYLODS_DEF mlod_simd mlod_simd_limit(mlod_simd highest);
+
 /* --------------------------------------------------- built-in thread pool */
 #ifdef MANYLODS_PTHREADS
 typedef struct mlod_pool mlod_pool;
@@ -1958,6 +2015,62 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
 #include <pthread.h>
 #endif
 
+/* ---------------------------------------------------- vector lanes ---- */
+/* The one place that decides which vector code the implementation holds:
+     MLOD__BASE_LEVEL     the level (an mlod_simd) the build's own flags
+                          give: none with MANYLODS_NO_SIMD or on other
+                          processors; AVX2 where the compiler targets it
+                          (-mavx2, -march=haswell or later); else SSE2 on
+                          x86 (every x86-64 compiler), NEON on AArch64;
+     MLOD__SIMD_X86       SSE2 instructions usable (the box lanes, the
+                          splat's double lanes);
+     MLOD__SIMD_NEON      NEON instructions usable;
+     MLOD__DISPATCH_AVX2  AVX2 lanes compiled beside an SSE2 build, for the
+                          processors that have them (x86-64, gcc 5 or
+                          later, clang 9 or later but not where it
+                          targets FMA without AVX2, which the code below
+                          builds for a target without FMA; none with
+                          MANYLODS_NO_AVX2).
+   The lanes' code is compiled once per level (VECTOR LANES, at the end). */
+#if defined(MANYLODS_NO_SIMD)
+#define MLOD__BASE_LEVEL 0
+#elif defined(__AVX2__) && !defined(MANYLODS_NO_AVX2)
+#define MLOD__BASE_LEVEL 3
+#elif defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+#define MLOD__BASE_LEVEL 1
+#elif defined(__aarch64__) && defined(__ARM_NEON)
+#define MLOD__BASE_LEVEL 2
+#else
+#define MLOD__BASE_LEVEL 0
+#endif
+#define MLOD__SIMD_X86 (MLOD__BASE_LEVEL == 1 || MLOD__BASE_LEVEL == 3)
+#define MLOD__SIMD_NEON (MLOD__BASE_LEVEL == 2)
+#if MLOD__BASE_LEVEL == 1 && !defined(MANYLODS_NO_AVX2) && (defined(__x86_64__) || defined(_M_X64)) &&                \
+    ((defined(__clang__) && __clang_major__ >= 9 && !defined(__FMA__)) ||                                               \
+     (!defined(__clang__) && defined(__GNUC__) && __GNUC__ >= 5))
+#define MLOD__DISPATCH_AVX2 1
+#else
+#define MLOD__DISPATCH_AVX2 0
+#endif
+#if MLOD__SIMD_X86
+#include <emmintrin.h>
+#endif
+#if MLOD__BASE_LEVEL == 3 || MLOD__DISPATCH_AVX2
+#include <immintrin.h> /* before the AVX2 pass's target: its functions keep their own */
+#endif
+#if MLOD__SIMD_NEON
+#include <arm_neon.h>
+#endif
+#if MLOD__DISPATCH_AVX2
+#include <cpuid.h>
+#endif
+/* The file the implementation includes again for each level's lanes: this
+   one, looked up first in its own directory ("manylods.h"); define it
+   where the file has another name. */
+#ifndef MANYLODS_SELF
+#define MANYLODS_SELF "manylods.h"
+#endif
+
 /* Every a * b + c here is rounded twice, as written: the shaders compute
    the same bits only so (where the device's doubles are IEEE), and the
    error bounds assume it.  gcc fuses such sums into one multiply-add in
@@ -1993,6 +2106,67 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
 #else
 #define MLOD__PUBLIC MANYLODS_DEF
 #endif
+
+/* ------------------------------------------------------ vector lanes ---- */
+
+/* A word every thread may read while one writes it (the level in use):
+   relaxed atomics where the compiler has them. */
+#if defined(__GNUC__) || defined(__clang__)
+#define MLOD__LOAD_WORD(p) __atomic_load_n(p, __ATOMIC_RELAXED)
+#define MLOD__STORE_WORD(p, v) __atomic_store_n(p, v, __ATOMIC_RELAXED)
+#else
+#define MLOD__LOAD_WORD(p) (*(volatile int *)(p))
+#define MLOD__STORE_WORD(p, v) (*(volatile int *)(p) = (v))
+#endif
+
+/* The level in use (-1: not chosen yet) and mlod_simd_limit's limit. */
+static int mlod__simd_in_use = -1, mlod__simd_cap = MLOD_SIMD_AVX2;
+
+/* Whether the processor runs AVX2 and its OS keeps the AVX registers. */
+static int mlod__cpu_avx2(void)
+{
+#if MLOD__DISPATCH_AVX2
+    unsigned a, b, c, d, lo, hi;
+    if (__get_cpuid_max(0, NULL) < 7) return 0;
+    __cpuid(1, a, b, c, d);
+    if (!(c >> 27 & 1u) || !(c >> 28 & 1u)) return 0; /* OSXSAVE, AVX */
+    __asm__ __volatile__(".byte 0x0f, 0x01, 0xd0" : "=a"(lo), "=d"(hi) : "c"(0)); /* xgetbv: XCR0 */
+    (void)hi;
+    if ((lo & 6u) != 6u) return 0; /* the OS saves the SSE and AVX registers */
+    __cpuid_count(7, 0, a, b, c, d);
+    return (int)(b >> 5 & 1u); /* AVX2 */
+#else
+    return 0;
+#endif
+}
+
+/* Choose the level in use: the highest compiled one that the processor
+   runs and the limit allows. */
+static int mlod__simd_choose(void)
+{
+    int cap = MLOD__LOAD_WORD(&mlod__simd_cap), level = MLOD__BASE_LEVEL;
+    if (MLOD__DISPATCH_AVX2 && mlod__cpu_avx2()) level = MLOD_SIMD_AVX2;
+    if (cap < level) level = MLOD__BASE_LEVEL <= cap ? MLOD__BASE_LEVEL : MLOD_SIMD_NONE;
+    MLOD__STORE_WORD(&mlod__simd_in_use, level);
+    return level;
+}
+
+/* The level in use, which names the lanes' pass a call takes (VECTOR
+   LANES). */
+static inline int mlod__simd_pass(void)
+{
+    int level = MLOD__LOAD_WORD(&mlod__simd_in_use);
+    return level >= 0 ? level : mlod__simd_choose();
+}
+
+MLOD__PUBLIC mlod_simd mlod_simd_level(void) { return (mlod_simd)mlod__simd_pass(); }
+
+MLOD__PUBLIC mlod_simd mlod_simd_limit(mlod_simd highest)
+{
+    int cap = (int)highest < 0 ? 0 : (int)highest > MLOD_SIMD_AVX2 ? MLOD_SIMD_AVX2 : (int)highest;
+    MLOD__STORE_WORD(&mlod__simd_cap, cap);
+    return (mlod_simd)mlod__simd_choose();
+}
 
 /* ------------------------------------------------------------ errors ---- */
 
@@ -3205,16 +3379,14 @@ static void mlod__radix_sort(uint64_t *pairs, uint64_t *scratch, uint32_t n)
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute pop
 #endif
-#if !defined(MANYLODS_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
-#include <emmintrin.h>
+#if MLOD__SIMD_X86
 #define MLOD__BOX_LANES 1
 typedef __m128 mlod__box_vf;
 #define MLOD__BOX_LOAD _mm_loadu_ps
 #define MLOD__BOX_MIN _mm_min_ps
 #define MLOD__BOX_MAX _mm_max_ps
 #define MLOD__BOX_STORE _mm_storeu_ps
-#elif !defined(MANYLODS_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
-#include <arm_neon.h>
+#elif MLOD__SIMD_NEON
 #define MLOD__BOX_LANES 1
 typedef float32x4_t mlod__box_vf;
 #define MLOD__BOX_LOAD vld1q_f32
@@ -5180,445 +5352,6 @@ MLOD__PUBLIC mlod_result mlod_view_filter_of(const mlod_view *view, float epsilo
 #endif
 
 
-/* mlod__fast_status on several node-views at once: lanes of 8 floats with
-   AVX (-mavx and later), 4 with SSE2 (every x86-64 compiler) or NEON
-   (AArch64), none otherwise or with MANYLODS_NO_SIMD defined.  Each lane
-   proves its status with the same bounds as mlod__fast_status, so a
-   decided lane agrees with the exact path; a lane that cannot prove it
-   takes the exact path, so every build gives the same cuts bit for bit
-   (tests/test_cut.c compares them). */
-#ifdef MLOD__NO_FMA_TARGET
-/* clang cannot inline an intrinsic into a function built for a target
-   without FMA: the vector filter keeps the caller's target, and may be
-   fused (its bounds hold for fused multiply-adds: each rounds less), its
-   decisions being exact either way */
-#pragma clang attribute pop
-#endif
-#if !defined(MANYLODS_NO_SIMD) && defined(__AVX__)
-#include <immintrin.h>
-#define MLOD__VLANES 8
-#define MLOD__X86_LANES 1
-typedef __m256 mlod__vf;
-#define MLOD__VADD _mm256_add_ps
-#define MLOD__VSUB _mm256_sub_ps
-#define MLOD__VMUL _mm256_mul_ps
-#define MLOD__VDIV _mm256_div_ps
-#define MLOD__VSTORE _mm256_storeu_ps
-#define MLOD__VLOADU _mm256_loadu_ps
-#define MLOD__VAND _mm256_and_ps
-#define MLOD__VOR _mm256_or_ps
-#define MLOD__VANDNOT _mm256_andnot_ps /* (not a) and b */
-#define MLOD__VSET _mm256_set1_ps
-#define MLOD__VSQRT _mm256_sqrt_ps
-#define MLOD__VLT(a, b) _mm256_cmp_ps(a, b, _CMP_LT_OQ)
-#define MLOD__VLE(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
-#define MLOD__VGT(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
-#define MLOD__VGE(a, b) _mm256_cmp_ps(a, b, _CMP_GE_OQ)
-#define MLOD__VEQ(a, b) _mm256_cmp_ps(a, b, _CMP_EQ_OQ)
-#define MLOD__VBITS _mm256_movemask_ps
-/* a rounded toward zero (lanes below 2^31 in magnitude: those that read it) */
-#define MLOD__VTRUNC(a) _mm256_round_ps(a, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC)
-
-/* Rows of four floats, one per lane: lane l gets x, y, z, w of row
-   nodes[l] of rows. */
-MLOD__FORCE_INLINE __m256 mlod__vrows(const float *rows, uint32_t low, uint32_t high)
-{
-    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(rows + 4 * (size_t)low)),
-                                _mm_loadu_ps(rows + 4 * (size_t)high), 1);
-}
-
-MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
-{
-    __m256 a = mlod__vrows(rows, nodes[0], nodes[4]), b = mlod__vrows(rows, nodes[1], nodes[5]);
-    __m256 c = mlod__vrows(rows, nodes[2], nodes[6]), d = mlod__vrows(rows, nodes[3], nodes[7]);
-    __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
-    __m256 cd0 = _mm256_unpacklo_ps(c, d), cd1 = _mm256_unpackhi_ps(c, d);
-    *x = _mm256_shuffle_ps(ab0, cd0, 0x44);
-    *y = _mm256_shuffle_ps(ab0, cd0, 0xEE);
-    *z = _mm256_shuffle_ps(ab1, cd1, 0x44);
-    *w = _mm256_shuffle_ps(ab1, cd1, 0xEE);
-}
-
-/* v - e in double, rounded to float. */
-static mlod__vf mlod__vrelative(mlod__vf v, double e)
-{
-    __m256d de = _mm256_set1_pd(e);
-    __m128 lo = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(v)), de));
-    __m128 hi = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(v, 1)), de));
-    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
-}
-
-/* Status codes (small whole numbers in float lanes) as bytes, lane l in
-   byte l. */
-MLOD__FORCE_INLINE __m128i mlod__vpack(__m256 codes)
-{
-    __m256i i = _mm256_cvttps_epi32(codes);
-    __m128i p = _mm_packs_epi32(_mm256_castsi256_si128(i), _mm256_extractf128_si256(i, 1));
-    return _mm_packus_epi16(p, p);
-}
-
-/* Status codes to bytes at out. */
-MLOD__FORCE_INLINE void mlod__vbytes(__m256 codes, uint8_t *out) { _mm_storel_epi64((__m128i *)(void *)out, mlod__vpack(codes)); }
-
-/* The children of four parents in one load per pair (a pair's rows are
-   adjacent): lanes 0 - 3 the left children 2p + 1, lanes 4 - 7 the right
-   ones 2p + 2. */
-#define MLOD__VPAIRS 4
-MLOD__FORCE_INLINE void mlod__vload_pairs(const float *rows, const uint32_t *parents, __m256 *x, __m256 *y, __m256 *z, __m256 *w)
-{
-    __m256 a = _mm256_loadu_ps(rows + 8 * (size_t)parents[0] + 4), b = _mm256_loadu_ps(rows + 8 * (size_t)parents[1] + 4);
-    __m256 c = _mm256_loadu_ps(rows + 8 * (size_t)parents[2] + 4), d = _mm256_loadu_ps(rows + 8 * (size_t)parents[3] + 4);
-    __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
-    __m256 cd0 = _mm256_unpacklo_ps(c, d), cd1 = _mm256_unpackhi_ps(c, d);
-    *x = _mm256_shuffle_ps(ab0, cd0, 0x44);
-    *y = _mm256_shuffle_ps(ab0, cd0, 0xEE);
-    *z = _mm256_shuffle_ps(ab1, cd1, 0x44);
-    *w = _mm256_shuffle_ps(ab1, cd1, 0xEE);
-}
-/* mlod__vbytes with the pairs' order undone: out[2i] the left child of
-   parent i, out[2i + 1] its right one. */
-MLOD__FORCE_INLINE void mlod__vbytes_pairs(__m256 codes, uint8_t *out)
-{
-    __m128i p = mlod__vpack(codes);
-    _mm_storel_epi64((__m128i *)(void *)out, _mm_unpacklo_epi8(p, _mm_srli_si128(p, 4)));
-}
-#elif !defined(MANYLODS_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
-#include <emmintrin.h>
-#define MLOD__VLANES 4
-#define MLOD__X86_LANES 1
-typedef __m128 mlod__vf;
-#define MLOD__VADD _mm_add_ps
-#define MLOD__VSUB _mm_sub_ps
-#define MLOD__VMUL _mm_mul_ps
-#define MLOD__VDIV _mm_div_ps
-#define MLOD__VSTORE _mm_storeu_ps
-#define MLOD__VLOADU _mm_loadu_ps
-#define MLOD__VAND _mm_and_ps
-#define MLOD__VOR _mm_or_ps
-#define MLOD__VANDNOT _mm_andnot_ps
-#define MLOD__VSET _mm_set1_ps
-#define MLOD__VSQRT _mm_sqrt_ps
-#define MLOD__VLT _mm_cmplt_ps
-#define MLOD__VLE _mm_cmple_ps
-#define MLOD__VGT _mm_cmpgt_ps
-#define MLOD__VGE _mm_cmpge_ps
-#define MLOD__VEQ _mm_cmpeq_ps
-#define MLOD__VBITS _mm_movemask_ps
-#define MLOD__VTRUNC(a) _mm_cvtepi32_ps(_mm_cvttps_epi32(a))
-
-MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
-{
-    __m128 a = _mm_loadu_ps(rows + 4 * (size_t)nodes[0]), b = _mm_loadu_ps(rows + 4 * (size_t)nodes[1]);
-    __m128 c = _mm_loadu_ps(rows + 4 * (size_t)nodes[2]), d = _mm_loadu_ps(rows + 4 * (size_t)nodes[3]);
-    __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b);
-    __m128 cd0 = _mm_unpacklo_ps(c, d), cd1 = _mm_unpackhi_ps(c, d);
-    *x = _mm_movelh_ps(ab0, cd0);
-    *y = _mm_movehl_ps(cd0, ab0);
-    *z = _mm_movelh_ps(ab1, cd1);
-    *w = _mm_movehl_ps(cd1, ab1);
-}
-
-static mlod__vf mlod__vrelative(mlod__vf v, double e)
-{
-    __m128d de = _mm_set1_pd(e);
-    __m128 lo = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(v), de));
-    __m128 hi = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(v, v)), de));
-    return _mm_movelh_ps(lo, hi);
-}
-
-/* Status codes (small whole numbers in float lanes) to bytes at out. */
-MLOD__FORCE_INLINE void mlod__vbytes(__m128 codes, uint8_t *out)
-{
-    __m128i p = _mm_cvttps_epi32(codes);
-    int word;
-    p = _mm_packs_epi32(p, p);
-    word = _mm_cvtsi128_si32(_mm_packus_epi16(p, p));
-    memcpy(out, &word, 4);
-}
-#elif !defined(MANYLODS_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
-#include <arm_neon.h>
-#define MLOD__VLANES 4
-typedef float32x4_t mlod__vf;
-#define MLOD__VADD vaddq_f32
-#define MLOD__VSUB vsubq_f32
-#define MLOD__VMUL vmulq_f32
-#define MLOD__VDIV vdivq_f32
-#define MLOD__VSTORE vst1q_f32
-#define MLOD__VLOADU vld1q_f32
-#define MLOD__VBITWISE(op, a, b) vreinterpretq_f32_u32(op(vreinterpretq_u32_f32(a), vreinterpretq_u32_f32(b)))
-#define MLOD__VAND(a, b) MLOD__VBITWISE(vandq_u32, a, b)
-#define MLOD__VOR(a, b) MLOD__VBITWISE(vorrq_u32, a, b)
-#define MLOD__VANDNOT(a, b) MLOD__VBITWISE(vbicq_u32, b, a) /* (not a) and b */
-#define MLOD__VSET vdupq_n_f32
-#define MLOD__VSQRT vsqrtq_f32
-#define MLOD__VLT(a, b) vreinterpretq_f32_u32(vcltq_f32(a, b))
-#define MLOD__VLE(a, b) vreinterpretq_f32_u32(vcleq_f32(a, b))
-#define MLOD__VGT(a, b) vreinterpretq_f32_u32(vcgtq_f32(a, b))
-#define MLOD__VGE(a, b) vreinterpretq_f32_u32(vcgeq_f32(a, b))
-#define MLOD__VEQ(a, b) vreinterpretq_f32_u32(vceqq_f32(a, b))
-#define MLOD__VTRUNC vrndq_f32
-
-/* Lane l's bit l where its mask is set. */
-#define MLOD__VBITS mlod__vbits
-static int mlod__vbits(mlod__vf mask)
-{
-    static const uint32_t bit[4] = {1u, 2u, 4u, 8u};
-    return (int)vaddvq_u32(vandq_u32(vreinterpretq_u32_f32(mask), vld1q_u32(bit)));
-}
-
-MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
-{
-    float32x4x2_t ab = vtrnq_f32(vld1q_f32(rows + 4 * (size_t)nodes[0]), vld1q_f32(rows + 4 * (size_t)nodes[1]));
-    float32x4x2_t cd = vtrnq_f32(vld1q_f32(rows + 4 * (size_t)nodes[2]), vld1q_f32(rows + 4 * (size_t)nodes[3]));
-    *x = vcombine_f32(vget_low_f32(ab.val[0]), vget_low_f32(cd.val[0]));
-    *y = vcombine_f32(vget_low_f32(ab.val[1]), vget_low_f32(cd.val[1]));
-    *z = vcombine_f32(vget_high_f32(ab.val[0]), vget_high_f32(cd.val[0]));
-    *w = vcombine_f32(vget_high_f32(ab.val[1]), vget_high_f32(cd.val[1]));
-}
-
-static mlod__vf mlod__vrelative(mlod__vf v, double e)
-{
-    float64x2_t de = vdupq_n_f64(e);
-    float32x2_t lo = vcvt_f32_f64(vsubq_f64(vcvt_f64_f32(vget_low_f32(v)), de));
-    float32x2_t hi = vcvt_f32_f64(vsubq_f64(vcvt_f64_f32(vget_high_f32(v)), de));
-    return vcombine_f32(lo, hi);
-}
-
-/* Lanes whose node is at least `first`, as a mask. */
-static float32x4_t mlod__vleaf(const uint32_t *nodes, uint32_t first)
-{
-    return vreinterpretq_f32_u32(vcgeq_u32(vld1q_u32(nodes), vdupq_n_u32(first)));
-}
-
-/* Status codes (small whole numbers in float lanes) to bytes at out. */
-MLOD__FORCE_INLINE void mlod__vbytes(float32x4_t codes, uint8_t *out)
-{
-    uint16x4_t h = vmovn_u32(vcvtq_u32_f32(codes));
-    uint8_t bytes[8];
-    vst1_u8(bytes, vmovn_u16(vcombine_u16(h, h)));
-    memcpy(out, bytes, 4);
-}
-#endif
-
-#ifdef MLOD__X86_LANES
-/* Four node indices' lanes that are at least `first` (unsigned), as a mask. */
-static __m128 mlod__vat_least(__m128i n, uint32_t first)
-{
-    const __m128i flip = _mm_set1_epi32((int)0x80000000u);
-    __m128i below = _mm_cmpgt_epi32(_mm_xor_si128(_mm_set1_epi32((int)first), flip), _mm_xor_si128(n, flip));
-    return _mm_castsi128_ps(_mm_xor_si128(below, _mm_set1_epi32(-1)));
-}
-#define MLOD__LOAD4(nodes) _mm_loadu_si128((const __m128i *)(const void *)(nodes))
-#if MLOD__VLANES == 8
-/* Lanes whose node (nodes[l]) is a leaf, `first` the first leaf; and for
-   the pairs of mlod__vload_pairs, of the children of four parents. */
-static __m256 mlod__vleaf(const uint32_t *nodes, uint32_t first)
-{
-    return _mm256_insertf128_ps(_mm256_castps128_ps256(mlod__vat_least(MLOD__LOAD4(nodes), first)),
-                                mlod__vat_least(MLOD__LOAD4(nodes + 4), first), 1);
-}
-static __m256 mlod__vleaf_pairs(const uint32_t *parents, uint32_t first)
-{
-    __m128i twice = _mm_slli_epi32(MLOD__LOAD4(parents), 1);
-    return _mm256_insertf128_ps(
-        _mm256_castps128_ps256(mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(1)), first)),
-        mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(2)), first), 1);
-}
-#else
-static __m128 mlod__vleaf(const uint32_t *nodes, uint32_t first) { return mlod__vat_least(MLOD__LOAD4(nodes), first); }
-#endif
-#undef MLOD__LOAD4
-#endif
-
-#ifdef MLOD__VLANES
-
-/* The back-face test of mlod__fast_backfacing on lanes: *culled and
-   *unsure as masks, given x (unused orthographic), t and r. */
-MLOD__FORCE_INLINE void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf t, mlod__vf r, const mlod__vf *cone,
-                              mlod__vf *culled, mlod__vf *unsure)
-{
-    mlod__vf a = cone[3], away, len, a2, sa, ca, e, m1, lm, z1, z2, live, settled, cull, one = MLOD__VSET(1.0f);
-    live = MLOD__VLT(a, MLOD__VSET((float)(0.5 * MLOD__PI)));
-    if (fv->ortho) {
-        const float *w = fv->subs[0].w;
-        away = MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], MLOD__VSET(w[0])), MLOD__VMUL(cone[1], MLOD__VSET(w[1]))),
-                          MLOD__VMUL(cone[2], MLOD__VSET(w[2])));
-    } else {
-        away = MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], x[0]), MLOD__VMUL(cone[1], x[1])), MLOD__VMUL(cone[2], x[2]));
-    }
-    away = MLOD__VSUB(MLOD__VSET(0.0f), away);
-    len = MLOD__VSQRT(MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], cone[0]), MLOD__VMUL(cone[1], cone[1])),
-                                 MLOD__VMUL(cone[2], cone[2])));
-    a2 = MLOD__VMUL(a, a);
-    sa = MLOD__VMUL(a, MLOD__VSUB(one, MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(1.0f / 6.0f),
-                                                                   MLOD__VMUL(a2, MLOD__VSET(1.0f / 120.0f))))));
-    ca = MLOD__VSUB(one, MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(0.5f),
-                                                   MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(1.0f / 24.0f),
-                                                                             MLOD__VMUL(a2, MLOD__VSET(1.0f / 720.0f)))))));
-    e = MLOD__VADD(MLOD__VMUL(MLOD__VMUL(MLOD__VMUL(MLOD__VMUL(a2, a2), a2), a), MLOD__VSET(1.0f / 5040.0f)),
-                   MLOD__VSET(40.0f * MLOD__FAST_U));
-    m1 = MLOD__VMUL(MLOD__VADD(t, r), e);
-    lm = MLOD__VMUL(len, m1);
-    z2 = MLOD__VADD(away, MLOD__VMUL(len, MLOD__VADD(MLOD__VMUL(sa, t), MLOD__VMUL(ca, r))));
-    z1 = MLOD__VSUB(MLOD__VMUL(ca, t), MLOD__VMUL(sa, r));
-    settled = MLOD__VOR(MLOD__VGT(z2, lm), MLOD__VLT(z1, MLOD__VSUB(MLOD__VSET(0.0f), m1)));
-    cull = MLOD__VANDNOT(settled, MLOD__VAND(MLOD__VGT(z1, m1), MLOD__VLT(z2, MLOD__VSUB(MLOD__VSET(0.0f), lm))));
-    live = MLOD__VAND(live, MLOD__VGE(a, MLOD__VSET(0.0f)));
-    /* a >= pi/2 (or NaN): not culled; 0 <= a < pi/2: as decided; a < 0: unsure */
-    *culled = MLOD__VAND(live, cull);
-    *unsure = MLOD__VOR(MLOD__VLT(a, MLOD__VSET(0.0f)), MLOD__VANDNOT(MLOD__VOR(settled, cull), live));
-}
-
-/* mlod__classify_list's vector path: the statuses of the lanes' node-views
-   (rows x, y, z, r of their spheres; cone their cones' rows, NULL for
-   none; leaf the lanes whose node is a leaf) as status codes in float
-   lanes: MLOD_STATUS_CULLED, _DRAWN, _COARSE or _OVERSIZE (invalid
-   internal node or leaf), 0 (MLOD__UNSURE) where the lane cannot prove
-   its status. */
-/* mlod__vstatus below, with what is known of the planes of a view of one
-   sub-projection.  track 1: *inside gets the lanes whose sphere surely
-   lies wholly inside every plane of it (else none); known 1 (and track
-   1): every lane's sphere is known to, and the plane tests are left out.
-   A plane's test reached (mlod__fast_status) is n.x + l r - k' > m: the
-   sphere reaches into the half-space, m bounding the float rounding of
-   the sum (by the magnitudes of its terms, l >= |n|).  The same sum with
-   - l r, over m, proves n.x - l r - k' > 0 in exact arithmetic: the whole
-   sphere lies inside, and a child's sphere lies inside its parent's
-   exactly (the build and the refit round radii up, DESIGN.md), so every
-   node below lies wholly inside too and reaches into every half-space:
-   its plane tests pass, known without them.  Its status, by the other
-   tests (size, back faces), is what the full filter or the exact path
-   gives: the same bits on every path (tests/test_cut.c checks the
-   children of nodes proved inside against the exact path).  Only lanes
-   the filter decided (their guards passed) are proved inside. */
-/* The lanes' setup of the float filter (mlod__fast_status's): x =
-   centre - eye, d2 = |x|^2, t the tangent length (1 orthographic) and
-   reach >= |x| + r, which the planes' margins take; *unsure gets the
-   lanes that fail a guard. */
-MLOD__FORCE_INLINE void mlod__vsetup(const mlod__fview *fv, const mlod__vf *sphere, mlod__vf *x, mlod__vf *d2, mlod__vf *t,
-                                     mlod__vf *reach, mlod__vf *unsure)
-{
-    mlod__vf r = sphere[3], zero = MLOD__VSET(0.0f), all = MLOD__VEQ(zero, zero), u;
-    int j;
-    for (j = 0; j < 3; j++)
-        x[j] = fv->float_eye ? MLOD__VSUB(sphere[j], MLOD__VSET(fv->eye_f[j])) : mlod__vrelative(sphere[j], fv->eye[j]);
-    *d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], x[0]), MLOD__VMUL(x[1], x[1])), MLOD__VMUL(x[2], x[2]));
-    u = MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(*d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(*d2, MLOD__VSET(1.20892582e24f))),
-                      all);
-    u = MLOD__VOR(u, MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero), MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.09494702e-13f)),
-                                                                          MLOD__VLE(r, MLOD__VSET(1.09951163e12f)))),
-                                   all));
-    if (fv->ortho) {
-        *t = MLOD__VSET(1.0f);
-        *reach = MLOD__VADD(MLOD__VSQRT(*d2), r);
-    } else {
-        mlod__vf t2 = MLOD__VSUB(*d2, MLOD__VMUL(r, r));
-        u = MLOD__VOR(u, MLOD__VANDNOT(MLOD__VGE(MLOD__VMUL(MLOD__VSET(4.0f), t2), *d2), all));
-        *t = MLOD__VSQRT(MLOD__VAND(t2, MLOD__VGT(t2, zero)));
-        *reach = MLOD__VADD(*t, MLOD__VADD(r, r));
-    }
-    *unsure = u;
-}
-
-/* The plane tests of sub-projection fs in lanes (x, r and reach from
-   mlod__vsetup): *out gets the lanes surely outside some plane (the
-   sphere misses the sub-projection), *in those surely reaching into every
-   half-space; with track, *inside keeps only the lanes whose sphere lies
-   surely wholly inside every plane (mlod__vstatus_known; else inside is
-   not read). */
-MLOD__FORCE_INLINE void mlod__vplanes(const mlod__fsub *fs, const mlod__vf *x, mlod__vf r, mlod__vf reach, int track,
-                                      mlod__vf *out, mlod__vf *in, mlod__vf *inside)
-{
-    mlod__vf zero = MLOD__VSET(0.0f);
-    int j;
-    *out = zero;
-    *in = MLOD__VEQ(zero, zero);
-    for (j = 0; j < fs->plane_count; j++) {
-        const float *p = fs->planes[j];
-        mlod__vf a0 = MLOD__VMUL(MLOD__VSET(p[0]), x[0]), a1 = MLOD__VMUL(MLOD__VSET(p[1]), x[1]);
-        mlod__vf a2 = MLOD__VMUL(MLOD__VSET(p[2]), x[2]), a3 = MLOD__VMUL(MLOD__VSET(p[3]), r);
-        mlod__vf centre = MLOD__VADD(MLOD__VADD(a0, a1), a2);
-        mlod__vf v = MLOD__VSUB(MLOD__VADD(centre, a3), MLOD__VSET(p[4]));
-        mlod__vf m = MLOD__VADD(MLOD__VMUL(MLOD__VSET(fs->slope[j]), reach), MLOD__VSET(fs->err[j]));
-        *out = MLOD__VOR(*out, MLOD__VLT(v, MLOD__VSUB(zero, m)));
-        *in = MLOD__VAND(*in, MLOD__VGT(v, m));
-        if (track) *inside = MLOD__VAND(*inside, MLOD__VGT(MLOD__VSUB(MLOD__VSUB(centre, a3), MLOD__VSET(p[4])), m));
-    }
-}
-
-MLOD__FORCE_INLINE mlod__vf mlod__vstatus_known(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone,
-                                              mlod__vf leaf, int known, int track, mlod__vf *inside)
-{
-    mlod__vf x[3], r = sphere[3], d2, t, twice = MLOD__VADD(r, r), reach, unsure, none, culled, coarse, small;
-    mlod__vf zero = MLOD__VSET(0.0f), all = MLOD__VEQ(zero, zero);
-    int s;
-    mlod__vsetup(fv, sphere, x, &d2, &t, &reach, &unsure);
-    none = all;
-    coarse = zero;
-    small = all;
-    *inside = track ? all : zero;
-    for (s = 0; s < fv->sub_count; s++) {
-        const mlod__fsub *fs = &fv->subs[s];
-        mlod__vf out = zero, in = all, xw, lhs, rhs, ok;
-        if (!known) mlod__vplanes(fs, x, r, reach, track && s == 0, &out, &in, inside);
-        /* a sub-projection neither surely reached nor surely missed */
-        unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VOR(out, in), all));
-        none = MLOD__VAND(none, out);
-        xw = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], MLOD__VSET(fs->w[0])), MLOD__VMUL(x[1], MLOD__VSET(fs->w[1]))),
-                        MLOD__VMUL(x[2], MLOD__VSET(fs->w[2])));
-        if (fs->kind == MLOD_VIEW_PERSPECTIVE) {
-            mlod__vf near_side = MLOD__VSUB(xw, r);
-            ok = MLOD__VAND(MLOD__VGT(near_side, zero),
-                            MLOD__VGE(MLOD__VMUL(MLOD__VMUL(MLOD__VSET(256.0f), near_side), near_side), d2));
-            lhs = MLOD__VMUL(twice, t);
-            rhs = MLOD__VMUL(near_side, MLOD__VADD(xw, r));
-        } else if (fs->kind == MLOD_VIEW_PARABOLOID) {
-            rhs = MLOD__VADD(xw, t);
-            ok = MLOD__VAND(MLOD__VGT(rhs, zero), MLOD__VGE(MLOD__VMUL(MLOD__VMUL(MLOD__VSET(256.0f), rhs), rhs), d2));
-            lhs = twice;
-        } else {
-            ok = all;
-            lhs = twice;
-            rhs = MLOD__VSET(1.0f);
-        }
-        /* over reached sub-projections: one surely too large makes the
-           node coarse, all surely small enough make it drawn */
-        coarse = MLOD__VOR(coarse, MLOD__VAND(MLOD__VAND(in, ok), MLOD__VGT(MLOD__VMUL(lhs, MLOD__VSET(fs->invalid)), rhs)));
-        small = MLOD__VAND(small, MLOD__VOR(out, MLOD__VAND(ok, MLOD__VLE(MLOD__VMUL(lhs, MLOD__VSET(fs->valid)), rhs))));
-    }
-    culled = none;
-    if (cone) {
-        mlod__vf back, back_unsure;
-        mlod__vbackfacing(fv, x, t, fv->ortho ? zero : r, cone, &back, &back_unsure);
-        culled = MLOD__VOR(culled, back);
-        unsure = MLOD__VOR(unsure, MLOD__VANDNOT(none, back_unsure));
-    }
-    /* every lane sure of its setup and planes: culled, else coarse (an
-       oversize leaf), else drawn; anything else is unsure (0); the masks
-       exclusive, so or selects */
-    coarse = MLOD__VANDNOT(culled, coarse);
-    small = MLOD__VANDNOT(MLOD__VOR(culled, coarse), small);
-    if (track && !known) *inside = MLOD__VANDNOT(unsure, *inside);
-    return MLOD__VANDNOT(unsure,
-                         MLOD__VOR(MLOD__VOR(MLOD__VAND(culled, MLOD__VSET((float)MLOD_STATUS_CULLED)),
-                                             MLOD__VAND(small, MLOD__VSET((float)MLOD_STATUS_DRAWN))),
-                                   MLOD__VAND(coarse, MLOD__VOR(MLOD__VAND(leaf, MLOD__VSET((float)MLOD_STATUS_OVERSIZE)),
-                                                                MLOD__VANDNOT(leaf, MLOD__VSET((float)MLOD_STATUS_COARSE))))));
-}
-
-MLOD__FORCE_INLINE mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone, mlod__vf leaf)
-{
-    mlod__vf inside;
-    return mlod__vstatus_known(fv, sphere, cone, leaf, 0, 0, &inside);
-}
-
-/* The lanes of status codes that the filter left undecided (0), as bits. */
-static uint32_t mlod__vundecided(mlod__vf codes) { return (uint32_t)MLOD__VBITS(MLOD__VEQ(codes, MLOD__VSET(0.0f))); }
-#endif
-#ifdef MLOD__NO_FMA_TARGET
-#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
-#endif
-
 /* ----------------------------------------------------------------- cut -- */
 
 /* Working status of a list entry: 0 = not evaluated yet, else MLOD_STATUS_*.
@@ -5897,117 +5630,14 @@ MLOD__FORCE_INLINE uint32_t mlod__reduce(const mlod__cut_job *job, const mlod__p
     return x;
 }
 
-#ifdef MLOD__VLANES
-/* The index of the lowest set bit of x (x != 0). */
-static uint32_t mlod__lowest_bit(uint32_t x)
-{
-#if defined(__GNUC__) || defined(__clang__)
-    return (uint32_t)__builtin_ctz(x);
-#else
-    uint32_t i = 0;
-    while (!(x >> i & 1u)) i++;
-    return i;
-#endif
-}
-#endif
-
 /* Entries split together in the depth-first search of mlod__refine_segment:
    up to this many coarse entries on top of its stack, their children
    classified in one call (independent loads and arithmetic for the
    processor, whole vectors for mlod__classify_list). */
 #define MLOD__BATCH 32u
 #define MLOD__STACK 1024u
-
-/* The statuses of nodes[0 .. count - 1] into status[] (the float filter
-   in vector lanes where the build has them, the exact path where it is
-   unsure). */
-#define MLOD__LIST_AHEAD 16u
-#ifdef MLOD__VLANES
-/* The exact path for the lanes the vector filter left undecided (status
-   0): lane l is nodes[l], its status out[l]; lanes `valid` and above are
-   padding. */
-static void mlod__settle_lanes(const mlod__pview *pv, const mlod_tree *tree, mlod__vf codes, const uint32_t *nodes,
-                               uint32_t valid, double epsilon, uint8_t *out)
-{
-    uint32_t undecided = mlod__vundecided(codes), l;
-    if (valid < MLOD__VLANES) undecided &= (1u << valid) - 1u;
-    for (; undecided; undecided &= undecided - 1u) {
-        l = mlod__lowest_bit(undecided);
-        out[l] = mlod__classify_exact(pv, tree, nodes[l], epsilon);
-    }
-}
-#endif
-
-#ifdef MLOD__NO_FMA_TARGET
-#pragma clang attribute pop
-#endif
-/* Whether the vector paths track which nodes lie wholly inside every
-   plane of fv's view (mlod__vstatus_known): one sub-projection of more
-   than one plane (a frustum or a box; a paraboloid's one plane is not
-   worth it), where the build has lanes. */
-MLOD__FORCE_INLINE int mlod__known_planes(const mlod__fview *fv)
-{
-#ifdef MLOD__VLANES
-    return fv->sub_count == 1 && fv->subs[0].plane_count > 1;
-#else
-    (void)fv;
-    return 0;
-#endif
-}
-
-#ifdef MLOD__VLANES
-/* Whether flags[0 .. n - 1] are all set. */
-static int mlod__all_set(const uint8_t *flags, uint32_t n)
-{
-    uint32_t i, all = 1;
-    for (i = 0; i < n; i++) all &= flags[i];
-    return (int)all;
-}
-
-/* mlod__classify_list's vector path with the float filter fv: pv's own,
-   or a copy whose counts are constants (mlod__fast_fixed), for which the
-   compiler unrolls the plane loops and keeps the view's constants in
-   registers across groups. */
-MLOD__FORCE_INLINE void mlod__classify_lanes(const mlod__fview *fv, const mlod__pview *pv, const mlod_tree *tree,
-                                             const uint32_t *nodes, uint32_t count, double epsilon, uint8_t *status,
-                                             const uint8_t *known, uint8_t *inside)
-{
-    const int cones = fv->backfaces && tree->cones, planes = mlod__known_planes(fv);
-    uint32_t i;
-    for (i = 0; i < count; i += MLOD__VLANES) {
-        uint32_t pad[MLOD__VLANES], l, valid = count - i < MLOD__VLANES ? count - i : MLOD__VLANES;
-        const uint32_t *lanes = nodes + i;
-        uint8_t part[MLOD__VLANES], *out = valid == MLOD__VLANES ? status + i : part;
-        mlod__vf sphere[4], cone[4], codes, in, leaf;
-        int all_known = planes && known != NULL && mlod__all_set(known + i, valid);
-        if (valid < MLOD__VLANES) { /* the last group: padded with its last node */
-            for (l = 0; l < MLOD__VLANES; l++) pad[l] = nodes[i + (l < valid ? l : valid - 1)];
-            lanes = pad;
-        } else if (i + MLOD__VLANES + MLOD__LIST_AHEAD <= count) { /* rows a few groups on, for the loads to overlap */
-            for (l = 0; l < MLOD__VLANES; l++) {
-                MLOD__PREFETCH(tree->spheres + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
-                if (cones) MLOD__PREFETCH(tree->cones + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
-            }
-        }
-        mlod__vload(tree->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
-        if (cones) mlod__vload(tree->cones, lanes, &cone[0], &cone[1], &cone[2], &cone[3]);
-        leaf = mlod__vleaf(lanes, tree->leaf_count - 1);
-        /* two calls, each with its own constant: the plane loop compiled out of one */
-        codes = all_known ? mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 1, 1, &in)
-                          : mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 0, planes, &in);
-        if (inside) {
-            uint8_t flags[MLOD__VLANES];
-            mlod__vbytes(MLOD__VAND(in, MLOD__VSET(1.0f)), valid == MLOD__VLANES ? inside + i : flags);
-            if (valid < MLOD__VLANES) memcpy(inside + i, flags, valid);
-        }
-        /* statuses stored as bytes at once (they are hard to predict:
-           no branch per lane); an undecided lane (rare) takes the
-           exact path */
-        mlod__vbytes(codes, out);
-        if (mlod__vundecided(codes)) mlod__settle_lanes(pv, tree, codes, lanes, valid, epsilon, out);
-        if (out == part) memcpy(status + i, part, valid);
-    }
-}
+/* Room for the padding of a batch of children (below): a vector's lanes. */
+#define MLOD__BATCH_PAD 8u
 
 /* The view shapes whose float filter the vector paths take with its
    counts as constants: one sub-projection, eye in floats, and either a
@@ -6015,203 +5645,24 @@ MLOD__FORCE_INLINE void mlod__classify_lanes(const mlod__fview *fv, const mlod__
    a perspective frustum (six planes). */
 enum { MLOD__SHAPE_OTHER, MLOD__SHAPE_PARABOLOID, MLOD__SHAPE_PERSPECTIVE };
 
-/* The view's shape; for one of the fixed shapes, *fixed gets a copy of its
-   float filter (its one sub-projection; the caller writes the counts as
-   constants, see MLOD__FIX), a local of the caller, out of reach of the
-   statuses it stores. */
-MLOD__FORCE_INLINE int mlod__fast_fixed(const mlod__pview *pv, mlod__fview *fixed)
+/* Whether the vector paths track which nodes lie wholly inside every
+   plane of fv's view (mlod__vstatus_known): one sub-projection of more
+   than one plane (a frustum or a box; a paraboloid's one plane is not
+   worth it); the scalar path ignores it. */
+MLOD__FORCE_INLINE int mlod__known_planes(const mlod__fview *fv)
 {
-    const mlod__fview *f = &pv->fast;
-    int shape = MLOD__SHAPE_OTHER;
-    if (f->sub_count == 1 && !f->ortho && f->float_eye) {
-        if (f->subs[0].kind == MLOD_VIEW_PARABOLOID && f->subs[0].plane_count == 1) shape = MLOD__SHAPE_PARABOLOID;
-        if (f->subs[0].kind == MLOD_VIEW_PERSPECTIVE && f->subs[0].plane_count == 6) shape = MLOD__SHAPE_PERSPECTIVE;
-    }
-    if (shape != MLOD__SHAPE_OTHER) memcpy(fixed, f, offsetof(mlod__fview, subs) + sizeof(mlod__fsub));
-    return shape;
+    return fv->sub_count == 1 && fv->subs[0].plane_count > 1;
 }
 
-/* Write the fixed shape's counts and flags into the copy as constants,
-   just before the call that inlines the filter. */
-#define MLOD__FIX(fixed, kind_, planes)                                                                                \
-    ((fixed).sub_count = 1, (fixed).ortho = 0, (fixed).float_eye = 1, (fixed).subs[0].kind = (kind_),                  \
-     (fixed).subs[0].plane_count = (planes))
-
-/* The vector paths of mlod__classify_list and mlod__classify_children,
-   for the view's shape (MLOD__BY_SHAPE: fn, mlod__classify_lanes or
-   mlod__classify_pairs, with the view's filter fixed for its shape, else
-   its own).  Not inlined into the cut's code: where that is
-   built for a target without FMA (MLOD__NO_FMA_TARGET), these keep the
-   caller's target, as the vector filter they inline does. */
-#define MLOD__BY_SHAPE(fn, pv, ...)                                                                                    \
-    do {                                                                                                               \
-        mlod__fview fixed_;                                                                                            \
-        switch (mlod__fast_fixed(pv, &fixed_)) {                                                                       \
-        case MLOD__SHAPE_PARABOLOID:                                                                                   \
-            MLOD__FIX(fixed_, MLOD_VIEW_PARABOLOID, 1);                                                                \
-            fn(&fixed_, pv, __VA_ARGS__);                                                                              \
-            break;                                                                                                     \
-        case MLOD__SHAPE_PERSPECTIVE:                                                                                  \
-            MLOD__FIX(fixed_, MLOD_VIEW_PERSPECTIVE, 6);                                                               \
-            fn(&fixed_, pv, __VA_ARGS__);                                                                              \
-            break;                                                                                                     \
-        default:                                                                                                       \
-            fn(&(pv)->fast, pv, __VA_ARGS__);                                                                          \
-        }                                                                                                              \
-    } while (0)
-
-static void mlod__classify_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
-                                  double epsilon, uint8_t *status, const uint8_t *known, uint8_t *inside)
-{
-    MLOD__BY_SHAPE(mlod__classify_lanes, pv, tree, nodes, count, epsilon, status, known, inside);
-}
-
-#ifdef MLOD__VPAIRS
-/* mlod__classify_children's vector path with the float filter fv (as
-   mlod__classify_lanes): a pair's rows are adjacent, one load each,
-   MLOD__VPAIRS pairs a vector. */
-MLOD__FORCE_INLINE void mlod__classify_pairs(const mlod__fview *fv, const mlod__pview *pv, const mlod_tree *tree,
-                                             const uint32_t *parents, uint32_t count, double epsilon, uint8_t *status,
-                                             const uint8_t *known, uint8_t *inside)
-{
-    const int cones = fv->backfaces && tree->cones, planes = mlod__known_planes(fv);
-    uint32_t i;
-    for (i = 0; i < count; i += MLOD__VPAIRS) {
-        uint32_t pad[MLOD__VPAIRS], lanes[2 * MLOD__VPAIRS], l, valid = count - i < MLOD__VPAIRS ? count - i : MLOD__VPAIRS;
-        const uint32_t *group = parents + i;
-        uint8_t part[2 * MLOD__VPAIRS], lane_status[2 * MLOD__VPAIRS];
-        mlod__vf sphere[4], cone[4], codes, in, leaf;
-        int all_known = planes && known != NULL && mlod__all_set(known + i, valid);
-        if (valid < MLOD__VPAIRS) {
-            for (l = 0; l < MLOD__VPAIRS; l++) pad[l] = parents[i + (l < valid ? l : valid - 1)];
-            group = pad;
-        }
-        mlod__vload_pairs(tree->spheres, group, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
-        if (cones) mlod__vload_pairs(tree->cones, group, &cone[0], &cone[1], &cone[2], &cone[3]);
-        leaf = mlod__vleaf_pairs(group, tree->leaf_count - 1);
-        codes = all_known ? mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 1, 1, &in)
-                          : mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 0, planes, &in);
-        if (inside) { /* in the order of the statuses: each parent's left child, then its right one */
-            uint8_t flags[2 * MLOD__VPAIRS];
-            mlod__vbytes_pairs(MLOD__VAND(in, MLOD__VSET(1.0f)), valid == MLOD__VPAIRS ? inside + 2 * i : flags);
-            if (valid < MLOD__VPAIRS) memcpy(inside + 2 * i, flags, 2 * valid);
-        }
-        mlod__vbytes_pairs(codes, valid == MLOD__VPAIRS ? status + 2 * i : part);
-        if (mlod__vundecided(codes)) { /* rare: lanes the filter left undecided */
-            for (l = 0; l < MLOD__VPAIRS; l++) {
-                lanes[l] = 2 * group[l] + 1;
-                lanes[MLOD__VPAIRS + l] = 2 * group[l] + 2;
-            }
-            mlod__vbytes(codes, lane_status);
-            mlod__settle_lanes(pv, tree, codes, lanes, 2 * MLOD__VPAIRS, epsilon, lane_status);
-            for (l = 0; l < valid; l++) {
-                uint8_t *to = valid == MLOD__VPAIRS ? status + 2 * (i + l) : part + 2 * l;
-                to[0] = lane_status[l];
-                to[1] = lane_status[MLOD__VPAIRS + l];
-            }
-        }
-        if (valid < MLOD__VPAIRS) memcpy(status + 2 * i, part, 2 * valid);
-    }
-}
-
-static void mlod__classify_pairs_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
-                                        uint32_t count, double epsilon, uint8_t *status, const uint8_t *known,
-                                        uint8_t *inside)
-{
-    MLOD__BY_SHAPE(mlod__classify_pairs, pv, tree, parents, count, epsilon, status, known, inside);
-}
-#endif
-#endif
-#ifdef MLOD__NO_FMA_TARGET
-#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
-#endif
-
-/* mlod__classify_list with, per node, whether it is known to lie inside
-   every plane of the view's one sub-projection (known, NULL: none), and
-   into inside[] (NULL: not wanted) whether it surely does (known, or
-   proved by the vector filter; 0 where unsure, or without lanes). */
-MLOD__FORCE_INLINE void mlod__classify_known(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes,
-                                             uint32_t count, double epsilon, uint8_t *status, const uint8_t *known,
-                                             uint8_t *inside)
-{
-    uint32_t i;
-#ifdef MLOD__VLANES
-    if (pv->fast.ok) {
-        mlod__classify_vector(pv, tree, nodes, count, epsilon, status, known, inside);
-        return;
-    }
-#endif
-    for (i = 0; i < count; i++) status[i] = mlod__classify(pv, tree, nodes[i], epsilon);
-    if (inside) memset(inside, 0, count);
-    (void)known;
-}
-
+/* The statuses of nodes[0 .. count - 1] into status[] (the float filter
+   in vector lanes at the level in use, the exact path where it is
+   unsure), and the statuses of the children of a batch of parents
+   (below, with the vector lanes: VECTOR LANES at the end). */
 static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
-                                double epsilon, uint8_t *status)
-{
-    mlod__classify_known(pv, tree, nodes, count, epsilon, status, NULL, NULL);
-}
+                                double epsilon, uint8_t *status);
+static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, uint32_t *parents, uint32_t count,
+                                    double epsilon, uint8_t *status, uint8_t *known, uint8_t *inside);
 
-/* Room for the padding of a batch of children (below): a vector's lanes. */
-#define MLOD__BATCH_PAD 8u
-#if (defined(MLOD__VLANES) && MLOD__VLANES > MLOD__BATCH_PAD) || (defined(MLOD__VPAIRS) && MLOD__VPAIRS > MLOD__BATCH_PAD)
-#error "manylods.h: MLOD__BATCH_PAD must hold a vector's lanes"
-#endif
-
-#ifdef MLOD__VLANES
-/* Pad items[0 .. count) (count > 0) up to a multiple of `multiple` by
-   repeating its last item, and flags[] (NULL: none) alike; the caller's
-   arrays have the room.  Returns the padded count: whole vectors for the
-   lanes, whose extra statuses nobody reads. */
-static uint32_t mlod__pad_last(uint32_t *items, uint8_t *flags, uint32_t count, uint32_t multiple)
-{
-    uint32_t padded = count;
-    for (; padded % multiple; padded++) {
-        items[padded] = items[count - 1];
-        if (flags) flags[padded] = flags[count - 1];
-    }
-    return padded;
-}
-#endif
-
-/* The statuses of the children 2p + 1 and 2p + 2 of each of the count
-   (<= MLOD__BATCH) parents p, into status[2i] and status[2i + 1]; known[i]:
-   parent i surely lies inside every plane (mlod__classify_known), and so
-   its children; their own such flags into inside[2i], inside[2i + 1].
-   The vector paths take whole vectors: parents[] and known[] have room
-   for MLOD__BATCH_PAD more entries, status[] and inside[] for 2
-   MLOD__BATCH_PAD more, which the lanes past the batch fill (padding
-   with the last parent, whose statuses the caller does not read: no
-   partial vector, whose extra copies cost a small batch more than a
-   whole one). */
-MLOD__FORCE_INLINE void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, uint32_t *parents,
-                                                uint32_t count, double epsilon, uint8_t *status, uint8_t *known,
-                                                uint8_t *inside)
-{
-    uint32_t children[2 * (MLOD__BATCH + MLOD__BATCH_PAD)], i, padded = 2 * count;
-    uint8_t child_known[2 * (MLOD__BATCH + MLOD__BATCH_PAD)];
-    for (i = 0; i < count; i++) { /* ask for every pair's rows first: their loads overlap */
-        MLOD__PREFETCH(tree->spheres + 8 * (size_t)parents[i] + 4);
-        if (tree->cones) MLOD__PREFETCH(tree->cones + 8 * (size_t)parents[i] + 4);
-    }
-#ifdef MLOD__VPAIRS
-    if (pv->fast.ok) {
-        padded = mlod__pad_last(parents, known, count, MLOD__VPAIRS);
-        mlod__classify_pairs_vector(pv, tree, parents, padded, epsilon, status, known, inside);
-        return;
-    }
-#endif
-    for (i = 0; i < count; i++) {
-        children[2 * i] = 2 * parents[i] + 1;
-        children[2 * i + 1] = 2 * parents[i] + 2;
-    }
-    if (known)
-        for (i = 0; i < count; i++) child_known[2 * i] = child_known[2 * i + 1] = known[i];
-#ifdef MLOD__VLANES
-    if (pv->fast.ok) padded = mlod__pad_last(children, known ? child_known : NULL, padded, MLOD__VLANES);
-#endif
-    mlod__classify_known(pv, tree, children, padded, epsilon, status, known ? child_known : NULL, inside);
-}
 
 /* Whether node x lies strictly below node a. */
 static inline int mlod__below(uint32_t x, uint32_t a)
@@ -8283,9 +7734,7 @@ typedef struct mlod__disc {
    so the bits are the same.  Not where clang builds for a target with FMA
    (MLOD__NO_FMA_TARGET): an intrinsic cannot be inlined into the code
    built without it, and outside it the code generator may fuse. */
-#if !defined(MANYLODS_NO_SIMD) && !defined(MLOD__NO_FMA_TARGET) &&                                                  \
-    (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
-#include <emmintrin.h>
+#if MLOD__SIMD_X86 && !defined(MLOD__NO_FMA_TARGET)
 #define MLOD__VD 1
 typedef __m128d mlod__vd;
 #define MLOD__DPAIR(a, b) _mm_set_pd(b, a) /* lane 0: a */
@@ -8300,8 +7749,7 @@ typedef __m128d mlod__vd;
 /* a where mask (all ones, lane by lane), else +0 */
 #define MLOD__DKEEP(mask, a) _mm_and_pd(mask, a)
 #define MLOD__DGT _mm_cmpgt_pd
-#elif !defined(MANYLODS_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON)
-#include <arm_neon.h>
+#elif MLOD__SIMD_NEON
 #define MLOD__VD 1
 typedef float64x2_t mlod__vd;
 #define MLOD__DPAIR(a, b) vcombine_f64(vdup_n_f64(a), vdup_n_f64(b))
@@ -8630,307 +8078,6 @@ static int mlod__disc_decide(const float *box, size_t stride, int strict, const 
     int code = mlod__disc_pixel(box[0], box[stride], box[2 * stride], box[3 * stride], clip, col, row);
     return code == MLOD__DISC_PLOT && strict ? mlod__disc_inside(box, stride, *col, *row) : code;
 }
-
-#ifndef MLOD__VLANES
-/* The filter for one sphere in sub-projection f at disc scale ds > 0
-   (mlod_atlas.disc_scale): where the disc is small for sure, box[k *
-   stride], k = 0 .. 5 = the bounds xl, xh, yl, yh of its centre and rl, rh
-   of its radius times ds (the box the caller hands to mlod__disc_decide),
-   else NAN. */
-static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *sphere, float ds, float *box,
-                            size_t stride)
-{
-    int k;
-    const float u = MLOD__DISC_U, widen = 1.0f + 1.0f / 256.0f;
-    float x0 = sphere[0] - fd->eye[0], x1 = sphere[1] - fd->eye[1], x2 = sphere[2] - fd->eye[2], r = sphere[3];
-    float d2 = x0 * x0 + x1 * x1 + x2 * x2, d = sqrtf(d2);
-    float a = (x0 * f->right[0] + x1 * f->right[1] + x2 * f->right[2]) / d;
-    float b = (x0 * f->up[0] + x1 * f->up[1] + x2 * f->up[2]) / d;
-    float c = (x0 * f->forward[0] + x1 * f->forward[1] + x2 * f->forward[2]) / d;
-    float rho = r / d, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo, g, e_g, R, e_R;
-    float X, Y, e_X, e_Y, q_hi, q_lo, e_q;
-    const float e_s = 42.0f * u;
-    /* |x|^2 in [2^-100, 2^100]: no product that counts rounds below the
-       normal floats (whose error is absolute) or overflows */
-    if (!(d2 >= 7.88860905e-31f && d2 <= 1.26765060e30f)) goto unsure;
-    if (!(rho + 7.0f * u * rho <= 0.5f)) goto unsure; /* also d = 0 or not finite */
-    st = sqrtf(a * a + b * b);
-    if (!(st > 40.0f * u)) goto unsure;
-    cb = sqrtf(1.0f - rho * rho);
-    s_hi = st * cb + c * rho;
-    c_hi = c * cb - st * rho;
-    s_lo = st * cb - c * rho;
-    c_lo = c * cb + st * rho;
-    dx = a / st;
-    dy = b / st;
-    e_dir = 33.0f * u / (st - 20.0f * u) + u;
-    /* the denominators: 1 + cos (paraboloid, tan of half the angle) or
-       cos (perspective), each at least 1/8 */
-    q_hi = f->kind == MLOD_VIEW_PARABOLOID ? 1.0f + c_hi : c_hi;
-    q_lo = f->kind == MLOD_VIEW_PARABOLOID ? 1.0f + c_lo : c_lo;
-    e_q = f->kind == MLOD_VIEW_PARABOLOID ? 44.0f * u : e_s;
-    if (!(q_hi >= 0.125f && q_lo >= 0.125f)) goto unsure;
-    if (f->kind == MLOD_VIEW_PARABOLOID && !(s_hi > e_s || c_hi > e_s)) goto unsure;
-    hi = s_hi / q_hi;
-    lo = s_lo / q_lo;
-    e_hi = (e_s + fabsf(hi) * e_q) / (q_hi - e_q) + u * fabsf(hi);
-    e_lo = (e_s + fabsf(lo) * e_q) / (q_lo - e_q) + u * fabsf(lo);
-    if (f->kind == MLOD_VIEW_PARABOLOID) {
-        float k, e_k, mx, my, e_mx, e_my, nx, ny;
-        k = 0.5f * (hi + lo);
-        e_k = 0.5f * (e_hi + e_lo) + u * fabsf(k);
-        mx = k * dx;
-        my = k * dy;
-        e_mx = fabsf(k) * e_dir + fabsf(dx) * e_k + e_k * e_dir + u * fabsf(mx);
-        e_my = fabsf(k) * e_dir + fabsf(dy) * e_k + e_k * e_dir + u * fabsf(my);
-        nx = 1.0f + mx;
-        ny = 1.0f - my;
-        X = f->x0 + f->half_w * nx;
-        Y = f->y0 + f->half_h * ny;
-        e_X = f->half_w * (e_mx + u * fabsf(nx)) + u * fabsf(f->half_w * nx) + u * fabsf(X);
-        e_Y = f->half_h * (e_my + u * fabsf(ny)) + u * fabsf(f->half_h * ny) + u * fabsf(Y);
-    } else {
-        float kk, e_kk;
-        kk = f->half_scale * (hi + lo);
-        e_kk = f->half_scale * (e_hi + e_lo + u * fabsf(hi + lo)) + 2.0f * u * fabsf(kk);
-        X = f->x0 + kk * dx;
-        Y = f->y0 + kk * -dy;
-        e_X = fabsf(kk) * e_dir + fabsf(dx) * e_kk + e_kk * e_dir + u * fabsf(kk * dx) + u * fabsf(X);
-        e_Y = fabsf(kk) * e_dir + fabsf(dy) * e_kk + e_kk * e_dir + u * fabsf(kk * dy) + u * fabsf(Y);
-    }
-    g = hi - lo;
-    e_g = e_hi + e_lo + u * fabsf(g);
-    R = f->half_scale * g;
-    e_R = f->half_scale * e_g + 2.0f * u * fabsf(R);
-    /* small: R ds < 0.5 - 2^-30 for the double path too */
-    if (!((R + e_R * widen) * ds <= (float)(MLOD__SMALL_DISC * (1.0 - 1.0 / 1048576.0)))) goto unsure;
-    e_X = e_X * widen + 2.0f * u * fabsf(X); /* and the rounding of X +- e_X below */
-    e_Y = e_Y * widen + 2.0f * u * fabsf(Y);
-    box[0] = X - e_X;
-    box[stride] = X + e_X;
-    box[2 * stride] = Y - e_Y;
-    box[3 * stride] = Y + e_Y;
-    box[4 * stride] = (R - e_R * widen) * ds;
-    box[5 * stride] = (R + e_R * widen) * ds;
-    return;
-unsure:
-    for (k = 0; k < 6; k++) box[k * stride] = NAN;
-}
-
-static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres, const uint32_t *nodes,
-                             uint32_t count, float ds, float *box, size_t stride)
-{
-    uint32_t i;
-    for (i = 0; i < count; i++) mlod__fast_disc(fd, f, spheres + 4 * (size_t)nodes[i], ds, box + i, stride);
-}
-#endif
-
-#ifdef MLOD__VLANES
-#ifdef MLOD__NO_FMA_TARGET
-#pragma clang attribute pop
-#endif
-/* mlod__fast_disc for the spheres of nodes[0 .. MLOD__VLANES - 1], in
-   vector lanes, step for step as it (the same bounds): for lane l,
-   box[k * stride + l], k = 0 .. 5 = the bounds xl, xh, yl, yh of its
-   disc's centre and rl, rh of its radius times ds, or NAN where the node
-   must take the double path (the box the caller hands to
-   mlod__disc_decide). */
-static void mlod__fast_disc_lanes(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres,
-                                  const uint32_t *nodes, float ds, float *box, size_t stride)
-{
-#define MLOD__VABS(v) MLOD__VANDNOT(MLOD__VSET(-0.0f), v)
-#define MLOD__VDOT(v) MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET((v)[0])), MLOD__VMUL(x1, MLOD__VSET((v)[1]))), \
-                             MLOD__VMUL(x2, MLOD__VSET((v)[2])))
-    const float uf = MLOD__DISC_U;
-    const mlod__vf u = MLOD__VSET(uf), one = MLOD__VSET(1.0f), widen = MLOD__VSET(1.0f + 1.0f / 256.0f);
-    const mlod__vf e_s = MLOD__VSET(42.0f * uf), two_u = MLOD__VSET(2.0f * uf);
-    mlod__vf x0, x1, x2, r, d, a, b, c, rho, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo;
-    mlod__vf q_hi, q_lo, e_q;
-    mlod__vf g, e_g, R, e_R, X, Y, e_X, e_Y, ok, nan = MLOD__VSET(NAN);
-    mlod__vload(spheres, nodes, &x0, &x1, &x2, &r);
-    x0 = MLOD__VSUB(x0, MLOD__VSET(fd->eye[0]));
-    x1 = MLOD__VSUB(x1, MLOD__VSET(fd->eye[1]));
-    x2 = MLOD__VSUB(x2, MLOD__VSET(fd->eye[2]));
-    d = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)), MLOD__VMUL(x2, x2)); /* |x|^2 first */
-    ok = MLOD__VAND(MLOD__VGE(d, MLOD__VSET(7.88860905e-31f)), MLOD__VLE(d, MLOD__VSET(1.26765060e30f)));
-    d = MLOD__VSQRT(d);
-    a = MLOD__VDIV(MLOD__VDOT(f->right), d);
-    b = MLOD__VDIV(MLOD__VDOT(f->up), d);
-    c = MLOD__VDIV(MLOD__VDOT(f->forward), d);
-    rho = MLOD__VDIV(r, d);
-    ok = MLOD__VAND(ok, MLOD__VLE(MLOD__VADD(rho, MLOD__VMUL(MLOD__VSET(7.0f * uf), rho)), MLOD__VSET(0.5f)));
-    st = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(a, a), MLOD__VMUL(b, b)));
-    ok = MLOD__VAND(ok, MLOD__VGT(st, MLOD__VSET(40.0f * uf)));
-    cb = MLOD__VSQRT(MLOD__VSUB(one, MLOD__VMUL(rho, rho)));
-    s_hi = MLOD__VADD(MLOD__VMUL(st, cb), MLOD__VMUL(c, rho));
-    c_hi = MLOD__VSUB(MLOD__VMUL(c, cb), MLOD__VMUL(st, rho));
-    s_lo = MLOD__VSUB(MLOD__VMUL(st, cb), MLOD__VMUL(c, rho));
-    c_lo = MLOD__VADD(MLOD__VMUL(c, cb), MLOD__VMUL(st, rho));
-    dx = MLOD__VDIV(a, st);
-    dy = MLOD__VDIV(b, st);
-    e_dir = MLOD__VADD(MLOD__VDIV(MLOD__VSET(33.0f * uf), MLOD__VSUB(st, MLOD__VSET(20.0f * uf))), u);
-    /* the denominators: 1 + cos (paraboloid, tan of half the angle) or
-       cos (perspective), each at least 1/8 */
-    if (f->kind == MLOD_VIEW_PARABOLOID) {
-        q_hi = MLOD__VADD(one, c_hi);
-        q_lo = MLOD__VADD(one, c_lo);
-        e_q = MLOD__VSET(44.0f * uf);
-        ok = MLOD__VAND(ok, MLOD__VOR(MLOD__VGT(s_hi, e_s), MLOD__VGT(c_hi, e_s)));
-    } else {
-        q_hi = c_hi;
-        q_lo = c_lo;
-        e_q = e_s;
-    }
-    ok = MLOD__VAND(ok, MLOD__VAND(MLOD__VGE(q_hi, MLOD__VSET(0.125f)), MLOD__VGE(q_lo, MLOD__VSET(0.125f))));
-    hi = MLOD__VDIV(s_hi, q_hi);
-    lo = MLOD__VDIV(s_lo, q_lo);
-    e_hi = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(hi), e_q)), MLOD__VSUB(q_hi, e_q)),
-                      MLOD__VMUL(u, MLOD__VABS(hi)));
-    e_lo = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(lo), e_q)), MLOD__VSUB(q_lo, e_q)),
-                      MLOD__VMUL(u, MLOD__VABS(lo)));
-    if (f->kind == MLOD_VIEW_PARABOLOID) {
-        mlod__vf k, e_k, mx, my, e_mx, e_my, nx, ny, hw = MLOD__VSET(f->half_w), hh = MLOD__VSET(f->half_h);
-        k = MLOD__VMUL(MLOD__VSET(0.5f), MLOD__VADD(hi, lo));
-        e_k = MLOD__VADD(MLOD__VMUL(MLOD__VSET(0.5f), MLOD__VADD(e_hi, e_lo)), MLOD__VMUL(u, MLOD__VABS(k)));
-        mx = MLOD__VMUL(k, dx);
-        my = MLOD__VMUL(k, dy);
-        e_mx = MLOD__VADD(MLOD__VADD(MLOD__VMUL(MLOD__VABS(k), e_dir), MLOD__VMUL(MLOD__VABS(dx), e_k)),
-                          MLOD__VADD(MLOD__VMUL(e_k, e_dir), MLOD__VMUL(u, MLOD__VABS(mx))));
-        e_my = MLOD__VADD(MLOD__VADD(MLOD__VMUL(MLOD__VABS(k), e_dir), MLOD__VMUL(MLOD__VABS(dy), e_k)),
-                          MLOD__VADD(MLOD__VMUL(e_k, e_dir), MLOD__VMUL(u, MLOD__VABS(my))));
-        nx = MLOD__VADD(one, mx);
-        ny = MLOD__VSUB(one, my);
-        X = MLOD__VADD(MLOD__VSET(f->x0), MLOD__VMUL(hw, nx));
-        Y = MLOD__VADD(MLOD__VSET(f->y0), MLOD__VMUL(hh, ny));
-        e_X = MLOD__VADD(MLOD__VMUL(hw, MLOD__VADD(e_mx, MLOD__VMUL(u, MLOD__VABS(nx)))),
-                         MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(MLOD__VMUL(hw, nx)), MLOD__VABS(X))));
-        e_Y = MLOD__VADD(MLOD__VMUL(hh, MLOD__VADD(e_my, MLOD__VMUL(u, MLOD__VABS(ny)))),
-                         MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(MLOD__VMUL(hh, ny)), MLOD__VABS(Y))));
-    } else {
-        mlod__vf hs = MLOD__VSET(f->half_scale), kk, e_kk, sum, px, py;
-        sum = MLOD__VADD(hi, lo);
-        kk = MLOD__VMUL(hs, sum);
-        e_kk = MLOD__VADD(MLOD__VMUL(hs, MLOD__VADD(MLOD__VADD(e_hi, e_lo), MLOD__VMUL(u, MLOD__VABS(sum)))),
-                          MLOD__VMUL(two_u, MLOD__VABS(kk)));
-        px = MLOD__VMUL(kk, dx);
-        py = MLOD__VMUL(kk, dy);
-        X = MLOD__VADD(MLOD__VSET(f->x0), px);
-        Y = MLOD__VSUB(MLOD__VSET(f->y0), py); /* y0 + kk * -dy: the same bits */
-        e_X = MLOD__VADD(MLOD__VADD(MLOD__VMUL(MLOD__VABS(kk), e_dir), MLOD__VMUL(MLOD__VABS(dx), e_kk)),
-                         MLOD__VADD(MLOD__VMUL(e_kk, e_dir), MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(px), MLOD__VABS(X)))));
-        e_Y = MLOD__VADD(MLOD__VADD(MLOD__VMUL(MLOD__VABS(kk), e_dir), MLOD__VMUL(MLOD__VABS(dy), e_kk)),
-                         MLOD__VADD(MLOD__VMUL(e_kk, e_dir), MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(py), MLOD__VABS(Y)))));
-    }
-    g = MLOD__VSUB(hi, lo);
-    e_g = MLOD__VADD(MLOD__VADD(e_hi, e_lo), MLOD__VMUL(u, MLOD__VABS(g)));
-    R = MLOD__VMUL(MLOD__VSET(f->half_scale), g);
-    e_R = MLOD__VADD(MLOD__VMUL(MLOD__VSET(f->half_scale), e_g), MLOD__VMUL(two_u, MLOD__VABS(R)));
-    ok = MLOD__VAND(ok, MLOD__VLE(MLOD__VMUL(MLOD__VADD(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds)),
-                                  MLOD__VSET((float)(MLOD__SMALL_DISC * (1.0 - 1.0 / 1048576.0)))));
-    e_X = MLOD__VADD(MLOD__VMUL(e_X, widen), MLOD__VMUL(two_u, MLOD__VABS(X)));
-    e_Y = MLOD__VADD(MLOD__VMUL(e_Y, widen), MLOD__VMUL(two_u, MLOD__VABS(Y)));
-    /* unsure lanes: a NAN box, which mlod__disc_pixel finds unsure */
-#define MLOD__VKEEP(v) MLOD__VOR(MLOD__VAND(ok, v), MLOD__VANDNOT(ok, nan))
-    MLOD__VSTORE(box, MLOD__VKEEP(MLOD__VSUB(X, e_X)));
-    MLOD__VSTORE(box + stride, MLOD__VKEEP(MLOD__VADD(X, e_X)));
-    MLOD__VSTORE(box + 2 * stride, MLOD__VKEEP(MLOD__VSUB(Y, e_Y)));
-    MLOD__VSTORE(box + 3 * stride, MLOD__VKEEP(MLOD__VADD(Y, e_Y)));
-    MLOD__VSTORE(box + 4 * stride, MLOD__VKEEP(MLOD__VMUL(MLOD__VSUB(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
-    MLOD__VSTORE(box + 5 * stride, MLOD__VKEEP(MLOD__VMUL(MLOD__VADD(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
-#undef MLOD__VKEEP
-#undef MLOD__VABS
-#undef MLOD__VDOT
-}
-
-/* The lanes over nodes[0 .. count - 1], count a multiple of MLOD__VLANES. */
-static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres, const uint32_t *nodes,
-                             uint32_t count, float ds, float *box, size_t stride)
-{
-    uint32_t i;
-    for (i = 0; i < count; i += MLOD__VLANES) mlod__fast_disc_lanes(fd, f, spheres, nodes + i, ds, box + i, stride);
-}
-
-/* mlod__reached of the spheres of nodes[0 .. MLOD__VLANES - 1] through
-   the view's float filter (pv->fast.ok; mlod__vplanes, the cut's plane
-   tests and margins), as bit l of bits[s]: a sub-projection is reached
-   where the lane is surely within every plane of it, missed where surely
-   outside one.  Returns the lanes in doubt (one sub-projection neither,
-   or a guard failed), whose bits are 0: the exact test's to decide. */
-static unsigned mlod__reached_lanes(const mlod__pview *pv, const float *spheres, const uint32_t *nodes, unsigned *bits)
-{
-    const mlod__fview *fv = &pv->fast;
-    mlod__vf sphere[4], x[3], d2, t, reach, unsure, out, in;
-    unsigned doubt;
-    int s;
-    mlod__vload(spheres, nodes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
-    mlod__vsetup(fv, sphere, x, &d2, &t, &reach, &unsure);
-    doubt = (unsigned)MLOD__VBITS(unsure);
-    for (s = 0; s < fv->sub_count; s++) {
-        mlod__vplanes(&fv->subs[s], x, sphere[3], reach, 0, &out, &in, NULL);
-        bits[s] = (unsigned)MLOD__VBITS(in);
-        doubt |= ~(unsigned)MLOD__VBITS(MLOD__VOR(out, in));
-    }
-    for (s = 0; s < fv->sub_count; s++) bits[s] &= ~doubt;
-    return doubt & ((1u << MLOD__VLANES) - 1u);
-}
-
-/* mlod__disc_pixel for the boxes of MLOD__VLANES lanes (box[k * stride +
-   l], k = 0 .. 3), the clip's bounds c[0 .. 3] below 2^24 as floats: bit l
-   of *plot for MLOD__DISC_PLOT, its pixel in col[l] and row[l] (whole
-   numbers), of *none for MLOD__DISC_NONE; in neither, unsure.  As there,
-   the centre's box lies within the clip and xl and xh (yl and yh), xl <=
-   xh, share a column (a row): xh < floor(xl) + 1, xl >= 0. */
-static void mlod__disc_pixels(const float *box, size_t stride, const float *c, float *col, float *row, unsigned *plot,
-                              unsigned *none)
-{
-    mlod__vf xl = MLOD__VLOADU(box), xh = MLOD__VLOADU(box + stride);
-    mlod__vf yl = MLOD__VLOADU(box + 2 * stride), yh = MLOD__VLOADU(box + 3 * stride);
-    mlod__vf c0 = MLOD__VSET(c[0]), c1 = MLOD__VSET(c[1]), c2 = MLOD__VSET(c[2]), c3 = MLOD__VSET(c[3]);
-    mlod__vf one = MLOD__VSET(1.0f), fx, fy, in, out;
-    out = MLOD__VOR(MLOD__VOR(MLOD__VLT(xh, c0), MLOD__VGE(xl, c1)), MLOD__VOR(MLOD__VLT(yh, c2), MLOD__VGE(yl, c3)));
-    in = MLOD__VAND(MLOD__VAND(MLOD__VGE(xl, c0), MLOD__VLT(xh, c1)), MLOD__VAND(MLOD__VGE(yl, c2), MLOD__VLT(yh, c3)));
-    fx = MLOD__VTRUNC(MLOD__VAND(in, xl)); /* (0 outside: within the conversion's range) */
-    fy = MLOD__VTRUNC(MLOD__VAND(in, yl));
-    in = MLOD__VAND(in, MLOD__VAND(MLOD__VLT(xh, MLOD__VADD(fx, one)), MLOD__VLT(yh, MLOD__VADD(fy, one))));
-    MLOD__VSTORE(col, fx);
-    MLOD__VSTORE(row, fy);
-    *plot = (unsigned)MLOD__VBITS(in);
-    *none = (unsigned)MLOD__VBITS(out);
-}
-
-/* mlod__disc_inside for MLOD__VLANES lanes, at the pixels (col[l], row[l])
-   that mlod__disc_pixels found, step for step as it (the same bits): bit l
-   of *in for MLOD__DISC_PLOT, of *out for MLOD__DISC_NONE; in neither,
-   unsure. */
-static void mlod__disc_insides(const float *box, size_t stride, const float *col, const float *row, unsigned *in,
-                               unsigned *out)
-{
-    mlod__vf zero = MLOD__VSET(0.0f), half = MLOD__VSET(0.5f), sign = MLOD__VSET(-0.0f);
-    mlod__vf cx = MLOD__VADD(MLOD__VLOADU(col), half), cy = MLOD__VADD(MLOD__VLOADU(row), half);
-    mlod__vf dx0 = MLOD__VSUB(cx, MLOD__VLOADU(box + stride)), dx1 = MLOD__VSUB(cx, MLOD__VLOADU(box));
-    mlod__vf dy0 = MLOD__VSUB(cy, MLOD__VLOADU(box + 3 * stride)), dy1 = MLOD__VSUB(cy, MLOD__VLOADU(box + 2 * stride));
-    mlod__vf r_lo = MLOD__VLOADU(box + 4 * stride), r_hi = MLOD__VLOADU(box + 5 * stride);
-    mlod__vf ax0 = MLOD__VANDNOT(sign, dx0), ax1 = MLOD__VANDNOT(sign, dx1);
-    mlod__vf ay0 = MLOD__VANDNOT(sign, dy0), ay1 = MLOD__VANDNOT(sign, dy1), m;
-    mlod__vf far_x, far_y, near_x, near_y, far2, near2;
-    m = MLOD__VGT(ax0, ax1);
-    far_x = MLOD__VOR(MLOD__VAND(m, ax0), MLOD__VANDNOT(m, ax1));
-    m = MLOD__VGT(ay0, ay1);
-    far_y = MLOD__VOR(MLOD__VAND(m, ay0), MLOD__VANDNOT(m, ay1));
-    /* dx0 <= dx1: dx0 if it is positive, else -dx1 if that is, else 0 (a sum with a zero: exact) */
-    near_x = MLOD__VADD(MLOD__VAND(MLOD__VGT(dx0, zero), dx0), MLOD__VAND(MLOD__VLT(dx1, zero), MLOD__VSUB(zero, dx1)));
-    near_y = MLOD__VADD(MLOD__VAND(MLOD__VGT(dy0, zero), dy0), MLOD__VAND(MLOD__VLT(dy1, zero), MLOD__VSUB(zero, dy1)));
-    far2 = MLOD__VMUL(MLOD__VADD(MLOD__VMUL(far_x, far_x), MLOD__VMUL(far_y, far_y)),
-                      MLOD__VSET(1.0f + 1.0f / 1048576.0f));
-    near2 = MLOD__VMUL(MLOD__VADD(MLOD__VMUL(near_x, near_x), MLOD__VMUL(near_y, near_y)),
-                       MLOD__VSET(1.0f - 1.0f / 1048576.0f));
-    *in = (unsigned)MLOD__VBITS(MLOD__VLE(far2, MLOD__VMUL(r_lo, r_lo)));
-    *out = (unsigned)MLOD__VBITS(MLOD__VGT(near2, MLOD__VMUL(r_hi, r_hi)));
-}
-#ifdef MLOD__NO_FMA_TARGET
-#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
-#endif
-#endif
 
 /* The sub-projection whose sub-tile holds tile position (x, y), or -1. */
 static int mlod__sub_at(const mlod__pview *pv, double x, double y)
@@ -9431,7 +8578,7 @@ static int mlod__tangent_hit(const mlod__pview *pv, int s, const float *sphere, 
    a[k] in lane 0 and b[k] in lane 1 (conversions: exact). */
 MLOD__FORCE_INLINE void mlod__vd_pairs(const float *a, const float *b, mlod__vd *out)
 {
-#if defined(__SSE2__) || defined(_M_X64)
+#if MLOD__SIMD_X86
     __m128 la = _mm_loadu_ps(a), lb = _mm_loadu_ps(b), lo = _mm_unpacklo_ps(la, lb), hi = _mm_unpackhi_ps(la, lb);
     out[0] = _mm_cvtps_pd(lo);
     out[1] = _mm_cvtps_pd(_mm_movehl_ps(lo, lo));
@@ -9644,186 +8791,11 @@ static void mlod__draw_exact(const mlod__band *band, const mlod__pview *pv, int 
 static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, uint32_t n, const double *centre,
                                  float *out);
 
-#define MLOD__BOX_STRIDE (MLOD__DRAW_CHUNK + 8u) /* room for the padding of the last lanes */
-
-/* Draw nodes[0 .. count - 1] (count <= MLOD__DRAW_CHUNK), each of which
-   reaches sub-projection s, in order, through the band's float filter: a
-   small disc's pixel at once, with the double path's depth computed as it
-   does; the others by the double path.  The same pixels as
-   mlod__image_discs and mlod__raster_disc draw, bit for bit. */
-static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, int s, const uint32_t *nodes,
-                                uint32_t count)
-{
-    const mlod_view_sub *sub = &pv->f.subs[s];
-    const float *spheres = band->tree->spheres;
-    uint32_t clip[4], ids[MLOD__BOX_STRIDE], padded = count, l;
-    float box[6 * MLOD__BOX_STRIDE], depth[MLOD__DRAW_CHUNK];
-    clip[0] = pv->columns[s][0];
-    clip[1] = pv->columns[s][1];
-    clip[2] = pv->rows[s][0] < band->row_begin ? band->row_begin : pv->rows[s][0];
-    clip[3] = pv->rows[s][1] > band->row_end ? band->row_end : pv->rows[s][1];
-    MANYLODS_ASSERT(count > 0 && count <= MLOD__DRAW_CHUNK);
-    memcpy(ids, nodes, count * sizeof *ids);
-#ifdef MLOD__VLANES
-    padded = mlod__pad_last(ids, NULL, count, MLOD__VLANES);
-#endif
-    if (clip[1] <= 16777216u && clip[3] <= 16777216u) /* (the clip's bounds are floats) */
-        mlod__fast_discs(band->fast, &band->fast->subs[s], spheres, ids, padded, band->disc_scale, box, MLOD__BOX_STRIDE);
-    else
-        for (l = 0; l < 6 * MLOD__BOX_STRIDE; l++) box[l] = NAN;
-    if (band->tangent) { /* each small disc's one pixel, if its centre lies in the disc and its ray meets the node */
-        float cols[MLOD__BOX_STRIDE], rows[MLOD__BOX_STRIDE];
-        uint8_t hit[MLOD__DRAW_CHUNK];
-        uint64_t plot = 0, none = 0;
-        l = 0;
-#ifdef MLOD__VLANES
-        if (clip[1] <= 16777216u && clip[3] <= 16777216u) { /* mlod__disc_decide in lanes, strictly */
-            float c[4];
-            unsigned p, q, in, out;
-            for (l = 0; l < 4; l++) c[l] = (float)(int32_t)clip[l];
-            for (l = 0; l < padded; l += MLOD__VLANES) {
-                mlod__disc_pixels(box + l, MLOD__BOX_STRIDE, c, cols + l, rows + l, &p, &q);
-                mlod__disc_insides(box + l, MLOD__BOX_STRIDE, cols + l, rows + l, &in, &out);
-                plot |= (uint64_t)(p & in) << l;
-                none |= (uint64_t)(q | (p & out & ~in)) << l;
-            }
-            l = count;
-        }
-#endif
-        for (; l < count; l++) {
-            uint32_t col = 0, row = 0;
-            int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, 1, clip, &col, &row);
-            plot |= (uint64_t)(code == MLOD__DISC_PLOT) << l;
-            none |= (uint64_t)(code == MLOD__DISC_NONE) << l;
-            cols[l] = (float)col; /* below 2^24 */
-            rows[l] = (float)row;
-        }
-        if (band->mask) /* a patch: a pixel it does not draw is left as it is */
-            for (l = 0; l < count; l++)
-                if ((plot >> l & 1u) && !band->mask[(size_t)rows[l] * band->id_stride + (size_t)cols[l]]) {
-                    plot &= ~((uint64_t)1 << l);
-                    none |= (uint64_t)1 << l;
-                }
-        if (plot) { /* the rays of the discs that plot, together */
-            uint32_t at_lane[MLOD__DRAW_CHUNK], picked[MLOD__DRAW_CHUNK], m = 0;
-            float pc[MLOD__DRAW_CHUNK], pr[MLOD__DRAW_CHUNK];
-            for (l = 0; l < count; l++) {
-                at_lane[m] = l;
-                picked[m] = nodes[l];
-                pc[m] = cols[l];
-                pr[m] = rows[l];
-                m += (uint32_t)(plot >> l) & 1u;
-            }
-            mlod__tangent_hits(pv, s, band->tree, picked, pc, pr, m, band->disc_scale, hit, depth);
-            for (l = 0; l < m; l++) {
-                uint32_t j = at_lane[l];
-                int plane = hit[l] >> 1;
-                float at = plane ? depth[l] : mlod__centre_depth(pv, s, spheres + 4 * (size_t)nodes[j]);
-                mlod__plot_if(band, (uint32_t)rows[j], (uint32_t)cols[j], at, nodes[j], (uint32_t)(plane == 0) | (hit[l] & 1u));
-            }
-        }
-        for (l = 0; l < count; l++)
-            if (!((plot | none) >> l & 1u)) mlod__draw_exact(band, pv, s, nodes + l, 1);
-        return;
-    }
-    /* the double path's depths, as it computes them */
-    if (pv->kind[s] == MLOD_VIEW_PARABOLOID)
-        mlod__node_distances(band->tree, nodes, count, pv->f.eye, depth);
-    else
-        for (l = 0; l < count; l++) {
-            const float *sphere = spheres + 4 * (size_t)nodes[l];
-            double x[3];
-            int k;
-            for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
-            depth[l] = (float)(pv->kind[s] == MLOD_VIEW_PERSPECTIVE ? mlod__dot3(x, sub->forward) : mlod__length3(x));
-        }
-#ifdef MLOD__VLANES
-    if (band->disc_scale >= 1.0f && clip[1] <= 16777216u && clip[3] <= 16777216u) {
-        /* mlod__disc_decide in lanes (at disc scale 1 it is mlod__disc_pixel) */
-        float c[4], cols[MLOD__BOX_STRIDE], rows[MLOD__BOX_STRIDE];
-        uint64_t plot = 0, none = 0;
-        unsigned p, q;
-        for (l = 0; l < 4; l++) c[l] = (float)(int32_t)clip[l]; /* below 2^24 (a signed conversion: one instruction) */
-        for (l = 0; l < padded; l += MLOD__VLANES) {
-            mlod__disc_pixels(box + l, MLOD__BOX_STRIDE, c, cols + l, rows + l, &p, &q);
-            plot |= (uint64_t)p << l;
-            none |= (uint64_t)q << l;
-        }
-        for (l = 0; l < count; l++)
-            if (plot >> l & 1u)
-                mlod__plot_if(band, (uint32_t)rows[l], (uint32_t)cols[l], depth[l], nodes[l], 1u);
-            else if (!(none >> l & 1u))
-                mlod__draw_exact(band, pv, s, nodes + l, 1);
-        return;
-    }
-#endif
-    for (l = 0; l < count; l++) {
-        uint32_t col = 0, row = 0;
-        int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale < 1.0f, clip, &col, &row);
-        if (code == MLOD__DISC_PLOT)
-            mlod__plot_if(band, row, col, depth[l], nodes[l], 1u);
-        else if (code == MLOD__DISC_UNSURE)
-            mlod__draw_exact(band, pv, s, nodes + l, 1);
-    }
-}
-
-/* Whether the band draws sub-projection s through its float filter. */
-static int mlod__filtered(const mlod__band *band, int s)
-{
-    return band->fast && band->fast->subs[s].kind && band->disc_scale > 0.0f;
-}
-
 /* Draw n <= MLOD__DRAW_CHUNK nodes into the band, in order, in each
-   sub-projection their spheres reach: through the band's float filter
-   where it has one, else MLOD__LANES images at a time.  (Sub-projections
-   draw into disjoint sub-tiles: each pixel sees its nodes in order.)  A
-   view of one sub-projection draws them all: each drawn node of its cut
-   reaches it (shaders/splat_draw.comp does the same). */
-static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, const uint32_t *nodes, uint32_t n)
-{
-    int s;
-    uint64_t reached[MLOD_VIEW_MAX_SUBS]; /* bit l of reached[s]: nodes[l] reaches sub-projection s */
-    uint32_t l, m, reaching[MLOD__DRAW_CHUNK];
-    const uint32_t *ids = nodes;
-    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK && MLOD__DRAW_CHUNK <= 64);
-    if (pv->sub_count > 1 && n > 0) {
-        uint64_t exact = n == 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1u; /* the nodes the exact test takes */
-        memset(reached, 0, sizeof reached);
-#ifdef MLOD__VLANES
-        if (pv->fast.ok) { /* the view's float filter, MLOD__VLANES nodes at a time */
-            uint32_t padded[MLOD__DRAW_CHUNK + MLOD__VLANES];
-            unsigned bits[MLOD_VIEW_MAX_SUBS], lanes = (1u << MLOD__VLANES) - 1u;
-            memcpy(padded, nodes, n * sizeof *padded);
-            mlod__pad_last(padded, NULL, n, MLOD__VLANES);
-            for (l = 0; l < n; l += MLOD__VLANES) {
-                uint64_t doubt = mlod__reached_lanes(pv, band->tree->spheres, padded + l, bits);
-                exact = (exact & ~((uint64_t)lanes << l)) | (exact & doubt << l);
-                for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)bits[s] << l;
-            }
-        }
-#endif
-        for (l = 0; l < n; l++)
-            if (exact >> l & 1u) {
-                unsigned r = mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
-                for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)(r >> s & 1u) << l;
-            }
-    }
-    for (s = 0; s < pv->sub_count; s++) {
-        m = n;
-        if (pv->sub_count > 1) { /* the nodes reaching s, in order, without a branch */
-            for (l = m = 0; l < n; l++) {
-                reaching[m] = nodes[l];
-                m += (uint32_t)(reached[s] >> l) & 1u;
-            }
-            ids = reaching;
-        }
-        if (m == 0) continue;
-        if (mlod__filtered(band, s))
-            mlod__draw_filtered(band, pv, s, ids, m);
-        else
-            mlod__draw_exact(band, pv, s, ids, m);
-    }
-}
+   sub-projection their spheres reach (with the vector lanes: VECTOR LANES
+   at the end). */
+static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, const uint32_t *nodes, uint32_t n);
+
 
 /* A band over the whole tile of one view of the atlas. */
 static void mlod__tile_band(mlod_atlas *atlas, const mlod_tree *tree, uint32_t view, mlod__band *band)
@@ -12085,229 +11057,6 @@ static int mlod__pair_action(const mlod__mv_job *job, const mlod__vnode *vn, uin
    epsilon and cmin not, so the children's radii decide). */
 #define MLOD__VPAIR_MIDDLE 6
 
-#ifdef MLOD__NO_FMA_TARGET
-#pragma clang attribute pop
-#endif
-#ifdef MLOD__VLANES
-/* mask ? a : b, lane by lane */
-MLOD__FORCE_INLINE mlod__vf mlod__vselect(mlod__vf mask, mlod__vf a, mlod__vf b)
-{
-    return MLOD__VOR(MLOD__VAND(mask, a), MLOD__VANDNOT(mask, b));
-}
-
-/* the lesser of a and b, lane by lane */
-MLOD__FORCE_INLINE mlod__vf mlod__vmin(mlod__vf a, mlod__vf b) { return mlod__vselect(MLOD__VLT(a, b), a, b); }
-
-/* the lanes where v's sign is sure: v > m or v < -m (neg_m = -m) */
-MLOD__FORCE_INLINE mlod__vf mlod__vclear(mlod__vf v, mlod__vf m, mlod__vf neg_m)
-{
-    return MLOD__VOR(MLOD__VGT(v, m), MLOD__VLT(v, neg_m));
-}
-
-/* (x0, x1, x2).a, lane by lane */
-MLOD__FORCE_INLINE mlod__vf mlod__vdot(mlod__vf x0, mlod__vf x1, mlod__vf x2, const float *a)
-{
-    return MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(a[0])), MLOD__VMUL(x1, MLOD__VSET(a[1]))),
-                      MLOD__VMUL(x2, MLOD__VSET(a[2])));
-}
-
-/* The lanes' codes (see above) for scene spheres (rows x, y, z, r) of
-   inner view node vn (vn->fast set), leaf the lanes whose scene node is a
-   leaf. */
-MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *sphere, mlod__vf leaf)
-{
-    const mlod__vf zero = MLOD__VSET(0.0f), all = MLOD__VEQ(zero, zero), big = MLOD__VSET(1.26765060e30f); /* 2^100 */
-    const mlod__vf m_rel = MLOD__VSET(1.0f / 16384.0f), sixty4 = MLOD__VSET(64.0f);
-    mlod__vf x0 = MLOD__VSUB(sphere[0], MLOD__VSET(vn->fc[0])), x1 = MLOD__VSUB(sphere[1], MLOD__VSET(vn->fc[1]));
-    mlod__vf x2 = MLOD__VSUB(sphere[2], MLOD__VSET(vn->fc[2])), r = sphere[3], rho = MLOD__VSET(vn->frho);
-    mlod__vf d2, d, U, M, nM, M2, UU, g, dg, Y, C, okY, unsure, cull, keep, kr, p;
-    mlod__vf cl, cr, Yc, tc, near_ok, near_none, rp, rm, ln, small, large;
-    mlod__vf fa, fr, Yf, tf, far_ok, far_none, ep, em, lf, some, none, cmin_large, cmin_small;
-    mlod__vf cm, cmr, Ym, tm, P, m_ok, m_inf, least, lhs, move_ok, move_bad, go, code, live;
-    int h;
-    d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)), MLOD__VMUL(x2, x2));
-    d = MLOD__VSQRT(d2);
-    g = MLOD__VADD(r, rho);
-    U = MLOD__VADD(d, g);
-    UU = MLOD__VMUL(U, U);
-    M = MLOD__VMUL(U, m_rel);
-    nM = MLOD__VSUB(zero, M);
-    M2 = MLOD__VMUL(M, U);
-    unsure =
-        MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(d2, MLOD__VSET(1.15292150e18f))),
-                      all); /* 2^-40, 2^60 */
-    unsure = MLOD__VOR(unsure,
-                       MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero), MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.31322575e-10f)),
-                                                                              MLOD__VLE(r, MLOD__VSET(1.07374182e9f)))),
-                                     all)); /* 2^-30, 2^30 */
-    /* Y = (d - g)(d + g) = d^2 cos^2 b, b = asin(g / d); C = d cos b */
-    dg = MLOD__VSUB(d, g);
-    Y = MLOD__VMUL(dg, MLOD__VADD(d, g));
-    okY = MLOD__VAND(MLOD__VGT(dg, M), MLOD__VGE(MLOD__VMUL(sixty4, Y), UU));
-    C = MLOD__VSQRT(MLOD__VAND(Y, MLOD__VGT(Y, zero)));
-    /* the views' cone: culled when cos phi < cos(A + b) with sin(A + b) > 0;
-       never where an eye is in the grown sphere (d < g) or A + b passes pi */
-    cull = zero;
-    keep = all;
-    p = zero; /* x.a, a the views' unit axis: the cone's test and the floor's */
-    if (vn->fast_cull == 1 || vn->fslab)
-        p = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
-                       MLOD__VMUL(x2, MLOD__VSET(vn->faxis[2])));
-    if (vn->fast_cull == 1) {
-        mlod__vf ca = MLOD__VSET(vn->fcos_reach), sa = MLOD__VSET(vn->fsin_reach);
-        mlod__vf q = MLOD__VSUB(MLOD__VMUL(ca, C), MLOD__VMUL(sa, g)),
-                 sp = MLOD__VADD(MLOD__VMUL(sa, C), MLOD__VMUL(ca, g));
-        cull = MLOD__VAND(okY, MLOD__VAND(MLOD__VLT(p, MLOD__VSUB(q, M)), MLOD__VGT(sp, M)));
-        keep =
-            MLOD__VOR(MLOD__VLT(dg, nM), MLOD__VAND(okY, MLOD__VOR(MLOD__VGT(p, MLOD__VADD(q, M)), MLOD__VLT(sp, nM))));
-    }
-    if (vn->fslab) { /* outside every eye's field of view (mlod__below_floor), decided (U + |floor|) 2^-14 clear */
-        mlod__vf fl = MLOD__VSET(vn->ffloor), high, clear;
-        high = MLOD__VADD(MLOD__VSUB(MLOD__VADD(p, r), fl), MLOD__VMUL(U, MLOD__VSET(vn->fspread)));
-        clear = MLOD__VMUL(MLOD__VADD(U, MLOD__VSET(fabsf(vn->ffloor))), m_rel);
-        cull = MLOD__VOR(cull, MLOD__VLT(high, MLOD__VSUB(zero, clear)));
-        keep = MLOD__VAND(keep, MLOD__VGT(high, clear));
-    }
-    if (vn->fast == 2) { /* a group or a leaf: as the cut for one view at its centre, coarse splits the
-                            scene node, any other status draws (vn->pv's filter proves it), but culled
-                            culls at a leaf (its map's view culls nothing here: back faces are not culled) */
-        mlod__vf st = mlod__vstatus(&vn->pv.fast, sphere, NULL, leaf);
-        code = MLOD__VAND(MLOD__VGT(st, zero), mlod__vselect(MLOD__VEQ(st, MLOD__VSET((float)MLOD_STATUS_COARSE)),
-                                                             MLOD__VSET(4.0f), MLOD__VSET(2.0f)));
-        if (vn->leaf) code = mlod__vselect(MLOD__VEQ(st, MLOD__VSET((float)MLOD_STATUS_CULLED)), MLOD__VSET(1.0f), code);
-    } else {
-        /* x.w: x2 in the default frame, else along the maps' float axis (mlod__map_coords) */
-        mlod__vf xw = vn->fframe ? mlod__vdot(x0, x1, x2, vn->fframe[2]) : x2;
-        /* cmax: the nearest eye, closest = d - rho; t_closest = sqrt((closest - r)(closest + r)); over the
-           halves some eye reaches (x.w + rho + r >= 0), the least x.w - rho + t_closest (0 when not positive) */
-        kr = MLOD__VMUL(MLOD__VSET(vn->fkc), r);
-        cl = MLOD__VSUB(d, rho);
-        cr = MLOD__VSUB(cl, r);
-        Yc = MLOD__VMUL(cr, MLOD__VADD(cl, r));
-        near_ok = MLOD__VAND(MLOD__VGT(cr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yc), UU));
-        near_none = MLOD__VLT(cr, nM); /* every eye within the sphere's reach: cmax infinite */
-        tc = MLOD__VSQRT(MLOD__VAND(Yc, MLOD__VGT(Yc, zero)));
-        rp = MLOD__VADD(xw, g);
-        rm = MLOD__VSUB(g, xw);
-        ln = mlod__vselect(MLOD__VGT(rp, M), MLOD__VADD(MLOD__VSUB(xw, rho), tc), big);
-        ln = mlod__vmin(ln, mlod__vselect(MLOD__VGT(rm, M), MLOD__VSUB(MLOD__VSUB(tc, xw), rho), big));
-        /* each half's reach decided, and the least denominator unless cmax is surely infinite */
-        go = MLOD__VAND(mlod__vclear(rp, M, nM), mlod__vclear(rm, M, nM));
-        small = MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VAND(MLOD__VGT(ln, M), MLOD__VLE(kr, MLOD__VSUB(ln, M))));
-        large = MLOD__VOR(near_none, MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VGE(kr, MLOD__VADD(ln, M))));
-        /* what the lanes that count (kept, not culled) need below: the far side for inner scene nodes
-           surely too large for the nearest eye, the motion for leaves and for nodes surely small enough;
-           what no such lane needs is left out (its masks 0: no lane reads them) */
-        live = MLOD__VANDNOT(cull, keep);
-        cmin_large = cmin_small = move_ok = move_bad = zero;
-        if (MLOD__VBITS(MLOD__VANDNOT(leaf, MLOD__VAND(large, live)))) {
-            /* cmin: the farthest eye, farthest = d + rho; over the halves every eye reaches (x.w - rho + r >= 0),
-               the least x.w + rho + t_farthest; no such half: cmin = 0 */
-            fa = MLOD__VADD(d, rho);
-            fr = MLOD__VSUB(fa, r);
-            Yf = MLOD__VMUL(fr, MLOD__VADD(fa, r));
-            far_ok = MLOD__VAND(MLOD__VGT(fr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yf), UU));
-            far_none = MLOD__VLT(fr, nM);
-            tf = MLOD__VSQRT(MLOD__VAND(Yf, MLOD__VGT(Yf, zero)));
-            ep = MLOD__VADD(MLOD__VSUB(xw, rho), r);
-            em = MLOD__VSUB(MLOD__VSUB(r, rho), xw);
-            lf = mlod__vselect(MLOD__VGT(ep, M), MLOD__VADD(MLOD__VADD(xw, rho), tf), big);
-            lf = mlod__vmin(lf, mlod__vselect(MLOD__VGT(em, M), MLOD__VSUB(MLOD__VADD(rho, tf), xw), big));
-            some = MLOD__VOR(MLOD__VGT(ep, M), MLOD__VGT(em, M));
-            none = MLOD__VAND(MLOD__VLT(ep, nM), MLOD__VLT(em, nM));
-            go = MLOD__VAND(mlod__vclear(ep, M, nM), mlod__vclear(em, M, nM));
-            cmin_large =
-                MLOD__VOR(far_none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(some, MLOD__VGE(kr, MLOD__VADD(lf, M)))));
-            cmin_small = MLOD__VOR(
-                none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(MLOD__VGT(lf, M), MLOD__VLE(kr, MLOD__VSUB(lf, M)))));
-        }
-        if (vn->frho == 0.0f) { /* every eye at the centre: no motion */
-            move_ok = all;
-        } else if (MLOD__VBITS(MLOD__VAND(MLOD__VOR(leaf, small), live))) {
-            /* motion (mlod__ball_motion): S turn / least (1 + cos(phi + b)) <= delta, turn = rho / t_m, t_m =
-               sqrt((d - r - rho)(d - r + rho)), compared as S rho d^2 / delta <= (least d^2 (1 + cos)) t_m; with
-               P = d sin phi (the length across w), per half (+-x.w): d^2 cos(phi - b) = x.w C + P g (the half
-               counts unless below 0), d^2 cos(phi + b) = x.w C - P g, d^2 sin(phi + b) = P C + x.w g */
-            cm = MLOD__VSUB(d, r);
-            cmr = MLOD__VSUB(cm, rho);
-            Ym = MLOD__VMUL(cmr, MLOD__VADD(cm, rho));
-            m_ok = MLOD__VAND(okY, MLOD__VAND(MLOD__VGT(cmr, M), MLOD__VGE(MLOD__VMUL(sixty4, Ym), UU)));
-            m_inf = MLOD__VOR(MLOD__VLT(cmr, nM), MLOD__VLT(dg, nM));
-            tm = MLOD__VSQRT(MLOD__VAND(Ym, MLOD__VGT(Ym, zero)));
-            if (vn->fframe) { /* across the maps' float axes */
-                mlod__vf xa = mlod__vdot(x0, x1, x2, vn->fframe[0]), xb = mlod__vdot(x0, x1, x2, vn->fframe[1]);
-                P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(xa, xa), MLOD__VMUL(xb, xb)));
-            } else {
-                P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)));
-            }
-            least = big;
-            for (h = 0; h < 2; h++) {
-                mlod__vf xh = h ? MLOD__VSUB(zero, xw) : xw, xc = MLOD__VMUL(xh, C), pg = MLOD__VMUL(P, g);
-                mlod__vf e = MLOD__VADD(xc, pg), cs = MLOD__VSUB(xc, pg),
-                         sn = MLOD__VADD(MLOD__VMUL(P, C), MLOD__VMUL(xh, g));
-                mlod__vf one = MLOD__VADD(d2, cs), counts = MLOD__VGT(e, M2), mM2 = MLOD__VSUB(zero, M2);
-                mlod__vf bounded = MLOD__VAND(MLOD__VGT(one, M2), MLOD__VOR(MLOD__VGT(cs, M2), MLOD__VGT(sn, M2)));
-                mlod__vf endless = MLOD__VOR(MLOD__VLT(one, mM2), MLOD__VAND(MLOD__VLT(cs, mM2), MLOD__VLT(sn, mM2)));
-                m_ok = MLOD__VAND(m_ok, MLOD__VOR(counts, MLOD__VLT(e, mM2)));
-                m_ok = MLOD__VANDNOT(MLOD__VANDNOT(MLOD__VOR(bounded, endless), counts), m_ok);
-                m_inf = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, counts), endless));
-                least = mlod__vmin(least, mlod__vselect(MLOD__VAND(counts, bounded), one, big));
-            }
-            lhs = MLOD__VMUL(MLOD__VMUL(MLOD__VSET(vn->fkm), rho), d2);
-            move_ok = MLOD__VANDNOT(
-                m_inf, MLOD__VAND(m_ok, MLOD__VOR(MLOD__VEQ(least, big),
-                                                  MLOD__VLE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VSUB(least, M2), tm),
-                                                                            MLOD__VSET(1.0f - 1.0f / 8192.0f))))));
-            move_ok = MLOD__VAND(move_ok, MLOD__VGT(least, M2));
-            move_bad = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, MLOD__VLT(least, big)),
-                                                   MLOD__VGE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VADD(least, M2), tm),
-                                                                             MLOD__VSET(1.0f + 1.0f / 8192.0f)))));
-        }
-        /* scene leaves: drawn (2, 3) or split view (5) by the motion; others: small and moving little drawn,
-           small and moving split view, large split scene (4) or middle (6), which splits the view (5) at once
-           where r < rho: the children's spheres lie within the node's (the tree's containment), so their
-           radii are r or less, and mlod__larger_splits would split the view without reading them */
-        code = mlod__vselect(leaf,
-                             mlod__vselect(move_bad, MLOD__VSET(5.0f),
-                                           MLOD__VAND(move_ok, MLOD__VOR(MLOD__VAND(small, MLOD__VSET(2.0f)),
-                                                                         MLOD__VAND(large, MLOD__VSET(3.0f))))),
-                             MLOD__VOR(MLOD__VAND(small, mlod__vselect(move_bad, MLOD__VSET(5.0f),
-                                                                       MLOD__VAND(move_ok, MLOD__VSET(2.0f)))),
-                                       MLOD__VAND(large, MLOD__VOR(MLOD__VAND(cmin_large, MLOD__VSET(4.0f)),
-                                                                   MLOD__VAND(cmin_small, mlod__vselect(MLOD__VLT(r, rho), MLOD__VSET(5.0f),
-                                                                                                        MLOD__VSET(6.0f)))))));
-    }
-    /* culled first; not surely kept: unsure */
-    code = mlod__vselect(keep, code, zero);
-    code = mlod__vselect(cull, MLOD__VSET(1.0f), code);
-    return MLOD__VANDNOT(unsure, code);
-}
-
-/* One batch of lanes of mlod__pair_actions: mlod__vpair's codes as
-   actions, code - 1 (0 where unsure), in MLOD__VLANES bytes at out;
-   returns the lanes whose code is unsure or middle, bit l for lane l. */
-MLOD__FORCE_INLINE uint32_t mlod__vpair_bytes(const mlod__vnode *vn, const mlod__vf *sphere, mlod__vf leaf, uint8_t *out)
-{
-    const mlod__vf zero = MLOD__VSET(0.0f), code = mlod__vpair(vn, sphere, leaf);
-    mlod__vbytes(MLOD__VAND(MLOD__VSUB(code, MLOD__VSET(1.0f)), MLOD__VGT(code, zero)), out);
-    return (uint32_t)MLOD__VBITS(MLOD__VOR(MLOD__VEQ(code, zero), MLOD__VEQ(code, MLOD__VSET((float)MLOD__VPAIR_MIDDLE))));
-}
-#endif
-#ifdef MLOD__NO_FMA_TARGET
-#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
-#endif
-
-#ifdef MLOD__VLANES
-/* A lane's code as an action (mlod__pair_action's), the children's radii
-   deciding MLOD__VPAIR_MIDDLE; -1 for 0 (unsure). */
-static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uint32_t s, uint8_t code)
-{
-    if (code == 0) return -1;
-    if (code != MLOD__VPAIR_MIDDLE) return code - 1;
-    return mlod__larger_splits(scene, s, vn->radius); /* an inner scene node: leaves are never middle */
-}
-#endif
-
 /* A descent's room (mlod__mv_descend): the most pairs one group of roots
    takes, all its levels (11 bytes of stack each), and the most roots in a
    group. */
@@ -12316,48 +11065,11 @@ static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uin
 #define MLOD__MV_LEVELS 40u /* the scene tree's depth (< 33) and more */
 
 /* The actions of n <= MLOD__MV_ROOM pairs (scene nodes nodes[0 .. n) with
-   view node vn), as mlod__pair_action gives them: through the float
-   filter where vn has one and the build has lanes, the exact path for the
-   lanes it leaves.  The lanes' codes as actions first, for all the pairs
-   (whole batches: actions has room for n rounded up to MLOD__VLANES), the
-   codes that need more listed; then those few (the children's radii, or
-   the exact path): the batches of a level depend on no other
-   pair's answer, and no loop over all the pairs branches on one pair's
-   code.  (What that buys was measured: a tenth with 8 lanes, which the
-   descent now fills; about nothing with 4, where the filter's arithmetic
-   sets the pace, CHANGELOG.md, 0.1.0.) */
+   view node vn), as mlod__pair_action gives them (with the vector lanes:
+   VECTOR LANES at the end). */
 static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, const uint32_t *nodes, uint32_t n,
-                               uint8_t *actions)
-{
-    uint32_t i = 0;
-#ifdef MLOD__VLANES
-    if (vn->fast && n > 1) {
-        const mlod_tree *scene = job->scene;
-        uint32_t lanes[MLOD__VLANES], l, m = 0;
-        uint16_t odd[MLOD__MV_ROOM];
-        MANYLODS_ASSERT(n <= MLOD__MV_ROOM);
-        for (; i < n; i += MLOD__VLANES) { /* the actions (code - 1; 0 where unsure), the unsure and middle listed */
-            mlod__vf sphere[4];
-            uint32_t k = n - i < MLOD__VLANES ? n - i : MLOD__VLANES, bits;
-            for (l = 0; l < MLOD__VLANES; l++) lanes[l] = nodes[i + (l < k ? l : 0)];
-            mlod__vload(scene->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
-            bits = mlod__vpair_bytes(vn, sphere, mlod__vleaf(lanes, scene->leaf_count - 1), actions + i);
-            for (l = 0; l < k; l++) {
-                odd[m] = (uint16_t)(i + l);
-                m += bits >> l & 1u;
-            }
-        }
-        for (l = 0; l < m; l++) {
-            uint32_t k = odd[l];
-            int a = mlod__vpair_action(scene, vn, nodes[k],
-                                       actions[k] == MLOD__VPAIR_MIDDLE - 1 ? (uint8_t)MLOD__VPAIR_MIDDLE : 0);
-            actions[k] = (uint8_t)(a >= 0 ? a : mlod__pair_action(job, vn, nodes[k]));
-        }
-        return;
-    }
-#endif
-    for (; i < n; i++) actions[i] = (uint8_t)mlod__pair_action(job, vn, nodes[i]);
-}
+                               uint8_t *actions);
+
 
 /* ------------------------------------------ MegaViews: a level's units -- */
 
@@ -12423,42 +11135,6 @@ static float mlod__node_distance(const mlod_tree *scene, uint32_t node, const do
     return (float)mlod__length3(x);
 }
 
-/* mlod__node_distance of nodes[0 .. n) into out, two at a time where the
-   build has double lanes (each lane the same operations in the same order:
-   the same bits). */
-static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, uint32_t n, const double *centre,
-                                 float *out)
-{
-    uint32_t l = 0;
-#if defined(MLOD__VD) && defined(__AVX__)
-    for (; l + 4 <= n; l += 4) { /* four lanes: the rows transposed, each lane's steps as below */
-        __m128 a = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l]);
-        __m128 b = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 1]);
-        __m128 c = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 2]);
-        __m128 d = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 3]);
-        __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b), cd0 = _mm_unpacklo_ps(c, d);
-        __m128 cd1 = _mm_unpackhi_ps(c, d);
-        __m256d x = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movelh_ps(ab0, cd0)), _mm256_set1_pd(centre[0]));
-        __m256d y = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movehl_ps(cd0, ab0)), _mm256_set1_pd(centre[1]));
-        __m256d z = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movelh_ps(ab1, cd1)), _mm256_set1_pd(centre[2]));
-        __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
-        _mm_storeu_ps(out + l, _mm256_cvtpd_ps(_mm256_sqrt_pd(sum)));
-    }
-#endif
-#ifdef MLOD__VD
-    for (; l + 2 <= n; l += 2) {
-        const float *a = scene->spheres + 4 * (size_t)nodes[l], *b = scene->spheres + 4 * (size_t)nodes[l + 1];
-        mlod__vd x = MLOD__DSUB(MLOD__DPAIR(a[0], b[0]), MLOD__DSPLAT(centre[0]));
-        mlod__vd y = MLOD__DSUB(MLOD__DPAIR(a[1], b[1]), MLOD__DSPLAT(centre[1]));
-        mlod__vd z = MLOD__DSUB(MLOD__DPAIR(a[2], b[2]), MLOD__DSPLAT(centre[2]));
-        double d[2];
-        MLOD__DSTORE(d, MLOD__DSQRT(MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, x), MLOD__DMUL(y, y)), MLOD__DMUL(z, z))));
-        out[l] = (float)d[0];
-        out[l + 1] = (float)d[1];
-    }
-#endif
-    for (; l < n; l++) out[l] = mlod__node_distance(scene, nodes[l], centre);
-}
 
 /* A scene node's depth at pixel (col, row) of a map whose view is pv (a
    dual paraboloid from a view node's centre), as the fusion measures
@@ -13807,6 +12483,102 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 }
 #endif /* MANYLODS_PTHREADS */
 
+/* ---------------------------------------- vector lanes: one pass a level */
+/* VECTOR LANES (the end of this file) once per level: AVX2 (where the
+   build dispatches to it), none (where the build has lanes), and last the
+   build's own, with the plain names. */
+#define MLOD__LV3(name, suffix) name##suffix
+#define MLOD__LV2(name, suffix) MLOD__LV3(name, suffix)
+#define MLOD__LV(name) MLOD__LV2(name, MLOD__LANES_SUFFIX)
+#if defined(__has_include)
+#if !__has_include(MANYLODS_SELF)
+#error "manylods: the implementation includes its own file again as MANYLODS_SELF (default \"manylods.h\", looked up beside it first): define MANYLODS_SELF as this file's name"
+#endif
+#endif
+#if MLOD__DISPATCH_AVX2
+#define MLOD__PASS_LEVEL 3
+#define MLOD__LANES_SUFFIX _avx2
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+#include MANYLODS_SELF
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif
+#undef MLOD__PASS_LEVEL
+#undef MLOD__LANES_SUFFIX
+#endif
+#if MLOD__BASE_LEVEL != 0
+#define MLOD__PASS_LEVEL 0
+#define MLOD__LANES_SUFFIX _none
+#include MANYLODS_SELF
+#undef MLOD__PASS_LEVEL
+#undef MLOD__LANES_SUFFIX
+#endif
+#define MLOD__PASS_LEVEL MLOD__BASE_LEVEL
+#define MLOD__PASS_BASE 1
+#define MLOD__LANES_SUFFIX
+#include MANYLODS_SELF
+#undef MLOD__PASS_LEVEL
+#undef MLOD__PASS_BASE
+#undef MLOD__LANES_SUFFIX
+#undef MLOD__LV
+#undef MLOD__LV2
+#undef MLOD__LV3
+#undef mlod__all_set
+#undef mlod__classify_children
+#undef mlod__classify_known
+#undef mlod__classify_lanes
+#undef mlod__classify_list
+#undef mlod__classify_pairs
+#undef mlod__classify_pairs_vector
+#undef mlod__classify_vector
+#undef mlod__disc_insides
+#undef mlod__disc_pixels
+#undef mlod__draw_filtered
+#undef mlod__draw_nodes
+#undef mlod__fast_disc
+#undef mlod__fast_disc_lanes
+#undef mlod__fast_discs
+#undef mlod__fast_fixed
+#undef mlod__filtered
+#undef mlod__lowest_bit
+#undef mlod__node_distances
+#undef mlod__pad_last
+#undef mlod__pair_actions
+#undef mlod__reached_lanes
+#undef mlod__settle_lanes
+#undef mlod__vat_least
+#undef mlod__vbackfacing
+#undef mlod__vbits
+#undef mlod__vbytes
+#undef mlod__vbytes_pairs
+#undef mlod__vclear
+#undef mlod__vdot
+#undef mlod__vleaf
+#undef mlod__vleaf_pairs
+#undef mlod__vload
+#undef mlod__vload_pairs
+#undef mlod__vmin
+#undef mlod__vpack
+#undef mlod__vpair
+#undef mlod__vpair_action
+#undef mlod__vpair_bytes
+#undef mlod__vplanes
+#undef mlod__vrelative
+#undef mlod__vrows
+#undef mlod__vselect
+#undef mlod__vsetup
+#undef mlod__vstatus
+#undef mlod__vstatus_known
+#undef mlod__vundecided
+#undef mlod__vf
+
 #if defined(__clang__)
 #ifdef MLOD__NO_FMA_TARGET
 #pragma clang attribute pop
@@ -13822,6 +12594,1650 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #undef MLOD__PUBLIC
 #endif /* MANYLODS_IMPLEMENTATION_DONE */
 #endif /* MANYLODS_IMPLEMENTATION */
+
+/* ======================================================================== */
+/*               VECTOR LANES: compiled once per level in use                */
+/* ======================================================================== */
+/* The code that runs in float vector lanes (the cut's float filter, the
+   splat's small discs and plane tests, MegaViews' pair filter) and the
+   functions that call it, compiled once per level of mlod_simd that the
+   build has (MLOD__PASS_LEVEL): the implementation includes this file
+   again for each (MANYLODS_SELF), its functions renamed for every level
+   but the build's own (MLOD__LANES_SUFFIX), the AVX2 pass for that target
+   (gcc, clang).  The build's own level comes last, with the plain names:
+   its entries (mlod__classify_list, mlod__classify_children,
+   mlod__draw_nodes, mlod__pair_actions, mlod__node_distances) hand each
+   call to the level in use (mlod_simd_level).  Every level computes the
+   same bits. */
+#ifdef MLOD__PASS_LEVEL
+/* a pass of its own: the previous pass's lane macros gone */
+#undef MLOD__BOX_STRIDE
+#undef MLOD__BY_SHAPE
+#undef MLOD__FIX
+#undef MLOD__LIST_AHEAD
+#undef MLOD__LOAD4
+#undef MLOD__VABS
+#undef MLOD__VADD
+#undef MLOD__VAND
+#undef MLOD__VANDNOT
+#undef MLOD__VBITS
+#undef MLOD__VBITWISE
+#undef MLOD__VDIV
+#undef MLOD__VDOT
+#undef MLOD__VEQ
+#undef MLOD__VGE
+#undef MLOD__VGT
+#undef MLOD__VKEEP
+#undef MLOD__VLANES
+#undef MLOD__VLE
+#undef MLOD__VLOADU
+#undef MLOD__VLT
+#undef MLOD__VMUL
+#undef MLOD__VOR
+#undef MLOD__VPAIRS
+#undef MLOD__VSET
+#undef MLOD__VSQRT
+#undef MLOD__VSTORE
+#undef MLOD__VSUB
+#undef MLOD__VTRUNC
+#undef MLOD__X86_LANES
+/* this pass's names: name##MLOD__LANES_SUFFIX (the build's own level: the
+   plain names); the implementation undefines them after its last pass */
+#define mlod__all_set MLOD__LV(mlod__all_set)
+#define mlod__classify_children MLOD__LV(mlod__classify_children)
+#define mlod__classify_known MLOD__LV(mlod__classify_known)
+#define mlod__classify_lanes MLOD__LV(mlod__classify_lanes)
+#define mlod__classify_list MLOD__LV(mlod__classify_list)
+#define mlod__classify_pairs MLOD__LV(mlod__classify_pairs)
+#define mlod__classify_pairs_vector MLOD__LV(mlod__classify_pairs_vector)
+#define mlod__classify_vector MLOD__LV(mlod__classify_vector)
+#define mlod__disc_insides MLOD__LV(mlod__disc_insides)
+#define mlod__disc_pixels MLOD__LV(mlod__disc_pixels)
+#define mlod__draw_filtered MLOD__LV(mlod__draw_filtered)
+#define mlod__draw_nodes MLOD__LV(mlod__draw_nodes)
+#define mlod__fast_disc MLOD__LV(mlod__fast_disc)
+#define mlod__fast_disc_lanes MLOD__LV(mlod__fast_disc_lanes)
+#define mlod__fast_discs MLOD__LV(mlod__fast_discs)
+#define mlod__fast_fixed MLOD__LV(mlod__fast_fixed)
+#define mlod__filtered MLOD__LV(mlod__filtered)
+#define mlod__lowest_bit MLOD__LV(mlod__lowest_bit)
+#define mlod__node_distances MLOD__LV(mlod__node_distances)
+#define mlod__pad_last MLOD__LV(mlod__pad_last)
+#define mlod__pair_actions MLOD__LV(mlod__pair_actions)
+#define mlod__reached_lanes MLOD__LV(mlod__reached_lanes)
+#define mlod__settle_lanes MLOD__LV(mlod__settle_lanes)
+#define mlod__vat_least MLOD__LV(mlod__vat_least)
+#define mlod__vbackfacing MLOD__LV(mlod__vbackfacing)
+#define mlod__vbits MLOD__LV(mlod__vbits)
+#define mlod__vbytes MLOD__LV(mlod__vbytes)
+#define mlod__vbytes_pairs MLOD__LV(mlod__vbytes_pairs)
+#define mlod__vclear MLOD__LV(mlod__vclear)
+#define mlod__vdot MLOD__LV(mlod__vdot)
+#define mlod__vleaf MLOD__LV(mlod__vleaf)
+#define mlod__vleaf_pairs MLOD__LV(mlod__vleaf_pairs)
+#define mlod__vload MLOD__LV(mlod__vload)
+#define mlod__vload_pairs MLOD__LV(mlod__vload_pairs)
+#define mlod__vmin MLOD__LV(mlod__vmin)
+#define mlod__vpack MLOD__LV(mlod__vpack)
+#define mlod__vpair MLOD__LV(mlod__vpair)
+#define mlod__vpair_action MLOD__LV(mlod__vpair_action)
+#define mlod__vpair_bytes MLOD__LV(mlod__vpair_bytes)
+#define mlod__vplanes MLOD__LV(mlod__vplanes)
+#define mlod__vrelative MLOD__LV(mlod__vrelative)
+#define mlod__vrows MLOD__LV(mlod__vrows)
+#define mlod__vselect MLOD__LV(mlod__vselect)
+#define mlod__vsetup MLOD__LV(mlod__vsetup)
+#define mlod__vstatus MLOD__LV(mlod__vstatus)
+#define mlod__vstatus_known MLOD__LV(mlod__vstatus_known)
+#define mlod__vundecided MLOD__LV(mlod__vundecided)
+#define mlod__vf MLOD__LV(mlod__vf)
+/* The build's own level hands a call to the level in use where it is
+   another: `name args` as name_avx2 or name_none. */
+#if defined(MLOD__PASS_BASE) && MLOD__BASE_LEVEL != 0
+#if MLOD__DISPATCH_AVX2
+#define MLOD__IF_AVX2(x) x
+#else
+#define MLOD__IF_AVX2(x)
+#endif
+#define MLOD__LANES_REDIRECT(name, args)                                                                               \
+    switch (mlod__simd_pass()) {                                                                                       \
+        MLOD__IF_AVX2(case 3: name##_avx2 args; return;)                                                               \
+    case 0:                                                                                                            \
+        name##_none args;                                                                                              \
+        return;                                                                                                        \
+    default:                                                                                                           \
+        break;                                                                                                         \
+    }
+#else
+#define MLOD__LANES_REDIRECT(name, args) (void)0
+#endif
+
+/* mlod__fast_status on several node-views at once: lanes of 8 floats with
+   AVX (-mavx and later), 4 with SSE2 (every x86-64 compiler) or NEON
+   (AArch64), none otherwise or with MANYLODS_NO_SIMD defined.  Each lane
+   proves its status with the same bounds as mlod__fast_status, so a
+   decided lane agrees with the exact path; a lane that cannot prove it
+   takes the exact path, so every build gives the same cuts bit for bit
+   (tests/test_cut.c compares them). */
+#ifdef MLOD__NO_FMA_TARGET
+/* clang cannot inline an intrinsic into a function built for a target
+   without FMA: the vector filter keeps the caller's target, and may be
+   fused (its bounds hold for fused multiply-adds: each rounds less), its
+   decisions being exact either way */
+#pragma clang attribute pop
+#endif
+#if MLOD__PASS_LEVEL == 3
+#include <immintrin.h>
+#define MLOD__VLANES 8
+#define MLOD__X86_LANES 1
+typedef __m256 mlod__vf;
+#define MLOD__VADD _mm256_add_ps
+#define MLOD__VSUB _mm256_sub_ps
+#define MLOD__VMUL _mm256_mul_ps
+#define MLOD__VDIV _mm256_div_ps
+#define MLOD__VSTORE _mm256_storeu_ps
+#define MLOD__VLOADU _mm256_loadu_ps
+#define MLOD__VAND _mm256_and_ps
+#define MLOD__VOR _mm256_or_ps
+#define MLOD__VANDNOT _mm256_andnot_ps /* (not a) and b */
+#define MLOD__VSET _mm256_set1_ps
+#define MLOD__VSQRT _mm256_sqrt_ps
+#define MLOD__VLT(a, b) _mm256_cmp_ps(a, b, _CMP_LT_OQ)
+#define MLOD__VLE(a, b) _mm256_cmp_ps(a, b, _CMP_LE_OQ)
+#define MLOD__VGT(a, b) _mm256_cmp_ps(a, b, _CMP_GT_OQ)
+#define MLOD__VGE(a, b) _mm256_cmp_ps(a, b, _CMP_GE_OQ)
+#define MLOD__VEQ(a, b) _mm256_cmp_ps(a, b, _CMP_EQ_OQ)
+#define MLOD__VBITS _mm256_movemask_ps
+/* a rounded toward zero (lanes below 2^31 in magnitude: those that read it) */
+#define MLOD__VTRUNC(a) _mm256_round_ps(a, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC)
+
+/* Rows of four floats, one per lane: lane l gets x, y, z, w of row
+   nodes[l] of rows. */
+MLOD__FORCE_INLINE __m256 mlod__vrows(const float *rows, uint32_t low, uint32_t high)
+{
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(rows + 4 * (size_t)low)),
+                                _mm_loadu_ps(rows + 4 * (size_t)high), 1);
+}
+
+MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
+{
+    __m256 a = mlod__vrows(rows, nodes[0], nodes[4]), b = mlod__vrows(rows, nodes[1], nodes[5]);
+    __m256 c = mlod__vrows(rows, nodes[2], nodes[6]), d = mlod__vrows(rows, nodes[3], nodes[7]);
+    __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
+    __m256 cd0 = _mm256_unpacklo_ps(c, d), cd1 = _mm256_unpackhi_ps(c, d);
+    *x = _mm256_shuffle_ps(ab0, cd0, 0x44);
+    *y = _mm256_shuffle_ps(ab0, cd0, 0xEE);
+    *z = _mm256_shuffle_ps(ab1, cd1, 0x44);
+    *w = _mm256_shuffle_ps(ab1, cd1, 0xEE);
+}
+
+/* v - e in double, rounded to float. */
+static mlod__vf mlod__vrelative(mlod__vf v, double e)
+{
+    __m256d de = _mm256_set1_pd(e);
+    __m128 lo = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_cvtps_pd(_mm256_castps256_ps128(v)), de));
+    __m128 hi = _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_cvtps_pd(_mm256_extractf128_ps(v, 1)), de));
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(lo), hi, 1);
+}
+
+/* Status codes (small whole numbers in float lanes) as bytes, lane l in
+   byte l. */
+MLOD__FORCE_INLINE __m128i mlod__vpack(__m256 codes)
+{
+    __m256i i = _mm256_cvttps_epi32(codes);
+    __m128i p = _mm_packs_epi32(_mm256_castsi256_si128(i), _mm256_extractf128_si256(i, 1));
+    return _mm_packus_epi16(p, p);
+}
+
+/* Status codes to bytes at out. */
+MLOD__FORCE_INLINE void mlod__vbytes(__m256 codes, uint8_t *out) { _mm_storel_epi64((__m128i *)(void *)out, mlod__vpack(codes)); }
+
+/* The children of four parents in one load per pair (a pair's rows are
+   adjacent): lanes 0 - 3 the left children 2p + 1, lanes 4 - 7 the right
+   ones 2p + 2. */
+#define MLOD__VPAIRS 4
+MLOD__FORCE_INLINE void mlod__vload_pairs(const float *rows, const uint32_t *parents, __m256 *x, __m256 *y, __m256 *z, __m256 *w)
+{
+    __m256 a = _mm256_loadu_ps(rows + 8 * (size_t)parents[0] + 4), b = _mm256_loadu_ps(rows + 8 * (size_t)parents[1] + 4);
+    __m256 c = _mm256_loadu_ps(rows + 8 * (size_t)parents[2] + 4), d = _mm256_loadu_ps(rows + 8 * (size_t)parents[3] + 4);
+    __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
+    __m256 cd0 = _mm256_unpacklo_ps(c, d), cd1 = _mm256_unpackhi_ps(c, d);
+    *x = _mm256_shuffle_ps(ab0, cd0, 0x44);
+    *y = _mm256_shuffle_ps(ab0, cd0, 0xEE);
+    *z = _mm256_shuffle_ps(ab1, cd1, 0x44);
+    *w = _mm256_shuffle_ps(ab1, cd1, 0xEE);
+}
+/* mlod__vbytes with the pairs' order undone: out[2i] the left child of
+   parent i, out[2i + 1] its right one. */
+MLOD__FORCE_INLINE void mlod__vbytes_pairs(__m256 codes, uint8_t *out)
+{
+    __m128i p = mlod__vpack(codes);
+    _mm_storel_epi64((__m128i *)(void *)out, _mm_unpacklo_epi8(p, _mm_srli_si128(p, 4)));
+}
+#elif MLOD__PASS_LEVEL == 1
+#include <emmintrin.h>
+#define MLOD__VLANES 4
+#define MLOD__X86_LANES 1
+typedef __m128 mlod__vf;
+#define MLOD__VADD _mm_add_ps
+#define MLOD__VSUB _mm_sub_ps
+#define MLOD__VMUL _mm_mul_ps
+#define MLOD__VDIV _mm_div_ps
+#define MLOD__VSTORE _mm_storeu_ps
+#define MLOD__VLOADU _mm_loadu_ps
+#define MLOD__VAND _mm_and_ps
+#define MLOD__VOR _mm_or_ps
+#define MLOD__VANDNOT _mm_andnot_ps
+#define MLOD__VSET _mm_set1_ps
+#define MLOD__VSQRT _mm_sqrt_ps
+#define MLOD__VLT _mm_cmplt_ps
+#define MLOD__VLE _mm_cmple_ps
+#define MLOD__VGT _mm_cmpgt_ps
+#define MLOD__VGE _mm_cmpge_ps
+#define MLOD__VEQ _mm_cmpeq_ps
+#define MLOD__VBITS _mm_movemask_ps
+#define MLOD__VTRUNC(a) _mm_cvtepi32_ps(_mm_cvttps_epi32(a))
+
+MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
+{
+    __m128 a = _mm_loadu_ps(rows + 4 * (size_t)nodes[0]), b = _mm_loadu_ps(rows + 4 * (size_t)nodes[1]);
+    __m128 c = _mm_loadu_ps(rows + 4 * (size_t)nodes[2]), d = _mm_loadu_ps(rows + 4 * (size_t)nodes[3]);
+    __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b);
+    __m128 cd0 = _mm_unpacklo_ps(c, d), cd1 = _mm_unpackhi_ps(c, d);
+    *x = _mm_movelh_ps(ab0, cd0);
+    *y = _mm_movehl_ps(cd0, ab0);
+    *z = _mm_movelh_ps(ab1, cd1);
+    *w = _mm_movehl_ps(cd1, ab1);
+}
+
+static mlod__vf mlod__vrelative(mlod__vf v, double e)
+{
+    __m128d de = _mm_set1_pd(e);
+    __m128 lo = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(v), de));
+    __m128 hi = _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(v, v)), de));
+    return _mm_movelh_ps(lo, hi);
+}
+
+/* Status codes (small whole numbers in float lanes) to bytes at out. */
+MLOD__FORCE_INLINE void mlod__vbytes(__m128 codes, uint8_t *out)
+{
+    __m128i p = _mm_cvttps_epi32(codes);
+    int word;
+    p = _mm_packs_epi32(p, p);
+    word = _mm_cvtsi128_si32(_mm_packus_epi16(p, p));
+    memcpy(out, &word, 4);
+}
+#elif MLOD__PASS_LEVEL == 2
+#include <arm_neon.h>
+#define MLOD__VLANES 4
+typedef float32x4_t mlod__vf;
+#define MLOD__VADD vaddq_f32
+#define MLOD__VSUB vsubq_f32
+#define MLOD__VMUL vmulq_f32
+#define MLOD__VDIV vdivq_f32
+#define MLOD__VSTORE vst1q_f32
+#define MLOD__VLOADU vld1q_f32
+#define MLOD__VBITWISE(op, a, b) vreinterpretq_f32_u32(op(vreinterpretq_u32_f32(a), vreinterpretq_u32_f32(b)))
+#define MLOD__VAND(a, b) MLOD__VBITWISE(vandq_u32, a, b)
+#define MLOD__VOR(a, b) MLOD__VBITWISE(vorrq_u32, a, b)
+#define MLOD__VANDNOT(a, b) MLOD__VBITWISE(vbicq_u32, b, a) /* (not a) and b */
+#define MLOD__VSET vdupq_n_f32
+#define MLOD__VSQRT vsqrtq_f32
+#define MLOD__VLT(a, b) vreinterpretq_f32_u32(vcltq_f32(a, b))
+#define MLOD__VLE(a, b) vreinterpretq_f32_u32(vcleq_f32(a, b))
+#define MLOD__VGT(a, b) vreinterpretq_f32_u32(vcgtq_f32(a, b))
+#define MLOD__VGE(a, b) vreinterpretq_f32_u32(vcgeq_f32(a, b))
+#define MLOD__VEQ(a, b) vreinterpretq_f32_u32(vceqq_f32(a, b))
+#define MLOD__VTRUNC vrndq_f32
+
+/* Lane l's bit l where its mask is set. */
+#define MLOD__VBITS mlod__vbits
+static int mlod__vbits(mlod__vf mask)
+{
+    static const uint32_t bit[4] = {1u, 2u, 4u, 8u};
+    return (int)vaddvq_u32(vandq_u32(vreinterpretq_u32_f32(mask), vld1q_u32(bit)));
+}
+
+MLOD__FORCE_INLINE void mlod__vload(const float *rows, const uint32_t *nodes, mlod__vf *x, mlod__vf *y, mlod__vf *z, mlod__vf *w)
+{
+    float32x4x2_t ab = vtrnq_f32(vld1q_f32(rows + 4 * (size_t)nodes[0]), vld1q_f32(rows + 4 * (size_t)nodes[1]));
+    float32x4x2_t cd = vtrnq_f32(vld1q_f32(rows + 4 * (size_t)nodes[2]), vld1q_f32(rows + 4 * (size_t)nodes[3]));
+    *x = vcombine_f32(vget_low_f32(ab.val[0]), vget_low_f32(cd.val[0]));
+    *y = vcombine_f32(vget_low_f32(ab.val[1]), vget_low_f32(cd.val[1]));
+    *z = vcombine_f32(vget_high_f32(ab.val[0]), vget_high_f32(cd.val[0]));
+    *w = vcombine_f32(vget_high_f32(ab.val[1]), vget_high_f32(cd.val[1]));
+}
+
+static mlod__vf mlod__vrelative(mlod__vf v, double e)
+{
+    float64x2_t de = vdupq_n_f64(e);
+    float32x2_t lo = vcvt_f32_f64(vsubq_f64(vcvt_f64_f32(vget_low_f32(v)), de));
+    float32x2_t hi = vcvt_f32_f64(vsubq_f64(vcvt_f64_f32(vget_high_f32(v)), de));
+    return vcombine_f32(lo, hi);
+}
+
+/* Lanes whose node is at least `first`, as a mask. */
+static float32x4_t mlod__vleaf(const uint32_t *nodes, uint32_t first)
+{
+    return vreinterpretq_f32_u32(vcgeq_u32(vld1q_u32(nodes), vdupq_n_u32(first)));
+}
+
+/* Status codes (small whole numbers in float lanes) to bytes at out. */
+MLOD__FORCE_INLINE void mlod__vbytes(float32x4_t codes, uint8_t *out)
+{
+    uint16x4_t h = vmovn_u32(vcvtq_u32_f32(codes));
+    uint8_t bytes[8];
+    vst1_u8(bytes, vmovn_u16(vcombine_u16(h, h)));
+    memcpy(out, bytes, 4);
+}
+#endif
+
+#ifdef MLOD__X86_LANES
+/* Four node indices' lanes that are at least `first` (unsigned), as a mask. */
+static __m128 mlod__vat_least(__m128i n, uint32_t first)
+{
+    const __m128i flip = _mm_set1_epi32((int)0x80000000u);
+    __m128i below = _mm_cmpgt_epi32(_mm_xor_si128(_mm_set1_epi32((int)first), flip), _mm_xor_si128(n, flip));
+    return _mm_castsi128_ps(_mm_xor_si128(below, _mm_set1_epi32(-1)));
+}
+#define MLOD__LOAD4(nodes) _mm_loadu_si128((const __m128i *)(const void *)(nodes))
+#if MLOD__VLANES == 8
+/* Lanes whose node (nodes[l]) is a leaf, `first` the first leaf; and for
+   the pairs of mlod__vload_pairs, of the children of four parents. */
+static __m256 mlod__vleaf(const uint32_t *nodes, uint32_t first)
+{
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(mlod__vat_least(MLOD__LOAD4(nodes), first)),
+                                mlod__vat_least(MLOD__LOAD4(nodes + 4), first), 1);
+}
+static __m256 mlod__vleaf_pairs(const uint32_t *parents, uint32_t first)
+{
+    __m128i twice = _mm_slli_epi32(MLOD__LOAD4(parents), 1);
+    return _mm256_insertf128_ps(
+        _mm256_castps128_ps256(mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(1)), first)),
+        mlod__vat_least(_mm_add_epi32(twice, _mm_set1_epi32(2)), first), 1);
+}
+#else
+static __m128 mlod__vleaf(const uint32_t *nodes, uint32_t first) { return mlod__vat_least(MLOD__LOAD4(nodes), first); }
+#endif
+#undef MLOD__LOAD4
+#endif
+
+#ifdef MLOD__VLANES
+
+/* The back-face test of mlod__fast_backfacing on lanes: *culled and
+   *unsure as masks, given x (unused orthographic), t and r. */
+MLOD__FORCE_INLINE void mlod__vbackfacing(const mlod__fview *fv, const mlod__vf *x, mlod__vf t, mlod__vf r, const mlod__vf *cone,
+                              mlod__vf *culled, mlod__vf *unsure)
+{
+    mlod__vf a = cone[3], away, len, a2, sa, ca, e, m1, lm, z1, z2, live, settled, cull, one = MLOD__VSET(1.0f);
+    live = MLOD__VLT(a, MLOD__VSET((float)(0.5 * MLOD__PI)));
+    if (fv->ortho) {
+        const float *w = fv->subs[0].w;
+        away = MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], MLOD__VSET(w[0])), MLOD__VMUL(cone[1], MLOD__VSET(w[1]))),
+                          MLOD__VMUL(cone[2], MLOD__VSET(w[2])));
+    } else {
+        away = MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], x[0]), MLOD__VMUL(cone[1], x[1])), MLOD__VMUL(cone[2], x[2]));
+    }
+    away = MLOD__VSUB(MLOD__VSET(0.0f), away);
+    len = MLOD__VSQRT(MLOD__VADD(MLOD__VADD(MLOD__VMUL(cone[0], cone[0]), MLOD__VMUL(cone[1], cone[1])),
+                                 MLOD__VMUL(cone[2], cone[2])));
+    a2 = MLOD__VMUL(a, a);
+    sa = MLOD__VMUL(a, MLOD__VSUB(one, MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(1.0f / 6.0f),
+                                                                   MLOD__VMUL(a2, MLOD__VSET(1.0f / 120.0f))))));
+    ca = MLOD__VSUB(one, MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(0.5f),
+                                                   MLOD__VMUL(a2, MLOD__VSUB(MLOD__VSET(1.0f / 24.0f),
+                                                                             MLOD__VMUL(a2, MLOD__VSET(1.0f / 720.0f)))))));
+    e = MLOD__VADD(MLOD__VMUL(MLOD__VMUL(MLOD__VMUL(MLOD__VMUL(a2, a2), a2), a), MLOD__VSET(1.0f / 5040.0f)),
+                   MLOD__VSET(40.0f * MLOD__FAST_U));
+    m1 = MLOD__VMUL(MLOD__VADD(t, r), e);
+    lm = MLOD__VMUL(len, m1);
+    z2 = MLOD__VADD(away, MLOD__VMUL(len, MLOD__VADD(MLOD__VMUL(sa, t), MLOD__VMUL(ca, r))));
+    z1 = MLOD__VSUB(MLOD__VMUL(ca, t), MLOD__VMUL(sa, r));
+    settled = MLOD__VOR(MLOD__VGT(z2, lm), MLOD__VLT(z1, MLOD__VSUB(MLOD__VSET(0.0f), m1)));
+    cull = MLOD__VANDNOT(settled, MLOD__VAND(MLOD__VGT(z1, m1), MLOD__VLT(z2, MLOD__VSUB(MLOD__VSET(0.0f), lm))));
+    live = MLOD__VAND(live, MLOD__VGE(a, MLOD__VSET(0.0f)));
+    /* a >= pi/2 (or NaN): not culled; 0 <= a < pi/2: as decided; a < 0: unsure */
+    *culled = MLOD__VAND(live, cull);
+    *unsure = MLOD__VOR(MLOD__VLT(a, MLOD__VSET(0.0f)), MLOD__VANDNOT(MLOD__VOR(settled, cull), live));
+}
+
+/* mlod__classify_list's vector path: the statuses of the lanes' node-views
+   (rows x, y, z, r of their spheres; cone their cones' rows, NULL for
+   none; leaf the lanes whose node is a leaf) as status codes in float
+   lanes: MLOD_STATUS_CULLED, _DRAWN, _COARSE or _OVERSIZE (invalid
+   internal node or leaf), 0 (MLOD__UNSURE) where the lane cannot prove
+   its status. */
+/* mlod__vstatus below, with what is known of the planes of a view of one
+   sub-projection.  track 1: *inside gets the lanes whose sphere surely
+   lies wholly inside every plane of it (else none); known 1 (and track
+   1): every lane's sphere is known to, and the plane tests are left out.
+   A plane's test reached (mlod__fast_status) is n.x + l r - k' > m: the
+   sphere reaches into the half-space, m bounding the float rounding of
+   the sum (by the magnitudes of its terms, l >= |n|).  The same sum with
+   - l r, over m, proves n.x - l r - k' > 0 in exact arithmetic: the whole
+   sphere lies inside, and a child's sphere lies inside its parent's
+   exactly (the build and the refit round radii up, DESIGN.md), so every
+   node below lies wholly inside too and reaches into every half-space:
+   its plane tests pass, known without them.  Its status, by the other
+   tests (size, back faces), is what the full filter or the exact path
+   gives: the same bits on every path (tests/test_cut.c checks the
+   children of nodes proved inside against the exact path).  Only lanes
+   the filter decided (their guards passed) are proved inside. */
+/* The lanes' setup of the float filter (mlod__fast_status's): x =
+   centre - eye, d2 = |x|^2, t the tangent length (1 orthographic) and
+   reach >= |x| + r, which the planes' margins take; *unsure gets the
+   lanes that fail a guard. */
+MLOD__FORCE_INLINE void mlod__vsetup(const mlod__fview *fv, const mlod__vf *sphere, mlod__vf *x, mlod__vf *d2, mlod__vf *t,
+                                     mlod__vf *reach, mlod__vf *unsure)
+{
+    mlod__vf r = sphere[3], zero = MLOD__VSET(0.0f), all = MLOD__VEQ(zero, zero), u;
+    int j;
+    for (j = 0; j < 3; j++)
+        x[j] = fv->float_eye ? MLOD__VSUB(sphere[j], MLOD__VSET(fv->eye_f[j])) : mlod__vrelative(sphere[j], fv->eye[j]);
+    *d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], x[0]), MLOD__VMUL(x[1], x[1])), MLOD__VMUL(x[2], x[2]));
+    u = MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(*d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(*d2, MLOD__VSET(1.20892582e24f))),
+                      all);
+    u = MLOD__VOR(u, MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero), MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.09494702e-13f)),
+                                                                          MLOD__VLE(r, MLOD__VSET(1.09951163e12f)))),
+                                   all));
+    if (fv->ortho) {
+        *t = MLOD__VSET(1.0f);
+        *reach = MLOD__VADD(MLOD__VSQRT(*d2), r);
+    } else {
+        mlod__vf t2 = MLOD__VSUB(*d2, MLOD__VMUL(r, r));
+        u = MLOD__VOR(u, MLOD__VANDNOT(MLOD__VGE(MLOD__VMUL(MLOD__VSET(4.0f), t2), *d2), all));
+        *t = MLOD__VSQRT(MLOD__VAND(t2, MLOD__VGT(t2, zero)));
+        *reach = MLOD__VADD(*t, MLOD__VADD(r, r));
+    }
+    *unsure = u;
+}
+
+/* The plane tests of sub-projection fs in lanes (x, r and reach from
+   mlod__vsetup): *out gets the lanes surely outside some plane (the
+   sphere misses the sub-projection), *in those surely reaching into every
+   half-space; with track, *inside keeps only the lanes whose sphere lies
+   surely wholly inside every plane (mlod__vstatus_known; else inside is
+   not read). */
+MLOD__FORCE_INLINE void mlod__vplanes(const mlod__fsub *fs, const mlod__vf *x, mlod__vf r, mlod__vf reach, int track,
+                                      mlod__vf *out, mlod__vf *in, mlod__vf *inside)
+{
+    mlod__vf zero = MLOD__VSET(0.0f);
+    int j;
+    *out = zero;
+    *in = MLOD__VEQ(zero, zero);
+    for (j = 0; j < fs->plane_count; j++) {
+        const float *p = fs->planes[j];
+        mlod__vf a0 = MLOD__VMUL(MLOD__VSET(p[0]), x[0]), a1 = MLOD__VMUL(MLOD__VSET(p[1]), x[1]);
+        mlod__vf a2 = MLOD__VMUL(MLOD__VSET(p[2]), x[2]), a3 = MLOD__VMUL(MLOD__VSET(p[3]), r);
+        mlod__vf centre = MLOD__VADD(MLOD__VADD(a0, a1), a2);
+        mlod__vf v = MLOD__VSUB(MLOD__VADD(centre, a3), MLOD__VSET(p[4]));
+        mlod__vf m = MLOD__VADD(MLOD__VMUL(MLOD__VSET(fs->slope[j]), reach), MLOD__VSET(fs->err[j]));
+        *out = MLOD__VOR(*out, MLOD__VLT(v, MLOD__VSUB(zero, m)));
+        *in = MLOD__VAND(*in, MLOD__VGT(v, m));
+        if (track) *inside = MLOD__VAND(*inside, MLOD__VGT(MLOD__VSUB(MLOD__VSUB(centre, a3), MLOD__VSET(p[4])), m));
+    }
+}
+
+MLOD__FORCE_INLINE mlod__vf mlod__vstatus_known(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone,
+                                              mlod__vf leaf, int known, int track, mlod__vf *inside)
+{
+    mlod__vf x[3], r = sphere[3], d2, t, twice = MLOD__VADD(r, r), reach, unsure, none, culled, coarse, small;
+    mlod__vf zero = MLOD__VSET(0.0f), all = MLOD__VEQ(zero, zero);
+    int s;
+    mlod__vsetup(fv, sphere, x, &d2, &t, &reach, &unsure);
+    none = all;
+    coarse = zero;
+    small = all;
+    *inside = track ? all : zero;
+    for (s = 0; s < fv->sub_count; s++) {
+        const mlod__fsub *fs = &fv->subs[s];
+        mlod__vf out = zero, in = all, xw, lhs, rhs, ok;
+        if (!known) mlod__vplanes(fs, x, r, reach, track && s == 0, &out, &in, inside);
+        /* a sub-projection neither surely reached nor surely missed */
+        unsure = MLOD__VOR(unsure, MLOD__VANDNOT(MLOD__VOR(out, in), all));
+        none = MLOD__VAND(none, out);
+        xw = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x[0], MLOD__VSET(fs->w[0])), MLOD__VMUL(x[1], MLOD__VSET(fs->w[1]))),
+                        MLOD__VMUL(x[2], MLOD__VSET(fs->w[2])));
+        if (fs->kind == MLOD_VIEW_PERSPECTIVE) {
+            mlod__vf near_side = MLOD__VSUB(xw, r);
+            ok = MLOD__VAND(MLOD__VGT(near_side, zero),
+                            MLOD__VGE(MLOD__VMUL(MLOD__VMUL(MLOD__VSET(256.0f), near_side), near_side), d2));
+            lhs = MLOD__VMUL(twice, t);
+            rhs = MLOD__VMUL(near_side, MLOD__VADD(xw, r));
+        } else if (fs->kind == MLOD_VIEW_PARABOLOID) {
+            rhs = MLOD__VADD(xw, t);
+            ok = MLOD__VAND(MLOD__VGT(rhs, zero), MLOD__VGE(MLOD__VMUL(MLOD__VMUL(MLOD__VSET(256.0f), rhs), rhs), d2));
+            lhs = twice;
+        } else {
+            ok = all;
+            lhs = twice;
+            rhs = MLOD__VSET(1.0f);
+        }
+        /* over reached sub-projections: one surely too large makes the
+           node coarse, all surely small enough make it drawn */
+        coarse = MLOD__VOR(coarse, MLOD__VAND(MLOD__VAND(in, ok), MLOD__VGT(MLOD__VMUL(lhs, MLOD__VSET(fs->invalid)), rhs)));
+        small = MLOD__VAND(small, MLOD__VOR(out, MLOD__VAND(ok, MLOD__VLE(MLOD__VMUL(lhs, MLOD__VSET(fs->valid)), rhs))));
+    }
+    culled = none;
+    if (cone) {
+        mlod__vf back, back_unsure;
+        mlod__vbackfacing(fv, x, t, fv->ortho ? zero : r, cone, &back, &back_unsure);
+        culled = MLOD__VOR(culled, back);
+        unsure = MLOD__VOR(unsure, MLOD__VANDNOT(none, back_unsure));
+    }
+    /* every lane sure of its setup and planes: culled, else coarse (an
+       oversize leaf), else drawn; anything else is unsure (0); the masks
+       exclusive, so or selects */
+    coarse = MLOD__VANDNOT(culled, coarse);
+    small = MLOD__VANDNOT(MLOD__VOR(culled, coarse), small);
+    if (track && !known) *inside = MLOD__VANDNOT(unsure, *inside);
+    return MLOD__VANDNOT(unsure,
+                         MLOD__VOR(MLOD__VOR(MLOD__VAND(culled, MLOD__VSET((float)MLOD_STATUS_CULLED)),
+                                             MLOD__VAND(small, MLOD__VSET((float)MLOD_STATUS_DRAWN))),
+                                   MLOD__VAND(coarse, MLOD__VOR(MLOD__VAND(leaf, MLOD__VSET((float)MLOD_STATUS_OVERSIZE)),
+                                                                MLOD__VANDNOT(leaf, MLOD__VSET((float)MLOD_STATUS_COARSE))))));
+}
+
+MLOD__FORCE_INLINE mlod__vf mlod__vstatus(const mlod__fview *fv, const mlod__vf *sphere, const mlod__vf *cone, mlod__vf leaf)
+{
+    mlod__vf inside;
+    return mlod__vstatus_known(fv, sphere, cone, leaf, 0, 0, &inside);
+}
+
+/* The lanes of status codes that the filter left undecided (0), as bits. */
+static uint32_t mlod__vundecided(mlod__vf codes) { return (uint32_t)MLOD__VBITS(MLOD__VEQ(codes, MLOD__VSET(0.0f))); }
+#endif
+#if defined(MLOD__NO_FMA_TARGET) && defined(MLOD__VLANES) /* (a region with no function: refused) */
+#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
+#endif
+
+
+#ifdef MLOD__VLANES
+/* The index of the lowest set bit of x (x != 0). */
+static uint32_t mlod__lowest_bit(uint32_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return (uint32_t)__builtin_ctz(x);
+#else
+    uint32_t i = 0;
+    while (!(x >> i & 1u)) i++;
+    return i;
+#endif
+}
+#endif
+
+
+/* The statuses of nodes[0 .. count - 1] into status[] (the float filter
+   in vector lanes where the build has them, the exact path where it is
+   unsure). */
+#define MLOD__LIST_AHEAD 16u
+#ifdef MLOD__VLANES
+/* The exact path for the lanes the vector filter left undecided (status
+   0): lane l is nodes[l], its status out[l]; lanes `valid` and above are
+   padding. */
+static void mlod__settle_lanes(const mlod__pview *pv, const mlod_tree *tree, mlod__vf codes, const uint32_t *nodes,
+                               uint32_t valid, double epsilon, uint8_t *out)
+{
+    uint32_t undecided = mlod__vundecided(codes), l;
+    if (valid < MLOD__VLANES) undecided &= (1u << valid) - 1u;
+    for (; undecided; undecided &= undecided - 1u) {
+        l = mlod__lowest_bit(undecided);
+        out[l] = mlod__classify_exact(pv, tree, nodes[l], epsilon);
+    }
+}
+#endif
+
+#if defined(MLOD__NO_FMA_TARGET) && defined(MLOD__VLANES)
+#pragma clang attribute pop
+#endif
+
+#ifdef MLOD__VLANES
+/* Whether flags[0 .. n - 1] are all set. */
+static int mlod__all_set(const uint8_t *flags, uint32_t n)
+{
+    uint32_t i, all = 1;
+    for (i = 0; i < n; i++) all &= flags[i];
+    return (int)all;
+}
+
+/* mlod__classify_list's vector path with the float filter fv: pv's own,
+   or a copy whose counts are constants (mlod__fast_fixed), for which the
+   compiler unrolls the plane loops and keeps the view's constants in
+   registers across groups. */
+MLOD__FORCE_INLINE void mlod__classify_lanes(const mlod__fview *fv, const mlod__pview *pv, const mlod_tree *tree,
+                                             const uint32_t *nodes, uint32_t count, double epsilon, uint8_t *status,
+                                             const uint8_t *known, uint8_t *inside)
+{
+    const int cones = fv->backfaces && tree->cones, planes = mlod__known_planes(fv);
+    uint32_t i;
+    for (i = 0; i < count; i += MLOD__VLANES) {
+        uint32_t pad[MLOD__VLANES], l, valid = count - i < MLOD__VLANES ? count - i : MLOD__VLANES;
+        const uint32_t *lanes = nodes + i;
+        uint8_t part[MLOD__VLANES], *out = valid == MLOD__VLANES ? status + i : part;
+        mlod__vf sphere[4], cone[4], codes, in, leaf;
+        int all_known = planes && known != NULL && mlod__all_set(known + i, valid);
+        if (valid < MLOD__VLANES) { /* the last group: padded with its last node */
+            for (l = 0; l < MLOD__VLANES; l++) pad[l] = nodes[i + (l < valid ? l : valid - 1)];
+            lanes = pad;
+        } else if (i + MLOD__VLANES + MLOD__LIST_AHEAD <= count) { /* rows a few groups on, for the loads to overlap */
+            for (l = 0; l < MLOD__VLANES; l++) {
+                MLOD__PREFETCH(tree->spheres + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
+                if (cones) MLOD__PREFETCH(tree->cones + 4 * (size_t)nodes[i + l + MLOD__LIST_AHEAD]);
+            }
+        }
+        mlod__vload(tree->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+        if (cones) mlod__vload(tree->cones, lanes, &cone[0], &cone[1], &cone[2], &cone[3]);
+        leaf = mlod__vleaf(lanes, tree->leaf_count - 1);
+        /* two calls, each with its own constant: the plane loop compiled out of one */
+        codes = all_known ? mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 1, 1, &in)
+                          : mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 0, planes, &in);
+        if (inside) {
+            uint8_t flags[MLOD__VLANES];
+            mlod__vbytes(MLOD__VAND(in, MLOD__VSET(1.0f)), valid == MLOD__VLANES ? inside + i : flags);
+            if (valid < MLOD__VLANES) memcpy(inside + i, flags, valid);
+        }
+        /* statuses stored as bytes at once (they are hard to predict:
+           no branch per lane); an undecided lane (rare) takes the
+           exact path */
+        mlod__vbytes(codes, out);
+        if (mlod__vundecided(codes)) mlod__settle_lanes(pv, tree, codes, lanes, valid, epsilon, out);
+        if (out == part) memcpy(status + i, part, valid);
+    }
+}
+
+
+/* The view's shape; for one of the fixed shapes, *fixed gets a copy of its
+   float filter (its one sub-projection; the caller writes the counts as
+   constants, see MLOD__FIX), a local of the caller, out of reach of the
+   statuses it stores. */
+MLOD__FORCE_INLINE int mlod__fast_fixed(const mlod__pview *pv, mlod__fview *fixed)
+{
+    const mlod__fview *f = &pv->fast;
+    int shape = MLOD__SHAPE_OTHER;
+    if (f->sub_count == 1 && !f->ortho && f->float_eye) {
+        if (f->subs[0].kind == MLOD_VIEW_PARABOLOID && f->subs[0].plane_count == 1) shape = MLOD__SHAPE_PARABOLOID;
+        if (f->subs[0].kind == MLOD_VIEW_PERSPECTIVE && f->subs[0].plane_count == 6) shape = MLOD__SHAPE_PERSPECTIVE;
+    }
+    if (shape != MLOD__SHAPE_OTHER) memcpy(fixed, f, offsetof(mlod__fview, subs) + sizeof(mlod__fsub));
+    return shape;
+}
+
+/* Write the fixed shape's counts and flags into the copy as constants,
+   just before the call that inlines the filter. */
+#define MLOD__FIX(fixed, kind_, planes)                                                                                \
+    ((fixed).sub_count = 1, (fixed).ortho = 0, (fixed).float_eye = 1, (fixed).subs[0].kind = (kind_),                  \
+     (fixed).subs[0].plane_count = (planes))
+
+/* The vector paths of mlod__classify_list and mlod__classify_children,
+   for the view's shape (MLOD__BY_SHAPE: fn, mlod__classify_lanes or
+   mlod__classify_pairs, with the view's filter fixed for its shape, else
+   its own).  Not inlined into the cut's code: where that is
+   built for a target without FMA (MLOD__NO_FMA_TARGET), these keep the
+   caller's target, as the vector filter they inline does. */
+#define MLOD__BY_SHAPE(fn, pv, ...)                                                                                    \
+    do {                                                                                                               \
+        mlod__fview fixed_;                                                                                            \
+        switch (mlod__fast_fixed(pv, &fixed_)) {                                                                       \
+        case MLOD__SHAPE_PARABOLOID:                                                                                   \
+            MLOD__FIX(fixed_, MLOD_VIEW_PARABOLOID, 1);                                                                \
+            fn(&fixed_, pv, __VA_ARGS__);                                                                              \
+            break;                                                                                                     \
+        case MLOD__SHAPE_PERSPECTIVE:                                                                                  \
+            MLOD__FIX(fixed_, MLOD_VIEW_PERSPECTIVE, 6);                                                               \
+            fn(&fixed_, pv, __VA_ARGS__);                                                                              \
+            break;                                                                                                     \
+        default:                                                                                                       \
+            fn(&(pv)->fast, pv, __VA_ARGS__);                                                                          \
+        }                                                                                                              \
+    } while (0)
+
+static void mlod__classify_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
+                                  double epsilon, uint8_t *status, const uint8_t *known, uint8_t *inside)
+{
+    MLOD__BY_SHAPE(mlod__classify_lanes, pv, tree, nodes, count, epsilon, status, known, inside);
+}
+
+#ifdef MLOD__VPAIRS
+/* mlod__classify_children's vector path with the float filter fv (as
+   mlod__classify_lanes): a pair's rows are adjacent, one load each,
+   MLOD__VPAIRS pairs a vector. */
+MLOD__FORCE_INLINE void mlod__classify_pairs(const mlod__fview *fv, const mlod__pview *pv, const mlod_tree *tree,
+                                             const uint32_t *parents, uint32_t count, double epsilon, uint8_t *status,
+                                             const uint8_t *known, uint8_t *inside)
+{
+    const int cones = fv->backfaces && tree->cones, planes = mlod__known_planes(fv);
+    uint32_t i;
+    for (i = 0; i < count; i += MLOD__VPAIRS) {
+        uint32_t pad[MLOD__VPAIRS], lanes[2 * MLOD__VPAIRS], l, valid = count - i < MLOD__VPAIRS ? count - i : MLOD__VPAIRS;
+        const uint32_t *group = parents + i;
+        uint8_t part[2 * MLOD__VPAIRS], lane_status[2 * MLOD__VPAIRS];
+        mlod__vf sphere[4], cone[4], codes, in, leaf;
+        int all_known = planes && known != NULL && mlod__all_set(known + i, valid);
+        if (valid < MLOD__VPAIRS) {
+            for (l = 0; l < MLOD__VPAIRS; l++) pad[l] = parents[i + (l < valid ? l : valid - 1)];
+            group = pad;
+        }
+        mlod__vload_pairs(tree->spheres, group, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+        if (cones) mlod__vload_pairs(tree->cones, group, &cone[0], &cone[1], &cone[2], &cone[3]);
+        leaf = mlod__vleaf_pairs(group, tree->leaf_count - 1);
+        codes = all_known ? mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 1, 1, &in)
+                          : mlod__vstatus_known(fv, sphere, cones ? cone : NULL, leaf, 0, planes, &in);
+        if (inside) { /* in the order of the statuses: each parent's left child, then its right one */
+            uint8_t flags[2 * MLOD__VPAIRS];
+            mlod__vbytes_pairs(MLOD__VAND(in, MLOD__VSET(1.0f)), valid == MLOD__VPAIRS ? inside + 2 * i : flags);
+            if (valid < MLOD__VPAIRS) memcpy(inside + 2 * i, flags, 2 * valid);
+        }
+        mlod__vbytes_pairs(codes, valid == MLOD__VPAIRS ? status + 2 * i : part);
+        if (mlod__vundecided(codes)) { /* rare: lanes the filter left undecided */
+            for (l = 0; l < MLOD__VPAIRS; l++) {
+                lanes[l] = 2 * group[l] + 1;
+                lanes[MLOD__VPAIRS + l] = 2 * group[l] + 2;
+            }
+            mlod__vbytes(codes, lane_status);
+            mlod__settle_lanes(pv, tree, codes, lanes, 2 * MLOD__VPAIRS, epsilon, lane_status);
+            for (l = 0; l < valid; l++) {
+                uint8_t *to = valid == MLOD__VPAIRS ? status + 2 * (i + l) : part + 2 * l;
+                to[0] = lane_status[l];
+                to[1] = lane_status[MLOD__VPAIRS + l];
+            }
+        }
+        if (valid < MLOD__VPAIRS) memcpy(status + 2 * i, part, 2 * valid);
+    }
+}
+
+static void mlod__classify_pairs_vector(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *parents,
+                                        uint32_t count, double epsilon, uint8_t *status, const uint8_t *known,
+                                        uint8_t *inside)
+{
+    MLOD__BY_SHAPE(mlod__classify_pairs, pv, tree, parents, count, epsilon, status, known, inside);
+}
+#endif
+#endif
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
+#endif
+
+/* mlod__classify_list with, per node, whether it is known to lie inside
+   every plane of the view's one sub-projection (known, NULL: none), and
+   into inside[] (NULL: not wanted) whether it surely does (known, or
+   proved by the vector filter; 0 where unsure, or without lanes). */
+MLOD__FORCE_INLINE void mlod__classify_known(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes,
+                                             uint32_t count, double epsilon, uint8_t *status, const uint8_t *known,
+                                             uint8_t *inside)
+{
+    uint32_t i;
+#ifdef MLOD__VLANES
+    if (pv->fast.ok) {
+        mlod__classify_vector(pv, tree, nodes, count, epsilon, status, known, inside);
+        return;
+    }
+#endif
+    for (i = 0; i < count; i++) status[i] = mlod__classify(pv, tree, nodes[i], epsilon);
+    if (inside) memset(inside, 0, count);
+    (void)known;
+}
+
+static void mlod__classify_list(const mlod__pview *pv, const mlod_tree *tree, const uint32_t *nodes, uint32_t count,
+                                double epsilon, uint8_t *status)
+{
+    MLOD__LANES_REDIRECT(mlod__classify_list, (pv, tree, nodes, count, epsilon, status));
+    mlod__classify_known(pv, tree, nodes, count, epsilon, status, NULL, NULL);
+}
+
+#if (defined(MLOD__VLANES) && MLOD__VLANES > MLOD__BATCH_PAD) || (defined(MLOD__VPAIRS) && MLOD__VPAIRS > MLOD__BATCH_PAD)
+#error "manylods.h: MLOD__BATCH_PAD must hold a vector's lanes"
+#endif
+
+#ifdef MLOD__VLANES
+/* Pad items[0 .. count) (count > 0) up to a multiple of `multiple` by
+   repeating its last item, and flags[] (NULL: none) alike; the caller's
+   arrays have the room.  Returns the padded count: whole vectors for the
+   lanes, whose extra statuses nobody reads. */
+static uint32_t mlod__pad_last(uint32_t *items, uint8_t *flags, uint32_t count, uint32_t multiple)
+{
+    uint32_t padded = count;
+    for (; padded % multiple; padded++) {
+        items[padded] = items[count - 1];
+        if (flags) flags[padded] = flags[count - 1];
+    }
+    return padded;
+}
+#endif
+
+/* The statuses of the children 2p + 1 and 2p + 2 of each of the count
+   (<= MLOD__BATCH) parents p, into status[2i] and status[2i + 1]; known[i]:
+   parent i surely lies inside every plane (mlod__classify_known), and so
+   its children; their own such flags into inside[2i], inside[2i + 1].
+   The vector paths take whole vectors: parents[] and known[] have room
+   for MLOD__BATCH_PAD more entries, status[] and inside[] for 2
+   MLOD__BATCH_PAD more, which the lanes past the batch fill (padding
+   with the last parent, whose statuses the caller does not read: no
+   partial vector, whose extra copies cost a small batch more than a
+   whole one). */
+static void mlod__classify_children(const mlod__pview *pv, const mlod_tree *tree, uint32_t *parents,
+                                                uint32_t count, double epsilon, uint8_t *status, uint8_t *known,
+                                                uint8_t *inside)
+{
+    uint32_t children[2 * (MLOD__BATCH + MLOD__BATCH_PAD)], i, padded = 2 * count;
+    uint8_t child_known[2 * (MLOD__BATCH + MLOD__BATCH_PAD)];
+    MLOD__LANES_REDIRECT(mlod__classify_children, (pv, tree, parents, count, epsilon, status, known, inside));
+    for (i = 0; i < count; i++) { /* ask for every pair's rows first: their loads overlap */
+        MLOD__PREFETCH(tree->spheres + 8 * (size_t)parents[i] + 4);
+        if (tree->cones) MLOD__PREFETCH(tree->cones + 8 * (size_t)parents[i] + 4);
+    }
+#ifdef MLOD__VPAIRS
+    if (pv->fast.ok) {
+        padded = mlod__pad_last(parents, known, count, MLOD__VPAIRS);
+        mlod__classify_pairs_vector(pv, tree, parents, padded, epsilon, status, known, inside);
+        return;
+    }
+#endif
+    for (i = 0; i < count; i++) {
+        children[2 * i] = 2 * parents[i] + 1;
+        children[2 * i + 1] = 2 * parents[i] + 2;
+    }
+    if (known)
+        for (i = 0; i < count; i++) child_known[2 * i] = child_known[2 * i + 1] = known[i];
+#ifdef MLOD__VLANES
+    if (pv->fast.ok) padded = mlod__pad_last(children, known ? child_known : NULL, padded, MLOD__VLANES);
+#endif
+    mlod__classify_known(pv, tree, children, padded, epsilon, status, known ? child_known : NULL, inside);
+}
+
+#ifndef MLOD__VLANES
+/* The filter for one sphere in sub-projection f at disc scale ds > 0
+   (mlod_atlas.disc_scale): where the disc is small for sure, box[k *
+   stride], k = 0 .. 5 = the bounds xl, xh, yl, yh of its centre and rl, rh
+   of its radius times ds (the box the caller hands to mlod__disc_decide),
+   else NAN. */
+static void mlod__fast_disc(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *sphere, float ds, float *box,
+                            size_t stride)
+{
+    int k;
+    const float u = MLOD__DISC_U, widen = 1.0f + 1.0f / 256.0f;
+    float x0 = sphere[0] - fd->eye[0], x1 = sphere[1] - fd->eye[1], x2 = sphere[2] - fd->eye[2], r = sphere[3];
+    float d2 = x0 * x0 + x1 * x1 + x2 * x2, d = sqrtf(d2);
+    float a = (x0 * f->right[0] + x1 * f->right[1] + x2 * f->right[2]) / d;
+    float b = (x0 * f->up[0] + x1 * f->up[1] + x2 * f->up[2]) / d;
+    float c = (x0 * f->forward[0] + x1 * f->forward[1] + x2 * f->forward[2]) / d;
+    float rho = r / d, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo, g, e_g, R, e_R;
+    float X, Y, e_X, e_Y, q_hi, q_lo, e_q;
+    const float e_s = 42.0f * u;
+    /* |x|^2 in [2^-100, 2^100]: no product that counts rounds below the
+       normal floats (whose error is absolute) or overflows */
+    if (!(d2 >= 7.88860905e-31f && d2 <= 1.26765060e30f)) goto unsure;
+    if (!(rho + 7.0f * u * rho <= 0.5f)) goto unsure; /* also d = 0 or not finite */
+    st = sqrtf(a * a + b * b);
+    if (!(st > 40.0f * u)) goto unsure;
+    cb = sqrtf(1.0f - rho * rho);
+    s_hi = st * cb + c * rho;
+    c_hi = c * cb - st * rho;
+    s_lo = st * cb - c * rho;
+    c_lo = c * cb + st * rho;
+    dx = a / st;
+    dy = b / st;
+    e_dir = 33.0f * u / (st - 20.0f * u) + u;
+    /* the denominators: 1 + cos (paraboloid, tan of half the angle) or
+       cos (perspective), each at least 1/8 */
+    q_hi = f->kind == MLOD_VIEW_PARABOLOID ? 1.0f + c_hi : c_hi;
+    q_lo = f->kind == MLOD_VIEW_PARABOLOID ? 1.0f + c_lo : c_lo;
+    e_q = f->kind == MLOD_VIEW_PARABOLOID ? 44.0f * u : e_s;
+    if (!(q_hi >= 0.125f && q_lo >= 0.125f)) goto unsure;
+    if (f->kind == MLOD_VIEW_PARABOLOID && !(s_hi > e_s || c_hi > e_s)) goto unsure;
+    hi = s_hi / q_hi;
+    lo = s_lo / q_lo;
+    e_hi = (e_s + fabsf(hi) * e_q) / (q_hi - e_q) + u * fabsf(hi);
+    e_lo = (e_s + fabsf(lo) * e_q) / (q_lo - e_q) + u * fabsf(lo);
+    if (f->kind == MLOD_VIEW_PARABOLOID) {
+        float k, e_k, mx, my, e_mx, e_my, nx, ny;
+        k = 0.5f * (hi + lo);
+        e_k = 0.5f * (e_hi + e_lo) + u * fabsf(k);
+        mx = k * dx;
+        my = k * dy;
+        e_mx = fabsf(k) * e_dir + fabsf(dx) * e_k + e_k * e_dir + u * fabsf(mx);
+        e_my = fabsf(k) * e_dir + fabsf(dy) * e_k + e_k * e_dir + u * fabsf(my);
+        nx = 1.0f + mx;
+        ny = 1.0f - my;
+        X = f->x0 + f->half_w * nx;
+        Y = f->y0 + f->half_h * ny;
+        e_X = f->half_w * (e_mx + u * fabsf(nx)) + u * fabsf(f->half_w * nx) + u * fabsf(X);
+        e_Y = f->half_h * (e_my + u * fabsf(ny)) + u * fabsf(f->half_h * ny) + u * fabsf(Y);
+    } else {
+        float kk, e_kk;
+        kk = f->half_scale * (hi + lo);
+        e_kk = f->half_scale * (e_hi + e_lo + u * fabsf(hi + lo)) + 2.0f * u * fabsf(kk);
+        X = f->x0 + kk * dx;
+        Y = f->y0 + kk * -dy;
+        e_X = fabsf(kk) * e_dir + fabsf(dx) * e_kk + e_kk * e_dir + u * fabsf(kk * dx) + u * fabsf(X);
+        e_Y = fabsf(kk) * e_dir + fabsf(dy) * e_kk + e_kk * e_dir + u * fabsf(kk * dy) + u * fabsf(Y);
+    }
+    g = hi - lo;
+    e_g = e_hi + e_lo + u * fabsf(g);
+    R = f->half_scale * g;
+    e_R = f->half_scale * e_g + 2.0f * u * fabsf(R);
+    /* small: R ds < 0.5 - 2^-30 for the double path too */
+    if (!((R + e_R * widen) * ds <= (float)(MLOD__SMALL_DISC * (1.0 - 1.0 / 1048576.0)))) goto unsure;
+    e_X = e_X * widen + 2.0f * u * fabsf(X); /* and the rounding of X +- e_X below */
+    e_Y = e_Y * widen + 2.0f * u * fabsf(Y);
+    box[0] = X - e_X;
+    box[stride] = X + e_X;
+    box[2 * stride] = Y - e_Y;
+    box[3 * stride] = Y + e_Y;
+    box[4 * stride] = (R - e_R * widen) * ds;
+    box[5 * stride] = (R + e_R * widen) * ds;
+    return;
+unsure:
+    for (k = 0; k < 6; k++) box[k * stride] = NAN;
+}
+
+static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres, const uint32_t *nodes,
+                             uint32_t count, float ds, float *box, size_t stride)
+{
+    uint32_t i;
+    for (i = 0; i < count; i++) mlod__fast_disc(fd, f, spheres + 4 * (size_t)nodes[i], ds, box + i, stride);
+}
+#endif
+
+#ifdef MLOD__VLANES
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute pop
+#endif
+/* mlod__fast_disc for the spheres of nodes[0 .. MLOD__VLANES - 1], in
+   vector lanes, step for step as it (the same bounds): for lane l,
+   box[k * stride + l], k = 0 .. 5 = the bounds xl, xh, yl, yh of its
+   disc's centre and rl, rh of its radius times ds, or NAN where the node
+   must take the double path (the box the caller hands to
+   mlod__disc_decide). */
+static void mlod__fast_disc_lanes(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres,
+                                  const uint32_t *nodes, float ds, float *box, size_t stride)
+{
+#define MLOD__VABS(v) MLOD__VANDNOT(MLOD__VSET(-0.0f), v)
+#define MLOD__VDOT(v) MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET((v)[0])), MLOD__VMUL(x1, MLOD__VSET((v)[1]))), \
+                             MLOD__VMUL(x2, MLOD__VSET((v)[2])))
+    const float uf = MLOD__DISC_U;
+    const mlod__vf u = MLOD__VSET(uf), one = MLOD__VSET(1.0f), widen = MLOD__VSET(1.0f + 1.0f / 256.0f);
+    const mlod__vf e_s = MLOD__VSET(42.0f * uf), two_u = MLOD__VSET(2.0f * uf);
+    mlod__vf x0, x1, x2, r, d, a, b, c, rho, st, cb, s_hi, c_hi, s_lo, c_lo, dx, dy, e_dir, hi, lo, e_hi, e_lo;
+    mlod__vf q_hi, q_lo, e_q;
+    mlod__vf g, e_g, R, e_R, X, Y, e_X, e_Y, ok, nan = MLOD__VSET(NAN);
+    mlod__vload(spheres, nodes, &x0, &x1, &x2, &r);
+    x0 = MLOD__VSUB(x0, MLOD__VSET(fd->eye[0]));
+    x1 = MLOD__VSUB(x1, MLOD__VSET(fd->eye[1]));
+    x2 = MLOD__VSUB(x2, MLOD__VSET(fd->eye[2]));
+    d = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)), MLOD__VMUL(x2, x2)); /* |x|^2 first */
+    ok = MLOD__VAND(MLOD__VGE(d, MLOD__VSET(7.88860905e-31f)), MLOD__VLE(d, MLOD__VSET(1.26765060e30f)));
+    d = MLOD__VSQRT(d);
+    a = MLOD__VDIV(MLOD__VDOT(f->right), d);
+    b = MLOD__VDIV(MLOD__VDOT(f->up), d);
+    c = MLOD__VDIV(MLOD__VDOT(f->forward), d);
+    rho = MLOD__VDIV(r, d);
+    ok = MLOD__VAND(ok, MLOD__VLE(MLOD__VADD(rho, MLOD__VMUL(MLOD__VSET(7.0f * uf), rho)), MLOD__VSET(0.5f)));
+    st = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(a, a), MLOD__VMUL(b, b)));
+    ok = MLOD__VAND(ok, MLOD__VGT(st, MLOD__VSET(40.0f * uf)));
+    cb = MLOD__VSQRT(MLOD__VSUB(one, MLOD__VMUL(rho, rho)));
+    s_hi = MLOD__VADD(MLOD__VMUL(st, cb), MLOD__VMUL(c, rho));
+    c_hi = MLOD__VSUB(MLOD__VMUL(c, cb), MLOD__VMUL(st, rho));
+    s_lo = MLOD__VSUB(MLOD__VMUL(st, cb), MLOD__VMUL(c, rho));
+    c_lo = MLOD__VADD(MLOD__VMUL(c, cb), MLOD__VMUL(st, rho));
+    dx = MLOD__VDIV(a, st);
+    dy = MLOD__VDIV(b, st);
+    e_dir = MLOD__VADD(MLOD__VDIV(MLOD__VSET(33.0f * uf), MLOD__VSUB(st, MLOD__VSET(20.0f * uf))), u);
+    /* the denominators: 1 + cos (paraboloid, tan of half the angle) or
+       cos (perspective), each at least 1/8 */
+    if (f->kind == MLOD_VIEW_PARABOLOID) {
+        q_hi = MLOD__VADD(one, c_hi);
+        q_lo = MLOD__VADD(one, c_lo);
+        e_q = MLOD__VSET(44.0f * uf);
+        ok = MLOD__VAND(ok, MLOD__VOR(MLOD__VGT(s_hi, e_s), MLOD__VGT(c_hi, e_s)));
+    } else {
+        q_hi = c_hi;
+        q_lo = c_lo;
+        e_q = e_s;
+    }
+    ok = MLOD__VAND(ok, MLOD__VAND(MLOD__VGE(q_hi, MLOD__VSET(0.125f)), MLOD__VGE(q_lo, MLOD__VSET(0.125f))));
+    hi = MLOD__VDIV(s_hi, q_hi);
+    lo = MLOD__VDIV(s_lo, q_lo);
+    e_hi = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(hi), e_q)), MLOD__VSUB(q_hi, e_q)),
+                      MLOD__VMUL(u, MLOD__VABS(hi)));
+    e_lo = MLOD__VADD(MLOD__VDIV(MLOD__VADD(e_s, MLOD__VMUL(MLOD__VABS(lo), e_q)), MLOD__VSUB(q_lo, e_q)),
+                      MLOD__VMUL(u, MLOD__VABS(lo)));
+    if (f->kind == MLOD_VIEW_PARABOLOID) {
+        mlod__vf k, e_k, mx, my, e_mx, e_my, nx, ny, hw = MLOD__VSET(f->half_w), hh = MLOD__VSET(f->half_h);
+        k = MLOD__VMUL(MLOD__VSET(0.5f), MLOD__VADD(hi, lo));
+        e_k = MLOD__VADD(MLOD__VMUL(MLOD__VSET(0.5f), MLOD__VADD(e_hi, e_lo)), MLOD__VMUL(u, MLOD__VABS(k)));
+        mx = MLOD__VMUL(k, dx);
+        my = MLOD__VMUL(k, dy);
+        e_mx = MLOD__VADD(MLOD__VADD(MLOD__VMUL(MLOD__VABS(k), e_dir), MLOD__VMUL(MLOD__VABS(dx), e_k)),
+                          MLOD__VADD(MLOD__VMUL(e_k, e_dir), MLOD__VMUL(u, MLOD__VABS(mx))));
+        e_my = MLOD__VADD(MLOD__VADD(MLOD__VMUL(MLOD__VABS(k), e_dir), MLOD__VMUL(MLOD__VABS(dy), e_k)),
+                          MLOD__VADD(MLOD__VMUL(e_k, e_dir), MLOD__VMUL(u, MLOD__VABS(my))));
+        nx = MLOD__VADD(one, mx);
+        ny = MLOD__VSUB(one, my);
+        X = MLOD__VADD(MLOD__VSET(f->x0), MLOD__VMUL(hw, nx));
+        Y = MLOD__VADD(MLOD__VSET(f->y0), MLOD__VMUL(hh, ny));
+        e_X = MLOD__VADD(MLOD__VMUL(hw, MLOD__VADD(e_mx, MLOD__VMUL(u, MLOD__VABS(nx)))),
+                         MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(MLOD__VMUL(hw, nx)), MLOD__VABS(X))));
+        e_Y = MLOD__VADD(MLOD__VMUL(hh, MLOD__VADD(e_my, MLOD__VMUL(u, MLOD__VABS(ny)))),
+                         MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(MLOD__VMUL(hh, ny)), MLOD__VABS(Y))));
+    } else {
+        mlod__vf hs = MLOD__VSET(f->half_scale), kk, e_kk, sum, px, py;
+        sum = MLOD__VADD(hi, lo);
+        kk = MLOD__VMUL(hs, sum);
+        e_kk = MLOD__VADD(MLOD__VMUL(hs, MLOD__VADD(MLOD__VADD(e_hi, e_lo), MLOD__VMUL(u, MLOD__VABS(sum)))),
+                          MLOD__VMUL(two_u, MLOD__VABS(kk)));
+        px = MLOD__VMUL(kk, dx);
+        py = MLOD__VMUL(kk, dy);
+        X = MLOD__VADD(MLOD__VSET(f->x0), px);
+        Y = MLOD__VSUB(MLOD__VSET(f->y0), py); /* y0 + kk * -dy: the same bits */
+        e_X = MLOD__VADD(MLOD__VADD(MLOD__VMUL(MLOD__VABS(kk), e_dir), MLOD__VMUL(MLOD__VABS(dx), e_kk)),
+                         MLOD__VADD(MLOD__VMUL(e_kk, e_dir), MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(px), MLOD__VABS(X)))));
+        e_Y = MLOD__VADD(MLOD__VADD(MLOD__VMUL(MLOD__VABS(kk), e_dir), MLOD__VMUL(MLOD__VABS(dy), e_kk)),
+                         MLOD__VADD(MLOD__VMUL(e_kk, e_dir), MLOD__VMUL(u, MLOD__VADD(MLOD__VABS(py), MLOD__VABS(Y)))));
+    }
+    g = MLOD__VSUB(hi, lo);
+    e_g = MLOD__VADD(MLOD__VADD(e_hi, e_lo), MLOD__VMUL(u, MLOD__VABS(g)));
+    R = MLOD__VMUL(MLOD__VSET(f->half_scale), g);
+    e_R = MLOD__VADD(MLOD__VMUL(MLOD__VSET(f->half_scale), e_g), MLOD__VMUL(two_u, MLOD__VABS(R)));
+    ok = MLOD__VAND(ok, MLOD__VLE(MLOD__VMUL(MLOD__VADD(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds)),
+                                  MLOD__VSET((float)(MLOD__SMALL_DISC * (1.0 - 1.0 / 1048576.0)))));
+    e_X = MLOD__VADD(MLOD__VMUL(e_X, widen), MLOD__VMUL(two_u, MLOD__VABS(X)));
+    e_Y = MLOD__VADD(MLOD__VMUL(e_Y, widen), MLOD__VMUL(two_u, MLOD__VABS(Y)));
+    /* unsure lanes: a NAN box, which mlod__disc_pixel finds unsure */
+#define MLOD__VKEEP(v) MLOD__VOR(MLOD__VAND(ok, v), MLOD__VANDNOT(ok, nan))
+    MLOD__VSTORE(box, MLOD__VKEEP(MLOD__VSUB(X, e_X)));
+    MLOD__VSTORE(box + stride, MLOD__VKEEP(MLOD__VADD(X, e_X)));
+    MLOD__VSTORE(box + 2 * stride, MLOD__VKEEP(MLOD__VSUB(Y, e_Y)));
+    MLOD__VSTORE(box + 3 * stride, MLOD__VKEEP(MLOD__VADD(Y, e_Y)));
+    MLOD__VSTORE(box + 4 * stride, MLOD__VKEEP(MLOD__VMUL(MLOD__VSUB(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
+    MLOD__VSTORE(box + 5 * stride, MLOD__VKEEP(MLOD__VMUL(MLOD__VADD(R, MLOD__VMUL(e_R, widen)), MLOD__VSET(ds))));
+#undef MLOD__VKEEP
+#undef MLOD__VABS
+#undef MLOD__VDOT
+}
+
+/* The lanes over nodes[0 .. count - 1], count a multiple of MLOD__VLANES. */
+static void mlod__fast_discs(const mlod__fdiscs *fd, const mlod__fdisc *f, const float *spheres, const uint32_t *nodes,
+                             uint32_t count, float ds, float *box, size_t stride)
+{
+    uint32_t i;
+    for (i = 0; i < count; i += MLOD__VLANES) mlod__fast_disc_lanes(fd, f, spheres, nodes + i, ds, box + i, stride);
+}
+
+/* mlod__reached of the spheres of nodes[0 .. MLOD__VLANES - 1] through
+   the view's float filter (pv->fast.ok; mlod__vplanes, the cut's plane
+   tests and margins), as bit l of bits[s]: a sub-projection is reached
+   where the lane is surely within every plane of it, missed where surely
+   outside one.  Returns the lanes in doubt (one sub-projection neither,
+   or a guard failed), whose bits are 0: the exact test's to decide. */
+static unsigned mlod__reached_lanes(const mlod__pview *pv, const float *spheres, const uint32_t *nodes, unsigned *bits)
+{
+    const mlod__fview *fv = &pv->fast;
+    mlod__vf sphere[4], x[3], d2, t, reach, unsure, out, in;
+    unsigned doubt;
+    int s;
+    mlod__vload(spheres, nodes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+    mlod__vsetup(fv, sphere, x, &d2, &t, &reach, &unsure);
+    doubt = (unsigned)MLOD__VBITS(unsure);
+    for (s = 0; s < fv->sub_count; s++) {
+        mlod__vplanes(&fv->subs[s], x, sphere[3], reach, 0, &out, &in, NULL);
+        bits[s] = (unsigned)MLOD__VBITS(in);
+        doubt |= ~(unsigned)MLOD__VBITS(MLOD__VOR(out, in));
+    }
+    for (s = 0; s < fv->sub_count; s++) bits[s] &= ~doubt;
+    return doubt & ((1u << MLOD__VLANES) - 1u);
+}
+
+/* mlod__disc_pixel for the boxes of MLOD__VLANES lanes (box[k * stride +
+   l], k = 0 .. 3), the clip's bounds c[0 .. 3] below 2^24 as floats: bit l
+   of *plot for MLOD__DISC_PLOT, its pixel in col[l] and row[l] (whole
+   numbers), of *none for MLOD__DISC_NONE; in neither, unsure.  As there,
+   the centre's box lies within the clip and xl and xh (yl and yh), xl <=
+   xh, share a column (a row): xh < floor(xl) + 1, xl >= 0. */
+static void mlod__disc_pixels(const float *box, size_t stride, const float *c, float *col, float *row, unsigned *plot,
+                              unsigned *none)
+{
+    mlod__vf xl = MLOD__VLOADU(box), xh = MLOD__VLOADU(box + stride);
+    mlod__vf yl = MLOD__VLOADU(box + 2 * stride), yh = MLOD__VLOADU(box + 3 * stride);
+    mlod__vf c0 = MLOD__VSET(c[0]), c1 = MLOD__VSET(c[1]), c2 = MLOD__VSET(c[2]), c3 = MLOD__VSET(c[3]);
+    mlod__vf one = MLOD__VSET(1.0f), fx, fy, in, out;
+    out = MLOD__VOR(MLOD__VOR(MLOD__VLT(xh, c0), MLOD__VGE(xl, c1)), MLOD__VOR(MLOD__VLT(yh, c2), MLOD__VGE(yl, c3)));
+    in = MLOD__VAND(MLOD__VAND(MLOD__VGE(xl, c0), MLOD__VLT(xh, c1)), MLOD__VAND(MLOD__VGE(yl, c2), MLOD__VLT(yh, c3)));
+    fx = MLOD__VTRUNC(MLOD__VAND(in, xl)); /* (0 outside: within the conversion's range) */
+    fy = MLOD__VTRUNC(MLOD__VAND(in, yl));
+    in = MLOD__VAND(in, MLOD__VAND(MLOD__VLT(xh, MLOD__VADD(fx, one)), MLOD__VLT(yh, MLOD__VADD(fy, one))));
+    MLOD__VSTORE(col, fx);
+    MLOD__VSTORE(row, fy);
+    *plot = (unsigned)MLOD__VBITS(in);
+    *none = (unsigned)MLOD__VBITS(out);
+}
+
+/* mlod__disc_inside for MLOD__VLANES lanes, at the pixels (col[l], row[l])
+   that mlod__disc_pixels found, step for step as it (the same bits): bit l
+   of *in for MLOD__DISC_PLOT, of *out for MLOD__DISC_NONE; in neither,
+   unsure. */
+static void mlod__disc_insides(const float *box, size_t stride, const float *col, const float *row, unsigned *in,
+                               unsigned *out)
+{
+    mlod__vf zero = MLOD__VSET(0.0f), half = MLOD__VSET(0.5f), sign = MLOD__VSET(-0.0f);
+    mlod__vf cx = MLOD__VADD(MLOD__VLOADU(col), half), cy = MLOD__VADD(MLOD__VLOADU(row), half);
+    mlod__vf dx0 = MLOD__VSUB(cx, MLOD__VLOADU(box + stride)), dx1 = MLOD__VSUB(cx, MLOD__VLOADU(box));
+    mlod__vf dy0 = MLOD__VSUB(cy, MLOD__VLOADU(box + 3 * stride)), dy1 = MLOD__VSUB(cy, MLOD__VLOADU(box + 2 * stride));
+    mlod__vf r_lo = MLOD__VLOADU(box + 4 * stride), r_hi = MLOD__VLOADU(box + 5 * stride);
+    mlod__vf ax0 = MLOD__VANDNOT(sign, dx0), ax1 = MLOD__VANDNOT(sign, dx1);
+    mlod__vf ay0 = MLOD__VANDNOT(sign, dy0), ay1 = MLOD__VANDNOT(sign, dy1), m;
+    mlod__vf far_x, far_y, near_x, near_y, far2, near2;
+    m = MLOD__VGT(ax0, ax1);
+    far_x = MLOD__VOR(MLOD__VAND(m, ax0), MLOD__VANDNOT(m, ax1));
+    m = MLOD__VGT(ay0, ay1);
+    far_y = MLOD__VOR(MLOD__VAND(m, ay0), MLOD__VANDNOT(m, ay1));
+    /* dx0 <= dx1: dx0 if it is positive, else -dx1 if that is, else 0 (a sum with a zero: exact) */
+    near_x = MLOD__VADD(MLOD__VAND(MLOD__VGT(dx0, zero), dx0), MLOD__VAND(MLOD__VLT(dx1, zero), MLOD__VSUB(zero, dx1)));
+    near_y = MLOD__VADD(MLOD__VAND(MLOD__VGT(dy0, zero), dy0), MLOD__VAND(MLOD__VLT(dy1, zero), MLOD__VSUB(zero, dy1)));
+    far2 = MLOD__VMUL(MLOD__VADD(MLOD__VMUL(far_x, far_x), MLOD__VMUL(far_y, far_y)),
+                      MLOD__VSET(1.0f + 1.0f / 1048576.0f));
+    near2 = MLOD__VMUL(MLOD__VADD(MLOD__VMUL(near_x, near_x), MLOD__VMUL(near_y, near_y)),
+                       MLOD__VSET(1.0f - 1.0f / 1048576.0f));
+    *in = (unsigned)MLOD__VBITS(MLOD__VLE(far2, MLOD__VMUL(r_lo, r_lo)));
+    *out = (unsigned)MLOD__VBITS(MLOD__VGT(near2, MLOD__VMUL(r_hi, r_hi)));
+}
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
+#endif
+#endif
+
+
+/* mlod__node_distance of nodes[0 .. n) into out, two at a time where the
+   build has double lanes (each lane the same operations in the same order:
+   the same bits). */
+static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, uint32_t n, const double *centre,
+                                 float *out)
+{
+    uint32_t l = 0;
+    MLOD__LANES_REDIRECT(mlod__node_distances, (scene, nodes, n, centre, out));
+#if defined(MLOD__VD) && MLOD__PASS_LEVEL == 3
+    for (; l + 4 <= n; l += 4) { /* four lanes: the rows transposed, each lane's steps as below */
+        __m128 a = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l]);
+        __m128 b = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 1]);
+        __m128 c = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 2]);
+        __m128 d = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 3]);
+        __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b), cd0 = _mm_unpacklo_ps(c, d);
+        __m128 cd1 = _mm_unpackhi_ps(c, d);
+        __m256d x = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movelh_ps(ab0, cd0)), _mm256_set1_pd(centre[0]));
+        __m256d y = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movehl_ps(cd0, ab0)), _mm256_set1_pd(centre[1]));
+        __m256d z = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movelh_ps(ab1, cd1)), _mm256_set1_pd(centre[2]));
+        __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+        _mm_storeu_ps(out + l, _mm256_cvtpd_ps(_mm256_sqrt_pd(sum)));
+    }
+#endif
+#ifdef MLOD__VD
+    for (; l + 2 <= n; l += 2) {
+        const float *a = scene->spheres + 4 * (size_t)nodes[l], *b = scene->spheres + 4 * (size_t)nodes[l + 1];
+        mlod__vd x = MLOD__DSUB(MLOD__DPAIR(a[0], b[0]), MLOD__DSPLAT(centre[0]));
+        mlod__vd y = MLOD__DSUB(MLOD__DPAIR(a[1], b[1]), MLOD__DSPLAT(centre[1]));
+        mlod__vd z = MLOD__DSUB(MLOD__DPAIR(a[2], b[2]), MLOD__DSPLAT(centre[2]));
+        double d[2];
+        MLOD__DSTORE(d, MLOD__DSQRT(MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, x), MLOD__DMUL(y, y)), MLOD__DMUL(z, z))));
+        out[l] = (float)d[0];
+        out[l + 1] = (float)d[1];
+    }
+#endif
+    for (; l < n; l++) out[l] = mlod__node_distance(scene, nodes[l], centre);
+}
+
+#define MLOD__BOX_STRIDE (MLOD__DRAW_CHUNK + 8u) /* room for the padding of the last lanes */
+
+/* Draw nodes[0 .. count - 1] (count <= MLOD__DRAW_CHUNK), each of which
+   reaches sub-projection s, in order, through the band's float filter: a
+   small disc's pixel at once, with the double path's depth computed as it
+   does; the others by the double path.  The same pixels as
+   mlod__image_discs and mlod__raster_disc draw, bit for bit. */
+static void mlod__draw_filtered(const mlod__band *band, const mlod__pview *pv, int s, const uint32_t *nodes,
+                                uint32_t count)
+{
+    const mlod_view_sub *sub = &pv->f.subs[s];
+    const float *spheres = band->tree->spheres;
+    uint32_t clip[4], ids[MLOD__BOX_STRIDE], padded = count, l;
+    float box[6 * MLOD__BOX_STRIDE], depth[MLOD__DRAW_CHUNK];
+    clip[0] = pv->columns[s][0];
+    clip[1] = pv->columns[s][1];
+    clip[2] = pv->rows[s][0] < band->row_begin ? band->row_begin : pv->rows[s][0];
+    clip[3] = pv->rows[s][1] > band->row_end ? band->row_end : pv->rows[s][1];
+    MANYLODS_ASSERT(count > 0 && count <= MLOD__DRAW_CHUNK);
+    memcpy(ids, nodes, count * sizeof *ids);
+#ifdef MLOD__VLANES
+    padded = mlod__pad_last(ids, NULL, count, MLOD__VLANES);
+#endif
+    if (clip[1] <= 16777216u && clip[3] <= 16777216u) /* (the clip's bounds are floats) */
+        mlod__fast_discs(band->fast, &band->fast->subs[s], spheres, ids, padded, band->disc_scale, box, MLOD__BOX_STRIDE);
+    else
+        for (l = 0; l < 6 * MLOD__BOX_STRIDE; l++) box[l] = NAN;
+    if (band->tangent) { /* each small disc's one pixel, if its centre lies in the disc and its ray meets the node */
+        float cols[MLOD__BOX_STRIDE], rows[MLOD__BOX_STRIDE];
+        uint8_t hit[MLOD__DRAW_CHUNK];
+        uint64_t plot = 0, none = 0;
+        l = 0;
+#ifdef MLOD__VLANES
+        if (clip[1] <= 16777216u && clip[3] <= 16777216u) { /* mlod__disc_decide in lanes, strictly */
+            float c[4];
+            unsigned p, q, in, out;
+            for (l = 0; l < 4; l++) c[l] = (float)(int32_t)clip[l];
+            for (l = 0; l < padded; l += MLOD__VLANES) {
+                mlod__disc_pixels(box + l, MLOD__BOX_STRIDE, c, cols + l, rows + l, &p, &q);
+                mlod__disc_insides(box + l, MLOD__BOX_STRIDE, cols + l, rows + l, &in, &out);
+                plot |= (uint64_t)(p & in) << l;
+                none |= (uint64_t)(q | (p & out & ~in)) << l;
+            }
+            l = count;
+        }
+#endif
+        for (; l < count; l++) {
+            uint32_t col = 0, row = 0;
+            int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, 1, clip, &col, &row);
+            plot |= (uint64_t)(code == MLOD__DISC_PLOT) << l;
+            none |= (uint64_t)(code == MLOD__DISC_NONE) << l;
+            cols[l] = (float)col; /* below 2^24 */
+            rows[l] = (float)row;
+        }
+        if (band->mask) /* a patch: a pixel it does not draw is left as it is */
+            for (l = 0; l < count; l++)
+                if ((plot >> l & 1u) && !band->mask[(size_t)rows[l] * band->id_stride + (size_t)cols[l]]) {
+                    plot &= ~((uint64_t)1 << l);
+                    none |= (uint64_t)1 << l;
+                }
+        if (plot) { /* the rays of the discs that plot, together */
+            uint32_t at_lane[MLOD__DRAW_CHUNK], picked[MLOD__DRAW_CHUNK], m = 0;
+            float pc[MLOD__DRAW_CHUNK], pr[MLOD__DRAW_CHUNK];
+            for (l = 0; l < count; l++) {
+                at_lane[m] = l;
+                picked[m] = nodes[l];
+                pc[m] = cols[l];
+                pr[m] = rows[l];
+                m += (uint32_t)(plot >> l) & 1u;
+            }
+            mlod__tangent_hits(pv, s, band->tree, picked, pc, pr, m, band->disc_scale, hit, depth);
+            for (l = 0; l < m; l++) {
+                uint32_t j = at_lane[l];
+                int plane = hit[l] >> 1;
+                float at = plane ? depth[l] : mlod__centre_depth(pv, s, spheres + 4 * (size_t)nodes[j]);
+                mlod__plot_if(band, (uint32_t)rows[j], (uint32_t)cols[j], at, nodes[j], (uint32_t)(plane == 0) | (hit[l] & 1u));
+            }
+        }
+        for (l = 0; l < count; l++)
+            if (!((plot | none) >> l & 1u)) mlod__draw_exact(band, pv, s, nodes + l, 1);
+        return;
+    }
+    /* the double path's depths, as it computes them */
+    if (pv->kind[s] == MLOD_VIEW_PARABOLOID)
+        mlod__node_distances(band->tree, nodes, count, pv->f.eye, depth);
+    else
+        for (l = 0; l < count; l++) {
+            const float *sphere = spheres + 4 * (size_t)nodes[l];
+            double x[3];
+            int k;
+            for (k = 0; k < 3; k++) x[k] = (double)sphere[k] - pv->f.eye[k];
+            depth[l] = (float)(pv->kind[s] == MLOD_VIEW_PERSPECTIVE ? mlod__dot3(x, sub->forward) : mlod__length3(x));
+        }
+#ifdef MLOD__VLANES
+    if (band->disc_scale >= 1.0f && clip[1] <= 16777216u && clip[3] <= 16777216u) {
+        /* mlod__disc_decide in lanes (at disc scale 1 it is mlod__disc_pixel) */
+        float c[4], cols[MLOD__BOX_STRIDE], rows[MLOD__BOX_STRIDE];
+        uint64_t plot = 0, none = 0;
+        unsigned p, q;
+        for (l = 0; l < 4; l++) c[l] = (float)(int32_t)clip[l]; /* below 2^24 (a signed conversion: one instruction) */
+        for (l = 0; l < padded; l += MLOD__VLANES) {
+            mlod__disc_pixels(box + l, MLOD__BOX_STRIDE, c, cols + l, rows + l, &p, &q);
+            plot |= (uint64_t)p << l;
+            none |= (uint64_t)q << l;
+        }
+        for (l = 0; l < count; l++)
+            if (plot >> l & 1u)
+                mlod__plot_if(band, (uint32_t)rows[l], (uint32_t)cols[l], depth[l], nodes[l], 1u);
+            else if (!(none >> l & 1u))
+                mlod__draw_exact(band, pv, s, nodes + l, 1);
+        return;
+    }
+#endif
+    for (l = 0; l < count; l++) {
+        uint32_t col = 0, row = 0;
+        int code = mlod__disc_decide(box + l, MLOD__BOX_STRIDE, band->disc_scale < 1.0f, clip, &col, &row);
+        if (code == MLOD__DISC_PLOT)
+            mlod__plot_if(band, row, col, depth[l], nodes[l], 1u);
+        else if (code == MLOD__DISC_UNSURE)
+            mlod__draw_exact(band, pv, s, nodes + l, 1);
+    }
+}
+
+/* Whether the band draws sub-projection s through its float filter. */
+static int mlod__filtered(const mlod__band *band, int s)
+{
+    return band->fast && band->fast->subs[s].kind && band->disc_scale > 0.0f;
+}
+
+/* Draw n <= MLOD__DRAW_CHUNK nodes into the band, in order, in each
+   sub-projection their spheres reach: through the band's float filter
+   where it has one, else MLOD__LANES images at a time.  (Sub-projections
+   draw into disjoint sub-tiles: each pixel sees its nodes in order.)  A
+   view of one sub-projection draws them all: each drawn node of its cut
+   reaches it (shaders/splat_draw.comp does the same). */
+static void mlod__draw_nodes(const mlod__band *band, const mlod__pview *pv, const uint32_t *nodes, uint32_t n)
+{
+    int s;
+    uint64_t reached[MLOD_VIEW_MAX_SUBS]; /* bit l of reached[s]: nodes[l] reaches sub-projection s */
+    uint32_t l, m, reaching[MLOD__DRAW_CHUNK];
+    const uint32_t *ids = nodes;
+    MLOD__LANES_REDIRECT(mlod__draw_nodes, (band, pv, nodes, n));
+    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK && MLOD__DRAW_CHUNK <= 64);
+    if (pv->sub_count > 1 && n > 0) {
+        uint64_t exact = n == 64 ? ~(uint64_t)0 : ((uint64_t)1 << n) - 1u; /* the nodes the exact test takes */
+        memset(reached, 0, sizeof reached);
+#ifdef MLOD__VLANES
+        if (pv->fast.ok) { /* the view's float filter, MLOD__VLANES nodes at a time */
+            uint32_t padded[MLOD__DRAW_CHUNK + MLOD__VLANES];
+            unsigned bits[MLOD_VIEW_MAX_SUBS], lanes = (1u << MLOD__VLANES) - 1u;
+            memcpy(padded, nodes, n * sizeof *padded);
+            mlod__pad_last(padded, NULL, n, MLOD__VLANES);
+            for (l = 0; l < n; l += MLOD__VLANES) {
+                uint64_t doubt = mlod__reached_lanes(pv, band->tree->spheres, padded + l, bits);
+                exact = (exact & ~((uint64_t)lanes << l)) | (exact & doubt << l);
+                for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)bits[s] << l;
+            }
+        }
+#endif
+        for (l = 0; l < n; l++)
+            if (exact >> l & 1u) {
+                unsigned r = mlod__reached(pv, band->tree->spheres + 4 * (size_t)nodes[l]);
+                for (s = 0; s < pv->sub_count; s++) reached[s] |= (uint64_t)(r >> s & 1u) << l;
+            }
+    }
+    for (s = 0; s < pv->sub_count; s++) {
+        m = n;
+        if (pv->sub_count > 1) { /* the nodes reaching s, in order, without a branch */
+            for (l = m = 0; l < n; l++) {
+                reaching[m] = nodes[l];
+                m += (uint32_t)(reached[s] >> l) & 1u;
+            }
+            ids = reaching;
+        }
+        if (m == 0) continue;
+        if (mlod__filtered(band, s))
+            mlod__draw_filtered(band, pv, s, ids, m);
+        else
+            mlod__draw_exact(band, pv, s, ids, m);
+    }
+}
+
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute pop
+#endif
+#ifdef MLOD__VLANES
+/* mask ? a : b, lane by lane */
+MLOD__FORCE_INLINE mlod__vf mlod__vselect(mlod__vf mask, mlod__vf a, mlod__vf b)
+{
+    return MLOD__VOR(MLOD__VAND(mask, a), MLOD__VANDNOT(mask, b));
+}
+
+/* the lesser of a and b, lane by lane */
+MLOD__FORCE_INLINE mlod__vf mlod__vmin(mlod__vf a, mlod__vf b) { return mlod__vselect(MLOD__VLT(a, b), a, b); }
+
+/* the lanes where v's sign is sure: v > m or v < -m (neg_m = -m) */
+MLOD__FORCE_INLINE mlod__vf mlod__vclear(mlod__vf v, mlod__vf m, mlod__vf neg_m)
+{
+    return MLOD__VOR(MLOD__VGT(v, m), MLOD__VLT(v, neg_m));
+}
+
+/* (x0, x1, x2).a, lane by lane */
+MLOD__FORCE_INLINE mlod__vf mlod__vdot(mlod__vf x0, mlod__vf x1, mlod__vf x2, const float *a)
+{
+    return MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(a[0])), MLOD__VMUL(x1, MLOD__VSET(a[1]))),
+                      MLOD__VMUL(x2, MLOD__VSET(a[2])));
+}
+
+/* The lanes' codes (see above) for scene spheres (rows x, y, z, r) of
+   inner view node vn (vn->fast set), leaf the lanes whose scene node is a
+   leaf. */
+MLOD__FORCE_INLINE mlod__vf mlod__vpair(const mlod__vnode *vn, const mlod__vf *sphere, mlod__vf leaf)
+{
+    const mlod__vf zero = MLOD__VSET(0.0f), all = MLOD__VEQ(zero, zero), big = MLOD__VSET(1.26765060e30f); /* 2^100 */
+    const mlod__vf m_rel = MLOD__VSET(1.0f / 16384.0f), sixty4 = MLOD__VSET(64.0f);
+    mlod__vf x0 = MLOD__VSUB(sphere[0], MLOD__VSET(vn->fc[0])), x1 = MLOD__VSUB(sphere[1], MLOD__VSET(vn->fc[1]));
+    mlod__vf x2 = MLOD__VSUB(sphere[2], MLOD__VSET(vn->fc[2])), r = sphere[3], rho = MLOD__VSET(vn->frho);
+    mlod__vf d2, d, U, M, nM, M2, UU, g, dg, Y, C, okY, unsure, cull, keep, kr, p;
+    mlod__vf cl, cr, Yc, tc, near_ok, near_none, rp, rm, ln, small, large;
+    mlod__vf fa, fr, Yf, tf, far_ok, far_none, ep, em, lf, some, none, cmin_large, cmin_small;
+    mlod__vf cm, cmr, Ym, tm, P, m_ok, m_inf, least, lhs, move_ok, move_bad, go, code, live;
+    int h;
+    d2 = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)), MLOD__VMUL(x2, x2));
+    d = MLOD__VSQRT(d2);
+    g = MLOD__VADD(r, rho);
+    U = MLOD__VADD(d, g);
+    UU = MLOD__VMUL(U, U);
+    M = MLOD__VMUL(U, m_rel);
+    nM = MLOD__VSUB(zero, M);
+    M2 = MLOD__VMUL(M, U);
+    unsure =
+        MLOD__VANDNOT(MLOD__VAND(MLOD__VGE(d2, MLOD__VSET(9.09494702e-13f)), MLOD__VLE(d2, MLOD__VSET(1.15292150e18f))),
+                      all); /* 2^-40, 2^60 */
+    unsure = MLOD__VOR(unsure,
+                       MLOD__VANDNOT(MLOD__VOR(MLOD__VEQ(r, zero), MLOD__VAND(MLOD__VGE(r, MLOD__VSET(9.31322575e-10f)),
+                                                                              MLOD__VLE(r, MLOD__VSET(1.07374182e9f)))),
+                                     all)); /* 2^-30, 2^30 */
+    /* Y = (d - g)(d + g) = d^2 cos^2 b, b = asin(g / d); C = d cos b */
+    dg = MLOD__VSUB(d, g);
+    Y = MLOD__VMUL(dg, MLOD__VADD(d, g));
+    okY = MLOD__VAND(MLOD__VGT(dg, M), MLOD__VGE(MLOD__VMUL(sixty4, Y), UU));
+    C = MLOD__VSQRT(MLOD__VAND(Y, MLOD__VGT(Y, zero)));
+    /* the views' cone: culled when cos phi < cos(A + b) with sin(A + b) > 0;
+       never where an eye is in the grown sphere (d < g) or A + b passes pi */
+    cull = zero;
+    keep = all;
+    p = zero; /* x.a, a the views' unit axis: the cone's test and the floor's */
+    if (vn->fast_cull == 1 || vn->fslab)
+        p = MLOD__VADD(MLOD__VADD(MLOD__VMUL(x0, MLOD__VSET(vn->faxis[0])), MLOD__VMUL(x1, MLOD__VSET(vn->faxis[1]))),
+                       MLOD__VMUL(x2, MLOD__VSET(vn->faxis[2])));
+    if (vn->fast_cull == 1) {
+        mlod__vf ca = MLOD__VSET(vn->fcos_reach), sa = MLOD__VSET(vn->fsin_reach);
+        mlod__vf q = MLOD__VSUB(MLOD__VMUL(ca, C), MLOD__VMUL(sa, g)),
+                 sp = MLOD__VADD(MLOD__VMUL(sa, C), MLOD__VMUL(ca, g));
+        cull = MLOD__VAND(okY, MLOD__VAND(MLOD__VLT(p, MLOD__VSUB(q, M)), MLOD__VGT(sp, M)));
+        keep =
+            MLOD__VOR(MLOD__VLT(dg, nM), MLOD__VAND(okY, MLOD__VOR(MLOD__VGT(p, MLOD__VADD(q, M)), MLOD__VLT(sp, nM))));
+    }
+    if (vn->fslab) { /* outside every eye's field of view (mlod__below_floor), decided (U + |floor|) 2^-14 clear */
+        mlod__vf fl = MLOD__VSET(vn->ffloor), high, clear;
+        high = MLOD__VADD(MLOD__VSUB(MLOD__VADD(p, r), fl), MLOD__VMUL(U, MLOD__VSET(vn->fspread)));
+        clear = MLOD__VMUL(MLOD__VADD(U, MLOD__VSET(fabsf(vn->ffloor))), m_rel);
+        cull = MLOD__VOR(cull, MLOD__VLT(high, MLOD__VSUB(zero, clear)));
+        keep = MLOD__VAND(keep, MLOD__VGT(high, clear));
+    }
+    if (vn->fast == 2) { /* a group or a leaf: as the cut for one view at its centre, coarse splits the
+                            scene node, any other status draws (vn->pv's filter proves it), but culled
+                            culls at a leaf (its map's view culls nothing here: back faces are not culled) */
+        mlod__vf st = mlod__vstatus(&vn->pv.fast, sphere, NULL, leaf);
+        code = MLOD__VAND(MLOD__VGT(st, zero), mlod__vselect(MLOD__VEQ(st, MLOD__VSET((float)MLOD_STATUS_COARSE)),
+                                                             MLOD__VSET(4.0f), MLOD__VSET(2.0f)));
+        if (vn->leaf) code = mlod__vselect(MLOD__VEQ(st, MLOD__VSET((float)MLOD_STATUS_CULLED)), MLOD__VSET(1.0f), code);
+    } else {
+        /* x.w: x2 in the default frame, else along the maps' float axis (mlod__map_coords) */
+        mlod__vf xw = vn->fframe ? mlod__vdot(x0, x1, x2, vn->fframe[2]) : x2;
+        /* cmax: the nearest eye, closest = d - rho; t_closest = sqrt((closest - r)(closest + r)); over the
+           halves some eye reaches (x.w + rho + r >= 0), the least x.w - rho + t_closest (0 when not positive) */
+        kr = MLOD__VMUL(MLOD__VSET(vn->fkc), r);
+        cl = MLOD__VSUB(d, rho);
+        cr = MLOD__VSUB(cl, r);
+        Yc = MLOD__VMUL(cr, MLOD__VADD(cl, r));
+        near_ok = MLOD__VAND(MLOD__VGT(cr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yc), UU));
+        near_none = MLOD__VLT(cr, nM); /* every eye within the sphere's reach: cmax infinite */
+        tc = MLOD__VSQRT(MLOD__VAND(Yc, MLOD__VGT(Yc, zero)));
+        rp = MLOD__VADD(xw, g);
+        rm = MLOD__VSUB(g, xw);
+        ln = mlod__vselect(MLOD__VGT(rp, M), MLOD__VADD(MLOD__VSUB(xw, rho), tc), big);
+        ln = mlod__vmin(ln, mlod__vselect(MLOD__VGT(rm, M), MLOD__VSUB(MLOD__VSUB(tc, xw), rho), big));
+        /* each half's reach decided, and the least denominator unless cmax is surely infinite */
+        go = MLOD__VAND(mlod__vclear(rp, M, nM), mlod__vclear(rm, M, nM));
+        small = MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VAND(MLOD__VGT(ln, M), MLOD__VLE(kr, MLOD__VSUB(ln, M))));
+        large = MLOD__VOR(near_none, MLOD__VAND(MLOD__VAND(go, near_ok), MLOD__VGE(kr, MLOD__VADD(ln, M))));
+        /* what the lanes that count (kept, not culled) need below: the far side for inner scene nodes
+           surely too large for the nearest eye, the motion for leaves and for nodes surely small enough;
+           what no such lane needs is left out (its masks 0: no lane reads them) */
+        live = MLOD__VANDNOT(cull, keep);
+        cmin_large = cmin_small = move_ok = move_bad = zero;
+        if (MLOD__VBITS(MLOD__VANDNOT(leaf, MLOD__VAND(large, live)))) {
+            /* cmin: the farthest eye, farthest = d + rho; over the halves every eye reaches (x.w - rho + r >= 0),
+               the least x.w + rho + t_farthest; no such half: cmin = 0 */
+            fa = MLOD__VADD(d, rho);
+            fr = MLOD__VSUB(fa, r);
+            Yf = MLOD__VMUL(fr, MLOD__VADD(fa, r));
+            far_ok = MLOD__VAND(MLOD__VGT(fr, M), MLOD__VGE(MLOD__VMUL(sixty4, Yf), UU));
+            far_none = MLOD__VLT(fr, nM);
+            tf = MLOD__VSQRT(MLOD__VAND(Yf, MLOD__VGT(Yf, zero)));
+            ep = MLOD__VADD(MLOD__VSUB(xw, rho), r);
+            em = MLOD__VSUB(MLOD__VSUB(r, rho), xw);
+            lf = mlod__vselect(MLOD__VGT(ep, M), MLOD__VADD(MLOD__VADD(xw, rho), tf), big);
+            lf = mlod__vmin(lf, mlod__vselect(MLOD__VGT(em, M), MLOD__VSUB(MLOD__VADD(rho, tf), xw), big));
+            some = MLOD__VOR(MLOD__VGT(ep, M), MLOD__VGT(em, M));
+            none = MLOD__VAND(MLOD__VLT(ep, nM), MLOD__VLT(em, nM));
+            go = MLOD__VAND(mlod__vclear(ep, M, nM), mlod__vclear(em, M, nM));
+            cmin_large =
+                MLOD__VOR(far_none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(some, MLOD__VGE(kr, MLOD__VADD(lf, M)))));
+            cmin_small = MLOD__VOR(
+                none, MLOD__VAND(MLOD__VAND(go, far_ok), MLOD__VAND(MLOD__VGT(lf, M), MLOD__VLE(kr, MLOD__VSUB(lf, M)))));
+        }
+        if (vn->frho == 0.0f) { /* every eye at the centre: no motion */
+            move_ok = all;
+        } else if (MLOD__VBITS(MLOD__VAND(MLOD__VOR(leaf, small), live))) {
+            /* motion (mlod__ball_motion): S turn / least (1 + cos(phi + b)) <= delta, turn = rho / t_m, t_m =
+               sqrt((d - r - rho)(d - r + rho)), compared as S rho d^2 / delta <= (least d^2 (1 + cos)) t_m; with
+               P = d sin phi (the length across w), per half (+-x.w): d^2 cos(phi - b) = x.w C + P g (the half
+               counts unless below 0), d^2 cos(phi + b) = x.w C - P g, d^2 sin(phi + b) = P C + x.w g */
+            cm = MLOD__VSUB(d, r);
+            cmr = MLOD__VSUB(cm, rho);
+            Ym = MLOD__VMUL(cmr, MLOD__VADD(cm, rho));
+            m_ok = MLOD__VAND(okY, MLOD__VAND(MLOD__VGT(cmr, M), MLOD__VGE(MLOD__VMUL(sixty4, Ym), UU)));
+            m_inf = MLOD__VOR(MLOD__VLT(cmr, nM), MLOD__VLT(dg, nM));
+            tm = MLOD__VSQRT(MLOD__VAND(Ym, MLOD__VGT(Ym, zero)));
+            if (vn->fframe) { /* across the maps' float axes */
+                mlod__vf xa = mlod__vdot(x0, x1, x2, vn->fframe[0]), xb = mlod__vdot(x0, x1, x2, vn->fframe[1]);
+                P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(xa, xa), MLOD__VMUL(xb, xb)));
+            } else {
+                P = MLOD__VSQRT(MLOD__VADD(MLOD__VMUL(x0, x0), MLOD__VMUL(x1, x1)));
+            }
+            least = big;
+            for (h = 0; h < 2; h++) {
+                mlod__vf xh = h ? MLOD__VSUB(zero, xw) : xw, xc = MLOD__VMUL(xh, C), pg = MLOD__VMUL(P, g);
+                mlod__vf e = MLOD__VADD(xc, pg), cs = MLOD__VSUB(xc, pg),
+                         sn = MLOD__VADD(MLOD__VMUL(P, C), MLOD__VMUL(xh, g));
+                mlod__vf one = MLOD__VADD(d2, cs), counts = MLOD__VGT(e, M2), mM2 = MLOD__VSUB(zero, M2);
+                mlod__vf bounded = MLOD__VAND(MLOD__VGT(one, M2), MLOD__VOR(MLOD__VGT(cs, M2), MLOD__VGT(sn, M2)));
+                mlod__vf endless = MLOD__VOR(MLOD__VLT(one, mM2), MLOD__VAND(MLOD__VLT(cs, mM2), MLOD__VLT(sn, mM2)));
+                m_ok = MLOD__VAND(m_ok, MLOD__VOR(counts, MLOD__VLT(e, mM2)));
+                m_ok = MLOD__VANDNOT(MLOD__VANDNOT(MLOD__VOR(bounded, endless), counts), m_ok);
+                m_inf = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, counts), endless));
+                least = mlod__vmin(least, mlod__vselect(MLOD__VAND(counts, bounded), one, big));
+            }
+            lhs = MLOD__VMUL(MLOD__VMUL(MLOD__VSET(vn->fkm), rho), d2);
+            move_ok = MLOD__VANDNOT(
+                m_inf, MLOD__VAND(m_ok, MLOD__VOR(MLOD__VEQ(least, big),
+                                                  MLOD__VLE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VSUB(least, M2), tm),
+                                                                            MLOD__VSET(1.0f - 1.0f / 8192.0f))))));
+            move_ok = MLOD__VAND(move_ok, MLOD__VGT(least, M2));
+            move_bad = MLOD__VOR(m_inf, MLOD__VAND(MLOD__VAND(m_ok, MLOD__VLT(least, big)),
+                                                   MLOD__VGE(lhs, MLOD__VMUL(MLOD__VMUL(MLOD__VADD(least, M2), tm),
+                                                                             MLOD__VSET(1.0f + 1.0f / 8192.0f)))));
+        }
+        /* scene leaves: drawn (2, 3) or split view (5) by the motion; others: small and moving little drawn,
+           small and moving split view, large split scene (4) or middle (6), which splits the view (5) at once
+           where r < rho: the children's spheres lie within the node's (the tree's containment), so their
+           radii are r or less, and mlod__larger_splits would split the view without reading them */
+        code = mlod__vselect(leaf,
+                             mlod__vselect(move_bad, MLOD__VSET(5.0f),
+                                           MLOD__VAND(move_ok, MLOD__VOR(MLOD__VAND(small, MLOD__VSET(2.0f)),
+                                                                         MLOD__VAND(large, MLOD__VSET(3.0f))))),
+                             MLOD__VOR(MLOD__VAND(small, mlod__vselect(move_bad, MLOD__VSET(5.0f),
+                                                                       MLOD__VAND(move_ok, MLOD__VSET(2.0f)))),
+                                       MLOD__VAND(large, MLOD__VOR(MLOD__VAND(cmin_large, MLOD__VSET(4.0f)),
+                                                                   MLOD__VAND(cmin_small, mlod__vselect(MLOD__VLT(r, rho), MLOD__VSET(5.0f),
+                                                                                                        MLOD__VSET(6.0f)))))));
+    }
+    /* culled first; not surely kept: unsure */
+    code = mlod__vselect(keep, code, zero);
+    code = mlod__vselect(cull, MLOD__VSET(1.0f), code);
+    return MLOD__VANDNOT(unsure, code);
+}
+
+/* One batch of lanes of mlod__pair_actions: mlod__vpair's codes as
+   actions, code - 1 (0 where unsure), in MLOD__VLANES bytes at out;
+   returns the lanes whose code is unsure or middle, bit l for lane l. */
+MLOD__FORCE_INLINE uint32_t mlod__vpair_bytes(const mlod__vnode *vn, const mlod__vf *sphere, mlod__vf leaf, uint8_t *out)
+{
+    const mlod__vf zero = MLOD__VSET(0.0f), code = mlod__vpair(vn, sphere, leaf);
+    mlod__vbytes(MLOD__VAND(MLOD__VSUB(code, MLOD__VSET(1.0f)), MLOD__VGT(code, zero)), out);
+    return (uint32_t)MLOD__VBITS(MLOD__VOR(MLOD__VEQ(code, zero), MLOD__VEQ(code, MLOD__VSET((float)MLOD__VPAIR_MIDDLE))));
+}
+#endif
+#ifdef MLOD__NO_FMA_TARGET
+#pragma clang attribute push(__attribute__((target("no-fma"))), apply_to = function)
+#endif
+
+#ifdef MLOD__VLANES
+/* A lane's code as an action (mlod__pair_action's), the children's radii
+   deciding MLOD__VPAIR_MIDDLE; -1 for 0 (unsure). */
+static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uint32_t s, uint8_t code)
+{
+    if (code == 0) return -1;
+    if (code != MLOD__VPAIR_MIDDLE) return code - 1;
+    return mlod__larger_splits(scene, s, vn->radius); /* an inner scene node: leaves are never middle */
+}
+#endif
+
+
+/* The actions of n <= MLOD__MV_ROOM pairs (scene nodes nodes[0 .. n) with
+   view node vn), as mlod__pair_action gives them: through the float
+   filter where vn has one and the build has lanes, the exact path for the
+   lanes it leaves.  The lanes' codes as actions first, for all the pairs
+   (whole batches: actions has room for n rounded up to MLOD__VLANES), the
+   codes that need more listed; then those few (the children's radii, or
+   the exact path): the batches of a level depend on no other
+   pair's answer, and no loop over all the pairs branches on one pair's
+   code.  (What that buys was measured: a tenth with 8 lanes, which the
+   descent now fills; about nothing with 4, where the filter's arithmetic
+   sets the pace, CHANGELOG.md, 0.1.0.) */
+static void mlod__pair_actions(const mlod__mv_job *job, const mlod__vnode *vn, const uint32_t *nodes, uint32_t n,
+                               uint8_t *actions)
+{
+    uint32_t i = 0;
+    MLOD__LANES_REDIRECT(mlod__pair_actions, (job, vn, nodes, n, actions));
+#ifdef MLOD__VLANES
+    if (vn->fast && n > 1) {
+        const mlod_tree *scene = job->scene;
+        uint32_t lanes[MLOD__VLANES], l, m = 0;
+        uint16_t odd[MLOD__MV_ROOM];
+        MANYLODS_ASSERT(n <= MLOD__MV_ROOM);
+        for (; i < n; i += MLOD__VLANES) { /* the actions (code - 1; 0 where unsure), the unsure and middle listed */
+            mlod__vf sphere[4];
+            uint32_t k = n - i < MLOD__VLANES ? n - i : MLOD__VLANES, bits;
+            for (l = 0; l < MLOD__VLANES; l++) lanes[l] = nodes[i + (l < k ? l : 0)];
+            mlod__vload(scene->spheres, lanes, &sphere[0], &sphere[1], &sphere[2], &sphere[3]);
+            bits = mlod__vpair_bytes(vn, sphere, mlod__vleaf(lanes, scene->leaf_count - 1), actions + i);
+            for (l = 0; l < k; l++) {
+                odd[m] = (uint16_t)(i + l);
+                m += bits >> l & 1u;
+            }
+        }
+        for (l = 0; l < m; l++) {
+            uint32_t k = odd[l];
+            int a = mlod__vpair_action(scene, vn, nodes[k],
+                                       actions[k] == MLOD__VPAIR_MIDDLE - 1 ? (uint8_t)MLOD__VPAIR_MIDDLE : 0);
+            actions[k] = (uint8_t)(a >= 0 ? a : mlod__pair_action(job, vn, nodes[k]));
+        }
+        return;
+    }
+#endif
+    for (; i < n; i++) actions[i] = (uint8_t)mlod__pair_action(job, vn, nodes[i]);
+}
+
+#undef MLOD__LANES_REDIRECT
+#undef MLOD__IF_AVX2
+#endif /* MLOD__PASS_LEVEL */
 
 /*
 ------------------------------------------------------------------------------

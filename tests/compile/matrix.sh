@@ -300,6 +300,8 @@ entry fp-simd-off "same hash: $CC -O2 -DMANYLODS_NO_SIMD (the scalar filter)" \
 if grep -qw avx2 /proc/cpuinfo 2>/dev/null; then
     entry fp-avx2 "same hash: $CC -O2 -mavx2 (8 lanes)" "fp_same_hash $CC -std=c99 -O2 -mavx2"
 fi
+entry fp-no-avx2 "same hash: $CC -O2 -DMANYLODS_NO_AVX2 (SSE2 lanes, no dispatch)" \
+    "fp_same_hash $CC -std=c99 -O2 -DMANYLODS_NO_AVX2"
 entry cut-simd-off "tests/test_cut.c with -DMANYLODS_NO_SIMD, $CC" \
     "$CC -std=c99 $STRICT -DMANYLODS_NO_SIMD tests/test_cut.c -o $OUT/cut-simd-off $LIBS" "$OUT/cut-simd-off"
 # The cut's planning with a small round budget and segment growth: small trees take the paths of
@@ -335,6 +337,37 @@ entry megaviews-simd-off "tests/test_megaviews.c's pair filter, descent and walk
     "$CC -std=c99 $STRICT -DMANYLODS_NO_SIMD tests/test_megaviews.c -o $OUT/megaviews-simd-off $LIBS" \
     "$OUT/megaviews-simd-off pair_filter descend walks"
 
+# The vector levels chosen at run time (VECTOR LANES): tests/test_simd.c
+# runs each level the build holds and the processor has in one process and
+# compares its cuts, atlases and renders with the scalar level's.  The gcc
+# build (gcc's target pragma) runs in tests/run.sh; here clang's attribute
+# pragma, a build for the processor (its own lanes only) and one without
+# AVX2.  And a copy of the header under another name, which finds itself
+# again only through MANYLODS_SELF.
+entry simd-levels-clang "tests/test_simd.c (every level in one process), $CLANG -O2" \
+    "$CLANG -std=c99 $STRICT tests/test_simd.c -o $OUT/simd-levels-clang $LIBS" "$OUT/simd-levels-clang"
+entry simd-levels-native "tests/test_simd.c with $native (the processor's own lanes and none), $CLANG" \
+    "$CLANG -std=c99 $STRICT $native tests/test_simd.c -o $OUT/simd-levels-native $LIBS" "$OUT/simd-levels-native"
+entry simd-levels-no-avx2 "tests/test_simd.c with -DMANYLODS_NO_AVX2 (SSE2 and none), $CC" \
+    "$CC -std=c99 $STRICT -DMANYLODS_NO_AVX2 tests/test_simd.c -o $OUT/simd-levels-no-avx2 $LIBS" \
+    "$OUT/simd-levels-no-avx2"
+self_tu() { # the implementation from $OUT/self/inc/lod.h (a renamed copy), printing the level in use
+    mkdir -p "$OUT/self/inc" && cp manylods.h "$OUT/self/inc/lod.h" &&
+        printf '#define MANYLODS_IMPLEMENTATION\n#include "lod.h"\n#include <stdio.h>\nint main(void) { printf("%%d\\n", (int)mlod_simd_level()); return 0; }\n' >"$OUT/self/tu.c"
+}
+self_refused() { # without MANYLODS_SELF the copy looks for manylods.h beside it, which is not there
+    if $CC -std=c99 -I"$OUT/self/inc" -c "$OUT/self/tu.c" -o "$OUT/self/tu.o" >"$OUT/self/refused.log" 2>&1; then
+        echo "the renamed copy built without MANYLODS_SELF"
+        return 1
+    fi
+    grep -m1 'manylods: the implementation includes its own file again as MANYLODS_SELF' "$OUT/self/refused.log"
+}
+entry simd-self "a renamed copy of the header (lod.h) with -DMANYLODS_SELF='\"lod.h\"', $CC and $CLANG" \
+    "self_tu" "self_refused" \
+    "$CC -std=c99 $STRICT -I$OUT/self/inc -DMANYLODS_SELF='\"lod.h\"' $OUT/self/tu.c -o $OUT/self/gcc $LIBS" \
+    "$CLANG -std=c99 $STRICT -I$OUT/self/inc -DMANYLODS_SELF='\"lod.h\"' $OUT/self/tu.c -o $OUT/self/clang $LIBS" \
+    "$OUT/self/gcc" "$OUT/self/clang"
+
 # The NEON lanes (AArch64), where an AArch64 cross compiler and qemu are
 # here (tests/deps.sh brings them on x86-64): the same hash with and
 # without them, and test_cut's groups that check the cut and its float
@@ -359,11 +392,14 @@ if command -v aarch64-linux-gnu-gcc >/dev/null 2>&1 && command -v qemu-aarch64 >
     entry neon-megaviews "tests/test_megaviews.c's pair filter and descent for AArch64 (NEON), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_megaviews.c -o $OUT/neon-megaviews $LIBS" \
         "qemu-aarch64 $OUT/neon-megaviews pair_filter descend"
+    entry neon-simd "tests/test_simd.c for AArch64 (NEON and none in one process), under qemu" \
+        "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_simd.c -o $OUT/neon-simd $LIBS" \
+        "qemu-aarch64 $OUT/neon-simd"
     entry f64-aarch64 "tests/test_f64.c for AArch64 (shaders/f64.glsl against AArch64's doubles), under qemu" \
         "aarch64-linux-gnu-gcc -std=c99 $STRICT -static tests/test_f64.c -o $OUT/f64-aarch64 $LIBS" \
         "qemu-aarch64 $OUT/f64-aarch64 300000"
 else
-    echo "  (not run: neon-fp, neon-cut, neon-splat, neon-megaviews, f64-aarch64: no aarch64-linux-gnu-gcc or qemu-aarch64 here)"
+    echo "  (not run: neon-fp, neon-cut, neon-splat, neon-megaviews, neon-simd, f64-aarch64: no aarch64-linux-gnu-gcc or qemu-aarch64 here)"
 fi
 
 # MANYLODS_STATIC: two private copies in one program.
