@@ -114,13 +114,18 @@
 #ifndef BENCH_FLAGS
 #define BENCH_FLAGS "(flags not recorded)"
 #endif
-/* The lanes of the cut's vector float filter in this build (manylods.h
-   picks them from the compiler's flags; THE CUT). */
-#ifdef MLOD__VLANES
-#define BENCH_LANES (MLOD__VLANES == 8 ? "the cut's float filter in 8 lanes (AVX)" : "the cut's float filter in 4 lanes (SSE2)")
-#else
-#define BENCH_LANES "the cut's float filter on scalars (no vector lanes)"
-#endif
+/* The lanes the float filters run in (mlod_simd_level: the build's and
+   the processor's; VECTOR LANES in the manual). */
+#define BENCH_LANES bench_lanes()
+static const char *bench_lanes(void)
+{
+    switch (mlod_simd_level()) {
+    case MLOD_SIMD_AVX2: return "the float filters in 8 lanes (AVX2, chosen at run time)";
+    case MLOD_SIMD_SSE2: return "the float filters in 4 lanes (SSE2)";
+    case MLOD_SIMD_NEON: return "the float filters in 4 lanes (NEON)";
+    default: return "the float filters on scalars (no vector lanes)";
+    }
+}
 
 #include "bench_common.h"
 #include "protocol_single.c"
