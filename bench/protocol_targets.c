@@ -1042,8 +1042,7 @@ static void write_targets(const bench *b, FILE *f, uint32_t n)
                            "no Vulkan rows of both kinds in this run");
         }
         if (vk_emulated_context) {
-            snprintf(anchor, sizeof anchor, "issue 54; mlodvk_context_create with MLODVK_DOUBLES_EMULATED on %s (its "
-                     "pipelines compiled)", vk_emulated_context->note[0] ? vk_emulated_context->note : "lavapipe");
+            snprintf(anchor, sizeof anchor, "issue 54; %s", vk_emulated_context->note);
             target_line(f, "Vulkan: context creation, emulated doubles (issue 54)", ms_text(vk_emulated_context->total_ms),
                         "<= 10 s", anchor, vk_emulated_context->total_ms / 10000.0, NULL);
         } else {
