@@ -12712,9 +12712,9 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #define MLOD__LANES_REDIRECT(name, args) (void)0
 #endif
 
-/* mlod__fast_status on several node-views at once: lanes of 8 floats with
-   AVX (-mavx and later), 4 with SSE2 (every x86-64 compiler) or NEON
-   (AArch64), none otherwise or with MANYLODS_NO_SIMD defined.  Each lane
+/* mlod__fast_status on several node-views at once: lanes of 8 floats in
+   the AVX2 pass, 4 in the SSE2 and NEON passes, none in the scalar one
+   (MLOD__PASS_LEVEL).  Each lane
    proves its status with the same bounds as mlod__fast_status, so a
    decided lane agrees with the exact path; a lane that cannot prove it
    takes the exact path, so every build gives the same cuts bit for bit
@@ -13167,9 +13167,7 @@ static uint32_t mlod__lowest_bit(uint32_t x)
 #endif
 
 
-/* The statuses of nodes[0 .. count - 1] into status[] (the float filter
-   in vector lanes where the build has them, the exact path where it is
-   unsure). */
+/* How many nodes ahead mlod__classify_lanes asks for rows, for the loads to overlap. */
 #define MLOD__LIST_AHEAD 16u
 #ifdef MLOD__VLANES
 /* The exact path for the lanes the vector filter left undecided (status
@@ -14192,7 +14190,7 @@ static int mlod__vpair_action(const mlod_tree *scene, const mlod__vnode *vn, uin
 
 /* The actions of n <= MLOD__MV_ROOM pairs (scene nodes nodes[0 .. n) with
    view node vn), as mlod__pair_action gives them: through the float
-   filter where vn has one and the build has lanes, the exact path for the
+   filter where vn has one and the pass has lanes, the exact path for the
    lanes it leaves.  The lanes' codes as actions first, for all the pairs
    (whole batches: actions has room for n rounded up to MLOD__VLANES), the
    codes that need more listed; then those few (the children's radii, or
