@@ -120,6 +120,7 @@
 static const char *bench_lanes(void)
 {
     switch (mlod_simd_level()) {
+    case MLOD_SIMD_AVX512: return "the float filters in 8 lanes compiled for AVX-512 (chosen at run time)";
     case MLOD_SIMD_AVX2: return "the float filters in 8 lanes (AVX2, chosen at run time)";
     case MLOD_SIMD_SSE2: return "the float filters in 4 lanes (SSE2)";
     case MLOD_SIMD_NEON: return "the float filters in 4 lanes (NEON)";

@@ -1,6 +1,6 @@
 /* tests/test_simd.c - every vector level in one process: mlod_simd_limit
    steps through the levels the build compiled and the processor runs
-   (none, SSE2 or NEON, AVX2), and at each one the cut in every mode, the
+   (none, SSE2 or NEON, AVX2, AVX-512), and at each one the cut in every mode, the
    splat (sphere and tangent discs, whole and half discs), Imperfect Shadow
    Maps and MegaViews must give the bits that the scalar level
    (MLOD_SIMD_NONE: no float lanes, the float filter one node at a time)
@@ -15,13 +15,13 @@
 
 static mlod_pool *simd_pool;
 static mlod_parallel simd_parallel;
-static mlod_simd simd_levels[4];
+static mlod_simd simd_levels[5];
 static int simd_level_count;
 
 static const char *level_name(mlod_simd level)
 {
-    static const char *const names[4] = {"none", "SSE2", "NEON", "AVX2"};
-    return (int)level >= 0 && (int)level < 4 ? names[level] : "?";
+    static const char *const names[5] = {"none", "SSE2", "NEON", "AVX2", "AVX-512"};
+    return (int)level >= 0 && (int)level < 5 ? names[level] : "?";
 }
 
 /* The level the library must pick without a limit: the highest one the
@@ -30,6 +30,9 @@ static mlod_simd expected_best(void)
 {
 #if MLOD__BASE_LEVEL == 1 && MLOD__DISPATCH_AVX2
     __builtin_cpu_init();
+    if (MLOD__DISPATCH_AVX512 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw"))
+        return MLOD_SIMD_AVX512;
     return __builtin_cpu_supports("avx2") ? MLOD_SIMD_AVX2 : MLOD_SIMD_SSE2;
 #else
     return (mlod_simd)MLOD__BASE_LEVEL;
@@ -41,12 +44,12 @@ static void find_levels(void)
 {
     int l, k;
     simd_level_count = 0;
-    for (l = MLOD_SIMD_NONE; l <= MLOD_SIMD_AVX2; l++) {
+    for (l = MLOD_SIMD_NONE; l <= MLOD_SIMD_AVX512; l++) {
         mlod_simd got = mlod_simd_limit((mlod_simd)l);
         for (k = 0; k < simd_level_count && simd_levels[k] != got; k++) continue;
         if (k == simd_level_count) simd_levels[simd_level_count++] = got;
     }
-    mlod_simd_limit(MLOD_SIMD_AVX2);
+    mlod_simd_limit(MLOD_SIMD_AVX512);
 }
 
 static void test_levels(void)
@@ -59,16 +62,18 @@ static void test_levels(void)
           level_name(mlod_simd_level()));
     CHECK(mlod_simd_level() == best, "the level query: %s", level_name(mlod_simd_level()));
     CHECK(mlod_simd_limit((mlod_simd)-5) == MLOD_SIMD_NONE, "a limit below none gives none");
-    for (l = MLOD_SIMD_NONE; l <= MLOD_SIMD_AVX2; l++) {
+    for (l = MLOD_SIMD_NONE; l <= MLOD_SIMD_AVX512; l++) {
         mlod_simd got = mlod_simd_limit((mlod_simd)l);
         CHECK(got <= (mlod_simd)l && got <= best, "limit %s: level %s, at most the limit and the best",
               level_name((mlod_simd)l), level_name(got));
     }
     CHECK(simd_levels[0] == MLOD_SIMD_NONE, "the first level is none");
     CHECK(simd_levels[simd_level_count - 1] == best, "the last level is the best");
-    CHECK(simd_level_count == (MLOD__BASE_LEVEL == 0 ? 1 : best == MLOD_SIMD_AVX2 && MLOD__BASE_LEVEL == 1 ? 3 : 2),
+    CHECK(simd_level_count == (MLOD__BASE_LEVEL == 0 ? 1
+                               : MLOD__BASE_LEVEL == 1 ? (best == MLOD_SIMD_AVX512 ? 4 : best == MLOD_SIMD_AVX2 ? 3 : 2)
+                                                       : 2),
           "levels: %d", simd_level_count);
-    mlod_simd_limit(MLOD_SIMD_AVX2);
+    mlod_simd_limit(MLOD_SIMD_AVX512);
     printf("  levels run:");
     for (k = 0; k < simd_level_count; k++) printf(" %s", level_name(simd_levels[k]));
     printf("\n");
@@ -189,7 +194,7 @@ static void test_cuts(const mlod_tree *tree, const double *c, double R)
             }
             free_saved(&ref);
         }
-    mlod_simd_limit(MLOD_SIMD_AVX2);
+    mlod_simd_limit(MLOD_SIMD_AVX512);
 }
 
 /* An atlas's depths and node ids, equal bit for bit. */
@@ -261,7 +266,7 @@ static void test_splats(const mlod_tree *tree, const double *c, double R)
         mlod_atlas_destroy(ref);
     }
     mlod_cut_destroy(cut);
-    mlod_simd_limit(MLOD_SIMD_AVX2);
+    mlod_simd_limit(MLOD_SIMD_AVX512);
 }
 
 /* MegaViews: lights on the surface's bounding sphere, facing in, rendered
@@ -339,7 +344,7 @@ static void test_megaviews(const mlod_tree *tree, const double *c, double R)
             mlod_atlas_destroy(ref);
         }
     mlod_view_tree_destroy(vt);
-    mlod_simd_limit(MLOD_SIMD_AVX2);
+    mlod_simd_limit(MLOD_SIMD_AVX512);
 }
 
 int main(int argc, char **argv)

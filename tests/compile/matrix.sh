@@ -302,6 +302,8 @@ if grep -qw avx2 /proc/cpuinfo 2>/dev/null; then
 fi
 entry fp-no-avx2 "same hash: $CC -O2 -DMANYLODS_NO_AVX2 (SSE2 lanes, no dispatch)" \
     "fp_same_hash $CC -std=c99 -O2 -DMANYLODS_NO_AVX2"
+entry fp-contract-dispatch "same hash: $CC -O3 -ffp-contract=fast, no -m flags (the lanes chosen at run time)" \
+    "fp_same_hash $CC -std=gnu11 -O3 -ffp-contract=fast" "fp_same_hash $CLANG -std=gnu11 -O3 -ffp-contract=fast"
 entry cut-simd-off "tests/test_cut.c with -DMANYLODS_NO_SIMD, $CC" \
     "$CC -std=c99 $STRICT -DMANYLODS_NO_SIMD tests/test_cut.c -o $OUT/cut-simd-off $LIBS" "$OUT/cut-simd-off"
 # The cut's planning with a small round budget and segment growth: small trees take the paths of
