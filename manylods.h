@@ -2142,8 +2142,9 @@ MANYLODS_DEF mlod_parallel mlod_pool_parallel(mlod_pool *pool);
 #define MLOD__STORE_WORD(p, v) (*(volatile int *)(p) = (v))
 #endif
 
-/* The level in use (-1: not chosen yet) and mlod_simd_limit's limit. */
-static int mlod__simd_in_use = -1, mlod__simd_cap = MLOD_SIMD_AVX512;
+/* The level in use (-1: not chosen yet), mlod_simd_limit's limit and
+   mlod__cpu_level's answer (-1: not asked yet). */
+static int mlod__simd_in_use = -1, mlod__simd_cap = MLOD_SIMD_AVX512, mlod__simd_cpu = -1;
 
 /* The highest dispatched level the processor runs with its OS keeping
    the registers: MLOD_SIMD_AVX512, MLOD_SIMD_AVX2, else 0. */
@@ -2178,8 +2179,9 @@ static int mlod__simd_compiled(int level)
    runs and the limit allows. */
 static int mlod__simd_choose(void)
 {
-    int cap = MLOD__LOAD_WORD(&mlod__simd_cap), best = MLOD__BASE_LEVEL, level;
-    if (MLOD__DISPATCH_AVX2 && mlod__cpu_level() > best) best = mlod__cpu_level();
+    int cap = MLOD__LOAD_WORD(&mlod__simd_cap), cpu = MLOD__LOAD_WORD(&mlod__simd_cpu), best = MLOD__BASE_LEVEL, level;
+    if (cpu < 0) MLOD__STORE_WORD(&mlod__simd_cpu, cpu = mlod__cpu_level()); /* cpuid and xgetbv once */
+    if (cpu > best) best = cpu;
     for (level = cap < best ? cap : best; level > MLOD_SIMD_NONE && !mlod__simd_compiled(level); level--) continue;
     MLOD__STORE_WORD(&mlod__simd_in_use, level);
     return level;
