@@ -182,7 +182,11 @@
      tests/test_simd.c runs every level in one process and compares cuts,
      atlases and renders); MANYLODS_NO_AVX2 leaves the AVX2 lanes out,
      MANYLODS_NO_AVX512 the AVX-512 ones,
-     MANYLODS_NO_SIMD every vector instruction.  Every level computes the
+     MANYLODS_NO_SIMD every vector instruction.  The splat's exact depths
+     of tangent discs and sphere distances run in double lanes beside
+     them: 4 doubles at the AVX2 and AVX-512 levels, 2 at the others
+     (none with MANYLODS_NO_SIMD), each lane the scalar steps in their
+     order.  Every level computes the
      same bits: a lane decides only what the exact path would (THE CUT,
      SPLATTING), so the level is a speed, never a result.  (The lanes
      are written for 4 and 8: AVX-512 runs the 8, not 16.  clang building for FMA without
@@ -8628,91 +8632,12 @@ MLOD__FORCE_INLINE void mlod__vd_pairs(const float *a, const float *b, mlod__vd 
 #endif
 
 /* mlod__tangent_hit for nodes[i] at tile pixel (cols[i], rows[i]) (whole
-   numbers, as floats), i < n <= MLOD__DRAW_CHUNK, in a perspective or paraboloid sub-projection s:
-   bit 0 of hit[i] and depth[i], each node's operations those of
-   mlod__tangent_hit in its order (the same bits), two nodes a vector where
-   the build has double lanes; bit 1 of hit[i]: mlod__has_plane. */
+   numbers, as floats), i < n <= MLOD__DRAW_CHUNK, in a perspective or
+   paraboloid sub-projection s: bit 0 of hit[i] and depth[i]; bit 1 of
+   hit[i]: mlod__has_plane (below, with the vector lanes: VECTOR LANES at
+   the end). */
 static void mlod__tangent_hits(const mlod__pview *pv, int s, const mlod_tree *tree, const uint32_t *nodes,
-                               const float *cols, const float *rows, uint32_t n, float ds, uint8_t *hit, float *depth)
-{
-    uint32_t i = 0;
-    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK &&
-                    (pv->kind[s] == MLOD_VIEW_PARABOLOID || pv->kind[s] == MLOD_VIEW_PERSPECTIVE));
-#ifdef MLOD__VD
-    if (n >= 2) { /* two nodes a vector, each lane mlod__tangent_hit's steps; the divisions in a pass of their own */
-        const mlod_view_sub *sub = &pv->f.subs[s];
-        const int parab = pv->kind[s] == MLOD_VIEW_PARABOLOID;
-        const double mid_x = sub->x + 0.5 * sub->width, mid_y = sub->y + 0.5 * sub->height, inv = 1.0 / sub->scale;
-        const double inv_w = 2.0 / sub->width, inv_h = 2.0 / sub->height;
-        int k;
-        mlod__vd vd[3][MLOD__DRAW_CHUNK / 2], vx[3][MLOD__DRAW_CHUNK / 2], vq[MLOD__DRAW_CHUNK / 2];
-        mlod__vd vt[MLOD__DRAW_CHUNK / 2], vr[MLOD__DRAW_CHUNK / 2];
-        uint8_t vp[MLOD__DRAW_CHUNK];
-        uint32_t j, pairs = n / 2;
-        for (j = 0; j < pairs; j++) {
-            const float *sa = tree->spheres + 4 * (size_t)nodes[2 * j], *sb = tree->spheres + 4 * (size_t)nodes[2 * j + 1];
-            const float *ca = tree->cones + 4 * (size_t)nodes[2 * j], *cb = tree->cones + 4 * (size_t)nodes[2 * j + 1];
-            mlod__vd cx = MLOD__DADD(MLOD__DPAIR(cols[2 * j], cols[2 * j + 1]), MLOD__DSPLAT(0.5));
-            mlod__vd cy = MLOD__DADD(MLOD__DPAIR(rows[2 * j], rows[2 * j + 1]), MLOD__DSPLAT(0.5));
-            mlod__vd px, py, d[3], x[3], sp[4], cp[4];
-            if (parab) {
-                mlod__vd x2, y2, w;
-                px = MLOD__DSUB(MLOD__DMUL(MLOD__DSUB(cx, MLOD__DSPLAT(sub->x)), MLOD__DSPLAT(inv_w)), MLOD__DSPLAT(1.0));
-                py = MLOD__DSUB(MLOD__DSPLAT(1.0), MLOD__DMUL(MLOD__DSUB(cy, MLOD__DSPLAT(sub->y)), MLOD__DSPLAT(inv_h)));
-                vq[j] = MLOD__DADD(MLOD__DMUL(px, px), MLOD__DMUL(py, py));
-                x2 = MLOD__DADD(px, px); /* 2 px, exact: (2 px) r as the scalar 2.0 * px * r */
-                y2 = MLOD__DADD(py, py);
-                w = MLOD__DSUB(MLOD__DSPLAT(1.0), vq[j]);
-                for (k = 0; k < 3; k++)
-                    d[k] = MLOD__DADD(MLOD__DADD(MLOD__DMUL(x2, MLOD__DSPLAT(sub->right[k])),
-                                                 MLOD__DMUL(y2, MLOD__DSPLAT(sub->up[k]))),
-                                      MLOD__DMUL(w, MLOD__DSPLAT(sub->forward[k])));
-            } else {
-                px = MLOD__DMUL(MLOD__DSUB(cx, MLOD__DSPLAT(mid_x)), MLOD__DSPLAT(inv));
-                py = MLOD__DMUL(MLOD__DSUB(MLOD__DSPLAT(mid_y), cy), MLOD__DSPLAT(inv));
-                vq[j] = MLOD__DSPLAT(0.0);
-                for (k = 0; k < 3; k++)
-                    d[k] = MLOD__DADD(MLOD__DADD(MLOD__DSPLAT(sub->forward[k]), MLOD__DMUL(px, MLOD__DSPLAT(sub->right[k]))),
-                                      MLOD__DMUL(py, MLOD__DSPLAT(sub->up[k])));
-            }
-            mlod__vd_pairs(sa, sb, sp);
-            mlod__vd_pairs(ca, cb, cp);
-            vp[2 * j] = (uint8_t)((double)ca[3] < MLOD__PI);
-            vp[2 * j + 1] = (uint8_t)((double)cb[3] < MLOD__PI);
-            for (k = 0; k < 3; k++) {
-                x[k] = MLOD__DSUB(sp[k], MLOD__DSPLAT(pv->f.eye[k]));
-                vd[k][j] = d[k];
-                vx[k][j] = x[k];
-            }
-            vr[j] = MLOD__DMUL(sp[3], MLOD__DSPLAT((double)ds));
-            /* t = n.(x - o) / n.dir with o = 0 (x - 0 is x, bit for bit) */
-            vt[j] = MLOD__DDIV(MLOD__DADD(MLOD__DADD(MLOD__DMUL(cp[0], x[0]), MLOD__DMUL(cp[1], x[1])), MLOD__DMUL(cp[2], x[2])),
-                               MLOD__DADD(MLOD__DADD(MLOD__DMUL(cp[0], d[0]), MLOD__DMUL(cp[1], d[1])), MLOD__DMUL(cp[2], d[2])));
-        }
-        for (j = 0; j < pairs; j++) {
-            mlod__vd e[3];
-            double tq[2], tt[2], te[2], tr[2];
-            /* (0 + t d) - x: without the 0, only a zero's sign may differ, which the square drops */
-            for (k = 0; k < 3; k++) e[k] = MLOD__DSUB(MLOD__DMUL(vt[j], vd[k][j]), vx[k][j]);
-            MLOD__DSTORE(te, MLOD__DADD(MLOD__DADD(MLOD__DMUL(e[0], e[0]), MLOD__DMUL(e[1], e[1])), MLOD__DMUL(e[2], e[2])));
-            MLOD__DSTORE(tr, vr[j]);
-            MLOD__DSTORE(tt, vt[j]);
-            MLOD__DSTORE(tq, vq[j]);
-            for (k = 0; k < 2; k++) {
-                hit[2 * j + k] = (uint8_t)(((tq[k] <= 1.0) & (tt[k] > 0.0) & (te[k] <= tr[k] * tr[k])) | vp[2 * j + k] << 1);
-                depth[2 * j + k] = (float)(tt[k] * (parab ? 1.0 + tq[k] : 1.0));
-            }
-        }
-        i = 2 * pairs;
-    }
-#endif
-    for (; i < n; i++) { /* the rest one at a time, by the definition */
-        const float *cone = tree->cones + 4 * (size_t)nodes[i];
-        hit[i] = (uint8_t)(mlod__tangent_hit(pv, s, tree->spheres + 4 * (size_t)nodes[i], cone, ds, (uint32_t)cols[i],
-                                             (uint32_t)rows[i], &depth[i]) |
-                           mlod__has_plane(cone) << 1);
-    }
-}
+                               const float *cols, const float *rows, uint32_t n, float ds, uint8_t *hit, float *depth);
 
 /* The depth of the sphere's centre in sub-projection s (as
    mlod__image_discs measures it). */
@@ -12599,6 +12524,7 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #undef mlod__pair_actions
 #undef mlod__reached_lanes
 #undef mlod__settle_lanes
+#undef mlod__tangent_hits
 #undef mlod__vat_least
 #undef mlod__vbackfacing
 #undef mlod__vbits
@@ -12623,6 +12549,7 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #undef mlod__vstatus
 #undef mlod__vstatus_known
 #undef mlod__vundecided
+#undef mlod__wd_rows
 #undef mlod__vf
 
 #if defined(__clang__)
@@ -12687,6 +12614,16 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #undef MLOD__VSUB
 #undef MLOD__VTRUNC
 #undef MLOD__X86_LANES
+#undef MLOD__WADD
+#undef MLOD__WDIV
+#undef MLOD__WFLOATS
+#undef MLOD__WLANES
+#undef MLOD__WMUL
+#undef MLOD__WSPLAT
+#undef MLOD__WSQRT
+#undef MLOD__WSTORE
+#undef MLOD__WSUB
+#undef mlod__wd
 /* this pass's names: name##MLOD__LANES_SUFFIX (the build's own level: the
    plain names); the implementation undefines them after its last pass */
 #define mlod__all_set MLOD__LV(mlod__all_set)
@@ -12712,6 +12649,7 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #define mlod__pair_actions MLOD__LV(mlod__pair_actions)
 #define mlod__reached_lanes MLOD__LV(mlod__reached_lanes)
 #define mlod__settle_lanes MLOD__LV(mlod__settle_lanes)
+#define mlod__tangent_hits MLOD__LV(mlod__tangent_hits)
 #define mlod__vat_least MLOD__LV(mlod__vat_least)
 #define mlod__vbackfacing MLOD__LV(mlod__vbackfacing)
 #define mlod__vbits MLOD__LV(mlod__vbits)
@@ -12736,6 +12674,7 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #define mlod__vstatus MLOD__LV(mlod__vstatus)
 #define mlod__vstatus_known MLOD__LV(mlod__vstatus_known)
 #define mlod__vundecided MLOD__LV(mlod__vundecided)
+#define mlod__wd_rows MLOD__LV(mlod__wd_rows)
 #define mlod__vf MLOD__LV(mlod__vf)
 /* The build's own level hands a call to the level in use where it is
    another: `name args` as name_avx2 or name_none. */
@@ -12982,6 +12921,47 @@ MLOD__FORCE_INLINE void mlod__vbytes(float32x4_t codes, uint8_t *out)
     vst1_u8(bytes, vmovn_u16(vcombine_u16(h, h)));
     memcpy(out, bytes, 4);
 }
+#endif
+
+/* Doubles in lanes, for the steps that the exact path takes in double
+   (mlod__tangent_hits, mlod__node_distances): four a vector in the AVX2
+   and AVX-512 passes, two (MLOD__VD) in the others, but none where the
+   build has no double lanes.  Each lane computes the same operations in
+   the same order as the scalar steps: the same bits. */
+#if defined(MLOD__VD) && MLOD__PASS_LEVEL >= 3
+#define MLOD__WLANES 4
+#define mlod__wd __m256d
+#define MLOD__WSPLAT _mm256_set1_pd
+#define MLOD__WADD _mm256_add_pd
+#define MLOD__WSUB _mm256_sub_pd
+#define MLOD__WMUL _mm256_mul_pd
+#define MLOD__WDIV _mm256_div_pd
+#define MLOD__WSQRT _mm256_sqrt_pd
+#define MLOD__WSTORE _mm256_storeu_pd
+#define MLOD__WFLOATS(p) _mm256_cvtps_pd(_mm_loadu_ps(p)) /* four floats (exact) */
+/* rows[0 .. 3], four floats each, as four vectors: out[k] lane l holds rows[l][k] */
+MLOD__FORCE_INLINE void mlod__wd_rows(const float *const *rows, mlod__wd *out)
+{
+    __m128 a = _mm_loadu_ps(rows[0]), b = _mm_loadu_ps(rows[1]), c = _mm_loadu_ps(rows[2]), d = _mm_loadu_ps(rows[3]);
+    __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b), cd0 = _mm_unpacklo_ps(c, d);
+    __m128 cd1 = _mm_unpackhi_ps(c, d);
+    out[0] = _mm256_cvtps_pd(_mm_movelh_ps(ab0, cd0));
+    out[1] = _mm256_cvtps_pd(_mm_movehl_ps(cd0, ab0));
+    out[2] = _mm256_cvtps_pd(_mm_movelh_ps(ab1, cd1));
+    out[3] = _mm256_cvtps_pd(_mm_movehl_ps(cd1, ab1));
+}
+#elif defined(MLOD__VD)
+#define MLOD__WLANES 2
+#define mlod__wd mlod__vd
+#define MLOD__WSPLAT MLOD__DSPLAT
+#define MLOD__WADD MLOD__DADD
+#define MLOD__WSUB MLOD__DSUB
+#define MLOD__WMUL MLOD__DMUL
+#define MLOD__WDIV MLOD__DDIV
+#define MLOD__WSQRT MLOD__DSQRT
+#define MLOD__WSTORE MLOD__DSTORE
+#define MLOD__WFLOATS(p) MLOD__DPAIR((p)[0], (p)[1])
+MLOD__FORCE_INLINE void mlod__wd_rows(const float *const *rows, mlod__wd *out) { mlod__vd_pairs(rows[0], rows[1], out); }
 #endif
 
 #ifdef MLOD__X86_LANES
@@ -13796,39 +13776,120 @@ static void mlod__disc_insides(const float *box, size_t stride, const float *col
 #endif
 
 
-/* mlod__node_distance of nodes[0 .. n) into out, two at a time where the
-   build has double lanes (each lane the same operations in the same order:
-   the same bits). */
+/* mlod__tangent_hit for nodes[i] at tile pixel (cols[i], rows[i]) (whole
+   numbers, as floats), i < n <= MLOD__DRAW_CHUNK, in a perspective or
+   paraboloid sub-projection s: bit 0 of hit[i] and depth[i], each node's
+   operations those of mlod__tangent_hit in its order (the same bits),
+   MLOD__WLANES nodes a vector where the pass has double lanes; bit 1 of
+   hit[i]: mlod__has_plane. */
+static void mlod__tangent_hits(const mlod__pview *pv, int s, const mlod_tree *tree, const uint32_t *nodes,
+                               const float *cols, const float *rows, uint32_t n, float ds, uint8_t *hit, float *depth)
+{
+    uint32_t i = 0;
+    MLOD__LANES_REDIRECT(mlod__tangent_hits, (pv, s, tree, nodes, cols, rows, n, ds, hit, depth));
+    MANYLODS_ASSERT(n <= MLOD__DRAW_CHUNK &&
+                    (pv->kind[s] == MLOD_VIEW_PARABOLOID || pv->kind[s] == MLOD_VIEW_PERSPECTIVE));
+#ifdef MLOD__WLANES
+    if (n >= MLOD__WLANES) { /* each lane mlod__tangent_hit's steps; the divisions in a pass of their own */
+        const mlod_view_sub *sub = &pv->f.subs[s];
+        const int parab = pv->kind[s] == MLOD_VIEW_PARABOLOID;
+        const double mid_x = sub->x + 0.5 * sub->width, mid_y = sub->y + 0.5 * sub->height, inv = 1.0 / sub->scale;
+        const double inv_w = 2.0 / sub->width, inv_h = 2.0 / sub->height;
+        int k;
+        mlod__wd vd[3][MLOD__DRAW_CHUNK / MLOD__WLANES], vx[3][MLOD__DRAW_CHUNK / MLOD__WLANES];
+        mlod__wd vq[MLOD__DRAW_CHUNK / MLOD__WLANES], vt[MLOD__DRAW_CHUNK / MLOD__WLANES];
+        mlod__wd vr[MLOD__DRAW_CHUNK / MLOD__WLANES];
+        uint8_t vp[MLOD__DRAW_CHUNK];
+        uint32_t j, l, groups = n / MLOD__WLANES;
+        for (j = 0; j < groups; j++) {
+            const float *sr[MLOD__WLANES], *cr[MLOD__WLANES];
+            mlod__wd cx = MLOD__WADD(MLOD__WFLOATS(cols + MLOD__WLANES * j), MLOD__WSPLAT(0.5));
+            mlod__wd cy = MLOD__WADD(MLOD__WFLOATS(rows + MLOD__WLANES * j), MLOD__WSPLAT(0.5));
+            mlod__wd px, py, d[3], x[3], sp[4], cp[4];
+            for (l = 0; l < MLOD__WLANES; l++) {
+                sr[l] = tree->spheres + 4 * (size_t)nodes[MLOD__WLANES * j + l];
+                cr[l] = tree->cones + 4 * (size_t)nodes[MLOD__WLANES * j + l];
+                vp[MLOD__WLANES * j + l] = (uint8_t)((double)cr[l][3] < MLOD__PI);
+            }
+            if (parab) {
+                mlod__wd x2, y2, w;
+                px = MLOD__WSUB(MLOD__WMUL(MLOD__WSUB(cx, MLOD__WSPLAT(sub->x)), MLOD__WSPLAT(inv_w)), MLOD__WSPLAT(1.0));
+                py = MLOD__WSUB(MLOD__WSPLAT(1.0), MLOD__WMUL(MLOD__WSUB(cy, MLOD__WSPLAT(sub->y)), MLOD__WSPLAT(inv_h)));
+                vq[j] = MLOD__WADD(MLOD__WMUL(px, px), MLOD__WMUL(py, py));
+                x2 = MLOD__WADD(px, px); /* 2 px, exact: (2 px) r as the scalar 2.0 * px * r */
+                y2 = MLOD__WADD(py, py);
+                w = MLOD__WSUB(MLOD__WSPLAT(1.0), vq[j]);
+                for (k = 0; k < 3; k++)
+                    d[k] = MLOD__WADD(MLOD__WADD(MLOD__WMUL(x2, MLOD__WSPLAT(sub->right[k])),
+                                                 MLOD__WMUL(y2, MLOD__WSPLAT(sub->up[k]))),
+                                      MLOD__WMUL(w, MLOD__WSPLAT(sub->forward[k])));
+            } else {
+                px = MLOD__WMUL(MLOD__WSUB(cx, MLOD__WSPLAT(mid_x)), MLOD__WSPLAT(inv));
+                py = MLOD__WMUL(MLOD__WSUB(MLOD__WSPLAT(mid_y), cy), MLOD__WSPLAT(inv));
+                vq[j] = MLOD__WSPLAT(0.0);
+                for (k = 0; k < 3; k++)
+                    d[k] = MLOD__WADD(MLOD__WADD(MLOD__WSPLAT(sub->forward[k]), MLOD__WMUL(px, MLOD__WSPLAT(sub->right[k]))),
+                                      MLOD__WMUL(py, MLOD__WSPLAT(sub->up[k])));
+            }
+            mlod__wd_rows(sr, sp);
+            mlod__wd_rows(cr, cp);
+            for (k = 0; k < 3; k++) {
+                x[k] = MLOD__WSUB(sp[k], MLOD__WSPLAT(pv->f.eye[k]));
+                vd[k][j] = d[k];
+                vx[k][j] = x[k];
+            }
+            vr[j] = MLOD__WMUL(sp[3], MLOD__WSPLAT((double)ds));
+            /* t = n.(x - o) / n.dir with o = 0 (x - 0 is x, bit for bit) */
+            vt[j] = MLOD__WDIV(MLOD__WADD(MLOD__WADD(MLOD__WMUL(cp[0], x[0]), MLOD__WMUL(cp[1], x[1])), MLOD__WMUL(cp[2], x[2])),
+                               MLOD__WADD(MLOD__WADD(MLOD__WMUL(cp[0], d[0]), MLOD__WMUL(cp[1], d[1])), MLOD__WMUL(cp[2], d[2])));
+        }
+        for (j = 0; j < groups; j++) {
+            mlod__wd e[3];
+            double tq[MLOD__WLANES], tt[MLOD__WLANES], te[MLOD__WLANES], tr[MLOD__WLANES];
+            /* (0 + t d) - x: without the 0, only a zero's sign may differ, which the square drops */
+            for (k = 0; k < 3; k++) e[k] = MLOD__WSUB(MLOD__WMUL(vt[j], vd[k][j]), vx[k][j]);
+            MLOD__WSTORE(te, MLOD__WADD(MLOD__WADD(MLOD__WMUL(e[0], e[0]), MLOD__WMUL(e[1], e[1])), MLOD__WMUL(e[2], e[2])));
+            MLOD__WSTORE(tr, vr[j]);
+            MLOD__WSTORE(tt, vt[j]);
+            MLOD__WSTORE(tq, vq[j]);
+            for (l = 0; l < MLOD__WLANES; l++) {
+                const uint32_t at = MLOD__WLANES * j + l;
+                hit[at] = (uint8_t)(((tq[l] <= 1.0) & (tt[l] > 0.0) & (te[l] <= tr[l] * tr[l])) | vp[at] << 1);
+                depth[at] = (float)(tt[l] * (parab ? 1.0 + tq[l] : 1.0));
+            }
+        }
+        i = MLOD__WLANES * groups;
+    }
+#endif
+    for (; i < n; i++) { /* the rest one at a time, by the definition */
+        const float *cone = tree->cones + 4 * (size_t)nodes[i];
+        hit[i] = (uint8_t)(mlod__tangent_hit(pv, s, tree->spheres + 4 * (size_t)nodes[i], cone, ds, (uint32_t)cols[i],
+                                             (uint32_t)rows[i], &depth[i]) |
+                           mlod__has_plane(cone) << 1);
+    }
+}
+
+/* mlod__node_distance of nodes[0 .. n) into out, MLOD__WLANES at a time
+   where the pass has double lanes (each lane the same operations in the
+   same order: the same bits). */
 static void mlod__node_distances(const mlod_tree *scene, const uint32_t *nodes, uint32_t n, const double *centre,
                                  float *out)
 {
     uint32_t l = 0;
     MLOD__LANES_REDIRECT(mlod__node_distances, (scene, nodes, n, centre, out));
-#if defined(MLOD__VD) && MLOD__PASS_LEVEL >= 3
-    for (; l + 4 <= n; l += 4) { /* four lanes: the rows transposed, each lane's steps as below */
-        __m128 a = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l]);
-        __m128 b = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 1]);
-        __m128 c = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 2]);
-        __m128 d = _mm_loadu_ps(scene->spheres + 4 * (size_t)nodes[l + 3]);
-        __m128 ab0 = _mm_unpacklo_ps(a, b), ab1 = _mm_unpackhi_ps(a, b), cd0 = _mm_unpacklo_ps(c, d);
-        __m128 cd1 = _mm_unpackhi_ps(c, d);
-        __m256d x = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movelh_ps(ab0, cd0)), _mm256_set1_pd(centre[0]));
-        __m256d y = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movehl_ps(cd0, ab0)), _mm256_set1_pd(centre[1]));
-        __m256d z = _mm256_sub_pd(_mm256_cvtps_pd(_mm_movelh_ps(ab1, cd1)), _mm256_set1_pd(centre[2]));
-        __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
-        _mm_storeu_ps(out + l, _mm256_cvtpd_ps(_mm256_sqrt_pd(sum)));
-    }
-#endif
-#ifdef MLOD__VD
-    for (; l + 2 <= n; l += 2) {
-        const float *a = scene->spheres + 4 * (size_t)nodes[l], *b = scene->spheres + 4 * (size_t)nodes[l + 1];
-        mlod__vd x = MLOD__DSUB(MLOD__DPAIR(a[0], b[0]), MLOD__DSPLAT(centre[0]));
-        mlod__vd y = MLOD__DSUB(MLOD__DPAIR(a[1], b[1]), MLOD__DSPLAT(centre[1]));
-        mlod__vd z = MLOD__DSUB(MLOD__DPAIR(a[2], b[2]), MLOD__DSPLAT(centre[2]));
-        double d[2];
-        MLOD__DSTORE(d, MLOD__DSQRT(MLOD__DADD(MLOD__DADD(MLOD__DMUL(x, x), MLOD__DMUL(y, y)), MLOD__DMUL(z, z))));
-        out[l] = (float)d[0];
-        out[l + 1] = (float)d[1];
+#ifdef MLOD__WLANES
+    for (; l + MLOD__WLANES <= n; l += MLOD__WLANES) {
+        const float *rows[MLOD__WLANES];
+        mlod__wd sp[4], x, y, z;
+        double d[MLOD__WLANES];
+        uint32_t k;
+        for (k = 0; k < MLOD__WLANES; k++) rows[k] = scene->spheres + 4 * (size_t)nodes[l + k];
+        mlod__wd_rows(rows, sp);
+        x = MLOD__WSUB(sp[0], MLOD__WSPLAT(centre[0]));
+        y = MLOD__WSUB(sp[1], MLOD__WSPLAT(centre[1]));
+        z = MLOD__WSUB(sp[2], MLOD__WSPLAT(centre[2]));
+        MLOD__WSTORE(d, MLOD__WSQRT(MLOD__WADD(MLOD__WADD(MLOD__WMUL(x, x), MLOD__WMUL(y, y)), MLOD__WMUL(z, z))));
+        for (k = 0; k < MLOD__WLANES; k++) out[l + k] = (float)d[k];
     }
 #endif
     for (; l < n; l++) out[l] = mlod__node_distance(scene, nodes[l], centre);
