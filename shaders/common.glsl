@@ -29,6 +29,18 @@
 // The view layout (MLOD_IF_V_*), kind and status codes come from
 // interface.h, which the layout files include first.
 
+// ROLLED: a loop unrolled with the device's doubles but kept rolled with
+// emulated ones, where every operation is a few hundred instructions that
+// the driver inlines at each call and compiles (lavapipe took over a
+// minute for a context's pipelines): the exact path's repeated steps are
+// written as such loops around one call, the same operations in the same
+// order as the C twin's.
+#ifdef MLOD_F64_EMULATED
+#define ROLLED [[dont_unroll]]
+#else
+#define ROLLED [[unroll]]
+#endif
+
 #ifdef MLOD_F64_EMULATED
 struct real4 {
     uvec2 x;
@@ -171,12 +183,12 @@ void sin_cos(real a, out real sin_a, out real cos_a)
     real co = COS_ODD[0];
     real se = SIN_EVEN[0];
     real so = SIN_ODD[0];
-    [[unroll]] for (int k = 1; k < 6; k++) {
+    ROLLED for (int k = 1; k < 6; k++) {
         ce = r_add(COS_EVEN[k], r_mul(z, ce));
         co = r_add(COS_ODD[k], r_mul(z, co));
         se = r_add(SIN_EVEN[k], r_mul(z, se));
     }
-    [[unroll]] for (int k = 1; k < 5; k++) so = r_add(SIN_ODD[k], r_mul(z, so));
+    ROLLED for (int k = 1; k < 5; k++) so = r_add(SIN_ODD[k], r_mul(z, so));
     sin_a = r_sub(ce, r_mul(y, co));
     real sine = r_sub(se, r_mul(y, so));
     cos_a = r_mul(r_neg(x), sine);
@@ -200,7 +212,7 @@ real atan2_d(real y, real x)
     real w = r_mul(u2, u2);
     real even = ATAN_EVEN[0];
     real odd = ATAN_ODD[0];
-    [[unroll]] for (int k = 1; k < 6; k++) {
+    ROLLED for (int k = 1; k < 6; k++) {
         even = r_add(ATAN_EVEN[k], r_mul(w, even));
         odd = r_add(ATAN_ODD[k], r_mul(w, odd));
     }
@@ -349,9 +361,9 @@ void split_double(real a, out real hi, out real lo)
 void two_product(real a, real b, out real p, out real err)
 {
     real prod = r_mul(a, b);
-    real ah, al, bh, bl;
-    split_double(a, ah, al);
-    split_double(b, bh, bl);
+    real hi[2], lo[2];
+    ROLLED for (int k = 0; k < 2; k++) split_double(k == 0 ? a : b, hi[k], lo[k]);
+    real ah = hi[0], al = lo[0], bh = hi[1], bl = lo[1];
     err = r_sub(r_mul(al, bl), r_sub(r_sub(r_sub(prod, r_mul(ah, bh)), r_mul(al, bh)), r_mul(ah, bl)));
     p = prod;
 }
@@ -365,16 +377,16 @@ void two_product(real a, real b, out real p, out real err)
 int exact_sign9(real t[9])
 {
     real e[9];
-    [[unroll]] for (int i = 0; i < 9; i++) {
+    ROLLED for (int i = 0; i < 9; i++) {
         real q = t[i], h;
-        [[unroll]] for (int j = 0; j < i; j++) {
+        ROLLED for (int j = 0; j < i; j++) {
             two_sum(q, e[j], q, h);
             e[j] = h;
         }
         e[i] = q;
     }
     int sign = 0;
-    [[unroll]] for (int i = 0; i < 9; i++)
+    ROLLED for (int i = 0; i < 9; i++)
         if (!r_eq(e[i], R_ZERO)) sign = r_gt(e[i], R_ZERO) ? 1 : -1; /* the largest nonzero component decides */
     return sign;
 }
@@ -403,11 +415,8 @@ bool plane_outside(uint base, vec4 sphere)
 #endif
     if (below) return true;
     if (above) return false;
-    real t[9];
-    two_product(n0, r_f(sphere.x), t[0], t[1]);
-    two_product(n1, r_f(sphere.y), t[2], t[3]);
-    two_product(n2, r_f(sphere.z), t[4], t[5]);
-    two_product(l, r_f(sphere.w), t[6], t[7]);
+    real t[9], factors[4] = real[](n0, n1, n2, l);
+    ROLLED for (int j = 0; j < 4; j++) two_product(factors[j], r_f(sphere[j]), t[2 * j], t[2 * j + 1]);
     t[8] = r_neg(k);
     return exact_sign9(t) < 0;
 }
@@ -420,25 +429,19 @@ bool backfacing(uint view, real3 x, real d2, real r, vec4 cone)
     real c0 = r_f(cone.x), c1 = r_f(cone.y), c2 = r_f(cone.z);
     real3 c = real3(c0, c1, c2);
     if (!r_lt(r_f(cone.w), r_mul(R_HALF, R_PI))) return false;
-    real sa, ca;
-    if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) {
-        real3 w = sd3(sub_base(view, 0u), MLOD_IF_S_FORWARD);
-        real away = r_neg(dot3(c, w));
-        if (!r_lt(away, R_ZERO)) return false;
-        real len = r_sqrt(dot3(c, c));
-        sin_cos(r_f(cone.w), sa, ca);
-        real along = r_div(away, len);
-        return r_gt(ca, R_ZERO) && r_lt(along, r_neg(sa));
-    }
-    if (r_le(d2, r_mul(r, r))) return false;
-    real away = r_neg(dot3(c, x));
+    // the C twin's two branches (orthographic: the axis w, no tangent)
+    // with one copy of each step
+    bool ortho = sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC;
+    if (!ortho && r_le(d2, r_mul(r, r))) return false;
+    real away = r_neg(dot3(c, ortho ? sd3(sub_base(view, 0u), MLOD_IF_S_FORWARD) : x));
     if (!r_lt(away, R_ZERO)) return false;
-    real len = r_sqrt(dot3(c, c));
-    real tangent = r_sqrt(r_sub(d2, r_mul(r, r)));
+    real len = r_sqrt(dot3(c, c)), tangent = R_ZERO, sa, ca;
+    if (!ortho) tangent = r_sqrt(r_sub(d2, r_mul(r, r)));
     sin_cos(r_f(cone.w), sa, ca);
+    real along = r_div(away, len);
+    if (ortho) return r_gt(ca, R_ZERO) && r_lt(along, r_neg(sa));
     real lhs = r_sub(r_mul(ca, tangent), r_mul(sa, r));
     real rhs = r_neg(r_add(r_mul(sa, tangent), r_mul(ca, r)));
-    real along = r_div(away, len);
     return r_gt(lhs, R_ZERO) && r_lt(along, rhs);
 }
 
@@ -491,18 +494,26 @@ uint reached_subs(uint view, vec4 sphere)
 real evaluate(uint view, vec4 sphere, bool use_cone, vec4 cone, out bool culled)
 {
     // one sub-projection: its planes first; several: the back faces first
-    // (the C twin's order; either culls the same nodes)
+    // (the C twin's order; either culls the same nodes), with one call of
+    // reached_subs (ROLLED)
     uint count = sub_count(view), reached = 0u;
+    real3 x = real3(R_ZERO, R_ZERO, R_ZERO);
+    real d2 = R_ZERO, r = R_ZERO, tangent = R_ZERO;
     culled = true;
-    if (count == 1u && (reached = reached_subs(view, sphere)) == 0u) return R_ZERO;
-    real3 x = r3_sub(r3_f(sphere.xyz), vd3(view, MLOD_IF_V_EYE));
-    real d2 = dot3(x, x);
-    real r = r_f(sphere.w);
-    real t2 = r_sub(d2, r_mul(r, r));
-    real tangent = r_sqrt(r_gt(t2, R_ZERO) ? t2 : R_ZERO);
-    if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) tangent = R_ZERO;
-    if (use_cone && !r_eq(vd(view, MLOD_IF_V_BACKFACES), R_ZERO) && backfacing(view, x, d2, r, cone)) return R_ZERO;
-    if (count > 1u && (reached = reached_subs(view, sphere)) == 0u) return R_ZERO;
+    ROLLED for (uint step = 0u; step < 2u; step++) {
+        if ((step == 0u) == (count == 1u)) {
+            reached = reached_subs(view, sphere);
+            if (reached == 0u) return R_ZERO;
+            continue;
+        }
+        x = r3_sub(r3_f(sphere.xyz), vd3(view, MLOD_IF_V_EYE));
+        d2 = dot3(x, x);
+        r = r_f(sphere.w);
+        real t2 = r_sub(d2, r_mul(r, r));
+        tangent = r_sqrt(r_gt(t2, R_ZERO) ? t2 : R_ZERO);
+        if (sub_kind(sub_base(view, 0u)) == MLOD_IF_KIND_ORTHOGRAPHIC) tangent = R_ZERO;
+        if (use_cone && !r_eq(vd(view, MLOD_IF_V_BACKFACES), R_ZERO) && backfacing(view, x, d2, r, cone)) return R_ZERO;
+    }
     culled = false;
     real c = R_ZERO;
     for (uint s = 0u; s < count; s++)

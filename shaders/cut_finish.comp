@@ -6,8 +6,8 @@
 // view has at least one entry; the list is grouped by view, in view
 // order): view_offsets[v] .. view_offsets[v + 1].  Dispatched with
 // args[2].  An entry the filter is unsure of stays pending and is listed
-// for cut_settle (as cut_step's for cut_exact: the exact path is kept out
-// of a pass that every entry takes).
+// for cut_exact with pc.settle (as cut_step's for cut_exact: the exact
+// path is kept out of a pass that every entry takes).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
@@ -32,7 +32,7 @@ void main()
         uint previous_view = i == 0u ? 0xffffffffu : (in_b ? list_out[i - 1u].y : list_in[i - 1u].y);
         if (s == MLOD_IF_STATUS_PENDING) {
             s = classify_fast(e.y, e.x, pc.leaf_count); // 0 (still pending) when unsure
-            evaluated = 1u; // cut_settle does not count it again
+            evaluated = 1u; // cut_exact (settle) does not count it again
             if (s == 0u) acts[defer_entry()] = i;
         }
         if (in_b) list_in[i] = e;

@@ -39,8 +39,8 @@ layout(push_constant) uniform push_block { MLOD_IF_CUT_PUSH(MLOD_IF_DECLARE) } p
     }
 
 // List an entry for the exact pass that follows (cut_exact after cut_step,
-// cut_settle after cut_finish), which runs args[3].x workgroups over the
-// args[3].w entries listed.  Returns the entry's place in the list, which
+// cut_exact with pc.settle after cut_finish), which runs args[3].x
+// workgroups over the args[3].w entries listed.  Returns the entry's place in the list, which
 // the caller writes: status_out[k] in a round (free until cut_write
 // fills it), acts[k] in cut_finish (free after the last round).
 uint defer_entry()

@@ -31,7 +31,7 @@ modules=
     # double), and those that include common.glsl a second time with
     # -DMLOD_F64_EMULATED (doubles from 32-bit integers: real.glsl), as
     # module NAME_EMULATED
-    for name in cut_init cut_step cut_step_basic cut_exact cut_scan cut_write cut_finish cut_settle splat_clear splat_draw splat_resolve refit_check refit_leaves refit_merge mv_pairs mv_slots mv_inherit mv_draw mv_resolve; do
+    for name in cut_init cut_step cut_step_basic cut_exact cut_scan cut_write cut_finish splat_clear splat_draw splat_resolve refit_check refit_leaves refit_merge mv_pairs mv_slots mv_inherit mv_draw mv_resolve; do
         src=shaders/$name.comp
         variants="-"
         # (directly, or through mv_layout.glsl or cut_step.glsl)

@@ -210,7 +210,9 @@
    the views, whether the tree has cones, whether the input's statuses are
    current (not a call's first round), whether to look for sibling pairs
    to merge, the round parity (args[slot], count[slot]), the entries the
-   output list holds, the device's maxComputeWorkGroupCount[0]. */
+   output list holds, the device's maxComputeWorkGroupCount[0], and for
+   cut_exact whether it settles cut_finish's pending entries (1) or takes
+   a round's deferred ones (0). */
 #define MLOD_IF_CUT_PUSH(MEMBER)                                                                                       \
     MEMBER(float, epsilon)                                                                                             \
     MEMBER(MLOD_IF_U32, leaf_count)                                                                                    \
@@ -220,8 +222,9 @@
     MEMBER(MLOD_IF_U32, merge)                                                                                         \
     MEMBER(MLOD_IF_U32, slot)                                                                                          \
     MEMBER(MLOD_IF_U32, capacity)                                                                                      \
-    MEMBER(MLOD_IF_U32, max_groups_x)
-#define MLOD_IF_CUT_PUSH_BYTES 36
+    MEMBER(MLOD_IF_U32, max_groups_x)                                                                                  \
+    MEMBER(MLOD_IF_U32, settle)
+#define MLOD_IF_CUT_PUSH_BYTES 40
 
 /* The splat shaders' push constants: the atlas's width and pixels, whether
    the tree has cones, whether the atlas has normals and colours, the

@@ -237,7 +237,7 @@ static void test_cut_parity(void)
         check_validation("lazy, lazy_steps 2^32 - 1");
     }
     printf("  cut parity: %llu cut entries compared over %d view sets x %d modes x %d epsilons x 4 frames; "
-           "%llu entries took the exact pass (cut_exact, cut_settle)\n",
+           "%llu entries took the exact pass (cut_exact)\n",
            (unsigned long long)compared, VIEW_KINDS + 1, lean ? 2 : 4, lean ? 1 : 2, (unsigned long long)deferred);
     /* the equal cuts above went through both passes: entries the float
        filter decided alone, and entries it deferred */
