@@ -29,18 +29,6 @@
 // The view layout (MLOD_IF_V_*), kind and status codes come from
 // interface.h, which the layout files include first.
 
-// ROLLED: a loop unrolled with the device's doubles but kept rolled with
-// emulated ones, where every operation is a few hundred instructions that
-// the driver inlines at each call and compiles (lavapipe took over a
-// minute for a context's pipelines): the exact path's repeated steps are
-// written as such loops around one call, the same operations in the same
-// order as the C twin's.
-#ifdef MLOD_F64_EMULATED
-#define ROLLED [[dont_unroll]]
-#else
-#define ROLLED [[unroll]]
-#endif
-
 #ifdef MLOD_F64_EMULATED
 struct real4 {
     uvec2 x;
@@ -102,16 +90,27 @@ float float_up(real x)
 }
 
 // C twin: mlod__dot3
+// ((x x' + y y') + z z'), one product and one sum a step (ROLLED)
 real dot3(real3 a, real3 b)
 {
-    return r_add(r_add(r_mul(a.x, b.x), r_mul(a.y, b.y)), r_mul(a.z, b.z));
+    real sum = R_ZERO;
+    ROLLED for (uint k = 0u; k < 3u; k++) {
+        real p = r_mul(r3_at(a, k), r3_at(b, k));
+        sum = k == 0u ? p : r_add(sum, p);
+    }
+    return sum;
 }
 
 // C twin: mlod__cross3
+// component k: a[k + 1] b[k + 2] - a[k + 2] b[k + 1] (indices mod 3)
 real3 cross_d(real3 a, real3 b)
 {
-    return real3(r_sub(r_mul(a.y, b.z), r_mul(a.z, b.y)), r_sub(r_mul(a.z, b.x), r_mul(a.x, b.z)),
-                 r_sub(r_mul(a.x, b.y), r_mul(a.y, b.x)));
+    real c[3];
+    ROLLED for (uint k = 0u; k < 3u; k++) {
+        uint i = k == 2u ? 0u : k + 1u, j = k == 0u ? 2u : k - 1u;
+        c[k] = r_sub(r_mul(r3_at(a, i), r3_at(b, j)), r_mul(r3_at(a, j), r3_at(b, i)));
+    }
+    return real3(c[0], c[1], c[2]);
 }
 
 // C twin: mlod__length3
@@ -236,13 +235,11 @@ vec4 sphere_enclose(vec4 a, vec4 b)
         c = b.xyz;
     } else {
         real t = r_div(r_sub(r_mul(r_add(r_add(d, ra), rb), R_HALF), ra), d);
-        real cx = r_add(r_f(a.x), r_mul(r_sub(r_f(b.x), r_f(a.x)), t));
-        real cy = r_add(r_f(a.y), r_mul(r_sub(r_f(b.y), r_f(a.y)), t));
-        real cz = r_add(r_f(a.z), r_mul(r_sub(r_f(b.z), r_f(a.z)), t));
-        c = vec3(r_to_f(cx), r_to_f(cy), r_to_f(cz));
+        ROLLED for (uint k = 0u; k < 3u; k++) c[k] = r_to_f(r_add(r_f(a[k]), r_mul(r_sub(r_f(b[k]), r_f(a[k])), t)));
     }
-    real need_a = r_add(distance_f(c, a.xyz), ra);
-    real need_b = r_add(distance_f(c, b.xyz), rb);
+    real needs[2];
+    ROLLED for (uint k = 0u; k < 2u; k++) needs[k] = r_add(distance_f(c, k == 0u ? a.xyz : b.xyz), k == 0u ? ra : rb);
+    real need_a = needs[0], need_b = needs[1];
     // (1 + 2^-20) (1 + 2^-50)
     real need = r_mul(r_mul(r_gt(need_a, need_b) ? need_a : need_b, RK(0x3FF00001u, 0x00000000u, 1.00000095367431640625LF)),
                       RK(0x3FF00000u, 0x00000004u, 1.00000000000000088817841970012523LF));
@@ -276,8 +273,9 @@ vec4 cone_enclose(vec4 a, vec4 b)
         real phi = r_sub(alpha, aw);
         real sin_phi, cos_phi;
         sin_cos(phi, sin_phi, cos_phi);
-        real la = length_d(A);
-        real3 An = real3(r_div(A.x, la), r_div(A.y, la), r_div(A.z, la));
+        real la = length_d(A), an[3];
+        ROLLED for (uint k = 0u; k < 3u; k++) an[k] = r_div(r3_at(A, k), la);
+        real3 An = real3(an[0], an[1], an[2]);
         real ab = dot3(An, B);
         real3 t = r3_sub(B, r3_scale(An, ab));
         real len = length_d(t);
@@ -288,12 +286,14 @@ vec4 cone_enclose(vec4 a, vec4 b)
             t = cross_d(An, helper);
             len = length_d(t);
         }
-        X = real3(r_add(r_mul(An.x, cos_phi), r_mul(r_div(t.x, len), sin_phi)),
-                  r_add(r_mul(An.y, cos_phi), r_mul(r_div(t.y, len), sin_phi)),
-                  r_add(r_mul(An.z, cos_phi), r_mul(r_div(t.z, len), sin_phi)));
+        real xc[3];
+        ROLLED for (uint k = 0u; k < 3u; k++)
+            xc[k] = r_add(r_mul(r3_at(An, k), cos_phi), r_mul(r_div(r3_at(t, k), len), sin_phi));
+        X = real3(xc[0], xc[1], xc[2]);
     }
     real lx = length_d(X);
-    vec3 axis = vec3(r_to_f(r_div(X.x, lx)), r_to_f(r_div(X.y, lx)), r_to_f(r_div(X.z, lx)));
+    vec3 axis;
+    ROLLED for (uint k = 0u; k < 3u; k++) axis[k] = r_to_f(r_div(r3_at(X, k), lx));
     // +0 for a zero component however it was reached: the compiler may fold
     // away the terms that decide the sign of a zero (x + 0 -> x), the CPU
     // does not; the test on the bits cannot be folded
@@ -301,9 +301,9 @@ vec4 cone_enclose(vec4 a, vec4 b)
         if (floatBitsToUint(axis[k]) == 0x80000000u) axis[k] = 0.0;
     if (measure) {
         real3 S = r3_f(axis);
-        real need_a = r_add(angle_d(S, A), aw);
-        real need_b = r_add(angle_d(S, B), bw);
-        alpha = r_gt(need_a, need_b) ? need_a : need_b;
+        real needs[2];
+        ROLLED for (uint k = 0u; k < 2u; k++) needs[k] = r_add(angle_d(S, k == 0u ? A : B), k == 0u ? aw : bw);
+        alpha = r_gt(needs[0], needs[1]) ? needs[0] : needs[1];
     }
     // + 2^-22 + 2^-20
     real stored = r_add(r_add(alpha, RK(0x3E900000u, 0x00000000u, 2.384185791015625e-07LF)),
@@ -397,15 +397,18 @@ int exact_sign9(real t[9])
 // (n.c + l r < k, exactly)?
 bool plane_outside(uint base, vec4 sphere)
 {
-    real n0 = sd(base, 0u), n1 = sd(base, 1u), n2 = sd(base, 2u), k = sd(base, 3u), l = sd(base, 4u);
-    real t0 = r_mul(n0, r_f(sphere.x));
-    real t1 = r_mul(n1, r_f(sphere.y));
-    real t2 = r_mul(n2, r_f(sphere.z));
-    real t3 = r_mul(l, r_f(sphere.w));
-    real s = r_sub(r_add(r_add(r_add(t0, t1), t2), t3), k);
+    real k = sd(base, 3u), factors[4] = real[](sd(base, 0u), sd(base, 1u), sd(base, 2u), sd(base, 4u));
+    // s = ((t0 + t1) + t2) + t3 - k for the terms t_j = n_j c_j (and l r),
+    // with their magnitudes' sum (ROLLED)
+    real s = R_ZERO, mag = R_ZERO;
+    ROLLED for (int j = 0; j < 4; j++) {
+        real t = r_mul(factors[j], r_f(sphere[j]));
+        s = j == 0 ? t : r_add(s, t);
+        mag = j == 0 ? r_abs(t) : r_add(mag, r_abs(t));
+    }
+    s = r_sub(s, k);
     // 2^-48 of the terms' magnitudes
-    real bound = r_mul(r_add(r_add(r_add(r_add(r_abs(t0), r_abs(t1)), r_abs(t2)), r_abs(t3)), r_abs(k)),
-                       RK(0x3CF00000u, 0x00000000u, 3.552713678800501e-15LF));
+    real bound = r_mul(r_add(mag, r_abs(k)), RK(0x3CF00000u, 0x00000000u, 3.552713678800501e-15LF));
     bool below = r_lt(s, r_neg(bound)), above = r_gt(s, bound);
     // The exact path runs where the filter cannot decide, which is rare;
     // asking the whole subgroup first keeps SIMD devices (lavapipe runs
@@ -415,7 +418,7 @@ bool plane_outside(uint base, vec4 sphere)
 #endif
     if (below) return true;
     if (above) return false;
-    real t[9], factors[4] = real[](n0, n1, n2, l);
+    real t[9];
     ROLLED for (int j = 0; j < 4; j++) two_product(factors[j], r_f(sphere[j]), t[2 * j], t[2 * j + 1]);
     t[8] = r_neg(k);
     return exact_sign9(t) < 0;
@@ -761,31 +764,46 @@ bool centre_ray(uint sub, int kind, uint col, uint row, out real3 o, out real3 d
     real3 u = sd3(sub, MLOD_IF_S_RIGHT), v = sd3(sub, MLOD_IF_S_UP), w = sd3(sub, MLOD_IF_S_FORWARD);
     real left = sd(sub, MLOD_IF_S_X), top = sd(sub, MLOD_IF_S_Y);
     real width = sd(sub, MLOD_IF_S_WIDTH), height = sd(sub, MLOD_IF_S_HEIGHT);
-    o = real3(R_ZERO, R_ZERO, R_ZERO);
-    dir = w;
+    real px, py, tw = R_ZERO;
+    bool parab = kind == MLOD_IF_KIND_PARABOLOID, ortho = kind == MLOD_IF_KIND_ORTHOGRAPHIC;
     depth_per_t = R_ONE;
-    if (kind == MLOD_IF_KIND_PERSPECTIVE) {
-        real inv = r_div(R_ONE, sd(sub, MLOD_IF_S_SCALE));
-        real px = r_mul(r_sub(x, r_add(left, r_mul(R_HALF, width))), inv);
-        real py = r_mul(r_sub(r_add(top, r_mul(R_HALF, height)), y), inv);
-        dir = real3(r_add(r_add(w.x, r_mul(px, u.x)), r_mul(py, v.x)), r_add(r_add(w.y, r_mul(px, u.y)), r_mul(py, v.y)),
-                    r_add(r_add(w.z, r_mul(px, u.z)), r_mul(py, v.z)));
-    } else if (kind == MLOD_IF_KIND_ORTHOGRAPHIC) {
-        real px = r_mul(r_sub(x, r_add(left, r_mul(R_HALF, width))), r_div(R_ONE, sd(sub, MLOD_IF_S_SCALE_X)));
-        real py = r_mul(r_sub(r_add(top, r_mul(R_HALF, height)), y), r_div(R_ONE, sd(sub, MLOD_IF_S_SCALE_Y)));
-        o = real3(r_add(r_mul(px, u.x), r_mul(py, v.x)), r_add(r_mul(px, u.y), r_mul(py, v.y)),
-                  r_add(r_mul(px, u.z), r_mul(py, v.z)));
+    // the C twin's three branches with one copy of each step (ROLLED):
+    // perspective and orthographic, (x - mid) times 1 / scale per axis
+    // (perspective: one scale for both); a paraboloid, (x - left) times
+    // 2 / width, less 1, as 2 px, 2 py
+    if (!parab) {
+        real inv[2];
+        ROLLED for (uint k = 0u; k < 2u; k++)
+            inv[k] = r_div(R_ONE, sd(sub, !ortho ? MLOD_IF_S_SCALE : (k == 0u ? MLOD_IF_S_SCALE_X : MLOD_IF_S_SCALE_Y)));
+        px = r_mul(r_sub(x, r_add(left, r_mul(R_HALF, width))), inv[0]);
+        py = r_mul(r_sub(r_add(top, r_mul(R_HALF, height)), y), inv[1]);
     } else {
-        real px = r_sub(r_mul(r_sub(x, left), r_div(R_TWO, width)), R_ONE);
-        real py = r_sub(R_ONE, r_mul(r_sub(y, top), r_div(R_TWO, height)));
+        px = r_sub(r_mul(r_sub(x, left), r_div(R_TWO, width)), R_ONE);
+        py = r_sub(R_ONE, r_mul(r_sub(y, top), r_div(R_TWO, height)));
         real q = r_add(r_mul(px, px), r_mul(py, py));
-        if (!r_le(q, R_ONE)) return false;
-        real tx = r_mul(R_TWO, px), ty = r_mul(R_TWO, py), tw = r_sub(R_ONE, q);
-        dir = real3(r_add(r_add(r_mul(tx, u.x), r_mul(ty, v.x)), r_mul(tw, w.x)),
-                    r_add(r_add(r_mul(tx, u.y), r_mul(ty, v.y)), r_mul(tw, w.y)),
-                    r_add(r_add(r_mul(tx, u.z), r_mul(ty, v.z)), r_mul(tw, w.z)));
+        if (!r_le(q, R_ONE)) {
+            o = real3(R_ZERO, R_ZERO, R_ZERO);
+            dir = w;
+            return false;
+        }
+        px = r_mul(R_TWO, px);
+        py = r_mul(R_TWO, py);
+        tw = r_sub(R_ONE, q);
         depth_per_t = r_add(R_ONE, q);
     }
+    // perspective: dir = (w + px u) + py v; orthographic: o = px u + py v,
+    // dir = w; paraboloid: dir = (2 px u + 2 py v) + (1 - q) w
+    real oc[3], dc[3];
+    ROLLED for (uint k = 0u; k < 3u; k++) {
+        real pu = r_mul(px, r3_at(u, k)), pv = r_mul(py, r3_at(v, k)), wk = r3_at(w, k);
+        real sum = r_add(kind == MLOD_IF_KIND_PERSPECTIVE ? wk : pu, kind == MLOD_IF_KIND_PERSPECTIVE ? pu : pv);
+        if (kind == MLOD_IF_KIND_PERSPECTIVE) sum = r_add(sum, pv);
+        else if (parab) sum = r_add(sum, r_mul(tw, wk));
+        oc[k] = ortho ? sum : R_ZERO;
+        dc[k] = ortho ? wk : sum;
+    }
+    o = real3(oc[0], oc[1], oc[2]);
+    dir = real3(dc[0], dc[1], dc[2]);
     return true;
 }
 
@@ -802,8 +820,9 @@ bool plane_hit(real3 x, vec4 cone, real3 o, real3 dir, real rr, bool ortho, out 
 {
     real3 n = r3_f(cone.xyz);
     t = r_div(dot3(n, r3_sub(x, o)), dot3(n, dir));
-    real3 e = real3(r_sub(r_add(o.x, r_mul(t, dir.x)), x.x), r_sub(r_add(o.y, r_mul(t, dir.y)), x.y),
-                    r_sub(r_add(o.z, r_mul(t, dir.z)), x.z));
+    real ec[3];
+    ROLLED for (uint k = 0u; k < 3u; k++) ec[k] = r_sub(r_add(r3_at(o, k), r_mul(t, r3_at(dir, k))), r3_at(x, k));
+    real3 e = real3(ec[0], ec[1], ec[2]);
     return (ortho || r_gt(t, R_ZERO)) && r_le(dot3(e, e), r_mul(rr, rr));
 }
 

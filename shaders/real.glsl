@@ -15,6 +15,19 @@
 // native form, its bits in the emulated one (the two are the same double;
 // the parity tests would find a pair that is not).
 
+// ROLLED: a loop unrolled with the device's doubles but kept rolled with
+// emulated ones, where every operation is a few hundred instructions that
+// the driver inlines at each call and compiles (lavapipe took over a
+// minute for a context's pipelines): repeated steps of the exact paths
+// are written as such loops around one call, the same operations in the
+// same order as the C twin's.  (The includer enables
+// GL_EXT_control_flow_attributes.)
+#ifdef MLOD_F64_EMULATED
+#define ROLLED [[dont_unroll]]
+#else
+#define ROLLED [[unroll]]
+#endif
+
 #ifdef MLOD_F64_EMULATED
 
 #include "f64.glsl"
@@ -92,7 +105,19 @@ uvec2 r_bits(real a) { return unpackDouble2x32(a); }
 #define R_PI RK(0x400921FBu, 0x54442D18u, 3.14159265358979323846LF)
 #define R_HALF_PI RK(0x3FF921FBu, 0x54442D18u, 1.57079632679489661923LF)
 
-// Three-vectors.
+// Three-vectors, component by component (ROLLED: one copy of each
+// operation).
+real r3_at(real3 a, uint k) { return k == 0u ? a.x : (k == 1u ? a.y : a.z); }
 real3 r3_f(vec3 v) { return real3(r_f(v.x), r_f(v.y), r_f(v.z)); }
-real3 r3_sub(real3 a, real3 b) { return real3(r_sub(a.x, b.x), r_sub(a.y, b.y), r_sub(a.z, b.z)); }
-real3 r3_scale(real3 a, real s) { return real3(r_mul(a.x, s), r_mul(a.y, s), r_mul(a.z, s)); }
+real3 r3_sub(real3 a, real3 b)
+{
+    real c[3];
+    ROLLED for (uint k = 0u; k < 3u; k++) c[k] = r_sub(r3_at(a, k), r3_at(b, k));
+    return real3(c[0], c[1], c[2]);
+}
+real3 r3_scale(real3 a, real s)
+{
+    real c[3];
+    ROLLED for (uint k = 0u; k < 3u; k++) c[k] = r_mul(r3_at(a, k), s);
+    return real3(c[0], c[1], c[2]);
+}

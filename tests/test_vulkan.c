@@ -1421,7 +1421,7 @@ static void test_megaviews_parity(void)
     double c[3], R;
     int setting;
     if (!room_tree(&s, lean ? 4000 : 30000, "megaviews", &tree, &vtree, c, &R)) return;
-    /* lean (emulated doubles, whose pipelines alone take lavapipe about a minute): the odd settings, which
+    /* lean (emulated doubles, whose pipelines alone take lavapipe about 25 s): the odd settings, which
        between them take every path of the shaders (sharing, fields of view, back faces, groups, one view),
        the sphere discs and the oblique orientation (10) */
     for (setting = lean ? 1 : 0; setting < 11; setting += lean && (setting < 7 || setting == 8) ? 2 : 1) {
