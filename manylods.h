@@ -12551,6 +12551,7 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #undef mlod__vundecided
 #undef mlod__wd_rows
 #undef mlod__vf
+#undef mlod__wd
 
 #if defined(__clang__)
 #ifdef MLOD__NO_FMA_TARGET
@@ -12623,7 +12624,6 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #undef MLOD__WSQRT
 #undef MLOD__WSTORE
 #undef MLOD__WSUB
-#undef mlod__wd
 /* this pass's names: name##MLOD__LANES_SUFFIX (the build's own level: the
    plain names); the implementation undefines them after its last pass */
 #define mlod__all_set MLOD__LV(mlod__all_set)
@@ -12676,6 +12676,7 @@ MLOD__PUBLIC mlod_parallel mlod_pool_parallel(mlod_pool *pool)
 #define mlod__vundecided MLOD__LV(mlod__vundecided)
 #define mlod__wd_rows MLOD__LV(mlod__wd_rows)
 #define mlod__vf MLOD__LV(mlod__vf)
+#define mlod__wd MLOD__LV(mlod__wd)
 /* The build's own level hands a call to the level in use where it is
    another: `name args` as name_avx2 or name_none. */
 #if defined(MLOD__PASS_BASE) && MLOD__BASE_LEVEL != 0
@@ -12930,7 +12931,7 @@ MLOD__FORCE_INLINE void mlod__vbytes(float32x4_t codes, uint8_t *out)
    the same order as the scalar steps: the same bits. */
 #if defined(MLOD__VD) && MLOD__PASS_LEVEL >= 3
 #define MLOD__WLANES 4
-#define mlod__wd __m256d
+typedef __m256d mlod__wd;
 #define MLOD__WSPLAT _mm256_set1_pd
 #define MLOD__WADD _mm256_add_pd
 #define MLOD__WSUB _mm256_sub_pd
@@ -12952,7 +12953,7 @@ MLOD__FORCE_INLINE void mlod__wd_rows(const float *const *rows, mlod__wd *out)
 }
 #elif defined(MLOD__VD)
 #define MLOD__WLANES 2
-#define mlod__wd mlod__vd
+typedef mlod__vd mlod__wd;
 #define MLOD__WSPLAT MLOD__DSPLAT
 #define MLOD__WADD MLOD__DADD
 #define MLOD__WSUB MLOD__DSUB
